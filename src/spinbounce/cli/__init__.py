@@ -1,0 +1,46 @@
+"""The ``spinbounce`` command: one subcommand per concern."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import warnings
+
+from .. import __version__
+from ..dumps import DumpError
+from ..pipeline import ResultError
+from ..runner import LammpsError
+from ..scenes import PhysicsWarning, SceneError
+from . import collide, frozen, theory
+
+COMMANDS = (theory, collide, frozen)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="spinbounce",
+        description="Frictional sphere-wall collisions in LAMMPS against Wang and Harrowell's theory.",
+    )
+    parser.add_argument("--version", action="version", version=f"spinbounce {__version__}")
+    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    for command in COMMANDS:
+        command.register(sub)
+    return parser
+
+
+def _show_warning(message, category, filename, lineno, file=None, line=None):
+    print(f"warning: {message}", file=sys.stderr)
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    warnings.showwarning = _show_warning
+    warnings.simplefilter("always", PhysicsWarning)
+    try:
+        return args.handler(args)
+    except SceneError as exc:
+        parser.exit(2, f"spinbounce {args.command}: error: {exc}\n")
+    except (LammpsError, ResultError, DumpError) as exc:
+        parser.exit(1, f"spinbounce {args.command}: {type(exc).__name__}: {exc}\n")
+    return 1

@@ -1,0 +1,77 @@
+"""Dump tables in the paper's variables, set beside the theory.
+
+LAMMPS frame -> paper: v_n = v_z, v_t = v_x, omega = -omega_y (anticlockwise positive),
+r_omega = r * omega.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from .scenes import Collision, Frozen
+
+__all__ = ["STATE", "paper_variables", "collision_table", "frozen_table"]
+
+#: State order everywhere: (v_n, v_t, r*omega).
+STATE = ("vn", "vt", "r_omega")
+
+
+def paper_variables(frames: pd.DataFrame, r: float) -> pd.DataFrame:
+    """Add the paper's variables (vn, vt, omega, r_omega, and the slip) to dump rows."""
+    out = frames.copy()
+    out["vn"] = frames["vz"]
+    out["vt"] = frames["vx"]
+    out["omega"] = -frames["omegay"]
+    out["r_omega"] = r * out["omega"]
+    out["slip"] = out["vt"] + out["r_omega"]
+    return out
+
+
+def collision_table(scene: Collision, frames: pd.DataFrame) -> pd.DataFrame:
+    """One row per sphere: requested, initial (as LAMMPS saw it), final, theory and error.
+
+    ``frames`` holds the first and last dump frames; spheres pair by atom id. The theory
+    acts on the *requested* initial state, so a mangled input would show as an error.
+    """
+    r = scene.model.r
+    paper = paper_variables(frames, r)
+    first, last = paper["step"].min(), paper["step"].max()
+    initial = paper[paper["step"] == first].set_index("id")
+    final = paper[paper["step"] == last].set_index("id")
+    ids = np.arange(1, scene.n + 1)
+    requested = scene.initial
+    theory = scene.predicted()
+    table = pd.DataFrame({"id": ids})
+    for k, name in enumerate(STATE):
+        table[f"{name}_0"] = requested[:, k]
+    table["omega_0"] = np.asarray(scene.omega)
+    for name in STATE + ("omega", "z"):
+        table[f"{name}_lammps_0"] = initial.loc[ids, name].to_numpy()
+    for name in STATE + ("omega", "z"):
+        table[f"{name}_final"] = final.loc[ids, name].to_numpy()
+    for k, name in enumerate(STATE):
+        table[f"{name}_theory"] = theory[:, k]
+    table["omega_theory"] = theory[:, 2] / r
+    for name in STATE + ("omega",):
+        table[f"{name}_error"] = table[f"{name}_final"] - table[f"{name}_theory"]
+    return table
+
+
+def frozen_table(scene: Frozen, frames: pd.DataFrame) -> pd.DataFrame:
+    """The frozen time series: t, vt, omega, r_omega and the theory's vt and r_omega."""
+    paper = paper_variables(frames, scene.model.r)
+    t = paper["step"].to_numpy() * scene.dt
+    vt_theory, r_omega_theory = scene.predicted(t)
+    return pd.DataFrame(
+        {
+            "t": t,
+            "vt": paper["vt"].to_numpy(),
+            "omega": paper["omega"].to_numpy(),
+            "r_omega": paper["r_omega"].to_numpy(),
+            "vt_theory": vt_theory,
+            "r_omega_theory": r_omega_theory,
+            "z": paper["z"].to_numpy(),
+            "vn": paper["vn"].to_numpy(),
+        }
+    )

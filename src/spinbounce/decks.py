@@ -1,0 +1,155 @@
+"""Render LAMMPS input decks from scenes.
+
+One Jinja2 template per scene lives in ``lammps_inputs/``. The templates use ``<< >>``
+and ``<% %>`` delimiters, which cannot collide with LAMMPS's own ``${...}`` and
+``$(...)``, and an undefined name is an error, never an empty string.
+
+Geometry: the wall is the plane z = 0 with normal +z, the tangential direction is +x,
+and the paper's anticlockwise omega is -omega_y (so slip = v_x - r*omega_y).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import lru_cache
+from pathlib import Path
+
+import jinja2
+
+from . import __version__
+from .scenes import Collision, ContactModel, Frozen
+
+__all__ = ["Deck", "render_collision", "render_frozen", "wall_parameters", "template_dir", "NO_CAP_MU"]
+
+#: LAMMPS always caps |F_t| <= mu F_n. The paper's model has no cap, so "no cap" is this
+#: large mu; facts measured on this build: 1e4 leaves a 1e-4 error floor, 1e12 does not.
+NO_CAP_MU = 1.0e12
+#: With gamma_n = 0 but gamma_t > 0, LAMMPS's tangential damping is X_T * ETA_N, so ETA_N
+#: must not be 0. This relative size (of critical normal damping) changes the normal
+#: restitution by about 1e-12, far below any other error.
+VANISHING_ETA_N = 1.0e-12
+DECK_NAME = "in.lammps"
+DUMP_NAME = "state.dump"
+BODIES_FILE = "bodies.txt"
+ALPHA_NVE_SPHERE = 0.4
+
+
+def template_dir() -> Path:
+    """``lammps_inputs/``: inside the installed package, or at the source tree's top."""
+    here = Path(__file__).resolve().parent
+    for candidate in (here / "lammps_inputs", here.parent.parent / "lammps_inputs"):
+        if candidate.is_dir():
+            return candidate
+    raise FileNotFoundError(f"lammps_inputs/ not found next to {here}")
+
+
+def _num(x) -> str:
+    """A float in full precision (repr round-trips exactly)."""
+    v = float(x)
+    if not math.isfinite(v):
+        raise ValueError(f"non-finite number {v!r} in a deck")
+    return repr(v + 0.0)  # + 0.0 turns -0.0 into 0.0
+
+
+@lru_cache(maxsize=1)
+def _environment() -> jinja2.Environment:
+    env = jinja2.Environment(
+        loader=jinja2.FileSystemLoader(str(template_dir())),
+        undefined=jinja2.StrictUndefined,
+        block_start_string="<%",
+        block_end_string="%>",
+        variable_start_string="<<",
+        variable_end_string=">>",
+        comment_start_string="<#",
+        comment_end_string="#>",
+        trim_blocks=True,
+        lstrip_blocks=True,
+        keep_trailing_newline=True,
+        autoescape=False,
+    )
+    env.filters["num"] = _num
+    return env
+
+
+@dataclass(frozen=True)
+class Deck:
+    """A rendered deck and the names of the files it reads and writes (relative to its folder)."""
+
+    text: str
+    name: str = DECK_NAME
+    dump: str = DUMP_NAME
+    rigid: bool = False
+
+
+def wall_parameters(model: ContactModel) -> dict:
+    """Arguments of ``wall/gran granular hooke ... tangential linear_history ...``.
+
+    LAMMPS's granular form gives the normal damping force -ETA_N v_n (``damping
+    velocity``) and the tangential one -(X_T ETA_N) u_dot.
+    """
+    notes = []
+    if model.gamma_t == 0.0 and model.gamma_n == 0.0:
+        eta_n, x_t, damping = 0.0, 0.0, False
+    elif model.gamma_n > 0.0:
+        eta_n, x_t, damping = model.gamma_n, model.gamma_t / model.gamma_n, True
+    else:
+        eta_n = VANISHING_ETA_N * 2.0 * math.sqrt(model.m * model.kn)
+        x_t, damping = model.gamma_t / eta_n, True
+        notes.append(
+            f"gamma_n = 0, gamma_t = {model.gamma_t!r}: ETA_N = {eta_n!r} is a vanishing normal "
+            f"damping so that X_T * ETA_N = gamma_t"
+        )
+    if model.mu is None:
+        mu = NO_CAP_MU
+        notes.append(f"the paper's model has no Coulomb limit; LAMMPS always applies one, so mu = {NO_CAP_MU:g}")
+    else:
+        mu = model.mu
+        notes.append(f"Coulomb limit |F_t| <= {mu!r} F_n: not the paper's model")
+    return {"eta_n": eta_n, "x_t": x_t, "damping": damping, "mu": mu, "comment": "; ".join(notes)}
+
+
+def _common(model: ContactModel, zhi: float) -> dict:
+    rigid = model.alpha != ALPHA_NVE_SPHERE
+    span = 10.0 * model.r
+    return {
+        "version": __version__,
+        "model": model,
+        "wall": wall_parameters(model),
+        "rigid": rigid,
+        "ntypes": 2 if rigid else 1,
+        "sphere_mass": model.m / 2 if rigid else model.m,
+        "point_mass": model.m / 2,
+        "inertia": model.inertia,
+        "bodies_file": BODIES_FILE,
+        "deck_name": DECK_NAME,
+        "dump_name": DUMP_NAME,
+        "box": {"xlo": -span, "xhi": span, "ylo": -span, "yhi": span, "zhi": zhi},
+    }
+
+
+def render_collision(scene: Collision) -> Deck:
+    model = scene.model
+    r = model.r
+    spheres = [
+        {
+            "id": i + 1, "x": 0.0, "y": 0.0, "z": r,
+            "vx": vt, "vy": 0.0, "vz": vn,
+            "wx": 0.0, "wy": -om, "wz": 0.0,
+        }
+        for i, (vn, vt, om) in enumerate(zip(scene.v_n, scene.v_t, scene.omega))
+    ]
+    ctx = _common(model, zhi=4.0 * r)
+    ctx.update(n=scene.n, spheres=spheres, tau=model.tau, dt=scene.dt, nsteps=scene.nsteps)
+    text = _environment().get_template("collision.lmp.j2").render(**ctx)
+    return Deck(text=text, rigid=ctx["rigid"])
+
+
+def render_frozen(scene: Frozen) -> Deck:
+    model = scene.model
+    ctx = _common(model, zhi=4.0 * model.r)
+    ctx.update(
+        z=scene.z, vx=scene.v_t, wy=-scene.omega, dt=scene.dt, nsteps=scene.nsteps, every=scene.every
+    )
+    text = _environment().get_template("frozen.lmp.j2").render(**ctx)
+    return Deck(text=text, rigid=ctx["rigid"])

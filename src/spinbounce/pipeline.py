@@ -1,0 +1,220 @@
+"""scene -> deck -> run -> dump -> table -> theory comparison, for one scene.
+
+Each run lives in its own folder: the deck (which alone reproduces the run with
+``lmp -in in.lammps``), LAMMPS's log and dump, and ``result.json`` with the provenance.
+A run's output is checked before it is returned: non-finite values, lost spheres and a
+contact that had not finished are errors, not results.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import datetime
+import json
+import math
+import os
+import platform
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from . import __version__, theory
+from .compare import STATE, collision_table, frozen_table
+from .decks import Deck, render_collision, render_frozen, wall_parameters
+from .dumps import read_dump
+from .runner import RunInfo, run_deck
+from .scenes import Collision, ContactModel, Frozen
+
+__all__ = [
+    "ResultError",
+    "CollisionResult",
+    "FrozenResult",
+    "run_collision",
+    "run_frozen",
+    "write_atomic",
+    "to_json",
+    "provenance",
+]
+
+#: A model with no energy source can gain energy only through integration error, which
+#: is O(dt^2) ~ 1e-6 relative at the coarsest default resolution; more is flagged.
+ENERGY_GAIN_TOLERANCE = 1e-5
+
+
+class ResultError(RuntimeError):
+    """LAMMPS finished but its output cannot be trusted (NaN, lost spheres, contact not over)."""
+
+
+def write_atomic(path: Path, text: str) -> None:
+    """Write ``text`` to ``path`` so that a reader sees the old file or the new one, never half."""
+    path = Path(path)
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(fd, "w") as handle:
+            handle.write(text)
+            handle.flush()
+            os.fsync(handle.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+
+
+def to_json(record: dict) -> str:
+    """JSON with floats in full precision (numpy scalars included)."""
+
+    def plain(value):
+        if isinstance(value, (np.generic,)):
+            return value.item()
+        if isinstance(value, Path):
+            return str(value)
+        raise TypeError(f"cannot write {type(value).__name__} to JSON")
+
+    return json.dumps(record, indent=2, default=plain) + "\n"
+
+
+def _model_dict(model: ContactModel) -> dict:
+    return dataclasses.asdict(model)
+
+
+def provenance(info: RunInfo, scene_kind: str, parameters: dict) -> dict:
+    return {
+        "scene": scene_kind,
+        "parameters": parameters,
+        "spinbounce_version": __version__,
+        "lammps_version": info.lammps_version,
+        "python": platform.python_version(),
+        "deck": str(info.deck),
+        "log": str(info.log),
+        "lammps_wall_seconds": info.wall_seconds,
+        "created": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
+    }
+
+
+def _prepare(out_dir: Path, deck: Deck) -> Path:
+    out_dir = Path(out_dir).resolve()
+    out_dir.mkdir(parents=True, exist_ok=True)
+    for stale in (deck.dump, "log.lammps", "result.json"):
+        (out_dir / stale).unlink(missing_ok=True)
+    deck_path = out_dir / deck.name
+    write_atomic(deck_path, deck.text)
+    return deck_path
+
+
+def _check_finite(frames: pd.DataFrame, where: Path) -> None:
+    values = frames.drop(columns=["step", "id"]).to_numpy(dtype=float)
+    if not np.all(np.isfinite(values)):
+        bad = frames[~np.isfinite(values).all(axis=1)]
+        raise ResultError(
+            f"{where}: non-finite positions or velocities (first at step {int(bad['step'].iloc[0])}, "
+            f"atom {int(bad['id'].iloc[0])}): the integration blew up"
+        )
+
+
+@dataclass(frozen=True)
+class CollisionResult:
+    scene: Collision
+    table: pd.DataFrame
+    info: RunInfo
+    dump: Path
+    warnings: tuple[str, ...]
+
+    @property
+    def max_abs_error(self) -> float:
+        return float(np.max(np.abs(self.table[[f"{s}_error" for s in STATE]].to_numpy())))
+
+
+def run_collision(scene: Collision, out_dir: Path) -> CollisionResult:
+    """Run one collision scene in ``out_dir`` and compare every sphere with Eq. 18."""
+    deck = render_collision(scene)
+    deck_path = _prepare(out_dir, deck)
+    info = run_deck(deck_path)
+    dump_path = deck_path.parent / deck.dump
+    frames = read_dump(dump_path)
+    _check_finite(frames, dump_path)
+    steps = sorted(frames["step"].unique())
+    if steps != [0, scene.nsteps]:
+        raise ResultError(f"{dump_path}: expected frames at steps 0 and {scene.nsteps}, found {steps}")
+    last = frames[frames["step"] == scene.nsteps]
+    if len(last) != scene.n:
+        raise ResultError(f"{dump_path}: {len(last)} of {scene.n} spheres left at the end (lost atoms)")
+    m = scene.model
+    table = collision_table(scene, frames)
+    still_touching = table[table["z_final"] <= m.r]
+    if len(still_touching):
+        raise ResultError(
+            f"{dump_path}: {len(still_touching)} sphere(s) still touch the wall after {scene.nsteps} steps "
+            f"(first: id {int(still_touching['id'].iloc[0])}, z = {still_touching['z_final'].iloc[0]!r}): "
+            "the contact had not finished"
+        )
+    notes = []
+    e0 = theory.energy(table[[f"{s}_0" for s in STATE]].to_numpy(), m.m, m.alpha)
+    e1 = theory.energy(table[[f"{s}_final" for s in STATE]].to_numpy(), m.m, m.alpha)
+    gain = np.max((e1 - e0) / e0)
+    table["energy_gain"] = (e1 - e0) / e0
+    if gain > ENERGY_GAIN_TOLERANCE:
+        notes.append(
+            f"kinetic energy grew by up to {gain:.3g} of E(0) in a model that cannot gain energy: "
+            "the step is too coarse for this scene"
+        )
+    if m.mu is not None:
+        notes.append(
+            f"mu = {m.mu!r} caps the tangential force; the theory (Eq. 18) has no cap, so the "
+            "'error' includes sliding, not only integration error"
+        )
+    result = CollisionResult(scene, table, info, dump_path, tuple(notes))
+    parameters = {"model": _model_dict(m), "dt": scene.dt, "nsteps": scene.nsteps,
+                  "tau": m.tau, "Omega": m.Omega, "wall": wall_parameters(m),
+                  "integrator": "rigid" if deck.rigid else "nve/sphere"}
+    record = provenance(info, "collision", parameters)
+    record["dump"] = str(dump_path)
+    record["warnings"] = list(notes)
+    record["spheres"] = table.to_dict(orient="records")
+    write_atomic(deck_path.parent / "result.json", to_json(record))
+    return result
+
+
+@dataclass(frozen=True)
+class FrozenResult:
+    scene: Frozen
+    table: pd.DataFrame
+    info: RunInfo
+    dump: Path
+
+    @property
+    def max_abs_error(self) -> float:
+        t = self.table
+        return float(
+            max(np.max(np.abs(t["vt"] - t["vt_theory"])), np.max(np.abs(t["r_omega"] - t["r_omega_theory"])))
+        )
+
+
+def run_frozen(scene: Frozen, out_dir: Path) -> FrozenResult:
+    """Run a frozen contact in ``out_dir`` and set its time series beside Eq. 10."""
+    deck = render_frozen(scene)
+    deck_path = _prepare(out_dir, deck)
+    info = run_deck(deck_path)
+    dump_path = deck_path.parent / deck.dump
+    frames = read_dump(dump_path)
+    _check_finite(frames, dump_path)
+    expected = scene.nsteps // scene.every + 1
+    if frames["step"].nunique() != expected or frames["step"].max() != scene.nsteps:
+        raise ResultError(f"{dump_path}: expected {expected} frames ending at step {scene.nsteps}")
+    table = frozen_table(scene, frames)
+    if np.max(np.abs(table["z"] - scene.z)) > 1e-12 * max(1.0, scene.z):
+        raise ResultError(f"{dump_path}: the sphere moved off its held height z = {scene.z!r}")
+    return FrozenResult(scene, table, info, dump_path)
+
+
+def frozen_metadata(result: FrozenResult) -> dict:
+    scene = result.scene
+    parameters = {"model": _model_dict(scene.model), "z": scene.z, "v_t": scene.v_t,
+                  "omega": scene.omega, "t_end": scene.nsteps * scene.dt, "dt": scene.dt,
+                  "nsteps": scene.nsteps, "every": scene.every, "wall": wall_parameters(scene.model)}
+    record = provenance(result.info, "frozen", parameters)
+    record["dump"] = str(result.dump)
+    record["max_abs_error"] = result.max_abs_error
+    return record

@@ -1,0 +1,330 @@
+"""Validated descriptions of what to simulate: the contact model and the scenes.
+
+A scene is pure data: it knows nothing of files or LAMMPS. Every check happens when a
+scene is built, so bad input is refused before any LAMMPS run, with a message that
+names the parameter, its value and the limit it broke.
+
+Two scenes:
+
+* :class:`Collision`: spheres start touching the wall (centre at z = r) with given
+  (v_n, v_t, omega) and run until they have left it; checked against Eq. 18.
+* :class:`Frozen`: one sphere held at a fixed height z < r, so v_n = 0 and only the
+  slip evolves; checked against Eq. 10 (or its exact damped form).
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from . import theory
+from .stability import stability_limit
+
+__all__ = [
+    "SceneError",
+    "PhysicsWarning",
+    "ContactModel",
+    "Collision",
+    "Frozen",
+    "STEPS_PER_HALF_PERIOD",
+    "MIN_STEPS_PER_HALF_PERIOD",
+]
+
+#: Default resolution: steps per half-period of the fastest contact mode. At the paper's
+#: defaults this is 1000 steps per collision, where the collision's final state is within
+#: about 3e-7 of Eq. 18 per unit initial slip (see README, "accuracy").
+STEPS_PER_HALF_PERIOD = 1000
+#: Below this many steps per half-period a result is a caricature: warn.
+MIN_STEPS_PER_HALF_PERIOD = 20
+#: Above alpha = 2/3 part of the mass would sit outside the sphere (Section 3).
+ALPHA_SHELL = 2.0 / 3.0
+
+
+class SceneError(ValueError):
+    """A scene parameter is out of its allowed range. Raised before LAMMPS starts."""
+
+    def __init__(self, parameter: str, value, limit: str):
+        self.parameter = parameter
+        self.value = value
+        self.limit = limit
+        super().__init__(f"{parameter} = {value!r}: {limit}")
+
+
+class PhysicsWarning(UserWarning):
+    """A scene is allowed but physically unusual or numerically marginal."""
+
+
+def _finite(name: str, value) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise SceneError(name, value, "must be a number") from None
+    if not math.isfinite(v):
+        raise SceneError(name, value, "must be finite")
+    return v
+
+
+def _positive(name: str, value) -> float:
+    v = _finite(name, value)
+    if v <= 0.0:
+        raise SceneError(name, value, "must be > 0")
+    return v
+
+
+def _non_negative(name: str, value) -> float:
+    v = _finite(name, value)
+    if v < 0.0:
+        raise SceneError(name, value, "must be >= 0")
+    return v
+
+
+@dataclass(frozen=True)
+class ContactModel:
+    """The sphere and its wall contact (Eq. 1), in LAMMPS lj units.
+
+    ``mu = None`` is the paper's model: no Coulomb limit on the tangential force.
+    """
+
+    m: float = 1.0
+    r: float = 0.5
+    alpha: float = 0.4
+    kn: float = 10.0
+    kt: float = 1.0
+    gamma_n: float = 0.0
+    gamma_t: float = 0.0
+    mu: float | None = None
+
+    def __post_init__(self):
+        set_ = object.__setattr__
+        for name in ("m", "r", "kn"):
+            set_(self, name, _positive(name, getattr(self, name)))
+        for name in ("kt", "gamma_n", "gamma_t"):
+            set_(self, name, _non_negative(name, getattr(self, name)))
+        alpha = _finite("alpha", self.alpha)
+        if not 0.0 < alpha <= 1.0:
+            raise SceneError("alpha", self.alpha, "must lie in (0, 1] (alpha = I/(m r^2))")
+        if alpha > ALPHA_SHELL:
+            warnings.warn(
+                f"alpha = {alpha:g} > 2/3: more than a thin shell's inertia, the sphere "
+                "carries 'phantom' mass beyond its radius (paper, Section 3)",
+                PhysicsWarning,
+                stacklevel=3,
+            )
+        set_(self, "alpha", alpha)
+        if self.mu is not None:
+            set_(self, "mu", _non_negative("mu", self.mu))
+        critical = 2.0 * math.sqrt(self.m * self.kn)
+        if self.gamma_n >= critical:
+            raise SceneError(
+                "gamma_n",
+                self.gamma_n,
+                f"must be below critical normal damping 2*sqrt(m*kn) = {critical:.6g}: "
+                "at or above it the sphere never leaves the wall",
+            )
+
+    # -- derived quantities (theory, in the paper's names) -------------------------
+    @property
+    def inertia(self) -> float:
+        return self.alpha * self.m * self.r**2
+
+    @property
+    def tau(self) -> float:
+        """Contact time, Eq. 16 (damped form when gamma_n > 0)."""
+        return theory.collision_time(self.m, self.kn, self.gamma_n)
+
+    @property
+    def Q(self) -> float:
+        return theory.Q(self.kt, self.m, self.alpha)
+
+    @property
+    def zeta(self) -> float:
+        return theory.damping_rate(self.gamma_t, self.m, self.alpha)
+
+    @property
+    def Omega(self) -> float:
+        """Exact Omega (Eq. 18's when undamped)."""
+        return theory.Omega_exact(self.m, self.kn, self.kt, self.alpha, self.gamma_t, self.gamma_n)
+
+    @property
+    def restitution(self) -> float:
+        return theory.restitution(self.m, self.kn, self.gamma_n)
+
+    def matrix(self) -> np.ndarray:
+        """The scattering matrix this model predicts (Eq. 18, exact damped Omega)."""
+        return theory.scattering_matrix(self.alpha, self.Omega, self.restitution)
+
+    # -- numerics --------------------------------------------------------------------
+    def modes(self, frozen: bool) -> dict[str, tuple[float, float]]:
+        """The linear contact modes a scene integrates: name -> (w, c) of x'' + c x' + w^2 x = 0."""
+        out = {"slip": (math.sqrt(self.Q), 2.0 * self.zeta)}
+        if not frozen:
+            out["normal"] = (math.sqrt(self.kn / self.m), self.gamma_n / self.m)
+        return out
+
+    def fastest_rate(self, frozen: bool) -> float:
+        """Largest rate (1/time) among the integrated modes: frequency or fast decay rate."""
+        rates = []
+        for w, c in self.modes(frozen).values():
+            half = 0.5 * c
+            rates.append(w if half < w else half + math.sqrt(half * half - w * w))
+        return max(rates)
+
+    def dt_limit(self, frozen: bool) -> tuple[float, str]:
+        """Stability limit of LAMMPS's step and the mode that sets it."""
+        limits = {name: stability_limit(w, c) for name, (w, c) in self.modes(frozen).items()}
+        name = min(limits, key=limits.get)
+        return limits[name], name
+
+    def check_dt(self, dt, frozen: bool) -> float:
+        dt = _positive("dt", dt)
+        limit, mode = self.dt_limit(frozen)
+        if dt >= limit:
+            raise SceneError(
+                "dt",
+                dt,
+                f"must be below the stability limit {limit:.6g} of the {mode} mode "
+                "(LAMMPS's velocity-Verlet step diverges above it)",
+            )
+        rate = self.fastest_rate(frozen)
+        steps = math.pi / rate / dt if rate > 0.0 else math.inf
+        if steps < MIN_STEPS_PER_HALF_PERIOD:
+            warnings.warn(
+                f"dt = {dt:g} resolves the fastest contact mode with only {steps:.1f} steps "
+                f"per half-period (fewer than {MIN_STEPS_PER_HALF_PERIOD}): expect a large error",
+                PhysicsWarning,
+                stacklevel=3,
+            )
+        return dt
+
+
+def _as_vector(name: str, value) -> tuple[float, ...]:
+    arr = np.atleast_1d(np.asarray(value, dtype=object))
+    if arr.ndim != 1 or arr.size == 0:
+        raise SceneError(name, value, "must be a number or a non-empty list of numbers")
+    return tuple(_finite(name, v) for v in arr)
+
+
+@dataclass(frozen=True)
+class Collision:
+    """Spheres that start touching the wall (centre at z = r) and bounce off it.
+
+    ``v_n``, ``v_t`` and ``omega`` are numbers or equal-length sequences (one entry per
+    sphere). ``omega`` is the angular velocity, positive anticlockwise (the paper's sign).
+    ``dt = None`` picks ``tau/(N + 1/2)`` with N = STEPS_PER_HALF_PERIOD scaled by the
+    fastest contact mode: the half step puts the end of the contact in the middle of
+    a step, where the error made by cutting the tangential force off cancels to
+    first order (README, "accuracy").
+    """
+
+    model: ContactModel = field(default_factory=ContactModel)
+    v_n: tuple[float, ...] = (-1.0,)
+    v_t: tuple[float, ...] = (1.0,)
+    omega: tuple[float, ...] = (0.0,)
+    dt: float | None = None
+
+    def __post_init__(self):
+        set_ = object.__setattr__
+        vn, vt, om = (_as_vector(n, getattr(self, n)) for n in ("v_n", "v_t", "omega"))
+        sizes = {len(vn), len(vt), len(om)}
+        if len(sizes - {1}) > 1:
+            raise SceneError("v_n/v_t/omega", (len(vn), len(vt), len(om)), "lengths must match")
+        n = max(sizes)
+        vn, vt, om = (v * n if len(v) == 1 else v for v in (vn, vt, om))
+        set_(self, "v_n", vn)
+        set_(self, "v_t", vt)
+        set_(self, "omega", om)
+        m = self.model
+        for i, v in enumerate(vn):
+            if v >= 0.0:
+                raise SceneError(f"v_n[{i}]" if n > 1 else "v_n", v, "must be < 0 (towards the wall)")
+        reach = float(np.max(theory.max_overlap(np.array(vn), m.m, m.kn, m.gamma_n)))
+        if reach >= m.r:
+            fastest = max(vn, key=abs)
+            vmax = m.r / float(theory.max_overlap(1.0, m.m, m.kn, m.gamma_n))
+            raise SceneError(
+                "v_n",
+                fastest,
+                f"|v_n| must be below {vmax:.6g}: the overlap would reach {reach:.6g} >= r = {m.r:g}, "
+                "the centre would cross the wall and the sphere tunnel through it",
+            )
+        dt = self.default_dt() if self.dt is None else self.dt
+        set_(self, "dt", m.check_dt(dt, frozen=False))
+
+    def default_dt(self) -> float:
+        m = self.model
+        per_tau = STEPS_PER_HALF_PERIOD * m.fastest_rate(frozen=False) * m.tau / math.pi
+        return m.tau / (math.ceil(per_tau - 1e-9) + 0.5)
+
+    @property
+    def n(self) -> int:
+        return len(self.v_n)
+
+    @property
+    def initial(self) -> np.ndarray:
+        """(n, 3) initial states (v_n, v_t, r omega)."""
+        return np.column_stack([self.v_n, self.v_t, np.array(self.omega) * self.model.r])
+
+    @property
+    def nsteps(self) -> int:
+        """Steps that end the contact: the step after tau, and one more for rounding."""
+        return math.floor(self.model.tau / self.dt) + 2
+
+    def predicted(self) -> np.ndarray:
+        """(n, 3) final states from the theory."""
+        return self.initial @ self.model.matrix().T
+
+
+@dataclass(frozen=True)
+class Frozen:
+    """One sphere held at height z (0 < z < r) with v_n = 0: the frozen contact of Section 3.
+
+    ``dt = None`` resolves the slip's fastest rate with STEPS_PER_HALF_PERIOD steps per
+    half-period; ``every`` is the dump cadence in steps (default: about 2000 frames).
+    The run ends on the first multiple of ``every`` at or after ``t_end``.
+    """
+
+    model: ContactModel = field(default_factory=ContactModel)
+    z: float = 0.1
+    v_t: float = 1.0
+    omega: float = 0.0
+    t_end: float = 10.0
+    dt: float | None = None
+    every: int | None = None
+    nsteps: int = field(init=False, default=0)
+
+    def __post_init__(self):
+        set_ = object.__setattr__
+        m = self.model
+        z = _finite("z", self.z)
+        if not 0.0 < z < m.r:
+            raise SceneError("z", self.z, f"must lie in (0, r) = (0, {m.r:g}) to hold the sphere in contact")
+        set_(self, "z", z)
+        set_(self, "v_t", _finite("v_t", self.v_t))
+        set_(self, "omega", _finite("omega", self.omega))
+        set_(self, "t_end", _positive("t_end", self.t_end))
+        if self.dt is None:
+            rate = m.fastest_rate(frozen=True)
+            # kt = gamma_t = 0: nothing evolves; any dt is exact.
+            dt = math.pi / rate / STEPS_PER_HALF_PERIOD if rate > 0.0 else self.t_end / 1000
+            dt = self.t_end / math.ceil(self.t_end / dt)
+        else:
+            dt = self.dt
+        set_(self, "dt", m.check_dt(dt, frozen=True))
+        steps = math.ceil(self.t_end / self.dt - 1e-9)
+        if self.every is None:
+            set_(self, "every", max(1, steps // 2000))
+        else:
+            every = _finite("every", self.every)
+            if every < 1 or every != int(every):
+                raise SceneError("every", self.every, "must be a whole number of steps >= 1")
+            set_(self, "every", int(every))
+        # LAMMPS dumps only on multiples of `every`: end the run on one
+        set_(self, "nsteps", math.ceil(steps / self.every) * self.every)
+
+    def predicted(self, t) -> tuple[np.ndarray, np.ndarray]:
+        """(v_t(t), r omega(t)): Eq. 10, or its exact damped form when gamma_t > 0."""
+        m = self.model
+        return theory.frozen_velocities(t, self.v_t, self.omega * m.r, m.kt, m.m, m.alpha, m.gamma_t)

@@ -1,0 +1,61 @@
+"""Stability of LAMMPS's velocity-Verlet step for one damped contact mode.
+
+Each contact mode here is linear: x'' + c x' + w^2 x = 0 (normal: w^2 = kn/m, c = gamma_n/m;
+slip: w^2 = Q, c = 2 zeta). LAMMPS advances it as
+
+    v_half = v + dt/2 a;  x_new = x + dt v_half;
+    a_new = -w^2 x_new - c v_half;        (the force sees the half-step velocity)
+    v_new = v_half + dt/2 a_new
+
+(the tangential history is incremented by dt times the half-step slip rate, the same
+map for u). That is a linear map of (x, v, a); the step is stable while its spectral
+radius stays at or below 1. Without damping the limit is the textbook dt < 2/w; with
+damping it is smaller, and it is found here numerically from the same map rather than
+from a rule of thumb.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+__all__ = ["step_matrix", "spectral_radius", "stability_limit"]
+
+
+def step_matrix(dt: float, w: float, c: float) -> np.ndarray:
+    """The 3x3 map (x, v, a) -> (x, v, a) of one LAMMPS step for x'' + c x' + w^2 x = 0."""
+    # v_half = v + dt/2 a  (as a row acting on (x, v, a))
+    vh = np.array([0.0, 1.0, 0.5 * dt])
+    x_new = np.array([1.0, 0.0, 0.0]) + dt * vh
+    a_new = -w * w * x_new - c * vh
+    v_new = vh + 0.5 * dt * a_new
+    return np.vstack([x_new, v_new, a_new])
+
+
+def spectral_radius(dt: float, w: float, c: float) -> float:
+    return float(np.max(np.abs(np.linalg.eigvals(step_matrix(dt, w, c)))))
+
+
+def stability_limit(w: float, c: float = 0.0, rtol: float = 1e-10) -> float:
+    """Largest dt for which the step of x'' + c x' + w^2 x = 0 does not grow.
+
+    Returns math.inf for a mode with neither stiffness nor damping.
+    """
+    if w <= 0.0 and c <= 0.0:
+        return math.inf
+    # rho is 1 for any dt below the limit when undamped; allow for rounding.
+    def stable(dt: float) -> bool:
+        return spectral_radius(dt, w, c) <= 1.0 + 1e-12
+
+    hi = 4.0 / max(w, c)
+    while stable(hi):
+        hi *= 2.0
+    lo = 0.0
+    while hi - lo > rtol * hi:
+        mid = 0.5 * (lo + hi)
+        if stable(mid):
+            lo = mid
+        else:
+            hi = mid
+    return lo
