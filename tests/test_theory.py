@@ -1,12 +1,9 @@
 """Unit tests for spinbounce.theory (Wang & Harrowell, frictional sphere on a wall).
 
-Covered: Omega and the collision time at the paper's defaults; the scattering matrix
-(Eq. 18) and its rough (Eq. 20) and rolling (Eq. 23) special cases; the magic kt/kn
-ratio; the undamped frozen trajectory (Eqs. 10-13); the exact damped frozen solution
-against scipy's solve_ivp (under-, critically, over-damped), the paper's approximate
-damped recipe (Eq. 22); normal damping (restitution, contact time, overlap) against
-solve_ivp; a whole damped collision against solve_ivp; energy change and dissipation.
-scipy is used only as an independent oracle.
+Covered: Omega and tau at the paper's defaults; Eq. 18 and its rough (Eq. 20) and rolling
+(Eq. 23) cases; the magic kt/kn; the frozen trajectory (Eqs. 10-13); the exact damped
+frozen solution, normal damping and a whole collision against scipy's solve_ivp (used
+only as an oracle); the paper's damped recipe (Eq. 22); energy change and dissipation.
 """
 
 import math
@@ -24,11 +21,6 @@ RNG = np.random.default_rng(12345)
 ODE_TOL = dict(rtol=1e-12, atol=1e-14, method="DOP853")  # oracle error seen <= 3e-10
 
 
-def _critical_gamma_t(m, kt, alpha):
-    """gamma_t with damping_rate^2 = Q up to rounding: zeta = sqrt(Q)."""
-    return 2.0 * alpha * m * math.sqrt(th.Q(kt, m, alpha)) / (1.0 + alpha)
-
-
 def _frozen_ode(t_eval, vt0, rw0, kt, m, alpha, gamma_t):
     """Integrate m v_t' = F_t, (r omega)' = F_t/(alpha m), u' = v_t + r omega."""
 
@@ -42,13 +34,12 @@ def _frozen_ode(t_eval, vt0, rw0, kt, m, alpha, gamma_t):
     return sol.y[0], sol.y[1]
 
 
-def _leaves_event():
-    """Terminal event: z = r crossed upward (the sphere leaves the wall)."""
+def _leaves(_, y):
+    """Terminal solve_ivp event: z = r crossed upward (the sphere leaves the wall)."""
+    return y[0] - R
 
-    def leaves(_, y):
-        return y[0] - R
-    leaves.terminal, leaves.direction = True, 1.0
-    return leaves
+
+_leaves.terminal, _leaves.direction = True, 1.0
 
 
 # --- 1. defaults --------------------------------------------------------------------
@@ -99,9 +90,6 @@ def test_rough_sphere_worked_numbers_for_solid_sphere():
 def test_magic_ratio_gives_omega_minus_two(alpha):
     # cos(pi * sqrt(1 + rounding)) + 1 is second order in the rounding: 1e-12
     assert abs(th.Omega(KN, KN * th.magic_kt_over_kn(alpha), alpha) + 2.0) < 1e-12
-
-
-def test_magic_ratio_for_solid_sphere_is_two_sevenths():
     assert th.magic_kt_over_kn(2.0 / 5.0) == pytest.approx(2.0 / 7.0, rel=1e-15)  # rounding
 
 
@@ -127,13 +115,13 @@ def test_frozen_trajectory_line_mean_and_extremes(vt0, rw0, alpha, kt, m):
     # Eq. 12 at t = pi/sqrt(Q); rounding only: 1e-12
     ext = th.frozen_velocities(period / 2.0, vt0, rw0, kt, m, alpha)
     np.testing.assert_allclose(ext, th.frozen_extremes(vt0, rw0, alpha), atol=1e-12)
-    lo, hi = sorted([vt0, ext[0]])
-    assert np.all((vt >= lo - 1e-12) & (vt <= hi + 1e-12))  # the ends are the extremes
+    lo, hi = sorted([vt0, ext[0]])  # the two ends bound the whole trajectory (rounding)
+    assert np.all((vt >= lo - 1e-12) & (vt <= hi + 1e-12))
 
 
 # --- 6. exact damped frozen solution ------------------------------------------------
 
-_GC = _critical_gamma_t(M, KT, ALPHA)
+_GC = 2.0 * ALPHA * M * math.sqrt(th.Q(KT, M, ALPHA)) / (1.0 + ALPHA)  # zeta = sqrt(Q)
 
 
 @pytest.mark.parametrize(
@@ -217,6 +205,22 @@ def test_paper_damped_recipe_equals_exact_without_damping():
     np.testing.assert_allclose(exact, paper, rtol=0, atol=1e-14)
 
 
+def test_paper_damped_recipe_is_eq10_times_exp_and_gives_eq22():
+    m, kn, kt, alpha, g = 2.0, 10.0, 1.0, 0.4, 0.7  # m != 1 checks the rate gamma_t/m
+    t = np.linspace(0.0, 10.0, 201)
+    bracket = np.exp(-g * t / m) * np.cos(t * math.sqrt(th.Q(kt, m, alpha))) - 1.0
+    vt, rw = th.frozen_velocities_paper_damped(t, 1.0, 0.5, kt, m, alpha, g)
+    # Section 5's words written out; closed forms, rounding only: 1e-14
+    np.testing.assert_allclose(vt, 1.0 + alpha / (1 + alpha) * bracket * 1.5, atol=1e-14)
+    np.testing.assert_allclose(rw, 0.5 + bracket * 1.5 / (1 + alpha), atol=1e-14)
+    om = th.Omega_paper_damped(m, kn, kt, alpha, g)
+    eq22 = math.exp(-math.pi * g / math.sqrt(m * kn)) * (th.Omega(kn, kt, alpha) + 1) - 1
+    assert om == pytest.approx(eq22, abs=1e-14)  # rounding only
+    at_tau = th.frozen_velocities_paper_damped(th.collision_time(m, kn), 1.0, 0.5, kt, m, alpha, g)
+    out = th.scattering_matrix(alpha, om) @ [0.0, 1.0, 0.5]
+    np.testing.assert_allclose(at_tau, out[1:], atol=1e-12)  # tau*sqrt(Q) rounding: 1e-12
+
+
 # --- 8. Omega variants ----------------------------------------------------------------
 
 @pytest.mark.parametrize("kt", [0.3, 1.0, 2.857142857142857, 7.0])
@@ -244,9 +248,8 @@ def test_whole_collision_matches_scattering_matrix_with_exact_omega(gamma_t, gam
         ft = -KT * u - gamma_t * (vt + rw)
         return [vn, (-KN * (z - R) - gamma_n * vn) / M, ft / M, ft / (ALPHA * M), vt + rw]
 
-    leaves = _leaves_event()
     before = np.array([-1.3, 0.8, -0.2])
-    sol = solve_ivp(rhs, (0.0, 10.0), [R, *before, 0.0], events=leaves, **ODE_TOL)
+    sol = solve_ivp(rhs, (0.0, 10.0), [R, *before, 0.0], events=_leaves, **ODE_TOL)
     after = sol.y_events[0][0][1:4]
     e = th.restitution(M, KN, gamma_n)
     pred = th.scattering_matrix(ALPHA, th.Omega_exact(M, KN, KT, ALPHA, gamma_t, gamma_n), e)
@@ -261,13 +264,11 @@ def test_normal_damping_against_solve_ivp(m, kn, gamma_n):
     def rhs(_, y):
         return [y[1], (-kn * (y[0] - R) - gamma_n * y[1]) / m]
 
-    leaves = _leaves_event()
-
     def turns(_, y):
         return y[1]
     turns.direction = 1.0
 
-    sol = solve_ivp(rhs, (0.0, 100.0), [R, -1.0], events=[leaves, turns], **ODE_TOL)
+    sol = solve_ivp(rhs, (0.0, 100.0), [R, -1.0], events=[_leaves, turns], **ODE_TOL)
     t_end, (_, v_end) = sol.t_events[0][0], sol.y_events[0][0]
     z_min = sol.y_events[1][0][0]
     # solve_ivp with rtol=1e-12 and root-found events: 1e-8
@@ -282,21 +283,14 @@ def test_normal_damping_against_solve_ivp(m, kn, gamma_n):
         assert th.restitution(m, kn) == 1.0
 
 
-@pytest.mark.parametrize("m, kn", [(1.0, 10.0), (1.0, 2.0), (0.7, 5.0)])
+# (1, 3) and (3, 7): sqrt(m kn)**2 rounds below m kn, so kn/m - beta^2 is +4e-16 at factor 1
+@pytest.mark.parametrize("m, kn", [(1.0, 10.0), (1.0, 2.0), (0.7, 5.0), (1.0, 3.0), (3.0, 7.0)])
 @pytest.mark.parametrize("factor", [1.0, 1.01, 10.0])
 def test_critical_normal_damping_raises(m, kn, factor):
-    with pytest.raises(ValueError):
-        th.collision_time(m, kn, factor * 2.0 * math.sqrt(m * kn))
-    with pytest.raises(ValueError):
-        th.restitution(m, kn, factor * 2.0 * math.sqrt(m * kn))
-
-
-@pytest.mark.xfail(strict=True, reason="theory.py bug: sqrt(m*kn)**2 rounds below m*kn, so "
-                   "omega_d^2 = 4e-16 > 0 and critical gamma_n gives tau ~ 1.5e8")
-@pytest.mark.parametrize("m, kn", [(1.0, 3.0), (3.0, 7.0)])
-def test_exactly_critical_normal_damping_raises_despite_rounding(m, kn):
-    with pytest.raises(ValueError):
-        th.collision_time(m, kn, 2.0 * math.sqrt(m * kn))
+    # match the module's own message, not math.sqrt's "math domain error"
+    for fn in (th.collision_time, th.restitution):
+        with pytest.raises(ValueError, match="critical"):
+            fn(m, kn, factor * 2.0 * math.sqrt(m * kn))
 
 
 # --- 10. energy -----------------------------------------------------------------------

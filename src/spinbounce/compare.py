@@ -22,7 +22,7 @@ def paper_variables(frames: pd.DataFrame, r: float) -> pd.DataFrame:
     out = frames.copy()
     out["vn"] = frames["vz"]
     out["vt"] = frames["vx"]
-    out["omega"] = -frames["omegay"]
+    out["omega"] = -frames["omegay"] + 0.0  # + 0.0: no "-0" in tables
     out["r_omega"] = r * out["omega"]
     out["slip"] = out["vt"] + out["r_omega"]
     return out

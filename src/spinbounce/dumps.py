@@ -27,6 +27,8 @@ def read_dump(path: Path) -> pd.DataFrame:
     """
     path = Path(path)
     lines = path.read_text().splitlines()
+    while lines and not lines[-1].strip():
+        lines.pop()
     body: list[str] = []
     steps: list[int] = []
     counts: list[int] = []

@@ -53,7 +53,8 @@ def _normal_rates(m: float, kn: float, gamma_n: float) -> tuple[float, float]:
     """Return (beta, omega_d) of m z'' = -kn z - gamma_n z': decay rate and damped frequency."""
     beta = gamma_n / (2.0 * m)
     omega_d_sq = kn / m - beta * beta
-    if omega_d_sq <= 0.0:
+    # compare gamma_n itself too: at gamma_n = 2 sqrt(m kn) rounding can leave omega_d^2 ~ 1e-16
+    if omega_d_sq <= 0.0 or gamma_n >= 2.0 * math.sqrt(m * kn):
         raise ValueError(
             f"gamma_n = {gamma_n:g} is at or above critical normal damping "
             f"2*sqrt(m*kn) = {2.0 * math.sqrt(m * kn):g}: the sphere never leaves the wall"

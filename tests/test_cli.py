@@ -1,0 +1,101 @@
+"""The spinbounce command, as a user runs it (in a subprocess for the import test)."""
+
+import json
+import math
+import subprocess
+import sys
+
+import pandas as pd
+import pytest
+
+from spinbounce.cli import main
+
+
+def run_cli(capsys, *args):
+    code = main(list(args))
+    out = capsys.readouterr()
+    return code, out.out, out.err
+
+
+def test_import_does_not_load_lammps():
+    code = (
+        "import sys, spinbounce, spinbounce.theory, spinbounce.scenes, spinbounce.decks, "
+        "spinbounce.pipeline, spinbounce.cli; print('lammps' in sys.modules)"
+    )
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert done.stdout.strip() == "False"
+
+
+def test_theory_json_at_paper_defaults(capsys):
+    code, out, _ = run_cli(capsys, "theory", "--json")
+    assert code == 0
+    report = json.loads(out)
+    assert abs(report["omega"] - (-1.28384)) < 1e-5  # acceptance; the paper quotes -1.2838
+    assert report["tau"] == pytest.approx(math.pi * math.sqrt(1 / 10), rel=1e-15)
+    assert report["Q"] == pytest.approx(3.5, rel=1e-15)
+    matrix = report["matrix"]
+    assert len(matrix) == 3 and all(len(row) == 3 for row in matrix)
+    assert matrix[0] == [-1.0, 0.0, 0.0]
+
+
+def test_theory_magic_ratio_for_a_shell(capsys):
+    _, out, _ = run_cli(capsys, "theory", "--json", "--alpha", "0.6666666666666666", "--kt", "4")
+    assert json.loads(out)["omega"] == pytest.approx(-2.0, abs=1e-7)  # kt/kn = 0.4 = alpha/(1+alpha)
+
+
+def test_every_command_has_help(capsys):
+    for command in ("theory", "collide", "frozen"):
+        with pytest.raises(SystemExit) as info:
+            main([command, "--help"])
+        assert info.value.code == 0
+        assert "--kn" in capsys.readouterr().out
+
+
+@pytest.mark.lammps
+def test_collide_json(capsys, tmp_path):
+    code, out, _ = run_cli(capsys, "collide", "--vn", "-1", "--vt", "1", "--omega", "0", "--json",
+                           "--out", str(tmp_path / "c"))
+    assert code == 0
+    report = json.loads(out)
+    for key in ("initial", "final", "theory", "error"):
+        assert set(report[key]) == {"vn", "vt", "omega", "r_omega"}
+    assert max(abs(v) for v in report["error"].values()) < 2e-4  # acceptance bound
+    assert report["final"]["vt"] - report["theory"]["vt"] == pytest.approx(report["error"]["vt"], abs=1e-15)
+    assert report["deck"].endswith("in.lammps") and report["dump"].endswith("state.dump")
+    assert report["lammps_version"].startswith("2025.7.22.4.0")
+    saved = json.loads((tmp_path / "c" / "result.json").read_text())
+    assert saved["parameters"]["model"]["kn"] == 10.0 and saved["spinbounce_version"]
+
+
+@pytest.mark.lammps
+def test_frozen_writes_csv_with_theory_and_provenance(capsys, tmp_path):
+    csv = tmp_path / "series.csv"
+    code, out, _ = run_cli(capsys, "frozen", "--z", "0.1", "--vt", "1", "--omega", "0", "--t-end", "2",
+                           "--out", str(csv), "--run-dir", str(tmp_path / "run"))
+    assert code == 0
+    table = pd.read_csv(csv)
+    assert list(table.columns) == ["t", "vt", "omega", "r_omega", "vt_theory", "r_omega_theory"]
+    assert table["t"].iloc[0] == 0.0 and table["t"].iloc[-1] >= 2.0
+    assert (table["vt"] - table["vt_theory"]).abs().max() < 1e-5  # 1000 steps per half-period
+    meta = json.loads(csv.with_suffix(".meta.json").read_text())
+    assert meta["parameters"]["z"] == 0.1 and meta["lammps_version"].startswith("2025")
+
+
+@pytest.mark.parametrize(
+    "args, needle",
+    [
+        (["--vn", "-1.6", "--vt", "0", "--omega", "0"], "v_n = -1.6"),
+        (["--vn", "-1", "--vt", "0", "--omega", "0", "--kn", "0"], "kn = 0.0"),
+        (["--vn", "-1", "--vt", "0", "--omega", "0", "--alpha", "1.2"], "alpha = 1.2"),
+        (["--vn", "-1", "--vt", "0", "--omega", "0", "--dt", "0.7"], "dt = 0.7"),
+        (["--vn", "-1", "--vt", "0", "--omega", "0", "--mu", "-1"], "mu = -1.0"),
+    ],
+)
+def test_bad_input_exits_before_lammps(capsys, tmp_path, args, needle):
+    out_dir = tmp_path / "never"
+    with pytest.raises(SystemExit) as info:
+        main(["collide", *args, "--out", str(out_dir)])
+    assert info.value.code == 2
+    err = capsys.readouterr().err
+    assert needle in err
+    assert not out_dir.exists()  # nothing was written, LAMMPS never started

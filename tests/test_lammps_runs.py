@@ -1,0 +1,182 @@
+"""LAMMPS runs against the theory, through the whole pipeline (scene -> deck -> run -> dump -> table).
+
+Tolerances. At the default step (tau/(N + 1/2), N = 1000) the collision's integration
+error is second order: measured about 1e-7 in v_t and r*omega and 1.2e-6 in v_n per unit
+speed. The acceptance bound is 2e-4 (the paper's figure quotes Omega to 5 digits);
+tests use 1e-5, tight enough to catch any modelling error (a wrong alpha, a wrong sign,
+the classic hooke/history wall all miss by more than 1e-2) with room for rounding across
+machines.
+"""
+
+import math
+import subprocess
+
+import numpy as np
+import pytest
+
+from spinbounce import theory
+from spinbounce.dumps import read_dump
+from spinbounce.pipeline import ResultError, run_collision, run_frozen
+from spinbounce.runner import LammpsError, lmp_executable, run_deck
+from spinbounce.scenes import Collision, ContactModel, Frozen
+
+pytestmark = pytest.mark.lammps
+
+COLLISION_TOL = 1e-5  # see module docstring
+
+
+def _errors(result):
+    t = result.table
+    return np.abs(t[["vn_error", "vt_error", "r_omega_error"]].to_numpy())
+
+
+def test_default_collision_matches_eq18(run_dir):
+    scene = Collision(ContactModel(), v_n=-1.0, v_t=1.0, omega=0.0)
+    result = run_collision(scene, run_dir)
+    assert _errors(result).max() < COLLISION_TOL
+    # and the theory it is compared with is the paper's Eq. 18 at Omega = -1.2838
+    assert result.table["vt_theory"].iloc[0] == pytest.approx(1 + 0.4 / 1.4 * theory.Omega(10, 1, 0.4), abs=1e-15)
+    assert (run_dir / "in.lammps").is_file() and (run_dir / "result.json").is_file()
+
+
+@pytest.mark.parametrize(
+    "model",
+    [
+        ContactModel(alpha=0.1),  # point-like mass: rigid-body route
+        ContactModel(alpha=2 / 3, kt=4.0),  # thin shell at the magic ratio: Omega = -2
+        ContactModel(alpha=0.25, kt=2.5, kn=40.0, m=2.0, r=0.3),  # nothing at its default
+    ],
+    ids=["alpha0.1", "shell-magic", "all-changed"],
+)
+def test_alpha_is_honoured_by_lammps(run_dir, model):
+    """alpha != 2/5 cannot come from fix nve/sphere; the rigid-body route must give Eq. 18."""
+    scene = Collision(model, v_n=[-1.0, -0.3], v_t=[1.0, -0.7], omega=[0.0, 2.5])
+    result = run_collision(scene, run_dir)
+    assert _errors(result).max() < COLLISION_TOL
+    # alpha = 2/5 would give a different answer: the test can tell them apart
+    wrong = scene.initial @ theory.scattering_matrix(0.4, theory.Omega(model.kn, model.kt, 0.4)).T
+    assert np.abs(result.table[["vn_final", "vt_final", "r_omega_final"]].to_numpy() - wrong).max() > 1e-2
+
+
+def test_magic_ratio_conserves_energy_in_lammps(run_dir):
+    alpha = 2 / 3
+    model = ContactModel(alpha=alpha, kt=10.0 * theory.magic_kt_over_kn(alpha))
+    scene = Collision(model, v_n=[-1.0, -0.5, -0.2], v_t=[1.0, -1.5, 0.3], omega=[0.0, 1.0, -4.0])
+    result = run_collision(scene, run_dir)
+    # energy is conserved up to the integration error (the same 1e-5 budget as the states)
+    assert np.abs(result.table["energy_gain"]).max() < COLLISION_TOL
+    assert model.Omega == pytest.approx(-2.0, abs=1e-12)
+
+
+def test_spin_and_many_spheres_pair_by_id(run_dir):
+    rng = np.random.default_rng(7)
+    n = 12
+    scene = Collision(
+        ContactModel(),
+        v_n=rng.uniform(-1.5, -0.1, n), v_t=rng.uniform(-2, 2, n), omega=rng.uniform(-4, 4, n),
+    )
+    result = run_collision(scene, run_dir)
+    assert _errors(result).max() < COLLISION_TOL
+    # LAMMPS saw the requested initial state (full-precision deck and dump)
+    t = result.table
+    np.testing.assert_allclose(t["vt_lammps_0"], t["vt_0"], rtol=0, atol=1e-15)
+    np.testing.assert_allclose(t["r_omega_lammps_0"], t["r_omega_0"], rtol=0, atol=1e-15)
+
+
+def test_rigid_route_dumps_initial_spin(run_dir):
+    scene = Collision(ContactModel(alpha=0.1), v_n=-0.5, v_t=0.0, omega=3.0)
+    result = run_collision(scene, run_dir)
+    t = result.table
+    assert t["omega_lammps_0"].iloc[0] == pytest.approx(3.0, abs=1e-12)  # set by the body, exact
+    assert _errors(result).max() < COLLISION_TOL
+
+
+def test_frozen_contact_matches_eq10(run_dir):
+    """Acceptance: z = 0.1, v_t(0) = 1, omega(0) = 0 within 1e-5 over 10 time units.
+
+    Velocity Verlet's phase error at the default 1000 steps per half-period is
+    about 5e-6 after 10 time units; 1e-5 is the acceptance bound.
+    """
+    scene = Frozen(ContactModel(), z=0.1, v_t=1.0, omega=0.0, t_end=10.0)
+    result = run_frozen(scene, run_dir)
+    assert result.table["t"].iloc[-1] >= 10.0
+    assert result.max_abs_error < 1e-5
+    # the trajectory really oscillates (not a trivially constant series)
+    assert result.table["vt"].min() < 0.5
+
+
+@pytest.mark.parametrize("gamma_t", [0.1, 0.5, 2.0, 5.0])
+def test_damped_frozen_contact_converges_to_exact_solution(tmp_path, gamma_t):
+    """LAMMPS's damping force uses the half-step velocity, so it is first order in dt.
+
+    Measured (z = 0.1, v_t = 1, omega = 1, 10 time units): the largest error against the
+    exact damped solution halves with dt to 3 digits (1.5e-4 -> 1.9e-5 for gamma_t = 0.1
+    from dt = 4e-4 to 5e-5; 1.4e-3 -> 1.7e-4 for 5.0, which is overdamped). Converging
+    at exactly first order to the exact solution is what shows that solution is the
+    right limit; the paper's Eq. 22 recipe stays off by more than 0.05.
+    """
+    model = ContactModel(gamma_t=gamma_t)
+    errors = []
+    for dt in (2e-4, 1e-4):
+        scene = Frozen(model, z=0.1, v_t=1.0, omega=1.0, t_end=10.0, dt=dt, every=int(round(4e-3 / dt)))
+        result = run_frozen(scene, tmp_path / f"dt{dt}")
+        errors.append(result.max_abs_error)
+    assert errors[0] / errors[1] == pytest.approx(2.0, rel=0.05)  # first order, 5%: rounding-free ratio
+    assert errors[1] < 4e-4  # 3.5e-4 measured for the largest gamma_t
+    t = result.table
+    vt_paper, _ = theory.frozen_velocities_paper_damped(t["t"], 1.0, 0.5, model.kt, model.m, model.alpha, gamma_t)
+    if gamma_t <= 2.0:
+        assert np.abs(t["vt"] - vt_paper).max() > 0.05
+
+
+def test_deck_alone_reproduces_the_run_with_lmp(run_dir, tmp_path):
+    scene = Collision(ContactModel(alpha=0.1), v_n=-0.8, v_t=0.6, omega=-1.2)
+    result = run_collision(scene, run_dir)
+    rerun = tmp_path / "rerun"
+    rerun.mkdir()
+    (rerun / "in.lammps").write_text((run_dir / "in.lammps").read_text())
+    subprocess.run([str(lmp_executable()), "-in", "in.lammps", "-screen", "none", "-log", "none"],
+                   cwd=rerun, check=True, timeout=120)
+    again = read_dump(rerun / "state.dump")
+    first = read_dump(result.dump)
+    cols = ["x", "z", "vx", "vz", "omegay"]
+    np.testing.assert_allclose(again[cols].to_numpy(), first[cols].to_numpy(), rtol=0, atol=1e-10)
+
+
+def test_bad_command_raises_typed_error_with_lammps_words(run_dir):
+    deck = run_dir / "in.lammps"
+    deck.write_text("units lj\natom_style sphere\nfix oops all no_such_fix_style\n")
+    with pytest.raises(LammpsError) as info:
+        run_deck(deck)
+    err = info.value
+    assert err.error_line.startswith("ERROR")
+    assert "no_such_fix_style" in (err.input_line or "")
+    assert err.deck == deck.resolve()
+    assert str(deck.resolve()) in str(err)
+
+
+def test_nan_from_classic_wall_is_caught(run_dir, monkeypatch):
+    """The classic hooke/history wall with gamma_n = 0 gives NaN in this build: the run must fail."""
+    import spinbounce.pipeline as pipeline
+
+    real = pipeline.render_collision
+
+    def classic(scene):
+        deck = real(scene)
+        lines = [
+            "fix             wall contact wall/gran hooke/history 10.0 1.0 0.0 0.0 1000.0 1 zplane 0.0 NULL"
+            if line.startswith("fix             wall ") else line
+            for line in deck.text.splitlines()
+        ]
+        return type(deck)(text="\n".join(lines) + "\n", rigid=deck.rigid)
+
+    monkeypatch.setattr(pipeline, "render_collision", classic)
+    with pytest.raises(ResultError, match="non-finite"):
+        run_collision(Collision(ContactModel(), v_n=-1.0, v_t=1.0, omega=0.0), run_dir)
+
+
+def test_unfinished_contact_is_caught(run_dir, monkeypatch):
+    """A run that stops before the sphere has left the wall is an error, not a result."""
+    monkeypatch.setattr(Collision, "nsteps", property(lambda self: math.floor(0.5 * self.model.tau / self.dt)))
+    with pytest.raises(ResultError, match="still touch"):
+        run_collision(Collision(ContactModel(), v_n=-1.0, v_t=1.0, omega=0.0), run_dir)

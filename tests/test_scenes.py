@@ -1,0 +1,165 @@
+"""Bad input is refused before LAMMPS starts, with the parameter, its value and the limit."""
+
+import math
+import warnings
+
+import pytest
+
+from spinbounce import theory
+from spinbounce.decks import render_collision, render_frozen
+from spinbounce.scenes import Collision, ContactModel, Frozen, PhysicsWarning, SceneError
+from spinbounce.stability import stability_limit
+
+
+@pytest.mark.parametrize(
+    "kwargs, parameter, limit",
+    [
+        ({"m": 0.0}, "m", "> 0"),
+        ({"m": -1.0}, "m", "> 0"),
+        ({"r": 0.0}, "r", "> 0"),
+        ({"kn": -10.0}, "kn", "> 0"),
+        ({"kt": -1.0}, "kt", ">= 0"),
+        ({"gamma_n": -0.1}, "gamma_n", ">= 0"),
+        ({"gamma_t": -0.1}, "gamma_t", ">= 0"),
+        ({"mu": -0.5}, "mu", ">= 0"),
+        ({"alpha": 0.0}, "alpha", "(0, 1]"),
+        ({"alpha": 1.5}, "alpha", "(0, 1]"),
+        ({"kn": float("nan")}, "kn", "finite"),
+        ({"gamma_n": 2 * math.sqrt(10.0)}, "gamma_n", "critical"),
+    ],
+)
+def test_model_parameters_out_of_range(kwargs, parameter, limit):
+    with pytest.raises(SceneError) as info:
+        ContactModel(**kwargs)
+    assert info.value.parameter == parameter
+    message = str(info.value)
+    assert message.startswith(f"{parameter} = ")
+    assert limit in message
+
+
+def test_alpha_above_shell_warns_about_phantom_mass():
+    with pytest.warns(PhysicsWarning, match="phantom"):
+        ContactModel(alpha=0.8)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        ContactModel(alpha=2 / 3)  # the thin shell itself is fine
+
+
+def test_tunnelling_speed_is_refused_with_the_limit():
+    # facts: with kn = 10, r = 0.5 the centre reaches the wall for |v_n| > 1.58
+    limit = 0.5 / math.sqrt(1 / 10)
+    Collision(ContactModel(), v_n=-0.999 * limit, v_t=0.0, omega=0.0)
+    with pytest.raises(SceneError, match=r"v_n = -1\.6.*below 1\.58114") as info:
+        Collision(ContactModel(), v_n=-1.6, v_t=0.0, omega=0.0)
+    assert info.value.parameter == "v_n"
+
+
+def test_normal_damping_lowers_the_overlap_so_a_faster_sphere_is_allowed():
+    model = ContactModel(gamma_n=3.0)
+    assert theory.max_overlap(1.7, model.m, model.kn, model.gamma_n) < model.r
+    Collision(model, v_n=-1.7, v_t=0.0, omega=0.0)
+
+
+def test_sphere_must_move_towards_the_wall():
+    with pytest.raises(SceneError, match="towards the wall"):
+        Collision(ContactModel(), v_n=0.5, v_t=0.0, omega=0.0)
+
+
+@pytest.mark.parametrize("bad_dt", [0.0, -1e-3])
+def test_dt_must_be_positive(bad_dt):
+    with pytest.raises(SceneError, match="dt = .*> 0"):
+        Collision(ContactModel(), v_n=-1, v_t=0, omega=0, dt=bad_dt)
+
+
+def test_dt_above_stability_limit_is_refused_below_is_accepted():
+    model = ContactModel()
+    limit = 2.0 / math.sqrt(model.kn / model.m)  # undamped normal mode is the stiffest
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", PhysicsWarning)
+        Collision(model, v_n=-1, v_t=0, omega=0, dt=0.9 * limit)
+    with pytest.raises(SceneError, match="stability limit 0.632456 of the normal mode"):
+        Collision(model, v_n=-1, v_t=0, omega=0, dt=1.1 * limit)
+
+
+def test_stiff_tangential_spring_sets_the_limit():
+    model = ContactModel(kt=100.0, alpha=0.1)  # sqrt(Q) = 33 >> sqrt(kn/m) = 3.2
+    limit, mode = model.dt_limit(frozen=False)
+    assert mode == "slip"
+    assert limit == pytest.approx(2 / math.sqrt(model.Q), rel=1e-9)
+
+
+def test_damping_lowers_the_stability_limit():
+    undamped = stability_limit(3.0)
+    assert undamped == pytest.approx(2 / 3.0, rel=1e-9)
+    assert stability_limit(3.0, c=50.0) < 0.1 * undamped
+    # pure damping (no spring): the explicit step is stable only below dt = 2/c
+    assert stability_limit(0.0, c=5.0) == pytest.approx(0.4, rel=1e-9)
+
+
+def test_coarse_dt_warns():
+    with pytest.warns(PhysicsWarning, match="steps per half-period"):
+        Collision(ContactModel(), v_n=-1, v_t=0, omega=0, dt=0.1)
+
+
+def test_default_dt_puts_contact_end_mid_step():
+    scene = Collision(ContactModel(), v_n=-1, v_t=1, omega=0)
+    steps = scene.model.tau / scene.dt
+    assert steps - math.floor(steps) == pytest.approx(0.5, abs=1e-9)
+    assert math.floor(steps) == 1000
+    assert scene.nsteps > steps  # the run ends after the contact does
+
+
+def test_default_dt_follows_the_fastest_mode():
+    soft = Collision(ContactModel(), v_n=-1, v_t=0, omega=0)
+    stiff = Collision(ContactModel(kt=40.0, alpha=0.1), v_n=-1, v_t=0, omega=0)
+    # sqrt(Q) = 21 vs sqrt(kn/m) = 3.2: about 6.6 times more steps per contact
+    assert soft.dt / stiff.dt == pytest.approx(math.sqrt(stiff.model.Q) / math.sqrt(10.0), rel=2e-3)
+
+
+@pytest.mark.parametrize("z", [0.0, -0.1, 0.5, 0.7])
+def test_frozen_height_must_be_in_contact(z):
+    with pytest.raises(SceneError, match=r"z = .*\(0, r\)"):
+        Frozen(ContactModel(), z=z, v_t=1, omega=0, t_end=1)
+
+
+def test_frozen_run_ends_on_a_dump_frame():
+    scene = Frozen(ContactModel(), z=0.1, v_t=1, omega=0, t_end=1.0, dt=1e-3, every=7)
+    assert scene.nsteps % 7 == 0 and scene.nsteps * scene.dt >= 1.0
+
+
+def test_sequences_must_match_and_scalars_broadcast():
+    scene = Collision(ContactModel(), v_n=[-1, -0.5], v_t=0.3, omega=[0, 1])
+    assert scene.v_t == (0.3, 0.3)
+    with pytest.raises(SceneError, match="lengths"):
+        Collision(ContactModel(), v_n=[-1, -0.5], v_t=[0.3, 0.2, 0.1], omega=0)
+    with pytest.raises(SceneError, match="number"):
+        Collision(ContactModel(), v_n="fast", v_t=0, omega=0)
+
+
+def _commands(deck_text: str) -> str:
+    """The deck without its comments: what LAMMPS executes."""
+    return "\n".join(line.split("#")[0] for line in deck_text.splitlines())
+
+
+def test_decks_hold_only_what_the_scene_needs():
+    text = render_collision(Collision(ContactModel(), v_n=-1, v_t=1, omega=0)).text
+    for stage in ("1. setup", "2. initial state", "3. model", "4. output", "5. run"):
+        assert f"# ---- {stage}" in text
+    plain = _commands(text)
+    assert "nve/sphere" in plain and "rigid" not in plain
+    for absent in ("damping", "gravity", "pair_style", "setforce"):
+        assert absent not in plain
+    damped = _commands(render_collision(Collision(ContactModel(gamma_t=0.5), v_n=-1, v_t=1, omega=0)).text)
+    assert "damping velocity" in damped
+    rigid = _commands(render_frozen(Frozen(ContactModel(alpha=0.1))).text)
+    assert "fix             motion all rigid single infile bodies.txt" in rigid
+    assert "setforce NULL NULL 0.0" in rigid
+
+
+def test_missing_template_value_is_an_error():
+    import jinja2
+
+    from spinbounce.decks import _environment
+
+    with pytest.raises(jinja2.UndefinedError):
+        _environment().get_template("collision.lmp.j2").render(version="x")
