@@ -1,11 +1,11 @@
 """LAMMPS runs against the theory, through the whole pipeline (scene -> deck -> run -> dump -> table).
 
-Tolerances. At the default step (tau/(N + 1/2), N = 1000) the collision's integration
-error is second order: measured about 1e-7 in v_t and r*omega and 1.2e-6 in v_n per unit
-speed. The acceptance bound is 2e-4 (the paper's figure quotes Omega to 5 digits);
-tests use 1e-5, tight enough to catch any modelling error (a wrong alpha, a wrong sign,
-the classic hooke/history wall all miss by more than 1e-2) with room for rounding across
-machines.
+Tolerances. At the default step (tau/(N + 1/2), N = 250 steps per half-period of the
+fastest mode) the collision's integration error is second order: measured at most 3e-5
+over |v_n| <= 1.5, |v_t|, |r omega| <= 2 (1.7e-5 in v_t and r*omega), and up to 5e-5 at
+alpha = 0.1 or kt/kn = 0.29. Tests allow 2e-4, the acceptance bound: still two orders
+below any modelling error (a wrong alpha, a wrong sign, the classic hooke/history wall
+all miss by more than 1e-2).
 """
 
 import math
@@ -22,7 +22,7 @@ from spinbounce.scenes import Collision, ContactModel, Frozen
 
 pytestmark = pytest.mark.lammps
 
-COLLISION_TOL = 1e-5  # see module docstring
+COLLISION_TOL = 2e-4  # see module docstring
 
 
 def _errors(result):
@@ -63,7 +63,7 @@ def test_magic_ratio_conserves_energy_in_lammps(run_dir):
     model = ContactModel(alpha=alpha, kt=10.0 * theory.magic_kt_over_kn(alpha))
     scene = Collision(model, v_n=[-1.0, -0.5, -0.2], v_t=[1.0, -1.5, 0.3], omega=[0.0, 1.0, -4.0])
     result = run_collision(scene, run_dir)
-    # energy is conserved up to the integration error (the same 1e-5 budget as the states)
+    # energy is conserved up to the integration error (the same budget as the states)
     assert np.abs(result.table["energy_gain"]).max() < COLLISION_TOL
     assert model.Omega == pytest.approx(-2.0, abs=1e-12)
 
@@ -195,3 +195,19 @@ def test_half_step_contact_end_beats_integer_alignment(tmp_path):
         scene = Collision(model, v_n=-1.0, v_t=1.0, omega=0.0, dt=model.tau / steps)
         errors[label] = _errors(run_collision(scene, tmp_path / label)).max()
     assert errors["boundary"] > 100 * errors["mid-step"]
+
+
+@pytest.mark.parametrize("alpha", [0.4, 0.1])
+def test_batch_from_data_file_pairs_by_id(run_dir, alpha):
+    """Past INLINE_SPHERES the atoms go to a data file beside the deck; same answers."""
+    from spinbounce.decks import DATA_FILE, INLINE_SPHERES
+
+    rng = np.random.default_rng(11)
+    n = 3 * INLINE_SPHERES
+    scene = Collision(ContactModel(alpha=alpha), v_n=rng.uniform(-1.5, -0.1, n),
+                      v_t=rng.uniform(-2, 2, n), omega=rng.uniform(-4, 4, n))
+    result = run_collision(scene, run_dir)
+    assert (run_dir / DATA_FILE).is_file()
+    assert _errors(result).max() < COLLISION_TOL
+    t = result.table
+    np.testing.assert_allclose(t["r_omega_lammps_0"], t["r_omega_0"], rtol=0, atol=1e-14)

@@ -7,7 +7,14 @@ import pytest
 
 from spinbounce import theory
 from spinbounce.decks import render_collision, render_frozen
-from spinbounce.scenes import Collision, ContactModel, Frozen, PhysicsWarning, SceneError
+from spinbounce.scenes import (
+    COLLISION_STEPS_PER_HALF_PERIOD,
+    Collision,
+    ContactModel,
+    Frozen,
+    PhysicsWarning,
+    SceneError,
+)
 from spinbounce.stability import stability_limit
 
 
@@ -105,7 +112,7 @@ def test_default_dt_puts_contact_end_mid_step():
     scene = Collision(ContactModel(), v_n=-1, v_t=1, omega=0)
     steps = scene.model.tau / scene.dt
     assert steps - math.floor(steps) == pytest.approx(0.5, abs=1e-9)
-    assert math.floor(steps) == 1000
+    assert math.floor(steps) == COLLISION_STEPS_PER_HALF_PERIOD
     assert scene.nsteps > steps  # the run ends after the contact does
 
 

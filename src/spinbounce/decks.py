@@ -10,12 +10,14 @@ and the paper's anticlockwise omega is -omega_y (so slip = v_x - r*omega_y).
 
 from __future__ import annotations
 
+import io
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import lru_cache
 from pathlib import Path
 
 import jinja2
+import numpy as np
 
 from . import __version__
 from .scenes import Collision, ContactModel, Frozen
@@ -32,6 +34,10 @@ VANISHING_ETA_N = 1.0e-12
 DECK_NAME = "in.lammps"
 DUMP_NAME = "state.dump"
 BODIES_FILE = "bodies.txt"
+DATA_FILE = "spheres.data"
+#: Up to this many spheres the deck sets every atom inline (the deck alone is the input);
+#: beyond it the atoms go to a data file beside the deck (``set atom`` is O(N) per line).
+INLINE_SPHERES = 64
 ALPHA_NVE_SPHERE = 0.4
 
 
@@ -80,6 +86,7 @@ class Deck:
     name: str = DECK_NAME
     dump: str = DUMP_NAME
     rigid: bool = False
+    files: dict = field(default_factory=dict)  # other inputs it reads: name -> text
 
 
 def wall_parameters(model: ContactModel) -> dict:
@@ -128,28 +135,87 @@ def _common(model: ContactModel, zhi: float) -> dict:
     }
 
 
+def _collision_state(scene: Collision) -> dict[str, np.ndarray]:
+    """Per-sphere LAMMPS vectors: position, velocity, angular velocity (omega_y = -omega)."""
+    n = scene.n
+    zeros = np.zeros(n)
+    return {
+        "x": zeros, "y": zeros, "z": np.full(n, scene.model.r),
+        "vx": np.asarray(scene.v_t), "vy": zeros, "vz": np.asarray(scene.v_n),
+        "wx": zeros, "wy": -np.asarray(scene.omega) + 0.0, "wz": zeros,
+    }
+
+
+def _table(columns: list[np.ndarray]) -> str:
+    buffer = io.StringIO()
+    np.savetxt(buffer, np.column_stack(columns), fmt="%.17g")
+    return buffer.getvalue()
+
+
+def _data_file(scene: Collision, state: dict, rigid: bool, box: dict) -> str:
+    """A LAMMPS data file (atom_style sphere) with the spheres, their points and velocities."""
+    model, n = scene.model, scene.n
+    ids = np.arange(1, n + 1)
+    d = 2.0 * model.r
+    sphere_mass = model.m / 2 if rigid else model.m
+    density = sphere_mass / (math.pi * d**3 / 6.0)  # mass is set exactly by the deck afterwards
+    pos = [state["x"], state["y"], state["z"]]
+    atoms = _table([ids, np.ones(n), np.full(n, d), np.full(n, density), *pos])
+    vel = _table([ids, state["vx"], state["vy"], state["vz"], state["wx"], state["wy"], state["wz"]])
+    if rigid:
+        # a diameter-0 atom's 'density' is its mass
+        atoms += _table([ids + n, np.full(n, 2.0), np.zeros(n), np.full(n, model.m / 2), *pos])
+        zeros = np.zeros(n)
+        vel += _table([ids + n, state["vx"], state["vy"], state["vz"], zeros, zeros, zeros])
+    natoms = 2 * n if rigid else n
+    return (
+        f"spinbounce {__version__}: {n} spheres for {DECK_NAME}\n\n"
+        f"{natoms} atoms\n{2 if rigid else 1} atom types\n\n"
+        f"{_num(box['xlo'])} {_num(box['xhi'])} xlo xhi\n"
+        f"{_num(box['ylo'])} {_num(box['yhi'])} ylo yhi\n"
+        f"0.0 {_num(box['zhi'])} zlo zhi\n\n"
+        f"Atoms # sphere\n\n{atoms}\nVelocities\n\n{vel}"
+    )
+
+
+def _bodies_file(scene: Collision, state: dict) -> str:
+    """fix rigid infile: id mass xcm ycm zcm ixx iyy izz ixy ixz iyz vxcm vycm vzcm lx ly lz ix iy iz."""
+    model, n = scene.model, scene.n
+    i = model.inertia
+    zeros = np.zeros(n)
+    columns = [np.arange(1, n + 1), np.full(n, model.m), state["x"], state["y"], state["z"],
+               np.full(n, i), np.full(n, i), np.full(n, i), zeros, zeros, zeros,
+               state["vx"], state["vy"], state["vz"], i * state["wx"], i * state["wy"], i * state["wz"],
+               zeros, zeros, zeros]
+    return f"{n}\n" + _table(columns)
+
+
 def render_collision(scene: Collision) -> Deck:
     model = scene.model
-    r = model.r
-    spheres = [
-        {
-            "id": i + 1, "x": 0.0, "y": 0.0, "z": r,
-            "vx": vt, "vy": 0.0, "vz": vn,
-            "wx": 0.0, "wy": -om, "wz": 0.0,
-        }
-        for i, (vn, vt, om) in enumerate(zip(scene.v_n, scene.v_t, scene.omega))
-    ]
-    ctx = _common(model, zhi=4.0 * r)
-    ctx.update(n=scene.n, spheres=spheres, tau=model.tau, dt=scene.dt, nsteps=scene.nsteps)
+    state = _collision_state(scene)
+    ctx = _common(model, zhi=4.0 * model.r)
+    rigid = ctx["rigid"]
+    files = {}
+    if scene.n > INLINE_SPHERES:
+        files[DATA_FILE] = _data_file(scene, state, rigid, ctx["box"])
+        if rigid:
+            files[BODIES_FILE] = _bodies_file(scene, state)
+        spheres = []
+    else:
+        spheres = [
+            {"id": i + 1, **{k: float(v[i]) for k, v in state.items()}} for i in range(scene.n)
+        ]
+    ctx.update(n=scene.n, spheres=spheres, tau=model.tau, dt=scene.dt, nsteps=scene.nsteps,
+               data_file=DATA_FILE if files else None)
     text = _environment().get_template("collision.lmp.j2").render(**ctx)
-    return Deck(text=text, rigid=ctx["rigid"])
+    return Deck(text=text, rigid=rigid, files=files)
 
 
 def render_frozen(scene: Frozen) -> Deck:
     model = scene.model
     ctx = _common(model, zhi=4.0 * model.r)
     ctx.update(
-        z=scene.z, vx=scene.v_t, wy=-scene.omega, dt=scene.dt, nsteps=scene.nsteps, every=scene.every
+        z=scene.z, vx=scene.v_t, wy=-scene.omega, data_file=None, dt=scene.dt, nsteps=scene.nsteps, every=scene.every
     )
     text = _environment().get_template("frozen.lmp.j2").render(**ctx)
     return Deck(text=text, rigid=ctx["rigid"])

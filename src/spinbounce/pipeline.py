@@ -99,6 +99,8 @@ def _prepare(out_dir: Path, deck: Deck) -> Path:
     out_dir.mkdir(parents=True, exist_ok=True)
     for stale in (deck.dump, "log.lammps", "result.json"):
         (out_dir / stale).unlink(missing_ok=True)
+    for name, text in deck.files.items():
+        write_atomic(out_dir / name, text)
     deck_path = out_dir / deck.name
     write_atomic(deck_path, deck.text)
     return deck_path

@@ -20,7 +20,7 @@ def register(sub) -> None:
     g.add_argument("--vt", type=float, required=True, help="tangential velocity v_t(0)")
     g.add_argument("--omega", type=float, required=True, help="angular velocity omega(0), anticlockwise positive")
     p.add_argument("--dt", type=float, default=None,
-                   help="timestep (default: tau/(N + 1/2), N = 1000 steps per half-period of the fastest mode)")
+                   help="timestep (default: tau/(N + 1/2), N = 250 steps per half-period of the fastest mode)")
     p.add_argument("--out", type=Path, default=None, metavar="DIR",
                    help="run folder for the deck, dump, log and result.json (default: spinbounce-runs/collide-<hash>)")
     json_flag(p)
