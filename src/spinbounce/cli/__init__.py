@@ -11,9 +11,10 @@ from ..dumps import DumpError
 from ..pipeline import ResultError
 from ..runner import LammpsError
 from ..scenes import PhysicsWarning, SceneError
-from . import collide, frozen, theory
+from ..sweeps import SweepError
+from . import collide, fit, frozen, sweep, theory
 
-COMMANDS = (theory, collide, frozen)
+COMMANDS = (theory, collide, frozen, sweep, fit)
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -39,7 +40,7 @@ def main(argv: list[str] | None = None) -> int:
     warnings.simplefilter("always", PhysicsWarning)
     try:
         return args.handler(args)
-    except SceneError as exc:
+    except (SceneError, SweepError) as exc:
         parser.exit(2, f"spinbounce {args.command}: error: {exc}\n")
     except (LammpsError, ResultError, DumpError) as exc:
         parser.exit(1, f"spinbounce {args.command}: {type(exc).__name__}: {exc}\n")

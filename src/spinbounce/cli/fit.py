@@ -1,0 +1,39 @@
+"""spinbounce fit: least-squares scattering matrices of a sweep, against the theory."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+
+from ..fit import fit_groups
+from ..sweeps import read_results
+
+HELP = "fit the 3x3 scattering matrix and Omega (Eq. 19) for each model group of a sweep"
+
+
+def register(sub) -> None:
+    p = sub.add_parser("fit", help=HELP, description=HELP + ".")
+    p.add_argument("results", type=Path, help="a sweep's output folder (or its chunks/ dataset)")
+    p.add_argument("--json", action="store_true", help="print machine-readable JSON instead of text")
+    p.set_defaults(handler=run)
+
+
+def run(args) -> int:
+    fits = fit_groups(read_results(args.results))
+    if args.json:
+        print(json.dumps(fits, indent=2))
+        return 0
+    for f in fits:
+        p = f["parameters"]
+        print(f"group: " + ", ".join(f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}" for k, v in p.items()))
+        print(f"  collisions {f['n']}; Omega = {f['omega']:.8f} +/- {f['omega_stderr']:.1e} "
+              f"(theory {f['omega_theory']:.8f}, diff {f['omega_diff']:.2e})")
+        with np.printoptions(precision=7, suppress=True, floatmode="fixed"):
+            for fitted, theory in zip(np.array(f["matrix"]), np.array(f["matrix_theory"])):
+                print(f"  fit {fitted}   theory {theory}")
+        print(f"  largest element difference {f['max_element_diff']:.2e}; residual rms "
+              + " ".join(f"{x:.1e}" for x in f["residual_rms"])
+              + f"; largest per-collision error {f['max_abs_error_vs_theory']:.1e}")
+    return 0

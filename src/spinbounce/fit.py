@@ -1,0 +1,76 @@
+"""Least-squares scattering matrices from sweep results, beside the theory's.
+
+For each model group: the 3x3 matrix M with final = M @ initial over all its collisions
+(states (v_n, v_t, r omega)), each element's standard error, and Omega fitted from Eq. 19
+(Delta v_t = alpha Omega/(1+alpha) u_dot(0), r Delta omega = Omega/(1+alpha) u_dot(0)).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pandas as pd
+
+from . import theory
+
+__all__ = ["GROUP_KEYS", "fit_matrix", "fit_omega", "fit_groups"]
+
+GROUP_KEYS = ["m", "r", "alpha", "kn", "kt", "gamma_n", "gamma_t", "mu", "dt"]
+STATE = ["vn", "vt", "r_omega"]
+
+
+def fit_matrix(initial: np.ndarray, final: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Least squares final ~ initial @ M.T; returns (M, standard errors of M, residuals)."""
+    coef, *_ = np.linalg.lstsq(initial, final, rcond=None)
+    residuals = final - initial @ coef
+    dof = max(len(initial) - 3, 1)
+    sigma2 = (residuals**2).sum(axis=0) / dof  # one variance per output row of M
+    cov = np.linalg.inv(initial.T @ initial)
+    stderr = np.sqrt(np.outer(sigma2, np.diag(cov)))
+    return coef.T, stderr, residuals
+
+
+def fit_omega(initial: np.ndarray, final: np.ndarray, alpha: float) -> tuple[float, float]:
+    """Omega from Eq. 19 by least squares over both tangential rows; (Omega, its standard error)."""
+    slip = initial[:, 1] + initial[:, 2]
+    x = np.concatenate([alpha / (1 + alpha) * slip, slip / (1 + alpha)])
+    y = np.concatenate([final[:, 1] - initial[:, 1], final[:, 2] - initial[:, 2]])
+    xx = float(x @ x)
+    if xx == 0.0:
+        return math.nan, math.nan
+    omega = float(x @ y) / xx
+    dof = max(len(x) - 1, 1)
+    return omega, math.sqrt(float(((y - omega * x) ** 2).sum()) / dof / xx)
+
+
+def fit_groups(rows: pd.DataFrame) -> list[dict]:
+    """One fit per distinct model group in a sweep's rows."""
+    out = []
+    keys = [k for k in GROUP_KEYS if k in rows]
+    for values, group in rows.groupby(keys, dropna=False, sort=True):
+        params = dict(zip(keys, values))
+        initial = group[[f"{s}_0" for s in STATE]].to_numpy()
+        final = group[[f"{s}_final" for s in STATE]].to_numpy()
+        matrix, stderr, residuals = fit_matrix(initial, final)
+        alpha = params["alpha"]
+        omega, omega_err = fit_omega(initial, final, alpha)
+        omega_theory = float(group["Omega_theory"].iloc[0])
+        e = theory.restitution(params["m"], params["kn"], params["gamma_n"])
+        matrix_theory = theory.scattering_matrix(alpha, omega_theory, e)
+        out.append({
+            "parameters": {k: (None if isinstance(v, float) and math.isnan(v) else v) for k, v in params.items()},
+            "n": len(group),
+            "matrix": matrix.tolist(),
+            "matrix_stderr": stderr.tolist(),
+            "matrix_theory": matrix_theory.tolist(),
+            "max_element_diff": float(np.abs(matrix - matrix_theory).max()),
+            "omega": omega,
+            "omega_stderr": omega_err,
+            "omega_theory": omega_theory,
+            "omega_diff": omega - omega_theory,
+            "residual_rms": np.sqrt((residuals**2).mean(axis=0)).tolist(),
+            "residual_max": np.abs(residuals).max(axis=0).tolist(),
+            "max_abs_error_vs_theory": float(np.abs(group[[f"{s}_error" for s in STATE]].to_numpy()).max()),
+        })
+    return out

@@ -1,0 +1,344 @@
+"""Sweeps: many collisions, in chunks, in parallel, resumable, into one Parquet dataset.
+
+A sweep is a scene file (TOML) or the same content from flags::
+
+    seed = 1
+    chunk_size = 10000          # spheres per LAMMPS run
+
+    [model]                     # a number, or a list of numbers: a grid over groups
+    kt = [1.0, 2.857142857142857]
+    alpha = 0.4
+
+    [states]                    # seeded uniform samples over [low, high] ...
+    n = 100000
+    v_n = [-1.5, -0.1]
+    v_t = [-2.0, 2.0]
+    r_omega = [-2.0, 2.0]       # or omega = [low, high]
+
+    # ... or a grid: [states] mode = "grid" with lists of values (all combinations)
+
+Every model group (one point of the model grid) gets the same sampled states. The output
+folder holds ``sweep.json`` (the spec and its hash), ``chunks/chunk-GGGG-CCCCCC.parquet``
+(the dataset: read it with ``pandas.read_parquet(OUT / "chunks")``) and ``runs/`` (each
+chunk's deck, data file, dump and log). A chunk's Parquet file is written atomically and
+only after its run has been checked, so a killed sweep rerun with the same command
+recomputes exactly the chunks that have no file.
+"""
+
+from __future__ import annotations
+
+import concurrent.futures
+import dataclasses
+import fcntl
+import hashlib
+import itertools
+import json
+import math
+import multiprocessing
+import os
+import shutil
+import sys
+import tomllib
+import warnings
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from . import __version__
+from .scenes import Collision, ContactModel, SceneError
+
+__all__ = ["SweepError", "SweepSpec", "load_spec", "spec_from_dict", "run_sweep", "read_results"]
+
+MODEL_KEYS = ("m", "r", "alpha", "kn", "kt", "kt_over_kn", "gamma_n", "gamma_t", "mu", "dt")
+STATE_KEYS = ("v_n", "v_t", "omega", "r_omega")
+TOP_KEYS = ("name", "seed", "chunk_size", "model", "states")
+DEFAULT_CHUNK = 10_000
+
+
+class SweepError(ValueError):
+    """A sweep cannot start: a bad scene file, or an output folder that is not ours."""
+
+
+def _fail(key: str, value, why: str):
+    raise SweepError(f"{key} = {value!r}: {why}")
+
+
+def _number(key: str, value) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        _fail(key, value, "must be a number")
+    if not math.isfinite(value):
+        _fail(key, value, "must be finite")
+    return float(value)
+
+
+def _numbers(key: str, value) -> list[float]:
+    values = value if isinstance(value, list) else [value]
+    if not values:
+        _fail(key, value, "is an empty list")
+    return [_number(key, v) for v in values]
+
+
+def _integer(key: str, value, low: int) -> int:
+    if isinstance(value, bool) or not isinstance(value, int):
+        _fail(key, value, "must be a whole number")
+    if value < low:
+        _fail(key, value, f"must be >= {low}")
+    return value
+
+
+@dataclass(frozen=True)
+class SweepSpec:
+    """A validated sweep: model groups and the initial states each of them runs."""
+
+    raw: dict
+    groups: tuple[dict, ...]
+    seed: int
+    chunk_size: int
+    mode: str
+    n: int
+    states: dict
+
+    @property
+    def digest(self) -> str:
+        return hashlib.sha256(json.dumps(self.raw, sort_keys=True).encode()).hexdigest()[:16]
+
+    def model(self, group: int) -> tuple[ContactModel, float | None]:
+        params = dict(self.groups[group])
+        dt = params.pop("dt", None)
+        return ContactModel(**params), dt
+
+    def initial_states(self, group: int) -> np.ndarray:
+        """(n, 3) states (v_n, v_t, omega): the same for every group, set by the seed."""
+        s = self.states
+        if self.mode == "grid":
+            points = list(itertools.product(s["v_n"], s["v_t"], s["spin"]))
+            arr = np.array(points, dtype=float)
+        else:
+            rng = np.random.default_rng(self.seed)
+            arr = np.column_stack([rng.uniform(lo, hi, self.n) for lo, hi in (s["v_n"], s["v_t"], s["spin"])])
+        if s["spin_key"] == "r_omega":
+            arr[:, 2] = arr[:, 2] / self.groups[group]["r"]
+        return arr
+
+    def chunks(self) -> list[tuple[int, int, int, int]]:
+        """(group, chunk, start, stop) for every chunk, in order."""
+        out = []
+        for g in range(len(self.groups)):
+            for c, start in enumerate(range(0, self.n, self.chunk_size)):
+                out.append((g, c, start, min(start + self.chunk_size, self.n)))
+        return out
+
+
+def load_spec(path: Path) -> SweepSpec:
+    path = Path(path)
+    try:
+        raw = tomllib.loads(path.read_text())
+    except FileNotFoundError:
+        raise SweepError(f"scene file {path} does not exist") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise SweepError(f"{path}: not valid TOML: {exc}") from None
+    return spec_from_dict(raw)
+
+
+def spec_from_dict(raw: dict) -> SweepSpec:
+    """Validate a sweep description; every error names the key and its value."""
+    for key in raw:
+        if key not in TOP_KEYS:
+            _fail(key, raw[key], f"unknown key (allowed: {', '.join(TOP_KEYS)})")
+    seed = _integer("seed", raw.get("seed", 0), 0)
+    chunk_size = _integer("chunk_size", raw.get("chunk_size", DEFAULT_CHUNK), 1)
+    model = raw.get("model", {})
+    if not isinstance(model, dict):
+        _fail("model", model, "must be a table")
+    for key in model:
+        if key not in MODEL_KEYS:
+            _fail(f"model.{key}", model[key], f"unknown key (allowed: {', '.join(MODEL_KEYS)})")
+    if "kt" in model and "kt_over_kn" in model:
+        _fail("model.kt_over_kn", model["kt_over_kn"], "give kt or kt_over_kn, not both")
+    axes = {key: _numbers(f"model.{key}", value) for key, value in model.items()}
+    names = list(axes)
+    defaults = dataclasses.asdict(ContactModel())
+    groups = []
+    for combo in itertools.product(*(axes[k] for k in names)):
+        params = {**defaults, **dict(zip(names, combo))}
+        if "kt_over_kn" in params:
+            params["kt"] = params.pop("kt_over_kn") * params["kn"]
+        groups.append(params)
+
+    states = raw.get("states")
+    if not isinstance(states, dict):
+        _fail("states", states, "a [states] table is required")
+    mode = states.get("mode", "random")
+    if mode not in ("random", "grid"):
+        _fail("states.mode", mode, 'must be "random" or "grid"')
+    allowed = ("mode", "n", *STATE_KEYS) if mode == "random" else ("mode", *STATE_KEYS)
+    for key in states:
+        if key not in allowed:
+            _fail(f"states.{key}", states[key], f"unknown key for mode {mode!r} (allowed: {', '.join(allowed)})")
+    if "omega" in states and "r_omega" in states:
+        _fail("states.r_omega", states["r_omega"], "give omega or r_omega, not both")
+    spin_key = "r_omega" if "r_omega" in states else "omega"
+    parsed = {"spin_key": spin_key}
+    for key, target in (("v_n", "v_n"), ("v_t", "v_t"), (spin_key, "spin")):
+        if key not in states:
+            _fail(f"states.{key}", None, "is required")
+        values = _numbers(f"states.{key}", states[key])
+        if mode == "random":
+            if len(values) != 2:
+                _fail(f"states.{key}", states[key], "must be a range [low, high]")
+            if not values[0] < values[1]:
+                _fail(f"states.{key}", states[key], "is an empty range: low must be below high")
+        parsed[target] = values
+    if mode == "random":
+        n = _integer("states.n", states.get("n", 0), 1)
+    else:
+        n = len(parsed["v_n"]) * len(parsed["v_t"]) * len(parsed["spin"])
+    spec = SweepSpec(raw=raw, groups=tuple(groups), seed=seed, chunk_size=chunk_size,
+                     mode=mode, n=n, states=parsed)
+    _check_physics(spec)
+    return spec
+
+
+def _check_physics(spec: SweepSpec) -> None:
+    """Build every group's model and its most demanding collision now, before any run."""
+    vn = spec.states["v_n"]
+    fastest = min(vn)
+    for g in range(len(spec.groups)):
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                model, dt = spec.model(g)
+        except SceneError as exc:
+            key = "model.kt_over_kn" if exc.parameter == "kt" and "kt_over_kn" in spec.raw.get("model", {}) else f"model.{exc.parameter}"
+            raise SweepError(f"{key}: {exc}") from None
+        try:
+            Collision(model, v_n=[fastest, max(vn)], v_t=0.0, omega=0.0, dt=dt)
+        except SceneError as exc:
+            key = "states.v_n" if exc.parameter.startswith("v_n") else f"model.{exc.parameter}"
+            raise SweepError(f"{key}: {exc}") from None
+
+
+# ---------------------------------------------------------------------------------------
+# Running
+# ---------------------------------------------------------------------------------------
+
+def chunk_path(out: Path, group: int, chunk: int) -> Path:
+    return out / "chunks" / f"chunk-{group:04d}-{chunk:06d}.parquet"
+
+
+def run_chunk(raw: dict, out: str, group: int, chunk: int, start: int, stop: int) -> int:
+    """Run one chunk (in a worker process) and write its Parquet file atomically."""
+    from .pipeline import run_collision  # keeps the parent free of LAMMPS
+
+    spec = spec_from_dict(raw)
+    out = Path(out)
+    model, dt = spec.model(group)
+    states = spec.initial_states(group)[start:stop]
+    scene = Collision(model, v_n=states[:, 0], v_t=states[:, 1], omega=states[:, 2], dt=dt)
+    run_dir = out / "runs" / f"chunk-{group:04d}-{chunk:06d}"
+    if run_dir.exists():
+        shutil.rmtree(run_dir)  # a killed earlier attempt
+    result = run_collision(scene, run_dir)
+    table = result.table.drop(columns=["id"])
+    table.insert(0, "index", np.arange(start, stop))
+    table.insert(0, "chunk", chunk)
+    table.insert(0, "group", group)
+    for key, value in dataclasses.asdict(model).items():
+        table[key] = np.nan if value is None else value
+    table["dt"] = scene.dt
+    table["nsteps"] = scene.nsteps
+    table["Omega_theory"] = model.Omega
+    table["scene_hash"] = spec.digest
+    table["lammps_version"] = result.info.lammps_version
+    table["spinbounce_version"] = __version__
+    final = chunk_path(out, group, chunk)
+    tmp = final.with_name(f".{final.name}.{os.getpid()}.tmp")
+    table.to_parquet(tmp, index=False)
+    with open(tmp, "rb") as handle:
+        os.fsync(handle.fileno())
+    os.replace(tmp, final)
+    return stop - start
+
+
+class _Lock:
+    """An exclusive lock on the output folder, released by the OS even on kill -9."""
+
+    def __init__(self, out: Path):
+        self.path = out / ".lock"
+
+    def __enter__(self):
+        self.handle = open(self.path, "w")
+        try:
+            fcntl.flock(self.handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            self.handle.close()
+            raise SweepError(f"{self.path.parent}: another sweep is writing into this folder") from None
+        return self
+
+    def __exit__(self, *exc):
+        fcntl.flock(self.handle, fcntl.LOCK_UN)
+        self.handle.close()
+
+
+def _progress(total: int, done: int):
+    try:
+        from tqdm import tqdm
+    except ImportError:  # pragma: no cover - tqdm is a dependency
+        return None
+    return tqdm(total=total, initial=done, unit="coll", unit_scale=True, dynamic_ncols=True,
+                disable=not sys.stderr.isatty(), desc="collisions")
+
+
+def run_sweep(spec: SweepSpec, out: Path, workers: int | None = None, log=print) -> Path:
+    """Run every chunk that has no Parquet file yet; return the dataset folder."""
+    out = Path(out)
+    (out / "chunks").mkdir(parents=True, exist_ok=True)
+    with _Lock(out):
+        record = out / "sweep.json"
+        if record.exists():
+            previous = json.loads(record.read_text())
+            if previous.get("scene_hash") != spec.digest:
+                raise SweepError(
+                    f"{out} holds sweep {previous.get('scene_hash')}, not this one ({spec.digest}): "
+                    "use another --out"
+                )
+        else:
+            from .pipeline import to_json, write_atomic
+
+            write_atomic(record, to_json({"scene_hash": spec.digest, "spec": spec.raw,
+                                          "spinbounce_version": __version__}))
+        todo = [c for c in spec.chunks() if not chunk_path(out, c[0], c[1]).exists()]
+        total = spec.n * len(spec.groups)
+        done = total - sum(stop - start for _, _, start, stop in todo)
+        if done:
+            log(f"resuming: {done} of {total} collisions already done")
+        workers = max(1, min(workers or os.cpu_count() or 1, len(todo) or 1))
+        bar = _progress(total, done)
+        context = multiprocessing.get_context("spawn")
+        with concurrent.futures.ProcessPoolExecutor(max_workers=workers, mp_context=context) as pool:
+            futures = [pool.submit(run_chunk, spec.raw, str(out), *c) for c in todo]
+            try:
+                for future in concurrent.futures.as_completed(futures):
+                    n = future.result()
+                    if bar is not None:
+                        bar.update(n)
+            except BaseException:
+                for f in futures:
+                    f.cancel()
+                raise
+        if bar is not None:
+            bar.close()
+    return out / "chunks"
+
+
+def read_results(path: Path) -> pd.DataFrame:
+    """A sweep's rows, from its output folder or its ``chunks`` dataset folder."""
+    path = Path(path)
+    if (path / "chunks").is_dir():
+        path = path / "chunks"
+    files = sorted(path.glob("chunk-*.parquet")) if path.is_dir() else [path]
+    if not files:
+        raise SweepError(f"{path}: no chunk files")
+    return pd.concat([pd.read_parquet(f) for f in files], ignore_index=True)

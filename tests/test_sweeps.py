@@ -1,0 +1,129 @@
+"""Sweeps: scene-file validation (before any run), resumption after SIGKILL, fits."""
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from spinbounce.fit import fit_groups
+from spinbounce.sweeps import SweepError, load_spec, read_results, run_sweep, spec_from_dict
+
+GOOD = """
+seed = 4
+chunk_size = 300
+[model]
+kt = [1.0, 2.857142857142857]
+[states]
+n = 900
+v_n = [-1.5, -0.1]
+v_t = [-2.0, 2.0]
+r_omega = [-2.0, 2.0]
+"""
+
+
+def write(tmp_path, text):
+    path = tmp_path / "scene.toml"
+    path.write_text(text)
+    return path
+
+
+def test_good_scene_file(tmp_path):
+    spec = load_spec(write(tmp_path, GOOD))
+    assert len(spec.groups) == 2 and spec.n == 900 and len(spec.chunks()) == 6
+    a, b = spec.initial_states(0), spec.initial_states(0)
+    np.testing.assert_array_equal(a, b)  # the seed fixes the sample
+    assert a[:, 0].min() >= -1.5 and a[:, 0].max() <= -0.1
+
+
+@pytest.mark.parametrize(
+    "edit, key",
+    [
+        (lambda t: t.replace("seed = 4", "seed = 4\ncolour = 1"), "colour"),
+        (lambda t: t.replace("kt = [", "kq = ["), "model.kq"),
+        (lambda t: t.replace("n = 900", 'n = "many"'), "states.n"),
+        (lambda t: t.replace("kt = [1.0", 'kt = ["soft"'), "model.kt"),
+        (lambda t: t.replace("v_t = [-2.0, 2.0]", "v_t = [2.0, -2.0]"), "states.v_t"),
+        (lambda t: t.replace("v_n = [-1.5, -0.1]", "v_n = [-1.7, -0.1]"), "states.v_n"),
+        (lambda t: t.replace("[model]", "[model]\ndt = 0.7"), "model.dt"),
+        (lambda t: t.replace("[model]", "[model]\nalpha = 0"), "model.alpha"),
+        (lambda t: t.replace("kt = [1.0, 2.857142857142857]", "kt = []"), "model.kt"),
+    ],
+    ids=["unknown-top", "unknown-model", "wrong-type", "wrong-type-list", "empty-range", "tunnels",
+         "unstable-dt", "bad-alpha", "empty-grid"],
+)
+def test_bad_scene_files_name_the_key(tmp_path, edit, key):
+    with pytest.raises(SweepError) as info:
+        load_spec(write(tmp_path, edit(GOOD)))
+    assert str(info.value).startswith(key), str(info.value)
+
+
+@pytest.mark.lammps
+def test_sweep_rows_fit_and_determinism(tmp_path):
+    spec = load_spec(write(tmp_path, GOOD))
+    run_sweep(spec, tmp_path / "a", workers=2, log=lambda *_: None)
+    rows = read_results(tmp_path / "a")
+    assert len(rows) == 1800 and not rows.duplicated(["group", "index"]).any()
+    for col in ("scene_hash", "lammps_version", "spinbounce_version", "chunk", "dt", "vt_theory", "vt_error"):
+        assert col in rows
+    fits = fit_groups(rows)
+    assert len(fits) == 2
+    for f in fits:
+        # per-collision error <= 5e-5 at the default step, so the fit is far inside 2e-4
+        assert abs(f["omega_diff"]) < 1e-4 and f["max_element_diff"] < 2e-4
+    # same file, same seed: the same rows (LAMMPS is deterministic on one core)
+    run_sweep(load_spec(write(tmp_path, GOOD)), tmp_path / "b", workers=1, log=lambda *_: None)
+    again = read_results(tmp_path / "b")
+    cols = ["vn_0", "vt_0", "r_omega_0", "vn_final", "vt_final", "r_omega_final"]
+    pd.testing.assert_frame_equal(rows.sort_values(["group", "index"])[cols].reset_index(drop=True),
+                                  again.sort_values(["group", "index"])[cols].reset_index(drop=True))
+
+
+def test_output_folder_of_another_sweep_is_refused(tmp_path):
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "sweep.json").write_text(json.dumps({"scene_hash": "somethingelse"}))
+    with pytest.raises(SweepError, match="holds sweep"):
+        run_sweep(load_spec(write(tmp_path, GOOD)), out, workers=1)
+
+
+def test_two_sweeps_cannot_share_an_output(tmp_path):
+    import fcntl
+
+    out = tmp_path / "out"
+    (out / "chunks").mkdir(parents=True)
+    with open(out / ".lock", "w") as held:
+        fcntl.flock(held, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        with pytest.raises(SweepError, match="another sweep"):
+            run_sweep(load_spec(write(tmp_path, GOOD)), out, workers=1)
+
+
+@pytest.mark.lammps
+def test_sigkill_mid_sweep_then_rerun_completes_exactly(tmp_path):
+    n, chunk = 6000, 200
+    scene = write(tmp_path, f"seed = 9\nchunk_size = {chunk}\n[states]\nn = {n}\n"
+                            "v_n = [-1.5, -0.1]\nv_t = [-2.0, 2.0]\nomega = [-4.0, 4.0]\n")
+    out = tmp_path / "out"
+    cmd = [sys.executable, "-m", "spinbounce.cli", "sweep", str(scene), "--out", str(out), "--workers", "1"]
+    proc = subprocess.Popen(cmd, start_new_session=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    chunks = out / "chunks"
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and len(list(chunks.glob("chunk-*.parquet"))) < 3:
+        time.sleep(0.02)
+    os.killpg(proc.pid, signal.SIGKILL)  # the sweep and its worker, mid-run
+    proc.wait()
+    finished_before = len(list(chunks.glob("chunk-*.parquet")))
+    assert 3 <= finished_before < n // chunk, "the kill must land mid-sweep"
+    done = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    assert "resuming" in done.stdout
+    rows = read_results(out)
+    assert len(rows) == n
+    assert sorted(rows["index"]) == list(range(n))  # none lost, none duplicated
+    assert not list(chunks.glob(".*.tmp"))
