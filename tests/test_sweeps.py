@@ -6,14 +6,13 @@ import signal
 import subprocess
 import sys
 import time
-from pathlib import Path
 
 import numpy as np
 import pandas as pd
 import pytest
 
 from spinbounce.fit import fit_groups
-from spinbounce.sweeps import SweepError, load_spec, read_results, run_sweep, spec_from_dict
+from spinbounce.sweeps import SweepError, load_spec, read_results, run_sweep
 
 GOOD = """
 seed = 4

@@ -49,7 +49,7 @@ def fit_groups(rows: pd.DataFrame) -> list[dict]:
     out = []
     keys = [k for k in GROUP_KEYS if k in rows]
     for values, group in rows.groupby(keys, dropna=False, sort=True):
-        params = dict(zip(keys, values))
+        params = dict(zip(keys, values, strict=True))
         initial = group[[f"{s}_0" for s in STATE]].to_numpy()
         final = group[[f"{s}_final" for s in STATE]].to_numpy()
         matrix, stderr, residuals = fit_matrix(initial, final)

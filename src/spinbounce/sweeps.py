@@ -162,7 +162,7 @@ def spec_from_dict(raw: dict) -> SweepSpec:
     defaults = dataclasses.asdict(ContactModel())
     groups = []
     for combo in itertools.product(*(axes[k] for k in names)):
-        params = {**defaults, **dict(zip(names, combo))}
+        params = {**defaults, **dict(zip(names, combo, strict=True))}
         if "kt_over_kn" in params:
             params["kt"] = params.pop("kt_over_kn") * params["kn"]
         groups.append(params)

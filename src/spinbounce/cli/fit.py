@@ -27,11 +27,11 @@ def run(args) -> int:
         return 0
     for f in fits:
         p = f["parameters"]
-        print(f"group: " + ", ".join(f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}" for k, v in p.items()))
+        print("group: " + ", ".join(f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}" for k, v in p.items()))
         print(f"  collisions {f['n']}; Omega = {f['omega']:.8f} +/- {f['omega_stderr']:.1e} "
               f"(theory {f['omega_theory']:.8f}, diff {f['omega_diff']:.2e})")
         with np.printoptions(precision=7, suppress=True, floatmode="fixed"):
-            for fitted, theory in zip(np.array(f["matrix"]), np.array(f["matrix_theory"])):
+            for fitted, theory in zip(np.array(f["matrix"]), np.array(f["matrix_theory"]), strict=True):
                 print(f"  fit {fitted}   theory {theory}")
         print(f"  largest element difference {f['max_element_diff']:.2e}; residual rms "
               + " ".join(f"{x:.1e}" for x in f["residual_rms"])
