@@ -215,7 +215,7 @@ def render_frozen(scene: Frozen) -> Deck:
     model = scene.model
     ctx = _common(model, zhi=4.0 * model.r)
     ctx.update(
-        z=scene.z, vx=scene.v_t, wy=-scene.omega, data_file=None, dt=scene.dt, nsteps=scene.nsteps, every=scene.every
+        z=scene.z, vx=scene.v_t, wy=-scene.omega, dt=scene.dt, nsteps=scene.nsteps, every=scene.every
     )
     text = _environment().get_template("frozen.lmp.j2").render(**ctx)
     return Deck(text=text, rigid=ctx["rigid"])

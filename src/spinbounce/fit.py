@@ -13,11 +13,11 @@ import numpy as np
 import pandas as pd
 
 from . import theory
+from .compare import STATE
 
 __all__ = ["GROUP_KEYS", "fit_matrix", "fit_omega", "fit_groups"]
 
 GROUP_KEYS = ["m", "r", "alpha", "kn", "kt", "gamma_n", "gamma_t", "mu", "dt"]
-STATE = ["vn", "vt", "r_omega"]
 
 
 def fit_matrix(initial: np.ndarray, final: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
