@@ -84,6 +84,45 @@ def test_sweep_rows_fit_and_determinism(tmp_path):
                                   again.sort_values(["group", "index"])[cols].reset_index(drop=True))
 
 
+POLAR = """
+seed = 2
+[states]
+n = 500
+speed = [0.2, 1.5]
+angle_deg = [-70.0, 70.0]
+omega = [-3.0, 3.0]
+"""
+
+
+def test_speed_and_incidence_angle_sampling(tmp_path):
+    spec = load_spec(write(tmp_path, POLAR))
+    states = spec.initial_states(0)
+    speed = np.hypot(states[:, 0], states[:, 1])
+    angle = np.degrees(np.arctan2(states[:, 1], -states[:, 0]))
+    assert speed.min() >= 0.2 and speed.max() <= 1.5
+    assert angle.min() >= -70.0 and angle.max() <= 70.0 and (states[:, 0] < 0).all()
+    # the same seed draws the same uniform numbers: only the coordinates differ
+    rng = np.random.default_rng(2)
+    np.testing.assert_allclose(speed, rng.uniform(0.2, 1.5, 500), rtol=1e-14)
+    assert np.abs(states[:, 2]).max() <= 3.0  # omega given, not r*omega
+
+
+@pytest.mark.parametrize(
+    "edit, key",
+    [
+        (lambda t: t.replace("speed = [0.2, 1.5]", "speed = [0.2, 1.7]"), "states.speed"),
+        (lambda t: t.replace("angle_deg = [-70.0, 70.0]", "angle_deg = [-70.0, 90.0]"), "states.angle_deg"),
+        (lambda t: t.replace("speed = [0.2, 1.5]", "speed = [0.0, 1.5]"), "states.speed"),
+        (lambda t: t.replace("[states]", "[states]\nv_t = [0.0, 1.0]"), "states.speed"),
+    ],
+    ids=["tunnels", "grazing-90", "zero-speed", "mixed-coordinates"],
+)
+def test_bad_polar_states_name_the_key(tmp_path, edit, key):
+    with pytest.raises(SweepError) as info:
+        load_spec(write(tmp_path, edit(POLAR)))
+    assert str(info.value).startswith(key), str(info.value)
+
+
 def test_output_folder_of_another_sweep_is_refused(tmp_path):
     out = tmp_path / "out"
     out.mkdir()
@@ -105,7 +144,7 @@ def test_two_sweeps_cannot_share_an_output(tmp_path):
 
 @pytest.mark.lammps
 def test_sigkill_mid_sweep_then_rerun_completes_exactly(tmp_path):
-    n, chunk = 6000, 200
+    n, chunk = 60_000, 1500  # 40 chunks of ~0.05 s each: the kill lands well inside the run
     scene = write(tmp_path, f"seed = 9\nchunk_size = {chunk}\n[states]\nn = {n}\n"
                             "v_n = [-1.5, -0.1]\nv_t = [-2.0, 2.0]\nomega = [-4.0, 4.0]\n")
     out = tmp_path / "out"
@@ -114,7 +153,7 @@ def test_sigkill_mid_sweep_then_rerun_completes_exactly(tmp_path):
     chunks = out / "chunks"
     deadline = time.monotonic() + 120
     while time.monotonic() < deadline and len(list(chunks.glob("chunk-*.parquet"))) < 3:
-        time.sleep(0.02)
+        time.sleep(0.005)
     os.killpg(proc.pid, signal.SIGKILL)  # the sweep and its worker, mid-run
     proc.wait()
     finished_before = len(list(chunks.glob("chunk-*.parquet")))

@@ -28,34 +28,32 @@ def paper_variables(frames: pd.DataFrame, r: float) -> pd.DataFrame:
     return out
 
 
-def collision_table(scene: Collision, frames: pd.DataFrame) -> pd.DataFrame:
+def collision_table(scene: Collision, initial: pd.DataFrame, final: pd.DataFrame) -> pd.DataFrame:
     """One row per sphere: requested, initial (as LAMMPS saw it), final, theory and error.
 
-    ``frames`` holds the first and last dump frames; spheres pair by atom id. The theory
-    acts on the *requested* initial state, so a mangled input would show as an error.
+    ``initial`` and ``final`` hold one row per sphere in id order (ids 1..n), with LAMMPS's
+    columns z, vx, vz, omegay. The theory acts on the *requested* initial state, so a
+    mangled input would show as an error.
     """
     r = scene.model.r
-    paper = paper_variables(frames, r)
-    first, last = paper["step"].min(), paper["step"].max()
-    initial = paper[paper["step"] == first].set_index("id")
-    final = paper[paper["step"] == last].set_index("id")
-    ids = np.arange(1, scene.n + 1)
     requested = scene.initial
     theory = scene.predicted()
-    table = pd.DataFrame({"id": ids})
+    columns = {"id": np.arange(1, scene.n + 1)}
     for k, name in enumerate(STATE):
-        table[f"{name}_0"] = requested[:, k]
-    table["omega_0"] = np.asarray(scene.omega)
-    for name in STATE + ("omega", "z"):
-        table[f"{name}_lammps_0"] = initial.loc[ids, name].to_numpy()
-    for name in STATE + ("omega", "z"):
-        table[f"{name}_final"] = final.loc[ids, name].to_numpy()
+        columns[f"{name}_0"] = requested[:, k]
+    columns["omega_0"] = np.asarray(scene.omega)
+    for when, frame in (("lammps_0", initial), ("final", final)):
+        omega = -frame["omegay"].to_numpy() + 0.0  # + 0.0: no "-0" in tables
+        values = {"vn": frame["vz"].to_numpy(), "vt": frame["vx"].to_numpy(), "r_omega": r * omega,
+                  "omega": omega, "z": frame["z"].to_numpy()}
+        for name in STATE + ("omega", "z"):
+            columns[f"{name}_{when}"] = values[name]
     for k, name in enumerate(STATE):
-        table[f"{name}_theory"] = theory[:, k]
-    table["omega_theory"] = theory[:, 2] / r
+        columns[f"{name}_theory"] = theory[:, k]
+    columns["omega_theory"] = theory[:, 2] / r
     for name in STATE + ("omega",):
-        table[f"{name}_error"] = table[f"{name}_final"] - table[f"{name}_theory"]
-    return table
+        columns[f"{name}_error"] = columns[f"{name}_final"] - columns[f"{name}_theory"]
+    return pd.DataFrame(columns)
 
 
 def frozen_table(scene: Frozen, frames: pd.DataFrame) -> pd.DataFrame:

@@ -22,7 +22,7 @@ import pandas as pd
 
 from . import __version__, theory
 from .compare import STATE, collision_table, frozen_table
-from .decks import Deck, render_collision, render_frozen, wall_parameters
+from .decks import DUMP_NAME, INLINE_SPHERES, Deck, render_collision, render_frozen, wall_parameters
 from .dumps import read_dump
 from .runner import RunInfo, run_deck
 from .scenes import Collision, ContactModel, Frozen
@@ -34,6 +34,7 @@ __all__ = [
     "run_collision",
     "run_frozen",
     "write_atomic",
+    "write_parquet_atomic",
     "to_json",
     "provenance",
 ]
@@ -41,6 +42,8 @@ __all__ = [
 #: A model with no energy source can gain energy only through integration error, which
 #: is O(dt^2) ~ 1e-6 relative at the coarsest default resolution; more is flagged.
 ENERGY_GAIN_TOLERANCE = 1e-5
+#: A batch's per-sphere table, beside result.json.
+RESULT_TABLE = "result.parquet"
 
 
 class ResultError(RuntimeError):
@@ -59,6 +62,20 @@ def write_atomic(path: Path, text: str) -> None:
         os.replace(tmp, path)
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
+        raise
+
+
+def write_parquet_atomic(path: Path, table: pd.DataFrame) -> None:
+    """Write ``table`` to ``path`` as Parquet, atomically (and durably) like :func:`write_atomic`."""
+    path = Path(path)
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    try:
+        table.to_parquet(tmp, index=False)
+        with open(tmp, "rb") as handle:
+            os.fsync(handle.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        tmp.unlink(missing_ok=True)
         raise
 
 
@@ -96,7 +113,7 @@ def provenance(info: RunInfo, scene_kind: str, parameters: dict) -> dict:
 def _prepare(out_dir: Path, deck: Deck) -> Path:
     out_dir = Path(out_dir).resolve()
     out_dir.mkdir(parents=True, exist_ok=True)
-    for stale in (deck.dump, "log.lammps", "result.json"):
+    for stale in (DUMP_NAME, "log.lammps", "result.json", RESULT_TABLE):
         (out_dir / stale).unlink(missing_ok=True)
     for name, text in deck.files.items():
         write_atomic(out_dir / name, text)
@@ -115,12 +132,44 @@ def _check_finite(frames: pd.DataFrame, where: Path) -> None:
         )
 
 
+def _memory_frames(info: RunInfo, nsteps: int, n: int) -> pd.DataFrame:
+    """A library-route run's states, shaped like dump frames of its n spheres (steps 0 and nsteps)."""
+    parts = []
+    for step, state in ((0, info.initial), (nsteps, info.final)):
+        keep = state["type"] == 1
+        cols = {"step": np.full(int(keep.sum()), step, dtype=np.int64), "id": state["id"][keep].astype(np.int64)}
+        for name, (key, k) in {"x": ("x", 0), "y": ("x", 1), "z": ("x", 2), "vx": ("v", 0), "vy": ("v", 1),
+                               "vz": ("v", 2), "omegax": ("omega", 0), "omegay": ("omega", 1),
+                               "omegaz": ("omega", 2)}.items():
+            cols[name] = state[key][keep, k]
+        parts.append(pd.DataFrame(cols))
+    return pd.concat(parts, ignore_index=True)
+
+
+def _collision_frames(scene: Collision, frames: pd.DataFrame, where: Path) -> tuple[pd.DataFrame, pd.DataFrame]:
+    """Checked initial and final frames (one row per sphere, id order) of a collision run."""
+    _check_finite(frames, where)
+    steps = sorted(frames["step"].unique())
+    if steps != [0, scene.nsteps]:
+        raise ResultError(f"{where}: expected frames at steps 0 and {scene.nsteps}, found {steps}")
+    ids = np.arange(1, scene.n + 1)
+    out = []
+    for step in steps:
+        frame = frames[frames["step"] == step]
+        if len(frame) != scene.n:
+            raise ResultError(f"{where}: {len(frame)} of {scene.n} spheres at step {step} (lost atoms)")
+        if not np.array_equal(frame["id"].to_numpy(), ids):
+            raise ResultError(f"{where}: sphere ids at step {step} are not 1..{scene.n} in order")
+        out.append(frame.reset_index(drop=True))
+    return out[0], out[1]
+
+
 @dataclass(frozen=True)
 class CollisionResult:
     scene: Collision
     table: pd.DataFrame
     info: RunInfo
-    dump: Path
+    dump: Path | None  # None for a library-route run (no dump)
     warnings: tuple[str, ...]
 
     @property
@@ -128,26 +177,31 @@ class CollisionResult:
         return float(np.max(np.abs(self.table[[f"{s}_error" for s in STATE]].to_numpy())))
 
 
-def run_collision(scene: Collision, out_dir: Path) -> CollisionResult:
-    """Run one collision scene in ``out_dir`` and compare every sphere with Eq. 18."""
-    deck = render_collision(scene)
+def run_collision(scene: Collision, out_dir: Path, atoms: str | None = None, record: bool = True,
+                  runner=run_deck) -> CollisionResult:
+    """Run one collision scene in ``out_dir`` and compare every sphere with Eq. 18.
+
+    ``atoms`` picks how the deck receives its spheres (:data:`decks.ATOM_ROUTES`); with
+    ``record`` the run folder gets ``result.json`` (and, past INLINE_SPHERES spheres, the
+    per-sphere table as ``result.parquet``). ``runner``: :func:`runner.run_deck` (in this
+    process) or :func:`runner.run_deck_lmp` (the ``lmp`` executable).
+    """
+    deck = render_collision(scene, atoms)
     deck_path = _prepare(out_dir, deck)
-    info = run_deck(deck_path)
-    dump_path = deck_path.parent / deck.dump
-    frames = read_dump(dump_path)
-    _check_finite(frames, dump_path)
-    steps = sorted(frames["step"].unique())
-    if steps != [0, scene.nsteps]:
-        raise ResultError(f"{dump_path}: expected frames at steps 0 and {scene.nsteps}, found {steps}")
-    last = frames[frames["step"] == scene.nsteps]
-    if len(last) != scene.n:
-        raise ResultError(f"{dump_path}: {len(last)} of {scene.n} spheres left at the end (lost atoms)")
+    info = runner(deck_path, atoms=deck.atoms)
+    if deck.dump is None:
+        source = info.log
+        frames = _memory_frames(info, scene.nsteps, scene.n)
+    else:
+        source = deck_path.parent / deck.dump
+        frames = read_dump(source)
+    initial, final = _collision_frames(scene, frames, source)
     m = scene.model
-    table = collision_table(scene, frames)
+    table = collision_table(scene, initial, final)
     still_touching = table[table["z_final"] <= m.r]
     if len(still_touching):
         raise ResultError(
-            f"{dump_path}: {len(still_touching)} sphere(s) still touch the wall after {scene.nsteps} steps "
+            f"{source}: {len(still_touching)} sphere(s) still touch the wall after {scene.nsteps} steps "
             f"(first: id {int(still_touching['id'].iloc[0])}, z = {still_touching['z_final'].iloc[0]!r}): "
             "the contact had not finished"
         )
@@ -166,15 +220,23 @@ def run_collision(scene: Collision, out_dir: Path) -> CollisionResult:
             f"mu = {m.mu!r} caps the tangential force; the theory (Eq. 18) has no cap, so the "
             "'error' includes sliding, not only integration error"
         )
+    dump_path = None if deck.dump is None else deck_path.parent / deck.dump
     result = CollisionResult(scene, table, info, dump_path, tuple(notes))
-    parameters = {"model": _model_dict(m), "dt": scene.dt, "nsteps": scene.nsteps,
-                  "tau": m.tau, "Omega": m.Omega, "wall": wall_parameters(m),
-                  "integrator": "rigid" if deck.rigid else "nve/sphere"}
-    record = provenance(info, "collision", parameters)
-    record["dump"] = str(dump_path)
-    record["warnings"] = list(notes)
-    record["spheres"] = table.to_dict(orient="records")
-    write_atomic(deck_path.parent / "result.json", to_json(record))
+    if record:
+        parameters = {"model": _model_dict(m), "dt": scene.dt, "nsteps": scene.nsteps,
+                      "tau": m.tau, "Omega": m.Omega, "wall": wall_parameters(m),
+                      "integrator": "rigid" if deck.rigid else "nve/sphere",
+                      "atoms": "library" if deck.atoms is not None else ("data_file" if deck.files else "inline")}
+        out = provenance(info, "collision", parameters)
+        out["dump"] = None if dump_path is None else str(dump_path)
+        out["warnings"] = list(notes)
+        out["max_abs_error"] = result.max_abs_error
+        if scene.n <= INLINE_SPHERES:
+            out["spheres"] = table.to_dict(orient="records")
+        else:  # a JSON record per sphere would cost more than the run
+            write_parquet_atomic(deck_path.parent / RESULT_TABLE, table)
+            out["spheres"] = RESULT_TABLE
+        write_atomic(deck_path.parent / "result.json", to_json(out))
     return result
 
 

@@ -13,12 +13,15 @@ import ctypes
 import importlib.metadata as metadata
 import os
 import re
+import subprocess
 import time
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
 
-__all__ = ["LammpsError", "RunInfo", "run_deck", "lammps_version", "lmp_executable"]
+import numpy as np
+
+__all__ = ["LammpsError", "RunInfo", "run_deck", "run_deck_lmp", "lammps_version", "lmp_executable", "loop_seconds"]
 
 LOG_NAME = "log.lammps"
 
@@ -38,10 +41,20 @@ class LammpsError(RuntimeError):
 
 @dataclass(frozen=True)
 class RunInfo:
+    """What a run was and cost. ``loop_seconds``: LAMMPS's own "Loop time" (the run loop).
+
+    A library-route run (atoms passed in memory) also carries each atom's state as LAMMPS
+    held it just after creation (``initial``) and after the run (``final``): arrays keyed
+    id, type, x, v, omega, in id order.
+    """
+
     deck: Path
     log: Path
     lammps_version: str
     wall_seconds: float
+    loop_seconds: float = float("nan")
+    initial: dict | None = None
+    final: dict | None = None
 
 
 def _preload_mpi() -> None:
@@ -118,27 +131,95 @@ def _working_directory(path: Path):
         os.chdir(previous)
 
 
-def run_deck(deck: Path) -> RunInfo:
+_LOOP_RE = re.compile(r"^Loop time of ([-+0-9.eE]+)", re.MULTILINE)
+
+
+def loop_seconds(log: Path) -> float:
+    """Sum of the "Loop time" lines of a LAMMPS log (nan if it has none)."""
+    try:
+        found = _LOOP_RE.findall(Path(log).read_text())
+    except FileNotFoundError:
+        return float("nan")
+    return sum(float(x) for x in found) if found else float("nan")
+
+
+_STATE = ("id", "type", "x", "v", "omega")
+
+
+def _read_state(lmp) -> dict:
+    """Copies of every atom's id, type, x, v, omega, in id order (one MPI rank)."""
+    got = {name: lmp.numpy.extract_atom(name).copy() for name in _STATE}
+    order = np.argsort(got["id"], kind="stable")
+    return {name: value[order] for name, value in got.items()}
+
+
+def _create_atoms(lmp, atoms, deck: Path) -> None:
+    n = len(atoms.types)
+    ids = np.arange(1, n + 1)
+    made = lmp.create_atoms(n, ids, atoms.types, np.ascontiguousarray(atoms.x).ravel(),
+                            np.ascontiguousarray(atoms.v).ravel())
+    if made != n:
+        raise LammpsError(f"the library interface created {made} of {n} atoms", deck)
+    held = lmp.numpy.extract_atom("id")
+    order = np.argsort(held, kind="stable")
+    if not np.array_equal(held[order], ids):
+        raise LammpsError("atom ids after creation are not 1..N", deck)
+    omega = lmp.numpy.extract_atom("omega")  # a writable view of LAMMPS's own array
+    omega[order] = atoms.omega
+
+
+def run_deck(deck: Path, atoms=None) -> RunInfo:
     """Run ``deck`` in its own folder (where it reads and writes its files).
 
     LAMMPS's screen output is off; its log goes to ``log.lammps`` beside the deck. Any
-    LAMMPS error becomes a :class:`LammpsError`.
+    LAMMPS error becomes a :class:`LammpsError`. With ``atoms`` (a library-route deck),
+    the atoms are created in memory at the deck's marker line, and the atoms' initial
+    and final states are returned in the :class:`RunInfo`.
     """
+    from .decks import LIBRARY_MARKER
+
     deck = Path(deck).resolve()
     lammps = _lammps_class()
     version = lammps_version()
+    initial = final = None
     started = time.perf_counter()
     with _working_directory(deck.parent):
         lmp = lammps(cmdargs=["-log", LOG_NAME, "-screen", "none", "-nocite"])
         try:
-            lmp.file(deck.name)
+            if atoms is None:
+                lmp.file(deck.name)
+            else:
+                before, marker, after = deck.read_text().partition(LIBRARY_MARKER)
+                if not marker:
+                    raise LammpsError(f"the deck has no line {LIBRARY_MARKER!r} to create atoms at", deck)
+                lmp.commands_string(before)
+                _create_atoms(lmp, atoms, deck)
+                initial = _read_state(lmp)
+                lmp.commands_string(after)
+                final = _read_state(lmp)
+        except LammpsError:
+            raise
         except Exception as exc:  # the module raises a bare Exception carrying LAMMPS's text
             raise _as_lammps_error(exc, deck) from exc
         finally:
             lmp.close()
-    return RunInfo(
-        deck=deck,
-        log=deck.parent / LOG_NAME,
-        lammps_version=version,
-        wall_seconds=time.perf_counter() - started,
-    )
+    log = deck.parent / LOG_NAME
+    return RunInfo(deck=deck, log=log, lammps_version=version, wall_seconds=time.perf_counter() - started,
+                   loop_seconds=loop_seconds(log), initial=initial, final=final)
+
+
+def run_deck_lmp(deck: Path, atoms=None) -> RunInfo:
+    """Run ``deck`` with the ``lmp`` executable in a process of its own (what a user's rerun
+    does). Slower than :func:`run_deck` by the process and library start-up."""
+    if atoms is not None:
+        raise ValueError("a library-route deck needs the in-process runner")
+    deck = Path(deck).resolve()
+    started = time.perf_counter()
+    done = subprocess.run([str(lmp_executable()), "-in", deck.name, "-log", LOG_NAME, "-screen", "none", "-nocite"],
+                          cwd=deck.parent, capture_output=True, text=True)
+    log = deck.parent / LOG_NAME
+    if done.returncode != 0:
+        text = done.stdout + done.stderr + (log.read_text() if log.exists() else "")
+        raise _as_lammps_error(Exception(text), deck)
+    return RunInfo(deck=deck, log=log, lammps_version=lammps_version(), wall_seconds=time.perf_counter() - started,
+                   loop_seconds=loop_seconds(log))

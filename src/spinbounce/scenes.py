@@ -206,10 +206,17 @@ class ContactModel:
 
 
 def _as_vector(name: str, value) -> tuple[float, ...]:
-    arr = np.atleast_1d(np.asarray(value, dtype=object))
+    try:
+        arr = np.atleast_1d(np.asarray(value, dtype=float))
+    except (TypeError, ValueError):
+        raise SceneError(name, value, "must be a number or a non-empty list of numbers") from None
     if arr.ndim != 1 or arr.size == 0:
         raise SceneError(name, value, "must be a number or a non-empty list of numbers")
-    return tuple(_finite(name, v) for v in arr)
+    bad = np.flatnonzero(~np.isfinite(arr))
+    if bad.size:
+        i = int(bad[0])
+        raise SceneError(f"{name}[{i}]" if arr.size > 1 else name, float(arr[i]), "must be finite")
+    return tuple((arr + 0.0).tolist())
 
 
 @dataclass(frozen=True)
@@ -242,9 +249,10 @@ class Collision:
         set_(self, "v_t", vt)
         set_(self, "omega", om)
         m = self.model
-        for i, v in enumerate(vn):
-            if v >= 0.0:
-                raise SceneError(f"v_n[{i}]" if n > 1 else "v_n", v, "must be < 0 (towards the wall)")
+        away = np.flatnonzero(np.asarray(vn) >= 0.0)
+        if away.size:
+            i = int(away[0])
+            raise SceneError(f"v_n[{i}]" if n > 1 else "v_n", vn[i], "must be < 0 (towards the wall)")
         reach = float(np.max(theory.max_overlap(np.array(vn), m.m, m.kn, m.gamma_n)))
         if reach >= m.r:
             fastest = max(vn, key=abs)

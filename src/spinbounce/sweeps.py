@@ -14,6 +14,8 @@ A sweep is a scene file (TOML) or the same content from flags::
     v_n = [-1.5, -0.1]
     v_t = [-2.0, 2.0]
     r_omega = [-2.0, 2.0]       # or omega = [low, high]
+    # instead of v_n and v_t: speed = [low, high] and angle_deg = [low, high], the
+    # incidence angle from the wall's normal in degrees (v_n = -speed cos, v_t = speed sin)
 
     # ... or a grid: [states] mode = "grid" with lists of values (all combinations)
 
@@ -38,6 +40,7 @@ import multiprocessing
 import os
 import shutil
 import sys
+import time
 import tomllib
 import warnings
 from dataclasses import dataclass
@@ -49,10 +52,14 @@ import pandas as pd
 from . import __version__
 from .scenes import Collision, ContactModel, SceneError
 
-__all__ = ["SweepError", "SweepSpec", "load_spec", "spec_from_dict", "run_sweep", "read_results"]
+__all__ = ["SweepError", "SweepSpec", "load_spec", "spec_from_dict", "run_sweep", "run_one_chunk", "chunk_table",
+           "chunk_path", "read_results"]
 
 MODEL_KEYS = ("m", "r", "alpha", "kn", "kt", "kt_over_kn", "gamma_n", "gamma_t", "mu", "dt")
-STATE_KEYS = ("v_n", "v_t", "omega", "r_omega")
+STATE_KEYS = ("v_n", "v_t", "speed", "angle_deg", "omega", "r_omega")
+#: The two ways to give the velocity: components, or speed and incidence angle (degrees
+#: from the wall's normal; positive angles give v_t > 0). Spin: omega or r_omega.
+VELOCITY_KEYS = {"components": ("v_n", "v_t"), "polar": ("speed", "angle_deg")}
 TOP_KEYS = ("name", "seed", "chunk_size", "model", "states")
 DEFAULT_CHUNK = 10_000
 
@@ -113,14 +120,27 @@ class SweepSpec:
         """(n, 3) states (v_n, v_t, omega): the same for every group, set by the seed."""
         s = self.states
         if self.mode == "grid":
-            points = list(itertools.product(s["v_n"], s["v_t"], s["spin"]))
-            arr = np.array(points, dtype=float)
+            arr = np.array(list(itertools.product(s["a"], s["b"], s["spin"])), dtype=float)
         else:
             rng = np.random.default_rng(self.seed)
-            arr = np.column_stack([rng.uniform(lo, hi, self.n) for lo, hi in (s["v_n"], s["v_t"], s["spin"])])
+            arr = np.column_stack([rng.uniform(lo, hi, self.n) for lo, hi in (s["a"], s["b"], s["spin"])])
+        if s["velocity"] == "polar":
+            speed, angle = arr[:, 0], np.radians(arr[:, 1])
+            arr[:, 0], arr[:, 1] = -speed * np.cos(angle), speed * np.sin(angle)
         if s["spin_key"] == "r_omega":
             arr[:, 2] = arr[:, 2] / self.groups[group]["r"]
         return arr
+
+    def normal_speeds(self) -> tuple[float, float]:
+        """The fastest and the slowest |v_n| the states can reach (sampled ranges: their bounds)."""
+        s = self.states
+        if s["velocity"] == "components":
+            vn = np.abs(np.asarray(s["a"]))
+            return float(vn.max()), float(vn.min())
+        speed, angle = np.asarray(s["a"]), np.asarray(s["b"])
+        cos = np.cos(np.radians(angle))
+        top = 1.0 if (self.mode == "random" and angle[0] <= 0.0 <= angle[1]) or 0.0 in angle else cos.max()
+        return float(speed.max() * top), float(speed.min() * cos.min())
 
     def chunks(self) -> list[tuple[int, int, int, int]]:
         """(group, chunk, start, stop) for every chunk, in order."""
@@ -179,9 +199,16 @@ def spec_from_dict(raw: dict) -> SweepSpec:
             _fail(f"states.{key}", states[key], f"unknown key for mode {mode!r} (allowed: {', '.join(allowed)})")
     if "omega" in states and "r_omega" in states:
         _fail("states.r_omega", states["r_omega"], "give omega or r_omega, not both")
+    if any(k in states for k in VELOCITY_KEYS["polar"]):
+        if any(k in states for k in VELOCITY_KEYS["components"]):
+            _fail("states.speed", states.get("speed"), "give v_n and v_t, or speed and angle_deg, not both")
+        velocity = "polar"
+    else:
+        velocity = "components"
     spin_key = "r_omega" if "r_omega" in states else "omega"
-    parsed = {"spin_key": spin_key}
-    for key, target in (("v_n", "v_n"), ("v_t", "v_t"), (spin_key, "spin")):
+    parsed = {"spin_key": spin_key, "velocity": velocity}
+    first, second = VELOCITY_KEYS[velocity]
+    for key, target in ((first, "a"), (second, "b"), (spin_key, "spin")):
         if key not in states:
             _fail(f"states.{key}", None, "is required")
         values = _numbers(f"states.{key}", states[key])
@@ -191,10 +218,15 @@ def spec_from_dict(raw: dict) -> SweepSpec:
             if not values[0] < values[1]:
                 _fail(f"states.{key}", states[key], "is an empty range: low must be below high")
         parsed[target] = values
+    if velocity == "polar":
+        if min(parsed["a"]) <= 0.0:
+            _fail("states.speed", states["speed"], "must be > 0")
+        if max(abs(a) for a in parsed["b"]) >= 90.0:
+            _fail("states.angle_deg", states["angle_deg"], "must lie in (-90, 90): 90 degrees never meets the wall")
     if mode == "random":
         n = _integer("states.n", states.get("n", 0), 1)
     else:
-        n = len(parsed["v_n"]) * len(parsed["v_t"]) * len(parsed["spin"])
+        n = len(parsed["a"]) * len(parsed["b"]) * len(parsed["spin"])
     spec = SweepSpec(raw=raw, groups=tuple(groups), seed=seed, chunk_size=chunk_size,
                      mode=mode, n=n, states=parsed)
     _check_physics(spec)
@@ -203,8 +235,8 @@ def spec_from_dict(raw: dict) -> SweepSpec:
 
 def _check_physics(spec: SweepSpec) -> None:
     """Build every group's model and its most demanding collision now, before any run."""
-    vn = spec.states["v_n"]
-    fastest = min(vn)
+    fast, slow = spec.normal_speeds()
+    key_vn = "states.v_n" if spec.states["velocity"] == "components" else "states.speed"
     for g in range(len(spec.groups)):
         try:
             with warnings.catch_warnings():
@@ -214,9 +246,9 @@ def _check_physics(spec: SweepSpec) -> None:
             key = "model.kt_over_kn" if exc.parameter == "kt" and "kt_over_kn" in spec.raw.get("model", {}) else f"model.{exc.parameter}"
             raise SweepError(f"{key}: {exc}") from None
         try:
-            Collision(model, v_n=[fastest, max(vn)], v_t=0.0, omega=0.0, dt=dt)
+            Collision(model, v_n=[-fast, -slow], v_t=0.0, omega=0.0, dt=dt)
         except SceneError as exc:
-            key = "states.v_n" if exc.parameter.startswith("v_n") else f"model.{exc.parameter}"
+            key = key_vn if exc.parameter.startswith("v_n") else f"model.{exc.parameter}"
             raise SweepError(f"{key}: {exc}") from None
 
 
@@ -228,10 +260,15 @@ def chunk_path(out: Path, group: int, chunk: int) -> Path:
     return out / "chunks" / f"chunk-{group:04d}-{chunk:06d}.parquet"
 
 
-def run_chunk(raw: dict, out: str, group: int, chunk: int, start: int, stop: int) -> int:
-    """Run one chunk (in a worker process) and write its Parquet file atomically."""
-    from .pipeline import run_collision  # keeps the parent free of LAMMPS
+def run_chunk(raw: dict, out: str, group: int, chunk: int, start: int, stop: int) -> tuple[int, float, float]:
+    """Run one chunk and write its Parquet file atomically.
 
+    Returns (collisions, seconds in this call, seconds in LAMMPS's run loop). The spheres
+    reach LAMMPS in memory (the library route): no data file to write, no dump to parse.
+    """
+    from .pipeline import run_collision, write_parquet_atomic  # keeps a parent process free of LAMMPS
+
+    started = time.perf_counter()
     spec = spec_from_dict(raw)
     out = Path(out)
     model, dt = spec.model(group)
@@ -240,7 +277,7 @@ def run_chunk(raw: dict, out: str, group: int, chunk: int, start: int, stop: int
     run_dir = out / "runs" / f"chunk-{group:04d}-{chunk:06d}"
     if run_dir.exists():
         shutil.rmtree(run_dir)  # a killed earlier attempt
-    result = run_collision(scene, run_dir)
+    result = run_collision(scene, run_dir, atoms="library", record=False)
     table = result.table.drop(columns=["id"])
     table.insert(0, "index", np.arange(start, stop))
     table.insert(0, "chunk", chunk)
@@ -253,28 +290,27 @@ def run_chunk(raw: dict, out: str, group: int, chunk: int, start: int, stop: int
     table["scene_hash"] = spec.digest
     table["lammps_version"] = result.info.lammps_version
     table["spinbounce_version"] = __version__
-    final = chunk_path(out, group, chunk)
-    tmp = final.with_name(f".{final.name}.{os.getpid()}.tmp")
-    table.to_parquet(tmp, index=False)
-    with open(tmp, "rb") as handle:
-        os.fsync(handle.fileno())
-    os.replace(tmp, final)
-    return stop - start
+    write_parquet_atomic(chunk_path(out, group, chunk), table)
+    return stop - start, time.perf_counter() - started, result.info.loop_seconds
 
 
 class _Lock:
-    """An exclusive lock on the output folder, released by the OS even on kill -9."""
+    """A lock on a file in the output folder, released by the OS even on kill -9.
 
-    def __init__(self, out: Path):
-        self.path = out / ".lock"
+    A whole sweep holds the folder's lock exclusively; single-chunk jobs (``--chunk``, as
+    a workflow engine runs them) share it and each holds its own chunk's lock exclusively.
+    """
+
+    def __init__(self, path: Path, shared: bool = False, what: str = "another sweep is writing into this folder"):
+        self.path, self.shared, self.what = path, shared, what
 
     def __enter__(self):
-        self.handle = open(self.path, "w")
+        self.handle = open(self.path, "a")
         try:
-            fcntl.flock(self.handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            fcntl.flock(self.handle, (fcntl.LOCK_SH if self.shared else fcntl.LOCK_EX) | fcntl.LOCK_NB)
         except BlockingIOError:
             self.handle.close()
-            raise SweepError(f"{self.path.parent}: another sweep is writing into this folder") from None
+            raise SweepError(f"{self.path.parent}: {self.what}") from None
         return self
 
     def __exit__(self, *exc):
@@ -291,24 +327,27 @@ def _progress(total: int, done: int):
                 disable=not sys.stderr.isatty(), desc="collisions")
 
 
+def _claim(out: Path, spec: SweepSpec) -> None:
+    """Record the sweep in ``out/sweep.json``, or refuse a folder that holds another sweep."""
+    from .pipeline import to_json, write_atomic
+
+    record = out / "sweep.json"
+    if record.exists():
+        previous = json.loads(record.read_text())
+        if previous.get("scene_hash") != spec.digest:
+            raise SweepError(
+                f"{out} holds sweep {previous.get('scene_hash')}, not this one ({spec.digest}): use another --out"
+            )
+    else:
+        write_atomic(record, to_json({"scene_hash": spec.digest, "spec": spec.raw, "spinbounce_version": __version__}))
+
+
 def run_sweep(spec: SweepSpec, out: Path, workers: int | None = None, log=print) -> Path:
     """Run every chunk that has no Parquet file yet; return the dataset folder."""
     out = Path(out)
     (out / "chunks").mkdir(parents=True, exist_ok=True)
-    with _Lock(out):
-        record = out / "sweep.json"
-        if record.exists():
-            previous = json.loads(record.read_text())
-            if previous.get("scene_hash") != spec.digest:
-                raise SweepError(
-                    f"{out} holds sweep {previous.get('scene_hash')}, not this one ({spec.digest}): "
-                    "use another --out"
-                )
-        else:
-            from .pipeline import to_json, write_atomic
-
-            write_atomic(record, to_json({"scene_hash": spec.digest, "spec": spec.raw,
-                                          "spinbounce_version": __version__}))
+    with _Lock(out / ".lock"):
+        _claim(out, spec)
         todo = [c for c in spec.chunks() if not chunk_path(out, c[0], c[1]).exists()]
         total = spec.n * len(spec.groups)
         done = total - sum(stop - start for _, _, start, stop in todo)
@@ -316,21 +355,62 @@ def run_sweep(spec: SweepSpec, out: Path, workers: int | None = None, log=print)
             log(f"resuming: {done} of {total} collisions already done")
         workers = max(1, min(workers or os.cpu_count() or 1, len(todo) or 1))
         bar = _progress(total, done)
-        context = multiprocessing.get_context("spawn")
-        with concurrent.futures.ProcessPoolExecutor(max_workers=workers, mp_context=context) as pool:
-            futures = [pool.submit(run_chunk, spec.raw, str(out), *c) for c in todo]
-            try:
-                for future in concurrent.futures.as_completed(futures):
-                    n = future.result()
-                    if bar is not None:
-                        bar.update(n)
-            except BaseException:
-                for f in futures:
-                    f.cancel()
-                raise
+        if workers == 1:  # no pool: one process start fewer, and plain tracebacks
+            for c in todo:
+                n, *_ = run_chunk(spec.raw, str(out), *c)
+                if bar is not None:
+                    bar.update(n)
+        else:
+            context = multiprocessing.get_context("spawn")
+            with concurrent.futures.ProcessPoolExecutor(max_workers=workers, mp_context=context) as pool:
+                futures = [pool.submit(run_chunk, spec.raw, str(out), *c) for c in todo]
+                try:
+                    for future in concurrent.futures.as_completed(futures):
+                        n, *_ = future.result()
+                        if bar is not None:
+                            bar.update(n)
+                except BaseException:
+                    for f in futures:
+                        f.cancel()
+                    raise
         if bar is not None:
             bar.close()
     return out / "chunks"
+
+
+def run_one_chunk(spec: SweepSpec, out: Path, k: int, log=print) -> Path:
+    """Run chunk number ``k`` (in :meth:`SweepSpec.chunks` order) alone, in this process.
+
+    Several such jobs may write into one folder at once (a workflow engine's chunk jobs);
+    a whole sweep into that folder is refused meanwhile. A chunk already written is kept.
+    """
+    out = Path(out)
+    chunks = spec.chunks()
+    if not 0 <= k < len(chunks):
+        raise SweepError(f"chunk = {k}: must lie in [0, {len(chunks) - 1}] for this sweep ({len(chunks)} chunks)")
+    group, chunk, start, stop = chunks[k]
+    (out / "chunks").mkdir(parents=True, exist_ok=True)
+    final = chunk_path(out, group, chunk)
+    with _Lock(out / ".lock", shared=True, what="a whole sweep is writing into this folder"):
+        with _Lock(out / "chunks" / f".{final.stem}.lock", what=f"chunk {k} is already being run"):
+            _claim(out, spec)
+            if final.exists():
+                log(f"chunk {k} is already done: {final}")
+            else:
+                run_chunk(spec.raw, str(out), group, chunk, start, stop)
+    return final
+
+
+def chunk_table(spec: SweepSpec, out: Path | None = None) -> list[dict]:
+    """Every chunk: its number k, model group, index within the group, row range and file."""
+    rows = []
+    for k, (group, chunk, start, stop) in enumerate(spec.chunks()):
+        row = {"k": k, "group": group, "chunk": chunk, "start": start, "stop": stop,
+               "path": str(chunk_path(Path("."), group, chunk))}
+        if out is not None:
+            row["done"] = chunk_path(Path(out), group, chunk).exists()
+        rows.append(row)
+    return rows
 
 
 def read_results(path: Path) -> pd.DataFrame:
