@@ -165,3 +165,46 @@ def test_sigkill_mid_sweep_then_rerun_completes_exactly(tmp_path):
     assert len(rows) == n
     assert sorted(rows["index"]) == list(range(n))  # none lost, none duplicated
     assert not list(chunks.glob(".*.tmp"))
+
+
+@pytest.mark.lammps
+def test_chunk_jobs_fill_the_same_dataset_as_a_whole_sweep(tmp_path):
+    """A workflow engine runs chunks one by one (--chunk K); together they are the sweep."""
+    from spinbounce.sweeps import chunk_table, run_one_chunk
+
+    spec = load_spec(write(tmp_path, GOOD))
+    out = tmp_path / "jobs"
+    table = chunk_table(spec, out)
+    assert [row["k"] for row in table] == list(range(6)) and not any(row["done"] for row in table)
+    for row in reversed(table):  # any order
+        run_one_chunk(spec, out, row["k"], log=lambda *_: None)
+    assert all(row["done"] for row in chunk_table(spec, out))
+    run_sweep(spec, tmp_path / "whole", workers=1, log=lambda *_: None)
+    cols = ["group", "index", "vn_final", "vt_final", "r_omega_final"]
+    a = read_results(out).sort_values(["group", "index"])[cols].reset_index(drop=True)
+    b = read_results(tmp_path / "whole").sort_values(["group", "index"])[cols].reset_index(drop=True)
+    pd.testing.assert_frame_equal(a, b)
+    with pytest.raises(SweepError, match="must lie in"):
+        run_one_chunk(spec, out, 6)
+
+
+def test_chunk_jobs_and_a_whole_sweep_exclude_each_other(tmp_path):
+    import fcntl
+
+    from spinbounce.sweeps import run_one_chunk
+
+    spec = load_spec(write(tmp_path, GOOD))
+    out = tmp_path / "out"
+    (out / "chunks").mkdir(parents=True)
+    with open(out / ".lock", "w") as held:  # a chunk job is running: it holds the shared lock
+        fcntl.flock(held, fcntl.LOCK_SH | fcntl.LOCK_NB)
+        with pytest.raises(SweepError, match="another sweep"):
+            run_sweep(spec, out, workers=1)
+    with open(out / ".lock", "w") as held:  # a whole sweep is running
+        fcntl.flock(held, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        with pytest.raises(SweepError, match="whole sweep"):
+            run_one_chunk(spec, out, 0)
+    with open(out / "chunks" / ".chunk-0000-000000.lock", "w") as held:  # the same chunk, twice
+        fcntl.flock(held, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        with pytest.raises(SweepError, match="already being run"):
+            run_one_chunk(spec, out, 0)

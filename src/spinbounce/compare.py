@@ -28,12 +28,13 @@ def paper_variables(frames: pd.DataFrame, r: float) -> pd.DataFrame:
     return out
 
 
-def collision_table(scene: Collision, initial: pd.DataFrame, final: pd.DataFrame) -> pd.DataFrame:
+def collision_table(scene: Collision, initial, final, as_frame: bool = True):
     """One row per sphere: requested, initial (as LAMMPS saw it), final, theory and error.
 
-    ``initial`` and ``final`` hold one row per sphere in id order (ids 1..n), with LAMMPS's
-    columns z, vx, vz, omegay. The theory acts on the *requested* initial state, so a
-    mangled input would show as an error.
+    ``initial`` and ``final`` map LAMMPS's column names (z, vx, vz, omegay, ...) to one
+    value per sphere in id order (ids 1..n): a dump frame or a dict of arrays. The theory
+    acts on the *requested* initial state, so a mangled input would show as an error.
+    ``as_frame=False`` returns the columns as a dict of arrays.
     """
     r = scene.model.r
     requested = scene.initial
@@ -43,9 +44,9 @@ def collision_table(scene: Collision, initial: pd.DataFrame, final: pd.DataFrame
         columns[f"{name}_0"] = requested[:, k]
     columns["omega_0"] = np.asarray(scene.omega)
     for when, frame in (("lammps_0", initial), ("final", final)):
-        omega = -frame["omegay"].to_numpy() + 0.0  # + 0.0: no "-0" in tables
-        values = {"vn": frame["vz"].to_numpy(), "vt": frame["vx"].to_numpy(), "r_omega": r * omega,
-                  "omega": omega, "z": frame["z"].to_numpy()}
+        omega = -np.asarray(frame["omegay"]) + 0.0  # + 0.0: no "-0" in tables
+        values = {"vn": np.asarray(frame["vz"]), "vt": np.asarray(frame["vx"]), "r_omega": r * omega,
+                  "omega": omega, "z": np.asarray(frame["z"])}
         for name in STATE + ("omega", "z"):
             columns[f"{name}_{when}"] = values[name]
     for k, name in enumerate(STATE):
@@ -53,7 +54,7 @@ def collision_table(scene: Collision, initial: pd.DataFrame, final: pd.DataFrame
     columns["omega_theory"] = theory[:, 2] / r
     for name in STATE + ("omega",):
         columns[f"{name}_error"] = columns[f"{name}_final"] - columns[f"{name}_theory"]
-    return pd.DataFrame(columns)
+    return pd.DataFrame(columns) if as_frame else columns
 
 
 def frozen_table(scene: Frozen, frames: pd.DataFrame) -> pd.DataFrame:

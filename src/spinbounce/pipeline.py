@@ -65,12 +65,20 @@ def write_atomic(path: Path, text: str) -> None:
         raise
 
 
-def write_parquet_atomic(path: Path, table: pd.DataFrame) -> None:
-    """Write ``table`` to ``path`` as Parquet, atomically (and durably) like :func:`write_atomic`."""
+def write_parquet_atomic(path: Path, table) -> None:
+    """Write ``table`` (pandas or Arrow) to ``path`` as Parquet, atomically and durably like
+    :func:`write_atomic`. Float columns skip dictionary encoding: their values are all
+    distinct, and trying costs half the write."""
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
     path = Path(path)
+    if isinstance(table, pd.DataFrame):
+        table = pa.Table.from_pandas(table, preserve_index=False)
+    text = [f.name for f in table.schema if not pa.types.is_floating(f.type) and not pa.types.is_integer(f.type)]
     tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
     try:
-        table.to_parquet(tmp, index=False)
+        pq.write_table(table, tmp, use_dictionary=text or False)
         with open(tmp, "rb") as handle:
             os.fsync(handle.fileno())
         os.replace(tmp, path)
@@ -132,36 +140,53 @@ def _check_finite(frames: pd.DataFrame, where: Path) -> None:
         )
 
 
-def _memory_frames(info: RunInfo, nsteps: int, n: int) -> pd.DataFrame:
-    """A library-route run's states, shaped like dump frames of its n spheres (steps 0 and nsteps)."""
-    parts = []
+#: Per-sphere columns of a collision frame, as LAMMPS names them (the dump's columns).
+FRAME_COLUMNS = ("x", "y", "z", "vx", "vy", "vz", "omegax", "omegay", "omegaz")
+
+
+def _memory_frames(info: RunInfo, nsteps: int) -> dict[int, dict[str, np.ndarray]]:
+    """A library-route run's sphere states (type-1 atoms) at steps 0 and nsteps, in id order."""
+    frames = {}
     for step, state in ((0, info.initial), (nsteps, info.final)):
         keep = state["type"] == 1
-        cols = {"step": np.full(int(keep.sum()), step, dtype=np.int64), "id": state["id"][keep].astype(np.int64)}
-        for name, (key, k) in {"x": ("x", 0), "y": ("x", 1), "z": ("x", 2), "vx": ("v", 0), "vy": ("v", 1),
-                               "vz": ("v", 2), "omegax": ("omega", 0), "omegay": ("omega", 1),
-                               "omegaz": ("omega", 2)}.items():
-            cols[name] = state[key][keep, k]
-        parts.append(pd.DataFrame(cols))
-    return pd.concat(parts, ignore_index=True)
+        frame = {"id": state["id"][keep].astype(np.int64)}
+        for k, axis in enumerate("xyz"):
+            frame[axis] = state["x"][keep, k]
+            frame[f"v{axis}"] = state["v"][keep, k]
+            frame[f"omega{axis}"] = state["omega"][keep, k]
+        frames[step] = frame
+    return frames
 
 
-def _collision_frames(scene: Collision, frames: pd.DataFrame, where: Path) -> tuple[pd.DataFrame, pd.DataFrame]:
-    """Checked initial and final frames (one row per sphere, id order) of a collision run."""
-    _check_finite(frames, where)
-    steps = sorted(frames["step"].unique())
+def _dump_frames(frames: pd.DataFrame) -> dict[int, dict[str, np.ndarray]]:
+    """A dump's rows, split into frames by step."""
+    step = frames["step"].to_numpy()
+    out = {}
+    for value in np.unique(step):
+        rows = frames[step == value]
+        out[int(value)] = {name: rows[name].to_numpy() for name in ("id", *FRAME_COLUMNS)}
+    return out
+
+
+def _collision_frames(scene: Collision, frames: dict, where: Path) -> tuple[dict, dict]:
+    """Checked initial and final frames (one entry per sphere, id order) of a collision run."""
+    steps = sorted(frames)
     if steps != [0, scene.nsteps]:
         raise ResultError(f"{where}: expected frames at steps 0 and {scene.nsteps}, found {steps}")
     ids = np.arange(1, scene.n + 1)
-    out = []
     for step in steps:
-        frame = frames[frames["step"] == step]
-        if len(frame) != scene.n:
-            raise ResultError(f"{where}: {len(frame)} of {scene.n} spheres at step {step} (lost atoms)")
-        if not np.array_equal(frame["id"].to_numpy(), ids):
+        frame = frames[step]
+        if len(frame["id"]) != scene.n:
+            raise ResultError(f"{where}: {len(frame['id'])} of {scene.n} spheres at step {step} (lost atoms)")
+        if not np.array_equal(frame["id"], ids):
             raise ResultError(f"{where}: sphere ids at step {step} are not 1..{scene.n} in order")
-        out.append(frame.reset_index(drop=True))
-    return out[0], out[1]
+        finite = np.logical_and.reduce([np.isfinite(frame[c]) for c in FRAME_COLUMNS])
+        if not finite.all():
+            raise ResultError(
+                f"{where}: non-finite positions or velocities (first at step {step}, "
+                f"atom {int(frame['id'][~finite][0])}): the integration blew up"
+            )
+    return frames[0], frames[scene.nsteps]
 
 
 @dataclass(frozen=True)
@@ -191,25 +216,26 @@ def run_collision(scene: Collision, out_dir: Path, atoms: str | None = None, rec
     info = runner(deck_path, atoms=deck.atoms)
     if deck.dump is None:
         source = info.log
-        frames = _memory_frames(info, scene.nsteps, scene.n)
+        frames = _memory_frames(info, scene.nsteps)
     else:
         source = deck_path.parent / deck.dump
-        frames = read_dump(source)
+        frames = _dump_frames(read_dump(source))
     initial, final = _collision_frames(scene, frames, source)
     m = scene.model
-    table = collision_table(scene, initial, final)
-    still_touching = table[table["z_final"] <= m.r]
-    if len(still_touching):
+    columns = collision_table(scene, initial, final, as_frame=False)
+    touching = np.flatnonzero(columns["z_final"] <= m.r)
+    if touching.size:
+        first = touching[0]
         raise ResultError(
-            f"{source}: {len(still_touching)} sphere(s) still touch the wall after {scene.nsteps} steps "
-            f"(first: id {int(still_touching['id'].iloc[0])}, z = {still_touching['z_final'].iloc[0]!r}): "
+            f"{source}: {touching.size} sphere(s) still touch the wall after {scene.nsteps} steps "
+            f"(first: id {int(columns['id'][first])}, z = {float(columns['z_final'][first])!r}): "
             "the contact had not finished"
         )
     notes = []
-    e0 = theory.energy(table[[f"{s}_0" for s in STATE]].to_numpy(), m.m, m.alpha)
-    e1 = theory.energy(table[[f"{s}_final" for s in STATE]].to_numpy(), m.m, m.alpha)
-    gain = np.max((e1 - e0) / e0)
-    table["energy_gain"] = (e1 - e0) / e0
+    e0 = theory.energy(np.column_stack([columns[f"{s}_0"] for s in STATE]), m.m, m.alpha)
+    e1 = theory.energy(np.column_stack([columns[f"{s}_final"] for s in STATE]), m.m, m.alpha)
+    columns["energy_gain"] = (e1 - e0) / e0
+    gain = float(np.max(columns["energy_gain"]))
     if gain > ENERGY_GAIN_TOLERANCE:
         notes.append(
             f"kinetic energy grew by up to {gain:.3g} of E(0) in a model that cannot gain energy: "
@@ -220,6 +246,7 @@ def run_collision(scene: Collision, out_dir: Path, atoms: str | None = None, rec
             f"mu = {m.mu!r} caps the tangential force; the theory (Eq. 18) has no cap, so the "
             "'error' includes sliding, not only integration error"
         )
+    table = pd.DataFrame(columns)
     dump_path = None if deck.dump is None else deck_path.parent / deck.dump
     result = CollisionResult(scene, table, info, dump_path, tuple(notes))
     if record:

@@ -17,6 +17,7 @@ from a rule of thumb.
 from __future__ import annotations
 
 import math
+from functools import lru_cache
 
 import numpy as np
 
@@ -37,10 +38,12 @@ def spectral_radius(dt: float, w: float, c: float) -> float:
     return float(np.max(np.abs(np.linalg.eigvals(step_matrix(dt, w, c)))))
 
 
+@lru_cache(maxsize=1024)
 def stability_limit(w: float, c: float = 0.0, rtol: float = 1e-10) -> float:
     """Largest dt for which the step of x'' + c x' + w^2 x = 0 does not grow.
 
-    Returns math.inf for a mode with neither stiffness nor damping.
+    Returns math.inf for a mode with neither stiffness nor damping. Cached: a bisection
+    costs ~100 eigenvalue problems, and sweeps ask for the same modes again and again.
     """
     if w <= 0.0 and c <= 0.0:
         return math.inf

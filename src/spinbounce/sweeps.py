@@ -278,20 +278,29 @@ def run_chunk(raw: dict, out: str, group: int, chunk: int, start: int, stop: int
     if run_dir.exists():
         shutil.rmtree(run_dir)  # a killed earlier attempt
     result = run_collision(scene, run_dir, atoms="library", record=False)
-    table = result.table.drop(columns=["id"])
-    table.insert(0, "index", np.arange(start, stop))
-    table.insert(0, "chunk", chunk)
-    table.insert(0, "group", group)
+    n = stop - start
+    columns = {"group": np.full(n, group), "chunk": np.full(n, chunk), "index": np.arange(start, stop)}
+    columns.update({name: values.to_numpy() for name, values in result.table.drop(columns=["id"]).items()})
     for key, value in dataclasses.asdict(model).items():
-        table[key] = np.nan if value is None else value
-    table["dt"] = scene.dt
-    table["nsteps"] = scene.nsteps
-    table["Omega_theory"] = model.Omega
-    table["scene_hash"] = spec.digest
-    table["lammps_version"] = result.info.lammps_version
-    table["spinbounce_version"] = __version__
-    write_parquet_atomic(chunk_path(out, group, chunk), table)
+        columns[key] = np.full(n, np.nan if value is None else value)
+    columns["dt"] = np.full(n, scene.dt)
+    columns["nsteps"] = np.full(n, scene.nsteps)
+    columns["Omega_theory"] = np.full(n, model.Omega)
+    labels = {"scene_hash": spec.digest, "lammps_version": result.info.lammps_version,
+              "spinbounce_version": __version__}
+    write_parquet_atomic(chunk_path(out, group, chunk), _arrow_table(columns, labels))
     return stop - start, time.perf_counter() - started, result.info.loop_seconds
+
+
+def _arrow_table(columns: dict[str, np.ndarray], labels: dict[str, str]):
+    """Numeric columns as they are, and constant text labels dictionary-encoded (one copy)."""
+    import pyarrow as pa
+
+    n = len(columns["index"])
+    arrays = {name: pa.array(values) for name, values in columns.items()}
+    for name, text in labels.items():
+        arrays[name] = pa.DictionaryArray.from_arrays(pa.array(np.zeros(n, dtype=np.int32)), pa.array([text]))
+    return pa.table(arrays)
 
 
 class _Lock:

@@ -12,9 +12,9 @@ from ..pipeline import ResultError
 from ..runner import LammpsError
 from ..scenes import PhysicsWarning, SceneError
 from ..sweeps import SweepError
-from . import collide, fit, frozen, sweep, theory
+from . import bench, collide, fit, frozen, sweep, theory
 
-COMMANDS = (theory, collide, frozen, sweep, fit)
+COMMANDS = (theory, collide, frozen, sweep, fit, bench)
 
 
 def build_parser() -> argparse.ArgumentParser:

@@ -1,0 +1,138 @@
+"""Throughput of three ways to run collisions, measured side by side in one process.
+
+(a) ``lmp``: one ``lmp`` process per collision, which writes a dump that is then parsed;
+(b) ``in-process``: one LAMMPS instance per collision through the ``lammps`` module, the
+    sphere passed in memory (the batched route with a batch of one);
+(c) ``batched``: this project's sweep: thousands of spheres per LAMMPS run, in chunks.
+
+All three use the same contact model, the same dt and the same sampled initial states
+(the sweep's seeded sample; (a) and (b) take its first rows). Each reports collisions per
+second, the largest error against Eq. 18, and the share of its wall time spent outside
+LAMMPS's run loop ("Loop time" in the log): start-up, templating, file I/O, parsing.
+
+These are measurements on a shared machine, not pass/fail checks: run them side by side
+so that the ratios, not the absolute rates, carry the result.
+"""
+
+from __future__ import annotations
+
+import os
+import platform
+import shutil
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+from . import __version__
+from .compare import STATE
+
+__all__ = ["run_bench", "BENCH_DEFAULTS"]
+
+#: Collisions per method by default: enough for each to run a few seconds.
+BENCH_DEFAULTS = {"n_lmp": 30, "n_inprocess": 300, "n_batched": 200_000}
+
+
+def _sample_spec(n: int, seed: int, chunk_size: int, model: dict) -> dict:
+    """The paper's default sample (the 100,000-collision acceptance sweep's ranges)."""
+    raw = {"seed": seed, "chunk_size": chunk_size,
+           "states": {"n": n, "v_n": [-1.5, -0.1], "v_t": [-2.0, 2.0], "r_omega": [-2.0, 2.0]}}
+    if model:
+        raw["model"] = model
+    return raw
+
+
+def _one_at_a_time(spec, count: int, folder: Path, runner, atoms: str) -> dict:
+    """Collisions one per LAMMPS run, each in its own folder, through ``runner``.
+
+    The per-collision path is the batched one with a batch of one (no result.json), so
+    the comparison isolates what batching saves.
+    """
+    from .pipeline import run_collision
+    from .scenes import Collision
+
+    model, dt = spec.model(0)
+    states = spec.initial_states(0)[:count]
+    errors, loop = [], 0.0
+    started = time.perf_counter()
+    for i, (vn, vt, omega) in enumerate(states):
+        scene = Collision(model, v_n=vn, v_t=vt, omega=omega, dt=dt)
+        result = run_collision(scene, folder / f"{i:06d}", atoms=atoms, record=False, runner=runner)
+        errors.append(result.max_abs_error)
+        loop += result.info.loop_seconds
+    wall = time.perf_counter() - started
+    return {"collisions": count, "wall_seconds": wall, "loop_seconds": loop, "workers": 1,
+            "max_abs_error": float(max(errors))}
+
+
+def _batched(spec, folder: Path, workers: int) -> dict:
+    from .runner import loop_seconds
+    from .sweeps import read_results, run_sweep
+
+    started = time.perf_counter()
+    run_sweep(spec, folder, workers=workers, log=lambda *_: None)
+    wall = time.perf_counter() - started
+    loop = sum(loop_seconds(log) for log in sorted((folder / "runs").glob("chunk-*/log.lammps")))
+    rows = read_results(folder)
+    if len(rows) != spec.n:
+        raise RuntimeError(f"batched sweep returned {len(rows)} of {spec.n} rows")
+    error = float(np.abs(rows[[f"{s}_error" for s in STATE]].to_numpy()).max())
+    return {"collisions": spec.n, "wall_seconds": wall, "loop_seconds": loop, "workers": workers,
+            "chunk_size": spec.chunk_size, "max_abs_error": error}
+
+
+def _finish(entry: dict) -> dict:
+    cores = entry["workers"]
+    entry["collisions_per_second"] = entry["collisions"] / entry["wall_seconds"]
+    entry["collisions_per_second_per_core"] = entry["collisions_per_second"] / cores
+    # the run loop ran on `cores` processes at once: compare it with their summed wall time
+    entry["outside_loop_share"] = 1.0 - entry["loop_seconds"] / (entry["wall_seconds"] * cores)
+    return entry
+
+
+def run_bench(n_lmp: int = BENCH_DEFAULTS["n_lmp"], n_inprocess: int = BENCH_DEFAULTS["n_inprocess"],
+              n_batched: int = BENCH_DEFAULTS["n_batched"], workers: int = 1, seed: int = 0,
+              chunk_size: int = 10_000, model: dict | None = None, keep: Path | None = None,
+              log=print) -> dict:
+    """Measure (a), (b) and (c); return rates, errors, shares and the ratios c/a and c/b."""
+    from .runner import lammps_version, run_deck, run_deck_lmp
+    from .sweeps import spec_from_dict
+
+    for name, value in (("n_lmp", n_lmp), ("n_inprocess", n_inprocess), ("n_batched", n_batched),
+                        ("workers", workers), ("chunk_size", chunk_size)):
+        if int(value) != value or value < 1:
+            raise ValueError(f"{name} = {value!r}: must be a whole number >= 1")
+    if max(n_lmp, n_inprocess) > n_batched:
+        raise ValueError(f"n_batched = {n_batched}: must be at least n_lmp and n_inprocess (they reuse its states)")
+    spec = spec_from_dict(_sample_spec(n_batched, seed, chunk_size, model or {}))
+    root = Path(keep) if keep is not None else Path(tempfile.mkdtemp(prefix="spinbounce-bench-"))
+    root.mkdir(parents=True, exist_ok=True)
+    lammps_version()  # load the library once, outside every timing
+    try:
+        log(f"(a) one lmp process per collision: {n_lmp} collisions ...")
+        a = _finish(_one_at_a_time(spec, n_lmp, root / "a-lmp", run_deck_lmp, "inline"))
+        log(f"(b) one in-process LAMMPS instance per collision: {n_inprocess} collisions ...")
+        b = _finish(_one_at_a_time(spec, n_inprocess, root / "b-inprocess", run_deck, "library"))
+        log(f"(c) batched sweep: {n_batched} collisions, {workers} worker(s) ...")
+        c = _finish(_batched(spec, root / "c-batched", workers))
+    finally:
+        if keep is None:
+            shutil.rmtree(root, ignore_errors=True)
+    model_obj, dt = spec.model(0)
+    from .scenes import Collision
+
+    dt = Collision(model_obj, v_n=-1.0, v_t=0.0, omega=0.0, dt=dt).dt
+    return {
+        "methods": {"a_lmp_process": a, "b_in_process": b, "c_batched": c},
+        "ratios": {
+            "batched_over_lmp_process": c["collisions_per_second_per_core"] / a["collisions_per_second_per_core"],
+            "batched_over_in_process": c["collisions_per_second_per_core"] / b["collisions_per_second_per_core"],
+        },
+        "parameters": {"model": spec.groups[0], "dt": dt, "seed": seed,
+                       "states": spec.raw["states"], "chunk_size": chunk_size},
+        "machine": {"cpus": os.cpu_count(), "platform": platform.platform(), "python": platform.python_version()},
+        "lammps_version": lammps_version(),
+        "spinbounce_version": __version__,
+        "kept_runs": str(root) if keep is not None else None,
+    }

@@ -1,0 +1,54 @@
+"""The benchmark runs all three methods on the same states and reports honest numbers.
+
+Speeds are not asserted here (a shared, noisy machine): ``spinbounce bench`` prints them.
+What is checked is what would make its ratios meaningless if it broke: every method ran
+the requested collisions, on the same sample, each within the collision tolerance.
+"""
+
+import json
+
+import pytest
+
+from spinbounce.bench import run_bench
+from spinbounce.cli import main
+from spinbounce.dumps import read_dump
+from spinbounce.sweeps import read_results
+
+#: The default collision step's largest error over this sample is 3e-5 (test_lammps_runs).
+COLLISION_TOL = 2e-4
+
+
+@pytest.mark.lammps
+def test_bench_measures_three_methods_on_one_sample(tmp_path):
+    report = run_bench(n_lmp=2, n_inprocess=5, n_batched=3000, chunk_size=1000, keep=tmp_path / "runs",
+                       log=lambda *_: None)
+    methods = report["methods"]
+    assert [methods[k]["collisions"] for k in ("a_lmp_process", "b_in_process", "c_batched")] == [2, 5, 3000]
+    for m in methods.values():
+        assert m["max_abs_error"] < COLLISION_TOL
+        assert 0.0 < m["outside_loop_share"] < 1.0  # a Loop time was found in every log
+        assert m["collisions_per_second"] > 0
+    # (a) ran the sweep's first states, one per lmp process, and parsed each dump: its
+    # final states are the sweep's first rows (the same per-sphere arithmetic, to rounding)
+    rows = read_results(tmp_path / "runs" / "c-batched").sort_values("index").reset_index(drop=True)
+    for i in range(2):
+        dump = read_dump(tmp_path / "runs" / "a-lmp" / f"{i:06d}" / "state.dump")
+        last = dump[dump["step"] == dump["step"].max()]
+        assert last["vz"].iloc[0] == pytest.approx(rows["vn_final"][i], abs=1e-14)
+        assert last["vx"].iloc[0] == pytest.approx(rows["vt_final"][i], abs=1e-14)
+    assert report["ratios"]["batched_over_in_process"] > 0
+
+
+def test_bench_refuses_a_batch_smaller_than_the_baselines():
+    with pytest.raises(ValueError, match="n_batched"):
+        run_bench(n_lmp=10, n_inprocess=10, n_batched=5)
+
+
+@pytest.mark.lammps
+def test_bench_cli_writes_json(tmp_path, capsys):
+    out = tmp_path / "bench.json"
+    assert main(["bench", "--n-lmp", "1", "--n-inprocess", "2", "--n-batched", "500", "--out", str(out)]) == 0
+    report = json.loads(out.read_text())
+    assert set(report["ratios"]) == {"batched_over_lmp_process", "batched_over_in_process"}
+    assert report["lammps_version"].startswith("2025.7.22")
+    assert "batched / lmp process" in capsys.readouterr().out
