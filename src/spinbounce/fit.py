@@ -8,6 +8,8 @@ For each model group: the 3x3 matrix M with final = M @ initial over all its col
 from __future__ import annotations
 
 import math
+import os
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -15,7 +17,7 @@ import pandas as pd
 from . import theory
 from .compare import STATE
 
-__all__ = ["GROUP_KEYS", "fit_matrix", "fit_omega", "fit_groups"]
+__all__ = ["GROUP_KEYS", "fit_matrix", "fit_omega", "fit_groups", "plot_groups"]
 
 GROUP_KEYS = ["m", "r", "alpha", "kn", "kt", "gamma_n", "gamma_t", "mu", "dt"]
 
@@ -74,3 +76,52 @@ def fit_groups(rows: pd.DataFrame) -> list[dict]:
             "max_abs_error_vs_theory": float(np.abs(group[[f"{s}_error" for s in STATE]].to_numpy()).max()),
         })
     return out
+
+
+def plot_groups(rows: pd.DataFrame, path: Path) -> Path:
+    """Draw Eq. 19 per model group: LAMMPS's changes (points) and the theory's lines.
+
+    One row of two panels per group: Delta v_t and r Delta omega against the initial slip
+    u_dot(0) = v_t(0) + r omega(0). The format follows the suffix (.png or .pdf).
+    """
+    # Imported here so that fits, and everything else, work without drawing anything;
+    # a bare Figure on the Agg canvas leaves pyplot's global backend alone.
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    path = Path(path)
+    keys = [k for k in GROUP_KEYS if k in rows]
+    groups = list(rows.groupby(keys, dropna=False, sort=True))
+    fig = Figure(figsize=(8.0, 3.2 * len(groups)), layout="constrained")
+    FigureCanvasAgg(fig)
+    axes = fig.subplots(len(groups), 2, squeeze=False)
+    for (values, group), (ax_vt, ax_rw) in zip(groups, axes, strict=True):
+        params = dict(zip(keys, values, strict=True))
+        alpha, big_omega = params["alpha"], float(group["Omega_theory"].iloc[0])
+        slip = (group["vt_0"] + group["r_omega_0"]).to_numpy()
+        line = np.array([slip.min(), slip.max()])
+        label = (f"$\\alpha$ = {alpha:g}, $k_t/k_n$ = {params['kt'] / params['kn']:g}, "
+                 f"$\\Omega$ = {big_omega:.5f}")
+        d_vt = group["vt_final"] - group["vt_0"]
+        d_rw = group["r_omega_final"] - group["r_omega_0"]
+        for ax, change, slope, name in (
+            (ax_vt, d_vt, alpha * big_omega / (1 + alpha), r"$\Delta v_t$"),
+            (ax_rw, d_rw, big_omega / (1 + alpha), r"$r\,\Delta\omega$"),
+        ):
+            ax.plot(slip, change, ".", ms=2, color="tab:blue", rasterized=True, label="LAMMPS")
+            ax.plot(line, slope * line, "-", lw=1, color="tab:red", label="Eq. 19")
+            ax.set(xlabel=r"$\dot u(0)$", ylabel=name, title=label)
+            ax.title.set_fontsize("small")
+        ax_vt.legend(loc="best", fontsize="small")
+    # Same folder, then a rename: a reader never sees half a figure.
+    path.parent.mkdir(parents=True, exist_ok=True)
+    # (A plain open, unlike mkstemp, gives the figure the user's usual permissions.)
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    try:
+        with open(tmp, "wb") as handle:
+            fig.savefig(handle, format=path.suffix.lstrip(".").lower(), dpi=150)
+        os.replace(tmp, path)
+    except BaseException:
+        tmp.unlink(missing_ok=True)
+        raise
+    return path

@@ -2,12 +2,13 @@
 
 from __future__ import annotations
 
+import argparse
 import json
 from pathlib import Path
 
 import numpy as np
 
-from ..fit import fit_groups
+from ..fit import fit_groups, plot_groups
 from ..sweeps import read_results
 
 HELP = "fit the 3x3 scattering matrix and Omega (Eq. 19) for each model group of a sweep"
@@ -17,11 +18,25 @@ def register(sub) -> None:
     p = sub.add_parser("fit", help=HELP, description=HELP + ".")
     p.add_argument("results", type=Path, help="a sweep's output folder (or its chunks/ dataset)")
     p.add_argument("--json", action="store_true", help="print machine-readable JSON instead of text")
+    p.add_argument("--plot", type=_figure_path, metavar="PATH",
+                   help="also draw Delta v_t and r Delta omega against the initial slip, per group "
+                        "(Eq. 19), to PATH (.png or .pdf)")
     p.set_defaults(handler=run)
 
 
+def _figure_path(text: str) -> Path:
+    # Checked while parsing, so a typo fails before the dataset is read.
+    path = Path(text)
+    if path.suffix.lower() not in (".png", ".pdf"):
+        raise argparse.ArgumentTypeError(f"{text!r}: the figure's name must end in .png or .pdf")
+    return path
+
+
 def run(args) -> int:
-    fits = fit_groups(read_results(args.results))
+    rows = read_results(args.results)
+    fits = fit_groups(rows)
+    if args.plot:
+        plot_groups(rows, args.plot)
     if args.json:
         print(json.dumps(fits, indent=2))
         return 0

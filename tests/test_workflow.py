@@ -1,0 +1,132 @@
+"""The Snakemake workflow in workflows/, run as a user runs it, and the fit's figure."""
+
+import json
+import os
+import re
+import subprocess
+import sys
+import tomllib
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from spinbounce.cli import main
+from spinbounce.fit import GROUP_KEYS, plot_groups
+
+ROOT = Path(__file__).resolve().parents[1]
+WORKFLOW = ROOT / "workflows"
+TINY = WORKFLOW / "scenes" / "tiny.toml"
+
+
+def snakemake(workdir: Path, *args: str) -> subprocess.CompletedProcess:
+    """Snakemake from this interpreter's environment, on the tiny scene, writing into workdir/out."""
+    env = dict(os.environ)
+    # The rules run `spinbounce`: find this environment's one even when it is not activated.
+    env["PATH"] = str(Path(sys.executable).parent) + os.pathsep + env.get("PATH", "")
+    command = [sys.executable, "-m", "snakemake", "--snakefile", str(WORKFLOW / "Snakefile"),
+               "--directory", str(workdir), "--config", f"scene={TINY}", "out=out", *args]
+    return subprocess.run(command, capture_output=True, text=True, env=env, timeout=300, check=False)
+
+
+def job_counts(done: subprocess.CompletedProcess) -> dict[str, int]:
+    """The 'Job stats' table Snakemake prints: rule -> number of jobs."""
+    text = done.stdout + done.stderr
+    return {m[1]: int(m[2]) for m in re.finditer(r"^(chunk|fit|figure|all)\s+(\d+)$", text, re.MULTILINE)}
+
+
+def tiny_layout() -> tuple[int, int, int]:
+    raw = tomllib.loads(TINY.read_text())
+    return raw["states"]["n"], len(raw["model"]["kt_over_kn"]), raw["chunk_size"]
+
+
+@pytest.mark.lammps
+@pytest.mark.workflow
+def test_workflow_runs_the_tiny_sweep_end_to_end(tmp_path):
+    done = snakemake(tmp_path, "--cores", "2")
+    assert done.returncode == 0, done.stderr[-3000:]
+    out = tmp_path / "out"
+    n, groups, chunk_size = tiny_layout()
+
+    per_group = -(-n // chunk_size)
+    expected = {f"chunk-{g:04d}-{c:06d}.parquet" for g in range(groups) for c in range(per_group)}
+    assert {p.name for p in (out / "chunks").glob("*.parquet")} == expected
+    rows = pd.concat([pd.read_parquet(p) for p in sorted((out / "chunks").glob("*.parquet"))])
+    assert len(rows) == n * groups
+    assert not rows.duplicated(["group", "index"]).any()
+    for g in range(groups):
+        assert sorted(rows.loc[rows["group"] == g, "index"]) == list(range(n))
+
+    fits = json.loads((out / "fit.json").read_text())
+    assert len(fits) == groups
+    # The two groups are the intended models: kt/kn = 0.1 and the ratio where Omega = -2.
+    assert sorted(f["omega_theory"] for f in fits) == pytest.approx([-2.0, -1.28384], abs=1e-5)
+    for f in fits:
+        assert f["n"] == n
+        # Each of the 200 collisions is off the theory by ~3e-5 at the default step, so the
+        # fitted Omega lands well inside 2e-4; a wrong contact model misses by far more.
+        assert abs(f["omega"] - f["omega_theory"]) < 2e-4
+    assert (out / "fit.txt").read_text().count(f"collisions {n};") == groups
+
+    png = (out / "slip.png").read_bytes()
+    assert png.startswith(b"\x89PNG\r\n\x1a\n") and len(png) > 10_000
+
+    # Run again: nothing to do. As if killed after three chunks: only the fourth is planned.
+    again = snakemake(tmp_path, "--cores", "2")
+    assert again.returncode == 0 and "Nothing to be done" in again.stdout + again.stderr
+    for name in ("chunks/chunk-0001-000000.parquet", "fit.json", "fit.txt", "slip.png"):
+        (out / name).unlink()
+    plan = snakemake(tmp_path, "--cores", "2", "--dry-run")
+    assert plan.returncode == 0, plan.stderr[-3000:]
+    assert job_counts(plan) == {"chunk": 1, "fit": 1, "figure": 1, "all": 1}
+
+
+@pytest.mark.workflow
+def test_slurm_profile_plans_the_jobs_without_a_cluster(tmp_path):
+    done = snakemake(tmp_path, "--dry-run", "--profile", str(WORKFLOW / "profiles" / "slurm"))
+    assert done.returncode == 0, done.stderr[-3000:]
+    n, groups, chunk_size = tiny_layout()
+    assert job_counts(done) == {"chunk": groups * -(-n // chunk_size), "fit": 1, "figure": 1, "all": 1}
+    text = done.stdout + done.stderr
+    # The profile's requests reach the jobs: its partition placeholder, and the chunk rule's
+    # own memory (500 MB + 4 kB per sphere) rather than the profile's 1000 MB default.
+    assert "slurm_partition=CHANGE_ME" in text
+    assert "rule chunk:" in text and "localrule chunk:" not in text  # chunks go to sbatch
+    assert "mem_mb=500," in text
+    assert not (tmp_path / "out").exists()  # a plan writes nothing
+
+
+@pytest.mark.workflow
+def test_workflow_refuses_a_folder_that_holds_another_sweep(tmp_path):
+    (tmp_path / "out").mkdir()
+    (tmp_path / "out" / "sweep.json").write_text(json.dumps({"scene_hash": "0123456789abcdef"}))
+    done = snakemake(tmp_path, "--dry-run")
+    assert done.returncode != 0
+    assert "holds sweep 0123456789abcdef" in done.stdout + done.stderr
+
+
+def synthetic_rows(n: int = 50) -> pd.DataFrame:
+    """Rows shaped like a sweep's, following Eq. 19 exactly (plotting needs nothing more)."""
+    rng = np.random.default_rng(0)
+    alpha, big_omega = 0.4, -1.28384
+    rows = pd.DataFrame({k: 1.0 for k in GROUP_KEYS}, index=range(n))
+    rows["alpha"], rows["kn"], rows["Omega_theory"] = alpha, 10.0, big_omega
+    rows["vt_0"], rows["r_omega_0"] = rng.uniform(-2, 2, n), rng.uniform(-2, 2, n)
+    slip = rows["vt_0"] + rows["r_omega_0"]
+    rows["vt_final"] = rows["vt_0"] + alpha * big_omega / (1 + alpha) * slip
+    rows["r_omega_final"] = rows["r_omega_0"] + big_omega / (1 + alpha) * slip
+    return rows
+
+
+def test_plot_writes_a_pdf_by_its_suffix_and_leaves_no_temporary_file(tmp_path):
+    path = plot_groups(synthetic_rows(), tmp_path / "figs" / "slip.pdf")
+    assert path.read_bytes().startswith(b"%PDF")
+    assert [p.name for p in path.parent.iterdir()] == ["slip.pdf"]
+
+
+def test_fit_refuses_a_figure_format_it_cannot_write(capsys, tmp_path):
+    with pytest.raises(SystemExit) as info:
+        main(["fit", str(tmp_path), "--plot", str(tmp_path / "slip.svg")])
+    assert info.value.code == 2
+    assert ".png or .pdf" in capsys.readouterr().err
