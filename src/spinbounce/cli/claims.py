@@ -1,0 +1,26 @@
+"""spinbounce claims: every quantitative claim of the paper, measured and judged."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from ..claims import evaluate_claims, write_claims
+
+HELP = "check the paper's quantitative claims with LAMMPS and the exact theory; write CLAIMS.md and claims.json"
+
+
+def register(sub) -> None:
+    p = sub.add_parser("claims", help=HELP, description=HELP + ".")
+    p.add_argument("--out", type=Path, default=Path("figures"), metavar="DIR",
+                   help="where CLAIMS.md and claims.json go (default %(default)s)")
+    p.add_argument("--run-dir", type=Path, default=Path("spinbounce-runs") / "claims", metavar="DIR",
+                   help="LAMMPS run folders (default %(default)s)")
+    p.set_defaults(handler=run)
+
+
+def run(args) -> int:
+    print(f"checking the paper's claims (LAMMPS runs in {args.run_dir}):")
+    claims = evaluate_claims(args.run_dir)
+    md, js = write_claims(claims, args.out)
+    print(f"claims: {md} and {js}")
+    return 1 if any(c.verdict == "unresolved" for c in claims) else 0
