@@ -38,6 +38,11 @@ def test_good_scene_file(tmp_path):
     assert len(spec.groups) == 2 and spec.n == 900 and len(spec.chunks()) == 6
     a, b = spec.initial_states(0), spec.initial_states(0)
     np.testing.assert_array_equal(a, b)  # the seed fixes the sample
+    # a chunk's rows, drawn alone by jumping the generator ahead, are the same rows
+    np.testing.assert_array_equal(spec.initial_states(0, 300, 600), a[300:600])
+    # and the sample is numpy's plain seeded uniform columns
+    rng = np.random.default_rng(4)
+    np.testing.assert_array_equal(a[:, 0], rng.uniform(-1.5, -0.1, 900))
     assert a[:, 0].min() >= -1.5 and a[:, 0].max() <= -0.1
 
 

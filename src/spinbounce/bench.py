@@ -93,11 +93,13 @@ def _finish(entry: dict) -> dict:
 
 def run_bench(n_lmp: int = BENCH_DEFAULTS["n_lmp"], n_inprocess: int = BENCH_DEFAULTS["n_inprocess"],
               n_batched: int = BENCH_DEFAULTS["n_batched"], workers: int = 1, seed: int = 0,
-              chunk_size: int = 10_000, model: dict | None = None, keep: Path | None = None,
+              chunk_size: int | None = None, model: dict | None = None, keep: Path | None = None,
               log=print) -> dict:
     """Measure (a), (b) and (c); return rates, errors, shares and the ratios c/a and c/b."""
     from .runner import lammps_version, run_deck, run_deck_lmp
-    from .sweeps import spec_from_dict
+    from .sweeps import DEFAULT_CHUNK, spec_from_dict
+
+    chunk_size = DEFAULT_CHUNK if chunk_size is None else chunk_size
 
     for name, value in (("n_lmp", n_lmp), ("n_inprocess", n_inprocess), ("n_batched", n_batched),
                         ("workers", workers), ("chunk_size", chunk_size)):

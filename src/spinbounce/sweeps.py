@@ -3,7 +3,7 @@
 A sweep is a scene file (TOML) or the same content from flags::
 
     seed = 1
-    chunk_size = 10000          # spheres per LAMMPS run
+    chunk_size = 25000          # spheres per LAMMPS run (the default)
 
     [model]                     # a number, or a list of numbers: a grid over groups
     kt = [1.0, 2.857142857142857]
@@ -61,7 +61,7 @@ STATE_KEYS = ("v_n", "v_t", "speed", "angle_deg", "omega", "r_omega")
 #: from the wall's normal; positive angles give v_t > 0). Spin: omega or r_omega.
 VELOCITY_KEYS = {"components": ("v_n", "v_t"), "polar": ("speed", "angle_deg")}
 TOP_KEYS = ("name", "seed", "chunk_size", "model", "states")
-DEFAULT_CHUNK = 10_000
+DEFAULT_CHUNK = 25_000
 
 
 class SweepError(ValueError):
@@ -116,14 +116,24 @@ class SweepSpec:
         dt = params.pop("dt", None)
         return ContactModel(**params), dt
 
-    def initial_states(self, group: int) -> np.ndarray:
-        """(n, 3) states (v_n, v_t, omega): the same for every group, set by the seed."""
+    def initial_states(self, group: int, start: int = 0, stop: int | None = None) -> np.ndarray:
+        """States (v_n, v_t, omega) of rows [start, stop): the same for every group, set by the seed.
+
+        Random states are three seeded uniform columns of n draws each; a chunk's rows are
+        drawn alone by jumping the generator ahead (one 64-bit draw per number), so a
+        chunk costs the same whatever its place in a long sweep.
+        """
         s = self.states
+        stop = self.n if stop is None else stop
         if self.mode == "grid":
-            arr = np.array(list(itertools.product(s["a"], s["b"], s["spin"])), dtype=float)
+            arr = np.array(list(itertools.product(s["a"], s["b"], s["spin"])), dtype=float)[start:stop]
         else:
-            rng = np.random.default_rng(self.seed)
-            arr = np.column_stack([rng.uniform(lo, hi, self.n) for lo, hi in (s["a"], s["b"], s["spin"])])
+            columns = []
+            for k, (lo, hi) in enumerate((s["a"], s["b"], s["spin"])):
+                bits = np.random.PCG64(self.seed)
+                bits.advance(k * self.n + start)
+                columns.append(np.random.Generator(bits).uniform(lo, hi, stop - start))
+            arr = np.column_stack(columns)
         if s["velocity"] == "polar":
             speed, angle = arr[:, 0], np.radians(arr[:, 1])
             arr[:, 0], arr[:, 1] = -speed * np.cos(angle), speed * np.sin(angle)
@@ -272,7 +282,7 @@ def run_chunk(raw: dict, out: str, group: int, chunk: int, start: int, stop: int
     spec = spec_from_dict(raw)
     out = Path(out)
     model, dt = spec.model(group)
-    states = spec.initial_states(group)[start:stop]
+    states = spec.initial_states(group, start, stop)
     scene = Collision(model, v_n=states[:, 0], v_t=states[:, 1], omega=states[:, 2], dt=dt)
     run_dir = out / "runs" / f"chunk-{group:04d}-{chunk:06d}"
     if run_dir.exists():

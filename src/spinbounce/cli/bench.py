@@ -24,7 +24,7 @@ def register(sub) -> None:
                    help="collisions for (c) (default %(default)s)")
     p.add_argument("--workers", type=int, default=1,
                    help="worker processes for (c); rates are reported per core (default %(default)s)")
-    p.add_argument("--chunk-size", type=int, default=10_000, help="spheres per LAMMPS run in (c)")
+    p.add_argument("--chunk-size", type=int, default=None, help="spheres per LAMMPS run in (c) (default: the sweep's)")
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--out", type=Path, default=Path("bench.json"), metavar="FILE",
                    help="JSON report (default %(default)s)")
