@@ -1,0 +1,57 @@
+"""spinbounce figures: the paper's Figs. 2-7 from LAMMPS runs, with a JSON record each."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+from ..figures import FIGURES, FigureNameError, check_names
+from .options import json_flag
+
+HELP = "regenerate the paper's Figs. 2-7 (PNG, PDF and a JSON record each) from LAMMPS runs"
+DEFAULT_OUT = Path("figures")
+
+
+def figure_names(text: str) -> list[str]:
+    """argparse type for --only: one name or a comma-separated list, each one of FIGURES."""
+    names = [part.strip() for part in text.split(",") if part.strip()]
+    if not names:
+        raise argparse.ArgumentTypeError(f"no figure named in {text!r} (choose from {', '.join(FIGURES)})")
+    try:
+        return check_names(names)
+    except FigureNameError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+
+
+def register(sub) -> None:
+    listing = "; ".join(f"{name}: {what}" for name, (_, what) in FIGURES.items())
+    p = sub.add_parser("figures", help=HELP, description=f"{HELP}. Figures: {listing}.")
+    p.add_argument("--only", action="append", type=figure_names, default=None, metavar="FIG[,FIG...]",
+                   help=f"make only these figures (repeat or separate by commas; from {', '.join(FIGURES)})")
+    p.add_argument("--out", type=Path, default=DEFAULT_OUT, metavar="DIR",
+                   help="folder for figN.png, figN.pdf and figN.json (default: %(default)s)")
+    p.add_argument("--runs", type=Path, default=None, metavar="DIR",
+                   help="folder for the LAMMPS runs, one subfolder per figure (default: OUT/runs)")
+    json_flag(p)
+    p.set_defaults(handler=run)
+
+
+def run(args) -> int:
+    from ..figures import make_figures
+
+    only = None if args.only is None else check_names(name for group in args.only for name in group)
+    log = (lambda line: print(line, file=sys.stderr)) if args.json else print
+    records = make_figures(args.out, only=only, log=log, runs=args.runs)
+    if args.json:
+        summary = [
+            {key: m.get(key) for key in ("figure", "files", "max_deviation_exact", "max_deviation_eq22", "dt",
+                                         "lammps_version", "spinbounce_version", "runtime_seconds")}
+            for m in records
+        ]
+        print(json.dumps({"out": str(args.out), "figures": summary}, indent=2))
+        return 0
+    total = sum(m["runtime_seconds"] for m in records)
+    print(f"{len(records)} figure(s) in {args.out} ({total:.1f} s); LAMMPS {records[0]['lammps_version']}")
+    return 0
