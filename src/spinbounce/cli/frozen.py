@@ -21,8 +21,12 @@ def register(sub) -> None:
     g.add_argument("--vt", type=float, required=True, help="tangential velocity v_t(0)")
     g.add_argument("--omega", type=float, required=True, help="angular velocity omega(0), anticlockwise positive")
     g.add_argument("--t-end", type=float, required=True, help="duration")
-    p.add_argument("--dt", type=float, default=None,
-                   help="timestep (default: 1000 steps per half-period of the slip oscillation)")
+    step = p.add_mutually_exclusive_group()
+    step.add_argument("--dt", type=float, default=None,
+                      help="timestep (default: 1000 steps per half-period of the slip oscillation)")
+    step.add_argument("--tolerance", type=float, default=None, metavar="TOL",
+                      help="ask for an accuracy instead: runs at halving dt, extrapolated to dt = 0 until the "
+                           "estimated error is below TOL (the CSV gets an 'estimate' column)")
     p.add_argument("--every", type=int, default=None, help="output every this many steps (default: ~2000 rows)")
     p.add_argument("--out", type=Path, required=True, metavar="FILE.csv",
                    help="time series to write; its provenance goes to FILE.meta.json beside it")
@@ -33,6 +37,8 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
+    if args.tolerance is not None:
+        return _run_to_tolerance(args)
     scene = Frozen(model_from(args), z=args.z, v_t=args.vt, omega=args.omega, t_end=args.t_end,
                    dt=args.dt, every=args.every)
     run_dir = args.run_dir or default_run_dir(
@@ -58,4 +64,45 @@ def run(args) -> int:
     print(f"largest |LAMMPS - theory| in v_t and r*omega: {result.max_abs_error:.3e}")
     print(f"wrote {out} ({len(result.table)} rows) and {meta_path}")
     print(f"deck: {result.info.deck}\nLAMMPS {result.info.lammps_version}")
+    return 0
+
+
+def _run_to_tolerance(args) -> int:
+    import numpy as np
+    import pandas as pd
+
+    from .. import theory
+    from ..runner import lammps_version
+    from ..tolerance import frozen_to_tolerance
+
+    model = model_from(args)
+    Frozen(model, z=args.z, v_t=args.vt, omega=args.omega, t_end=args.t_end)  # validates before any run
+    run_dir = args.run_dir or default_run_dir(
+        "frozen", {"model": dataclasses.asdict(model), "z": args.z, "vt": args.vt, "omega": args.omega,
+                   "t_end": args.t_end, "tolerance": args.tolerance})
+    result = frozen_to_tolerance(model, args.z, args.vt, args.omega, args.t_end, args.tolerance, run_dir,
+                                 log=(lambda *_: None) if args.json else print)
+    vt_theory, rw_theory = theory.frozen_velocities(result.t, args.vt, args.omega * model.r, model.kt,
+                                                    model.m, model.alpha, model.gamma_t)
+    table = pd.DataFrame({"t": result.t, "vt": result.values[:, 0], "omega": result.values[:, 1] / model.r,
+                          "r_omega": result.values[:, 1], "vt_theory": vt_theory, "r_omega_theory": rw_theory,
+                          "estimate": result.estimate[:, 0]})
+    error = float(max(np.abs(table["vt"] - vt_theory).max(), np.abs(table["r_omega"] - rw_theory).max()))
+    out = Path(args.out)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    write_atomic(out, table.to_csv(index=False, float_format="%.17g"))
+    meta = {"scene": "frozen", "model": dataclasses.asdict(model), "z": args.z, "v_t": args.vt,
+            "omega": args.omega, "t_end": args.t_end, "tolerance": result.tolerance,
+            "estimate": result.max_estimate, "max_abs_error": error, "steps": result.steps,
+            "plain_steps_for_same_estimate": result.plain_steps_for(result.max_estimate),
+            "levels": result.levels, "lammps_version": lammps_version(), "csv": str(out)}
+    meta_path = out.with_suffix(".meta.json")
+    write_atomic(meta_path, to_json(meta))
+    if args.json:
+        print(json.dumps(meta, indent=2))
+        return 0
+    print(f"frozen contact to tolerance {result.tolerance:g}: {len(result.levels)} runs, {result.steps} LAMMPS "
+          f"steps (one plain run would need ~{meta['plain_steps_for_same_estimate']:.0f})")
+    print(f"estimated error {result.max_estimate:.2e}; largest |extrapolated - theory| {error:.2e}")
+    print(f"wrote {out} ({len(table)} rows) and {meta_path}")
     return 0

@@ -1,0 +1,67 @@
+"""--tolerance: Richardson-extrapolated results whose true error is within their own estimate.
+
+The true error is measured against the exact theory. The saving is measured against the
+plain refinement that would reach the same error: its steps follow from the finest raw
+run's error and the raw order (2, or 1 with damping), both measured in the same ladder.
+"""
+
+import numpy as np
+import pytest
+
+from spinbounce import theory
+from spinbounce.cli import main
+from spinbounce.scenes import ContactModel, SceneError
+from spinbounce.tolerance import collide_to_tolerance, collision_frame, frozen_to_tolerance
+
+TOL = 1e-6
+RNG = np.random.default_rng(21)
+STATES = (RNG.uniform(-1.5, -0.1, 40), RNG.uniform(-2, 2, 40), RNG.uniform(-4, 4, 40))
+
+COLLISION_CASES = {
+    "defaults": ContactModel(),
+    "magic": ContactModel(kt=10 * 2 / 7),
+    "stiff": ContactModel(kt=50.0),
+    "alpha-0.1": ContactModel(alpha=0.1),
+    "gamma_t-1": ContactModel(gamma_t=1.0),
+    "gamma_n-1": ContactModel(gamma_n=1.0),
+    "overdamped": ContactModel(gamma_t=20.0),
+}
+
+
+@pytest.mark.lammps
+@pytest.mark.parametrize("name", list(COLLISION_CASES))
+def test_collision_to_tolerance(tmp_path, name):
+    result, scene = collide_to_tolerance(COLLISION_CASES[name], *STATES, TOL, tmp_path)
+    frame = collision_frame(result, scene)
+    true = np.abs(frame[["vn_error", "vt_error", "r_omega_error"]].to_numpy()).max(axis=1)
+    estimate = frame["vn_estimate"].to_numpy()  # one estimate per sphere (the same in each column)
+    assert true.max() <= TOL
+    assert (true <= estimate).all(), (true - estimate).max()
+    assert result.plain_steps_for(true.max()) >= 5 * result.steps
+
+
+@pytest.mark.lammps
+@pytest.mark.parametrize("gamma_t", [0.0, 1.0])
+def test_frozen_to_tolerance(tmp_path, gamma_t):
+    model = ContactModel(gamma_t=gamma_t)
+    result = frozen_to_tolerance(model, 0.1, 1.0, 1.0, 10.0, TOL, tmp_path)
+    exact = np.column_stack(theory.frozen_velocities(result.t, 1.0, 0.5, model.kt, model.m, model.alpha, gamma_t))
+    true = np.abs(result.values - exact)
+    assert true.max() <= TOL
+    assert (true <= result.estimate).all()
+    assert result.plain_steps_for(true.max()) >= 5 * result.steps
+
+
+@pytest.mark.parametrize("bad", [0.0, 1e-13, 2.0, float("nan")])
+def test_unreachable_tolerance_is_refused_before_lammps(tmp_path, bad):
+    with pytest.raises(SceneError, match="tolerance"):
+        collide_to_tolerance(ContactModel(), -1.0, 1.0, 0.0, bad, tmp_path)
+    assert not any(tmp_path.iterdir())
+
+
+@pytest.mark.lammps
+def test_collide_cli_tolerance(tmp_path, capsys):
+    assert main(["collide", "--vn", "-1", "--vt", "1", "--omega", "0", "--tolerance", "1e-6",
+                 "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert "estimated error" in out and (tmp_path / "tolerance.json").is_file()
