@@ -65,3 +65,19 @@ def test_collide_cli_tolerance(tmp_path, capsys):
                  "--out", str(tmp_path)]) == 0
     out = capsys.readouterr().out
     assert "estimated error" in out and (tmp_path / "tolerance.json").is_file()
+
+
+@pytest.mark.lammps
+def test_sweep_with_a_tolerance(tmp_path):
+    from spinbounce.sweeps import SweepError, read_results, run_sweep, spec_from_dict
+
+    raw = {"seed": 2, "chunk_size": 150, "tolerance": TOL,
+           "states": {"n": 300, "v_n": [-1.5, -0.1], "v_t": [-2.0, 2.0], "r_omega": [-2.0, 2.0]}}
+    run_sweep(spec_from_dict(raw), tmp_path / "out", workers=1, log=lambda *_: None)
+    rows = read_results(tmp_path / "out")
+    true = np.abs(rows[["vn_error", "vt_error", "r_omega_error"]].to_numpy()).max(axis=1)
+    assert len(rows) == 300 and true.max() <= TOL and (true <= rows["vn_estimate"].to_numpy()).all()
+    with pytest.raises(SweepError, match="^tolerance"):
+        spec_from_dict({**raw, "model": {"dt": 0.001}})
+    with pytest.raises(SweepError, match="^tolerance"):
+        spec_from_dict({**raw, "tolerance": 0.0})

@@ -14,6 +14,8 @@ A sweep is a scene file (TOML) or the same content from flags::
     v_n = [-1.5, -0.1]
     v_t = [-2.0, 2.0]
     r_omega = [-2.0, 2.0]       # or omega = [low, high]
+    # tolerance = 1e-6 (top level) instead of model.dt: each chunk runs a ladder of steps,
+    # extrapolated to dt = 0, and every row gets its error estimate (*_estimate columns)
     # instead of v_n and v_t: speed = [low, high] and angle_deg = [low, high], the
     # incidence angle from the wall's normal in degrees (v_n = -speed cos, v_t = speed sin)
 
@@ -60,7 +62,7 @@ STATE_KEYS = ("v_n", "v_t", "speed", "angle_deg", "omega", "r_omega")
 #: The two ways to give the velocity: components, or speed and incidence angle (degrees
 #: from the wall's normal; positive angles give v_t > 0). Spin: omega or r_omega.
 VELOCITY_KEYS = {"components": ("v_n", "v_t"), "polar": ("speed", "angle_deg")}
-TOP_KEYS = ("name", "seed", "chunk_size", "model", "states")
+TOP_KEYS = ("name", "seed", "chunk_size", "tolerance", "model", "states")
 DEFAULT_CHUNK = 25_000
 
 
@@ -106,6 +108,7 @@ class SweepSpec:
     mode: str
     n: int
     states: dict
+    tolerance: float | None = None
 
     @property
     def digest(self) -> str:
@@ -179,6 +182,17 @@ def spec_from_dict(raw: dict) -> SweepSpec:
             _fail(key, raw[key], f"unknown key (allowed: {', '.join(TOP_KEYS)})")
     seed = _integer("seed", raw.get("seed", 0), 0)
     chunk_size = _integer("chunk_size", raw.get("chunk_size", DEFAULT_CHUNK), 1)
+    tolerance = raw.get("tolerance")
+    if tolerance is not None:
+        from .tolerance import _check_tolerance
+
+        tolerance = _number("tolerance", tolerance)
+        try:
+            _check_tolerance(tolerance)
+        except SceneError as exc:
+            raise SweepError(str(exc)) from None
+        if "dt" in raw.get("model", {}):
+            _fail("tolerance", tolerance, "give model.dt or tolerance, not both: a tolerance chooses the steps")
     model = raw.get("model", {})
     if not isinstance(model, dict):
         _fail("model", model, "must be a table")
@@ -237,7 +251,7 @@ def spec_from_dict(raw: dict) -> SweepSpec:
         n = _integer("states.n", states.get("n", 0), 1)
     else:
         n = len(parsed["a"]) * len(parsed["b"]) * len(parsed["spin"])
-    spec = SweepSpec(raw=raw, groups=tuple(groups), seed=seed, chunk_size=chunk_size,
+    spec = SweepSpec(raw=raw, groups=tuple(groups), seed=seed, chunk_size=chunk_size, tolerance=tolerance,
                      mode=mode, n=n, states=parsed)
     _check_physics(spec)
     return spec
@@ -287,19 +301,32 @@ def run_chunk(raw: dict, out: str, group: int, chunk: int, start: int, stop: int
     run_dir = out / "runs" / f"chunk-{group:04d}-{chunk:06d}"
     if run_dir.exists():
         shutil.rmtree(run_dir)  # a killed earlier attempt
-    result = run_collision(scene, run_dir, atoms="library", record=False)
     n = stop - start
     columns = {"group": np.full(n, group), "chunk": np.full(n, chunk), "index": np.arange(start, stop)}
-    columns.update({name: values.to_numpy() for name, values in result.table.drop(columns=["id"]).items()})
+    if spec.tolerance is None:
+        result = run_collision(scene, run_dir, atoms="library", record=False)
+        columns.update({name: values.to_numpy() for name, values in result.table.drop(columns=["id"]).items()})
+        dt, nsteps, loop = scene.dt, scene.nsteps, result.info.loop_seconds
+    else:  # a ladder of runs per chunk, extrapolated; each row carries its error estimate
+        from .tolerance import collide_to_tolerance, collision_frame
+
+        extrapolated, finest = collide_to_tolerance(model, scene.v_n, scene.v_t, scene.omega, spec.tolerance,
+                                                    run_dir)
+        columns.update({name: values.to_numpy() for name, values in collision_frame(extrapolated, finest).items()})
+        columns["omega_0"] = np.asarray(scene.omega)
+        columns["tolerance"] = np.full(n, spec.tolerance)
+        dt, nsteps = finest.dt, extrapolated.steps
+        loop = sum(level["loop_seconds"] for level in extrapolated.levels)
     for key, value in dataclasses.asdict(model).items():
         columns[key] = np.full(n, np.nan if value is None else value)
-    columns["dt"] = np.full(n, scene.dt)
-    columns["nsteps"] = np.full(n, scene.nsteps)
+    columns["dt"] = np.full(n, dt)  # with a tolerance: the finest run's
+    columns["nsteps"] = np.full(n, nsteps)  # with a tolerance: all runs' steps together
     columns["Omega_theory"] = np.full(n, model.Omega)
-    labels = {"scene_hash": spec.digest, "lammps_version": result.info.lammps_version,
-              "spinbounce_version": __version__}
+    from .runner import lammps_version
+
+    labels = {"scene_hash": spec.digest, "lammps_version": lammps_version(), "spinbounce_version": __version__}
     write_parquet_atomic(chunk_path(out, group, chunk), _arrow_table(columns, labels))
-    return stop - start, time.perf_counter() - started, result.info.loop_seconds
+    return stop - start, time.perf_counter() - started, loop
 
 
 def _arrow_table(columns: dict[str, np.ndarray], labels: dict[str, str]):

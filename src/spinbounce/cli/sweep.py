@@ -38,6 +38,8 @@ def register(sub) -> None:
     g.add_argument("--kt-over-kn", type=float, nargs="+", help="one or more values (a grid)")
     g.add_argument("--alpha", type=float, nargs="+", help="one or more values (a grid)")
     g.add_argument("--dt", type=float, default=None)
+    g.add_argument("--tolerance", type=float, default=None, metavar="TOL",
+                   help="instead of --dt: extrapolate each chunk's runs until every row's estimated error is below TOL")
     p.set_defaults(handler=run)
 
 
@@ -60,6 +62,8 @@ def _from_flags(args) -> dict:
     else:
         states["r_omega"] = list(args.r_omega or (-2.0, 2.0))
     raw = {"seed": args.seed, "states": states}
+    if args.tolerance is not None:
+        raw["tolerance"] = args.tolerance
     if args.chunk_size is not None:
         raw["chunk_size"] = args.chunk_size
     model = {}
