@@ -83,7 +83,11 @@ def test_dt_above_stability_limit_is_refused_below_is_accepted():
     limit = 2.0 / math.sqrt(model.kn / model.m)  # undamped normal mode is the stiffest
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", PhysicsWarning)
-        Collision(model, v_n=-1, v_t=0, omega=0, dt=0.9 * limit)
+        Collision(model, v_n=-0.3, v_t=0, omega=0, dt=0.9 * limit)
+        # stable, but the step's own overshoot (x 1/sqrt(1 - 0.81) = 2.29) would carry a
+        # faster sphere's centre through the wall (exact overlap 0.32, stretched 0.73 > r)
+        with pytest.raises(SceneError, match=r"^v_n = -1\.0: at dt = .* stretches the overlap to 0\.72"):
+            Collision(model, v_n=-1, v_t=0, omega=0, dt=0.9 * limit)
     with pytest.raises(SceneError, match="stability limit 0.632456 of the normal mode"):
         Collision(model, v_n=-1, v_t=0, omega=0, dt=1.1 * limit)
 

@@ -110,15 +110,26 @@ _ERROR_RE = re.compile(r"(ERROR[^\n]*)")
 _LINE_RE = re.compile(r"Last input line:\s*(.*)")
 
 
+#: LAMMPS errors a user can act on, and what to do: (pattern, advice).
+_ADVICE = (
+    ("Lost atoms", "a sphere left the box: it tunnelled through the wall (|v_n| too close to the "
+                   "tunnelling speed for this dt) or the step blew up; use a smaller dt"),
+    ("Out of range atoms", "the integration blew up (non-finite or huge positions): use a smaller dt"),
+    ("Unrecognized fix style", "this LAMMPS build lacks a package the deck needs (GRANULAR or RIGID)"),
+    ("Cannot open", "an input file the deck reads is missing beside it"),
+)
+
+
 def _as_lammps_error(exc: Exception, deck: Path) -> LammpsError:
     text = str(exc)
     error = _ERROR_RE.search(text)
     line = _LINE_RE.search(text)
-    return LammpsError(
-        error.group(1).strip() if error else text.strip(),
-        deck,
-        line.group(1).strip() if line else None,
-    )
+    message = error.group(1).strip() if error else text.strip()
+    for pattern, advice in _ADVICE:
+        if pattern in message:
+            message = f"{message} ({advice})"
+            break
+    return LammpsError(message, deck, line.group(1).strip() if line else None)
 
 
 @contextlib.contextmanager

@@ -265,6 +265,19 @@ class Collision:
             )
         dt = self.default_dt() if self.dt is None else self.dt
         set_(self, "dt", m.check_dt(dt, frozen=False))
+        # LAMMPS's velocity Verlet keeps v^2 + w^2 x^2 (1 - (w dt/2)^2) constant in the
+        # undamped normal spring, so its largest overlap exceeds the exact one by the factor
+        # 1/sqrt(1 - (w dt/2)^2): a coarse step can tunnel where the exact motion would not
+        half_step = 0.5 * math.sqrt(m.kn / m.m) * self.dt
+        stretch = 1.0 / math.sqrt(1.0 - half_step**2) if half_step < 1.0 else math.inf
+        if reach * stretch >= m.r:
+            raise SceneError(
+                "v_n",
+                max(vn, key=abs),
+                f"at dt = {self.dt:.6g} the step's own oscillation stretches the overlap to "
+                f"{reach * stretch:.6g} >= r = {m.r:g} (exact: {reach:.6g}): the sphere would tunnel "
+                "through the wall; use a smaller dt or a slower |v_n|",
+            )
 
     def default_dt(self) -> float:
         m = self.model

@@ -175,9 +175,23 @@ def collide_to_tolerance(model: ContactModel, v_n, v_t, omega, tolerance: float,
     p = np.array([1 if model.gamma_n > 0.0 else 2] + [1 if _damped(model) else 2] * 2)
     scenes: list[Collision] = []
 
-    def run_level(k: int):
+    def scene_at(k: int) -> Collision:
         steps = math.ceil(START_STEPS * 2**k * per_half_period - 1e-9)
-        scene = Collision(model, v_n=v_n, v_t=v_t, omega=omega, dt=model.tau / (steps + 0.5))
+        return Collision(model, v_n=v_n, v_t=v_t, omega=omega, dt=model.tau / (steps + 0.5))
+
+    # Near the tunnelling speed a coarse step's overshoot alone would tunnel: start finer.
+    first = 0
+    while True:
+        try:
+            scene_at(first)
+            break
+        except SceneError as exc:
+            if not exc.parameter.startswith("v_n") or "at dt" not in exc.limit or first >= 4:
+                raise
+            first += 1
+
+    def run_level(k: int):
+        scene = scene_at(first + k)
         result = run_collision(scene, out_dir / f"level-{k}", atoms="library")
         scenes.append(scene)
         final = result.table[[f"{s}_final" for s in STATE]].to_numpy()
