@@ -21,7 +21,7 @@ COLLISION_TOL = 2e-4
 @pytest.mark.lammps
 def test_bench_measures_three_methods_on_one_sample(tmp_path):
     report = run_bench(n_lmp=2, n_inprocess=5, n_batched=3000, chunk_size=1000, keep=tmp_path / "runs",
-                       log=lambda *_: None)
+                       n_needs=200, log=lambda *_: None)
     methods = report["methods"]
     assert [methods[k]["collisions"] for k in ("a_lmp_process", "b_in_process", "c_batched")] == [2, 5, 3000]
     for m in methods.values():
@@ -37,6 +37,14 @@ def test_bench_measures_three_methods_on_one_sample(tmp_path):
         assert last["vz"].iloc[0] == pytest.approx(rows["vn_final"][i], abs=1e-14)
         assert last["vx"].iloc[0] == pytest.approx(rows["vt_final"][i], abs=1e-14)
     assert report["ratios"]["batched_over_in_process"] > 0
+    # both decks of the contact-only comparison really bounced the spheres: same physics,
+    # different work around it (the free-flight deck also wrote a frame every step)
+    needs = report["scene_needs"]
+    for deck in ("contact_only", "free_flight_and_dump_every_step"):
+        assert needs[deck]["max_abs_vn_error"] < COLLISION_TOL
+    assert needs["free_flight_and_dump_every_step"]["steps"] > needs["contact_only"]["steps"]
+    dump = tmp_path / "runs" / "d-scene-needs" / "free_flight_and_dump_every_step" / "every.dump"
+    assert dump.read_text().count("ITEM: TIMESTEP") == needs["free_flight_and_dump_every_step"]["steps"] + 1
 
 
 def test_bench_refuses_a_batch_smaller_than_the_baselines():
@@ -47,7 +55,8 @@ def test_bench_refuses_a_batch_smaller_than_the_baselines():
 @pytest.mark.lammps
 def test_bench_cli_writes_json(tmp_path, capsys):
     out = tmp_path / "bench.json"
-    assert main(["bench", "--n-lmp", "1", "--n-inprocess", "2", "--n-batched", "500", "--out", str(out)]) == 0
+    assert main(["bench", "--n-lmp", "1", "--n-inprocess", "2", "--n-batched", "500", "--n-needs", "100",
+                 "--out", str(out)]) == 0
     report = json.loads(out.read_text())
     assert set(report["ratios"]) == {"batched_over_lmp_process", "batched_over_in_process"}
     assert report["lammps_version"].startswith("2025.7.22")

@@ -82,6 +82,52 @@ def _batched(spec, folder: Path, workers: int) -> dict:
             "chunk_size": spec.chunk_size, "max_abs_error": error}
 
 
+def scene_needs(spec, count: int, folder: Path) -> dict:
+    """What modelling only the contact saves: the same collisions as one batch, (1) as the
+    sweep runs them (start in contact, stop when the last sphere has left, no dump) and
+    (2) with a contact time of free flight before and two after, dumping every step.
+
+    The second deck is the first with the spheres raised by |v_n| tau, a longer run and a
+    per-step dump added: the physics is the same, only the work around it differs.
+    """
+    import dataclasses
+
+    from .decks import render_collision
+    from .pipeline import _prepare
+    from .runner import run_deck
+    from .scenes import Collision
+
+    model, dt = spec.model(0)
+    states = spec.initial_states(0, 0, count)
+    scene = Collision(model, v_n=states[:, 0], v_t=states[:, 1], omega=states[:, 2], dt=dt)
+    minimal = render_collision(scene, "library")
+    lead = np.abs(states[:, 0]) * model.tau  # each sphere reaches the wall after one tau
+    atoms = minimal.atoms
+    x = atoms.x.copy()
+    x[: scene.n, 2] += lead
+    if len(x) > scene.n:  # rigid route: the centre points move with their spheres
+        x[scene.n:, 2] += lead
+    extra = int(np.ceil(3 * model.tau / scene.dt))
+    box = f"0.0 {4.0 * model.r!r}"
+    text = minimal.text.replace(box, f"0.0 {4.0 * model.r + float(lead.max()) + 3 * model.tau * 1.5!r}")
+    text = text.replace(f"run             {scene.nsteps}",
+                        "dump            every contact custom 1 every.dump id x y z vx vy vz omegax omegay omegaz\n"
+                        f"run             {scene.nsteps + extra}")
+    full = dataclasses.replace(minimal, text=text, atoms=dataclasses.replace(atoms, x=x))
+    out = {}
+    for name, deck in (("contact_only", minimal), ("free_flight_and_dump_every_step", full)):
+        path = _prepare(folder / name, deck)
+        started = time.perf_counter()
+        info = run_deck(path, atoms=deck.atoms)
+        final_v = info.final["v"][: scene.n]
+        out[name] = {"wall_seconds": time.perf_counter() - started, "loop_seconds": info.loop_seconds,
+                     "steps": scene.nsteps + (extra if name != "contact_only" else 0),
+                     "max_abs_vn_error": float(np.abs(final_v[:, 2] - scene.predicted()[:, 0]).max())}
+    out["collisions"] = scene.n
+    out["ratio"] = out["free_flight_and_dump_every_step"]["wall_seconds"] / out["contact_only"]["wall_seconds"]
+    return out
+
+
 def _finish(entry: dict) -> dict:
     cores = entry["workers"]
     entry["collisions_per_second"] = entry["collisions"] / entry["wall_seconds"]
@@ -94,6 +140,7 @@ def _finish(entry: dict) -> dict:
 def run_bench(n_lmp: int = BENCH_DEFAULTS["n_lmp"], n_inprocess: int = BENCH_DEFAULTS["n_inprocess"],
               n_batched: int = BENCH_DEFAULTS["n_batched"], workers: int = 1, seed: int = 0,
               chunk_size: int | None = None, model: dict | None = None, keep: Path | None = None,
+              n_needs: int = 1000,
               log=print) -> dict:
     """Measure (a), (b) and (c); return rates, errors, shares and the ratios c/a and c/b."""
     from .runner import lammps_version, run_deck, run_deck_lmp
@@ -105,8 +152,8 @@ def run_bench(n_lmp: int = BENCH_DEFAULTS["n_lmp"], n_inprocess: int = BENCH_DEF
                         ("workers", workers), ("chunk_size", chunk_size)):
         if int(value) != value or value < 1:
             raise ValueError(f"{name} = {value!r}: must be a whole number >= 1")
-    if max(n_lmp, n_inprocess) > n_batched:
-        raise ValueError(f"n_batched = {n_batched}: must be at least n_lmp and n_inprocess (they reuse its states)")
+    if max(n_lmp, n_inprocess, n_needs) > n_batched:
+        raise ValueError(f"n_batched = {n_batched}: must be at least n_lmp, n_inprocess and n_needs (they reuse its states)")
     spec = spec_from_dict(_sample_spec(n_batched, seed, chunk_size, model or {}))
     root = Path(keep) if keep is not None else Path(tempfile.mkdtemp(prefix="spinbounce-bench-"))
     root.mkdir(parents=True, exist_ok=True)
@@ -118,6 +165,8 @@ def run_bench(n_lmp: int = BENCH_DEFAULTS["n_lmp"], n_inprocess: int = BENCH_DEF
         b = _finish(_one_at_a_time(spec, n_inprocess, root / "b-inprocess", run_deck, "library"))
         log(f"(c) batched sweep: {n_batched} collisions, {workers} worker(s) ...")
         c = _finish(_batched(spec, root / "c-batched", workers))
+        log(f"(d) contact only against free flight and a dump every step: {n_needs} collisions ...")
+        d = scene_needs(spec, n_needs, root / "d-scene-needs")
     finally:
         if keep is None:
             shutil.rmtree(root, ignore_errors=True)
@@ -127,6 +176,7 @@ def run_bench(n_lmp: int = BENCH_DEFAULTS["n_lmp"], n_inprocess: int = BENCH_DEF
     dt = Collision(model_obj, v_n=-1.0, v_t=0.0, omega=0.0, dt=dt).dt
     return {
         "methods": {"a_lmp_process": a, "b_in_process": b, "c_batched": c},
+        "scene_needs": d,
         "ratios": {
             "batched_over_lmp_process": c["collisions_per_second_per_core"] / a["collisions_per_second_per_core"],
             "batched_over_in_process": c["collisions_per_second_per_core"] / b["collisions_per_second_per_core"],

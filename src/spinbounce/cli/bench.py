@@ -25,6 +25,8 @@ def register(sub) -> None:
     p.add_argument("--workers", type=int, default=1,
                    help="worker processes for (c); rates are reported per core (default %(default)s)")
     p.add_argument("--chunk-size", type=int, default=None, help="spheres per LAMMPS run in (c) (default: the sweep's)")
+    p.add_argument("--n-needs", type=int, default=1000, metavar="N",
+                   help="spheres for the contact-only vs free-flight-and-dump comparison (default %(default)s)")
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--out", type=Path, default=Path("bench.json"), metavar="FILE",
                    help="JSON report (default %(default)s)")
@@ -34,7 +36,8 @@ def register(sub) -> None:
 
 def run(args) -> int:
     report = run_bench(n_lmp=args.n_lmp, n_inprocess=args.n_inprocess, n_batched=args.n_batched,
-                       workers=args.workers, seed=args.seed, chunk_size=args.chunk_size, keep=args.keep_runs)
+                       workers=args.workers, seed=args.seed, chunk_size=args.chunk_size, keep=args.keep_runs,
+                       n_needs=args.n_needs)
     print(f"dt = {report['parameters']['dt']:.6g}, LAMMPS {report['lammps_version']}, "
           f"{report['machine']['cpus']} cpus")
     print(f"{'method':<27}{'collisions':>11}{'coll/s/core':>13}{'outside loop':>14}{'max error':>11}")
@@ -45,6 +48,10 @@ def run(args) -> int:
     r = report["ratios"]
     print(f"batched / lmp process: {r['batched_over_lmp_process']:.0f}x; "
           f"batched / in-process instance: {r['batched_over_in_process']:.1f}x")
+    d = report["scene_needs"]
+    print(f"contact only vs free flight before/after and a dump every step ({d['collisions']} spheres): "
+          f"{d['contact_only']['wall_seconds']:.2f} s vs {d['free_flight_and_dump_every_step']['wall_seconds']:.2f} s, "
+          f"{d['ratio']:.1f}x")
     write_atomic(args.out, to_json(report))
     print(f"report: {args.out}")
     return 0
