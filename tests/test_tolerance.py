@@ -59,6 +59,11 @@ def test_unreachable_tolerance_is_refused_before_lammps(tmp_path, bad):
     assert not any(tmp_path.iterdir())
 
 
+def test_tolerance_with_a_coulomb_cap_is_refused(tmp_path):
+    with pytest.raises(SceneError, match="^mu = 0.5: a tolerance needs a smooth error"):
+        collide_to_tolerance(ContactModel(mu=0.5), -1.0, 1.0, 0.0, TOL, tmp_path)
+
+
 @pytest.mark.lammps
 def test_collide_cli_tolerance(tmp_path, capsys):
     assert main(["collide", "--vn", "-1", "--vt", "1", "--omega", "0", "--tolerance", "1e-6",
