@@ -86,3 +86,35 @@ def test_sweep_with_a_tolerance(tmp_path):
         spec_from_dict({**raw, "model": {"dt": 0.001}})
     with pytest.raises(SweepError, match="^tolerance"):
         spec_from_dict({**raw, "tolerance": 0.0})
+
+
+STUDY = {case.name: case for case in __import__("spinbounce.accuracy", fromlist=["cases"]).cases()}
+
+
+@pytest.mark.lammps
+@pytest.mark.parametrize("name", list(STUDY))
+def test_every_case_of_the_accuracy_study_to_tolerance(tmp_path, name):
+    """The acceptance of --tolerance, case by case of `spinbounce accuracy`'s study."""
+    from spinbounce.accuracy import FROZEN_T_END, FROZEN_Z
+
+    case = STUDY[name]
+    model = case.model
+    states = np.array(case.states, dtype=float)
+    if not case.exact:  # a finite Coulomb cap: no exact theory and no smooth error to extrapolate
+        with pytest.raises(SceneError, match="^mu = "):
+            collide_to_tolerance(model, states[:, 0], states[:, 1], states[:, 2] / model.r, TOL, tmp_path)
+        return
+    if case.kind == "frozen":
+        _, vt0, rw0 = states[0]
+        result = frozen_to_tolerance(model, FROZEN_Z, vt0, rw0 / model.r, FROZEN_T_END, TOL, tmp_path)
+        exact = np.column_stack(theory.frozen_velocities(result.t, vt0, rw0, model.kt, model.m, model.alpha,
+                                                         model.gamma_t))
+        true = np.abs(result.values - exact).max(axis=1)
+    else:
+        result, scene = collide_to_tolerance(model, states[:, 0], states[:, 1], states[:, 2] / model.r, TOL,
+                                             tmp_path)
+        frame = collision_frame(result, scene)
+        true = np.abs(frame[["vn_error", "vt_error", "r_omega_error"]].to_numpy()).max(axis=1)
+    estimate = result.estimate[:, 0]
+    assert true.max() <= TOL and (true <= estimate).all()
+    assert result.plain_steps_for(true.max()) >= 5 * result.steps
