@@ -317,3 +317,38 @@ def test_dissipation_worked_example_rolling_collision():
     # fractions of O(1) numbers: rounding only, 1e-14
     assert th.energy_change(before, after, 2.0, 0.4) == pytest.approx(-2.0 / 7.0, abs=1e-14)
     assert th.dissipation(before, after, 2.0, 0.4) == pytest.approx(1.0 / 7.0, abs=1e-14)
+
+
+def test_restitution_with_and_without_tensile_force():
+    """gamma_n > 0: allowing the dashpot to pull (LAMMPS's default) costs more energy than
+    cutting the force at zero (limit_damping), and neither depends on v_n (linear ODE)."""
+    from spinbounce.theory import collision_time, exit_time, gamma_n_for_restitution, restitution
+
+    m, kn = 1.0, 10.0
+    for e in (0.9, 0.7, 0.5):
+        g = gamma_n_for_restitution(e, m, kn)
+        assert restitution(m, kn, g) == pytest.approx(e, rel=1e-13)
+        assert restitution(m, kn, g, tensile=False) > e
+        assert collision_time(m, kn, g, tensile=False) < collision_time(m, kn, g)
+        assert exit_time(m, kn, g, tensile=False) > collision_time(m, kn, g, tensile=False)
+        assert exit_time(m, kn, g) == collision_time(m, kn, g)
+
+
+def test_force_free_end_against_an_ode_oracle():
+    """limit_damping: integrate m x'' = -(kn x + g x') until that force reaches zero, with
+    scipy's event location, and compare the end time and the exit speed."""
+    from scipy.integrate import solve_ivp
+
+    from spinbounce.theory import collision_time, restitution
+
+    m, kn, g = 1.0, 10.0, 2.0
+
+    def force_zero(t, y):
+        return kn * y[0] + g * y[1] if t > 1e-9 else 1.0
+
+    force_zero.terminal, force_zero.direction = True, -1
+    sol = solve_ivp(lambda t, y: [y[1], -(kn * y[0] + g * y[1]) / m], (0, 5), [0.0, 1.0],
+                    events=force_zero, rtol=1e-12, atol=1e-14)
+    t_end = sol.t_events[0][0]
+    assert t_end == pytest.approx(collision_time(m, kn, g, tensile=False), rel=1e-9)
+    assert -sol.y_events[0][0][1] == pytest.approx(restitution(m, kn, g, tensile=False), rel=1e-9)

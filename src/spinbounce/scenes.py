@@ -101,9 +101,14 @@ class ContactModel:
     gamma_n: float = 0.0
     gamma_t: float = 0.0
     mu: float | None = None
+    #: LAMMPS's ``limit_damping``: the normal force never pulls (it is cut at zero, and
+    #: the tangential force with it, since |F_t| <= mu |F_n|). Default: tensile allowed.
+    limit_damping: bool = False
 
     def __post_init__(self):
         set_ = object.__setattr__
+        if not isinstance(self.limit_damping, bool):
+            raise SceneError("limit_damping", self.limit_damping, "must be true or false")
         for name in ("m", "r", "kn"):
             set_(self, name, _positive(name, getattr(self, name)))
         for name in ("kt", "gamma_n", "gamma_t"):
@@ -137,8 +142,13 @@ class ContactModel:
 
     @property
     def tau(self) -> float:
-        """Contact time, Eq. 16 (damped form when gamma_n > 0)."""
-        return theory.collision_time(self.m, self.kn, self.gamma_n)
+        """Contact time, Eq. 16 (damped form when gamma_n > 0): how long the force acts."""
+        return theory.collision_time(self.m, self.kn, self.gamma_n, not self.limit_damping)
+
+    @property
+    def t_exit(self) -> float:
+        """When the sphere is out of the overlap (later than tau with limit_damping)."""
+        return theory.exit_time(self.m, self.kn, self.gamma_n, not self.limit_damping)
 
     @property
     def Q(self) -> float:
@@ -151,11 +161,12 @@ class ContactModel:
     @property
     def Omega(self) -> float:
         """Exact Omega (Eq. 18's when undamped)."""
-        return theory.Omega_exact(self.m, self.kn, self.kt, self.alpha, self.gamma_t, self.gamma_n)
+        return theory.Omega_exact(self.m, self.kn, self.kt, self.alpha, self.gamma_t, self.gamma_n,
+                                  not self.limit_damping)
 
     @property
     def restitution(self) -> float:
-        return theory.restitution(self.m, self.kn, self.gamma_n)
+        return theory.restitution(self.m, self.kn, self.gamma_n, not self.limit_damping)
 
     def matrix(self) -> np.ndarray:
         """The scattering matrix this model predicts (Eq. 18, exact damped Omega)."""
@@ -296,7 +307,7 @@ class Collision:
     @property
     def nsteps(self) -> int:
         """Steps that end the contact: the step after tau, and one more for rounding."""
-        return math.floor(self.model.tau / self.dt) + 2
+        return math.floor(self.model.t_exit / self.dt) + 2
 
     def predicted(self) -> np.ndarray:
         """(n, 3) final states from the theory."""

@@ -39,6 +39,8 @@ __all__ = [
     "frozen_means",
     "frozen_extremes",
     "frozen_slope",
+    "exit_time",
+    "gamma_n_for_restitution",
     "energy",
     "energy_change",
     "dissipation",
@@ -62,21 +64,57 @@ def _normal_rates(m: float, kn: float, gamma_n: float) -> tuple[float, float]:
     return beta, math.sqrt(omega_d_sq)
 
 
-def collision_time(m: float, kn: float, gamma_n: float = 0.0) -> float:
-    """Duration of contact, Eq. 16: tau = pi sqrt(m/kn), independent of v_n.
+def _end_phase(m: float, kn: float, gamma_n: float, tensile: bool) -> float:
+    """omega_d t at which the normal force ends: pi (z back at r) when the force may turn
+    tensile; else where kn x + gamma_n x' = 0 on the way out (the dashpot would pull)."""
+    beta, omega_d = _normal_rates(m, kn, gamma_n)
+    if tensile or gamma_n == 0.0:
+        return math.pi
+    # x = (v/omega_d) e^(-beta t) sin(phi): kn sin(phi) + gamma_n (omega_d cos(phi) - beta sin(phi)) = 0
+    return math.pi - math.atan2(gamma_n * omega_d, kn - gamma_n * beta)
 
-    With normal damping (gamma_n > 0, tensile force allowed, as LAMMPS's Hookean
-    granular model does) the contact lasts half a damped period, pi / omega_d, which
-    is still independent of v_n.
+
+def collision_time(m: float, kn: float, gamma_n: float = 0.0, tensile: bool = True) -> float:
+    """Duration of the contact force, Eq. 16: tau = pi sqrt(m/kn), independent of v_n.
+
+    With normal damping (gamma_n > 0) and a tensile force allowed (LAMMPS's default) the
+    contact lasts half a damped period, pi / omega_d. With ``tensile = False`` (LAMMPS's
+    ``limit_damping``) the force ends earlier, when the dashpot would start to pull; the
+    sphere then drifts out of the overlap with no force on it (:func:`exit_time`). Every
+    one of these is independent of v_n: the linear equations scale with it.
     """
     _, omega_d = _normal_rates(m, kn, gamma_n)
-    return math.pi / omega_d
+    return _end_phase(m, kn, gamma_n, tensile) / omega_d
 
 
-def restitution(m: float, kn: float, gamma_n: float = 0.0) -> float:
-    """Normal coefficient of restitution e = -v_n(tau)/v_n(0) (1 for the paper's model)."""
+def exit_time(m: float, kn: float, gamma_n: float = 0.0, tensile: bool = True) -> float:
+    """When the centre is back at z = r: the force's end plus the force-free drift out."""
     beta, omega_d = _normal_rates(m, kn, gamma_n)
-    return math.exp(-beta * math.pi / omega_d)
+    phi = _end_phase(m, kn, gamma_n, tensile)
+    t = phi / omega_d
+    overlap = math.exp(-beta * t) * math.sin(phi) / omega_d  # per unit |v_n(0)|
+    speed = math.exp(-beta * t) * (beta * math.sin(phi) - omega_d * math.cos(phi)) / omega_d
+    return t + (overlap / speed if overlap > 0.0 else 0.0)
+
+
+def restitution(m: float, kn: float, gamma_n: float = 0.0, tensile: bool = True) -> float:
+    """Normal coefficient of restitution e = -v_n(out)/v_n(0) (1 for the paper's model).
+
+    exp(-beta pi/omega_d) with a tensile force allowed; with ``tensile = False`` the
+    speed when the force ends, which is higher (the dashpot never pulls).
+    """
+    beta, omega_d = _normal_rates(m, kn, gamma_n)
+    phi = _end_phase(m, kn, gamma_n, tensile)
+    return math.exp(-beta * phi / omega_d) * (beta * math.sin(phi) - omega_d * math.cos(phi)) / omega_d
+
+
+def gamma_n_for_restitution(e: float, m: float, kn: float) -> float:
+    """The normal damping that gives restitution e (tensile force allowed): inverts
+    e = exp(-beta pi/omega_d) with beta = gamma_n/(2m), omega_d^2 = kn/m - beta^2."""
+    if not 0.0 < e <= 1.0:
+        raise ValueError(f"e = {e!r}: must lie in (0, 1]")
+    q = -math.log(e) / math.pi  # beta / omega_d
+    return 2.0 * m * q * math.sqrt(kn / m / (1.0 + q * q))
 
 
 def max_overlap(v_n, m: float, kn: float, gamma_n: float = 0.0):
@@ -198,7 +236,8 @@ def Omega_paper_damped(m: float, kn: float, kt: float, alpha: float, gamma_t: fl
 
 
 def Omega_exact(
-    m: float, kn: float, kt: float, alpha: float, gamma_t: float = 0.0, gamma_n: float = 0.0
+    m: float, kn: float, kt: float, alpha: float, gamma_t: float = 0.0, gamma_n: float = 0.0,
+    tensile: bool = True,
 ) -> float:
     """Exact Omega = u'(tau)/u'(0) - 1 for the Hookean contact with viscous damping.
 
@@ -206,7 +245,9 @@ def Omega_exact(
     depend on the overlap, so the slip obeys the frozen equation for the whole contact
     time tau (Eq. 16, or its damped form).
     """
-    tau = collision_time(m, kn, gamma_n)
+    # LAMMPS caps |F_t| at mu |F_n|: once limit_damping zeroes F_n, F_t is zero as well,
+    # so the slip stops evolving when the normal force ends
+    tau = collision_time(m, kn, gamma_n, tensile)
     return float(slip_rate_ratio(tau, kt, m, alpha, gamma_t)) - 1.0
 
 

@@ -28,13 +28,16 @@ def model_parser() -> argparse.ArgumentParser:
                    help="tangential viscous damping (default %(default)s)")
     g.add_argument("--mu", type=float, default=None,
                    help="Coulomb friction coefficient; omit for the paper's model (no Coulomb limit)")
+    g.add_argument("--limit-damping", action="store_true",
+                   help="never let the normal force pull (LAMMPS's limit_damping): with gamma_n > 0 the "
+                        "contact then ends when the dashpot would start to pull")
     return p
 
 
 def model_from(args: argparse.Namespace) -> ContactModel:
     return ContactModel(
         m=args.mass, r=args.radius, alpha=args.alpha, kn=args.kn, kt=args.kt,
-        gamma_n=args.gamma_n, gamma_t=args.gamma_t, mu=args.mu,
+        gamma_n=args.gamma_n, gamma_t=args.gamma_t, mu=args.mu, limit_damping=args.limit_damping,
     )
 
 
