@@ -10,7 +10,6 @@ and the paper's anticlockwise omega is -omega_y (so slip = v_x - r*omega_y).
 
 from __future__ import annotations
 
-import io
 import math
 from dataclasses import dataclass, field
 from functools import lru_cache
