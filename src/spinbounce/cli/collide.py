@@ -71,15 +71,19 @@ def run(args) -> int:
         return 0
     print(f"collision: dt = {scene.dt:.6g} ({scene.nsteps} steps, tau = {scene.model.tau:.6g}), "
           f"Omega = {scene.model.Omega:.8g}")
-    print(f"{'':8}{'v_n':>16}{'v_t':>16}{'r*omega':>16}")
-    for label, key in (("initial", "initial"), ("LAMMPS", "final"), ("theory", "theory"), ("error", "error")):
-        s = report[key]
-        fmt = "{:>16.3e}" if key == "error" else "{:>16.10f}"
-        print(f"{label:8}" + "".join(fmt.format(s[k]) for k in ("vn", "vt", "r_omega")))
+    _print_states(report, label_width=8)
     for w in result.warnings:
         print(f"warning: {w}")
     print(f"deck: {report['deck']}\ndump: {report['dump']}\nLAMMPS {report['lammps_version']}")
     return 0
+
+
+def _print_states(report: dict, label_width: int) -> None:
+    """The initial, LAMMPS, theory and error rows of a collision report, in (v_n, v_t, r*omega)."""
+    print(f"{'':{label_width}}{'v_n':>16}{'v_t':>16}{'r*omega':>16}")
+    for label, key in (("initial", "initial"), ("LAMMPS", "final"), ("theory", "theory"), ("error", "error")):
+        fmt = "{:>16.3e}" if key == "error" else "{:>16.10f}"
+        print(f"{label:{label_width}}" + "".join(fmt.format(report[key][k]) for k in ("vn", "vt", "r_omega")))
 
 
 def _run_to_tolerance(args) -> int:
@@ -118,11 +122,7 @@ def _run_to_tolerance(args) -> int:
         return 0
     print(f"collision to tolerance {result.tolerance:g}: {len(result.levels)} runs, {result.steps} LAMMPS steps "
           f"(one plain run would need ~{report['plain_steps_for_same_estimate']:.0f} for the same error)")
-    print(f"{'':10}{'v_n':>16}{'v_t':>16}{'r*omega':>16}")
-    for label, key in (("initial", "initial"), ("LAMMPS", "final"), ("theory", "theory"), ("error", "error")):
-        s = report[key]
-        fmt = "{:>16.3e}" if key == "error" else "{:>16.10f}"
-        print(f"{label:10}" + "".join(fmt.format(s[k]) for k in keys))
+    _print_states(report, label_width=10)
     print(f"estimated error {result.max_estimate:.2e} (extrapolated to dt = 0 from the runs in {out})")
     print(f"record: {out_json}")
     return 0
