@@ -184,11 +184,11 @@ def spec_from_dict(raw: dict) -> SweepSpec:
     chunk_size = _integer("chunk_size", raw.get("chunk_size", DEFAULT_CHUNK), 1)
     tolerance = raw.get("tolerance")
     if tolerance is not None:
-        from .tolerance import _check_tolerance
+        from .tolerance import check_tolerance
 
         tolerance = _number("tolerance", tolerance)
         try:
-            _check_tolerance(tolerance)
+            check_tolerance(tolerance)
         except SceneError as exc:
             raise SweepError(str(exc)) from None
         if "dt" in raw.get("model", {}):

@@ -31,7 +31,7 @@ import pandas as pd
 from .compare import STATE
 from .scenes import Collision, ContactModel, Frozen, SceneError
 
-__all__ = ["Extrapolated", "collide_to_tolerance", "frozen_to_tolerance", "MIN_TOLERANCE"]
+__all__ = ["Extrapolated", "collide_to_tolerance", "frozen_to_tolerance", "check_tolerance", "MIN_TOLERANCE"]
 
 #: Below this, double-precision rounding in LAMMPS's O(1) velocities (amplified ~2x by
 #: the extrapolation) is as large as the request: no ladder can certify it.
@@ -75,7 +75,7 @@ class Extrapolated:
         return finest["nsteps"] * (finest["error_vs_extrapolation"] / error) ** (1.0 / self.order)
 
 
-def _check_tolerance(tolerance: float) -> float:
+def check_tolerance(tolerance: float) -> float:
     try:
         tol = float(tolerance)
     except (TypeError, ValueError):
@@ -167,7 +167,7 @@ def collide_to_tolerance(model: ContactModel, v_n, v_t, omega, tolerance: float,
     """
     from .pipeline import run_collision
 
-    tol = _check_tolerance(tolerance)
+    tol = check_tolerance(tolerance)
     if model.mu is not None:
         # measured: with a finite cap the stick-slip switches leave kinks that fall anywhere
         # within a step, so the error has no smooth expansion and extrapolation gains nothing
@@ -218,7 +218,7 @@ def frozen_to_tolerance(model: ContactModel, z: float, v_t: float, omega: float,
     """
     from .pipeline import run_frozen
 
-    tol = _check_tolerance(tolerance)
+    tol = check_tolerance(tolerance)
     out_dir = Path(out_dir)
     rate = model.fastest_rate(frozen=True)
     coarse = math.pi / rate / START_STEPS if rate > 0.0 else t_end / 100
