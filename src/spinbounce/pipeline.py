@@ -244,8 +244,8 @@ def run_collision(scene: Collision, out_dir: Path, atoms: str | None = None, rec
         )
     if m.mu is not None:
         notes.append(
-            f"mu = {m.mu!r} caps the tangential force; the theory (Eq. 18) has no cap, so the "
-            "'error' includes sliding, not only integration error"
+            f"mu = {m.mu!r} caps the tangential force: the theory columns come from the Coulomb "
+            "oracle (adaptive integration with stick-slip events), not Eq. 18"
         )
     table = pd.DataFrame(columns)
     dump_path = None if deck.dump is None else deck_path.parent / deck.dump

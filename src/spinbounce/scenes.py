@@ -310,7 +310,12 @@ class Collision:
         return math.floor(self.model.t_exit / self.dt) + 2
 
     def predicted(self) -> np.ndarray:
-        """(n, 3) final states from the theory."""
+        """(n, 3) final states from the theory: the scattering matrix (Eq. 18, exact damped
+        Omega), or with a finite mu the Coulomb oracle (:mod:`oracle`), sphere by sphere."""
+        if self.model.mu is not None:
+            from . import oracle
+
+            return oracle.bounce_many(self.model, self.v_n, self.v_t, self.omega)[:, :3]
         return self.initial @ self.model.matrix().T
 
 

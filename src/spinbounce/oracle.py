@@ -1,0 +1,290 @@
+"""An independent, high-accuracy oracle for one sphere hitting the wall: any scene.
+
+The closed forms of :mod:`theory` cover the spring model without a Coulomb limit. With
+a finite friction coefficient the contact sticks and slides in turn, and nothing closed
+is known; this module integrates the continuous-time equations instead, with scipy's
+adaptive DOP853 at a relative tolerance of 1e-12, and locates every change of regime
+as an event (end of contact, stick -> slip, slip -> stick, and the normal force's end
+under ``limit_damping``), restarting the integration there so no step straddles a kink.
+
+The model is the continuous-time limit of LAMMPS's ``granular hooke ... tangential
+linear_history`` wall contact, written in the paper's variables and in 3-D:
+
+* normal: overlap delta = r - z, F_n = kn delta + gamma_n delta' (tensile allowed, or cut
+  at zero with ``limit_damping``), m v_n' = F_n;
+* tangential, a 2-vector per quantity (directions t and s): velocity v, r*omega with the
+  paper's sign (so the slip rate is u' = v + r*omega in each direction, see
+  :mod:`scenes`), and the elastic 'trial force' A = kt xi + gamma_t u' of the history xi;
+  m v' = F_t and alpha m (r omega)' = F_t; the spin about the normal never changes;
+* sticking (|A| < mu |F_n|): F_t = -A and A' = kt u' + gamma_t u'';
+* sliding (|A| = mu |F_n|): F_t = -mu |F_n| s with s the unit vector of A. LAMMPS rescales
+  the history so that |A| stays on the cap (``linear_history``'s rescale); in continuous
+  time the cap's radius follows mu |F_n| and s turns towards the slip velocity,
+  s' = kt u'_perp / (mu |F_n|). Sliding lasts while the sticking rate of A would carry it
+  beyond the cap: s . (kt u' + gamma_t u''_stick) > d(mu |F_n|)/dt.
+
+The cap mu |F_n| uses the magnitude of the total normal force, as LAMMPS does: a normal
+force that turns tensile (gamma_n > 0 without ``limit_damping``) still holds friction.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+from .scenes import ContactModel
+
+__all__ = ["OracleResult", "bounce", "bounce_many", "gross_slip", "RTOL", "ATOL"]
+
+RTOL = 1.0e-12
+ATOL = 1.0e-14
+#: More regime switches than this in one contact mean the regimes chatter: refuse.
+MAX_SWITCHES = 200
+#: Events are found from sign changes between steps; a cap on the step (in contact
+#: times) keeps an event function from crossing zero twice within one step unseen.
+MIN_STEPS_PER_CONTACT = 64
+
+# state layout: delta, v_n, v (2), w = r*omega (2), A or s (2)
+_D, _VN, _V, _W, _A = 0, 1, slice(2, 4), slice(4, 6), slice(6, 8)
+
+
+@dataclass(frozen=True)
+class OracleResult:
+    """Final state of one collision and the regimes it went through.
+
+    ``final`` is (v_n, v_t, r omega, v_s, r omega_s, r omega_n), the 3-D state order used
+    across spinbounce; ``regimes`` lists (t_start, name) with name in stick, slip, free.
+    """
+
+    initial: np.ndarray
+    final: np.ndarray
+    t_exit: float
+    regimes: tuple[tuple[float, str], ...]
+    nfev: int = 0
+    switches: tuple[float, ...] = field(default=())
+
+    @property
+    def pattern(self) -> str:
+        """The regimes in order, e.g. 'stick-slip' ('free' is the force-free drift out)."""
+        names = [name for _, name in self.regimes if name != "free"]
+        return "-".join(n for i, n in enumerate(names) if i == 0 or n != names[i - 1])
+
+
+class _Contact:
+    """Forces and their rates for one model, in the paper's variables."""
+
+    def __init__(self, model: ContactModel):
+        if model.mu is None:
+            raise ValueError("the oracle models LAMMPS's Coulomb cap: give a finite mu "
+                             "(theory.scattering_matrix is exact without one)")
+        self.m, self.r, self.alpha = model.m, model.r, model.alpha
+        self.kn, self.kt = model.kn, model.kt
+        self.gn, self.gt, self.mu = model.gamma_n, model.gamma_t, model.mu
+        self.tensile = not model.limit_damping
+        self.slip_mass = (1.0 + 1.0 / self.alpha) / self.m  # u'' = slip_mass * F_t
+
+    def normal(self, y) -> tuple[float, float]:
+        """(F_n, dF_n/dt) before any cut at zero; none once the overlap has gone."""
+        delta, rate = y[_D], -y[_VN]
+        if delta < 0.0:  # past the exit: keeps event functions from turning back
+            return 0.0, 0.0
+        f = self.kn * delta + self.gn * rate
+        accel = -f / self.m  # delta'' = -v_n'
+        return f, self.kn * rate + self.gn * accel
+
+    def cap(self, y) -> tuple[float, float]:
+        """(mu |F_n|, its rate), after limit_damping's cut."""
+        f, df = self.normal(y)
+        if not self.tensile and f <= 0.0:
+            return 0.0, 0.0
+        sign = 1.0 if f >= 0.0 else -1.0
+        return self.mu * abs(f), self.mu * sign * df
+
+    def normal_accel(self, y, free: bool) -> float:
+        f, _ = self.normal(y)
+        if free or (not self.tensile and f < 0.0):
+            return 0.0
+        return f / self.m
+
+    def rhs(self, phase: str):
+        kt, gt, m, alpha = self.kt, self.gt, self.m, self.alpha
+
+        def f(t, y):
+            dy = np.zeros(8)
+            dy[_D] = -y[_VN]
+            u_rate = y[_V] + y[_W]
+            if phase == "free":
+                return dy
+            dy[_VN] = self.normal_accel(y, False)
+            if phase == "stick":
+                force = -y[_A]
+                dy[_A] = kt * u_rate + gt * self.slip_mass * force
+            else:  # slip: y[_A] holds the unit direction s
+                c, _ = self.cap(y)
+                s = y[_A]
+                force = -c * s
+                if c > 0.0:
+                    perp = u_rate - np.dot(u_rate, s) * s
+                    dy[_A] = kt * perp / c
+            dy[_V] = force / m
+            dy[_W] = force / (alpha * m)
+            return dy
+
+        return f
+
+    # -- events -----------------------------------------------------------------------
+    def events(self, phase: str, watch_force: bool = True):
+        def exit_(t, y):
+            return y[_D]
+
+        exit_.terminal, exit_.direction = True, -1.0
+        out = [exit_]
+        if phase == "stick":
+            def to_slip(t, y):
+                c, _ = self.cap(y)
+                return c - math.hypot(*y[_A])
+
+            to_slip.terminal, to_slip.direction = True, -1.0
+            out.append(to_slip)
+        elif phase == "slip":
+            def to_stick(t, y):
+                c, dc = self.cap(y)
+                s = y[_A]
+                stick_rate = self.kt * (y[_V] + y[_W]) - self.gt * self.slip_mass * c * s
+                return float(np.dot(s, stick_rate)) - dc
+
+            to_stick.terminal, to_stick.direction = True, -1.0
+            out.append(to_stick)
+        if phase != "free" and self.gn > 0.0 and watch_force:
+            # the normal force ends (limit_damping) or turns tensile: there the cap is zero
+            # and grows again, a kink the step-wise event search could miss inside one step
+            def force_zero(t, y):
+                return self.normal(y)[0]
+
+            force_zero.terminal, force_zero.direction = True, -1.0
+            out.append(force_zero)
+        return out
+
+    def start(self, y, cap_rising: bool = False, direction=None) -> str:
+        """The regime at first touch; puts A (stick) or s (slip) into ``y``.
+
+        At first touch the cap may be zero, and A = gamma_t u' need not be: LAMMPS's first
+        step then projects the trial force onto the cap. Whether the contact goes on
+        sliding is decided, as at any later time on the cap, by comparing the rate at
+        which sticking would push A outwards with the rate at which the cap grows.
+        """
+        c, dc = self.cap(y)
+        if cap_rising:  # at a tensile turn the cap restarts from zero
+            c, dc = 0.0, abs(dc)
+        u_rate = y[_V] + y[_W]
+        if math.hypot(*y[_A]) < c:
+            return "stick"
+        s = _direction(y[_A], u_rate if direction is None else direction)
+        push = float(np.dot(s, self.kt * u_rate)) - self.gt * self.slip_mass * c
+        if push > dc:
+            y[_A] = s
+            return "slip"
+        y[_A] = c * s
+        return "stick"
+
+
+def _direction(vec: np.ndarray, fallback: np.ndarray) -> np.ndarray:
+    n = math.hypot(*vec)
+    if n > 0.0:
+        return vec / n
+    n = math.hypot(*fallback)
+    return fallback / n if n > 0.0 else np.array([1.0, 0.0])
+
+
+def bounce(model: ContactModel, v_n: float, v_t: float = 0.0, omega: float = 0.0, *,
+           v_s: float = 0.0, omega_s: float = 0.0, omega_n: float = 0.0) -> OracleResult:
+    """One sphere that starts touching the wall (delta = 0) with velocity v_n < 0.
+
+    ``omega`` (paper's sign) couples with ``v_t``, ``omega_s`` with ``v_s``, and
+    ``omega_n`` is the spin about the wall's normal.
+    """
+    if not v_n < 0.0:
+        raise ValueError(f"v_n = {v_n!r}: must be < 0 (towards the wall)")
+    c = _Contact(model)
+    r = model.r
+    y = np.zeros(8)
+    y[_VN] = v_n
+    y[_V] = (v_t, v_s)
+    y[_W] = (r * omega, r * omega_s)
+    u_rate = y[_V] + y[_W]
+    y[_A] = model.gamma_t * u_rate  # the history starts at zero; A = gamma_t u'
+    initial = np.array([v_n, v_t, r * omega, v_s, r * omega_s, r * omega_n])
+    phase = c.start(y)
+    t = 0.0
+    regimes = [(0.0, phase)]
+    turned = False
+    nfev = 0
+    # a generous horizon: the contact must end well within it (checked below)
+    tau = math.pi * math.sqrt(model.m / model.kn)
+    horizon = 50.0 * tau + 10.0
+    for _ in range(MAX_SWITCHES):
+        sol = solve_ivp(c.rhs(phase), (t, horizon), y, method="DOP853", rtol=RTOL, atol=ATOL,
+                        events=c.events(phase, not turned), max_step=tau / MIN_STEPS_PER_CONTACT)
+        nfev += sol.nfev
+        if sol.status != 1:
+            raise RuntimeError(f"oracle: the contact did not end by t = {horizon:g} ({sol.message})")
+        hit = min((k for k, te in enumerate(sol.t_events) if te.size), key=lambda k: sol.t_events[k][0])
+        t = float(sol.t_events[hit][0])
+        y = sol.y_events[hit][0].copy()
+        if hit == 0 or y[_D] <= 0.0:  # exit: the overlap is back to zero (a switch can fall on it)
+            break
+        name = c.events(phase, not turned)[hit].__name__
+        if name == "force_zero":
+            turned = True  # F_n stays below zero from here to the exit
+            if c.tensile:
+                s = y[_A].copy() if phase == "slip" else None
+                if s is not None:
+                    y[_A] = 0.0  # on the cap, which is zero here
+                phase = c.start(y, cap_rising=True, direction=s)
+            else:
+                phase = "free"
+        elif name == "to_slip":
+            phase = "slip"
+            y[_A] = _direction(y[_A], y[_V] + y[_W])
+        elif name == "to_stick":
+            cap, _ = c.cap(y)
+            phase = "stick"
+            y[_A] = cap * y[_A]
+        regimes.append((t, phase))
+    else:
+        raise RuntimeError(f"oracle: more than {MAX_SWITCHES} regime switches (chattering)")
+    final = np.array([y[_VN], y[_V][0], y[_W][0], y[_V][1], y[_W][1], r * omega_n])
+    return OracleResult(initial, final, t, tuple(regimes), nfev,
+                        tuple(t for t, _ in regimes[1:]))
+
+
+def bounce_many(model: ContactModel, v_n, v_t, omega, v_s=None, omega_s=None, omega_n=None) -> np.ndarray:
+    """(n, 6) final states for equal-length sequences of initial states."""
+    v_n = np.atleast_1d(np.asarray(v_n, dtype=float))
+    n = v_n.size
+
+    def full(x):
+        return np.zeros(n) if x is None else np.broadcast_to(np.asarray(x, dtype=float), (n,))
+
+    cols = [full(x) for x in (v_t, omega, v_s, omega_s, omega_n)]
+    return np.array([
+        bounce(model, float(v_n[i]), float(cols[0][i]), float(cols[1][i]), v_s=float(cols[2][i]),
+               omega_s=float(cols[3][i]), omega_n=float(cols[4][i])).final
+        for i in range(n)
+    ])
+
+
+def gross_slip(model: ContactModel, v_n: float, v_t: float, omega: float, e: float) -> np.ndarray:
+    """Rigid-body outcome when the contact slides from first touch to exit in one direction.
+
+    The friction impulse is then mu times the normal impulse, m (1 + e) |v_n|, against the
+    slip: Delta v_t = -mu (1 + e) |v_n| sign(u') and Delta(r omega) = Delta v_t / alpha.
+    Exact for this model whenever F_n >= 0 throughout (gamma_n = 0, or limit_damping).
+    Returns (v_n, v_t, r omega) after the collision.
+    """
+    slip = v_t + model.r * omega
+    dv = -model.mu * (1.0 + e) * abs(v_n) * math.copysign(1.0, slip)
+    return np.array([-e * v_n, v_t + dv, model.r * omega + dv / model.alpha])
