@@ -31,7 +31,7 @@ E_07 = theory.gamma_n_for_restitution(0.7, 1.0, 10.0)
 VARIANTS = {
     "e=1": ({}, 16),
     "e=0.7, limit_damping": ({"gamma_n": E_07, "limit_damping": True}, 64),
-    "e=0.7, tensile": ({"gamma_n": E_07}, 128),
+    "e=0.7, tensile": ({"gamma_n": E_07}, 256),
 }
 
 

@@ -9,12 +9,16 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from .scenes import Collision, Frozen
+from .scenes import STATE, STATE_3D, Collision, Frozen
 
-__all__ = ["STATE", "paper_variables", "collision_table", "frozen_table"]
+__all__ = ["STATE", "STATE_3D", "paper_variables", "collision_table", "frozen_table"]
 
-#: State order everywhere: (v_n, v_t, r*omega).
-STATE = ("vn", "vt", "r_omega")
+#: Each state column from LAMMPS's columns: (column, sign), then times r for the spins.
+#: The paper's omega is -omega_y; the second pair's spin is +omega_x (slip v_y + r omega_x).
+_FROM_LAMMPS = {"vn": ("vz", 1.0), "vt": ("vx", 1.0), "r_omega": ("omegay", -1.0),
+                "vs": ("vy", 1.0), "r_omega_s": ("omegax", 1.0), "r_omega_n": ("omegaz", 1.0)}
+#: The spin columns and the angular velocity each one carries.
+_SPINS = {"r_omega": "omega", "r_omega_s": "omega_s", "r_omega_n": "omega_n"}
 
 
 def paper_variables(frames: pd.DataFrame, r: float) -> pd.DataFrame:
@@ -34,25 +38,36 @@ def collision_table(scene: Collision, initial, final, as_frame: bool = True):
     ``initial`` and ``final`` map LAMMPS's column names (z, vx, vz, omegay, ...) to one
     value per sphere in id order (ids 1..n): a dump frame or a dict of arrays. The theory
     acts on the *requested* initial state, so a mangled input would show as an error.
+    A 3-D scene adds the columns of :data:`STATE_3D` beyond the paper's three.
     ``as_frame=False`` returns the columns as a dict of arrays.
     """
     r = scene.model.r
+    names = scene.state_names
+    spins = [_SPINS[s] for s in names if s in _SPINS]
     requested = scene.initial
     theory = scene.predicted()
     columns = {"id": np.arange(1, scene.n + 1)}
-    for k, name in enumerate(STATE):
+    for k, name in enumerate(names):
         columns[f"{name}_0"] = requested[:, k]
-    columns["omega_0"] = np.asarray(scene.omega)
+    for spin in spins:
+        columns[f"{spin}_0"] = np.asarray(getattr(scene, spin))
     for when, frame in (("lammps_0", initial), ("final", final)):
-        omega = -np.asarray(frame["omegay"]) + 0.0  # + 0.0: no "-0" in tables
-        values = {"vn": np.asarray(frame["vz"]), "vt": np.asarray(frame["vx"]), "r_omega": r * omega,
-                  "omega": omega, "z": np.asarray(frame["z"])}
-        for name in STATE + ("omega", "z"):
+        values = {"z": np.asarray(frame["z"])}
+        for name in names:
+            column, sign = _FROM_LAMMPS[name]
+            value = sign * np.asarray(frame[column]) + 0.0  # + 0.0: no "-0" in tables
+            if name in _SPINS:
+                values[_SPINS[name]] = value
+                value = r * value
+            values[name] = value
+        for name in names + tuple(spins) + ("z",):
             columns[f"{name}_{when}"] = values[name]
-    for k, name in enumerate(STATE):
+    for k, name in enumerate(names):
         columns[f"{name}_theory"] = theory[:, k]
-    columns["omega_theory"] = theory[:, 2] / r
-    for name in STATE + ("omega",):
+    for name, spin in _SPINS.items():
+        if name in names:
+            columns[f"{spin}_theory"] = columns[f"{name}_theory"] / r
+    for name in names + tuple(spins):
         columns[f"{name}_error"] = columns[f"{name}_final"] - columns[f"{name}_theory"]
     return pd.DataFrame(columns) if as_frame else columns
 

@@ -161,13 +161,14 @@ def _common(model: ContactModel, zhi: float) -> dict:
 
 
 def _collision_state(scene: Collision) -> dict[str, np.ndarray]:
-    """Per-sphere LAMMPS vectors: position, velocity, angular velocity (omega_y = -omega)."""
+    """Per-sphere LAMMPS vectors: position, velocity, angular velocity (omega_y = -omega,
+    omega_x = omega_s, omega_z = omega_n)."""
     n = scene.n
     zeros = np.zeros(n)
     return {
         "x": zeros, "y": zeros, "z": np.full(n, scene.model.r),
-        "vx": np.asarray(scene.v_t), "vy": zeros, "vz": np.asarray(scene.v_n),
-        "wx": zeros, "wy": -np.asarray(scene.omega) + 0.0, "wz": zeros,
+        "vx": np.asarray(scene.v_t), "vy": np.asarray(scene.v_s), "vz": np.asarray(scene.v_n),
+        "wx": np.asarray(scene.omega_s), "wy": -np.asarray(scene.omega) + 0.0, "wz": np.asarray(scene.omega_n),
     }
 
 

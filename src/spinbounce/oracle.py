@@ -20,7 +20,7 @@ linear_history`` wall contact, written in the paper's variables and in 3-D:
 * sliding (|A| = mu |F_n|): F_t = -mu |F_n| s with s the unit vector of A. LAMMPS rescales
   the history so that |A| stays on the cap (``linear_history``'s rescale); in continuous
   time the cap's radius follows mu |F_n| and s turns towards the slip velocity,
-  s' = kt u'_perp / (mu |F_n|). Sliding lasts while the sticking rate of A would carry it
+  s' = kt u'_perp / (mu |F_n|), with u'_perp the part of u' across s. Sliding lasts while the sticking rate of A would carry it
   beyond the cap: s . (kt u' + gamma_t u''_stick) > d(mu |F_n|)/dt.
 
 The cap mu |F_n| uses the magnitude of the total normal force, as LAMMPS does: a normal
@@ -39,6 +39,7 @@ from .scenes import ContactModel
 
 __all__ = ["OracleResult", "bounce", "bounce_many", "gross_slip", "RTOL", "ATOL"]
 
+METHOD = "DOP853"
 RTOL = 1.0e-12
 ATOL = 1.0e-14
 #: More regime switches than this in one contact mean the regimes chatter: refuse.
@@ -56,7 +57,8 @@ class OracleResult:
     """Final state of one collision and the regimes it went through.
 
     ``final`` is (v_n, v_t, r omega, v_s, r omega_s, r omega_n), the 3-D state order used
-    across spinbounce; ``regimes`` lists (t_start, name) with name in stick, slip, free.
+    across spinbounce; ``regimes`` lists (t_start, name) with name in stick, slip, coast
+    (sliding with a cap below 1e-12 of its peak: no tangential force) and free (no force).
     """
 
     initial: np.ndarray
@@ -68,8 +70,9 @@ class OracleResult:
 
     @property
     def pattern(self) -> str:
-        """The regimes in order, e.g. 'stick-slip' ('free' is the force-free drift out)."""
-        names = [name for _, name in self.regimes if name != "free"]
+        """The regimes in order, e.g. 'stick-slip' (leaving out 'coast', a slide's last
+        1e-12 of force, and 'free', the force-free drift out under limit_damping)."""
+        names = [name for _, name in self.regimes if name not in ("free", "coast")]
         return "-".join(n for i, n in enumerate(names) if i == 0 or n != names[i - 1])
 
 
@@ -85,6 +88,8 @@ class _Contact:
         self.gn, self.gt, self.mu = model.gamma_n, model.gamma_t, model.mu
         self.tensile = not model.limit_damping
         self.slip_mass = (1.0 + 1.0 / self.alpha) / self.m  # u'' = slip_mass * F_t
+        self.floor = 0.0  # set per collision (bounce)
+        self.turned = False  # whether F_n has passed through zero on the way out
 
     def normal(self, y) -> tuple[float, float]:
         """(F_n, dF_n/dt) before any cut at zero; none once the overlap has gone."""
@@ -96,16 +101,22 @@ class _Contact:
         return f, self.kn * rate + self.gn * accel
 
     def cap(self, y) -> tuple[float, float]:
-        """(mu |F_n|, its rate), after limit_damping's cut."""
-        f, df = self.normal(y)
-        if not self.tensile and f <= 0.0:
-            return 0.0, 0.0
-        sign = 1.0 if f >= 0.0 else -1.0
-        return self.mu * abs(f), self.mu * sign * df
+        """(mu |F_n|, its rate), after limit_damping's cut.
 
-    def normal_accel(self, y, free: bool) -> float:
+        F_n >= 0 until the normal force turns (the ``force_zero`` event sets ``turned``)
+        and <= 0 after it, so the sign of |F_n| is known from the phase, never from a
+        value that rounding may leave a hair on the wrong side of zero.
+        """
+        f, df = self.normal(y)
+        if self.turned:
+            if not self.tensile:
+                return 0.0, 0.0
+            return max(-self.mu * f, 0.0), -self.mu * df
+        return max(self.mu * f, 0.0), self.mu * df
+
+    def normal_accel(self, y) -> float:
         f, _ = self.normal(y)
-        if free or (not self.tensile and f < 0.0):
+        if not self.tensile and (self.turned or f < 0.0):
             return 0.0
         return f / self.m
 
@@ -115,20 +126,19 @@ class _Contact:
         def f(t, y):
             dy = np.zeros(8)
             dy[_D] = -y[_VN]
-            u_rate = y[_V] + y[_W]
             if phase == "free":
                 return dy
-            dy[_VN] = self.normal_accel(y, False)
+            dy[_VN] = self.normal_accel(y)
+            if phase == "coast":
+                return dy
+            u_rate = y[_V] + y[_W]
+            force = -y[_A]
             if phase == "stick":
-                force = -y[_A]
                 dy[_A] = kt * u_rate + gt * self.slip_mass * force
-            else:  # slip: y[_A] holds the unit direction s
-                c, _ = self.cap(y)
-                s = y[_A]
-                force = -c * s
-                if c > 0.0:
-                    perp = u_rate - np.dot(u_rate, s) * s
-                    dy[_A] = kt * perp / c
+            else:  # slip: A rides on the cap; written for A, every rate stays bounded
+                _, dc = self.cap(y)
+                s = _direction(y[_A], u_rate, 1e-3 * self.floor)
+                dy[_A] = kt * (u_rate - np.dot(u_rate, s) * s) + dc * s
             dy[_V] = force / m
             dy[_W] = force / (alpha * m)
             return dy
@@ -136,7 +146,7 @@ class _Contact:
         return f
 
     # -- events -----------------------------------------------------------------------
-    def events(self, phase: str, watch_force: bool = True):
+    def events(self, phase: str):
         def exit_(t, y):
             return y[_D]
 
@@ -152,13 +162,17 @@ class _Contact:
         elif phase == "slip":
             def to_stick(t, y):
                 c, dc = self.cap(y)
-                s = y[_A]
+                s = _direction(y[_A], y[_V] + y[_W], 1e-3 * self.floor)
                 stick_rate = self.kt * (y[_V] + y[_W]) - self.gt * self.slip_mass * c * s
                 return float(np.dot(s, stick_rate)) - dc
 
+            def cap_gone(t, y):
+                return self.cap(y)[0] - self.floor
+
             to_stick.terminal, to_stick.direction = True, -1.0
-            out.append(to_stick)
-        if phase != "free" and self.gn > 0.0 and watch_force:
+            cap_gone.terminal, cap_gone.direction = True, -1.0
+            out += [to_stick, cap_gone]
+        if phase != "free" and self.gn > 0.0 and not self.turned:
             # the normal force ends (limit_damping) or turns tensile: there the cap is zero
             # and grows again, a kink the step-wise event search could miss inside one step
             def force_zero(t, y):
@@ -168,8 +182,8 @@ class _Contact:
             out.append(force_zero)
         return out
 
-    def start(self, y, cap_rising: bool = False, direction=None) -> str:
-        """The regime at first touch; puts A (stick) or s (slip) into ``y``.
+    def start(self, y, cap_rising: bool = False) -> str:
+        """The regime at first touch (or where the cap restarts); puts A on or inside the cap.
 
         At first touch the cap may be zero, and A = gamma_t u' need not be: LAMMPS's first
         step then projects the trial force onto the cap. Whether the contact goes on
@@ -182,18 +196,17 @@ class _Contact:
         u_rate = y[_V] + y[_W]
         if math.hypot(*y[_A]) < c:
             return "stick"
-        s = _direction(y[_A], u_rate if direction is None else direction)
+        s = _direction(y[_A], u_rate)
         push = float(np.dot(s, self.kt * u_rate)) - self.gt * self.slip_mass * c
-        if push > dc:
-            y[_A] = s
-            return "slip"
         y[_A] = c * s
-        return "stick"
+        return "slip" if push > dc else "stick"
 
 
-def _direction(vec: np.ndarray, fallback: np.ndarray) -> np.ndarray:
+def _direction(vec: np.ndarray, fallback: np.ndarray, tiny: float = 0.0) -> np.ndarray:
+    """The unit vector of ``vec``, or of ``fallback`` where ``vec`` is within ``tiny`` of zero
+    (there a slide's force is below the floor, and its direction is the slip's)."""
     n = math.hypot(*vec)
-    if n > 0.0:
+    if n > tiny:
         return vec / n
     n = math.hypot(*fallback)
     return fallback / n if n > 0.0 else np.array([1.0, 0.0])
@@ -209,6 +222,9 @@ def bounce(model: ContactModel, v_n: float, v_t: float = 0.0, omega: float = 0.0
     if not v_n < 0.0:
         raise ValueError(f"v_n = {v_n!r}: must be < 0 (towards the wall)")
     c = _Contact(model)
+    # a slide whose cap has shrunk below 1e-12 of its largest value coasts to the exit or
+    # to the tensile turn with no tangential force; the friction left out is below that
+    c.floor = 1e-12 * (model.mu * abs(v_n) * math.sqrt(model.m * model.kn) or 1.0)
     r = model.r
     y = np.zeros(8)
     y[_VN] = v_n
@@ -220,39 +236,36 @@ def bounce(model: ContactModel, v_n: float, v_t: float = 0.0, omega: float = 0.0
     phase = c.start(y)
     t = 0.0
     regimes = [(0.0, phase)]
-    turned = False
     nfev = 0
     # a generous horizon: the contact must end well within it (checked below)
     tau = math.pi * math.sqrt(model.m / model.kn)
     horizon = 50.0 * tau + 10.0
     for _ in range(MAX_SWITCHES):
-        sol = solve_ivp(c.rhs(phase), (t, horizon), y, method="DOP853", rtol=RTOL, atol=ATOL,
-                        events=c.events(phase, not turned), max_step=tau / MIN_STEPS_PER_CONTACT)
+        sol = solve_ivp(c.rhs(phase), (t, horizon), y, method=METHOD, rtol=RTOL, atol=ATOL,
+                        events=c.events(phase), max_step=tau / MIN_STEPS_PER_CONTACT)
         nfev += sol.nfev
         if sol.status != 1:
             raise RuntimeError(f"oracle: the contact did not end by t = {horizon:g} ({sol.message})")
         hit = min((k for k, te in enumerate(sol.t_events) if te.size), key=lambda k: sol.t_events[k][0])
         t = float(sol.t_events[hit][0])
         y = sol.y_events[hit][0].copy()
-        if hit == 0 or y[_D] <= 0.0:  # exit: the overlap is back to zero (a switch can fall on it)
+        if hit == 0 or (y[_D] <= 0.0 and y[_VN] > 0.0):  # exit (a switch can fall on it)
             break
-        name = c.events(phase, not turned)[hit].__name__
+        name = c.events(phase)[hit].__name__
         if name == "force_zero":
-            turned = True  # F_n stays below zero from here to the exit
+            c.turned = True  # F_n stays below zero from here to the exit
             if c.tensile:
-                s = y[_A].copy() if phase == "slip" else None
-                if s is not None:
-                    y[_A] = 0.0  # on the cap, which is zero here
-                phase = c.start(y, cap_rising=True, direction=s)
+                y[_A] = 0.0 * y[_A] if phase != "stick" else y[_A]  # a slide's cap is zero here
+                phase = c.start(y, cap_rising=True)
             else:
                 phase = "free"
+        elif name == "cap_gone":
+            phase = "coast"
+            y[_A] = 0.0
         elif name == "to_slip":
             phase = "slip"
-            y[_A] = _direction(y[_A], y[_V] + y[_W])
         elif name == "to_stick":
-            cap, _ = c.cap(y)
             phase = "stick"
-            y[_A] = cap * y[_A]
         regimes.append((t, phase))
     else:
         raise RuntimeError(f"oracle: more than {MAX_SWITCHES} regime switches (chattering)")

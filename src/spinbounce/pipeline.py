@@ -21,7 +21,7 @@ import numpy as np
 import pandas as pd
 
 from . import __version__, theory
-from .compare import STATE, collision_table, frozen_table
+from .compare import collision_table, frozen_table
 from .decks import DUMP_NAME, INLINE_SPHERES, Deck, render_collision, render_frozen, wall_parameters
 from .dumps import read_dump
 from .runner import RunInfo, run_deck
@@ -200,7 +200,7 @@ class CollisionResult:
 
     @property
     def max_abs_error(self) -> float:
-        return float(np.max(np.abs(self.table[[f"{s}_error" for s in STATE]].to_numpy())))
+        return float(np.max(np.abs(self.table[[f"{s}_error" for s in self.scene.state_names]].to_numpy())))
 
 
 def run_collision(scene: Collision, out_dir: Path, atoms: str | None = None, record: bool = True,
@@ -233,8 +233,9 @@ def run_collision(scene: Collision, out_dir: Path, atoms: str | None = None, rec
             "the contact had not finished"
         )
     notes = []
-    e0 = theory.energy(np.column_stack([columns[f"{s}_0"] for s in STATE]), m.m, m.alpha)
-    e1 = theory.energy(np.column_stack([columns[f"{s}_final"] for s in STATE]), m.m, m.alpha)
+    names = scene.state_names
+    e0 = theory.energy(np.column_stack([columns[f"{s}_0"] for s in names]), m.m, m.alpha)
+    e1 = theory.energy(np.column_stack([columns[f"{s}_final"] for s in names]), m.m, m.alpha)
     columns["energy_gain"] = (e1 - e0) / e0
     gain = float(np.max(columns["energy_gain"]))
     if gain > ENERGY_GAIN_TOLERANCE:

@@ -32,6 +32,9 @@ __all__ = [
     "COLLISION_STEPS_PER_HALF_PERIOD",
     "FROZEN_STEPS_PER_HALF_PERIOD",
     "MIN_STEPS_PER_HALF_PERIOD",
+    "STATE",
+    "STATE_3D",
+    "STATE_ARGS",
 ]
 
 #: Default resolution of a collision: steps per half-period of the fastest contact mode,
@@ -44,6 +47,12 @@ COLLISION_STEPS_PER_HALF_PERIOD = 250
 FROZEN_STEPS_PER_HALF_PERIOD = 1000
 #: Below this many steps per half-period a result is a caricature: warn.
 MIN_STEPS_PER_HALF_PERIOD = 20
+#: State columns, in order: the paper's plane, and in 3-D the second tangential pair and
+#: the spin about the normal (each spin times r, with the sign that makes slip = v + r omega).
+STATE = ("vn", "vt", "r_omega")
+STATE_3D = STATE + ("vs", "r_omega_s", "r_omega_n")
+#: Collision's per-sphere arguments, in the order of STATE_3D.
+STATE_ARGS = ("v_n", "v_t", "omega", "v_s", "omega_s", "omega_n")
 #: Above alpha = 2/3 part of the mass would sit outside the sphere (Section 3).
 ALPHA_SHELL = 2.0 / 3.0
 
@@ -172,6 +181,10 @@ class ContactModel:
         """The scattering matrix this model predicts (Eq. 18, exact damped Omega)."""
         return theory.scattering_matrix(self.alpha, self.Omega, self.restitution)
 
+    def block_matrix(self) -> np.ndarray:
+        """The 6x6 map of 3-D states (:data:`STATE_3D`)."""
+        return theory.block_matrix(self.alpha, self.Omega, self.restitution)
+
     # -- numerics --------------------------------------------------------------------
     def modes(self, frozen: bool) -> dict[str, tuple[float, float]]:
         """The linear contact modes a scene integrates: name -> (w, c) of x'' + c x' + w^2 x = 0."""
@@ -236,6 +249,11 @@ class Collision:
 
     ``v_n``, ``v_t`` and ``omega`` are numbers or equal-length sequences (one entry per
     sphere). ``omega`` is the angular velocity, positive anticlockwise (the paper's sign).
+
+    In 3-D, ``v_s`` is the second tangential component (LAMMPS's y), ``omega_s`` the spin
+    that rolls the sphere along it (LAMMPS's omega_x: that slip is v_s + r omega_s, the same
+    form as the paper's) and ``omega_n`` the spin about the wall's normal (omega_z). A scene
+    with any of them non-zero is 3-D: its states have six columns (:data:`STATE_3D`).
     ``dt = None`` picks ``tau/(N + 1/2)`` with N = COLLISION_STEPS_PER_HALF_PERIOD scaled by
     the fastest contact mode: the half step puts the end of the contact in the middle of
     a step, where the error made by cutting the tangential force off cancels to
@@ -247,18 +265,20 @@ class Collision:
     v_t: tuple[float, ...] = (1.0,)
     omega: tuple[float, ...] = (0.0,)
     dt: float | None = None
+    v_s: tuple[float, ...] = (0.0,)
+    omega_s: tuple[float, ...] = (0.0,)
+    omega_n: tuple[float, ...] = (0.0,)
 
     def __post_init__(self):
         set_ = object.__setattr__
-        vn, vt, om = (_as_vector(n, getattr(self, n)) for n in ("v_n", "v_t", "omega"))
-        sizes = {len(vn), len(vt), len(om)}
+        columns = [_as_vector(name, getattr(self, name)) for name in STATE_ARGS]
+        sizes = {len(c) for c in columns}
         if len(sizes - {1}) > 1:
-            raise SceneError("v_n/v_t/omega", (len(vn), len(vt), len(om)), "lengths must match")
+            raise SceneError("/".join(STATE_ARGS), tuple(len(c) for c in columns), "lengths must match")
         n = max(sizes)
-        vn, vt, om = (v * n if len(v) == 1 else v for v in (vn, vt, om))
-        set_(self, "v_n", vn)
-        set_(self, "v_t", vt)
-        set_(self, "omega", om)
+        for name, values in zip(STATE_ARGS, columns, strict=True):
+            set_(self, name, values * n if len(values) == 1 else values)
+        vn = self.v_n
         m = self.model
         away = np.flatnonzero(np.asarray(vn) >= 0.0)
         if away.size:
@@ -300,9 +320,22 @@ class Collision:
         return len(self.v_n)
 
     @property
+    def is_3d(self) -> bool:
+        """Whether any sphere moves or spins out of the paper's plane."""
+        return any(any(getattr(self, name)) for name in STATE_ARGS[3:])
+
+    @property
+    def state_names(self) -> tuple[str, ...]:
+        return STATE_3D if self.is_3d else STATE
+
+    @property
     def initial(self) -> np.ndarray:
-        """(n, 3) initial states (v_n, v_t, r omega)."""
-        return np.column_stack([self.v_n, self.v_t, np.array(self.omega) * self.model.r])
+        """(n, 3) initial states (v_n, v_t, r omega); (n, 6) in 3-D (:data:`STATE_3D`)."""
+        r = self.model.r
+        columns = [self.v_n, self.v_t, np.array(self.omega) * r]
+        if self.is_3d:
+            columns += [self.v_s, np.array(self.omega_s) * r, np.array(self.omega_n) * r]
+        return np.column_stack(columns)
 
     @property
     def nsteps(self) -> int:
@@ -310,13 +343,17 @@ class Collision:
         return math.floor(self.model.t_exit / self.dt) + 2
 
     def predicted(self) -> np.ndarray:
-        """(n, 3) final states from the theory: the scattering matrix (Eq. 18, exact damped
-        Omega), or with a finite mu the Coulomb oracle (:mod:`oracle`), sphere by sphere."""
+        """Final states from the theory, shaped like :attr:`initial`: the scattering matrix
+        (Eq. 18 with the exact damped Omega; its 6x6 block form in 3-D), or with a finite mu
+        the Coulomb oracle (:mod:`oracle`), sphere by sphere."""
+        k = len(self.state_names)
         if self.model.mu is not None:
             from . import oracle
 
-            return oracle.bounce_many(self.model, self.v_n, self.v_t, self.omega)[:, :3]
-        return self.initial @ self.model.matrix().T
+            return oracle.bounce_many(self.model, self.v_n, self.v_t, self.omega,
+                                      self.v_s, self.omega_s, self.omega_n)[:, :k]
+        matrix = self.model.block_matrix() if k == 6 else self.model.matrix()
+        return self.initial @ matrix.T
 
 
 @dataclass(frozen=True)

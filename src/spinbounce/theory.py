@@ -30,6 +30,7 @@ __all__ = [
     "Omega_paper_damped",
     "Omega_exact",
     "scattering_matrix",
+    "block_matrix",
     "rough_matrix",
     "rolling_matrix",
     "magic_kt_over_kn",
@@ -267,6 +268,22 @@ def scattering_matrix(alpha: float, Omega: float, e: float = 1.0) -> np.ndarray:
     )
 
 
+def block_matrix(alpha: float, Omega: float, e: float = 1.0) -> np.ndarray:
+    """The 6x6 map of a 3-D collision, states (v_n, v_t, r omega, v_s, r omega_s, r omega_n).
+
+    Without a Coulomb cap the tangential spring acts on each tangential direction alone,
+    so the second pair (v_s, r omega_s), whose slip is v_s + r omega_s, scatters by the same
+    2x2 block as (v_t, r omega); the spin about the normal moves no contact point and so
+    passes through unchanged. ``scattering_matrix`` is the top-left 3x3 block.
+    """
+    m3 = scattering_matrix(alpha, Omega, e)
+    out = np.zeros((6, 6))
+    out[:3, :3] = m3
+    out[3:5, 3:5] = m3[1:, 1:]
+    out[5, 5] = 1.0
+    return out
+
+
 def rough_matrix(alpha: float) -> np.ndarray:
     """Eq. 20: the energy-conserving rough sphere, Eq. 18 with Omega = -2."""
     return scattering_matrix(alpha, -2.0)
@@ -287,9 +304,11 @@ def magic_kt_over_kn(alpha: float) -> float:
 # ---------------------------------------------------------------------------
 
 def energy(state, m: float, alpha: float):
-    """Kinetic energy of states (..., 3) ordered (v_n, v_t, r omega): I omega^2/2 = alpha m (r omega)^2/2."""
+    """Kinetic energy of states (..., 3) ordered (v_n, v_t, r omega), or (..., 6) with
+    (v_s, r omega_s, r omega_n) after them: I omega^2/2 = alpha m (r omega)^2/2 per axis."""
     s = np.asarray(state, dtype=float)
-    return 0.5 * m * (s[..., 0] ** 2 + s[..., 1] ** 2 + alpha * s[..., 2] ** 2)
+    moving, spinning = ((0, 1), (2,)) if s.shape[-1] == 3 else ((0, 1, 3), (2, 4, 5))
+    return 0.5 * m * (sum(s[..., k] ** 2 for k in moving) + alpha * sum(s[..., k] ** 2 for k in spinning))
 
 
 def energy_change(initial, final, m: float, alpha: float):
