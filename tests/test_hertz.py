@@ -274,3 +274,46 @@ def test_frozen_hertz_contact_is_eq10(tmp_path):
     result = run_frozen(Frozen(ContactModel(normal="hertz", kn=KN, kt=20.0), z=0.45, v_t=1.0, t_end=2.0), tmp_path)
     assert result.max_abs_error < 1e-5
     assert result.table["vt"].min() < 0.5  # it oscillates
+
+
+# ---------------------------------------------------------------------------
+# The measurement behind `spinbounce hertz`
+# ---------------------------------------------------------------------------
+
+def test_hertz_command_refuses_a_tunnelling_grid_before_lammps(tmp_path, capsys):
+    """kn = 10, r = 0.5 tunnels above |v_n| = 1: the default grid up to 1.5 must not start."""
+    from spinbounce.cli import main
+
+    with pytest.raises(SystemExit) as info:
+        main(["hertz", "--kn", "10", "--out", str(tmp_path)])
+    assert info.value.code == 2
+    assert "v_n = -1.5" in capsys.readouterr().err
+    assert not (tmp_path / "runs").exists() and not (tmp_path / "hertz.json").exists()
+    with pytest.raises(SystemExit):
+        main(["hertz", "--points", "1", "--out", str(tmp_path)])
+    assert "points = 1" in capsys.readouterr().err
+
+
+@pytest.mark.lammps
+def test_measured_energy_conserving_kt_matches_the_closed_form(tmp_path):
+    from spinbounce.figures.hertz import HertzParameters, hertz_data
+
+    params = HertzParameters(points=3)  # |v_n| = 0.05, 0.274, 1.5; v_ref = 0.5
+    data = hertz_data(params, tmp_path, log=lambda line: None)
+    t, fixed = data.tables["speeds"], data.tables["fixed"]
+    np.testing.assert_allclose(t["v_n"], [0.05, math.sqrt(0.05 * 1.5), 1.5], rtol=1e-12)
+    # the contact ends inside a step: tau_L is off by dt/2 at most and kt*_L by dt/tau
+    # (2e-5 here; 7e-6 measured). 1.05: room for second-order terms, as above
+    assert (t["relative_deviation"].abs() <= 1.05 * t["bound_dt_over_tau"]).all()
+    assert t["bound_dt_over_tau"].max() < 1e-4
+    # so the slope over a factor 30 in speed is 2/5 within 2 * 2e-5 / ln(30) ~ 1.2e-5
+    assert data.metadata["slope_lammps"] == pytest.approx(0.4, abs=2e-5)
+    # at its own kt*, a collision keeps its energy: f is quadratic in the slip's phase error,
+    # ~(pi dt/tau)^2 ~ 4e-9 at most (5e-11 measured); the loss elsewhere is 3e-2 to 0.27
+    assert t["f_at_kt_star_lammps"].abs().max() < 1e-6
+    # one kt for every speed: energy lost except at v_ref. LAMMPS's f against the theory's:
+    # the velocities are within pi/(2N) |u'(0)| = 2.5e-5, so f within 5e-5; 1e-4 allowed
+    assert (fixed["f_lammps"] - fixed["f_theory"]).abs().max() < 1e-4
+    at_ref = np.isclose(fixed["v_n"], params.v_ref)
+    assert abs(float(fixed["f_lammps"][at_ref].iloc[0])) < 1e-6
+    assert (fixed["f_lammps"][~at_ref] > 0.01).all()
