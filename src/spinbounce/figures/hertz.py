@@ -257,7 +257,7 @@ def hertz_markdown(meta: dict) -> str:
         "|---|---|---|---|",
     ]
     for r in meta["fixed_kt"]:
-        out.append(f"| {r['v_n']:.4g} | {r['f_theory']:.6f} | {r['f_lammps']:.6f} | {r['f_lammps'] - r['f_theory']:+.1e} |")
+        out.append(f"| {r['v_n']:.4g} | {r['f_theory'] + 0.0:.6g} | {r['f_lammps']:.6g} | {r['f_lammps'] - r['f_theory']:+.1e} |")
     out += ["", f"Largest |deviation| {meta['max_abs_f_fixed_deviation']:.1e}.", ""]
     return "\n".join(out)
 
