@@ -115,7 +115,7 @@ class Deck:
 
 
 def wall_parameters(model: ContactModel) -> dict:
-    """Arguments of ``wall/gran granular hooke ... tangential linear_history ...``.
+    """Arguments of ``wall/gran granular hooke|hertz ... tangential linear_history ...``.
 
     LAMMPS's granular form gives the normal damping force -ETA_N v_n (``damping
     velocity``) and the tangential one -(X_T ETA_N) u_dot.
@@ -259,7 +259,9 @@ def render_collision(scene: Collision, atoms: str | None = None) -> Deck:
     if rigid and atoms != "inline":
         files[BODIES_FILE] = _bodies_file(scene, state)
     library = atoms == "library"
-    ctx.update(n=scene.n, spheres=spheres, tau=model.tau, dt=scene.dt, nsteps=scene.nsteps,
+    # the header's run length: Hertzian contacts end at different times, the slowest last
+    tau = float(np.max(model.contact_times(scene.v_n))) if model.normal == "hertz" else model.tau
+    ctx.update(n=scene.n, spheres=spheres, tau=tau, dt=scene.dt, nsteps=scene.nsteps,
                atoms=atoms, library_marker=LIBRARY_MARKER, data_file=DATA_FILE)
     text = _environment().get_template("collision.lmp.j2").render(**ctx)
     return Deck(text=text, rigid=rigid, files=files, dump=None if library else DUMP_NAME,

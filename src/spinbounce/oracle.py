@@ -10,8 +10,9 @@ under ``limit_damping``), restarting the integration there so no step straddles 
 The model is the continuous-time limit of LAMMPS's ``granular hooke ... tangential
 linear_history`` wall contact, written in the paper's variables and in 3-D:
 
-* normal: overlap delta = r - z, F_n = kn delta + gamma_n delta' (tensile allowed, or cut
-  at zero with ``limit_damping``), m v_n' = F_n;
+* normal: overlap delta = r - z, F_n = kn delta + gamma_n delta' (or kn sqrt(r) delta^(3/2)
+  + gamma_n delta' with ``normal = "hertz"``; tensile allowed, or cut at zero with
+  ``limit_damping``), m v_n' = F_n;
 * tangential, a 2-vector per quantity (directions t and s): velocity v, r*omega with the
   paper's sign (so the slip rate is u' = v + r*omega in each direction, see
   :mod:`scenes`), and the elastic 'trial force' A = kt xi + gamma_t u' of the history xi;
@@ -87,6 +88,7 @@ class _Contact:
         self.kn, self.kt = model.kn, model.kt
         self.gn, self.gt, self.mu = model.gamma_n, model.gamma_t, model.mu
         self.tensile = not model.limit_damping
+        self.hertz = model.normal == "hertz"
         self.slip_mass = (1.0 + 1.0 / self.alpha) / self.m  # u'' = slip_mass * F_t
         self.floor = 0.0  # set per collision (bounce)
         self.turned = False  # whether F_n has passed through zero on the way out
@@ -96,9 +98,15 @@ class _Contact:
         delta, rate = y[_D], -y[_VN]
         if delta < 0.0:  # past the exit: keeps event functions from turning back
             return 0.0, 0.0
-        f = self.kn * delta + self.gn * rate
+        if self.hertz:  # F = kn sqrt(r) delta^(3/2): LAMMPS's hertz wall
+            root = math.sqrt(self.r * delta)
+            f = self.kn * root * delta + self.gn * rate
+            stiffness = 1.5 * self.kn * root
+        else:
+            f = self.kn * delta + self.gn * rate
+            stiffness = self.kn
         accel = -f / self.m  # delta'' = -v_n'
-        return f, self.kn * rate + self.gn * accel
+        return f, stiffness * rate + self.gn * accel
 
     def cap(self, y) -> tuple[float, float]:
         """(mu |F_n|, its rate), after limit_damping's cut.
@@ -222,9 +230,10 @@ def bounce(model: ContactModel, v_n: float, v_t: float = 0.0, omega: float = 0.0
     if not v_n < 0.0:
         raise ValueError(f"v_n = {v_n!r}: must be < 0 (towards the wall)")
     c = _Contact(model)
-    # a slide whose cap has shrunk below 1e-12 of its largest value coasts to the exit or
-    # to the tensile turn with no tangential force; the friction left out is below that
-    c.floor = 1e-12 * (model.mu * abs(v_n) * math.sqrt(model.m * model.kn) or 1.0)
+    tau = float(model.contact_times(v_n)[0])
+    # a slide whose cap has shrunk below 1e-12 of its typical value (mu m |v_n| / tau)
+    # coasts to the exit or to the tensile turn with no tangential force
+    c.floor = 1e-12 * (model.mu * model.m * abs(v_n) / tau or 1.0)
     r = model.r
     y = np.zeros(8)
     y[_VN] = v_n
@@ -238,7 +247,6 @@ def bounce(model: ContactModel, v_n: float, v_t: float = 0.0, omega: float = 0.0
     regimes = [(0.0, phase)]
     nfev = 0
     # a generous horizon: the contact must end well within it (checked below)
-    tau = math.pi * math.sqrt(model.m / model.kn)
     horizon = 50.0 * tau + 10.0
     for _ in range(MAX_SWITCHES):
         sol = solve_ivp(c.rhs(phase), (t, horizon), y, method=METHOD, rtol=RTOL, atol=ATOL,

@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from . import __version__, theory
+from . import __version__, hertz, theory
 from .compare import collision_table, frozen_table
 from .decks import DUMP_NAME, INLINE_SPHERES, Deck, render_collision, render_frozen, wall_parameters
 from .dumps import read_dump
@@ -252,8 +252,13 @@ def run_collision(scene: Collision, out_dir: Path, atoms: str | None = None, rec
     dump_path = None if deck.dump is None else deck_path.parent / deck.dump
     result = CollisionResult(scene, table, info, dump_path, tuple(notes))
     if record:
+        if m.normal == "hertz":  # per sphere: the contact time and Omega depend on v_n
+            tau = m.contact_times(scene.v_n).tolist()
+            omega = np.atleast_1d(hertz.Omega(scene.v_n, m.m, m.kn, m.r, m.kt, m.alpha, m.gamma_t)).tolist()
+        else:
+            tau, omega = m.tau, m.Omega
         parameters = {"model": _model_dict(m), "dt": scene.dt, "nsteps": scene.nsteps,
-                      "tau": m.tau, "Omega": m.Omega, "wall": wall_parameters(m),
+                      "tau": tau, "Omega": omega, "wall": wall_parameters(m),
                       "integrator": "rigid" if deck.rigid else "nve/sphere",
                       "atoms": "library" if deck.atoms is not None else ("data_file" if deck.files else "inline")}
         out = provenance(info, "collision", parameters)

@@ -10,6 +10,9 @@ Two scenes:
   (v_n, v_t, omega) and run until they have left it; checked against Eq. 18.
 * :class:`Frozen`: one sphere held at a fixed height z < r, so v_n = 0 and only the
   slip evolves; checked against Eq. 10 (or its exact damped form).
+
+The normal force is the paper's Hookean spring or, with ``normal="hertz"``, LAMMPS's
+Hertzian one (theory in :mod:`spinbounce.hertz`), whose contact time depends on v_n.
 """
 
 from __future__ import annotations
@@ -20,17 +23,19 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import theory
+from . import hertz, theory
 from .stability import stability_limit
 
 __all__ = [
     "SceneError",
     "PhysicsWarning",
     "ContactModel",
+    "NORMAL_LAWS",
     "Collision",
     "Frozen",
     "COLLISION_STEPS_PER_HALF_PERIOD",
     "FROZEN_STEPS_PER_HALF_PERIOD",
+    "HERTZ_STEPS_PER_HALF_PERIOD",
     "MIN_STEPS_PER_HALF_PERIOD",
     "STATE",
     "STATE_3D",
@@ -45,6 +50,16 @@ COLLISION_STEPS_PER_HALF_PERIOD = 250
 #: Default resolution of a frozen contact. There is no contact end to align; velocity
 #: Verlet's phase error grows with time, 5e-6 after 10 time units at this resolution.
 FROZEN_STEPS_PER_HALF_PERIOD = 1000
+#: Default resolution of a Hertzian collision: steps per half-period of the fastest mode.
+#: Each sphere's contact ends at its own time, so no one dt puts every end mid-step and the
+#: error is first order: cutting the tangential force off somewhere inside the last step
+#: moves the final slip rate by at most sqrt(Q) dt |u'(0)|/2 (measured: 0.498 of
+#: sqrt(Q) dt |u'(0)| at most, over 800 spheres). Since sqrt(Q) dt <= pi/N, N = 64000
+#: keeps the error below pi/(2N) |u'(0)| <= 1e-4 for |v_t|, |r omega| <= 2, any alpha.
+HERTZ_STEPS_PER_HALF_PERIOD = 64000
+#: Normal force laws: LAMMPS's granular ``hooke`` (F = kn delta, the paper's) and ``hertz``
+#: (F = kn sqrt(r) delta^(3/2) against a flat wall).
+NORMAL_LAWS = ("hooke", "hertz")
 #: Below this many steps per half-period a result is a caricature: warn.
 MIN_STEPS_PER_HALF_PERIOD = 20
 #: State columns, in order: the paper's plane, and in 3-D the second tangential pair and
@@ -100,6 +115,8 @@ class ContactModel:
     """The sphere and its wall contact (Eq. 1), in LAMMPS lj units.
 
     ``mu = None`` is the paper's model: no Coulomb limit on the tangential force.
+    ``normal = "hertz"`` replaces the Hookean normal spring by F = kn sqrt(r) delta^(3/2)
+    (kn in force/length^2, LAMMPS's K); its v_n-dependent theory is in :mod:`spinbounce.hertz`.
     """
 
     m: float = 1.0
@@ -113,9 +130,13 @@ class ContactModel:
     #: LAMMPS's ``limit_damping``: the normal force never pulls (it is cut at zero, and
     #: the tangential force with it, since |F_t| <= mu |F_n|). Default: tensile allowed.
     limit_damping: bool = False
+    #: The normal force law, one of NORMAL_LAWS.
+    normal: str = "hooke"
 
     def __post_init__(self):
         set_ = object.__setattr__
+        if self.normal not in NORMAL_LAWS:
+            raise SceneError("normal", self.normal, f"must be one of {', '.join(NORMAL_LAWS)}")
         if not isinstance(self.limit_damping, bool):
             raise SceneError("limit_damping", self.limit_damping, "must be true or false")
         for name in ("m", "r", "kn"):
@@ -135,6 +156,13 @@ class ContactModel:
         set_(self, "alpha", alpha)
         if self.mu is not None:
             set_(self, "mu", _non_negative("mu", self.mu))
+        if self.normal == "hertz" and self.gamma_n > 0.0:
+            raise SceneError(
+                "gamma_n",
+                self.gamma_n,
+                "must be 0 with normal = 'hertz': there is no exact theory here of the damped "
+                "Hertzian contact to check it against",
+            )
         critical = 2.0 * math.sqrt(self.m * self.kn)
         if self.gamma_n >= critical:
             raise SceneError(
@@ -149,14 +177,21 @@ class ContactModel:
     def inertia(self) -> float:
         return self.alpha * self.m * self.r**2
 
+    def _hooke_only(self, what: str) -> None:
+        if self.normal != "hooke":
+            raise SceneError("normal", self.normal, f"has no single {what}: it depends on v_n "
+                             "(per-sphere values: Collision.predicted(), spinbounce.hertz)")
+
     @property
     def tau(self) -> float:
         """Contact time, Eq. 16 (damped form when gamma_n > 0): how long the force acts."""
+        self._hooke_only("contact time tau")
         return theory.collision_time(self.m, self.kn, self.gamma_n, not self.limit_damping)
 
     @property
     def t_exit(self) -> float:
         """When the sphere is out of the overlap (later than tau with limit_damping)."""
+        self._hooke_only("exit time")
         return theory.exit_time(self.m, self.kn, self.gamma_n, not self.limit_damping)
 
     @property
@@ -170,11 +205,13 @@ class ContactModel:
     @property
     def Omega(self) -> float:
         """Exact Omega (Eq. 18's when undamped)."""
+        self._hooke_only("Omega")
         return theory.Omega_exact(self.m, self.kn, self.kt, self.alpha, self.gamma_t, self.gamma_n,
                                   not self.limit_damping)
 
     @property
     def restitution(self) -> float:
+        self._hooke_only("restitution")
         return theory.restitution(self.m, self.kn, self.gamma_n, not self.limit_damping)
 
     def matrix(self) -> np.ndarray:
@@ -185,31 +222,54 @@ class ContactModel:
         """The 6x6 map of 3-D states (:data:`STATE_3D`)."""
         return theory.block_matrix(self.alpha, self.Omega, self.restitution)
 
+    def contact_times(self, v_n) -> np.ndarray:
+        """Each sphere's time until it is out of the overlap (Hertz: tau(v_n); Hooke: t_exit)."""
+        v = np.atleast_1d(np.asarray(v_n, dtype=float))
+        if self.normal == "hertz":
+            return hertz.contact_time(v, self.m, self.kn, self.r)
+        return np.full(v.shape, self.t_exit)
+
+    def matrices(self, v_n) -> np.ndarray:
+        """(n, 3, 3): each sphere's scattering matrix (Hooke: the one matrix, repeated)."""
+        v = np.atleast_1d(np.asarray(v_n, dtype=float))
+        if self.normal == "hertz":
+            return hertz.scattering_matrices(v, self.m, self.kn, self.r, self.kt, self.alpha, self.gamma_t)
+        return np.broadcast_to(self.matrix(), (v.size, 3, 3))
+
     # -- numerics --------------------------------------------------------------------
-    def modes(self, frozen: bool) -> dict[str, tuple[float, float]]:
-        """The linear contact modes a scene integrates: name -> (w, c) of x'' + c x' + w^2 x = 0."""
+    def modes(self, frozen: bool, speed: float | None = None) -> dict[str, tuple[float, float]]:
+        """The linear contact modes a scene integrates: name -> (w, c) of x'' + c x' + w^2 x = 0.
+
+        The Hertzian normal mode is nonlinear; it is represented by its stiffest point, the
+        largest overlap of the fastest sphere, whose |v_n| is ``speed``.
+        """
         out = {"slip": (math.sqrt(self.Q), 2.0 * self.zeta)}
         if not frozen:
-            out["normal"] = (math.sqrt(self.kn / self.m), self.gamma_n / self.m)
+            if self.normal == "hertz":
+                if speed is None:
+                    raise ValueError("a Hertzian collision's normal mode needs the fastest |v_n| (speed)")
+                out["normal"] = (float(hertz.normal_frequency(speed, self.m, self.kn, self.r)), 0.0)
+            else:
+                out["normal"] = (math.sqrt(self.kn / self.m), self.gamma_n / self.m)
         return out
 
-    def fastest_rate(self, frozen: bool) -> float:
+    def fastest_rate(self, frozen: bool, speed: float | None = None) -> float:
         """Largest rate (1/time) among the integrated modes: frequency or fast decay rate."""
         rates = []
-        for w, c in self.modes(frozen).values():
+        for w, c in self.modes(frozen, speed).values():
             half = 0.5 * c
             rates.append(w if half < w else half + math.sqrt(half * half - w * w))
         return max(rates)
 
-    def dt_limit(self, frozen: bool) -> tuple[float, str]:
+    def dt_limit(self, frozen: bool, speed: float | None = None) -> tuple[float, str]:
         """Stability limit of LAMMPS's step and the mode that sets it."""
-        limits = {name: stability_limit(w, c) for name, (w, c) in self.modes(frozen).items()}
+        limits = {name: stability_limit(w, c) for name, (w, c) in self.modes(frozen, speed).items()}
         name = min(limits, key=limits.get)
         return limits[name], name
 
-    def check_dt(self, dt, frozen: bool) -> float:
+    def check_dt(self, dt, frozen: bool, speed: float | None = None) -> float:
         dt = _positive("dt", dt)
-        limit, mode = self.dt_limit(frozen)
+        limit, mode = self.dt_limit(frozen, speed)
         if dt >= limit:
             raise SceneError(
                 "dt",
@@ -217,7 +277,7 @@ class ContactModel:
                 f"must be below the stability limit {limit:.6g} of the {mode} mode "
                 "(LAMMPS's velocity-Verlet step diverges above it)",
             )
-        rate = self.fastest_rate(frozen)
+        rate = self.fastest_rate(frozen, speed)
         steps = math.pi / rate / dt if rate > 0.0 else math.inf
         if steps < MIN_STEPS_PER_HALF_PERIOD:
             warnings.warn(
@@ -241,6 +301,39 @@ def _as_vector(name: str, value) -> tuple[float, ...]:
         i = int(bad[0])
         raise SceneError(f"{name}[{i}]" if arr.size > 1 else name, float(arr[i]), "must be finite")
     return tuple((arr + 0.0).tolist())
+
+
+def _hertz_collision_dt(scene: "Collision") -> float:
+    """Tunnelling and step checks of a Hertzian collision; returns its (checked) dt.
+
+    Only the fastest sphere matters: its overlap is the deepest and the wall stiffest there.
+    """
+    m = scene.model
+    fastest = max(scene.v_n, key=abs)
+    speed = abs(fastest)
+    reach = float(hertz.max_overlap(speed, m.m, m.kn, m.r))
+    if reach >= m.r:
+        raise SceneError(
+            "v_n", fastest,
+            f"|v_n| must be below {hertz.tunnelling_speed(m.m, m.kn, m.r):.6g} for the Hertzian wall: "
+            f"the overlap would reach {reach:.6g} >= r = {m.r:g}, the centre would cross the wall "
+            "and the sphere tunnel through it",
+        )
+    dt = m.check_dt(scene.default_dt() if scene.dt is None else scene.dt, frozen=False, speed=speed)
+    # For a linear spring, LAMMPS's step stretches the largest overlap by 1/sqrt(1 - (w dt/2)^2).
+    # Taking w at the Hertzian wall's stiffest point bounds its stretch: to leading order the
+    # step's modified energy gives 1 + (w dt)^2/36 for the Hertzian wall, against 1 + (w dt)^2/8
+    # (tests/test_hertz.py replays the step to check the bound).
+    half_step = 0.5 * float(hertz.normal_frequency(speed, m.m, m.kn, m.r)) * dt
+    stretch = 1.0 / math.sqrt(1.0 - half_step**2) if half_step < 1.0 else math.inf
+    if reach * stretch >= m.r:
+        raise SceneError(
+            "v_n", fastest,
+            f"at dt = {dt:.6g} the step may stretch the Hertzian overlap to {reach * stretch:.6g} >= "
+            f"r = {m.r:g} (exact: {reach:.6g}): the sphere could tunnel through the wall; use a "
+            "smaller dt or a slower |v_n|",
+        )
+    return dt
 
 
 @dataclass(frozen=True)
@@ -284,6 +377,9 @@ class Collision:
         if away.size:
             i = int(away[0])
             raise SceneError(f"v_n[{i}]" if n > 1 else "v_n", vn[i], "must be < 0 (towards the wall)")
+        if m.normal == "hertz":  # the contact depends on v_n: checks and step of its own
+            set_(self, "dt", _hertz_collision_dt(self))
+            return
         reach = float(np.max(theory.max_overlap(np.array(vn), m.m, m.kn, m.gamma_n)))
         if reach >= m.r:
             fastest = max(vn, key=abs)
@@ -312,6 +408,9 @@ class Collision:
 
     def default_dt(self) -> float:
         m = self.model
+        if m.normal == "hertz":  # first order: no mid-step alignment (see HERTZ_STEPS_PER_HALF_PERIOD)
+            speed = max(abs(v) for v in self.v_n)
+            return math.pi / m.fastest_rate(frozen=False, speed=speed) / HERTZ_STEPS_PER_HALF_PERIOD
         per_tau = COLLISION_STEPS_PER_HALF_PERIOD * m.fastest_rate(frozen=False) * m.tau / math.pi
         return m.tau / (math.ceil(per_tau - 1e-9) + 0.5)
 
@@ -340,18 +439,26 @@ class Collision:
     @property
     def nsteps(self) -> int:
         """Steps that end the contact: the step after tau, and one more for rounding."""
+        if self.model.normal == "hertz":  # the slowest sphere's contact is the longest
+            return math.floor(float(np.max(self.model.contact_times(self.v_n))) / self.dt) + 2
         return math.floor(self.model.t_exit / self.dt) + 2
 
     def predicted(self) -> np.ndarray:
         """Final states from the theory, shaped like :attr:`initial`: the scattering matrix
-        (Eq. 18 with the exact damped Omega; its 6x6 block form in 3-D), or with a finite mu
-        the Coulomb oracle (:mod:`oracle`), sphere by sphere."""
+        (Eq. 18 with the exact damped Omega; its 6x6 block form in 3-D; one per sphere for a
+        Hertzian wall, whose Omega depends on v_n), or with a finite mu the Coulomb oracle
+        (:mod:`oracle`), sphere by sphere."""
         k = len(self.state_names)
         if self.model.mu is not None:
             from . import oracle
 
             return oracle.bounce_many(self.model, self.v_n, self.v_t, self.omega,
                                       self.v_s, self.omega_s, self.omega_n)[:, :k]
+        if self.model.normal == "hertz":  # Omega differs from sphere to sphere
+            matrices = self.model.matrices(self.v_n)
+            if k == 6:
+                matrices = np.array([theory.block_from(m3) for m3 in matrices])
+            return np.einsum("nij,nj->ni", matrices, self.initial)
         matrix = self.model.block_matrix() if k == 6 else self.model.matrix()
         return self.initial @ matrix.T
 

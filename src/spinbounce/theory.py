@@ -31,6 +31,7 @@ __all__ = [
     "Omega_exact",
     "scattering_matrix",
     "block_matrix",
+    "block_from",
     "rough_matrix",
     "rolling_matrix",
     "magic_kt_over_kn",
@@ -276,7 +277,11 @@ def block_matrix(alpha: float, Omega: float, e: float = 1.0) -> np.ndarray:
     2x2 block as (v_t, r omega); the spin about the normal moves no contact point and so
     passes through unchanged. ``scattering_matrix`` is the top-left 3x3 block.
     """
-    m3 = scattering_matrix(alpha, Omega, e)
+    return block_from(scattering_matrix(alpha, Omega, e))
+
+
+def block_from(m3: np.ndarray) -> np.ndarray:
+    """The 6x6 block map built from a 3x3 one (see :func:`block_matrix`)."""
     out = np.zeros((6, 6))
     out[:3, :3] = m3
     out[3:5, 3:5] = m3[1:, 1:]

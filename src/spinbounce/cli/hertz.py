@@ -1,0 +1,61 @@
+"""spinbounce hertz: the energy-conserving kt of a Hertzian wall against v_n, measured in LAMMPS."""
+
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+
+from .options import json_flag
+
+HELP = "measure how the energy-conserving kt depends on v_n with a Hertzian normal force, and plot it"
+DEFAULT_OUT = Path("figures")
+
+
+def register(sub) -> None:
+    from ..figures.hertz import HertzParameters
+
+    d = HertzParameters()
+    p = sub.add_parser(
+        "hertz", help=HELP,
+        description=(f"{HELP}: for each |v_n| on a log grid, LAMMPS's kt* (from a run at kt*/4) against the "
+                     "closed form kt*/kn ~ |v_n|^(2/5), the energy lost at that kt*, and the energy lost at one "
+                     "kt for every speed. Writes hertz.png, hertz.pdf, hertz.json and HERTZ.md."),
+    )
+    p.add_argument("--out", type=Path, default=DEFAULT_OUT, metavar="DIR",
+                   help="folder for the figure, its JSON record and HERTZ.md (default: %(default)s)")
+    p.add_argument("--runs", type=Path, default=None, metavar="DIR",
+                   help="folder for the LAMMPS runs (default: OUT/runs/hertz)")
+    p.add_argument("--v-min", type=float, default=d.v_min, metavar="V", help="slowest |v_n| (default %(default)s)")
+    p.add_argument("--v-max", type=float, default=d.v_max, metavar="V", help="fastest |v_n| (default %(default)s)")
+    p.add_argument("--points", type=int, default=d.points, metavar="N",
+                   help="speeds on the log grid (default %(default)s)")
+    p.add_argument("--v-ref", type=float, default=d.v_ref, metavar="V",
+                   help="the speed at which the one-kt series conserves energy (default %(default)s)")
+    p.add_argument("--kn", type=float, default=d.kn,
+                   help="Hertzian stiffness K, F = K sqrt(r) delta^1.5 (default %(default)s)")
+    p.add_argument("--mass", type=float, default=d.m, metavar="M", help="sphere mass (default %(default)s)")
+    p.add_argument("--radius", type=float, default=d.r, metavar="R", help="sphere radius (default %(default)s)")
+    p.add_argument("--alpha", type=float, default=d.alpha, metavar="A", help="I/(m r^2) (default %(default)s)")
+    json_flag(p)
+    p.set_defaults(handler=run)
+
+
+def run(args) -> int:
+    from ..figures.hertz import HertzParameters, make_hertz
+
+    params = HertzParameters(v_min=args.v_min, v_max=args.v_max, points=args.points, v_ref=args.v_ref,
+                             m=args.mass, r=args.radius, alpha=args.alpha, kn=args.kn)
+    log = (lambda line: print(line, file=sys.stderr)) if args.json else print
+    record = make_hertz(args.out, params, runs=args.runs, log=log)
+    meta = record.metadata
+    summary = {key: meta[key] for key in ("max_relative_deviation", "slope_lammps", "max_abs_f_at_kt_star_lammps",
+                                          "max_abs_f_fixed_deviation", "lammps_version", "runtime_seconds")}
+    if args.json:
+        print(json.dumps({"out": str(args.out), "files": meta["files"], **summary}, indent=2))
+        return 0
+    print(f"largest relative deviation of kt* from the closed form: {summary['max_relative_deviation']:.2e}; "
+          f"slope {summary['slope_lammps']:.5f} (2/5); largest |f| at kt*: {summary['max_abs_f_at_kt_star_lammps']:.1e}")
+    print(f"wrote {record.png}, {record.pdf}, {record.json}, {Path(args.out) / 'HERTZ.md'} "
+          f"({summary['runtime_seconds']:.1f} s)")
+    return 0
