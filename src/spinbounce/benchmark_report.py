@@ -113,7 +113,8 @@ def markdown(runs: list[BenchmarkRun], meta: dict) -> str:
         "**Models.** Hookean normal and tangential springs with history, a Coulomb cap, normal damping set "
         "for the benchmark's restitution e with `limit_damping` (the normal force is never tensile, as in "
         "rigid-body theory: otherwise the cap mu |F_n| passes through zero at the tensile turn and sheds the "
-        "spring's load), no tangential damping, a solid sphere (alpha = 2/5). "
+        "spring's load), no tangential damping, a solid sphere (alpha = 2/5). chung-ooi-5 is undamped (e = 1): its normal "
+        "force is never tensile, and `limit_damping` is left off there. "
         "The rigid-body column is Walton's law with beta0 = 0 (the contact point stops when the Coulomb bound "
         "is not reached); it is exact for this model in gross sliding when e = 1, and approached with damping.",
         "",
@@ -126,7 +127,7 @@ def markdown(runs: list[BenchmarkRun], meta: dict) -> str:
     ]
     for run in runs:
         s = run.summary()
-        meas = "; ".join(f"{QUANTITIES[q]['label'].split('(')[0].strip()}: {v['max_abs_model_minus_measured']:.3g}"
+        meas = "; ".join(f"{q}: {v['max_abs_model_minus_measured']:.3g}"
                          f"{' ' + v['unit'] if v['unit'] else ''}" for q, v in s["measured"].items()) or "no data"
         lines.append(
             f"| {s['benchmark']} | {s['states']} | {s['refine']} | {s['max_dev_lammps_oracle_rel']:.2e} | "
