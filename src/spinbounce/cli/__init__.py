@@ -12,9 +12,10 @@ from ..pipeline import ResultError
 from ..runner import LammpsError
 from ..scenes import PhysicsWarning, SceneError
 from ..sweeps import SweepError
-from . import accuracy, bench, claims, collide, figures, fit, frozen, hertz, references, reproduce, sweep, theory
+from . import accuracy, bench, benchmarks, claims, collide, figures, fit, frozen, hertz, references, reproduce, sweep, theory
 
-COMMANDS = (theory, collide, frozen, sweep, fit, bench, accuracy, figures, hertz, claims, reproduce, references)
+COMMANDS = (theory, collide, frozen, sweep, fit, bench, accuracy, benchmarks, figures, hertz, claims, reproduce,
+            references)
 
 
 def build_parser() -> argparse.ArgumentParser:
