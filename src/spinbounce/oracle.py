@@ -21,7 +21,8 @@ linear_history`` wall contact, written in the paper's variables and in 3-D:
 * sliding (|A| = mu |F_n|): F_t = -mu |F_n| s with s the unit vector of A. LAMMPS rescales
   the history so that |A| stays on the cap (``linear_history``'s rescale); in continuous
   time the cap's radius follows mu |F_n| and s turns towards the slip velocity,
-  s' = kt u'_perp / (mu |F_n|), with u'_perp the part of u' across s. Sliding lasts while the sticking rate of A would carry it
+  s' = kt u'_perp / (mu |F_n|), with u'_perp the part of u' across s (zero in the plane;
+  in 3-D this rate is stiff near the contact's ends, and slides use scipy's Radau). Sliding lasts while the sticking rate of A would carry it
   beyond the cap: s . (kt u' + gamma_t u''_stick) > d(mu |F_n|)/dt.
 
 The cap mu |F_n| uses the magnitude of the total normal force, as LAMMPS does: a normal
@@ -140,13 +141,16 @@ class _Contact:
             if phase == "coast":
                 return dy
             u_rate = y[_V] + y[_W]
-            force = -y[_A]
             if phase == "stick":
+                force = -y[_A]
                 dy[_A] = kt * u_rate + gt * self.slip_mass * force
-            else:  # slip: A rides on the cap; written for A, every rate stays bounded
-                _, dc = self.cap(y)
-                s = _direction(y[_A], u_rate, 1e-3 * self.floor)
-                dy[_A] = kt * (u_rate - np.dot(u_rate, s) * s) + dc * s
+            else:  # slip: y[_A] holds the unit direction s of A, which rides on the cap
+                c, _ = self.cap(y)
+                s = y[_A]
+                force = -c * s
+                # s turns towards the slip at kt |u'_perp| / c: stiff as the cap shrinks (3-D
+                # slides are integrated implicitly); in the plane u'_perp = 0 and s stays put
+                dy[_A] = kt * (u_rate - np.dot(u_rate, s) * s) / max(c, self.floor)
             dy[_V] = force / m
             dy[_W] = force / (alpha * m)
             return dy
@@ -170,7 +174,7 @@ class _Contact:
         elif phase == "slip":
             def to_stick(t, y):
                 c, dc = self.cap(y)
-                s = _direction(y[_A], y[_V] + y[_W], 1e-3 * self.floor)
+                s = y[_A]
                 stick_rate = self.kt * (y[_V] + y[_W]) - self.gt * self.slip_mass * c * s
                 return float(np.dot(s, stick_rate)) - dc
 
@@ -206,15 +210,16 @@ class _Contact:
             return "stick"
         s = _direction(y[_A], u_rate)
         push = float(np.dot(s, self.kt * u_rate)) - self.gt * self.slip_mass * c
+        if push > dc:
+            y[_A] = s
+            return "slip"
         y[_A] = c * s
-        return "slip" if push > dc else "stick"
+        return "stick"
 
 
-def _direction(vec: np.ndarray, fallback: np.ndarray, tiny: float = 0.0) -> np.ndarray:
-    """The unit vector of ``vec``, or of ``fallback`` where ``vec`` is within ``tiny`` of zero
-    (there a slide's force is below the floor, and its direction is the slip's)."""
+def _direction(vec: np.ndarray, fallback: np.ndarray) -> np.ndarray:
     n = math.hypot(*vec)
-    if n > tiny:
+    if n > 0.0:
         return vec / n
     n = math.hypot(*fallback)
     return fallback / n if n > 0.0 else np.array([1.0, 0.0])
@@ -247,9 +252,12 @@ def bounce(model: ContactModel, v_n: float, v_t: float = 0.0, omega: float = 0.0
     regimes = [(0.0, phase)]
     nfev = 0
     # a generous horizon: the contact must end well within it (checked below)
-    horizon = 50.0 * tau + 10.0
+    horizon = 50.0 * tau
     for _ in range(MAX_SWITCHES):
-        sol = solve_ivp(c.rhs(phase), (t, horizon), y, method=METHOD, rtol=RTOL, atol=ATOL,
+        # a 3-D slide turns its direction at a rate that grows without bound as the cap
+        # shrinks: an implicit method there; everything else is smooth and non-stiff
+        method = "Radau" if phase == "slip" and (y[3] or y[5] or y[7]) else METHOD
+        sol = solve_ivp(c.rhs(phase), (t, horizon), y, method=method, rtol=RTOL, atol=ATOL,
                         events=c.events(phase), max_step=tau / MIN_STEPS_PER_CONTACT)
         nfev += sol.nfev
         if sol.status != 1:
@@ -260,20 +268,24 @@ def bounce(model: ContactModel, v_n: float, v_t: float = 0.0, omega: float = 0.0
         if hit == 0 or (y[_D] <= 0.0 and y[_VN] > 0.0):  # exit (a switch can fall on it)
             break
         name = c.events(phase)[hit].__name__
+        cap, dcap = c.cap(y)
         if name == "force_zero":
             c.turned = True  # F_n stays below zero from here to the exit
             if c.tensile:
-                y[_A] = 0.0 * y[_A] if phase != "stick" else y[_A]  # a slide's cap is zero here
+                if phase == "slip":
+                    y[_A] = 0.0  # a slide's cap is zero here
                 phase = c.start(y, cap_rising=True)
             else:
                 phase = "free"
-        elif name == "cap_gone":
-            phase = "coast"
+        elif name == "cap_gone" or (cap < c.floor and dcap <= 0.0):
+            phase = "coast"  # the cap is gone or going: no tangential force left to speak of
             y[_A] = 0.0
         elif name == "to_slip":
             phase = "slip"
+            y[_A] = _direction(y[_A], y[_V] + y[_W])
         elif name == "to_stick":
             phase = "stick"
+            y[_A] = cap * y[_A]
         regimes.append((t, phase))
     else:
         raise RuntimeError(f"oracle: more than {MAX_SWITCHES} regime switches (chattering)")
