@@ -71,3 +71,34 @@ def test_lammps_3d_sliding_matches_the_oracle(tmp_path):
     t = result.table
     final = t[["vn_final", "vt_final", "r_omega_final", "vs_final", "r_omega_s_final"]].to_numpy()
     assert np.abs(final - np.array(apart)).max() > 1e-2
+
+
+def _spec_3d(**states):
+    from spinbounce.sweeps import spec_from_dict
+
+    base = {"n": 4000, "v_n": [-1.5, -0.1], "v_t": [-2, 2], "omega": [-4, 4], "v_s": [-2, 2],
+            "omega_s": [-4, 4], "r_omega_n": [-2, 2]}
+    return spec_from_dict({"seed": 3, "chunk_size": 2000, "states": {**base, **states}})
+
+
+def test_a_3d_sweep_needs_every_out_of_plane_axis():
+    from spinbounce.sweeps import SweepError, spec_from_dict
+
+    with pytest.raises(SweepError, match="states.omega_n"):
+        spec_from_dict({"states": {"n": 10, "v_n": [-1, -0.5], "v_t": [0, 1], "omega": [0, 1], "v_s": [0, 1],
+                                   "omega_s": [0, 1]}})
+    assert _spec_3d().initial_states(0, 0, 5).shape == (5, 6)
+
+
+@pytest.mark.lammps
+def test_a_3d_sweep_and_its_fit_recover_the_block_matrix(tmp_path):
+    from spinbounce.fit import fit_groups
+    from spinbounce.sweeps import read_results, run_sweep
+
+    out = run_sweep(_spec_3d(), tmp_path / "sweep", workers=1, log=lambda *a, **k: None)
+    rows = read_results(out)
+    assert len(rows) == 4000
+    (fitted,) = fit_groups(rows)
+    assert np.array(fitted["matrix"]).shape == (6, 6)
+    assert fitted["max_element_diff"] < 2e-4  # the acceptance line
+    assert np.array_equal(rows["r_omega_n_final"], rows["r_omega_n_0"])

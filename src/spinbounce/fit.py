@@ -1,6 +1,6 @@
 """Least-squares scattering matrices from sweep results, beside the theory's.
 
-For each model group: the 3x3 matrix M with final = M @ initial over all its collisions
+For each model group: the 3x3 matrix M (6x6 for a 3-D sweep) with final = M @ initial over all its collisions
 (states (v_n, v_t, r omega)), each element's standard error, and Omega fitted from Eq. 19
 (Delta v_t = alpha Omega/(1+alpha) u_dot(0), r Delta omega = Omega/(1+alpha) u_dot(0)).
 """
@@ -15,7 +15,7 @@ import numpy as np
 import pandas as pd
 
 from . import theory
-from .compare import STATE
+from .compare import STATE, STATE_3D
 
 __all__ = ["GROUP_KEYS", "fit_matrix", "fit_omega", "fit_groups", "plot_groups"]
 
@@ -26,7 +26,7 @@ def fit_matrix(initial: np.ndarray, final: np.ndarray) -> tuple[np.ndarray, np.n
     """Least squares final ~ initial @ M.T; returns (M, standard errors of M, residuals)."""
     coef, *_ = np.linalg.lstsq(initial, final, rcond=None)
     residuals = final - initial @ coef
-    dof = max(len(initial) - 3, 1)
+    dof = max(len(initial) - initial.shape[1], 1)
     sigma2 = (residuals**2).sum(axis=0) / dof  # one variance per output row of M
     cov = np.linalg.inv(initial.T @ initial)
     stderr = np.sqrt(np.outer(sigma2, np.diag(cov)))
@@ -52,14 +52,15 @@ def fit_groups(rows: pd.DataFrame) -> list[dict]:
     keys = [k for k in GROUP_KEYS if k in rows]
     for values, group in rows.groupby(keys, dropna=False, sort=True):
         params = dict(zip(keys, values, strict=True))
-        initial = group[[f"{s}_0" for s in STATE]].to_numpy()
-        final = group[[f"{s}_final" for s in STATE]].to_numpy()
+        names = STATE_3D if f"{STATE_3D[-1]}_0" in group else STATE  # a 3-D sweep fits the 6x6 map
+        initial = group[[f"{s}_0" for s in names]].to_numpy()
+        final = group[[f"{s}_final" for s in names]].to_numpy()
         matrix, stderr, residuals = fit_matrix(initial, final)
         alpha = params["alpha"]
-        omega, omega_err = fit_omega(initial, final, alpha)
+        omega, omega_err = fit_omega(initial[:, :3], final[:, :3], alpha)
         omega_theory = float(group["Omega_theory"].iloc[0])
         e = theory.restitution(params["m"], params["kn"], params["gamma_n"])
-        matrix_theory = theory.scattering_matrix(alpha, omega_theory, e)
+        matrix_theory = (theory.block_matrix if len(names) == 6 else theory.scattering_matrix)(alpha, omega_theory, e)
         out.append({
             "parameters": {k: (None if isinstance(v, float) and math.isnan(v) else v) for k, v in params.items()},
             "n": len(group),
@@ -73,7 +74,7 @@ def fit_groups(rows: pd.DataFrame) -> list[dict]:
             "omega_diff": omega - omega_theory,
             "residual_rms": np.sqrt((residuals**2).mean(axis=0)).tolist(),
             "residual_max": np.abs(residuals).max(axis=0).tolist(),
-            "max_abs_error_vs_theory": float(np.abs(group[[f"{s}_error" for s in STATE]].to_numpy()).max()),
+            "max_abs_error_vs_theory": float(np.abs(group[[f"{s}_error" for s in names]].to_numpy()).max()),
         })
     return out
 

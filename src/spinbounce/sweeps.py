@@ -58,7 +58,10 @@ __all__ = ["SweepError", "SweepSpec", "load_spec", "spec_from_dict", "run_sweep"
            "chunk_path", "read_results"]
 
 MODEL_KEYS = ("m", "r", "alpha", "kn", "kt", "kt_over_kn", "gamma_n", "gamma_t", "mu", "dt")
-STATE_KEYS = ("v_n", "v_t", "speed", "angle_deg", "omega", "r_omega")
+STATE_KEYS = ("v_n", "v_t", "speed", "angle_deg", "omega", "r_omega",
+              "v_s", "omega_s", "r_omega_s", "omega_n", "r_omega_n")
+#: Optional out-of-plane states (3-D): each given as an angular velocity or times r.
+EXTRA_KEYS = (("v_s",), ("omega_s", "r_omega_s"), ("omega_n", "r_omega_n"))
 #: The two ways to give the velocity: components, or speed and incidence angle (degrees
 #: from the wall's normal; positive angles give v_t > 0). Spin: omega or r_omega.
 VELOCITY_KEYS = {"components": ("v_n", "v_t"), "polar": ("speed", "angle_deg")}
@@ -120,7 +123,8 @@ class SweepSpec:
         return ContactModel(**params), dt
 
     def initial_states(self, group: int, start: int = 0, stop: int | None = None) -> np.ndarray:
-        """States (v_n, v_t, omega) of rows [start, stop): the same for every group, set by the seed.
+        """States (v_n, v_t, omega) of rows [start, stop), then (v_s, omega_s, omega_n) for a
+        3-D sweep: the same for every group, set by the seed.
 
         Random states are three seeded uniform columns of n draws each; a chunk's rows are
         drawn alone by jumping the generator ahead (one 64-bit draw per number), so a
@@ -128,11 +132,12 @@ class SweepSpec:
         """
         s = self.states
         stop = self.n if stop is None else stop
+        axes = [s["a"], s["b"], s["spin"]] + [s[key] for key in s["extra"]]
         if self.mode == "grid":
-            arr = np.array(list(itertools.product(s["a"], s["b"], s["spin"])), dtype=float)[start:stop]
+            arr = np.array(list(itertools.product(*axes)), dtype=float)[start:stop]
         else:
             columns = []
-            for k, (lo, hi) in enumerate((s["a"], s["b"], s["spin"])):
+            for k, (lo, hi) in enumerate(axes):
                 bits = np.random.PCG64(self.seed)
                 bits.advance(k * self.n + start)
                 columns.append(np.random.Generator(bits).uniform(lo, hi, stop - start))
@@ -142,6 +147,9 @@ class SweepSpec:
             arr[:, 0], arr[:, 1] = -speed * np.cos(angle), speed * np.sin(angle)
         if s["spin_key"] == "r_omega":
             arr[:, 2] = arr[:, 2] / self.groups[group]["r"]
+        for k, key in enumerate(s["extra"], start=3):
+            if key.startswith("r_"):
+                arr[:, k] = arr[:, k] / self.groups[group]["r"]
         return arr
 
     def normal_speeds(self) -> tuple[float, float]:
@@ -242,6 +250,20 @@ def spec_from_dict(raw: dict) -> SweepSpec:
             if not values[0] < values[1]:
                 _fail(f"states.{key}", states[key], "is an empty range: low must be below high")
         parsed[target] = values
+    parsed["extra"] = []
+    if any(k in states for keys in EXTRA_KEYS for k in keys):  # 3-D: every out-of-plane axis
+        for keys in EXTRA_KEYS:
+            given = [k for k in keys if k in states]
+            if len(given) != 1:
+                _fail(f"states.{keys[0]}", states.get(keys[0]),
+                      f"a 3-D sweep needs exactly one of {' or '.join(keys)}")
+            values = _numbers(f"states.{given[0]}", states[given[0]])
+            if mode == "random" and (len(values) != 2 or not values[0] < values[1]):
+                _fail(f"states.{given[0]}", states[given[0]], "must be a range [low, high] with low < high")
+            parsed[given[0]] = values
+            parsed["extra"].append(given[0])
+        if tolerance is not None:
+            _fail("tolerance", tolerance, "is for the paper's plane only: a 3-D sweep takes model.dt or the default")
     if velocity == "polar":
         if min(parsed["a"]) <= 0.0:
             _fail("states.speed", states["speed"], "must be > 0")
@@ -250,7 +272,7 @@ def spec_from_dict(raw: dict) -> SweepSpec:
     if mode == "random":
         n = _integer("states.n", states.get("n", 0), 1)
     else:
-        n = len(parsed["a"]) * len(parsed["b"]) * len(parsed["spin"])
+        n = math.prod(len(parsed[k]) for k in ("a", "b", "spin", *parsed["extra"]))
     spec = SweepSpec(raw=raw, groups=tuple(groups), seed=seed, chunk_size=chunk_size, tolerance=tolerance,
                      mode=mode, n=n, states=parsed)
     _check_physics(spec)
@@ -297,7 +319,8 @@ def run_chunk(raw: dict, out: str, group: int, chunk: int, start: int, stop: int
     out = Path(out)
     model, dt = spec.model(group)
     states = spec.initial_states(group, start, stop)
-    scene = Collision(model, v_n=states[:, 0], v_t=states[:, 1], omega=states[:, 2], dt=dt)
+    extra = dict(zip(("v_s", "omega_s", "omega_n"), states[:, 3:].T, strict=False))
+    scene = Collision(model, v_n=states[:, 0], v_t=states[:, 1], omega=states[:, 2], dt=dt, **extra)
     run_dir = out / "runs" / f"chunk-{group:04d}-{chunk:06d}"
     if run_dir.exists():
         shutil.rmtree(run_dir)  # a killed earlier attempt

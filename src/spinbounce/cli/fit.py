@@ -11,7 +11,7 @@ import numpy as np
 from ..fit import fit_groups, plot_groups
 from ..sweeps import read_results
 
-HELP = "fit the 3x3 scattering matrix and Omega (Eq. 19) for each model group of a sweep"
+HELP = "fit the 3x3 scattering matrix (6x6 block matrix for a 3-D sweep) and Omega (Eq. 19) per model group"
 
 
 def register(sub) -> None:
