@@ -41,7 +41,7 @@ import pandas as pd
 
 from . import __version__
 from .compare import STATE
-from .pipeline import run_collision, run_frozen, write_atomic
+from .pipeline import json_ready, run_collision, run_frozen, write_atomic
 from .scenes import (
     COLLISION_STEPS_PER_HALF_PERIOD,
     FROZEN_STEPS_PER_HALF_PERIOD,
@@ -601,21 +601,8 @@ def run_study(quick: bool = False, runs: Path | None = None, log=print) -> Study
 # Outputs: figure, JSON, markdown
 # ---------------------------------------------------------------------------
 
-def _plain(value):
-    """JSON-ready: nan becomes None; numpy scalars become Python ones."""
-    if isinstance(value, dict):
-        return {k: _plain(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [_plain(v) for v in value]
-    if isinstance(value, np.generic):
-        value = value.item()
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
-    return value
-
-
 def _records(frame: pd.DataFrame) -> list[dict]:
-    return [_plain(r) for r in frame.to_dict(orient="records")]
+    return [json_ready(r) for r in frame.to_dict(orient="records")]
 
 
 #: Cases whose end-on-a-step curve the figure shows (dashed): first order, and the two third-order ones.
@@ -803,12 +790,12 @@ def write_study(study: Study, out: Path) -> dict[str, Path]:
     record = dict(study.metadata)
     record["cases"] = [c.record() for c in study.cases]
     record["summary"] = _records(study.summary)
-    record["default_costs"] = _plain(study.costs)
+    record["default_costs"] = json_ready(study.costs)
     record["runs_table"] = _records(study.table)
     record["markdown"] = "ACCURACY.md"
     with matplotlib.style.context(STYLE):
         fig = draw(study)
-        saved = save(fig, out, "accuracy", _plain(record))
+        saved = save(fig, out, "accuracy", json_ready(record))
     md = out / "ACCURACY.md"
     write_atomic(md, markdown(study))
     return {"png": saved.png, "pdf": saved.pdf, "json": saved.json, "markdown": md}

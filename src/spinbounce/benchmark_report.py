@@ -6,9 +6,7 @@ returns; nothing is recomputed. matplotlib is imported only when the figure is d
 
 from __future__ import annotations
 
-import datetime
 import math
-import platform
 import shutil
 import tempfile
 import time
@@ -16,24 +14,10 @@ from pathlib import Path
 
 import numpy as np
 
-from . import __version__
 from .benchmarks import ACCEPTANCE, QUANTITIES, BenchmarkRun, quantity, run_benchmark, select, walton
-from .pipeline import write_atomic
+from .pipeline import json_ready, write_atomic
 
 __all__ = ["make_benchmarks", "draw", "markdown", "record"]
-
-
-def _plain(value):
-    """JSON-ready: numpy scalars to Python, NaN and infinities to None."""
-    if isinstance(value, dict):
-        return {str(k): _plain(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [_plain(v) for v in value]
-    if isinstance(value, np.generic):
-        value = value.item()
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
-    return value
 
 
 def _rigid_curve(run: BenchmarkRun, series, y: str):
@@ -235,7 +219,7 @@ def record(runs: list[BenchmarkRun], meta: dict) -> dict:
             "states": run.table.to_dict(orient="records"),
             "measured": run.measured.to_dict(orient="records") if len(run.measured) else [],
         })
-    return _plain(out)
+    return json_ready(out)
 
 
 def make_benchmarks(out: Path, only: list[str] | None = None, runs: Path | None = None,
@@ -246,8 +230,7 @@ def make_benchmarks(out: Path, only: list[str] | None = None, runs: Path | None 
     """
     import matplotlib.style
 
-    from .figures.core import STYLE, save
-    from .runner import lammps_version
+    from .figures.core import STYLE, save, software
 
     chosen = select(only)
     started = time.perf_counter()
@@ -257,12 +240,8 @@ def make_benchmarks(out: Path, only: list[str] | None = None, runs: Path | None 
     finally:
         if runs is None:
             shutil.rmtree(root, ignore_errors=True)
-    import matplotlib
-
     meta = {
-        "report": "benchmarks", "spinbounce_version": __version__, "lammps_version": lammps_version(),
-        "matplotlib_version": matplotlib.__version__, "python": platform.python_version(),
-        "created": datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds"),
+        "report": "benchmarks", **software(),
         "acceptance": ACCEPTANCE, "normalisation": "max over (v_n, v_t, r omega) of |difference| / "
         "sqrt(v_n^2 + (v_t + r omega)^2) at first touch",
         "benchmarks_run": [b.name for b in chosen], "markdown": "BENCHMARKS.md",

@@ -11,6 +11,7 @@ from __future__ import annotations
 import dataclasses
 import datetime
 import json
+import math
 import os
 import platform
 import tempfile
@@ -86,6 +87,20 @@ def write_parquet_atomic(path: Path, table) -> None:
     except BaseException:
         tmp.unlink(missing_ok=True)
         raise
+
+
+def json_ready(value):
+    """A copy fit for JSON: numpy scalars become Python ones, NaN and infinities None, and
+    dict keys strings (as ``json`` would write them)."""
+    if isinstance(value, dict):
+        return {str(k): json_ready(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [json_ready(v) for v in value]
+    if isinstance(value, np.generic):
+        value = value.item()
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
 
 
 def to_json(record: dict) -> str:

@@ -192,18 +192,25 @@ def make(compute, draw, name: str, out: Path, runs: Path | None) -> FigureRecord
         return save(fig, out, name, data.metadata, started)
 
 
-def base_metadata(name: str, title: str, paper: str) -> dict:
+def software() -> dict:
+    """What made a figure or report: package, LAMMPS, matplotlib and Python versions, and when."""
     import matplotlib
 
     return {
-        "figure": name,
-        "title": title,
-        "paper": paper,
         "spinbounce_version": __version__,
         "lammps_version": lammps_version(),
         "matplotlib_version": matplotlib.__version__,
         "python": platform.python_version(),
         "created": datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds"),
+    }
+
+
+def base_metadata(name: str, title: str, paper: str) -> dict:
+    return {
+        "figure": name,
+        "title": title,
+        "paper": paper,
+        **software(),
         "acceptance_limit": ACCEPTANCE,
         "dt_target": TARGET,
     }
