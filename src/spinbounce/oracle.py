@@ -174,9 +174,7 @@ class _Contact:
         elif phase == "slip":
             def to_stick(t, y):
                 c, dc = self.cap(y)
-                s = y[_A]
-                stick_rate = self.kt * (y[_V] + y[_W]) - self.gt * self.slip_mass * c * s
-                return float(np.dot(s, stick_rate)) - dc
+                return self.push(y, y[_A], c) - dc
 
             def cap_gone(t, y):
                 return self.cap(y)[0] - self.floor
@@ -194,6 +192,11 @@ class _Contact:
             out.append(force_zero)
         return out
 
+    def push(self, y, s, c: float) -> float:
+        """How fast sticking would carry A outwards along s, with A on a cap of radius c:
+        s . (kt u' + gamma_t u''), the sticking force being -c s."""
+        return float(np.dot(s, self.kt * (y[_V] + y[_W]))) - self.gt * self.slip_mass * c
+
     def start(self, y, cap_rising: bool = False) -> str:
         """The regime at first touch (or where the cap restarts); puts A on or inside the cap.
 
@@ -209,8 +212,7 @@ class _Contact:
         if math.hypot(*y[_A]) < c:
             return "stick"
         s = _direction(y[_A], u_rate)
-        push = float(np.dot(s, self.kt * u_rate)) - self.gt * self.slip_mass * c
-        if push > dc:
+        if self.push(y, s, c) > dc:
             y[_A] = s
             return "slip"
         y[_A] = c * s
@@ -257,8 +259,9 @@ def bounce(model: ContactModel, v_n: float, v_t: float = 0.0, omega: float = 0.0
         # a 3-D slide turns its direction at a rate that grows without bound as the cap
         # shrinks: an implicit method there; everything else is smooth and non-stiff
         method = "Radau" if phase == "slip" and (y[3] or y[5] or y[7]) else METHOD
+        events = c.events(phase)
         sol = solve_ivp(c.rhs(phase), (t, horizon), y, method=method, rtol=RTOL, atol=ATOL,
-                        events=c.events(phase), max_step=tau / MIN_STEPS_PER_CONTACT)
+                        events=events, max_step=tau / MIN_STEPS_PER_CONTACT)
         nfev += sol.nfev
         if sol.status != 1:
             raise RuntimeError(f"oracle: the contact did not end by t = {horizon:g} ({sol.message})")
@@ -267,7 +270,7 @@ def bounce(model: ContactModel, v_n: float, v_t: float = 0.0, omega: float = 0.0
         y = sol.y_events[hit][0].copy()
         if hit == 0 or (y[_D] <= 0.0 and y[_VN] > 0.0):  # exit (a switch can fall on it)
             break
-        name = c.events(phase)[hit].__name__
+        name = events[hit].__name__
         cap, dcap = c.cap(y)
         if name == "force_zero":
             c.turned = True  # F_n stays below zero from here to the exit
