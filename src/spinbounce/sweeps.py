@@ -240,7 +240,17 @@ def spec_from_dict(raw: dict) -> SweepSpec:
     spin_key = "r_omega" if "r_omega" in states else "omega"
     parsed = {"spin_key": spin_key, "velocity": velocity}
     first, second = VELOCITY_KEYS[velocity]
-    for key, target in ((first, "a"), (second, "b"), (spin_key, "spin")):
+    parsed["extra"] = []
+    if any(k in states for keys in EXTRA_KEYS for k in keys):  # 3-D: every out-of-plane axis
+        for keys in EXTRA_KEYS:
+            given = [k for k in keys if k in states]
+            if len(given) != 1:
+                _fail(f"states.{keys[0]}", states.get(keys[0]),
+                      f"a 3-D sweep needs exactly one of {' or '.join(keys)}")
+            parsed["extra"].append(given[0])
+        if tolerance is not None:
+            _fail("tolerance", tolerance, "is for the paper's plane only: a 3-D sweep takes model.dt or the default")
+    for key, target in ((first, "a"), (second, "b"), (spin_key, "spin"), *((k, k) for k in parsed["extra"])):
         if key not in states:
             _fail(f"states.{key}", None, "is required")
         values = _numbers(f"states.{key}", states[key])
@@ -250,20 +260,6 @@ def spec_from_dict(raw: dict) -> SweepSpec:
             if not values[0] < values[1]:
                 _fail(f"states.{key}", states[key], "is an empty range: low must be below high")
         parsed[target] = values
-    parsed["extra"] = []
-    if any(k in states for keys in EXTRA_KEYS for k in keys):  # 3-D: every out-of-plane axis
-        for keys in EXTRA_KEYS:
-            given = [k for k in keys if k in states]
-            if len(given) != 1:
-                _fail(f"states.{keys[0]}", states.get(keys[0]),
-                      f"a 3-D sweep needs exactly one of {' or '.join(keys)}")
-            values = _numbers(f"states.{given[0]}", states[given[0]])
-            if mode == "random" and (len(values) != 2 or not values[0] < values[1]):
-                _fail(f"states.{given[0]}", states[given[0]], "must be a range [low, high] with low < high")
-            parsed[given[0]] = values
-            parsed["extra"].append(given[0])
-        if tolerance is not None:
-            _fail("tolerance", tolerance, "is for the paper's plane only: a 3-D sweep takes model.dt or the default")
     if velocity == "polar":
         if min(parsed["a"]) <= 0.0:
             _fail("states.speed", states["speed"], "must be > 0")
