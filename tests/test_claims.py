@@ -4,7 +4,7 @@ import json
 
 import pytest
 
-from spinbounce.claims import CLAIMS, COLLISION_TOL, evaluate_claims, verdict, write_claims
+from spinbounce.studies.claims import CLAIMS, COLLISION_TOL, evaluate_claims, verdict, write_claims
 
 
 def test_verdict_follows_the_numbers():

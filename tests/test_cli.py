@@ -19,7 +19,7 @@ def run_cli(capsys, *args):
 
 def test_import_does_not_load_lammps():
     code = (
-        "import sys, spinbounce, spinbounce.theory, spinbounce.scenes, spinbounce.decks, "
+        "import sys, spinbounce, spinbounce.theory.linear, spinbounce.model.scenes, spinbounce.lammps.decks, "
         "spinbounce.pipeline, spinbounce.cli; print('lammps' in sys.modules)"
     )
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)

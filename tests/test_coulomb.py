@@ -16,9 +16,10 @@ import math
 import numpy as np
 import pytest
 
-from spinbounce import oracle, theory
+from spinbounce import theory
+from spinbounce.theory import oracle
 from spinbounce.pipeline import run_collision
-from spinbounce.scenes import Collision, ContactModel
+from spinbounce.model.scenes import Collision, ContactModel
 
 MUS = (0.01, 0.03, 0.1, 0.3, 1.0, 3.0, 10.0)
 ANGLES = np.radians([5.0, 20.0, 35.0, 50.0, 65.0, 80.0, 85.0])

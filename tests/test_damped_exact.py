@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 
 from spinbounce import theory
-from spinbounce.scenes import ContactModel
-from spinbounce.tolerance import collide_to_tolerance, collision_frame, frozen_to_tolerance
+from spinbounce.model.scenes import ContactModel
+from spinbounce.studies.tolerance import collide_to_tolerance, collision_frame, frozen_to_tolerance
 
 TOL = 1e-6
 RNG = np.random.default_rng(33)

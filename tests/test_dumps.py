@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from spinbounce.compare import paper_variables
-from spinbounce.dumps import DumpError, read_dump
+from spinbounce.lammps.dumps import DumpError, read_dump
 
 DATA = Path(__file__).parent / "data"
 REAL = DATA / "collision_alpha0.1_three.dump"

@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 
 from spinbounce.pipeline import ResultError, run_collision
-from spinbounce.scenes import Collision, ContactModel, PhysicsWarning, SceneError
-from spinbounce.tolerance import collide_to_tolerance, collision_frame
+from spinbounce.model.scenes import Collision, ContactModel, PhysicsWarning, SceneError
+from spinbounce.studies.tolerance import collide_to_tolerance, collision_frame
 
 TOL = 1e-6
 SLIPS = dict(v_t=[-1.0, 0.3, 1.2], omega=[2.0, 0.0, -3.0])

@@ -13,7 +13,7 @@ import pytest
 
 from spinbounce import theory
 from spinbounce.cli import figures as figures_cli
-from spinbounce.dumps import read_dump
+from spinbounce.lammps.dumps import read_dump
 from spinbounce.figures import FIGURES, FigureNameError, check_names, make_figures
 from spinbounce.figures.collisions import dissipation_curve, fig4_states, fig6_states
 from spinbounce.figures.core import ACCEPTANCE, STYLE, TARGET, tune_dt

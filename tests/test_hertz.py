@@ -1,4 +1,4 @@
-"""The Hertzian normal force: its exact theory (spinbounce.hertz), its scenes and LAMMPS against both.
+"""The Hertzian normal force: its exact theory (spinbounce.theory.hertz), its scenes and LAMMPS against both.
 
 Tolerances. Theory against an ODE solver: the solver's own rtol (1e-11) sets them. LAMMPS:
 each Hertzian contact ends at its own time, somewhere inside a step, and cutting the
@@ -16,9 +16,10 @@ import math
 import numpy as np
 import pytest
 
-from spinbounce import hertz, theory
-from spinbounce.decks import render_collision, render_frozen
-from spinbounce.scenes import (
+from spinbounce import theory
+from spinbounce.theory import hertz
+from spinbounce.lammps.decks import render_collision, render_frozen
+from spinbounce.model.scenes import (
     HERTZ_STEPS_PER_HALF_PERIOD,
     NORMAL_LAWS,
     Collision,

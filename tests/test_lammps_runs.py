@@ -15,10 +15,10 @@ import numpy as np
 import pytest
 
 from spinbounce import theory
-from spinbounce.dumps import read_dump
+from spinbounce.lammps.dumps import read_dump
 from spinbounce.pipeline import ResultError, run_collision, run_frozen
-from spinbounce.runner import LammpsError, lmp_executable, run_deck
-from spinbounce.scenes import Collision, ContactModel, Frozen
+from spinbounce.lammps.runner import LammpsError, lmp_executable, run_deck
+from spinbounce.model.scenes import Collision, ContactModel, Frozen
 
 pytestmark = pytest.mark.lammps
 
@@ -204,7 +204,7 @@ def test_half_step_contact_end_beats_integer_alignment(tmp_path):
 @pytest.mark.parametrize("alpha", [0.4, 0.1])
 def test_batch_from_data_file_pairs_by_id(run_dir, alpha):
     """Past INLINE_SPHERES the atoms go to a data file beside the deck; same answers."""
-    from spinbounce.decks import DATA_FILE, INLINE_SPHERES
+    from spinbounce.lammps.decks import DATA_FILE, INLINE_SPHERES
 
     rng = np.random.default_rng(11)
     n = 3 * INLINE_SPHERES
@@ -224,7 +224,7 @@ def test_library_route_equals_the_data_file_route(tmp_path, alpha):
     The arithmetic is the same as with a data file and a dump (17 significant digits
     round-trip every double exactly), so the two routes must agree to the last bit.
     """
-    from spinbounce.decks import INLINE_SPHERES
+    from spinbounce.lammps.decks import INLINE_SPHERES
 
     rng = np.random.default_rng(5)
     n = 2 * INLINE_SPHERES
@@ -245,7 +245,7 @@ def test_library_route_equals_the_data_file_route(tmp_path, alpha):
 
 def test_lmp_process_runner_gives_the_in_process_answer(tmp_path):
     """The benchmark's baseline (one lmp process per collision) computes the same numbers."""
-    from spinbounce.runner import run_deck_lmp
+    from spinbounce.lammps.runner import run_deck_lmp
 
     scene = Collision(ContactModel(), v_n=-0.7, v_t=0.4, omega=1.1)
     a = run_collision(scene, tmp_path / "lmp", runner=run_deck_lmp)

@@ -1,7 +1,7 @@
 """Regression against the stored reference outputs in tests/reference/.
 
 Fresh runs of every reference case must reproduce the stored tables column by column
-within the tolerances of :mod:`spinbounce.references` (their reasons and the
+within the tolerances of :mod:`spinbounce.studies.references` (their reasons and the
 measurements behind them are in that module and in MANIFEST.json), and every deck must
 render exactly as its golden copy, version number aside. The tests below also show that
 each comparison can fail: a stored value moved by just over its tolerance is reported,
@@ -24,9 +24,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from spinbounce import references as refs
+from spinbounce.studies import references as refs
 from spinbounce.cli import references as references_command
-from spinbounce.decks import ATOM_ROUTES
+from spinbounce.lammps.decks import ATOM_ROUTES
 
 REFERENCE_DIR = Path(__file__).parent / "reference"
 CASE_NAMES = [case.name for case in refs.CASES]
@@ -236,7 +236,7 @@ def test_structural_differences_are_violations():
 
 
 def test_reference_module_does_not_load_lammps():
-    code = "import sys, spinbounce.references, spinbounce.cli.references; print('lammps' in sys.modules)"
+    code = "import sys, spinbounce.studies.references, spinbounce.cli.references; print('lammps' in sys.modules)"
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert done.stdout.strip() == "False"
 

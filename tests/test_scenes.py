@@ -6,8 +6,8 @@ import warnings
 import pytest
 
 from spinbounce import theory
-from spinbounce.decks import render_collision, render_frozen
-from spinbounce.scenes import (
+from spinbounce.lammps.decks import render_collision, render_frozen
+from spinbounce.model.scenes import (
     COLLISION_STEPS_PER_HALF_PERIOD,
     Collision,
     ContactModel,
@@ -15,7 +15,7 @@ from spinbounce.scenes import (
     PhysicsWarning,
     SceneError,
 )
-from spinbounce.stability import stability_limit
+from spinbounce.model.stability import stability_limit
 
 
 @pytest.mark.parametrize(
@@ -170,7 +170,7 @@ def test_decks_hold_only_what_the_scene_needs():
 def test_missing_template_value_is_an_error():
     import jinja2
 
-    from spinbounce.decks import _environment
+    from spinbounce.lammps.decks import _environment
 
     with pytest.raises(jinja2.UndefinedError):
         _environment().get_template("collision.lmp.j2").render(version="x")

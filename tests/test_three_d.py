@@ -9,11 +9,12 @@ about the normal moves no contact point, so LAMMPS must leave it exactly as it w
 import numpy as np
 import pytest
 
-from spinbounce import oracle, theory
-from spinbounce.benchmarks import refined_dt
+from spinbounce import theory
+from spinbounce.theory import oracle
+from spinbounce.studies.validation import refined_dt
 from spinbounce.fit import fit_matrix
 from spinbounce.pipeline import run_collision
-from spinbounce.scenes import STATE_3D, Collision, ContactModel
+from spinbounce.model.scenes import STATE_3D, Collision, ContactModel
 
 RNG = np.random.default_rng(7)
 N = 300

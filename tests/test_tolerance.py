@@ -10,8 +10,8 @@ import pytest
 
 from spinbounce import theory
 from spinbounce.cli import main
-from spinbounce.scenes import ContactModel, SceneError
-from spinbounce.tolerance import collide_to_tolerance, collision_frame, frozen_to_tolerance
+from spinbounce.model.scenes import ContactModel, SceneError
+from spinbounce.studies.tolerance import collide_to_tolerance, collision_frame, frozen_to_tolerance
 
 TOL = 1e-6
 RNG = np.random.default_rng(21)
@@ -88,14 +88,14 @@ def test_sweep_with_a_tolerance(tmp_path):
         spec_from_dict({**raw, "tolerance": 0.0})
 
 
-STUDY = {case.name: case for case in __import__("spinbounce.accuracy", fromlist=["cases"]).cases()}
+STUDY = {case.name: case for case in __import__("spinbounce.studies.accuracy", fromlist=["cases"]).cases()}
 
 
 @pytest.mark.lammps
 @pytest.mark.parametrize("name", list(STUDY))
 def test_every_case_of_the_accuracy_study_to_tolerance(tmp_path, name):
     """The acceptance of --tolerance, case by case of `spinbounce accuracy`'s study."""
-    from spinbounce.accuracy import FROZEN_T_END, FROZEN_Z
+    from spinbounce.studies.accuracy import FROZEN_T_END, FROZEN_Z
 
     case = STUDY[name]
     model = case.model

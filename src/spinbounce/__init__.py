@@ -1,6 +1,6 @@
 """spinbounce: LAMMPS reproduction of a frictional sphere's scattering from a flat wall.
 
-Importing the package never imports LAMMPS; only :mod:`spinbounce.runner` does, when a
+Importing the package never imports LAMMPS; only :mod:`spinbounce.lammps.runner` does, when a
 run starts.
 """
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from .scenes import STATE, STATE_3D, Collision, Frozen
+from .model.scenes import STATE, STATE_3D, Collision, Frozen
 
 __all__ = ["STATE", "STATE_3D", "paper_variables", "collision_table", "frozen_table"]
 

@@ -8,7 +8,7 @@ For each model group: the 3x3 matrix M (6x6 for a 3-D sweep) with final = M @ in
 from __future__ import annotations
 
 import math
-import os
+
 from pathlib import Path
 
 import numpy as np
@@ -16,6 +16,7 @@ import pandas as pd
 
 from . import theory
 from .compare import STATE, STATE_3D
+from .records import write_atomic_with
 
 __all__ = ["GROUP_KEYS", "fit_matrix", "fit_omega", "fit_groups", "plot_groups"]
 
@@ -114,15 +115,6 @@ def plot_groups(rows: pd.DataFrame, path: Path) -> Path:
             ax.set(xlabel=r"$\dot u(0)$", ylabel=name, title=label)
             ax.title.set_fontsize("small")
         ax_vt.legend(loc="best", fontsize="small")
-    # Same folder, then a rename: a reader never sees half a figure.
     path.parent.mkdir(parents=True, exist_ok=True)
-    # (A plain open, unlike mkstemp, gives the figure the user's usual permissions.)
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    try:
-        with open(tmp, "wb") as handle:
-            fig.savefig(handle, format=path.suffix.lstrip(".").lower(), dpi=150)
-        os.replace(tmp, path)
-    except BaseException:
-        tmp.unlink(missing_ok=True)
-        raise
+    write_atomic_with(path, lambda tmp: fig.savefig(tmp, format=path.suffix.lstrip(".").lower(), dpi=150))
     return path

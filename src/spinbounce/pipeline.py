@@ -9,24 +9,20 @@ contact that had not finished are errors, not results.
 from __future__ import annotations
 
 import dataclasses
-import datetime
-import json
-import math
-import os
-import platform
-import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
-from . import __version__, hertz, theory
+from . import theory
+from .theory import hertz
+from .records import software, to_json, write_atomic, write_parquet_atomic
 from .compare import collision_table, frozen_table
-from .decks import DUMP_NAME, INLINE_SPHERES, Deck, render_collision, render_frozen, wall_parameters
-from .dumps import read_dump
-from .runner import RunInfo, run_deck
-from .scenes import Collision, ContactModel, Frozen
+from .lammps.decks import DUMP_NAME, INLINE_SPHERES, Deck, render_collision, render_frozen, wall_parameters
+from .lammps.dumps import read_dump
+from .lammps.runner import RunInfo, run_deck
+from .model.scenes import Collision, ContactModel, Frozen
 
 __all__ = [
     "ResultError",
@@ -51,86 +47,19 @@ class ResultError(RuntimeError):
     """LAMMPS finished but its output cannot be trusted (NaN, lost spheres, contact not over)."""
 
 
-def write_atomic(path: Path, text: str) -> None:
-    """Write ``text`` to ``path`` so that a reader sees the old file or the new one, never half."""
-    path = Path(path)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        os.fchmod(fd, 0o644)  # mkstemp's 0600 would hide results from the rest of a group
-        with os.fdopen(fd, "w") as handle:
-            handle.write(text)
-            handle.flush()
-            os.fsync(handle.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-
-
-def write_parquet_atomic(path: Path, table) -> None:
-    """Write ``table`` (pandas or Arrow) to ``path`` as Parquet, atomically and durably like
-    :func:`write_atomic`. Float columns skip dictionary encoding: their values are all
-    distinct, and trying costs half the write."""
-    import pyarrow as pa
-    import pyarrow.parquet as pq
-
-    path = Path(path)
-    if isinstance(table, pd.DataFrame):
-        table = pa.Table.from_pandas(table, preserve_index=False)
-    text = [f.name for f in table.schema if not pa.types.is_floating(f.type) and not pa.types.is_integer(f.type)]
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    try:
-        pq.write_table(table, tmp, use_dictionary=text or False)
-        with open(tmp, "rb") as handle:
-            os.fsync(handle.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        tmp.unlink(missing_ok=True)
-        raise
-
-
-def json_ready(value):
-    """A copy fit for JSON: numpy scalars become Python ones, NaN and infinities None, and
-    dict keys strings (as ``json`` would write them)."""
-    if isinstance(value, dict):
-        return {str(k): json_ready(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [json_ready(v) for v in value]
-    if isinstance(value, np.generic):
-        value = value.item()
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
-    return value
-
-
-def to_json(record: dict) -> str:
-    """JSON with floats in full precision (numpy scalars included)."""
-
-    def plain(value):
-        if isinstance(value, (np.generic,)):
-            return value.item()
-        if isinstance(value, Path):
-            return str(value)
-        raise TypeError(f"cannot write {type(value).__name__} to JSON")
-
-    return json.dumps(record, indent=2, default=plain) + "\n"
-
-
 def _model_dict(model: ContactModel) -> dict:
     return dataclasses.asdict(model)
 
 
 def provenance(info: RunInfo, scene_kind: str, parameters: dict) -> dict:
+    """A run's record: its scene, parameters, deck and log, and :func:`records.software`."""
     return {
         "scene": scene_kind,
         "parameters": parameters,
-        "spinbounce_version": __version__,
-        "lammps_version": info.lammps_version,
-        "python": platform.python_version(),
+        **software(),
         "deck": str(info.deck),
         "log": str(info.log),
         "lammps_wall_seconds": info.wall_seconds,
-        "created": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
     }
 
 

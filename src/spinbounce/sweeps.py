@@ -52,7 +52,7 @@ import numpy as np
 import pandas as pd
 
 from . import __version__
-from .scenes import Collision, ContactModel, SceneError
+from .model.scenes import Collision, ContactModel, SceneError
 
 __all__ = ["SweepError", "SweepSpec", "load_spec", "spec_from_dict", "run_sweep", "run_one_chunk", "chunk_table",
            "chunk_path", "read_results"]
@@ -192,7 +192,7 @@ def spec_from_dict(raw: dict) -> SweepSpec:
     chunk_size = _integer("chunk_size", raw.get("chunk_size", DEFAULT_CHUNK), 1)
     tolerance = raw.get("tolerance")
     if tolerance is not None:
-        from .tolerance import check_tolerance
+        from .studies.tolerance import check_tolerance
 
         tolerance = _number("tolerance", tolerance)
         try:
@@ -308,7 +308,8 @@ def run_chunk(raw: dict, out: str, group: int, chunk: int, start: int, stop: int
     Returns (collisions, seconds in this call, seconds in LAMMPS's run loop). The spheres
     reach LAMMPS in memory (the library route): no data file to write, no dump to parse.
     """
-    from .pipeline import run_collision, write_parquet_atomic  # keeps a parent process free of LAMMPS
+    from .pipeline import run_collision  # keeps a parent process free of LAMMPS
+    from .records import write_parquet_atomic
 
     started = time.perf_counter()
     spec = spec_from_dict(raw)
@@ -327,7 +328,7 @@ def run_chunk(raw: dict, out: str, group: int, chunk: int, start: int, stop: int
         columns.update({name: values.to_numpy() for name, values in result.table.drop(columns=["id"]).items()})
         dt, nsteps, loop = scene.dt, scene.nsteps, result.info.loop_seconds
     else:  # a ladder of runs per chunk, extrapolated; each row carries its error estimate
-        from .tolerance import collide_to_tolerance, collision_frame
+        from .studies.tolerance import collide_to_tolerance, collision_frame
 
         extrapolated, finest = collide_to_tolerance(model, scene.v_n, scene.v_t, scene.omega, spec.tolerance,
                                                     run_dir)
@@ -341,7 +342,7 @@ def run_chunk(raw: dict, out: str, group: int, chunk: int, start: int, stop: int
     columns["dt"] = np.full(n, dt)  # with a tolerance: the finest run's
     columns["nsteps"] = np.full(n, nsteps)  # with a tolerance: all runs' steps together
     columns["Omega_theory"] = np.full(n, model.Omega)
-    from .runner import lammps_version
+    from .lammps.runner import lammps_version
 
     labels = {"scene_hash": spec.digest, "lammps_version": lammps_version(), "spinbounce_version": __version__}
     write_parquet_atomic(chunk_path(out, group, chunk), _arrow_table(columns, labels))
@@ -394,7 +395,7 @@ def _progress(total: int, done: int):
 
 def _claim(out: Path, spec: SweepSpec) -> None:
     """Record the sweep in ``out/sweep.json``, or refuse a folder that holds another sweep."""
-    from .pipeline import to_json, write_atomic
+    from .records import to_json, write_atomic
 
     record = out / "sweep.json"
     if record.exists():

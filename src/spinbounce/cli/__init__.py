@@ -7,10 +7,10 @@ import sys
 import warnings
 
 from .. import __version__
-from ..dumps import DumpError
+from ..lammps.dumps import DumpError
 from ..pipeline import ResultError
-from ..runner import LammpsError
-from ..scenes import PhysicsWarning, SceneError
+from ..lammps.runner import LammpsError
+from ..model.scenes import PhysicsWarning, SceneError
 from ..sweeps import SweepError
 from . import accuracy, bench, benchmarks, claims, collide, figures, fit, frozen, hertz, references, reproduce, sweep, theory
 

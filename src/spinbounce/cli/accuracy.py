@@ -32,7 +32,7 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    from ..accuracy import MID, TARGETS, make_accuracy
+    from ..studies.accuracy import MID, TARGETS, make_accuracy
 
     log = (lambda line: print(line, file=sys.stderr)) if args.json else print
     study, files = make_accuracy(args.out, quick=args.quick, runs=args.runs, log=log)

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..bench import BENCH_DEFAULTS, run_bench
-from ..pipeline import to_json, write_atomic
+from ..studies.speed import BENCH_DEFAULTS, run_bench
+from ..records import to_json, write_atomic
 
 HELP = "measure collisions/s of one lmp process per collision, one in-process instance, and a batched sweep"
 

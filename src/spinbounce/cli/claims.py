@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..claims import evaluate_claims, write_claims
+from ..studies.claims import evaluate_claims, write_claims
 
 HELP = "check the paper's quantitative claims with LAMMPS and the exact theory; write CLAIMS.md and claims.json"
 

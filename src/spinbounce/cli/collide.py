@@ -7,7 +7,7 @@ import json
 from pathlib import Path
 
 from ..pipeline import run_collision
-from ..scenes import Collision
+from ..model.scenes import Collision
 from .options import default_run_dir, json_flag, model_from, model_parser
 
 HELP = "bounce one sphere off the wall in LAMMPS and compare with the scattering matrix (Eq. 18)"
@@ -87,7 +87,7 @@ def _print_states(report: dict, label_width: int) -> None:
 
 
 def _run_to_tolerance(args) -> int:
-    from ..tolerance import collide_to_tolerance, collision_frame
+    from ..studies.tolerance import collide_to_tolerance, collision_frame
 
     model = model_from(args)
     out = args.out or default_run_dir(
@@ -112,8 +112,8 @@ def _run_to_tolerance(args) -> int:
     }
     report["final"]["omega"] = report["final"]["r_omega"] / r
     out_json = Path(out) / "tolerance.json"
-    from ..pipeline import to_json, write_atomic
-    from ..runner import lammps_version
+    from ..records import to_json, write_atomic
+    from ..lammps.runner import lammps_version
 
     report["lammps_version"] = lammps_version()
     write_atomic(out_json, to_json(report))

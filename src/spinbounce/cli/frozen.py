@@ -6,8 +6,10 @@ import dataclasses
 import json
 from pathlib import Path
 
-from ..pipeline import frozen_metadata, run_frozen, to_json, write_atomic
-from ..scenes import Frozen
+from ..pipeline import frozen_metadata, run_frozen
+
+from ..records import to_json, write_atomic
+from ..model.scenes import Frozen
 from .options import default_run_dir, json_flag, model_from, model_parser
 
 HELP = "hold a sphere in contact at height z (v_n = 0) and compare v_t(t), omega(t) with Eq. 10"
@@ -72,8 +74,8 @@ def _run_to_tolerance(args) -> int:
     import pandas as pd
 
     from .. import theory
-    from ..runner import lammps_version
-    from ..tolerance import frozen_to_tolerance
+    from ..lammps.runner import lammps_version
+    from ..studies.tolerance import frozen_to_tolerance
 
     model = model_from(args)
     Frozen(model, z=args.z, v_t=args.vt, omega=args.omega, t_end=args.t_end)  # validates before any run

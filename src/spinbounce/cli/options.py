@@ -7,7 +7,7 @@ import hashlib
 import json
 from pathlib import Path
 
-from ..scenes import ContactModel
+from ..model.scenes import ContactModel
 
 _DEFAULTS = ContactModel()
 

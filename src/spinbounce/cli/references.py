@@ -6,7 +6,7 @@ import sys
 import time
 from pathlib import Path
 
-from .. import references
+from ..studies import references
 
 HELP = "compare fresh runs with the stored reference tables and golden decks (--check), or remake them (--regenerate)"
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import time
 from pathlib import Path
 
-from ..claims import evaluate_claims, write_claims
+from ..studies.claims import evaluate_claims, write_claims
 
 HELP = "regenerate the paper's figures 2-7 and check its claims (figures/ and figures/CLAIMS.md)"
 

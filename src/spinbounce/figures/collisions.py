@@ -15,7 +15,7 @@ import pandas as pd
 
 from .. import theory
 from ..pipeline import ResultError
-from ..scenes import ContactModel
+from ..model.scenes import ContactModel
 from .core import (
     FigureData,
     FigureRecord,

@@ -10,13 +10,9 @@ the ``spinbounce figures`` command) stays cheap.
 
 from __future__ import annotations
 
-import datetime
 import itertools
 import math
-import os
-import platform
 import shutil
-import tempfile
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -33,11 +29,9 @@ from ..pipeline import (
     frozen_metadata,
     run_collision,
     run_frozen,
-    to_json,
-    write_atomic,
 )
-from ..runner import lammps_version
-from ..scenes import Collision, ContactModel, Frozen
+from ..records import software, to_json, write_atomic, write_atomic_with
+from ..model.scenes import Collision, ContactModel, Frozen
 
 __all__ = [
     "ACCEPTANCE",
@@ -124,17 +118,6 @@ def new_figure(nrows: int = 1, ncols: int = 1, figsize=None, **subplots):
     return fig, axes
 
 
-def _save_atomic(fig, path: Path, fmt: str, **kwargs) -> None:
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    os.close(fd)
-    try:
-        fig.savefig(tmp, format=fmt, **kwargs)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-
-
 def save(fig, out: Path, name: str, metadata: dict, started: float | None = None) -> FigureRecord:
     """Write ``name``.png, ``name``.pdf and ``name``.json into ``out``, each atomically.
 
@@ -146,8 +129,8 @@ def save(fig, out: Path, name: str, metadata: dict, started: float | None = None
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     png, pdf, meta = (out / f"{name}.{ext}" for ext in ("png", "pdf", "json"))
-    _save_atomic(fig, png, "png", metadata={"Software": None})
-    _save_atomic(fig, pdf, "pdf", metadata={"CreationDate": None, "Creator": f"spinbounce {__version__}"})
+    write_atomic_with(png, lambda tmp: fig.savefig(tmp, format="png", metadata={"Software": None}))
+    write_atomic_with(pdf, lambda tmp: fig.savefig(tmp, format="pdf", metadata={"CreationDate": None, "Creator": f"spinbounce {__version__}"}))
     if started is not None:
         metadata["runtime_seconds"] = time.perf_counter() - started
     record = dict(metadata)
@@ -190,19 +173,6 @@ def make(compute, draw, name: str, out: Path, runs: Path | None) -> FigureRecord
     with matplotlib.style.context(STYLE):
         fig = draw(data)
         return save(fig, out, name, data.metadata, started)
-
-
-def software() -> dict:
-    """What made a figure or report: package, LAMMPS, matplotlib and Python versions, and when."""
-    import matplotlib
-
-    return {
-        "spinbounce_version": __version__,
-        "lammps_version": lammps_version(),
-        "matplotlib_version": matplotlib.__version__,
-        "python": platform.python_version(),
-        "created": datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds"),
-    }
 
 
 def base_metadata(name: str, title: str, paper: str) -> dict:

@@ -14,7 +14,7 @@ import numpy as np
 import pandas as pd
 
 from .. import theory
-from ..scenes import ContactModel
+from ..model.scenes import ContactModel
 from .core import (
     FROZEN_Z,
     FigureData,

@@ -2,7 +2,7 @@
 
 The paper's conclusion: with a nonlinear normal force the contact time depends on
 v_n(0), so a collision conserves energy only at special normal speeds. For the
-Hertzian wall (spinbounce.hertz) the energy-conserving kt*(v_n) grows as |v_n|^(2/5).
+Hertzian wall (spinbounce.theory.hertz) the energy-conserving kt*(v_n) grows as |v_n|^(2/5).
 
 Measuring kt* at Omega = -2 itself would be ill-conditioned: the slip ratio u'(tau)/u'(0)
 = cos(sqrt(Q) tau) has its minimum there. So each speed is run at kt = kt*/4, where the
@@ -26,9 +26,11 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .. import hertz, theory
-from ..pipeline import ResultError, run_collision, write_atomic
-from ..scenes import Collision, ContactModel, SceneError
+from ..theory import hertz
+from .. import theory
+from ..pipeline import ResultError, run_collision
+from ..records import write_atomic
+from ..model.scenes import Collision, ContactModel, SceneError
 from .core import STYLE, FigureData, FigureRecord, _relative, base_metadata, default_runs, new_figure, save
 
 __all__ = ["HertzParameters", "hertz_data", "draw_hertz", "hertz_markdown", "make_hertz", "ACCEPTANCE"]

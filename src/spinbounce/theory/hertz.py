@@ -38,7 +38,7 @@ import math
 
 import numpy as np
 
-from . import theory
+from . import linear as theory
 
 __all__ = [
     "CONTACT_INTEGRAL",

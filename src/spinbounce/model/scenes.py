@@ -12,7 +12,7 @@ Two scenes:
   slip evolves; checked against Eq. 10 (or its exact damped form).
 
 The normal force is the paper's Hookean spring or, with ``normal="hertz"``, LAMMPS's
-Hertzian one (theory in :mod:`spinbounce.hertz`), whose contact time depends on v_n.
+Hertzian one (theory in :mod:`spinbounce.theory.hertz`), whose contact time depends on v_n.
 """
 
 from __future__ import annotations
@@ -23,7 +23,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import hertz, theory
+from ..theory import hertz
+from .. import theory
 from .stability import stability_limit
 
 __all__ = [
@@ -116,7 +117,7 @@ class ContactModel:
 
     ``mu = None`` is the paper's model: no Coulomb limit on the tangential force.
     ``normal = "hertz"`` replaces the Hookean normal spring by F = kn sqrt(r) delta^(3/2)
-    (kn in force/length^2, LAMMPS's K); its v_n-dependent theory is in :mod:`spinbounce.hertz`.
+    (kn in force/length^2, LAMMPS's K); its v_n-dependent theory is in :mod:`spinbounce.theory.hertz`.
     """
 
     m: float = 1.0
@@ -180,7 +181,7 @@ class ContactModel:
     def _hooke_only(self, what: str) -> None:
         if self.normal != "hooke":
             raise SceneError("normal", self.normal, f"has no single {what}: it depends on v_n "
-                             "(per-sphere values: Collision.predicted(), spinbounce.hertz)")
+                             "(per-sphere values: Collision.predicted(), spinbounce.theory.hertz)")
 
     @property
     def tau(self) -> float:
@@ -450,7 +451,7 @@ class Collision:
         (:mod:`oracle`), sphere by sphere."""
         k = len(self.state_names)
         if self.model.mu is not None:
-            from . import oracle
+            from ..theory import oracle
 
             return oracle.bounce_many(self.model, self.v_n, self.v_t, self.omega,
                                       self.v_s, self.omega_s, self.omega_n)[:, :k]

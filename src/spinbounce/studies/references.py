@@ -33,11 +33,11 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from . import __version__, theory
-from .decks import ATOM_ROUTES, render_collision, render_frozen
-from .pipeline import run_collision, run_frozen
-from .runner import lammps_version
-from .scenes import Collision, ContactModel, Frozen
+from .. import __version__, theory
+from ..lammps.decks import ATOM_ROUTES, render_collision, render_frozen
+from ..pipeline import run_collision, run_frozen
+from ..lammps.runner import lammps_version
+from ..model.scenes import Collision, ContactModel, Frozen
 
 __all__ = [
     "CASES",

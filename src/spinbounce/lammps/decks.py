@@ -18,8 +18,8 @@ from pathlib import Path
 import jinja2
 import numpy as np
 
-from . import __version__
-from .scenes import Collision, ContactModel, Frozen
+from .. import __version__
+from ..model.scenes import Collision, ContactModel, Frozen
 
 __all__ = ["Deck", "LibraryAtoms", "render_collision", "render_frozen", "wall_parameters", "template_dir",
            "NO_CAP_MU", "LIBRARY_MARKER", "ATOM_ROUTES"]
@@ -49,11 +49,11 @@ ALPHA_NVE_SPHERE = 0.4
 
 def template_dir() -> Path:
     """``lammps_inputs/``: inside the installed package, or at the source tree's top."""
-    here = Path(__file__).resolve().parent
-    for candidate in (here / "lammps_inputs", here.parent.parent / "lammps_inputs"):
+    package = Path(__file__).resolve().parent.parent  # spinbounce/
+    for candidate in (package / "lammps_inputs", package.parent.parent / "lammps_inputs"):
         if candidate.is_dir():
             return candidate
-    raise FileNotFoundError(f"lammps_inputs/ not found next to {here}")
+    raise FileNotFoundError(f"lammps_inputs/ not found next to {package}")
 
 
 def _num(x) -> str:

@@ -39,10 +39,11 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from . import __version__
-from .compare import STATE
-from .pipeline import json_ready, run_collision, run_frozen, write_atomic
-from .scenes import (
+from .. import __version__
+from ..compare import STATE
+from ..pipeline import run_collision, run_frozen
+from ..records import json_ready, write_atomic
+from ..model.scenes import (
     COLLISION_STEPS_PER_HALF_PERIOD,
     FROZEN_STEPS_PER_HALF_PERIOD,
     Collision,
@@ -538,7 +539,7 @@ def run_study(quick: bool = False, runs: Path | None = None, log=print) -> Study
     LAMMPS runs go to ``runs`` (kept) or to a temporary folder (removed afterwards). Runs
     are sequential in this process, so the seconds are one core's.
     """
-    from .runner import lammps_version
+    from ..lammps.runner import lammps_version
 
     started = time.perf_counter()
     steps = ladder(quick)
@@ -615,7 +616,7 @@ def draw(study: Study):
     curve's observed order. Call inside ``matplotlib.style.context(STYLE)``."""
     import matplotlib
 
-    from .figures.core import new_figure
+    from ..figures.core import new_figure
 
     fig, axes = new_figure(1, 2, figsize=(11.5, 5.8), sharey=True)
     ax_steps, ax_wall = axes[0]
@@ -783,7 +784,7 @@ def write_study(study: Study, out: Path) -> dict[str, Path]:
     """Write accuracy.png, accuracy.pdf, accuracy.json and ACCURACY.md into ``out``, each atomically."""
     import matplotlib.style
 
-    from .figures.core import STYLE, save
+    from ..figures.core import STYLE, save
 
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)

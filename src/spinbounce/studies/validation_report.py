@@ -14,8 +14,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .benchmarks import ACCEPTANCE, QUANTITIES, BenchmarkRun, quantity, run_benchmark, select, walton
-from .pipeline import json_ready, write_atomic
+from .validation import ACCEPTANCE, QUANTITIES, BenchmarkRun, quantity, run_benchmark, select, walton
+from ..records import json_ready, write_atomic
 
 __all__ = ["make_benchmarks", "draw", "markdown", "record"]
 
@@ -33,7 +33,7 @@ def _rigid_curve(run: BenchmarkRun, series, y: str):
 
 
 def draw(runs: list[BenchmarkRun]):
-    from .figures.core import new_figure
+    from ..figures.core import new_figure
 
     ncols = max(len(r.benchmark.panels) for r in runs)
     fig, axes = new_figure(len(runs), ncols, figsize=(3.2 * ncols, 2.9 * len(runs)))
@@ -230,7 +230,8 @@ def make_benchmarks(out: Path, only: list[str] | None = None, runs: Path | None 
     """
     import matplotlib.style
 
-    from .figures.core import STYLE, save, software
+    from ..figures.core import STYLE, save
+    from ..records import software
 
     chosen = select(only)
     started = time.perf_counter()

@@ -37,7 +37,10 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from .scenes import ContactModel
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:  # the oracle reads a model's fields; it needs nothing else of model/
+    from ..model.contact import ContactModel
 
 __all__ = ["OracleResult", "bounce", "bounce_many", "gross_slip", "RTOL", "ATOL"]
 

@@ -28,8 +28,8 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .compare import STATE
-from .scenes import Collision, ContactModel, Frozen, SceneError
+from ..compare import STATE
+from ..model.scenes import Collision, ContactModel, Frozen, SceneError
 
 __all__ = ["Extrapolated", "collide_to_tolerance", "frozen_to_tolerance", "check_tolerance", "MIN_TOLERANCE"]
 
@@ -150,7 +150,7 @@ def _ladder(run_level, tolerance: float, p: np.ndarray, log) -> tuple[np.ndarray
             for level, raw in zip(levels, values, strict=True):
                 level["error_vs_extrapolation"] = float(np.abs(raw - best).max())
             return best, estimate, levels
-    from .pipeline import ResultError
+    from ..pipeline import ResultError
 
     raise ResultError(
         f"tolerance = {tolerance:g} not reached in {MAX_LEVELS} levels "
@@ -165,7 +165,7 @@ def collide_to_tolerance(model: ContactModel, v_n, v_t, omega, tolerance: float,
     Each level's run lives in ``out_dir/level-K``. Returns the extrapolated final states
     with their estimates, and the finest level's scene (for its initial states and theory).
     """
-    from .pipeline import run_collision
+    from ..pipeline import run_collision
 
     tol = check_tolerance(tolerance)
     if model.mu is not None:
@@ -216,7 +216,7 @@ def frozen_to_tolerance(model: ContactModel, z: float, v_t: float, omega: float,
     Level k halves dt and doubles the dump interval, so every level samples the same times
     exactly (dt is divided by a power of two).
     """
-    from .pipeline import run_frozen
+    from ..pipeline import run_frozen
 
     tol = check_tolerance(tolerance)
     out_dir = Path(out_dir)

@@ -25,8 +25,8 @@ from pathlib import Path
 
 import numpy as np
 
-from . import __version__, theory
-from .scenes import Collision, ContactModel, Frozen
+from .. import __version__, theory
+from ..model.scenes import Collision, ContactModel, Frozen
 
 __all__ = ["Claim", "CLAIMS", "evaluate_claims", "write_claims", "verdict"]
 
@@ -82,14 +82,14 @@ class _Runs:
         self.root = Path(root)
 
     def collide(self, name: str, model: ContactModel, vn, vt, omega, dt=None):
-        from .pipeline import run_collision
+        from ..pipeline import run_collision
 
         scene = Collision(model, v_n=vn, v_t=vt, omega=omega, dt=dt)
         result = run_collision(scene, self.root / name, atoms="library")
         return scene, result.table
 
     def frozen(self, name: str, model: ContactModel, **kwargs):
-        from .pipeline import run_frozen
+        from ..pipeline import run_frozen
 
         scene = Frozen(model, **kwargs)
         return scene, run_frozen(scene, self.root / name).table
@@ -113,7 +113,7 @@ def _final(t):
 # ---------------------------------------------------------------------------------------
 
 def omega_default(runs: _Runs) -> Claim:
-    from .fit import fit_omega
+    from ..fit import fit_omega
 
     model = ContactModel()
     _, t = runs.collide("omega-default", model, *_states(400, 1))
@@ -128,7 +128,7 @@ def omega_default(runs: _Runs) -> Claim:
 
 
 def omega_sign(runs: _Runs) -> Claim:
-    from .fit import fit_omega
+    from ..fit import fit_omega
 
     ratios = [0.02, 0.05, 0.1, 0.2, 2 / 7, 0.5, 1.0, 2.0, 5.0]
     fitted, exact = [], []
@@ -307,7 +307,7 @@ def reflection_angle(runs: _Runs) -> Claim:
 
 
 def eq22(runs: _Runs) -> Claim:
-    from .fit import fit_omega
+    from ..fit import fit_omega
 
     rows = []
     for gamma_t in (0.1, 0.5, 1.0, 2.0):
@@ -361,7 +361,7 @@ def _peaks(t: np.ndarray, y: np.ndarray) -> np.ndarray:
 
 
 def rapid_damping_rolls(runs: _Runs) -> Claim:
-    from .fit import fit_omega
+    from ..fit import fit_omega
 
     gamma_t = 40.0
     model = ContactModel(gamma_t=gamma_t)
@@ -385,7 +385,7 @@ def eq23_matrix(runs: _Runs) -> Claim:
     model = ContactModel(gamma_t=40.0)
     dt = Collision(model).dt / DAMPED_REFINE
     _, t = runs.collide("eq23", model, *_states(200, 6), dt=dt)
-    from .fit import fit_matrix
+    from ..fit import fit_matrix
 
     fitted, _, _ = fit_matrix(_initial(t), _final(t))
     expected = model.matrix()  # the exact damped matrix at this gamma_t, close to Eq. 23
@@ -473,8 +473,8 @@ def _cell(value) -> str:
 
 def write_claims(claims: list[Claim], out: Path) -> tuple[Path, Path]:
     """``CLAIMS.md`` and ``claims.json`` in ``out`` (atomic writes)."""
-    from .pipeline import to_json, write_atomic
-    from .runner import lammps_version
+    from ..records import to_json, write_atomic
+    from ..lammps.runner import lammps_version
 
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)

