@@ -26,6 +26,7 @@ import numpy as np
 from ..theory import hertz
 from .. import theory
 from .stability import stability_limit
+from .timestep import mid_step_dt, steps_through
 
 __all__ = [
     "SceneError",
@@ -413,7 +414,7 @@ class Collision:
             speed = max(abs(v) for v in self.v_n)
             return math.pi / m.fastest_rate(frozen=False, speed=speed) / HERTZ_STEPS_PER_HALF_PERIOD
         per_tau = COLLISION_STEPS_PER_HALF_PERIOD * m.fastest_rate(frozen=False) * m.tau / math.pi
-        return m.tau / (math.ceil(per_tau - 1e-9) + 0.5)
+        return mid_step_dt(m.tau, math.ceil(per_tau - 1e-9))
 
     @property
     def n(self) -> int:
@@ -441,8 +442,8 @@ class Collision:
     def nsteps(self) -> int:
         """Steps that end the contact: the step after tau, and one more for rounding."""
         if self.model.normal == "hertz":  # the slowest sphere's contact is the longest
-            return math.floor(float(np.max(self.model.contact_times(self.v_n))) / self.dt) + 2
-        return math.floor(self.model.t_exit / self.dt) + 2
+            return steps_through(float(np.max(self.model.contact_times(self.v_n))), self.dt)
+        return steps_through(self.model.t_exit, self.dt)
 
     def predicted(self) -> np.ndarray:
         """Final states from the theory, shaped like :attr:`initial`: the scattering matrix
