@@ -104,7 +104,7 @@ def test_oracle_approaches_the_no_slip_outcome_as_the_slip_shrinks():
     deviations = []
     for slip in (1e-2, 1e-3, 1e-4):
         got = oracle.bounce(model, -1.0, slip, 0.0).final[:3]
-        deviations.append(np.abs(got - model.matrix() @ np.array([-1.0, slip, 0.0])).max())
+        deviations.append(np.abs(got - model.replace(mu=None).matrix() @ np.array([-1.0, slip, 0.0])).max())
     assert deviations[-1] < 1e-6
     assert 70 < deviations[0] / deviations[1] < 130 and 70 < deviations[1] / deviations[2] < 130
 

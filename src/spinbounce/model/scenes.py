@@ -18,14 +18,16 @@ Hertzian one (theory in :mod:`spinbounce.theory.hertz`), whose contact time depe
 from __future__ import annotations
 
 import math
-import warnings
+
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..theory import hertz
 from .. import theory
-from .stability import stability_limit
+from ..theory import choose, hertz
+from . import parameters
+from .contact import MIN_STEPS_PER_HALF_PERIOD, NORMAL_LAWS, ContactModel, PhysicsWarning
+from .parameters import SceneError
 from .timestep import mid_step_dt, steps_through
 
 __all__ = [
@@ -59,33 +61,12 @@ FROZEN_STEPS_PER_HALF_PERIOD = 1000
 #: sqrt(Q) dt |u'(0)| at most, over 800 spheres). Since sqrt(Q) dt <= pi/N, N = 64000
 #: keeps the error below pi/(2N) |u'(0)| <= 1e-4 for |v_t|, |r omega| <= 2, any alpha.
 HERTZ_STEPS_PER_HALF_PERIOD = 64000
-#: Normal force laws: LAMMPS's granular ``hooke`` (F = kn delta, the paper's) and ``hertz``
-#: (F = kn sqrt(r) delta^(3/2) against a flat wall).
-NORMAL_LAWS = ("hooke", "hertz")
-#: Below this many steps per half-period a result is a caricature: warn.
-MIN_STEPS_PER_HALF_PERIOD = 20
 #: State columns, in order: the paper's plane, and in 3-D the second tangential pair and
 #: the spin about the normal (each spin times r, with the sign that makes slip = v + r omega).
 STATE = ("vn", "vt", "r_omega")
 STATE_3D = STATE + ("vs", "r_omega_s", "r_omega_n")
-#: Collision's per-sphere arguments, in the order of STATE_3D.
-STATE_ARGS = ("v_n", "v_t", "omega", "v_s", "omega_s", "omega_n")
-#: Above alpha = 2/3 part of the mass would sit outside the sphere (Section 3).
-ALPHA_SHELL = 2.0 / 3.0
-
-
-class SceneError(ValueError):
-    """A scene parameter is out of its allowed range. Raised before LAMMPS starts."""
-
-    def __init__(self, parameter: str, value, limit: str):
-        self.parameter = parameter
-        self.value = value
-        self.limit = limit
-        super().__init__(f"{parameter} = {value!r}: {limit}")
-
-
-class PhysicsWarning(UserWarning):
-    """A scene is allowed but physically unusual or numerically marginal."""
+#: Collision's per-sphere arguments, in the order of STATE_3D: the declared state.
+STATE_ARGS = tuple(p.name for p in parameters.STATE)
 
 
 def _finite(name: str, value) -> float:
@@ -103,192 +84,6 @@ def _positive(name: str, value) -> float:
     if v <= 0.0:
         raise SceneError(name, value, "must be > 0")
     return v
-
-
-def _non_negative(name: str, value) -> float:
-    v = _finite(name, value)
-    if v < 0.0:
-        raise SceneError(name, value, "must be >= 0")
-    return v
-
-
-@dataclass(frozen=True)
-class ContactModel:
-    """The sphere and its wall contact (Eq. 1), in LAMMPS lj units.
-
-    ``mu = None`` is the paper's model: no Coulomb limit on the tangential force.
-    ``normal = "hertz"`` replaces the Hookean normal spring by F = kn sqrt(r) delta^(3/2)
-    (kn in force/length^2, LAMMPS's K); its v_n-dependent theory is in :mod:`spinbounce.theory.hertz`.
-    """
-
-    m: float = 1.0
-    r: float = 0.5
-    alpha: float = 0.4
-    kn: float = 10.0
-    kt: float = 1.0
-    gamma_n: float = 0.0
-    gamma_t: float = 0.0
-    mu: float | None = None
-    #: LAMMPS's ``limit_damping``: the normal force never pulls (it is cut at zero, and
-    #: the tangential force with it, since |F_t| <= mu |F_n|). Default: tensile allowed.
-    limit_damping: bool = False
-    #: The normal force law, one of NORMAL_LAWS.
-    normal: str = "hooke"
-
-    def __post_init__(self):
-        set_ = object.__setattr__
-        if self.normal not in NORMAL_LAWS:
-            raise SceneError("normal", self.normal, f"must be one of {', '.join(NORMAL_LAWS)}")
-        if not isinstance(self.limit_damping, bool):
-            raise SceneError("limit_damping", self.limit_damping, "must be true or false")
-        for name in ("m", "r", "kn"):
-            set_(self, name, _positive(name, getattr(self, name)))
-        for name in ("kt", "gamma_n", "gamma_t"):
-            set_(self, name, _non_negative(name, getattr(self, name)))
-        alpha = _finite("alpha", self.alpha)
-        if not 0.0 < alpha <= 1.0:
-            raise SceneError("alpha", self.alpha, "must lie in (0, 1] (alpha = I/(m r^2))")
-        if alpha > ALPHA_SHELL:
-            warnings.warn(
-                f"alpha = {alpha:g} > 2/3: more than a thin shell's inertia, the sphere "
-                "carries 'phantom' mass beyond its radius (paper, Section 3)",
-                PhysicsWarning,
-                stacklevel=3,
-            )
-        set_(self, "alpha", alpha)
-        if self.mu is not None:
-            set_(self, "mu", _non_negative("mu", self.mu))
-        if self.normal == "hertz" and self.gamma_n > 0.0:
-            raise SceneError(
-                "gamma_n",
-                self.gamma_n,
-                "must be 0 with normal = 'hertz': there is no exact theory here of the damped "
-                "Hertzian contact to check it against",
-            )
-        critical = 2.0 * math.sqrt(self.m * self.kn)
-        if self.gamma_n >= critical:
-            raise SceneError(
-                "gamma_n",
-                self.gamma_n,
-                f"must be below critical normal damping 2*sqrt(m*kn) = {critical:.6g}: "
-                "at or above it the sphere never leaves the wall",
-            )
-
-    # -- derived quantities (theory, in the paper's names) -------------------------
-    @property
-    def inertia(self) -> float:
-        return self.alpha * self.m * self.r**2
-
-    def _hooke_only(self, what: str) -> None:
-        if self.normal != "hooke":
-            raise SceneError("normal", self.normal, f"has no single {what}: it depends on v_n "
-                             "(per-sphere values: Collision.predicted(), spinbounce.theory.hertz)")
-
-    @property
-    def tau(self) -> float:
-        """Contact time, Eq. 16 (damped form when gamma_n > 0): how long the force acts."""
-        self._hooke_only("contact time tau")
-        return theory.collision_time(self.m, self.kn, self.gamma_n, not self.limit_damping)
-
-    @property
-    def t_exit(self) -> float:
-        """When the sphere is out of the overlap (later than tau with limit_damping)."""
-        self._hooke_only("exit time")
-        return theory.exit_time(self.m, self.kn, self.gamma_n, not self.limit_damping)
-
-    @property
-    def Q(self) -> float:
-        return theory.Q(self.kt, self.m, self.alpha)
-
-    @property
-    def zeta(self) -> float:
-        return theory.damping_rate(self.gamma_t, self.m, self.alpha)
-
-    @property
-    def Omega(self) -> float:
-        """Exact Omega (Eq. 18's when undamped)."""
-        self._hooke_only("Omega")
-        return theory.Omega_exact(self.m, self.kn, self.kt, self.alpha, self.gamma_t, self.gamma_n,
-                                  not self.limit_damping)
-
-    @property
-    def restitution(self) -> float:
-        self._hooke_only("restitution")
-        return theory.restitution(self.m, self.kn, self.gamma_n, not self.limit_damping)
-
-    def matrix(self) -> np.ndarray:
-        """The scattering matrix this model predicts (Eq. 18, exact damped Omega)."""
-        return theory.scattering_matrix(self.alpha, self.Omega, self.restitution)
-
-    def block_matrix(self) -> np.ndarray:
-        """The 6x6 map of 3-D states (:data:`STATE_3D`)."""
-        return theory.block_matrix(self.alpha, self.Omega, self.restitution)
-
-    def contact_times(self, v_n) -> np.ndarray:
-        """Each sphere's time until it is out of the overlap (Hertz: tau(v_n); Hooke: t_exit)."""
-        v = np.atleast_1d(np.asarray(v_n, dtype=float))
-        if self.normal == "hertz":
-            return hertz.contact_time(v, self.m, self.kn, self.r)
-        return np.full(v.shape, self.t_exit)
-
-    def matrices(self, v_n) -> np.ndarray:
-        """(n, 3, 3): each sphere's scattering matrix (Hooke: the one matrix, repeated)."""
-        v = np.atleast_1d(np.asarray(v_n, dtype=float))
-        if self.normal == "hertz":
-            return hertz.scattering_matrices(v, self.m, self.kn, self.r, self.kt, self.alpha, self.gamma_t)
-        return np.broadcast_to(self.matrix(), (v.size, 3, 3))
-
-    # -- numerics --------------------------------------------------------------------
-    def modes(self, frozen: bool, speed: float | None = None) -> dict[str, tuple[float, float]]:
-        """The linear contact modes a scene integrates: name -> (w, c) of x'' + c x' + w^2 x = 0.
-
-        The Hertzian normal mode is nonlinear; it is represented by its stiffest point, the
-        largest overlap of the fastest sphere, whose |v_n| is ``speed``.
-        """
-        out = {"slip": (math.sqrt(self.Q), 2.0 * self.zeta)}
-        if not frozen:
-            if self.normal == "hertz":
-                if speed is None:
-                    raise ValueError("a Hertzian collision's normal mode needs the fastest |v_n| (speed)")
-                out["normal"] = (float(hertz.normal_frequency(speed, self.m, self.kn, self.r)), 0.0)
-            else:
-                out["normal"] = (math.sqrt(self.kn / self.m), self.gamma_n / self.m)
-        return out
-
-    def fastest_rate(self, frozen: bool, speed: float | None = None) -> float:
-        """Largest rate (1/time) among the integrated modes: frequency or fast decay rate."""
-        rates = []
-        for w, c in self.modes(frozen, speed).values():
-            half = 0.5 * c
-            rates.append(w if half < w else half + math.sqrt(half * half - w * w))
-        return max(rates)
-
-    def dt_limit(self, frozen: bool, speed: float | None = None) -> tuple[float, str]:
-        """Stability limit of LAMMPS's step and the mode that sets it."""
-        limits = {name: stability_limit(w, c) for name, (w, c) in self.modes(frozen, speed).items()}
-        name = min(limits, key=limits.get)
-        return limits[name], name
-
-    def check_dt(self, dt, frozen: bool, speed: float | None = None) -> float:
-        dt = _positive("dt", dt)
-        limit, mode = self.dt_limit(frozen, speed)
-        if dt >= limit:
-            raise SceneError(
-                "dt",
-                dt,
-                f"must be below the stability limit {limit:.6g} of the {mode} mode "
-                "(LAMMPS's velocity-Verlet step diverges above it)",
-            )
-        rate = self.fastest_rate(frozen, speed)
-        steps = math.pi / rate / dt if rate > 0.0 else math.inf
-        if steps < MIN_STEPS_PER_HALF_PERIOD:
-            warnings.warn(
-                f"dt = {dt:g} resolves the fastest contact mode with only {steps:.1f} steps "
-                f"per half-period (fewer than {MIN_STEPS_PER_HALF_PERIOD}): expect a large error",
-                PhysicsWarning,
-                stacklevel=3,
-            )
-        return dt
 
 
 def _as_vector(name: str, value) -> tuple[float, ...]:
@@ -450,19 +245,7 @@ class Collision:
         (Eq. 18 with the exact damped Omega; its 6x6 block form in 3-D; one per sphere for a
         Hertzian wall, whose Omega depends on v_n), or with a finite mu the Coulomb oracle
         (:mod:`oracle`), sphere by sphere."""
-        k = len(self.state_names)
-        if self.model.mu is not None:
-            from ..theory import oracle
-
-            return oracle.bounce_many(self.model, self.v_n, self.v_t, self.omega,
-                                      self.v_s, self.omega_s, self.omega_n)[:, :k]
-        if self.model.normal == "hertz":  # Omega differs from sphere to sphere
-            matrices = self.model.matrices(self.v_n)
-            if k == 6:
-                matrices = np.array([theory.block_from(m3) for m3 in matrices])
-            return np.einsum("nij,nj->ni", matrices, self.initial)
-        matrix = self.model.block_matrix() if k == 6 else self.model.matrix()
-        return self.initial @ matrix.T
+        return choose.predict(self.model, self.initial)
 
 
 @dataclass(frozen=True)
@@ -486,6 +269,10 @@ class Frozen:
     def __post_init__(self):
         set_ = object.__setattr__
         m = self.model
+        if m.mu is not None:
+            raise SceneError("mu", m.mu, "a frozen contact is checked against Eq. 10, which has no Coulomb cap: "
+                                         "leave mu out (held at a fixed height the cap is constant, so a cap "
+                                         "only adds sliding that no theory here predicts)")
         z = _finite("z", self.z)
         if not 0.0 < z < m.r:
             raise SceneError("z", self.z, f"must lie in (0, r) = (0, {m.r:g}) to hold the sphere in contact")
@@ -514,5 +301,4 @@ class Frozen:
 
     def predicted(self, t) -> tuple[np.ndarray, np.ndarray]:
         """(v_t(t), r omega(t)): Eq. 10, or its exact damped form when gamma_t > 0."""
-        m = self.model
-        return theory.frozen_velocities(t, self.v_t, self.omega * m.r, m.kt, m.m, m.alpha, m.gamma_t)
+        return choose.frozen(self.model, t, self.v_t, self.omega * self.model.r)

@@ -1,0 +1,204 @@
+"""The contact model: its fields come from the declaration (:mod:`.parameters`), its
+physics from :mod:`spinbounce.theory`.
+
+``ContactModel`` is a frozen dataclass built from :data:`.parameters.MODEL`: one field per
+declared parameter, with the declared default, checked against the declared range when
+the model is made. Checks that involve two parameters (critical damping, Hertz without a
+damped theory) and the derived quantities of the paper (tau, Q, Omega, the matrices, the
+contact's modes and the step's stability limit) live in :class:`ContactPhysics`.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import warnings
+
+import numpy as np
+
+from .. import theory
+from ..theory import choose, hertz
+from .parameters import MODEL, SceneError
+from .stability import stability_limit
+
+__all__ = ["ContactModel", "ContactPhysics", "PhysicsWarning", "NORMAL_LAWS", "ALPHA_SHELL",
+           "MIN_STEPS_PER_HALF_PERIOD"]
+
+#: Normal force laws, as declared.
+NORMAL_LAWS = next(p for p in MODEL if p.name == "normal").choices
+#: Below this many steps per half-period a result is a caricature: warn.
+MIN_STEPS_PER_HALF_PERIOD = 20
+#: Above alpha = 2/3 part of the mass would sit outside the sphere (Section 3).
+ALPHA_SHELL = 2.0 / 3.0
+
+
+class PhysicsWarning(UserWarning):
+    """A scene is allowed but physically unusual or numerically marginal."""
+
+
+def _positive(name: str, value) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise SceneError(name, value, "must be a number") from None
+    if not math.isfinite(v):
+        raise SceneError(name, value, "must be finite")
+    if v <= 0.0:
+        raise SceneError(name, value, "must be > 0")
+    return v
+
+
+class ContactPhysics:
+    """What a contact model means: cross-parameter checks and the paper's derived quantities."""
+
+    def __post_init__(self):
+        for parameter in MODEL:
+            object.__setattr__(self, parameter.name, parameter.check(getattr(self, parameter.name)))
+        if self.alpha > ALPHA_SHELL:
+            warnings.warn(
+                f"alpha = {self.alpha:g} > 2/3: more than a thin shell's inertia, the sphere "
+                "carries 'phantom' mass beyond its radius (paper, Section 3)",
+                PhysicsWarning,
+                stacklevel=4,
+            )
+        if self.normal == "hertz" and self.gamma_n > 0.0:
+            raise SceneError(
+                "gamma_n",
+                self.gamma_n,
+                "must be 0 with normal = 'hertz': there is no exact theory here of the damped "
+                "Hertzian contact to check it against",
+            )
+        critical = 2.0 * math.sqrt(self.m * self.kn)
+        if self.gamma_n >= critical:
+            raise SceneError(
+                "gamma_n",
+                self.gamma_n,
+                f"must be below critical normal damping 2*sqrt(m*kn) = {critical:.6g}: "
+                "at or above it the sphere never leaves the wall",
+            )
+
+    def replace(self, **changes):
+        """A copy with some parameters changed (checked again)."""
+        return dataclasses.replace(self, **changes)
+
+    # -- derived quantities (theory, in the paper's names) -------------------------
+    @property
+    def inertia(self) -> float:
+        return self.alpha * self.m * self.r**2
+
+    def _hooke_only(self, what: str) -> None:
+        if self.normal != "hooke":
+            raise SceneError("normal", self.normal, f"has no single {what}: it depends on v_n "
+                             "(per-sphere values: Collision.predicted(), spinbounce.theory.hertz)")
+
+    @property
+    def tau(self) -> float:
+        """Contact time, Eq. 16 (damped form when gamma_n > 0): how long the force acts."""
+        self._hooke_only("contact time tau")
+        return theory.collision_time(self.m, self.kn, self.gamma_n, not self.limit_damping)
+
+    @property
+    def t_exit(self) -> float:
+        """When the sphere is out of the overlap (later than tau with limit_damping)."""
+        self._hooke_only("exit time")
+        return theory.exit_time(self.m, self.kn, self.gamma_n, not self.limit_damping)
+
+    @property
+    def Q(self) -> float:
+        return theory.Q(self.kt, self.m, self.alpha)
+
+    @property
+    def zeta(self) -> float:
+        return theory.damping_rate(self.gamma_t, self.m, self.alpha)
+
+    @property
+    def Omega(self) -> float:
+        """Exact Omega (Eq. 18's when undamped)."""
+        self._hooke_only("Omega")
+        return theory.Omega_exact(self.m, self.kn, self.kt, self.alpha, self.gamma_t, self.gamma_n,
+                                  not self.limit_damping)
+
+    @property
+    def restitution(self) -> float:
+        self._hooke_only("restitution")
+        return theory.restitution(self.m, self.kn, self.gamma_n, not self.limit_damping)
+
+    def matrix(self) -> np.ndarray:
+        """The scattering matrix that applies (:func:`spinbounce.theory.choose.matrix`)."""
+        return choose.matrix(self)
+
+    def block_matrix(self) -> np.ndarray:
+        """The 6x6 map of 3-D states (:data:`STATE_3D`)."""
+        return choose.matrix(self, three_d=True)
+
+    def contact_times(self, v_n) -> np.ndarray:
+        """Each sphere's time until it is out of the overlap (Hertz: tau(v_n); Hooke: t_exit)."""
+        v = np.atleast_1d(np.asarray(v_n, dtype=float))
+        if self.normal == "hertz":
+            return hertz.contact_time(v, self.m, self.kn, self.r)
+        return np.full(v.shape, self.t_exit)
+
+    # -- numerics --------------------------------------------------------------------
+    def modes(self, frozen: bool, speed: float | None = None) -> dict[str, tuple[float, float]]:
+        """The linear contact modes a scene integrates: name -> (w, c) of x'' + c x' + w^2 x = 0.
+
+        The Hertzian normal mode is nonlinear; it is represented by its stiffest point, the
+        largest overlap of the fastest sphere, whose |v_n| is ``speed``.
+        """
+        out = {"slip": (math.sqrt(self.Q), 2.0 * self.zeta)}
+        if not frozen:
+            if self.normal == "hertz":
+                if speed is None:
+                    raise ValueError("a Hertzian collision's normal mode needs the fastest |v_n| (speed)")
+                out["normal"] = (float(hertz.normal_frequency(speed, self.m, self.kn, self.r)), 0.0)
+            else:
+                out["normal"] = (math.sqrt(self.kn / self.m), self.gamma_n / self.m)
+        return out
+
+    def fastest_rate(self, frozen: bool, speed: float | None = None) -> float:
+        """Largest rate (1/time) among the integrated modes: frequency or fast decay rate."""
+        rates = []
+        for w, c in self.modes(frozen, speed).values():
+            half = 0.5 * c
+            rates.append(w if half < w else half + math.sqrt(half * half - w * w))
+        return max(rates)
+
+    def dt_limit(self, frozen: bool, speed: float | None = None) -> tuple[float, str]:
+        """Stability limit of LAMMPS's step and the mode that sets it."""
+        limits = {name: stability_limit(w, c) for name, (w, c) in self.modes(frozen, speed).items()}
+        name = min(limits, key=limits.get)
+        return limits[name], name
+
+    def check_dt(self, dt, frozen: bool, speed: float | None = None) -> float:
+        dt = _positive("dt", dt)
+        limit, mode = self.dt_limit(frozen, speed)
+        if dt >= limit:
+            raise SceneError(
+                "dt",
+                dt,
+                f"must be below the stability limit {limit:.6g} of the {mode} mode "
+                "(LAMMPS's velocity-Verlet step diverges above it)",
+            )
+        rate = self.fastest_rate(frozen, speed)
+        steps = math.pi / rate / dt if rate > 0.0 else math.inf
+        if steps < MIN_STEPS_PER_HALF_PERIOD:
+            warnings.warn(
+                f"dt = {dt:g} resolves the fastest contact mode with only {steps:.1f} steps "
+                f"per half-period (fewer than {MIN_STEPS_PER_HALF_PERIOD}): expect a large error",
+                PhysicsWarning,
+                stacklevel=3,
+            )
+        return dt
+
+
+ContactModel = dataclasses.make_dataclass(
+    "ContactModel",
+    [(p.name, object, dataclasses.field(default=p.default)) for p in MODEL],
+    bases=(ContactPhysics,),
+    frozen=True,
+)
+ContactModel.__module__ = __name__  # pickles (sweep workers) find it here
+ContactModel.__doc__ = """The sphere and its wall contact (Eq. 1), in LAMMPS lj units.
+
+Fields (declared in :data:`spinbounce.model.parameters.MODEL`): """ + ", ".join(
+    f"``{p.name}`` ({p.meaning}; default {p.default!r})" for p in MODEL) + "."

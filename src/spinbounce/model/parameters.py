@@ -1,0 +1,191 @@
+"""The contact model and the initial state, declared once.
+
+Each :class:`Parameter` says what a number means, its unit, its default, the range
+accepted and why, how a user gives it (command-line flag, scene-file key, Python keyword:
+all the same name), whether a sweep can vary it, its Parquet column and whether it
+changes a collision's outcome (and so separates fit groups). Everything else derives
+from this table: :class:`~spinbounce.model.contact.ContactModel`'s fields and checks,
+every command's options (:mod:`spinbounce.cli.options`), sweep scene files and flags,
+the sweep table's columns, the fit's groups and the README's parameter table.
+Units are LAMMPS's ``lj`` units: mass, length and time are whatever the user's are.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+__all__ = ["Parameter", "MODEL", "STATE", "RUN", "ALL", "by_name", "SceneError", "markdown_table"]
+
+
+class SceneError(ValueError):
+    """A parameter is outside its accepted range. Raised before LAMMPS starts."""
+
+    def __init__(self, parameter: str, value, limit: str):
+        self.parameter = parameter
+        self.value = value
+        self.limit = limit
+        super().__init__(f"{parameter} = {value!r}: {limit}")
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """One declared parameter. ``kind`` is ``number``, ``choice`` or ``flag`` (true/false).
+
+    ``low``/``high`` bound a number (``None``: unbounded), ``*_open`` excludes the bound;
+    ``optional`` numbers may be ``None`` (for ``mu``: no Coulomb cap, the paper's model).
+    """
+
+    name: str
+    meaning: str
+    unit: str
+    default: object
+    kind: str = "number"
+    low: float | None = None
+    low_open: bool = False
+    high: float | None = None
+    high_open: bool = False
+    why: str = ""
+    choices: tuple[str, ...] = ()
+    optional: bool = False
+    sweepable: bool = True
+    changes_outcome: bool = True
+    deck: str = ""
+    #: Command-line flags besides the name with dashes (``gamma_n`` -> ``--gamma-n``); the first is shown.
+    aliases: tuple[str, ...] = ()
+
+    @property
+    def flags(self) -> tuple[str, ...]:
+        return self.aliases + ("--" + self.name.replace("_", "-"),)
+
+    @property
+    def flag(self) -> str:
+        """The command-line flag a user sees first."""
+        return self.flags[0]
+
+    @property
+    def column(self) -> str:
+        """The sweep table's column: the scene-file key itself."""
+        return self.name
+
+    def range_text(self) -> str:
+        """The accepted values, as the README, ``--help`` and error messages say them."""
+        if self.kind == "choice":
+            return "one of " + ", ".join(self.choices)
+        if self.kind == "flag":
+            return "true or false"
+        if self.low is not None and self.high is not None:
+            text = (f"in {'(' if self.low_open else '['}{self.low:g}, {self.high:g}"
+                    f"{')' if self.high_open else ']'}")
+        elif self.low is not None:
+            text = f"{'>' if self.low_open else '>='} {self.low:g}"
+        elif self.high is not None:
+            text = f"{'<' if self.high_open else '<='} {self.high:g}"
+        else:
+            text = "any finite number"
+        return text + (" or none" if self.optional else "")
+
+    def check(self, value, where: str | None = None):
+        """``value`` as this parameter's type, or a :class:`SceneError` naming the limit."""
+        name = where or self.name
+        if self.kind == "flag":
+            if not isinstance(value, bool):
+                raise SceneError(name, value, "must be true or false")
+            return value
+        if self.kind == "choice":
+            if value not in self.choices:
+                raise SceneError(name, value, f"must be one of {', '.join(self.choices)}")
+            return value
+        if value is None and self.optional:
+            return None
+        return self._check_number(name, value)
+
+    def _check_number(self, name: str, value) -> float:
+        if isinstance(value, bool):
+            raise SceneError(name, value, "must be a number")
+        try:
+            number = float(value)
+        except (TypeError, ValueError):
+            raise SceneError(name, value, "must be a number") from None
+        if not math.isfinite(number):
+            raise SceneError(name, value, "must be finite")
+        below = self.low is not None and (number <= self.low if self.low_open else number < self.low)
+        above = self.high is not None and (number >= self.high if self.high_open else number > self.high)
+        if below or above:
+            bound = self.range_text().removesuffix(" or none")
+            raise SceneError(name, value, f"must {'lie ' if bound.startswith('in ') else 'be '}{bound}"
+                             + (f" ({self.why})" if self.why else ""))
+        return number + 0.0  # -0.0 -> 0.0
+
+
+#: The contact model (the fields of ContactModel, in order).
+MODEL: tuple[Parameter, ...] = (
+    Parameter("m", "sphere mass", "mass", 1.0, low=0.0, low_open=True, why="a mass is positive",
+              deck="set type 1 mass", aliases=("--mass",)),
+    Parameter("r", "sphere radius", "length", 0.5, low=0.0, low_open=True, why="a radius is positive",
+              deck="set type 1 diameter (2r)", aliases=("--radius",)),
+    Parameter("alpha", "I/(m r^2): moment of inertia over m r^2 (2/5 for a solid sphere)", "1", 0.4,
+              low=0.0, low_open=True, high=1.0, why="above 1 the mass would lie beyond the radius",
+              deck="fix nve/sphere (alpha = 2/5) or fix rigid with a centre point"),
+    Parameter("kn", "normal spring constant (Hertz: LAMMPS's K, F = kn sqrt(r) delta^(3/2))", "force/length",
+              10.0, low=0.0, low_open=True, why="a positive stiffness keeps the sphere out of the wall",
+              deck="wall/gran granular hooke|hertz KN"),
+    Parameter("kt", "tangential spring constant on the slip history (Cundall-Strack)", "force/length", 1.0,
+              low=0.0, why="a negative spring would push the slip away", deck="tangential linear_history KT"),
+    Parameter("gamma_n", "normal viscous damping (below critical 2 sqrt(m kn))", "mass/time", 0.0, low=0.0,
+              why="negative damping would create energy", deck="granular ... ETA_N damping velocity"),
+    Parameter("gamma_t", "tangential viscous damping on the slip rate", "mass/time", 0.0, low=0.0,
+              why="negative damping would create energy", deck="tangential linear_history KT X_T (X_T ETA_N = gamma_t)"),
+    Parameter("mu", "Coulomb friction coefficient, |F_t| <= mu |F_n|; none: the paper's model (no cap)", "1", None,
+              low=0.0, optional=True, why="a friction coefficient is not negative",
+              deck="tangential linear_history ... MU (none: 1e12)"),
+    Parameter("limit_damping", "never let the normal force pull (LAMMPS's limit_damping)", "-", False, kind="flag",
+              deck="wall/gran ... limit_damping"),
+    Parameter("normal", "normal force law: hooke (the paper's, F = kn delta) or hertz", "-", "hooke",
+              kind="choice", choices=("hooke", "hertz"), deck="wall/gran granular hooke|hertz"),
+)
+
+#: The initial state of a collision (per sphere). Spins are angular velocities; a sweep may
+#: give each as r times it instead (``r_omega``, ``r_omega_s``, ``r_omega_n``).
+STATE: tuple[Parameter, ...] = (
+    Parameter("v_n", "normal velocity (< 0: towards the wall)", "length/time", -1.0, high=0.0, high_open=True,
+              why="a sphere moving away never meets the wall", changes_outcome=False, aliases=("--vn",)),
+    Parameter("v_t", "tangential velocity (the paper's plane, LAMMPS's x)", "length/time", 1.0,
+              changes_outcome=False, aliases=("--vt",)),
+    Parameter("omega", "angular velocity in the paper's plane, anticlockwise positive (LAMMPS's -omega_y)",
+              "1/time", 0.0, changes_outcome=False),
+    Parameter("v_s", "second tangential velocity (3-D, LAMMPS's y)", "length/time", 0.0, changes_outcome=False,
+              aliases=("--vs",)),
+    Parameter("omega_s", "spin that rolls the sphere along v_s (3-D, LAMMPS's omega_x)", "1/time", 0.0,
+              changes_outcome=False),
+    Parameter("omega_n", "spin about the wall's normal (3-D, LAMMPS's omega_z)", "1/time", 0.0,
+              changes_outcome=False),
+)
+
+#: How a run is resolved: a step, or an accuracy to reach.
+RUN: tuple[Parameter, ...] = (
+    Parameter("dt", "timestep (default: from the timestep rule, model/timestep.py)", "time", None,
+              low=0.0, low_open=True, optional=True, why="a step is positive", deck="timestep"),
+    Parameter("tolerance", "accuracy to reach instead of a dt (Richardson extrapolation over a ladder of steps)",
+              "length/time", None, low=0.0, low_open=True, optional=True, sweepable=False,
+              why="an accuracy is positive"),
+)
+
+ALL = MODEL + STATE + RUN
+
+
+def by_name(name: str) -> Parameter:
+    for parameter in ALL:
+        if parameter.name == name:
+            return parameter
+    raise KeyError(name)
+
+
+def markdown_table(parameters=MODEL) -> str:
+    """The README's parameter table, made from the declaration."""
+    rows = ["| parameter (flag) | meaning | unit | default | accepted | sweepable |", "|---|---|---|---|---|---|"]
+    for p in parameters:
+        default = "none" if p.default is None else str(p.default).lower() if p.kind == "flag" else p.default
+        rows.append(f"| `{p.name}` (`{p.flag}`) | {p.meaning} | {p.unit} | {default} | {p.range_text()} "
+                    f"| {'yes' if p.sweepable else 'no'} |")
+    return "\n".join(rows)

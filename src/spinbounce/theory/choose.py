@@ -1,0 +1,139 @@
+"""The one place that decides which theory answers a scene, and answers it.
+
+Every consumer (collide, frozen, theory, sweeps, fit, figures, references, claims,
+benchmarks) asks here; nothing else looks at a model's parameters to pick a theory.
+
+========  ==========================================================  ===========
+kind      when                                                        one matrix?
+========  ==========================================================  ===========
+linear    Hookean, no damping, no Coulomb cap: Eq. 18                  yes
+damped    Hookean with gamma_n or gamma_t, no cap: Eq. 18 with the     yes
+          exact damped Omega and restitution (:mod:`.linear`)
+hertz     Hertzian normal force, no cap: Eq. 18 sphere by sphere with  no (Omega(v_n))
+          the Omega of each contact time (:mod:`.hertz`)
+coulomb   a finite mu: the contact sticks and slides in turn            no
+          (:mod:`.oracle`, integrated with stick-slip events)
+========  ==========================================================  ===========
+
+States are rows of (v_n, v_t, r omega) or, in 3-D, (v_n, v_t, r omega, v_s, r omega_s,
+r omega_n), as everywhere in spinbounce. The model is read through its fields only.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import hertz, linear
+
+__all__ = ["Choice", "which", "predict", "matrix", "omega_per_sphere", "frozen", "NoMatrix"]
+
+
+class NoMatrix(ValueError):
+    """No single scattering matrix describes this model's collisions; the reason says why."""
+
+
+@dataclass(frozen=True)
+class Choice:
+    """Which theory applies: its ``kind``, a readable ``name``, and why no matrix if none."""
+
+    kind: str
+    name: str
+    no_matrix_reason: str = ""
+
+    @property
+    def has_matrix(self) -> bool:
+        return not self.no_matrix_reason
+
+
+def which(model) -> Choice:
+    """The theory that applies to collisions of ``model``."""
+    if model.mu is not None:
+        return Choice("coulomb", "Coulomb oracle (stick-slip events, rtol 1e-12)",
+                      f"with mu = {model.mu!r} the contact sticks and slides in turn, so the outcome is not "
+                      "linear in the initial state: give a state (v_n, v_t, omega) for its outcome")
+    if model.normal == "hertz":
+        return Choice("hertz", "Eq. 18 per sphere, Omega of the Hertzian contact time tau(v_n)",
+                      "with normal = hertz the contact time, and with it Omega, depends on v_n: "
+                      "give v_n for its matrix")
+    if model.gamma_n > 0.0 or model.gamma_t > 0.0:
+        return Choice("damped", "Eq. 18 with the exact damped Omega and restitution")
+    return Choice("linear", "Eq. 18")
+
+
+def _tensile(model) -> bool:
+    return not model.limit_damping
+
+
+def _matrix3(model) -> np.ndarray:
+    omega = linear.Omega_exact(model.m, model.kn, model.kt, model.alpha, model.gamma_t, model.gamma_n,
+                               _tensile(model))
+    e = linear.restitution(model.m, model.kn, model.gamma_n, _tensile(model))
+    return linear.scattering_matrix(model.alpha, omega, e)
+
+
+def matrix(model, v_n: float | None = None, three_d: bool = False) -> np.ndarray:
+    """The scattering matrix (3x3, or the 6x6 block form) that applies, or :class:`NoMatrix`.
+
+    A Hertzian model has one matrix per v_n; a Coulomb-capped one has none.
+    """
+    choice = which(model)
+    if choice.kind == "coulomb":
+        raise NoMatrix(choice.no_matrix_reason)
+    if choice.kind == "hertz":
+        if v_n is None:
+            raise NoMatrix(choice.no_matrix_reason)
+        m3 = _hertz_matrices(model, np.array([v_n]))[0]
+    else:
+        m3 = _matrix3(model)
+    return linear.block_from(m3) if three_d else m3
+
+
+def _hertz_matrices(model, v_n: np.ndarray) -> np.ndarray:
+    return hertz.scattering_matrices(v_n, model.m, model.kn, model.r, model.kt, model.alpha, model.gamma_t)
+
+
+def omega_per_sphere(model, v_n) -> np.ndarray:
+    """Each sphere's Omega (Eq. 18's, exact damped or Hertzian); NaN where none exists (Coulomb)."""
+    v_n = np.atleast_1d(np.asarray(v_n, dtype=float))
+    kind = which(model).kind
+    if kind == "coulomb":
+        return np.full(v_n.shape, np.nan)
+    if kind == "hertz":
+        return np.atleast_1d(hertz.Omega(v_n, model.m, model.kn, model.r, model.kt, model.alpha, model.gamma_t))
+    omega = linear.Omega_exact(model.m, model.kn, model.kt, model.alpha, model.gamma_t, model.gamma_n,
+                               _tensile(model))
+    return np.full(v_n.shape, omega)
+
+
+def predict(model, initial) -> np.ndarray:
+    """Final states for the initial states ``initial`` ((n, 3) or (n, 6)), from the theory that applies."""
+    initial = np.atleast_2d(np.asarray(initial, dtype=float))
+    width = initial.shape[1]
+    kind = which(model).kind
+    if kind == "coulomb":
+        from . import oracle  # scipy's integrator: loaded only when a cap asks for it
+
+        r = model.r
+        columns = [initial[:, 0], initial[:, 1], initial[:, 2] / r]
+        if width == 6:
+            columns += [initial[:, 3], initial[:, 4] / r, initial[:, 5] / r]
+        return oracle.bounce_many(model, *columns)[:, :width]
+    if kind == "hertz":
+        matrices = _hertz_matrices(model, initial[:, 0])
+        if width == 6:
+            matrices = np.array([linear.block_from(m3) for m3 in matrices])
+        return np.einsum("nij,nj->ni", matrices, initial)
+    return initial @ matrix(model, three_d=width == 6).T
+
+
+def frozen(model, t, v_t0: float, r_omega0: float) -> tuple[np.ndarray, np.ndarray]:
+    """(v_t(t), r omega(t)) of the frozen contact: Eq. 10, or its exact damped form.
+
+    Held at a fixed height the normal force is constant, so neither the normal law nor
+    gamma_n nor limit_damping changes the slip; a Coulomb cap would, and has no theory here.
+    """
+    if model.mu is not None:
+        raise NoMatrix(f"mu = {model.mu!r}: the frozen contact's theory (Eq. 10) has no Coulomb cap")
+    return linear.frozen_velocities(t, v_t0, r_omega0, model.kt, model.m, model.alpha, model.gamma_t)
