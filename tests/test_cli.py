@@ -30,7 +30,7 @@ def test_theory_json_at_paper_defaults(capsys):
     code, out, _ = run_cli(capsys, "theory", "--json")
     assert code == 0
     report = json.loads(out)
-    assert abs(report["omega"] - (-1.28384)) < 1e-5  # acceptance; the paper quotes -1.2838
+    assert abs(report["Omega"] - (-1.28384)) < 1e-5  # acceptance; the paper quotes -1.2838
     assert report["tau"] == pytest.approx(math.pi * math.sqrt(1 / 10), rel=1e-15)
     assert report["Q"] == pytest.approx(3.5, rel=1e-15)
     matrix = report["matrix"]
@@ -40,7 +40,7 @@ def test_theory_json_at_paper_defaults(capsys):
 
 def test_theory_magic_ratio_for_a_shell(capsys):
     _, out, _ = run_cli(capsys, "theory", "--json", "--alpha", "0.6666666666666666", "--kt", "4")
-    assert json.loads(out)["omega"] == pytest.approx(-2.0, abs=1e-7)  # kt/kn = 0.4 = alpha/(1+alpha)
+    assert json.loads(out)["Omega"] == pytest.approx(-2.0, abs=1e-7)  # kt/kn = 0.4 = alpha/(1+alpha)
 
 
 def test_every_command_has_help(capsys):

@@ -61,12 +61,12 @@ def test_workflow_runs_the_tiny_sweep_end_to_end(tmp_path):
     fits = json.loads((out / "fit.json").read_text())
     assert len(fits) == groups
     # The two groups are the intended models: kt/kn = 0.1 and the ratio where Omega = -2.
-    assert sorted(f["omega_theory"] for f in fits) == pytest.approx([-2.0, -1.28384], abs=1e-5)
+    assert sorted(f["Omega_theory"] for f in fits) == pytest.approx([-2.0, -1.28384], abs=1e-5)
     for f in fits:
         assert f["n"] == n
         # Each of the 200 collisions is off the theory by ~3e-5 at the default step, so the
         # fitted Omega lands well inside 2e-4; a wrong contact model misses by far more.
-        assert abs(f["omega"] - f["omega_theory"]) < 2e-4
+        assert abs(f["Omega"] - f["Omega_theory"]) < 2e-4
     assert (out / "fit.txt").read_text().count(f"collisions {n};") == groups
 
     png = (out / "slip.png").read_bytes()

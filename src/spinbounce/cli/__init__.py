@@ -10,8 +10,11 @@ from .. import __version__
 from ..lammps.dumps import DumpError
 from ..pipeline import ResultError
 from ..lammps.runner import LammpsError
-from ..model.scenes import PhysicsWarning, SceneError
+from ..model.contact import PhysicsWarning
+from ..model.parameters import SceneError
 from ..sweeps import SweepError
+from ..theory.choose import NoMatrix
+from .options import allow_negative_numbers
 from . import accuracy, bench, benchmarks, claims, collide, figures, fit, frozen, hertz, references, reproduce, sweep, theory
 
 COMMANDS = (theory, collide, frozen, sweep, fit, bench, accuracy, benchmarks, figures, hertz, claims, reproduce,
@@ -24,9 +27,11 @@ def build_parser() -> argparse.ArgumentParser:
         description="Frictional sphere-wall collisions in LAMMPS against Wang and Harrowell's theory.",
     )
     parser.add_argument("--version", action="version", version=f"spinbounce {__version__}")
+    parser.add_argument("--debug", action="store_true", help="show the Python traceback of an error")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
     for command in COMMANDS:
         command.register(sub)
+    allow_negative_numbers(parser)
     return parser
 
 
@@ -41,8 +46,24 @@ def main(argv: list[str] | None = None) -> int:
     warnings.simplefilter("always", PhysicsWarning)
     try:
         return args.handler(args)
-    except (SceneError, SweepError) as exc:
+    except BrokenPipeError:  # `spinbounce theory | head`: the reader has gone, and that is fine
+        sys.stdout = None
+        return 0
+    except KeyboardInterrupt:
+        if args.debug:
+            raise
+        parser.exit(130, f"spinbounce {args.command}: interrupted\n")
+    except (SceneError, SweepError, NoMatrix) as exc:
+        if args.debug:
+            raise
         parser.exit(2, f"spinbounce {args.command}: error: {exc}\n")
+    except OSError as exc:
+        if args.debug:
+            raise
+        where = f" {exc.filename}" if exc.filename else ""
+        parser.exit(2, f"spinbounce {args.command}: error:{where}: {exc.strerror or exc}\n")
     except (LammpsError, ResultError, DumpError) as exc:
+        if args.debug:
+            raise
         parser.exit(1, f"spinbounce {args.command}: {type(exc).__name__}: {exc}\n")
     return 1

@@ -1,4 +1,4 @@
-"""spinbounce collide: one LAMMPS collision against Eq. 18."""
+"""spinbounce collide: one LAMMPS collision against the theory that applies."""
 
 from __future__ import annotations
 
@@ -6,23 +6,27 @@ import dataclasses
 import json
 from pathlib import Path
 
-from ..pipeline import run_collision
-from ..model.scenes import Collision
-from .options import default_run_dir, json_flag, model_from, model_parser
+import numpy as np
 
-HELP = "bounce one sphere off the wall in LAMMPS and compare with the scattering matrix (Eq. 18)"
+from ..model.parameters import SceneError
+from ..model.scenes import STATE_3D, Collision
+from ..pipeline import run_collision
+from ..records import to_json, write_atomic
+from ..theory import choose
+from .options import default_run_dir, json_flag, model_from, model_parser, number, state_from, state_parser
+
+HELP = "bounce one sphere off the wall in LAMMPS and compare it with the theory that applies"
+SUFFIXES = {"initial": "0", "final": "final", "theory": "theory", "error": "error"}
+LABELS = {"vn": "v_n", "vt": "v_t", "r_omega": "r*omega", "vs": "v_s", "r_omega_s": "r*omega_s",
+          "r_omega_n": "r*omega_n"}
 
 
 def register(sub) -> None:
-    p = sub.add_parser("collide", parents=[model_parser()], help=HELP, description=HELP + ".")
-    g = p.add_argument_group("initial state")
-    g.add_argument("--vn", type=float, required=True, help="normal velocity v_n(0) (< 0: towards the wall)")
-    g.add_argument("--vt", type=float, required=True, help="tangential velocity v_t(0)")
-    g.add_argument("--omega", type=float, required=True, help="angular velocity omega(0), anticlockwise positive")
+    p = sub.add_parser("collide", parents=[model_parser(), state_parser()], help=HELP, description=HELP + ".")
     step = p.add_mutually_exclusive_group()
-    step.add_argument("--dt", type=float, default=None,
+    step.add_argument("--dt", type=number, default=None,
                       help="timestep (default: tau/(N + 1/2), N = 250 steps per half-period of the fastest mode)")
-    step.add_argument("--tolerance", type=float, default=None, metavar="TOL",
+    step.add_argument("--tolerance", type=number, default=None, metavar="TOL",
                       help="ask for an accuracy instead: runs at doubling resolutions, extrapolated to dt = 0 "
                            "until the estimated error is below TOL (reported with the result)")
     p.add_argument("--out", type=Path, default=None, metavar="DIR",
@@ -31,98 +35,87 @@ def register(sub) -> None:
     p.set_defaults(handler=run)
 
 
-def _state(table, suffix: str, r: float) -> dict:
-    row = table.iloc[0]
-    return {
-        "vn": float(row[f"vn_{suffix}"]),
-        "vt": float(row[f"vt_{suffix}"]),
-        "omega": float(row[f"r_omega_{suffix}"]) / r,
-        "r_omega": float(row[f"r_omega_{suffix}"]),
-    }
+def _states(names, row, suffix: str, r: float) -> dict:
+    """A state by column name, each spin also as an angular velocity (r_omega -> omega)."""
+    state = {name: float(row[f"{name}_{suffix}"]) for name in names}
+    state.update({name[2:]: state[name] / r for name in names if name.startswith("r_")})
+    return state
+
+
+def _contact_time(scene: Collision) -> float:
+    return float(np.max(scene.model.contact_times(scene.v_n)))
 
 
 def run(args) -> int:
+    state = state_from(args)
     if args.tolerance is not None:
-        return _run_to_tolerance(args)
-    scene = Collision(model_from(args), v_n=args.vn, v_t=args.vt, omega=args.omega, dt=args.dt)
-    out = args.out or default_run_dir(
-        "collide", {"model": dataclasses.asdict(scene.model), "vn": args.vn, "vt": args.vt,
-                    "omega": args.omega, "dt": scene.dt}
-    )
+        return _run_to_tolerance(args, state)
+    scene = Collision(model_from(args), dt=args.dt, **state)
+    out = args.out or default_run_dir("collide", {"model": dataclasses.asdict(scene.model), **state, "dt": scene.dt})
     result = run_collision(scene, out)
-    r = scene.model.r
-    t = result.table
+    row = result.table.iloc[0]
+    names = scene.state_names
+    choice = choose.which(scene.model)
+    omega = float(choose.omega_per_sphere(scene.model, scene.v_n)[0])
     report = {
-        "initial": _state(t, "0", r),
-        "final": _state(t, "final", r),
-        "theory": _state(t, "theory", r),
-        "error": _state(t, "error", r),
-        "dt": scene.dt,
-        "nsteps": scene.nsteps,
-        "tau": scene.model.tau,
-        "Omega": scene.model.Omega,
-        "deck": str(result.info.deck),
-        "dump": str(result.dump),
-        "lammps_version": result.info.lammps_version,
+        **{key: _states(names, row, suffix, scene.model.r) for key, suffix in SUFFIXES.items()},
+        "theory_kind": choice.kind, "theory_name": choice.name,
+        "dt": scene.dt, "nsteps": scene.nsteps, "contact_time": _contact_time(scene),
+        "Omega": None if np.isnan(omega) else omega,
+        "deck": str(result.info.deck), "dump": str(result.dump), "lammps_version": result.info.lammps_version,
         "warnings": list(result.warnings),
     }
     if args.json:
         print(json.dumps(report, indent=2))
         return 0
-    print(f"collision: dt = {scene.dt:.6g} ({scene.nsteps} steps, tau = {scene.model.tau:.6g}), "
-          f"Omega = {scene.model.Omega:.8g}")
-    _print_states(report, label_width=8)
+    omega_text = f"Omega = {omega:.8g}" if report["Omega"] is not None else "no single Omega"
+    print(f"collision: dt = {scene.dt:.6g} ({scene.nsteps} steps, contact time {report['contact_time']:.6g}); "
+          f"theory: {choice.name}; {omega_text}")
+    _print_states(report, names, label_width=8)
     for w in result.warnings:
         print(f"warning: {w}")
     print(f"deck: {report['deck']}\ndump: {report['dump']}\nLAMMPS {report['lammps_version']}")
     return 0
 
 
-def _print_states(report: dict, label_width: int) -> None:
-    """The initial, LAMMPS, theory and error rows of a collision report, in (v_n, v_t, r*omega)."""
-    print(f"{'':{label_width}}{'v_n':>16}{'v_t':>16}{'r*omega':>16}")
+def _print_states(report: dict, names, label_width: int) -> None:
+    """The initial, LAMMPS, theory and error rows of a collision report."""
+    print(f"{'':{label_width}}" + "".join(f"{LABELS[n]:>16}" for n in names))
     for label, key in (("initial", "initial"), ("LAMMPS", "final"), ("theory", "theory"), ("error", "error")):
         fmt = "{:>16.3e}" if key == "error" else "{:>16.10f}"
-        print(f"{label:{label_width}}" + "".join(fmt.format(report[key][k]) for k in ("vn", "vt", "r_omega")))
+        print(f"{label:{label_width}}" + "".join(fmt.format(report[key][n]) for n in names))
 
 
-def _run_to_tolerance(args) -> int:
+def _run_to_tolerance(args, state: dict) -> int:
+    from ..records import software
     from ..studies.tolerance import collide_to_tolerance, collision_frame
 
     model = model_from(args)
-    out = args.out or default_run_dir(
-        "collide", {"model": dataclasses.asdict(model), "vn": args.vn, "vt": args.vt, "omega": args.omega,
-                    "tolerance": args.tolerance})
-    result, scene = collide_to_tolerance(model, args.vn, args.vt, args.omega, args.tolerance, out,
+    if any(state.get(name, 0.0) for name in ("v_s", "omega_s", "omega_n")):
+        raise SceneError("tolerance", args.tolerance, "the extrapolation ladder is planar: a 3-D state "
+                                                      "(v_s, omega_s, omega_n) takes --dt or the default step")
+    out = args.out or default_run_dir("collide", {"model": dataclasses.asdict(model), **state,
+                                                  "tolerance": args.tolerance})
+    result, scene = collide_to_tolerance(model, state["v_n"], state["v_t"], state["omega"], args.tolerance, out,
                                          log=(lambda *_: None) if args.json else print)
     row = collision_frame(result, scene).iloc[0]
-    r = model.r
-    keys = ("vn", "vt", "r_omega")
+    names = STATE_3D[:3]
     report = {
-        "initial": {k: float(row[f"{k}_0"]) for k in keys},
-        "final": {k: float(row[f"{k}_final"]) for k in keys},
+        **{key: _states(names, row, suffix, model.r) for key, suffix in SUFFIXES.items()},
         "estimate": result.max_estimate,
-        "theory": {k: float(row[f"{k}_theory"]) for k in keys},
-        "error": {k: float(row[f"{k}_error"]) for k in keys},
-        "tolerance": result.tolerance,
-        "steps": result.steps,
+        "theory_kind": choose.which(model).kind,
+        "tolerance": result.tolerance, "steps": result.steps,
         "plain_steps_for_same_estimate": result.plain_steps_for(result.max_estimate),
-        "levels": result.levels,
-        "Omega": model.Omega,
+        "levels": result.levels, "Omega": model.Omega, **software(),
     }
-    report["final"]["omega"] = report["final"]["r_omega"] / r
     out_json = Path(out) / "tolerance.json"
-    from ..records import to_json, write_atomic
-    from ..lammps.runner import lammps_version
-
-    report["lammps_version"] = lammps_version()
     write_atomic(out_json, to_json(report))
     if args.json:
         print(json.dumps(report, indent=2))
         return 0
     print(f"collision to tolerance {result.tolerance:g}: {len(result.levels)} runs, {result.steps} LAMMPS steps "
           f"(one plain run would need ~{report['plain_steps_for_same_estimate']:.0f} for the same error)")
-    _print_states(report, label_width=10)
+    _print_states(report, names, label_width=10)
     print(f"estimated error {result.max_estimate:.2e} (extrapolated to dt = 0 from the runs in {out})")
     print(f"record: {out_json}")
     return 0

@@ -1,17 +1,21 @@
-"""spinbounce fit: least-squares scattering matrices of a sweep, against the theory."""
+"""spinbounce fit: least-squares scattering matrices of a sweep, against the theory that applies."""
 
 from __future__ import annotations
 
 import argparse
 import json
+import math
 from pathlib import Path
 
 import numpy as np
 
 from ..fit import fit_groups, plot_groups
-from ..sweeps import read_results
+from ..model import parameters
+from ..sweeps import SweepError, read_results
+from .options import optional_number
 
-HELP = "fit the 3x3 scattering matrix (6x6 block matrix for a 3-D sweep) and Omega (Eq. 19) per model group"
+HELP = ("fit the 3x3 scattering matrix (6x6 for a 3-D sweep) and Omega (Eq. 19) per model group, where one "
+        "matrix applies; otherwise report each group's per-collision deviation from its theory")
 
 
 def register(sub) -> None:
@@ -21,7 +25,18 @@ def register(sub) -> None:
     p.add_argument("--plot", type=_figure_path, metavar="PATH",
                    help="also draw Delta v_t and r Delta omega against the initial slip, per group "
                         "(Eq. 19), to PATH (.png or .pdf)")
+    g = p.add_argument_group("select groups (any model parameter: fit only the groups with that value)")
+    for parameter in parameters.MODEL:
+        kind = {"flag": _flag_value, "choice": str}.get(parameter.kind, optional_number)
+        g.add_argument(*parameter.flags, dest=parameter.name, type=kind, default=argparse.SUPPRESS,
+                       metavar="VALUE", help=f"{parameter.meaning} ({parameter.range_text()})")
     p.set_defaults(handler=run)
+
+
+def _flag_value(text: str) -> bool:
+    if text.lower() not in ("true", "false"):
+        raise argparse.ArgumentTypeError(f"{text!r}: give true or false")
+    return text.lower() == "true"
 
 
 def _figure_path(text: str) -> Path:
@@ -32,23 +47,49 @@ def _figure_path(text: str) -> Path:
     return path
 
 
+def _select(rows, args):
+    """Only the rows of groups whose parameters equal the values given."""
+    for parameter in parameters.MODEL:
+        if not hasattr(args, parameter.name):
+            continue
+        value = getattr(args, parameter.name)
+        if parameter.column not in rows:
+            raise SweepError(f"{parameter.flag} = {value!r}: this sweep has no column {parameter.column!r}")
+        column = rows[parameter.column]
+        rows = rows[column.isna()] if value is None else rows[column == value]
+    if rows.empty:
+        raise SweepError(f"{args.results}: no group has the parameters selected")
+    return rows
+
+
 def run(args) -> int:
-    rows = read_results(args.results)
+    rows = _select(read_results(args.results), args)
     fits = fit_groups(rows)
     if args.plot:
         plot_groups(rows, args.plot)
+        print(f"figure: {args.plot}")
     if args.json:
         print(json.dumps(fits, indent=2))
         return 0
     for f in fits:
-        p = f["parameters"]
-        print("group: " + ", ".join(f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}" for k, v in p.items()))
-        print(f"  collisions {f['n']}; Omega = {f['omega']:.8f} +/- {f['omega_stderr']:.1e} "
-              f"(theory {f['omega_theory']:.8f}, diff {f['omega_diff']:.2e})")
-        with np.printoptions(precision=7, suppress=True, floatmode="fixed"):
-            for fitted, theory in zip(np.array(f["matrix"]), np.array(f["matrix_theory"]), strict=True):
-                print(f"  fit {fitted}   theory {theory}")
-        print(f"  largest element difference {f['max_element_diff']:.2e}; residual rms "
-              + " ".join(f"{x:.1e}" for x in f["residual_rms"])
-              + f"; largest per-collision error {f['max_abs_error_vs_theory']:.1e}")
+        _print_group(f)
     return 0
+
+
+def _print_group(f: dict) -> None:
+    p = f["parameters"]
+    print("group: " + ", ".join(f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}" for k, v in p.items()))
+    print(f"  collisions {f['n']}; theory: {f['theory']}; {f['regime']}")
+    print(f"  per collision |LAMMPS - theory|: worst {f['worst_deviation']:.2e}, median {f['median_deviation']:.2e} "
+          f"(over the impact speed: worst {f['worst_relative_deviation']:.2e})")
+    if not f["has_matrix"]:
+        return
+    print(f"  Omega = {f['Omega']:.8f} +/- {f['Omega_stderr']:.1e} "
+          f"(theory {f['Omega_theory']:.8f}, diff {f['Omega_diff']:.2e})")
+    with np.printoptions(precision=7, suppress=True, floatmode="fixed"):
+        for fitted, theory in zip(np.array(f["matrix"]), np.array(f["matrix_theory"]), strict=True):
+            print(f"  fit {fitted}   theory {theory}")
+    rms = " ".join(f"{x:.1e}" for x in f["residual_rms"])
+    print(f"  largest element difference {f['max_element_diff']:.2e}; residual rms {rms}")
+    if math.isnan(f["Omega"]):
+        print("  (no tangential slip in this group: Omega cannot be fitted)")

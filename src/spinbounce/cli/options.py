@@ -1,44 +1,139 @@
-"""Options shared by several commands, declared once."""
+"""Options shared by several commands, all derived from the parameter declaration.
+
+Every model and state flag of every command is made here from
+:mod:`spinbounce.model.parameters`: the flag, its help (meaning, unit, accepted range and
+default) and its parsing. A command adds the groups it can honour; a flag a command
+cannot honour is not offered there, or is refused with the reason.
+"""
 
 from __future__ import annotations
 
 import argparse
 import hashlib
 import json
+import math
+import re
 from pathlib import Path
 
-from ..model.scenes import ContactModel
+from ..model import parameters
+from ..model.contact import ContactModel
+from ..model.parameters import Parameter
 
-_DEFAULTS = ContactModel()
+__all__ = ["number", "count", "model_parser", "state_parser", "model_from", "state_from", "json_flag",
+           "default_run_dir", "optional_number", "allow_negative_numbers", "sweep_model_flags", "parameter_help"]
+
+#: argparse reads "-1e-3" as an option unless it looks like a negative number to it; its own
+#: pattern misses e-notation, so every parser here gets this one.
+NEGATIVE_NUMBER = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-inf$|^-nan$", re.IGNORECASE)
+
+
+def number(text: str) -> float:
+    """A float from the command line, e-notation and signs included; 'nan' and 'inf' are refused."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"{text!r}: must be finite")
+    return value
+
+
+def optional_number(text: str) -> float | None:
+    """A number, or 'none' for a parameter that may be absent (mu: no Coulomb cap)."""
+    if text.strip().lower() == "none":
+        return None
+    return number(text)
+
+
+def count(text: str) -> int:
+    """A whole number, also written as an integral float (1e5, 2000.0)."""
+    value = number(text)
+    if value != int(value):
+        raise argparse.ArgumentTypeError(f"{text!r} is not a whole number")
+    return int(value)
+
+
+def allow_negative_numbers(parser: argparse.ArgumentParser) -> None:
+    """Let ``parser`` (and its subparsers) take e-notation negative values (``--vn -1e-3``)."""
+    parser._negative_number_matcher = NEGATIVE_NUMBER  # argparse has no public switch for it
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            for sub in action.choices.values():
+                allow_negative_numbers(sub)
+
+
+def _flag(text: str) -> bool:
+    lowered = text.strip().lower()
+    if lowered in ("true", "yes", "1"):
+        return True
+    if lowered in ("false", "no", "0"):
+        return False
+    raise argparse.ArgumentTypeError(f"{text!r}: give true or false")
+
+
+def parameter_help(p: Parameter, default=True) -> str:
+    unit = "" if p.unit in ("-", "1") else f" [{p.unit}]"
+    shown = "none" if p.default is None else p.default
+    return f"{p.meaning}{unit}; {p.range_text()}" + (f" (default {shown})" if default else "")
+
+
+def _add(group, p: Parameter, **overrides) -> None:
+    """One declared parameter as an option of ``group``."""
+    if p.kind == "flag":
+        group.add_argument(*p.flags, dest=p.name, action="store_true", default=p.default,
+                           help=parameter_help(p, default=False))
+        return
+    kwargs = {"dest": p.name, "default": p.default, "help": parameter_help(p),
+              "metavar": p.name.upper()}
+    if p.kind == "choice":
+        kwargs.update(choices=p.choices, type=str, metavar=None)
+    else:
+        kwargs["type"] = optional_number if p.optional else number
+    kwargs.update(overrides)
+    group.add_argument(*p.flags, **kwargs)
 
 
 def model_parser() -> argparse.ArgumentParser:
-    """The contact-model options (paper's defaults), as a parent parser."""
+    """Every contact-model option (declared defaults: the paper's), as a parent parser."""
     p = argparse.ArgumentParser(add_help=False)
-    g = p.add_argument_group("contact model (defaults: the paper's)")
-    g.add_argument("--mass", type=float, default=_DEFAULTS.m, metavar="M", help="sphere mass m (default %(default)s)")
-    g.add_argument("--radius", type=float, default=_DEFAULTS.r, metavar="R", help="sphere radius r (default %(default)s)")
-    g.add_argument("--alpha", type=float, default=_DEFAULTS.alpha, metavar="A",
-                   help="I/(m r^2), in (0, 1] (default %(default)s, a solid sphere)")
-    g.add_argument("--kn", type=float, default=_DEFAULTS.kn, help="normal spring constant (default %(default)s)")
-    g.add_argument("--kt", type=float, default=_DEFAULTS.kt, help="tangential spring constant (default %(default)s)")
-    g.add_argument("--gamma-n", type=float, default=_DEFAULTS.gamma_n, metavar="G",
-                   help="normal viscous damping (default %(default)s)")
-    g.add_argument("--gamma-t", type=float, default=_DEFAULTS.gamma_t, metavar="G",
-                   help="tangential viscous damping (default %(default)s)")
-    g.add_argument("--mu", type=float, default=None,
-                   help="Coulomb friction coefficient; omit for the paper's model (no Coulomb limit)")
-    g.add_argument("--limit-damping", action="store_true",
-                   help="never let the normal force pull (LAMMPS's limit_damping): with gamma_n > 0 the "
-                        "contact then ends when the dashpot would start to pull")
+    group = p.add_argument_group("contact model (defaults: the paper's; units: LAMMPS lj)")
+    for parameter in parameters.MODEL:
+        _add(group, parameter)
+    return p
+
+
+def state_parser(three_d: bool = True) -> argparse.ArgumentParser:
+    """The initial state's options (the paper's plane, and the 3-D ones where honoured)."""
+    p = argparse.ArgumentParser(add_help=False)
+    group = p.add_argument_group("initial state" + (" (3-D: v_s, omega_s, omega_n)" if three_d else ""))
+    for parameter in parameters.STATE if three_d else parameters.STATE[:3]:
+        _add(group, parameter)
     return p
 
 
 def model_from(args: argparse.Namespace) -> ContactModel:
-    return ContactModel(
-        m=args.mass, r=args.radius, alpha=args.alpha, kn=args.kn, kt=args.kt,
-        gamma_n=args.gamma_n, gamma_t=args.gamma_t, mu=args.mu, limit_damping=args.limit_damping,
-    )
+    return ContactModel(**{p.name: getattr(args, p.name) for p in parameters.MODEL})
+
+
+def state_from(args: argparse.Namespace) -> dict:
+    """The state keywords of :class:`~spinbounce.model.scenes.Collision` that were given."""
+    return {p.name: getattr(args, p.name) for p in parameters.STATE if hasattr(args, p.name)}
+
+
+def sweep_model_flags(p: argparse.ArgumentParser) -> None:
+    """A sweep's model options: every sweepable parameter takes one value or several (a grid)."""
+    group = p.add_argument_group("model, from flags (one value or several: every combination is a group)")
+    for parameter in parameters.MODEL:
+        if not parameter.sweepable:
+            continue
+        if parameter.kind == "flag":
+            # alone it means true; with values (true false) it is a grid like the others
+            group.add_argument(*parameter.flags, dest=parameter.name, type=_flag, nargs="*", default=None,
+                               metavar="true|false", help=parameter_help(parameter, default=False))
+        else:
+            _add(group, parameter, nargs="+", default=None)
+    group.add_argument("--kt-over-kn", dest="kt_over_kn", type=number, nargs="+", default=None, metavar="RATIO",
+                       help="instead of --kt: the stiffness ratio kt/kn (kt = ratio * kn)")
 
 
 def json_flag(p: argparse.ArgumentParser) -> None:
@@ -47,5 +142,5 @@ def json_flag(p: argparse.ArgumentParser) -> None:
 
 def default_run_dir(kind: str, parameters: dict) -> Path:
     """``spinbounce-runs/<kind>-<hash of the parameters>`` under the current folder."""
-    digest = hashlib.sha256(json.dumps(parameters, sort_keys=True).encode()).hexdigest()[:10]
+    digest = hashlib.sha256(json.dumps(parameters, sort_keys=True, default=str).encode()).hexdigest()[:10]
     return Path("spinbounce-runs") / f"{kind}-{digest}"

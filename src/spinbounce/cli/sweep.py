@@ -1,76 +1,105 @@
-"""spinbounce sweep: many collisions from a scene file or flags, into a Parquet dataset."""
+"""spinbounce sweep: many collisions from a scene file or flags, into a Parquet dataset.
+
+A scene file is the whole sweep: beside one, the model and state flags are refused (name
+them in the file instead); the run flags (--out, --workers, --chunk, --list-chunks, --json)
+apply to either. From flags, every sweepable model parameter takes one value or several.
+"""
 
 from __future__ import annotations
 
+import json
 import os
 from pathlib import Path
 
-import json
-
+from ..model import parameters
 from ..sweeps import SweepError, chunk_table, load_spec, run_one_chunk, run_sweep, spec_from_dict
+from .options import count, number, sweep_model_flags
 
 HELP = "run many collisions in parallel chunks (resumable) into a Parquet dataset"
+#: State ranges from flags: (dest, flags, default range or None, help).
+STATE_RANGES = (
+    ("v_n", ("--vn", "--v-n"), (-1.5, -0.1), "range of v_n (default: -1.5 -0.1)"),
+    ("v_t", ("--vt", "--v-t"), (-2.0, 2.0), "range of v_t (default: -2 2)"),
+    ("speed", ("--speed",), None, "instead of --vn/--vt: range of the impact speed"),
+    ("angle_deg", ("--angle-deg",), None, "incidence angle from the wall's normal, degrees (with --speed)"),
+    ("r_omega", ("--r-omega",), (-2.0, 2.0), "range of r*omega (default: -2 2)"),
+    ("omega", ("--omega",), None, "instead of --r-omega: range of omega"),
+    ("v_s", ("--vs", "--v-s"), None, "3-D: range of v_s (give all three 3-D ranges)"),
+    ("r_omega_s", ("--r-omega-s",), None, "3-D: range of r*omega_s (or --omega-s)"),
+    ("omega_s", ("--omega-s",), None, "3-D: range of omega_s"),
+    ("r_omega_n", ("--r-omega-n",), None, "3-D: range of r*omega_n (or --omega-n)"),
+    ("omega_n", ("--omega-n",), None, "3-D: range of omega_n"),
+)
+SCENE_FLAGS = ("n", "seed", "chunk_size", "dt", "tolerance", "kt_over_kn",
+               *(p.name for p in parameters.MODEL if p.sweepable), *(dest for dest, *_ in STATE_RANGES))
 
 
 def register(sub) -> None:
     p = sub.add_parser("sweep", help=HELP, description=HELP + ". Give a TOML scene file, or the flags below.")
-    p.add_argument("scene", nargs="?", type=Path, help="TOML scene file (see spinbounce.sweeps for its keys)")
+    p.add_argument("scene", nargs="?", type=Path, help="TOML scene file (its keys: spinbounce.sweeps.spec)")
     p.add_argument("--out", type=Path, metavar="DIR", help="output folder (rerun to resume); required to run")
-    p.add_argument("--workers", type=int, default=os.cpu_count() or 1,
-                   help="parallel worker processes (default: the machine's cores, %(default)s)")
-    p.add_argument("--chunk", type=int, metavar="K",
+    p.add_argument("--workers", type=count, default=os.cpu_count() or 1,
+                   help="parallel worker processes, >= 1 (default: the machine's cores, %(default)s)")
+    p.add_argument("--chunk", type=count, metavar="K",
                    help="run only chunk K (see --list-chunks), in this process; several such jobs may "
                         "share one --out (as a workflow engine runs them)")
     p.add_argument("--list-chunks", action="store_true",
                    help="print the chunks (K, group, chunk, start, stop, file) and exit without running")
     p.add_argument("--json", action="store_true", help="with --list-chunks: print JSON")
-    g = p.add_argument_group("sweep from flags (instead of a scene file)")
-    g.add_argument("--n", type=int, help="number of sampled collisions")
-    g.add_argument("--seed", type=int, default=0)
-    g.add_argument("--chunk-size", type=int, default=None)
-    g.add_argument("--vn", type=float, nargs=2, metavar=("LOW", "HIGH"), help="default: -1.5 -0.1")
-    g.add_argument("--vt", type=float, nargs=2, metavar=("LOW", "HIGH"), help="default: -2 2")
-    g.add_argument("--speed", type=float, nargs=2, metavar=("LOW", "HIGH"), help="instead of --vn/--vt")
-    g.add_argument("--angle-deg", type=float, nargs=2, metavar=("LOW", "HIGH"),
-                   help="incidence angle from the wall's normal, degrees (with --speed)")
-    g.add_argument("--r-omega", type=float, nargs=2, metavar=("LOW", "HIGH"), help="default: -2 2")
-    g.add_argument("--omega", type=float, nargs=2, metavar=("LOW", "HIGH"), help="instead of --r-omega")
-    g.add_argument("--kt-over-kn", type=float, nargs="+", help="one or more values (a grid)")
-    g.add_argument("--alpha", type=float, nargs="+", help="one or more values (a grid)")
-    g.add_argument("--dt", type=float, default=None)
-    g.add_argument("--tolerance", type=float, default=None, metavar="TOL",
-                   help="instead of --dt: extrapolate each chunk's runs until every row's estimated error is below TOL")
+    g = p.add_argument_group("states, from flags (instead of a scene file)")
+    g.add_argument("--n", type=count, default=None, help="number of sampled collisions")
+    g.add_argument("--seed", type=count, default=None, help="random seed (default 0)")
+    g.add_argument("--chunk-size", type=count, default=None, help="spheres per LAMMPS run (default 25000)")
+    for dest, flags, _, text in STATE_RANGES:
+        g.add_argument(*flags, dest=dest, type=number, nargs=2, metavar=("LOW", "HIGH"), default=None, help=text)
+    step = g.add_mutually_exclusive_group()
+    step.add_argument("--dt", type=number, default=None, help="timestep (default: the timestep rule)")
+    step.add_argument("--tolerance", type=number, default=None, metavar="TOL",
+                      help="instead of --dt: extrapolate each chunk's runs until every row's estimated error is below TOL")
+    sweep_model_flags(p)
     p.set_defaults(handler=run)
 
 
-def _from_flags(args) -> dict:
-    if args.n is None:
-        raise SystemExit("spinbounce sweep: give a scene file or --n")
+def _given(args) -> list[str]:
+    return [name for name in SCENE_FLAGS if getattr(args, name, None) is not None]
+
+
+def _states_from_flags(args) -> dict:
     states = {"n": args.n}
     if args.speed or args.angle_deg:
-        if args.vn or args.vt:
+        if args.v_n or args.v_t:
             raise SweepError("--speed/--angle-deg: give them or --vn/--vt, not both")
         states["speed"] = list(args.speed or (0.1, 1.5))
         states["angle_deg"] = list(args.angle_deg or (-60.0, 60.0))
     else:
-        states["v_n"] = list(args.vn or (-1.5, -0.1))
-        states["v_t"] = list(args.vt or (-2.0, 2.0))
-    if args.omega:
-        if args.r_omega:
-            raise SweepError("--omega: give it or --r-omega, not both")
-        states["omega"] = list(args.omega)
-    else:
+        states["v_n"] = list(args.v_n or (-1.5, -0.1))
+        states["v_t"] = list(args.v_t or (-2.0, 2.0))
+    for dest, _, default, _ in STATE_RANGES[4:]:
+        value = getattr(args, dest)
+        if value is not None:
+            states[dest] = list(value)
+    if "omega" not in states:
         states["r_omega"] = list(args.r_omega or (-2.0, 2.0))
-    raw = {"seed": args.seed, "states": states}
-    if args.tolerance is not None:
-        raw["tolerance"] = args.tolerance
-    if args.chunk_size is not None:
-        raw["chunk_size"] = args.chunk_size
+    elif args.r_omega:
+        raise SweepError("--omega: give it or --r-omega, not both")
+    return states
+
+
+def spec_from_flags(args) -> dict:
+    """The scene-file content that the flags describe (the same keys, the same checks)."""
+    if args.n is None:
+        raise SweepError("--n = None: give a scene file or the number of collisions --n")
+    raw = {"seed": args.seed or 0, "states": _states_from_flags(args)}
+    for key in ("tolerance", "chunk_size"):
+        if getattr(args, key) is not None:
+            raw[key] = getattr(args, key)
     model = {}
-    if args.kt_over_kn:
-        model["kt_over_kn"] = args.kt_over_kn
-    if args.alpha:
-        model["alpha"] = args.alpha
+    for key in [p.name for p in parameters.MODEL if p.sweepable] + ["kt_over_kn"]:
+        values = getattr(args, key)
+        if values == [] and key == "limit_damping":  # the flag alone
+            values = [True]
+        if values is not None:
+            model[key] = [v if v is not None else "none" for v in values]
     if args.dt is not None:
         model["dt"] = args.dt
     if model:
@@ -79,7 +108,15 @@ def _from_flags(args) -> dict:
 
 
 def run(args) -> int:
-    spec = load_spec(args.scene) if args.scene else spec_from_dict(_from_flags(args))
+    if args.scene is not None:
+        given = _given(args)
+        if given:
+            flags = ", ".join("--" + name.replace("_", "-") for name in given)
+            raise SweepError(f"{flags}: a scene file is the whole sweep; put these in {args.scene} instead "
+                             "(beside a scene file only --out, --workers, --chunk, --list-chunks and --json apply)")
+        spec = load_spec(args.scene)
+    else:
+        spec = spec_from_dict(spec_from_flags(args))
     if args.list_chunks:
         table = chunk_table(spec, args.out)
         if args.json:
@@ -90,6 +127,8 @@ def run(args) -> int:
         return 0
     if args.out is None:
         raise SweepError("--out = None: an output folder is required to run a sweep")
+    if args.workers < 1:
+        raise SweepError(f"--workers = {args.workers}: must be >= 1")
     if args.chunk is not None:
         path = run_one_chunk(spec, args.out, args.chunk)
         print(f"chunk {args.chunk}: {path}")

@@ -1,0 +1,11 @@
+"""Sweeps: many collisions, in chunks, in parallel, resumable, into one Parquet dataset.
+
+:mod:`.spec` validates a sweep's description (a TOML scene file, or the same from flags;
+its keys are in that module's docstring); :mod:`.run` runs its chunks.
+"""
+
+from .run import chunk_path, chunk_table, read_results, run_chunk, run_one_chunk, run_sweep
+from .spec import DEFAULT_CHUNK, MODEL_KEYS, SweepError, SweepSpec, load_spec, spec_from_dict
+
+__all__ = ["SweepError", "SweepSpec", "load_spec", "spec_from_dict", "run_sweep", "run_one_chunk", "chunk_table",
+           "chunk_path", "read_results", "run_chunk", "DEFAULT_CHUNK", "MODEL_KEYS"]

@@ -1,0 +1,235 @@
+"""Running a sweep: chunks in parallel, resumable, into one Parquet dataset.
+
+The output folder holds ``sweep.json`` (the spec and its digest),
+``chunks/chunk-GGGG-CCCCCC.parquet`` (the dataset: read it with :func:`read_results`) and
+``runs/`` (each chunk's deck and log). A chunk's Parquet file is written atomically and
+only after its run has been checked, so a killed sweep rerun with the same command
+recomputes exactly the chunks that have no file.
+"""
+
+from __future__ import annotations
+
+import concurrent.futures
+import fcntl
+import json
+import multiprocessing
+import os
+import shutil
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from .. import __version__
+from ..model import parameters
+from ..model.scenes import Collision
+from ..theory import choose
+from .spec import SweepError, SweepSpec, spec_from_dict
+
+__all__ = ["run_sweep", "run_one_chunk", "chunk_table", "chunk_path", "read_results", "run_chunk"]
+
+
+def chunk_path(out: Path, group: int, chunk: int) -> Path:
+    return out / "chunks" / f"chunk-{group:04d}-{chunk:06d}.parquet"
+
+
+def run_chunk(raw: dict, out: str, group: int, chunk: int, start: int, stop: int) -> tuple[int, float, float]:
+    """Run one chunk and write its Parquet file atomically.
+
+    Returns (collisions, seconds in this call, seconds in LAMMPS's run loop). The spheres
+    reach LAMMPS in memory (the library route): no data file to write, no dump to parse.
+    """
+    from ..pipeline import run_collision  # keeps a parent process free of LAMMPS
+    from ..records import write_parquet_atomic
+
+    started = time.perf_counter()
+    spec = spec_from_dict(raw)
+    out = Path(out)
+    model, dt = spec.model(group)
+    states = spec.initial_states(group, start, stop)
+    extra = dict(zip(("v_s", "omega_s", "omega_n"), states[:, 3:].T, strict=False))
+    scene = Collision(model, v_n=states[:, 0], v_t=states[:, 1], omega=states[:, 2], dt=dt, **extra)
+    run_dir = out / "runs" / f"chunk-{group:04d}-{chunk:06d}"
+    if run_dir.exists():
+        shutil.rmtree(run_dir)  # a killed earlier attempt
+    n = stop - start
+    columns = {"group": np.full(n, group), "chunk": np.full(n, chunk), "index": np.arange(start, stop)}
+    if spec.tolerance is None:
+        result = run_collision(scene, run_dir, atoms="library", record=False)
+        columns.update({name: values.to_numpy() for name, values in result.table.drop(columns=["id"]).items()})
+        dt, nsteps, loop = scene.dt, scene.nsteps, result.info.loop_seconds
+    else:  # a ladder of runs per chunk, extrapolated; each row carries its error estimate
+        from ..studies.tolerance import collide_to_tolerance, collision_frame
+
+        extrapolated, finest = collide_to_tolerance(model, scene.v_n, scene.v_t, scene.omega, spec.tolerance,
+                                                    run_dir)
+        columns.update({name: values.to_numpy() for name, values in collision_frame(extrapolated, finest).items()})
+        columns["omega_0"] = np.asarray(scene.omega)
+        columns["tolerance"] = np.full(n, spec.tolerance)
+        dt, nsteps = finest.dt, extrapolated.steps
+        loop = sum(level["loop_seconds"] for level in extrapolated.levels)
+    labels = _model_columns(columns, model, n)
+    columns["dt"] = np.full(n, dt)  # with a tolerance: the finest run's
+    columns["nsteps"] = np.full(n, nsteps)  # with a tolerance: all runs' steps together
+    columns["Omega_theory"] = choose.omega_per_sphere(model, scene.v_n)  # NaN where none exists (Coulomb)
+    from ..records import lammps_version
+
+    labels.update({"theory": choose.which(model).kind, "scene_hash": spec.digest,
+                   "lammps_version": lammps_version(), "spinbounce_version": __version__})
+    write_parquet_atomic(chunk_path(out, group, chunk), _arrow_table(columns, labels))
+    return stop - start, time.perf_counter() - started, loop
+
+
+def _model_columns(columns: dict, model, n: int) -> dict[str, str]:
+    """Every declared model parameter as a column (mu: NaN for none); text ones as labels."""
+    labels = {}
+    for p in parameters.MODEL:
+        value = getattr(model, p.name)
+        if p.kind == "choice":
+            labels[p.column] = value
+        else:
+            columns[p.column] = np.full(n, np.nan if value is None else value)
+    return labels
+
+
+def _arrow_table(columns: dict[str, np.ndarray], labels: dict[str, str]):
+    """Numeric columns as they are, and constant text labels dictionary-encoded (one copy)."""
+    import pyarrow as pa
+
+    n = len(columns["index"])
+    arrays = {name: pa.array(values) for name, values in columns.items()}
+    for name, text in labels.items():
+        arrays[name] = pa.DictionaryArray.from_arrays(pa.array(np.zeros(n, dtype=np.int32)), pa.array([text]))
+    return pa.table(arrays)
+
+
+class _Lock:
+    """A lock on a file in the output folder, released by the OS even on kill -9.
+
+    A whole sweep holds the folder's lock exclusively; single-chunk jobs (``--chunk``, as
+    a workflow engine runs them) share it and each holds its own chunk's lock exclusively.
+    """
+
+    def __init__(self, path: Path, shared: bool = False, what: str = "another sweep is writing into this folder"):
+        self.path, self.shared, self.what = path, shared, what
+
+    def __enter__(self):
+        self.handle = open(self.path, "a")
+        try:
+            fcntl.flock(self.handle, (fcntl.LOCK_SH if self.shared else fcntl.LOCK_EX) | fcntl.LOCK_NB)
+        except BlockingIOError:
+            self.handle.close()
+            raise SweepError(f"{self.path.parent}: {self.what}") from None
+        return self
+
+    def __exit__(self, *exc):
+        fcntl.flock(self.handle, fcntl.LOCK_UN)
+        self.handle.close()
+
+
+def _progress(total: int, done: int):
+    try:
+        from tqdm import tqdm
+    except ImportError:  # pragma: no cover - tqdm is a dependency
+        return None
+    return tqdm(total=total, initial=done, unit="coll", unit_scale=True, dynamic_ncols=True,
+                disable=not sys.stderr.isatty(), desc="collisions")
+
+
+def _claim(out: Path, spec: SweepSpec) -> None:
+    """Record the sweep in ``out/sweep.json``, or refuse a folder that holds another sweep."""
+    from ..records import to_json, write_atomic
+
+    record = out / "sweep.json"
+    if record.exists():
+        previous = json.loads(record.read_text())
+        if previous.get("scene_hash") != spec.digest:
+            raise SweepError(
+                f"{out} holds sweep {previous.get('scene_hash')}, not this one ({spec.digest}): use another --out"
+            )
+    else:
+        write_atomic(record, to_json({"scene_hash": spec.digest, "spec": spec.raw, "spinbounce_version": __version__}))
+
+
+def run_sweep(spec: SweepSpec, out: Path, workers: int | None = None, log=print) -> Path:
+    """Run every chunk that has no Parquet file yet; return the dataset folder."""
+    out = Path(out)
+    (out / "chunks").mkdir(parents=True, exist_ok=True)
+    with _Lock(out / ".lock"):
+        _claim(out, spec)
+        todo = [c for c in spec.chunks() if not chunk_path(out, c[0], c[1]).exists()]
+        total = spec.n * len(spec.groups)
+        done = total - sum(stop - start for _, _, start, stop in todo)
+        if done:
+            log(f"resuming: {done} of {total} collisions already done")
+        workers = max(1, min(workers or os.cpu_count() or 1, len(todo) or 1))
+        bar = _progress(total, done)
+        if workers == 1:  # no pool: one process start fewer, and plain tracebacks
+            for c in todo:
+                n, *_ = run_chunk(spec.raw, str(out), *c)
+                if bar is not None:
+                    bar.update(n)
+        else:
+            context = multiprocessing.get_context("spawn")
+            with concurrent.futures.ProcessPoolExecutor(max_workers=workers, mp_context=context) as pool:
+                futures = [pool.submit(run_chunk, spec.raw, str(out), *c) for c in todo]
+                try:
+                    for future in concurrent.futures.as_completed(futures):
+                        n, *_ = future.result()
+                        if bar is not None:
+                            bar.update(n)
+                except BaseException:
+                    for f in futures:
+                        f.cancel()
+                    raise
+        if bar is not None:
+            bar.close()
+    return out / "chunks"
+
+
+def run_one_chunk(spec: SweepSpec, out: Path, k: int, log=print) -> Path:
+    """Run chunk number ``k`` (in :meth:`SweepSpec.chunks` order) alone, in this process.
+
+    Several such jobs may write into one folder at once (a workflow engine's chunk jobs);
+    a whole sweep into that folder is refused meanwhile. A chunk already written is kept.
+    """
+    out = Path(out)
+    chunks = spec.chunks()
+    if not 0 <= k < len(chunks):
+        raise SweepError(f"chunk = {k}: must lie in [0, {len(chunks) - 1}] for this sweep ({len(chunks)} chunks)")
+    group, chunk, start, stop = chunks[k]
+    (out / "chunks").mkdir(parents=True, exist_ok=True)
+    final = chunk_path(out, group, chunk)
+    with _Lock(out / ".lock", shared=True, what="a whole sweep is writing into this folder"):
+        with _Lock(out / "chunks" / f".{final.stem}.lock", what=f"chunk {k} is already being run"):
+            _claim(out, spec)
+            if final.exists():
+                log(f"chunk {k} is already done: {final}")
+            else:
+                run_chunk(spec.raw, str(out), group, chunk, start, stop)
+    return final
+
+
+def chunk_table(spec: SweepSpec, out: Path | None = None) -> list[dict]:
+    """Every chunk: its number k, model group, index within the group, row range and file."""
+    rows = []
+    for k, (group, chunk, start, stop) in enumerate(spec.chunks()):
+        row = {"k": k, "group": group, "chunk": chunk, "start": start, "stop": stop,
+               "path": str(chunk_path(Path("."), group, chunk))}
+        if out is not None:
+            row["done"] = chunk_path(Path(out), group, chunk).exists()
+        rows.append(row)
+    return rows
+
+
+def read_results(path: Path) -> pd.DataFrame:
+    """A sweep's rows, from its output folder or its ``chunks`` dataset folder."""
+    path = Path(path)
+    if (path / "chunks").is_dir():
+        path = path / "chunks"
+    files = sorted(path.glob("chunk-*.parquet")) if path.is_dir() else [path]
+    if not files:
+        raise SweepError(f"{path}: no chunk files")
+    return pd.concat([pd.read_parquet(f) for f in files], ignore_index=True)

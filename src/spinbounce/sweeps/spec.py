@@ -1,0 +1,340 @@
+"""A sweep's description: a scene file (TOML) or the same content from flags, validated.
+
+::
+
+    seed = 1
+    chunk_size = 25000          # spheres per LAMMPS run (the default)
+
+    [model]                     # any declared model parameter (spinbounce parameters):
+    kt = [1.0, 2.857142857142857]   # one value, or a list: every combination is a group
+    alpha = 0.4
+    mu = ["none", 0.3]          # "none": no Coulomb cap (the paper's model)
+    normal = "hooke"            # or "hertz"; limit_damping = true/false
+    # kt_over_kn = [...] instead of kt; dt = ... (or tolerance = ... at the top level)
+
+    [states]                    # seeded uniform samples over [low, high] ...
+    n = 100000
+    v_n = [-1.5, -0.1]
+    v_t = [-2.0, 2.0]
+    r_omega = [-2.0, 2.0]       # or omega = [low, high]
+    # instead of v_n and v_t: speed = [low, high] and angle_deg = [low, high], the incidence
+    # angle from the wall's normal in degrees (v_n = -speed cos, v_t = speed sin);
+    # 3-D: v_s, omega_s (or r_omega_s) and omega_n (or r_omega_n), all three
+
+    # ... or a grid: [states] mode = "grid" with lists of values (all combinations)
+
+Every model group (one point of the model grid) gets the same sampled states. Two
+descriptions that mean the same sweep (a file, or the flags) have the same digest.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import itertools
+import json
+import math
+import tomllib
+import warnings
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..model import parameters
+from ..model.contact import ContactModel
+from ..model.parameters import SceneError
+from ..model.scenes import Collision
+
+__all__ = ["SweepError", "SweepSpec", "load_spec", "spec_from_dict", "MODEL_KEYS", "DEFAULT_CHUNK"]
+
+#: Model keys of a scene file: every sweepable declared parameter, kt_over_kn and dt.
+MODEL_KEYS = tuple(p.name for p in parameters.MODEL if p.sweepable) + ("kt_over_kn", "dt")
+STATE_KEYS = ("v_n", "v_t", "speed", "angle_deg", "omega", "r_omega",
+              "v_s", "omega_s", "r_omega_s", "omega_n", "r_omega_n")
+#: Optional out-of-plane states (3-D): each given as an angular velocity or times r.
+EXTRA_KEYS = (("v_s",), ("omega_s", "r_omega_s"), ("omega_n", "r_omega_n"))
+#: The two ways to give the velocity: components, or speed and incidence angle (degrees
+#: from the wall's normal; positive angles give v_t > 0). Spin: omega or r_omega.
+VELOCITY_KEYS = {"components": ("v_n", "v_t"), "polar": ("speed", "angle_deg")}
+TOP_KEYS = ("name", "seed", "chunk_size", "tolerance", "model", "states")
+DEFAULT_CHUNK = 25_000
+#: How "no value" is written for an optional parameter (mu) in a scene file or a flag.
+NONE = "none"
+
+
+class SweepError(ValueError):
+    """A sweep cannot start: a bad scene file, or an output folder that is not ours."""
+
+
+def _fail(key: str, value, why: str):
+    raise SweepError(f"{key} = {value!r}: {why}")
+
+
+def _number(key: str, value) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        _fail(key, value, "must be a number")
+    if not math.isfinite(value):
+        _fail(key, value, "must be finite")
+    return float(value)
+
+
+def _numbers(key: str, value) -> list[float]:
+    values = value if isinstance(value, list) else [value]
+    if not values:
+        _fail(key, value, "is an empty list")
+    return [_number(key, v) for v in values]
+
+
+def _integer(key: str, value, low: int) -> int:
+    if isinstance(value, float) and value.is_integer():
+        value = int(value)
+    if isinstance(value, bool) or not isinstance(value, int):
+        _fail(key, value, "must be a whole number")
+    if value < low:
+        _fail(key, value, f"must be >= {low}")
+    return value
+
+
+def _model_values(key: str, value) -> list:
+    """One model key's values (a grid axis), each checked against its declaration."""
+    values = value if isinstance(value, list) else [value]
+    if not values:
+        _fail(f"model.{key}", value, "is an empty list")
+    declared = parameters.by_name("kt" if key == "kt_over_kn" else key)
+    out = []
+    for v in values:
+        if declared.optional and isinstance(v, str) and v.lower() == NONE:
+            out.append(None)
+            continue
+        if declared.kind == "number" and (isinstance(v, bool) or not isinstance(v, (int, float))):
+            _fail(f"model.{key}", v, "must be a number" + (f" or {NONE!r}" if declared.optional else ""))
+        try:
+            out.append(declared.check(v, where=f"model.{key}"))
+        except SceneError as exc:
+            raise SweepError(str(exc)) from None
+    return out
+
+
+@dataclass(frozen=True)
+class SweepSpec:
+    """A validated sweep: model groups and the initial states each of them runs.
+
+    ``states["axes"]`` maps each sampled state key (v_n or speed, v_t or angle_deg, omega
+    or r_omega, then the 3-D keys) to its range (random) or values (grid), in column order.
+    """
+
+    raw: dict
+    groups: tuple[dict, ...]
+    seed: int
+    chunk_size: int
+    mode: str
+    n: int
+    states: dict
+    tolerance: float | None = None
+
+    def canonical(self) -> dict:
+        """What the sweep means, whatever way it was written (file or flags)."""
+        return {"groups": list(self.groups), "seed": self.seed, "chunk_size": self.chunk_size, "mode": self.mode,
+                "n": self.n, "states": self.states, "tolerance": self.tolerance}
+
+    @property
+    def digest(self) -> str:
+        return hashlib.sha256(json.dumps(self.canonical(), sort_keys=True).encode()).hexdigest()[:16]
+
+    @property
+    def is_3d(self) -> bool:
+        return len(self.states["axes"]) == 6
+
+    def model(self, group: int) -> tuple[ContactModel, float | None]:
+        params = dict(self.groups[group])
+        dt = params.pop("dt", None)
+        return ContactModel(**params), dt
+
+    def initial_states(self, group: int, start: int = 0, stop: int | None = None) -> np.ndarray:
+        """States (v_n, v_t, omega) of rows [start, stop), then (v_s, omega_s, omega_n) for a
+        3-D sweep: the same for every group, set by the seed.
+
+        Random states are seeded uniform columns of n draws each; a chunk's rows are drawn
+        alone by jumping the generator ahead (one 64-bit draw per number), so a chunk costs
+        the same whatever its place in a long sweep.
+        """
+        axes = self.states["axes"]
+        stop = self.n if stop is None else stop
+        if self.mode == "grid":
+            arr = np.array(list(itertools.product(*axes.values())), dtype=float)[start:stop]
+        else:
+            columns = []
+            for k, (lo, hi) in enumerate(axes.values()):
+                bits = np.random.PCG64(self.seed)
+                bits.advance(k * self.n + start)
+                columns.append(np.random.Generator(bits).uniform(lo, hi, stop - start))
+            arr = np.column_stack(columns)
+        if "speed" in axes:
+            speed, angle = arr[:, 0], np.radians(arr[:, 1])
+            arr[:, 0], arr[:, 1] = -speed * np.cos(angle), speed * np.sin(angle)
+        for k, key in enumerate(axes):
+            if key.startswith("r_"):  # spins given times r
+                arr[:, k] = arr[:, k] / self.groups[group]["r"]
+        return arr
+
+    def normal_speeds(self) -> tuple[float, float]:
+        """The fastest and the slowest |v_n| the states can reach (sampled ranges: their bounds)."""
+        axes = self.states["axes"]
+        if "v_n" in axes:
+            vn = np.abs(np.asarray(axes["v_n"]))
+            return float(vn.max()), float(vn.min())
+        speed, angle = np.asarray(axes["speed"]), np.asarray(axes["angle_deg"])
+        cos = np.cos(np.radians(angle))
+        top = 1.0 if (self.mode == "random" and angle[0] <= 0.0 <= angle[1]) or 0.0 in angle else cos.max()
+        return float(speed.max() * top), float(speed.min() * cos.min())
+
+    def chunks(self) -> list[tuple[int, int, int, int]]:
+        """(group, chunk, start, stop) for every chunk, in order."""
+        out = []
+        for g in range(len(self.groups)):
+            for c, start in enumerate(range(0, self.n, self.chunk_size)):
+                out.append((g, c, start, min(start + self.chunk_size, self.n)))
+        return out
+
+
+def load_spec(path: Path) -> SweepSpec:
+    path = Path(path)
+    try:
+        raw = tomllib.loads(path.read_text())
+    except FileNotFoundError:
+        raise SweepError(f"scene file {path} does not exist") from None
+    except IsADirectoryError:
+        raise SweepError(f"scene file {path} is a folder, not a TOML file") from None
+    except UnicodeDecodeError:
+        raise SweepError(f"scene file {path} is not text (a TOML file is expected)") from None
+    except PermissionError:
+        raise SweepError(f"scene file {path} cannot be read (permission denied)") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise SweepError(f"{path}: not valid TOML: {exc}") from None
+    return spec_from_dict(raw)
+
+
+def _groups(model: dict) -> list[dict]:
+    if not isinstance(model, dict):
+        _fail("model", model, "must be a table")
+    for key in model:
+        if key not in MODEL_KEYS:
+            _fail(f"model.{key}", model[key], f"unknown key (allowed: {', '.join(MODEL_KEYS)})")
+    if "kt" in model and "kt_over_kn" in model:
+        _fail("model.kt_over_kn", model["kt_over_kn"], "give kt or kt_over_kn, not both")
+    # declaration order, not the file's: the same sweep numbers its groups the same way
+    axes = {key: (_numbers(f"model.{key}", model[key]) if key == "dt" else _model_values(key, model[key]))
+            for key in MODEL_KEYS if key in model}
+    defaults = {p.name: p.default for p in parameters.MODEL}
+    groups = []
+    for combo in itertools.product(*axes.values()):
+        params = {**defaults, **dict(zip(axes, combo, strict=True))}
+        if "kt_over_kn" in params:
+            params["kt"] = params.pop("kt_over_kn") * params["kn"]
+        groups.append(params)
+    return groups
+
+
+def _check_top(raw: dict) -> tuple[int, int, float | None]:
+    if not isinstance(raw, dict):
+        _fail("scene", raw, "must be a table of keys")
+    for key in raw:
+        if key not in TOP_KEYS:
+            _fail(key, raw[key], f"unknown key (allowed: {', '.join(TOP_KEYS)})")
+    seed = _integer("seed", raw.get("seed", 0), 0)
+    chunk_size = _integer("chunk_size", raw.get("chunk_size", DEFAULT_CHUNK), 1)
+    tolerance = raw.get("tolerance")
+    if tolerance is not None:
+        from ..studies.tolerance import check_tolerance
+
+        tolerance = _number("tolerance", tolerance)
+        try:
+            check_tolerance(tolerance)
+        except SceneError as exc:
+            raise SweepError(str(exc)) from None
+        if "dt" in raw.get("model", {}):
+            _fail("tolerance", tolerance, "give model.dt or tolerance, not both: a tolerance chooses the steps")
+    return seed, chunk_size, tolerance
+
+
+def spec_from_dict(raw: dict) -> SweepSpec:
+    """Validate a sweep description; every error names the key and its value."""
+    seed, chunk_size, tolerance = _check_top(raw)
+    groups = _groups(raw.get("model", {}))
+    mode, n, states = _parse_states(raw.get("states"), tolerance)
+    spec = SweepSpec(raw=raw, groups=tuple(groups), seed=seed, chunk_size=chunk_size, tolerance=tolerance,
+                     mode=mode, n=n, states=states)
+    _check_physics(spec)
+    return spec
+
+
+def _state_keys(states: dict, tolerance) -> list[str]:
+    """The sampled keys in column order: the two velocity keys, the spin, then any 3-D keys."""
+    if "omega" in states and "r_omega" in states:
+        _fail("states.r_omega", states["r_omega"], "give omega or r_omega, not both")
+    polar = any(k in states for k in VELOCITY_KEYS["polar"])
+    if polar and any(k in states for k in VELOCITY_KEYS["components"]):
+        _fail("states.speed", states.get("speed"), "give v_n and v_t, or speed and angle_deg, not both")
+    keys = [*VELOCITY_KEYS["polar" if polar else "components"], "r_omega" if "r_omega" in states else "omega"]
+    if any(k in states for group in EXTRA_KEYS for k in group):  # 3-D: every out-of-plane axis
+        for group in EXTRA_KEYS:
+            given = [k for k in group if k in states]
+            if len(given) != 1:
+                _fail(f"states.{group[0]}", states.get(group[0]),
+                      f"a 3-D sweep needs exactly one of {' or '.join(group)}")
+            keys.append(given[0])
+        if tolerance is not None:
+            _fail("tolerance", tolerance, "is for the paper's plane only: a 3-D sweep takes model.dt or the default")
+    return keys
+
+
+def _parse_states(states, tolerance) -> tuple[str, int, dict]:
+    if not isinstance(states, dict):
+        _fail("states", states, "a [states] table is required")
+    mode = states.get("mode", "random")
+    if mode not in ("random", "grid"):
+        _fail("states.mode", mode, 'must be "random" or "grid"')
+    allowed = ("mode", "n", *STATE_KEYS) if mode == "random" else ("mode", *STATE_KEYS)
+    for key in states:
+        if key not in allowed:
+            _fail(f"states.{key}", states[key], f"unknown key for mode {mode!r} (allowed: {', '.join(allowed)})")
+    axes = {}
+    for key in _state_keys(states, tolerance):
+        if key not in states:
+            _fail(f"states.{key}", None, "is required")
+        values = _numbers(f"states.{key}", states[key])
+        if mode == "random":
+            if len(values) != 2:
+                _fail(f"states.{key}", states[key], "must be a range [low, high]")
+            if not values[0] < values[1]:
+                _fail(f"states.{key}", states[key], "is an empty range: low must be below high")
+        axes[key] = values
+    if "speed" in axes:
+        if min(axes["speed"]) <= 0.0:
+            _fail("states.speed", states["speed"], "must be > 0")
+        if max(abs(a) for a in axes["angle_deg"]) >= 90.0:
+            _fail("states.angle_deg", states["angle_deg"], "must lie in (-90, 90): 90 degrees never meets the wall")
+    if mode == "random":
+        n = _integer("states.n", states.get("n", 0), 1)
+    else:
+        n = math.prod(len(v) for v in axes.values())
+    return mode, n, {"axes": axes}
+
+
+def _check_physics(spec: SweepSpec) -> None:
+    """Build every group's model and its most demanding collision now, before any run."""
+    fast, slow = spec.normal_speeds()
+    key_vn = "states.v_n" if "v_n" in spec.states["axes"] else "states.speed"
+    for g in range(len(spec.groups)):
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                model, dt = spec.model(g)
+        except SceneError as exc:
+            ratio = exc.parameter == "kt" and "kt_over_kn" in spec.raw.get("model", {})
+            raise SweepError(f"{'model.kt_over_kn' if ratio else f'model.{exc.parameter}'}: {exc}") from None
+        try:
+            Collision(model, v_n=[-fast, -slow], v_t=0.0, omega=0.0, dt=dt)
+        except SceneError as exc:
+            key = key_vn if exc.parameter.startswith("v_n") else f"model.{exc.parameter}"
+            raise SweepError(f"{key}: {exc}") from None
