@@ -187,11 +187,6 @@ def run_collision(scene: Collision, out_dir: Path, atoms: str | None = None, rec
             f"kinetic energy grew by up to {gain:.3g} of E(0) in a model that cannot gain energy: "
             "the step is too coarse for this scene"
         )
-    if m.mu is not None:
-        notes.append(
-            f"mu = {m.mu!r} caps the tangential force: the theory columns come from the Coulomb "
-            "oracle (adaptive integration with stick-slip events), not Eq. 18"
-        )
     table = pd.DataFrame(columns)
     dump_path = None if deck.dump is None else deck_path.parent / deck.dump
     result = CollisionResult(scene, table, info, dump_path, tuple(notes))
