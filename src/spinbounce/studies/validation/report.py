@@ -78,7 +78,24 @@ def draw(runs: list[BenchmarkRun]):
                 ax.set_title(bench.name, loc="left", fontweight="bold")
             if col == len(bench.panels) - 1:
                 ax.legend(fontsize=6, loc="best", ncol=2 if len(bench.series) > 1 else 1)
+    _fit_ylabels(fig)
     return fig
+
+
+def _fit_ylabels(fig, smallest: float = 6.0) -> None:
+    """Shrink each y-label longer than its axes is tall until it fits (not below ``smallest``
+    points): the layout engine moves labels but cannot shorten them, so a long label would
+    run past the figure's edge and be cut off."""
+    fig.canvas.draw()  # lays the figure out: the axes' heights are known from here
+    renderer = fig.canvas.get_renderer()
+    for ax in fig.axes:
+        label = ax.yaxis.label
+        if not ax.get_visible() or not ax.axison or not label.get_text():
+            continue
+        room = ax.get_window_extent(renderer).height
+        length = label.get_window_extent(renderer).height
+        if length > room:
+            label.set_fontsize(max(smallest, label.get_fontsize() * room / length))
 
 
 def _fmt(x, spec=".2e") -> str:
