@@ -9,7 +9,7 @@ import json
 
 import pytest
 
-from spinbounce.studies.speed import run_bench
+from spinbounce.studies.speed import measure_speed
 from spinbounce.cli import main
 from spinbounce.lammps.dumps import read_dump
 from spinbounce.sweeps import read_results
@@ -20,7 +20,7 @@ COLLISION_TOL = 2e-4
 
 @pytest.mark.lammps
 def test_bench_measures_three_methods_on_one_sample(tmp_path):
-    report = run_bench(n_lmp=2, n_inprocess=5, n_batched=3000, chunk_size=1000, keep=tmp_path / "runs",
+    report = measure_speed(n_lmp=2, n_inprocess=5, n_batched=3000, chunk_size=1000, keep=tmp_path / "runs",
                        n_needs=200, log=lambda *_: None)
     methods = report["methods"]
     assert [methods[k]["collisions"] for k in ("a_lmp_process", "b_in_process", "c_batched")] == [2, 5, 3000]
@@ -49,7 +49,7 @@ def test_bench_measures_three_methods_on_one_sample(tmp_path):
 
 def test_bench_refuses_a_batch_smaller_than_the_baselines():
     with pytest.raises(ValueError, match="n_batched"):
-        run_bench(n_lmp=10, n_inprocess=10, n_batched=5)
+        measure_speed(n_lmp=10, n_inprocess=10, n_batched=5)
 
 
 @pytest.mark.lammps

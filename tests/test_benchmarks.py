@@ -21,9 +21,12 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from spinbounce.studies import validation as B
-from spinbounce.theory import oracle
+from figure_bounds import texts_outside
 from spinbounce.cli import main
+from spinbounce.figures.core import STYLE
+from spinbounce.studies import validation as B
+from spinbounce.studies.validation.report import draw
+from spinbounce.theory import oracle
 
 #: grid indices per benchmark: near-normal, mid (sticking or micro-slip), gross sliding;
 #: chung-ooi-4's 30 deg and thornton's threshold states are avoided (oracle failures, see report)
@@ -105,6 +108,19 @@ def test_hookean_springs_have_the_hertz_time_and_mindlin_ratio_and_the_damping_t
     for name, e in (("chung-ooi-4", 0.98), ("chung-ooi-6", 0.5)):
         # bisection to 1e-15 in gamma_n: the restitution to ~1e-14
         assert B.BENCHMARKS[name].series[0].model.restitution == pytest.approx(e, abs=1e-12)
+
+
+@pytest.mark.lammps
+def test_benchmark_figure_keeps_every_label_inside_the_figure(tmp_path):
+    """The report's figure, drawn from every benchmark (a few states each, every series),
+    leaves no text cut off at the figure's edge: its long y-labels used to run past the top."""
+    import matplotlib.style
+
+    runs = [B.run_benchmark(B.with_states(B.BENCHMARKS[name], REDUCED[name]), tmp_path, log=lambda s: None)
+            for name in REDUCED]
+    with matplotlib.style.context(STYLE):
+        fig = draw(runs)
+        assert texts_outside(fig) == []
 
 
 def test_cli_refuses_an_unknown_benchmark(capsys):

@@ -24,6 +24,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from spinbounce import __version__
+from spinbounce.model.scenes import ContactModel
 from spinbounce.studies import references as refs
 from spinbounce.cli import references as references_command
 from spinbounce.lammps.decks import ATOM_ROUTES
@@ -77,7 +79,7 @@ def test_the_cases_cover_the_required_parameters():
     models = {case.name: case.contact_model() for case in refs.CASES}
     kinds = {case.name: case.kind for case in refs.CASES}
     collisions = [m for name, m in models.items() if kinds[name] == "collision"]
-    assert any(m == refs.ContactModel() for m in collisions)
+    assert any(m == ContactModel() for m in collisions)
     assert any(m.alpha == 0.4 and math.isclose(m.kt / m.kn, 2 / 7) for m in collisions)
     assert any(m.alpha == 0.1 for m in collisions)
     assert any(math.isclose(m.alpha, 2 / 3) and math.isclose(m.kt / m.kn, 0.4) for m in collisions)
@@ -88,7 +90,7 @@ def test_the_cases_cover_the_required_parameters():
     assert any(m.kt / m.kn == 5 for m in collisions)
     assert any(m.mu == 0.1 for m in collisions)
     states = np.array([s for case in refs.CASES if case.kind == "collision" for s in case.states])
-    r = refs.ContactModel().r
+    r = ContactModel().r
     assert np.any(np.abs(states[:, 0]) == 1e-3)  # grazing
     assert np.any(np.abs(states[:, 0]) >= 1.5)  # near tunnelling
     assert np.any(np.abs(r * states[:, 2]) >= 20 * np.abs(states[:, 0]))  # large spin
@@ -160,7 +162,7 @@ def test_deck_comparison_ignores_the_version_and_nothing_else(tmp_path):
     for path in (deck, data):
         first, rest = path.read_text().split("\n", 1)
         assert "spinbounce " in first
-        path.write_text(first.replace(refs.__version__, "97.3.1.dev4") + "\n" + rest)
+        path.write_text(first.replace(__version__, "97.3.1.dev4") + "\n" + rest)
     assert refs.compare_decks(decks, [golden]) == []  # a release does not break the golden decks
 
     text = deck.read_text()

@@ -30,6 +30,7 @@ __all__ = [
     "FrozenResult",
     "run_collision",
     "run_frozen",
+    "prepare_run_dir",
     "write_atomic",
     "write_parquet_atomic",
     "to_json",
@@ -73,6 +74,13 @@ def _prepare(out_dir: Path, deck: Deck) -> Path:
     deck_path = out_dir / deck.name
     write_atomic(deck_path, deck.text)
     return deck_path
+
+
+def prepare_run_dir(out_dir: Path, deck: Deck) -> Path:
+    """``out_dir`` made ready to run ``deck`` (created, earlier outputs removed, the deck and the
+    files it reads written); the deck's path. For decks run outside :func:`run_collision`, such
+    as the speed measurement's padded ones."""
+    return _prepare(out_dir, deck)
 
 
 def _check_finite(frames: pd.DataFrame, where: Path) -> None:

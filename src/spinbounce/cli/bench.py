@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..studies.speed import BENCH_DEFAULTS, run_bench
+from ..studies.speed import SPEED_DEFAULTS, measure_speed
 from ..records import to_json, write_atomic
 
 HELP = "measure collisions/s of one lmp process per collision, one in-process instance, and a batched sweep"
@@ -15,11 +15,11 @@ LABELS = {"a_lmp_process": "(a) one lmp process each", "b_in_process": "(b) one 
 
 def register(sub) -> None:
     p = sub.add_parser("bench", help=HELP, description=HELP + ", side by side on the same states and dt.")
-    p.add_argument("--n-lmp", type=int, default=BENCH_DEFAULTS["n_lmp"], metavar="N",
+    p.add_argument("--n-lmp", type=int, default=SPEED_DEFAULTS["n_lmp"], metavar="N",
                    help="collisions for (a) (default %(default)s)")
-    p.add_argument("--n-inprocess", type=int, default=BENCH_DEFAULTS["n_inprocess"], metavar="N",
+    p.add_argument("--n-inprocess", type=int, default=SPEED_DEFAULTS["n_inprocess"], metavar="N",
                    help="collisions for (b) (default %(default)s)")
-    p.add_argument("--n-batched", type=int, default=BENCH_DEFAULTS["n_batched"], metavar="N",
+    p.add_argument("--n-batched", type=int, default=SPEED_DEFAULTS["n_batched"], metavar="N",
                    help="collisions for (c) (default %(default)s)")
     p.add_argument("--workers", type=int, default=1,
                    help="worker processes for (c); rates are reported per core (default %(default)s)")
@@ -34,7 +34,7 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    report = run_bench(n_lmp=args.n_lmp, n_inprocess=args.n_inprocess, n_batched=args.n_batched,
+    report = measure_speed(n_lmp=args.n_lmp, n_inprocess=args.n_inprocess, n_batched=args.n_batched,
                        workers=args.workers, seed=args.seed, chunk_size=args.chunk_size, keep=args.keep_runs,
                        n_needs=args.n_needs)
     print(f"dt = {report['parameters']['dt']:.6g}, LAMMPS {report['lammps_version']}, "

@@ -40,7 +40,7 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    from ..studies.validation_report import make_benchmarks
+    from ..studies.validation.report import make_benchmarks
 
     results, files = make_benchmarks(args.out, only=args.only, runs=args.runs, log=lambda s: print(s, file=sys.stderr))
     print(f"{'benchmark':<17}{'states':>7}{'refine':>7}{'LAMMPS-oracle':>15}{'at 2x':>10}{'<1e-4':>7}"

@@ -21,7 +21,7 @@ import numpy as np
 from .. import __version__
 from ..model.scenes import Collision, ContactModel, Frozen
 
-__all__ = ["Deck", "LibraryAtoms", "render_collision", "render_frozen", "wall_parameters", "template_dir",
+__all__ = ["Deck", "LibraryAtoms", "Padding", "render_collision", "render_frozen", "wall_parameters", "template_dir",
            "NO_CAP_MU", "LIBRARY_MARKER", "ATOM_ROUTES"]
 
 #: LAMMPS always caps |F_t| <= mu F_n. The paper's model has no cap, so "no cap" is this
@@ -45,6 +45,8 @@ ATOM_ROUTES = ("inline", "data_file", "library")
 #: The line of a library-route deck at which the runner creates the atoms.
 LIBRARY_MARKER = "# >>> atoms are created here through the LAMMPS library interface <<<"
 ALPHA_NVE_SPHERE = 0.4
+#: The every-step dump of a padded collision deck (:class:`Padding`).
+PADDING_DUMP_NAME = "every.dump"
 
 
 def template_dir() -> Path:
@@ -114,6 +116,26 @@ class Deck:
     atoms: LibraryAtoms | None = None
 
 
+@dataclass(frozen=True)
+class Padding:
+    """Work a collision run can do beyond the contact, to measure what it costs (``spinbounce
+    bench``): ``before`` time units of free flight to the wall (each sphere starts |v_n|
+    ``before`` higher), ``after`` more time once the contact run would have ended, and a dump
+    of every sphere each ``dump_every`` steps into :data:`PADDING_DUMP_NAME`. The physics is
+    the same; the default pads nothing."""
+
+    before: float = 0.0
+    after: float = 0.0
+    dump_every: int | None = None
+
+    def lift(self, v_n) -> np.ndarray:
+        """Each sphere's start above touching the wall."""
+        return np.abs(np.asarray(v_n, dtype=float)) * self.before
+
+    def extra_steps(self, dt: float) -> int:
+        return math.ceil((self.before + self.after) / dt)
+
+
 def wall_parameters(model: ContactModel) -> dict:
     """Arguments of ``wall/gran granular hooke|hertz ... tangential linear_history ...``.
 
@@ -160,13 +182,13 @@ def _common(model: ContactModel, zhi: float) -> dict:
     }
 
 
-def _collision_state(scene: Collision) -> dict[str, np.ndarray]:
+def _collision_state(scene: Collision, padding: Padding) -> dict[str, np.ndarray]:
     """Per-sphere LAMMPS vectors: position, velocity, angular velocity (omega_y = -omega,
     omega_x = omega_s, omega_z = omega_n)."""
     n = scene.n
     zeros = np.zeros(n)
     return {
-        "x": zeros, "y": zeros, "z": np.full(n, scene.model.r),
+        "x": zeros, "y": zeros, "z": scene.model.r + padding.lift(scene.v_n),
         "vx": np.asarray(scene.v_t), "vy": np.asarray(scene.v_s), "vz": np.asarray(scene.v_n),
         "wx": np.asarray(scene.omega_s), "wy": -np.asarray(scene.omega) + 0.0, "wz": np.asarray(scene.omega_n),
     }
@@ -237,16 +259,21 @@ def _library_atoms(scene: Collision, state: dict, rigid: bool) -> LibraryAtoms:
     return LibraryAtoms(types=types, x=x, v=v, omega=omega)
 
 
-def render_collision(scene: Collision, atoms: str | None = None) -> Deck:
+def render_collision(scene: Collision, atoms: str | None = None, padding: Padding | None = None) -> Deck:
     """The collision deck. ``atoms``: one of :data:`ATOM_ROUTES`; by default inline up to
-    :data:`INLINE_SPHERES` spheres and a data file beyond (either way ``lmp -in`` reruns it)."""
+    :data:`INLINE_SPHERES` spheres and a data file beyond (either way ``lmp -in`` reruns it).
+    ``padding``: work beyond the contact, for measuring its cost (:class:`Padding`)."""
     model = scene.model
+    padding = Padding() if padding is None else padding
     if atoms is None:
         atoms = "inline" if scene.n <= INLINE_SPHERES else "data_file"
     if atoms not in ATOM_ROUTES:
         raise ValueError(f"atoms = {atoms!r}: must be one of {ATOM_ROUTES}")
-    state = _collision_state(scene)
-    ctx = _common(model, zhi=4.0 * model.r)
+    state = _collision_state(scene, padding)
+    # room for the lifted start and for the flight away from the wall in the extra time
+    fastest = float(np.max(np.abs(scene.v_n)))
+    headroom = float(np.max(padding.lift(scene.v_n))) + fastest * (padding.before + padding.after)
+    ctx = _common(model, zhi=4.0 * model.r + headroom)
     rigid = ctx["rigid"]
     files = {}
     spheres = []
@@ -262,7 +289,8 @@ def render_collision(scene: Collision, atoms: str | None = None) -> Deck:
     # the header's run length: Hertzian contacts end at different times, the slowest last
     tau = float(np.max(model.contact_times(scene.v_n))) if model.normal == "hertz" else model.tau
     ctx.update(n=scene.n, spheres=spheres, tau=tau, dt=scene.dt, nsteps=scene.nsteps,
-               atoms=atoms, library_marker=LIBRARY_MARKER, data_file=DATA_FILE)
+               run_steps=scene.nsteps + padding.extra_steps(scene.dt), padding=padding,
+               padding_dump=PADDING_DUMP_NAME, atoms=atoms, library_marker=LIBRARY_MARKER, data_file=DATA_FILE)
     text = _environment().get_template("collision.lmp.j2").render(**ctx)
     return Deck(text=text, rigid=rigid, files=files, dump=None if library else DUMP_NAME,
                 atoms=_library_atoms(scene, state, rigid) if library else None)

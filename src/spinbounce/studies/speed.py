@@ -1,4 +1,5 @@
-"""Throughput of three ways to run collisions, measured side by side in one process.
+"""Speed: collisions per second of three ways to run them, measured side by side in one
+process (``spinbounce bench``).
 
 (a) ``lmp``: one ``lmp`` process per collision, which writes a dump that is then parsed;
 (b) ``in-process``: one LAMMPS instance per collision through the ``lammps`` module, the
@@ -25,13 +26,13 @@ from pathlib import Path
 
 import numpy as np
 
-from .. import __version__
 from ..compare import STATE
+from ..records import software
 
-__all__ = ["run_bench", "BENCH_DEFAULTS"]
+__all__ = ["measure_speed", "scene_needs", "SPEED_DEFAULTS"]
 
 #: Collisions per method by default: enough for each to run a few seconds.
-BENCH_DEFAULTS = {"n_lmp": 30, "n_inprocess": 300, "n_batched": 200_000}
+SPEED_DEFAULTS = {"n_lmp": 30, "n_inprocess": 300, "n_batched": 200_000}
 
 
 def _sample_spec(n: int, seed: int, chunk_size: int, model: dict) -> dict:
@@ -85,43 +86,29 @@ def _batched(spec, folder: Path, workers: int) -> dict:
 def scene_needs(spec, count: int, folder: Path) -> dict:
     """What modelling only the contact saves: the same collisions as one batch, (1) as the
     sweep runs them (start in contact, stop when the last sphere has left, no dump) and
-    (2) with a contact time of free flight before and two after, dumping every step.
-
-    The second deck is the first with the spheres raised by |v_n| tau, a longer run and a
-    per-step dump added: the physics is the same, only the work around it differs.
+    (2) padded (:class:`decks.Padding`) with a contact time of free flight before and two
+    after, dumping every step: the physics is the same, only the work around it differs.
     """
-    import dataclasses
-
-    from ..lammps.decks import render_collision
-    from ..pipeline import _prepare
+    from ..lammps.decks import Padding, render_collision
     from ..lammps.runner import run_deck
     from ..model.scenes import Collision
+    from ..pipeline import prepare_run_dir
 
     model, dt = spec.model(0)
     states = spec.initial_states(0, 0, count)
     scene = Collision(model, v_n=states[:, 0], v_t=states[:, 1], omega=states[:, 2], dt=dt)
-    minimal = render_collision(scene, "library")
-    lead = np.abs(states[:, 0]) * model.tau  # each sphere reaches the wall after one tau
-    atoms = minimal.atoms
-    x = atoms.x.copy()
-    x[: scene.n, 2] += lead
-    if len(x) > scene.n:  # rigid route: the centre points move with their spheres
-        x[scene.n:, 2] += lead
-    extra = int(np.ceil(3 * model.tau / scene.dt))
-    box = f"0.0 {4.0 * model.r!r}"
-    text = minimal.text.replace(box, f"0.0 {4.0 * model.r + float(lead.max()) + 3 * model.tau * 1.5!r}")
-    text = text.replace(f"run             {scene.nsteps}",
-                        "dump            every contact custom 1 every.dump id x y z vx vy vz omegax omegay omegaz\n"
-                        f"run             {scene.nsteps + extra}")
-    full = dataclasses.replace(minimal, text=text, atoms=dataclasses.replace(atoms, x=x))
+    padding = Padding(before=model.tau, after=2.0 * model.tau, dump_every=1)
+    decks = {"contact_only": (render_collision(scene, "library"), 0),
+             "free_flight_and_dump_every_step": (render_collision(scene, "library", padding),
+                                                 padding.extra_steps(scene.dt))}
     out = {}
-    for name, deck in (("contact_only", minimal), ("free_flight_and_dump_every_step", full)):
-        path = _prepare(folder / name, deck)
+    for name, (deck, extra) in decks.items():
+        path = prepare_run_dir(folder / name, deck)
         started = time.perf_counter()
         info = run_deck(path, atoms=deck.atoms)
         final_v = info.final["v"][: scene.n]
         out[name] = {"wall_seconds": time.perf_counter() - started, "loop_seconds": info.loop_seconds,
-                     "steps": scene.nsteps + (extra if name != "contact_only" else 0),
+                     "steps": scene.nsteps + extra,
                      "max_abs_vn_error": float(np.abs(final_v[:, 2] - scene.predicted()[:, 0]).max())}
     out["collisions"] = scene.n
     out["ratio"] = out["free_flight_and_dump_every_step"]["wall_seconds"] / out["contact_only"]["wall_seconds"]
@@ -137,54 +124,64 @@ def _finish(entry: dict) -> dict:
     return entry
 
 
-def run_bench(n_lmp: int = BENCH_DEFAULTS["n_lmp"], n_inprocess: int = BENCH_DEFAULTS["n_inprocess"],
-              n_batched: int = BENCH_DEFAULTS["n_batched"], workers: int = 1, seed: int = 0,
-              chunk_size: int | None = None, model: dict | None = None, keep: Path | None = None,
-              n_needs: int = 1000,
-              log=print) -> dict:
+def _check_counts(counts: dict) -> None:
+    for name, value in counts.items():
+        if int(value) != value or value < 1:
+            raise ValueError(f"{name} = {value!r}: must be a whole number >= 1")
+    if max(counts["n_lmp"], counts["n_inprocess"], counts["n_needs"]) > counts["n_batched"]:
+        raise ValueError(f"n_batched = {counts['n_batched']}: must be at least n_lmp, n_inprocess and n_needs "
+                         "(they reuse its states)")
+
+
+def _measure_all(spec, root: Path, counts: dict, log) -> dict:
+    """(a), (b), (c) and the padding comparison (d), one after the other, runs under ``root``."""
+    from ..lammps.runner import run_deck, run_deck_lmp
+
+    log(f"(a) one lmp process per collision: {counts['n_lmp']} collisions ...")
+    a = _finish(_one_at_a_time(spec, counts["n_lmp"], root / "a-lmp", run_deck_lmp, "inline"))
+    log(f"(b) one in-process LAMMPS instance per collision: {counts['n_inprocess']} collisions ...")
+    b = _finish(_one_at_a_time(spec, counts["n_inprocess"], root / "b-inprocess", run_deck, "library"))
+    log(f"(c) batched sweep: {counts['n_batched']} collisions, {counts['workers']} worker(s) ...")
+    c = _finish(_batched(spec, root / "c-batched", counts["workers"]))
+    log(f"(d) contact only against free flight and a dump every step: {counts['n_needs']} collisions ...")
+    d = scene_needs(spec, counts["n_needs"], root / "d-scene-needs")
+    return {"a_lmp_process": a, "b_in_process": b, "c_batched": c, "scene_needs": d}
+
+
+def measure_speed(n_lmp: int = SPEED_DEFAULTS["n_lmp"], n_inprocess: int = SPEED_DEFAULTS["n_inprocess"],
+                  n_batched: int = SPEED_DEFAULTS["n_batched"], workers: int = 1, seed: int = 0,
+                  chunk_size: int | None = None, model: dict | None = None, keep: Path | None = None,
+                  n_needs: int = 1000, log=print) -> dict:
     """Measure (a), (b) and (c); return rates, errors, shares and the ratios c/a and c/b."""
-    from ..lammps.runner import lammps_version, run_deck, run_deck_lmp
+    from ..model.scenes import Collision
     from ..sweeps import DEFAULT_CHUNK, spec_from_dict
 
     chunk_size = DEFAULT_CHUNK if chunk_size is None else chunk_size
-
-    for name, value in (("n_lmp", n_lmp), ("n_inprocess", n_inprocess), ("n_batched", n_batched),
-                        ("workers", workers), ("chunk_size", chunk_size)):
-        if int(value) != value or value < 1:
-            raise ValueError(f"{name} = {value!r}: must be a whole number >= 1")
-    if max(n_lmp, n_inprocess, n_needs) > n_batched:
-        raise ValueError(f"n_batched = {n_batched}: must be at least n_lmp, n_inprocess and n_needs (they reuse its states)")
+    counts = {"n_lmp": n_lmp, "n_inprocess": n_inprocess, "n_batched": n_batched, "workers": workers,
+              "chunk_size": chunk_size, "n_needs": n_needs}
+    _check_counts(counts)
     spec = spec_from_dict(_sample_spec(n_batched, seed, chunk_size, model or {}))
     root = Path(keep) if keep is not None else Path(tempfile.mkdtemp(prefix="spinbounce-bench-"))
     root.mkdir(parents=True, exist_ok=True)
-    lammps_version()  # load the library once, outside every timing
+    provenance = software()  # also loads the LAMMPS library, outside every timing
     try:
-        log(f"(a) one lmp process per collision: {n_lmp} collisions ...")
-        a = _finish(_one_at_a_time(spec, n_lmp, root / "a-lmp", run_deck_lmp, "inline"))
-        log(f"(b) one in-process LAMMPS instance per collision: {n_inprocess} collisions ...")
-        b = _finish(_one_at_a_time(spec, n_inprocess, root / "b-inprocess", run_deck, "library"))
-        log(f"(c) batched sweep: {n_batched} collisions, {workers} worker(s) ...")
-        c = _finish(_batched(spec, root / "c-batched", workers))
-        log(f"(d) contact only against free flight and a dump every step: {n_needs} collisions ...")
-        d = scene_needs(spec, n_needs, root / "d-scene-needs")
+        measured = _measure_all(spec, root, counts, log)
     finally:
         if keep is None:
             shutil.rmtree(root, ignore_errors=True)
+    a, b, c = (measured[k] for k in ("a_lmp_process", "b_in_process", "c_batched"))
     model_obj, dt = spec.model(0)
-    from ..model.scenes import Collision
-
     dt = Collision(model_obj, v_n=-1.0, v_t=0.0, omega=0.0, dt=dt).dt
     return {
         "methods": {"a_lmp_process": a, "b_in_process": b, "c_batched": c},
-        "scene_needs": d,
+        "scene_needs": measured["scene_needs"],
         "ratios": {
             "batched_over_lmp_process": c["collisions_per_second_per_core"] / a["collisions_per_second_per_core"],
             "batched_over_in_process": c["collisions_per_second_per_core"] / b["collisions_per_second_per_core"],
         },
         "parameters": {"model": spec.groups[0], "dt": dt, "seed": seed,
                        "states": spec.raw["states"], "chunk_size": chunk_size},
-        "machine": {"cpus": os.cpu_count(), "platform": platform.platform(), "python": platform.python_version()},
-        "lammps_version": lammps_version(),
-        "spinbounce_version": __version__,
+        "machine": {"cpus": os.cpu_count(), "platform": platform.platform()},
+        **provenance,
         "kept_runs": str(root) if keep is not None else None,
     }

@@ -1,6 +1,6 @@
 """The benchmarks' report: BENCHMARKS.md, benchmarks.json and benchmarks.png/pdf.
 
-Everything here is drawn and written from the tables :func:`benchmarks.run_benchmark`
+Everything here is drawn and written from the tables :func:`.run.run_benchmark`
 returns; nothing is recomputed. matplotlib is imported only when the figure is drawn.
 """
 
@@ -14,10 +14,16 @@ from pathlib import Path
 
 import numpy as np
 
-from .validation import ACCEPTANCE, QUANTITIES, BenchmarkRun, quantity, run_benchmark, select, walton
-from ..records import json_ready, write_atomic
+from ...records import json_ready, software, write_atomic
+from .cases import select
+from .quantities import QUANTITIES, quantity
+from .rigid_body import walton
+from .run import ACCEPTANCE, BenchmarkRun, run_benchmark
 
 __all__ = ["make_benchmarks", "draw", "markdown", "record"]
+
+#: One colour per series of a benchmark.
+COLOURS = ("#d62728", "#1f77b4", "#2ca02c", "#9467bd")
 
 
 def _rigid_curve(run: BenchmarkRun, series, y: str):
@@ -32,43 +38,64 @@ def _rigid_curve(run: BenchmarkRun, series, y: str):
     return quantity(bench.x, initial, initial, series.model), quantity(y, initial, final, series.model)
 
 
+
+def _draw_series(ax, run: BenchmarkRun, k: int, y: str) -> None:
+    """Series ``k`` of a run on one panel: oracle line, LAMMPS circles, rigid-body dashes, data squares."""
+    bench = run.benchmark
+    series = bench.series[k]
+    c = COLOURS[k % len(COLOURS)]
+    many = len(bench.series) > 1
+    s = run.table[run.table["series"] == series.label].sort_values("x")
+    ok = s[s["oracle_ok"]]
+    ax.plot(ok["x"], ok[f"{y}_oracle"], "-", color=c, lw=1.0, label=series.label if many else "oracle")
+    ax.plot(s["x"], s[f"{y}_lammps"], "o", ms=2.8, mfc="none", color=c, label="LAMMPS" if k == 0 else None)
+    gx, gy = _rigid_curve(run, series, y)
+    ax.plot(gx, gy, "--", color=c, lw=0.9, alpha=0.8, label="rigid body" if k == 0 else None)
+    m = run.measured
+    pts = m[(m["series"] == series.label) & (m["quantity"] == y)] if len(m) else m
+    if len(pts):
+        first = not any(h.get_label() == "data" for h in ax.lines)
+        ax.plot(pts["x"], pts["measured"], "s", ms=3.5, color=c if many else "k", label="data" if first else None)
+
+
 def draw(runs: list[BenchmarkRun]):
-    from ..figures.core import new_figure
+    """One row per benchmark, one panel per plotted quantity against the benchmark's x."""
+    from ...figures.core import new_figure
 
     ncols = max(len(r.benchmark.panels) for r in runs)
     fig, axes = new_figure(len(runs), ncols, figsize=(3.2 * ncols, 2.9 * len(runs)))
-    colours = ["#d62728", "#1f77b4", "#2ca02c", "#9467bd"]
     for row, run in enumerate(runs):
-        bench, t = run.benchmark, run.table
-        for col in range(ncols):
-            ax = axes[row][col]
+        bench = run.benchmark
+        for col, ax in enumerate(axes[row]):
             if col >= len(bench.panels):
                 ax.set_axis_off()
                 continue
-            y = bench.panels[col]
-            for k, series in enumerate(bench.series):
-                c = colours[k % len(colours)]
-                s = t[t["series"] == series.label].sort_values("x")
-                ok = s[s["oracle_ok"]]
-                many = len(bench.series) > 1
-                ax.plot(ok["x"], ok[f"{y}_oracle"], "-", color=c, lw=1.0, label=series.label if many else "oracle")
-                ax.plot(s["x"], s[f"{y}_lammps"], "o", ms=2.8, mfc="none", color=c,
-                        label="LAMMPS" if k == 0 else None)
-                gx, gy = _rigid_curve(run, series, y)
-                ax.plot(gx, gy, "--", color=c, lw=0.9, alpha=0.8, label="rigid body" if k == 0 else None)
-                m = run.measured
-                if len(m):
-                    pts = m[(m["series"] == series.label) & (m["quantity"] == y)]
-                    if len(pts):
-                        ax.plot(pts["x"], pts["measured"], "s", ms=3.5, color=c if many else "k",
-                                label="data" if not any(h.get_label() == "data" for h in ax.lines) else None)
+            for k in range(len(bench.series)):
+                _draw_series(ax, run, k, bench.panels[col])
             ax.set_xlabel(QUANTITIES[bench.x]["label"])
-            ax.set_ylabel(QUANTITIES[y]["label"])
+            ax.set_ylabel(QUANTITIES[bench.panels[col]]["label"])
             if col == 0:
                 ax.set_title(bench.name, loc="left", fontweight="bold")
             if col == len(bench.panels) - 1:
                 ax.legend(fontsize=6, loc="best", ncol=2 if len(bench.series) > 1 else 1)
+    _fit_ylabels(fig)
     return fig
+
+
+def _fit_ylabels(fig, smallest: float = 6.0) -> None:
+    """Shrink each y-label longer than its axes is tall until it fits (not below ``smallest``
+    points): the layout engine moves labels but cannot shorten them, so a long label would
+    run past the figure's edge and be cut off."""
+    fig.canvas.draw()  # lays the figure out: the axes' heights are known from here
+    renderer = fig.canvas.get_renderer()
+    for ax in fig.axes:
+        label = ax.yaxis.label
+        if not ax.get_visible() or not ax.axison or not label.get_text():
+            continue
+        room = ax.get_window_extent(renderer).height
+        length = label.get_window_extent(renderer).height
+        if length > room:
+            label.set_fontsize(max(smallest, label.get_fontsize() * room / length))
 
 
 def _fmt(x, spec=".2e") -> str:
@@ -77,8 +104,9 @@ def _fmt(x, spec=".2e") -> str:
     return format(x, spec)
 
 
-def markdown(runs: list[BenchmarkRun], meta: dict) -> str:
-    lines = [
+
+def _introduction(meta: dict) -> list[str]:
+    return [
         "# Published sphere-wall benchmarks",
         "",
         f"Regenerated by `spinbounce benchmarks` (spinbounce {meta['spinbounce_version']}, LAMMPS "
@@ -103,6 +131,11 @@ def markdown(runs: list[BenchmarkRun], meta: dict) -> str:
         "is not reached); it is exact for this model in gross sliding when e = 1, and approached with damping.",
         "",
         "## Summary",
+    ]
+
+
+def _summary(runs: list[BenchmarkRun]) -> list[str]:
+    lines = [
         "",
         "| benchmark | states | refine (dt = default/refine) | max \\|LAMMPS - oracle\\|/U | at 2x refine | "
         f"below {ACCEPTANCE:g}? | oracle failures | max \\|oracle - rigid\\|/U, sliding | all states | "
@@ -129,50 +162,75 @@ def markdown(runs: list[BenchmarkRun], meta: dict) -> str:
             "value; their LAMMPS result is checked against its own run at twice the refinement "
             "(column 'self'), and against the rigid-body law.",
         ]
+    return lines
+
+
+def _section(run: BenchmarkRun) -> list[str]:
+    """A benchmark's sources, models, notes and largest deviation."""
+    bench, s = run.benchmark, run.summary()
+    lines = ["", f"## {bench.name}: {bench.title}", "", bench.citation, "", "Sources:", ""]
+    lines += [f"- {what}: {src}" for what, src in bench.sources]
+    lines += ["", f"Stiffness: {bench.stiffness}", "",
+              f"Step: refine {bench.refine}; {bench.refine_why}."]
+    for series in bench.series:
+        mdl = series.model
+        lines.append(f"Model ({series.label}): m = {mdl.m:.6g} kg, r = {mdl.r:g} m, kn = {mdl.kn:.6g} N/m, "
+                     f"kt = {mdl.kt:.6g} N/m, gamma_n = {mdl.gamma_n:.6g} kg/s, mu = {mdl.mu:g}, "
+                     f"restitution {mdl.restitution:.6g}, limit_damping {mdl.limit_damping}, contact time "
+                     f"{mdl.tau:.4g} s.")
+    lines += [f"- {n}" for n in bench.notes]
+    lines += [
+        "",
+        f"Largest \\|LAMMPS - oracle\\|/U: **{s['max_dev_lammps_oracle_rel']:.2e}** (state "
+        f"{s['max_dev_lammps_oracle_state']}), {'below' if s['passes'] else '**above**'} the "
+        f"{ACCEPTANCE:g} bar; at twice the refinement {s['max_dev_lammps_oracle_rel_2f']:.2e}.",
+    ]
+    return lines
+
+
+def _states_table(run: BenchmarkRun) -> list[str]:
+    """One row per state: the first panel's quantity, regimes and deviations."""
+    bench = run.benchmark
+    y = bench.panels[0]
+    lines = [
+        "",
+        f"| series | state | {QUANTITIES[bench.x]['label']} | U (m/s) | rigid regime | oracle pattern | "
+        f"{QUANTITIES[bench.panels[0]]['label']}: LAMMPS / oracle / rigid | \\|L - O\\|/U | at 2x | self "
+        "\\|L - L(2x)\\|/U | \\|O - R\\|/U | first-touch stick estimate /U |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|",
+    ]
+    for r in run.table.to_dict(orient="records"):
+        lines.append(
+            f"| {r['series']} | {r['state']} | {r['x']:.4g} | {r['impact_speed']:.4g} | {r['regime_rigid']} | "
+            f"{r['oracle_pattern']} | {r[f'{y}_lammps']:.5g} / {_fmt(r[f'{y}_oracle'], '.5g')} / "
+            f"{r[f'{y}_rigid']:.5g} | {_fmt(r['dev_lammps_oracle_rel'])} | {_fmt(r['dev_lammps_oracle_rel_2f'])} | "
+            f"{r['dev_lammps_self_rel']:.2e} | {_fmt(r['dev_oracle_rigid_rel'])} | "
+            f"{_fmt(r['first_touch_stick_rel'])} |")
+    return lines
+
+
+def _measured_table(run: BenchmarkRun) -> list[str]:
+    m = run.measured
+    if not len(m):
+        return []
+    lines = ["", "Measured and published points, with the model (oracle) and the rigid-body law at the "
+              "same digitised input:", "",
+              "| series | quantity | x | measured | LAMMPS | model | rigid | model - measured | "
+              "rigid - measured | rigid regime | source |",
+              "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for r in m.to_dict(orient="records"):
+        lines.append(
+            f"| {r['series']} | {r['quantity']} | {r['x']:.4g} | {r['measured']:.4g} | {r['lammps']:.4g} | "
+            f"{_fmt(r['model'], '.4g')} | {r['rigid']:.4g} | {_fmt(r['model_minus_measured'], '.3g')} | "
+            f"{r['rigid_minus_measured']:.3g} | {r['regime_rigid']} | {r['source']} |")
+    return lines
+
+
+def markdown(runs: list[BenchmarkRun], meta: dict) -> str:
+    """BENCHMARKS.md: how the benchmarks were run, a summary, each benchmark's tables."""
+    lines = _introduction(meta) + _summary(runs)
     for run in runs:
-        bench, t, s = run.benchmark, run.table, run.summary()
-        lines += ["", f"## {bench.name}: {bench.title}", "", bench.citation, "", "Sources:", ""]
-        lines += [f"- {what}: {src}" for what, src in bench.sources]
-        lines += ["", f"Stiffness: {bench.stiffness}", "",
-                  f"Step: refine {bench.refine}; {bench.refine_why}."]
-        for series in bench.series:
-            mdl = series.model
-            lines.append(f"Model ({series.label}): m = {mdl.m:.6g} kg, r = {mdl.r:g} m, kn = {mdl.kn:.6g} N/m, "
-                         f"kt = {mdl.kt:.6g} N/m, gamma_n = {mdl.gamma_n:.6g} kg/s, mu = {mdl.mu:g}, "
-                         f"restitution {mdl.restitution:.6g}, limit_damping {mdl.limit_damping}, contact time "
-                         f"{mdl.tau:.4g} s.")
-        lines += [f"- {n}" for n in bench.notes]
-        lines += [
-            "",
-            f"Largest \\|LAMMPS - oracle\\|/U: **{s['max_dev_lammps_oracle_rel']:.2e}** (state "
-            f"{s['max_dev_lammps_oracle_state']}), {'below' if s['passes'] else '**above**'} the "
-            f"{ACCEPTANCE:g} bar; at twice the refinement {s['max_dev_lammps_oracle_rel_2f']:.2e}.",
-            "",
-            f"| series | state | {QUANTITIES[bench.x]['label']} | U (m/s) | rigid regime | oracle pattern | "
-            f"{QUANTITIES[bench.panels[0]]['label']}: LAMMPS / oracle / rigid | \\|L - O\\|/U | at 2x | self "
-            "\\|L - L(2x)\\|/U | \\|O - R\\|/U | first-touch stick estimate /U |",
-            "|---|---|---|---|---|---|---|---|---|---|---|---|",
-        ]
-        y = bench.panels[0]
-        for r in t.to_dict(orient="records"):
-            lines.append(
-                f"| {r['series']} | {r['state']} | {r['x']:.4g} | {r['impact_speed']:.4g} | {r['regime_rigid']} | "
-                f"{r['oracle_pattern']} | {r[f'{y}_lammps']:.5g} / {_fmt(r[f'{y}_oracle'], '.5g')} / "
-                f"{r[f'{y}_rigid']:.5g} | {_fmt(r['dev_lammps_oracle_rel'])} | {_fmt(r['dev_lammps_oracle_rel_2f'])} | "
-                f"{r['dev_lammps_self_rel']:.2e} | {_fmt(r['dev_oracle_rigid_rel'])} | "
-                f"{_fmt(r['first_touch_stick_rel'])} |")
-        m = run.measured
-        if len(m):
-            lines += ["", "Measured and published points, with the model (oracle) and the rigid-body law at the "
-                      "same digitised input:", "",
-                      "| series | quantity | x | measured | LAMMPS | model | rigid | model - measured | "
-                      "rigid - measured | rigid regime | source |",
-                      "|---|---|---|---|---|---|---|---|---|---|---|"]
-            for r in m.to_dict(orient="records"):
-                lines.append(
-                    f"| {r['series']} | {r['quantity']} | {r['x']:.4g} | {r['measured']:.4g} | {r['lammps']:.4g} | "
-                    f"{_fmt(r['model'], '.4g')} | {r['rigid']:.4g} | {_fmt(r['model_minus_measured'], '.3g')} | "
-                    f"{r['rigid_minus_measured']:.3g} | {r['regime_rigid']} | {r['source']} |")
+        lines += _section(run) + _states_table(run) + _measured_table(run)
     lines += ["", "## Where the Hookean model departs from Hertz-Mindlin and the data", "", *DEPARTURES, ""]
     return "\n".join(lines)
 
@@ -204,6 +262,7 @@ DEPARTURES = [
 
 
 def record(runs: list[BenchmarkRun], meta: dict) -> dict:
+    """benchmarks.json: ``meta``, then per benchmark its definition, runs, summary and tables."""
     out = dict(meta)
     out["benchmarks"] = []
     for run in runs:
@@ -230,8 +289,7 @@ def make_benchmarks(out: Path, only: list[str] | None = None, runs: Path | None 
     """
     import matplotlib.style
 
-    from ..figures.core import STYLE, save
-    from ..records import software
+    from ...figures.core import STYLE, save
 
     chosen = select(only)
     started = time.perf_counter()

@@ -1,0 +1,108 @@
+"""Stiffness and damping of the benchmarks' Hookean contacts, from material constants.
+
+The published benchmarks give a material (E, nu, rho) and a restitution; a Hookean
+spring is matched to Hertz's contact time (:func:`hookean_matching_hertz`), its
+tangential stiffness to Mindlin's ratio, and its normal damping to the restitution
+(:func:`gamma_n_for_restitution_cut`). Units: SI (kg, m, s, N/m).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from ... import theory
+from .sources import KRATOS, YADE_T2
+
+__all__ = ["AL_ALLOY", "ALUMINA", "AL_WALL_T4", "SOLID", "STEEL", "Material", "gamma_n_for_restitution_cut",
+           "hertz_contact_time", "hookean_matching_hertz", "mindlin_ratio"]
+
+#: A solid sphere: I = (2/5) m r^2.
+SOLID = 0.4
+
+
+@dataclass(frozen=True)
+class Material:
+    """Elastic constants and density of a sphere (SI), with where they come from."""
+
+    name: str
+    E: float
+    nu: float
+    rho: float
+    source: str
+
+    def mass(self, r: float) -> float:
+        return self.rho * 4.0 / 3.0 * math.pi * r**3
+
+    def effective_modulus(self, wall: Material | None = None) -> float:
+        """E* of Hertz's law: 1/E* = (1 - nu^2)/E + (1 - nu_w^2)/E_w (rigid wall: no second term)."""
+        inverse = (1.0 - self.nu**2) / self.E
+        if wall is not None:
+            inverse += (1.0 - wall.nu**2) / wall.E
+        return 1.0 / inverse
+
+
+def hertz_contact_time(m: float, r: float, e_star: float, v: float) -> float:
+    """Duration of an elastic Hertzian impact of a sphere (mass m, radius r) on a flat wall.
+
+    With F = (4/3) E* sqrt(r) delta^(3/2), energy conservation gives the largest overlap
+    delta_max = (15 m v^2 / (16 E* sqrt(r)))^(2/5), and integrating dt = d delta / delta'
+    over the approach and the (symmetric) rebound gives
+
+        t_H = 2 (delta_max / v) integral_0^1 dx / sqrt(1 - x^(5/2))
+            = (4/5) B(2/5, 1/2) delta_max / v  (about 2.943 delta_max / v),
+
+    with B the beta function (substitute u = x^(5/2)).
+    """
+    delta_max = (15.0 * m * v * v / (16.0 * e_star * math.sqrt(r))) ** 0.4
+    beta = math.gamma(0.4) * math.gamma(0.5) / math.gamma(0.9)
+    return 0.8 * beta * delta_max / v
+
+
+def mindlin_ratio(nu: float) -> float:
+    """kt/kn of Mindlin's no-slip tangential stiffness over Hertz's tangent normal stiffness
+    for like elastic bodies (or one on a rigid wall): 8 G* a / (2 E* a) = 2 (1 - nu)/(2 - nu)."""
+    return 2.0 * (1.0 - nu) / (2.0 - nu)
+
+
+def hookean_matching_hertz(material: Material, r: float, v_n: float,
+                           wall: Material | None = None) -> tuple[float, float, float]:
+    """(m, kn, kt): a Hookean spring with the Hertz contact time at normal speed |v_n|.
+
+    kn = m (pi / t_H)^2 makes the undamped Hookean contact time pi sqrt(m/kn) equal to
+    :func:`hertz_contact_time`; kt = kn * :func:`mindlin_ratio` (nu).
+    """
+    m = material.mass(r)
+    t_h = hertz_contact_time(m, r, material.effective_modulus(wall), abs(v_n))
+    kn = m * (math.pi / t_h) ** 2
+    return m, kn, kn * mindlin_ratio(material.nu)
+
+
+def gamma_n_for_restitution_cut(e: float, m: float, kn: float) -> float:
+    """gamma_n giving restitution ``e`` when the normal force is never tensile (limit_damping).
+
+    :func:`theory.restitution` with ``tensile=False`` rises monotonically as gamma_n falls,
+    so bisection between 0 (e = 1) and critical damping finds it to round-off.
+    """
+    if not 0.0 < e <= 1.0:
+        raise ValueError(f"e = {e!r}: must lie in (0, 1]")
+    if e == 1.0:
+        return 0.0
+    lo, hi = 0.0, 2.0 * math.sqrt(m * kn) * (1.0 - 1e-12)
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if theory.restitution(m, kn, mid, tensile=False) > e:
+            lo = mid
+        else:
+            hi = mid
+        if hi - lo <= 1e-15 * hi:
+            break
+    return 0.5 * (lo + hi)
+
+
+#: Chung & Ooi Test 2's aluminium alloy, the one Test-6 material whose constants were found.
+AL_ALLOY = Material("aluminium alloy", 70e9, 0.30, 2699.0, YADE_T2)
+#: Test 4's sphere (alumina) and wall (aluminium alloy).
+ALUMINA = Material("alumina", 380e9, 0.23, 4000.0, f"{KRATOS} test4_data/Materials4.json; Yade Test4.py")
+AL_WALL_T4 = Material("aluminium alloy (wall)", 70e9, 0.33, 2700.0, f"{KRATOS} test4_data/Materials4.json")
+STEEL = Material("steel", 208e9, 0.30, 7850.0, "PySPH Chung-Ooi Test 5 input (repository path not resolved)")

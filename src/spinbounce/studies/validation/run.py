@@ -1,0 +1,216 @@
+"""Running a benchmark: every series in one LAMMPS batch at a refined step, and once at
+twice that refinement for a convergence estimate, tabulated beside the Coulomb oracle
+(:mod:`spinbounce.theory.oracle`, exact for the Hookean model), Walton's rigid-body law
+and the measured points.
+
+Deviations are the largest over (v_n, v_t, r omega), relative to the impact speed
+(:func:`.rigid_body.impact_speed`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from ...model.scenes import Collision, ContactModel
+from ...model.timestep import refine_mid_step
+from ...pipeline import run_collision
+from ...theory import oracle
+from .cases import Benchmark, Series
+from .quantities import QUANTITIES, quantity
+from .rigid_body import first_touch_stick, impact_speed, walton
+
+__all__ = ["ACCEPTANCE", "BenchmarkRun", "refined_dt", "run_benchmark"]
+
+#: Largest |LAMMPS - oracle| allowed, as a fraction of the impact speed (:func:`impact_speed`).
+ACCEPTANCE = 1e-4
+#: The components of a state row, as the tables name them.
+COMPONENTS = ("vn", "vt", "r_omega")
+#: The final states tabulated per state: LAMMPS at the benchmark's refinement and at twice
+#: it, the oracle, the rigid-body law (columns named <component>_<final>).
+FINALS = ("lammps", "lammps_2f", "oracle", "rigid")
+
+
+def refined_dt(model: ContactModel, refine: int) -> float:
+    """The scene's default step made ``refine`` times finer, the contact's end kept mid-step
+    (:func:`spinbounce.model.timestep.refine_mid_step`)."""
+    default = Collision(model, v_n=-1.0, v_t=0.0, omega=0.0).dt
+    return refine_mid_step(model.tau, default, refine)
+
+
+@dataclass(frozen=True)
+class _OracleBatch(Collision):
+    """A collision batch whose theory columns are oracle finals computed once beforehand
+    (NaN where the oracle failed), so the two refinements share one oracle pass."""
+
+    oracle_final: tuple = ()
+
+    def predicted(self) -> np.ndarray:
+        return np.asarray(self.oracle_final, dtype=float).reshape(self.n, 3)
+
+
+@dataclass(frozen=True)
+class BenchmarkRun:
+    """A benchmark's results: one row per state (:attr:`table`), measured comparisons,
+    and the runs' provenance."""
+
+    benchmark: Benchmark
+    table: pd.DataFrame
+    measured: pd.DataFrame
+    runs: list[dict]
+
+    def summary(self) -> dict:
+        t = self.table
+        ok = t[t["oracle_ok"]]
+        worst = ok.loc[ok["dev_lammps_oracle_rel"].idxmax()]
+        sliding = ok[ok["regime_rigid"] == "sliding"]
+        return {
+            "benchmark": self.benchmark.name,
+            "states": int(len(t)),
+            "oracle_failures": int((~t["oracle_ok"]).sum()),
+            "max_dev_lammps_oracle_rel": float(worst["dev_lammps_oracle_rel"]),
+            "max_dev_lammps_oracle_state": str(worst["state"]),
+            "max_dev_lammps_oracle_rel_2f": float(ok["dev_lammps_oracle_rel_2f"].max()),
+            "max_dev_lammps_self_rel": float(ok["dev_lammps_self_rel"].max()),
+            "passes": bool(worst["dev_lammps_oracle_rel"] < ACCEPTANCE),
+            "max_dev_oracle_rigid_rel": float(ok["dev_oracle_rigid_rel"].max()),
+            "max_dev_oracle_rigid_rel_sliding": (float(sliding["dev_oracle_rigid_rel"].max())
+                                                 if len(sliding) else None),
+            "refine": self.benchmark.refine,
+            "measured": self._measured_summary(),
+        }
+
+    def _measured_summary(self) -> dict:
+        return {
+            q: {"points": int(len(g)), "max_abs_model_minus_measured": float(g["model_minus_measured"].abs().max()),
+                "max_abs_rigid_minus_measured": float(g["rigid_minus_measured"].abs().max()),
+                "unit": QUANTITIES[q]["unit"]}
+            for q, g in self.measured.groupby("quantity", sort=False)
+        } if len(self.measured) else {}
+
+
+def _oracle(model: ContactModel, states) -> tuple[np.ndarray, list[str], list[str]]:
+    """Oracle finals (v_n, v_t, r omega), contact patterns and errors, state by state."""
+    finals, patterns, errors = [], [], []
+    for v_n, v_t, omega in states:
+        try:
+            got = oracle.bounce(model, v_n, v_t, omega)
+        except RuntimeError as exc:  # recorded and reported, never hidden
+            finals.append([np.nan] * 3)
+            patterns.append("failed")
+            errors.append(str(exc))
+        else:
+            finals.append(got.final[:3])
+            patterns.append(got.pattern)
+            errors.append("")
+    return np.array(finals), patterns, errors
+
+
+def _run_lammps(model, states, oracle_final, refine: int, folder: Path) -> tuple[np.ndarray, dict]:
+    s = np.asarray(states, dtype=float)
+    scene = _OracleBatch(model, v_n=s[:, 0], v_t=s[:, 1], omega=s[:, 2], dt=refined_dt(model, refine),
+                         oracle_final=tuple(np.asarray(oracle_final).ravel()))
+    result = run_collision(scene, folder, atoms="library", record=True)
+    t = result.table
+    final = np.column_stack([t.vn_final, t.vt_final, t.r_omega_final])
+    run = {"refine": refine, "dt": scene.dt, "nsteps": scene.nsteps, "tau": model.tau, "run_dir": str(folder),
+           "lammps_wall_seconds": result.info.wall_seconds, "warnings": list(result.warnings)}
+    return final, run
+
+
+@dataclass(frozen=True)
+class _SeriesStates:
+    """A series' states: its grid, then one per measured point at its digitised input.
+
+    ``origin``: (row, Measured, point index) of each measured point's own state.
+    """
+
+    states: list[tuple[float, float, float]]
+    labels: list[str]
+    origin: list[tuple]
+
+    @classmethod
+    def of(cls, bench: Benchmark, series: Series) -> _SeriesStates:
+        states = [tuple(s) for s in series.states]
+        labels = [f"grid {i + 1}" for i in range(len(states))]
+        origin = []
+        for p in series.measured:
+            for j, x in enumerate(p.x):
+                origin.append((len(states), p, j))
+                states.append(tuple(bench.to_state(series.model, x)))
+                labels.append(f"{p.quantity} @ {x:.4g}")
+        return cls(states, labels, origin)
+
+
+def _series_table(bench: Benchmark, series: Series, labels, initial, finals: dict, notes: dict) -> pd.DataFrame:
+    """One row per state: inputs, regimes, deviations, and every final and plotted quantity.
+
+    ``finals``: "lammps", "lammps_2f" (twice the refinement), "oracle", "rigid" -> (n, 3);
+    ``notes``: per-state columns that describe the states (regime, oracle pattern and error).
+    """
+    model = series.model
+    lammps, lammps2, oracle_final, rigid = (finals[k] for k in FINALS)
+    speed = impact_speed(initial)
+    dev = np.abs(lammps - oracle_final).max(axis=1) / speed
+    table = {
+        "series": series.label, "state": labels, "v_n": initial[:, 0], "v_t": initial[:, 1],
+        "omega": initial[:, 2] / model.r, "impact_speed": speed, "x": quantity(bench.x, initial, initial, model),
+        **notes, "oracle_ok": ~np.isnan(oracle_final).any(axis=1),
+        "dev_lammps_oracle_rel": dev, "dev_lammps_oracle_abs": dev * speed,
+        "dev_lammps_oracle_rel_2f": np.abs(lammps2 - oracle_final).max(axis=1) / speed,
+        "dev_lammps_self_rel": np.abs(lammps - lammps2).max(axis=1) / speed,
+        "dev_oracle_rigid_rel": np.abs(oracle_final - rigid).max(axis=1) / speed,
+        "first_touch_stick_rel": first_touch_stick(model, initial) / speed,
+    }
+    for name in FINALS:
+        for c, component in enumerate(COMPONENTS):
+            table[f"{component}_{name}"] = finals[name][:, c]
+        for q in bench.panels:
+            table[f"{q}_{name}"] = quantity(q, initial, finals[name], model)
+    return pd.DataFrame(table)
+
+
+def _measured_rows(series: Series, frame: pd.DataFrame, origin) -> list[dict]:
+    """Each measured point beside LAMMPS, the model (oracle) and the rigid body at its own input."""
+    rows = []
+    for idx, p, j in origin:
+        row = frame.iloc[idx]
+        model_value, rigid_value = row[f"{p.quantity}_oracle"], row[f"{p.quantity}_rigid"]
+        rows.append({
+            "series": series.label, "quantity": p.quantity, "x": p.x[j], "measured": p.values[j],
+            "lammps": row[f"{p.quantity}_lammps"], "model": model_value, "rigid": rigid_value,
+            "model_minus_measured": model_value - p.values[j], "rigid_minus_measured": rigid_value - p.values[j],
+            "regime_rigid": row["regime_rigid"], "oracle_pattern": row["oracle_pattern"], "source": p.source,
+        })
+    return rows
+
+
+def run_benchmark(bench: Benchmark, root: Path, refine: int | None = None, log=print) -> BenchmarkRun:
+    """Run every series of ``bench`` at ``refine`` (default: the benchmark's) and twice that.
+
+    Rows: the benchmark's grid states, then one per measured point at its digitised input.
+    """
+    refine = bench.refine if refine is None else refine
+    tables, measured_rows, runs = [], [], []
+    for k, series in enumerate(bench.series):
+        model = series.model
+        found = _SeriesStates.of(bench, series)
+        initial = np.array([(v_n, v_t, model.r * w) for v_n, v_t, w in found.states])
+        oracle_final, patterns, errors = _oracle(model, found.states)
+        rigid, regimes = walton(model, initial, model.restitution, bench.beta0)
+        finals = {"oracle": oracle_final, "rigid": rigid}
+        folder = Path(root) / bench.name / f"series_{k}"
+        for name, factor in (("lammps", refine), ("lammps_2f", 2 * refine)):
+            finals[name], run = _run_lammps(model, found.states, oracle_final, factor, folder / f"refine_{factor}")
+            runs.append({"series": series.label, **run})
+        notes = {"regime_rigid": regimes, "oracle_pattern": patterns, "oracle_error": errors}
+        frame = _series_table(bench, series, found.labels, initial, finals, notes)
+        log(f"{bench.name} [{series.label}]: {len(found.states)} states, refine {refine} and {2 * refine}: "
+            f"max |LAMMPS - oracle|/U = {np.nanmax(frame['dev_lammps_oracle_rel']):.3g}, "
+            f"{np.nanmax(frame['dev_lammps_oracle_rel_2f']):.3g}")
+        tables.append(frame)
+        measured_rows += _measured_rows(series, frame, found.origin)
+    return BenchmarkRun(bench, pd.concat(tables, ignore_index=True), pd.DataFrame(measured_rows), runs)
