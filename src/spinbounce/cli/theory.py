@@ -97,7 +97,8 @@ def _outcome(args, model, state: dict) -> int:
     choice = choose.which(model)
     report = {"theory_kind": choice.kind, "theory_name": choice.name,
               "initial": dict(zip(names, scene.initial[0].tolist(), strict=True)),
-              "final": dict(zip(names, final.tolist(), strict=True))}
+              "final": dict(zip(names, final.tolist(), strict=True)),
+              "contact_time": float(model.contact_times(scene.v_n)[0])}
     if args.json:
         print(json.dumps(report, indent=2))
         return 0
