@@ -16,32 +16,11 @@ import pandas as pd
 from .. import theory
 from ..pipeline import ResultError
 from ..model.scenes import ContactModel
-from .core import (
-    FigureData,
-    FigureRecord,
-    base_metadata,
-    collision_run,
-    default_runs,
-    dissipation_columns,
-    finish_metadata,
-    make,
-    new_figure,
-)
+from .core import (FigureData, FigureRecord, base_metadata, collision_run, default_runs, dissipation_columns,
+                   finish_metadata, make, new_figure)
 
-__all__ = [
-    "FIG5_STATES",
-    "ROLLING_GAMMA_T",
-    "dissipation_curve",
-    "draw_fig4",
-    "draw_fig5",
-    "draw_fig6",
-    "fig4",
-    "fig4_data",
-    "fig5",
-    "fig5_data",
-    "fig6",
-    "fig6_data",
-]
+__all__ = ["FIG5_STATES", "ROLLING_GAMMA_T", "dissipation_curve", "draw_fig4", "draw_fig5", "draw_fig6", "fig4",
+           "fig4_data", "fig5", "fig5_data", "fig6", "fig6_data"]
 
 #: Tangential damping standing in for the rolling limit (Eq. 23) in LAMMPS: gamma_t/m = 20
 #: is 20 times 1/tau; the exact Omega there is -1.0007 (Eq. 22 says -1 - 7e-10).
