@@ -7,3 +7,31 @@ def run_dir(tmp_path):
     path = tmp_path / "run"
     path.mkdir()
     return path
+
+
+@pytest.fixture(scope="session")
+def reproduction(tmp_path_factory):
+    """Figures 2-7 and the claims, made once per session by `spinbounce reproduce`'s own function
+    (about 40 s): the figure, claim and command tests all read this one result."""
+    from spinbounce.cli.reproduce import reproduce
+
+    root = tmp_path_factory.mktemp("reproduce")
+    lines = []
+    made = reproduce(root / "figures", root / "runs", log=lines.append)
+    return made, lines
+
+
+@pytest.fixture(scope="session")
+def figures_made(reproduction):
+    """(out folder, figure records by name, the one log line of each figure)."""
+    from spinbounce.figures import FIGURES
+
+    made, lines = reproduction
+    figure_lines = [line for line in lines if line.split(":")[0] in FIGURES]
+    return made.out, {r["figure"]: r for r in made.records}, figure_lines
+
+
+@pytest.fixture(scope="session")
+def claims_made(reproduction):
+    """The judged claims, in order."""
+    return reproduction[0].claims

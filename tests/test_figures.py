@@ -14,7 +14,7 @@ import pytest
 from spinbounce import theory
 from spinbounce.cli import figures as figures_cli
 from spinbounce.lammps.dumps import read_dump
-from spinbounce.figures import FIGURES, FigureNameError, check_names, make_figures
+from spinbounce.figures import FIGURES, FigureNameError, check_names
 from spinbounce.figures.collisions import dissipation_curve, fig4_states, fig6_states
 from spinbounce.figures.core import ACCEPTANCE, STYLE, TARGET, tune_dt
 from spinbounce.pipeline import ResultError
@@ -145,15 +145,13 @@ def test_tune_dt_refines_a_run_with_problems():
 
 
 # ---------------------------------------------------------------------------
-# LAMMPS: every figure, end to end (about 30 s on 2 cores)
+# LAMMPS: every figure, end to end (made once per session with the claims, conftest)
 # ---------------------------------------------------------------------------
 
-@pytest.fixture(scope="module")
-def made(tmp_path_factory):
-    out = tmp_path_factory.mktemp("figures")
-    lines = []
-    records = make_figures(out, log=lines.append)
-    return out, {r["figure"]: r for r in records}, lines
+@pytest.fixture
+def made(figures_made):
+    """Every figure, made once per session (conftest.reproduction)."""
+    return figures_made
 
 
 @pytest.mark.lammps

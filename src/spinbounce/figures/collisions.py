@@ -16,32 +16,11 @@ import pandas as pd
 from .. import theory
 from ..pipeline import ResultError
 from ..model.scenes import ContactModel
-from .core import (
-    FigureData,
-    FigureRecord,
-    base_metadata,
-    collision_run,
-    default_runs,
-    dissipation_columns,
-    finish_metadata,
-    make,
-    new_figure,
-)
+from .core import (FigureData, FigureRecord, base_metadata, collision_run, default_runs, dissipation_columns,
+                   finish_metadata, make, new_figure)
 
-__all__ = [
-    "FIG5_STATES",
-    "ROLLING_GAMMA_T",
-    "dissipation_curve",
-    "draw_fig4",
-    "draw_fig5",
-    "draw_fig6",
-    "fig4",
-    "fig4_data",
-    "fig5",
-    "fig5_data",
-    "fig6",
-    "fig6_data",
-]
+__all__ = ["FIG5_STATES", "ROLLING_GAMMA_T", "dissipation_curve", "draw_fig4", "draw_fig5", "draw_fig6", "fig4",
+           "fig4_data", "fig5", "fig5_data", "fig6", "fig6_data"]
 
 #: Tangential damping standing in for the rolling limit (Eq. 23) in LAMMPS: gamma_t/m = 20
 #: is 20 times 1/tau; the exact Omega there is -1.0007 (Eq. 22 says -1 - 7e-10).
@@ -221,6 +200,39 @@ def fig5_data(out: Path, runs: Path | None = None) -> FigureData:
                        "panels": panels}, meta)
 
 
+#: Where along a drawn path its arrowhead sits (0: start, 1: end). The incoming and the
+#: outgoing heads differ so that, in a normal impact (Fig. 5d), the frictionless bounce
+#: retracing the incoming line shows both heads.
+ARROW_AT = {"in": 0.45, "out": 0.75}
+#: The incoming path is a broad light band under the outgoing lines: a dashed line that
+#: retraces it stays visible on top of it.
+INCOMING = {"color": "0.72", "lw": 4.0, "solid_capstyle": "butt", "zorder": 1}
+
+
+def _arrowhead(ax, x, z, at: float, colour) -> None:
+    """An arrowhead on the straight path from (x[0], z[0]) to (x[-1], z[-1]), pointing along it."""
+    x0, z0, x1, z1 = float(x.iloc[0]), float(z.iloc[0]), float(x.iloc[-1]), float(z.iloc[-1])
+    head = (x0 + at * (x1 - x0), z0 + at * (z1 - z0))
+    tail = (head[0] - 0.01 * (x1 - x0), head[1] - 0.01 * (z1 - z0))
+    ax.annotate("", xy=head, xytext=tail, zorder=4,
+                arrowprops={"arrowstyle": "-|>", "color": colour, "lw": 0, "mutation_scale": 11})
+
+
+def _draw_bounce(ax, p: pd.DataFrame, style: dict, marks: dict) -> None:
+    """One panel's paths: the incoming band, each theory's outgoing line, LAMMPS's marks, arrows."""
+    incoming = p[(p["curve"] == "rough") & (p["source"] == "theory")]
+    half = len(incoming) // 2
+    ax.plot(incoming["x"].iloc[:half], incoming["z"].iloc[:half], **INCOMING)
+    _arrowhead(ax, incoming["x"].iloc[:half], incoming["z"].iloc[:half], ARROW_AT["in"], "0.35")
+    for curve, kw in style.items():
+        s = p[(p["curve"] == curve) & (p["source"] == "theory")]
+        ax.plot(s["x"].iloc[half:], s["z"].iloc[half:], zorder=3, **kw)
+        _arrowhead(ax, s["x"].iloc[half:], s["z"].iloc[half:], ARROW_AT["out"], kw["color"])
+    for curve, kw in marks.items():
+        s = p[(p["curve"] == curve) & (p["source"] == "lammps")]
+        ax.plot(s["x"].iloc[len(s) // 2 + 1:], s["z"].iloc[len(s) // 2 + 1:], zorder=2, **kw)
+
+
 def draw_fig5(data: FigureData):
     from matplotlib.lines import Line2D
     from matplotlib.patches import Circle
@@ -236,19 +248,9 @@ def draw_fig5(data: FigureData):
     marks = {"rough": {"marker": "o", "ms": 5, "mfc": "none", "mec": "k", "ls": "none"},
              "rolling": {"marker": "s", "ms": 4.5, "mfc": "none", "mec": "C1", "ls": "none"}}
     for ax, (_, panel) in zip(axes.ravel(), panels.iterrows(), strict=True):
-        p = paths[paths["panel"] == panel["panel"]]
         ax.axhspan(-1.0, 0.0, color="0.85", lw=0)
         ax.add_patch(Circle((0.0, r), r, fill=False, color="0.5", lw=0.8))
-        for curve, kw in style.items():
-            s = p[(p["curve"] == curve) & (p["source"] == "theory")]
-            half = len(s) // 2
-            if curve == "rough":
-                ax.plot(s["x"].iloc[:half], s["z"].iloc[:half], color="0.3", lw=1.4)
-            ax.plot(s["x"].iloc[half:], s["z"].iloc[half:], **kw)
-        for curve, kw in marks.items():
-            s = p[(p["curve"] == curve) & (p["source"] == "lammps")]
-            half = len(s) // 2
-            ax.plot(s["x"].iloc[half + 1:], s["z"].iloc[half + 1:], **kw)
+        _draw_bounce(ax, paths[paths["panel"] == panel["panel"]], style, marks)
         f = finals[(finals["panel"] == panel["panel"]) & (finals["source"] == "theory")].set_index("curve")
         ax.set_title(
             f"{panel['panel']}) {panel['label']}: " + rf"$v_t(0) = {panel['vt_0']:g}$, "
@@ -263,7 +265,7 @@ def draw_fig5(data: FigureData):
     axes[0, 0].set_xlim(-1.6, 2.4)
     axes[0, 0].set_ylim(-0.15, 1.9)
     keys = [
-        Line2D([], [], color="0.3", lw=1.4, label="incoming"),
+        Line2D([], [], color=INCOMING["color"], lw=INCOMING["lw"], label="incoming"),
         Line2D([], [], **style["rough"], label="rough sphere (Eq. 20)"),
         Line2D([], [], **style["rolling"], label="rolling collision (Eq. 23)"),
         Line2D([], [], **style["frictionless"], label="frictionless wall"),

@@ -32,6 +32,7 @@ from ..pipeline import (
 )
 from ..records import software, to_json, write_atomic, write_atomic_with
 from ..model.scenes import Collision, ContactModel, Frozen
+from ..model.timestep import align_mid_step
 
 __all__ = [
     "ACCEPTANCE",
@@ -157,7 +158,7 @@ def default_runs(out: Path, runs: Path | None, name: str) -> Path:
         elif any(folder.iterdir()):
             raise ResultError(f"{folder} holds files that are not a figure's runs; give another --runs folder")
     folder.mkdir(parents=True, exist_ok=True)
-    (folder / RUNS_MARKER).write_text(f"LAMMPS runs of {name}, remade with it (spinbounce figures)\n")
+    write_atomic(folder / RUNS_MARKER, f"LAMMPS runs of {name}, remade with it (spinbounce figures)\n")
     return folder
 
 
@@ -375,11 +376,9 @@ def collision_run(model: ContactModel, states: np.ndarray, series_dir: Path, wha
             deviations["f"] = float(np.max(np.abs(f["f"] - f["f_theory"])))
         return result, deviations, folder
 
-    tau = model.tau
-
     def snap(dt: float) -> float:
-        # tau/(N + 1/2): the contact ends mid-step, where the cut-off error cancels (scenes.Collision)
-        return tau / (math.ceil(tau / dt - 0.5 - 1e-9) + 0.5)
+        # tau/(N + 1/2): the contact ends mid-step, where the cut-off error cancels (model.timestep)
+        return align_mid_step(model.tau, dt)
 
     # the pipeline warns when kinetic energy grew, which none of these models can do
     return tune_dt(run, scene_at(None).dt, snap, what, problems=lambda result: list(result.warnings))
