@@ -170,7 +170,7 @@ def test_decks_hold_only_what_the_scene_needs():
 def test_missing_template_value_is_an_error():
     import jinja2
 
-    from spinbounce.lammps.decks import _environment
+    from spinbounce.lammps.decks import template_environment
 
     with pytest.raises(jinja2.UndefinedError):
-        _environment().get_template("collision.lmp.j2").render(version="x")
+        template_environment().get_template("collision.lmp.j2").render(version="x")

@@ -67,7 +67,7 @@ def _num(x) -> str:
 
 
 @lru_cache(maxsize=1)
-def _environment() -> jinja2.Environment:
+def template_environment() -> jinja2.Environment:
     env = jinja2.Environment(
         loader=jinja2.FileSystemLoader(str(template_dir())),
         undefined=jinja2.StrictUndefined,
@@ -291,7 +291,7 @@ def render_collision(scene: Collision, atoms: str | None = None, padding: Paddin
     ctx.update(n=scene.n, spheres=spheres, tau=tau, dt=scene.dt, nsteps=scene.nsteps,
                run_steps=scene.nsteps + padding.extra_steps(scene.dt), padding=padding,
                padding_dump=PADDING_DUMP_NAME, atoms=atoms, library_marker=LIBRARY_MARKER, data_file=DATA_FILE)
-    text = _environment().get_template("collision.lmp.j2").render(**ctx)
+    text = template_environment().get_template("collision.lmp.j2").render(**ctx)
     return Deck(text=text, rigid=rigid, files=files, dump=None if library else DUMP_NAME,
                 atoms=_library_atoms(scene, state, rigid) if library else None)
 
@@ -302,5 +302,5 @@ def render_frozen(scene: Frozen) -> Deck:
     ctx.update(
         z=scene.z, vx=scene.v_t, wy=-scene.omega, dt=scene.dt, nsteps=scene.nsteps, every=scene.every
     )
-    text = _environment().get_template("frozen.lmp.j2").render(**ctx)
+    text = template_environment().get_template("frozen.lmp.j2").render(**ctx)
     return Deck(text=text, rigid=ctx["rigid"])
