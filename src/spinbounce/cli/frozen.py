@@ -10,7 +10,7 @@ from ..pipeline import frozen_metadata, run_frozen
 
 from ..records import to_json, write_atomic
 from ..model.scenes import Frozen
-from .options import default_run_dir, json_flag, model_from, model_parser
+from .options import count, default_run_dir, json_flag, model_from, model_parser, number
 
 HELP = "hold a sphere in contact at height z (v_n = 0) and compare v_t(t), omega(t) with Eq. 10"
 COLUMNS = ["t", "vt", "omega", "r_omega", "vt_theory", "r_omega_theory"]
@@ -19,17 +19,17 @@ COLUMNS = ["t", "vt", "omega", "r_omega", "vt_theory", "r_omega_theory"]
 def register(sub) -> None:
     p = sub.add_parser("frozen", parents=[model_parser()], help=HELP, description=HELP + ".")
     g = p.add_argument_group("scene")
-    g.add_argument("--z", type=float, required=True, help="height of the centre, 0 < z < r")
-    g.add_argument("--vt", type=float, required=True, help="tangential velocity v_t(0)")
-    g.add_argument("--omega", type=float, required=True, help="angular velocity omega(0), anticlockwise positive")
-    g.add_argument("--t-end", type=float, required=True, help="duration")
+    g.add_argument("--z", type=number, required=True, help="height of the centre, 0 < z < r")
+    g.add_argument("--vt", "--v-t", dest="vt", type=number, required=True, help="tangential velocity v_t(0)")
+    g.add_argument("--omega", type=number, required=True, help="angular velocity omega(0), anticlockwise positive")
+    g.add_argument("--t-end", type=number, required=True, help="duration")
     step = p.add_mutually_exclusive_group()
-    step.add_argument("--dt", type=float, default=None,
+    step.add_argument("--dt", type=number, default=None,
                       help="timestep (default: 1000 steps per half-period of the slip oscillation)")
-    step.add_argument("--tolerance", type=float, default=None, metavar="TOL",
+    step.add_argument("--tolerance", type=number, default=None, metavar="TOL",
                       help="ask for an accuracy instead: runs at halving dt, extrapolated to dt = 0 until the "
                            "estimated error is below TOL (the CSV gets an 'estimate' column)")
-    p.add_argument("--every", type=int, default=None, help="output every this many steps (default: ~2000 rows)")
+    p.add_argument("--every", type=count, default=None, help="output every this many steps (default: ~2000 rows)")
     p.add_argument("--out", type=Path, required=True, metavar="FILE.csv",
                    help="time series to write; its provenance goes to FILE.meta.json beside it")
     p.add_argument("--run-dir", type=Path, default=None, metavar="DIR",
@@ -73,9 +73,9 @@ def _run_to_tolerance(args) -> int:
     import numpy as np
     import pandas as pd
 
-    from .. import theory
-    from ..lammps.runner import lammps_version
+    from ..records import software
     from ..studies.tolerance import frozen_to_tolerance
+    from ..theory import choose
 
     model = model_from(args)
     Frozen(model, z=args.z, v_t=args.vt, omega=args.omega, t_end=args.t_end)  # validates before any run
@@ -84,8 +84,7 @@ def _run_to_tolerance(args) -> int:
                    "t_end": args.t_end, "tolerance": args.tolerance})
     result = frozen_to_tolerance(model, args.z, args.vt, args.omega, args.t_end, args.tolerance, run_dir,
                                  log=(lambda *_: None) if args.json else print)
-    vt_theory, rw_theory = theory.frozen_velocities(result.t, args.vt, args.omega * model.r, model.kt,
-                                                    model.m, model.alpha, model.gamma_t)
+    vt_theory, rw_theory = choose.frozen(model, result.t, args.vt, args.omega * model.r)
     table = pd.DataFrame({"t": result.t, "vt": result.values[:, 0], "omega": result.values[:, 1] / model.r,
                           "r_omega": result.values[:, 1], "vt_theory": vt_theory, "r_omega_theory": rw_theory,
                           "estimate": result.estimate[:, 0]})
@@ -97,7 +96,7 @@ def _run_to_tolerance(args) -> int:
             "omega": args.omega, "t_end": args.t_end, "tolerance": result.tolerance,
             "estimate": result.max_estimate, "max_abs_error": error, "steps": result.steps,
             "plain_steps_for_same_estimate": result.plain_steps_for(result.max_estimate),
-            "levels": result.levels, "lammps_version": lammps_version(), "csv": str(out)}
+            "levels": result.levels, **software(), "csv": str(out)}
     meta_path = out.with_suffix(".meta.json")
     write_atomic(meta_path, to_json(meta))
     if args.json:

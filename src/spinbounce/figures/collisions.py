@@ -39,10 +39,6 @@ FIG5_FLIGHT = 1.3
 FIG6_ENERGY = 1.0
 
 
-def _states_table(states: np.ndarray) -> pd.DataFrame:
-    return pd.DataFrame({"vn_0": states[:, 0], "vt_0": states[:, 1], "r_omega_0": states[:, 2]})
-
-
 def _model_record(model: ContactModel) -> dict:
     record = dataclasses.asdict(model)
     record.update(kt_over_kn=model.kt / model.kn, tau=model.tau, Omega_exact=model.Omega)

@@ -187,7 +187,7 @@ def base_metadata(name: str, title: str, paper: str) -> dict:
     }
 
 
-def finish_metadata(meta: dict, runs: list[dict], out: Path, extra_limits: dict | None = None) -> dict:
+def finish_metadata(meta: dict, runs: list[dict], out: Path) -> dict:
     """Add the runs, the per-series dt and the figure's largest deviation; raise if too large.
 
     ``runs``: one dict per series with keys series, tuned (a :class:`Tuned`) and anything

@@ -32,7 +32,7 @@ force that turns tensile (gamma_n > 0 without ``limit_damping``) still holds fri
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 from scipy.integrate import solve_ivp
@@ -40,7 +40,7 @@ from scipy.integrate import solve_ivp
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:  # the oracle reads a model's fields; it needs nothing else of model/
-    from ..model.contact import ContactModel
+    from ..model.contact import ContactModel  # noqa: F401
 
 __all__ = ["OracleResult", "bounce", "bounce_many", "gross_slip", "RTOL", "ATOL"]
 
@@ -71,7 +71,6 @@ class OracleResult:
     t_exit: float
     regimes: tuple[tuple[float, str], ...]
     nfev: int = 0
-    switches: tuple[float, ...] = field(default=())
 
     @property
     def pattern(self) -> str:
