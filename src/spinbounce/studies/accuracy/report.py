@@ -87,10 +87,10 @@ def draw(study: Study):
     ax_steps.set_xlabel("LAMMPS steps per run")
     ax_steps.set_ylabel("largest |LAMMPS $-$ theory|")
     # LAMMPS's own seconds: the run's wall seconds also hold the theory (the oracle's take ~0.5 s)
-    ax_wall.set_xlabel("LAMMPS wall seconds per run (start-up included; one instance, 1 to 64 spheres)")
+    ax_wall.set_xlabel("LAMMPS seconds per run (start-up included; 1 to 64 spheres)")
     ax_steps.set_ylim(ERROR_FLOOR / 2, 0.3)
     ax_steps.set_title("error against steps (solid: the contact ends mid-step; dashed: on a step)")
-    ax_wall.set_title("error against wall time (start-up dominates below ~10$^4$ steps)")
+    ax_wall.set_title("error against LAMMPS's wall time (start-up dominates below ~10$^4$ steps)")
     handles, labels = ax_steps.get_legend_handles_labels()
     fig.legend(handles, labels, loc="outside lower center", ncol=3, fontsize=7.5)
     return fig

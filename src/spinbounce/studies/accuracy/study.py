@@ -65,7 +65,7 @@ def default_costs(case: Case, summary: pd.DataFrame, root: Path, batch_size: int
     row = summary[(summary["case"] == case.name) & (summary["form"] == MID)].iloc[0]
     batch = box_sample(batch_size, seed=0)
     worst = _worst_state(case, root)
-    rate_tau = case.model.fastest_rate(frozen=False) * case.model.tau / math.pi
+    rate = case.model.fastest_rate(frozen=False)
     out = []
     for target in TARGETS:
         steps = float(row[f"steps_{target:.0e}"])
@@ -77,7 +77,7 @@ def default_costs(case: Case, summary: pd.DataFrame, root: Path, batch_size: int
         single, _ = run_collision_level(case, dt, folder / "single", states=[case.states[worst]], repeats=repeats)
         many, _ = run_collision_level(case, dt, folder / "batch", states=batch, repeats=repeats)
         entry = {"target": target, "steps_needed": steps, "extrapolated": bool(row[f"extrapolated_{target:.0e}"]),
-                 "dt": dt, "lammps_steps": states["lammps_steps"], "steps_per_half_period": (m + 0.5) / rate_tau,
+                 "dt": dt, "lammps_steps": states["lammps_steps"], "steps_per_half_period": math.pi / (rate * dt),
                  "error_reached": _largest_error(states),
                  "single_state": list(case.states[worst]), "single_error": _largest_error(single),
                  "single_wall_seconds": single["wall_seconds"], "single_lammps_seconds": single["lammps_seconds"],
