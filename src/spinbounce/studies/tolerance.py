@@ -143,6 +143,28 @@ def _eliminate(values: list[np.ndarray], dts: list[float], power: int, depth: in
     return [column[i] for i in range(depth, len(values))]
 
 
+#: Raw order -> (expansion in dt^power, terms removed, order left).
+_SCHEMES = {2: (2, 1, 4), 1: (1, 2, 3)}
+
+
+def _extrapolate(values: list[np.ndarray], dts: list[float], p: np.ndarray):
+    """The best extrapolation of the runs so far and each value's raw estimate (the gap of
+    the last two extrapolations over what the order left predicts, times MARGIN); None
+    while some column has too few levels for its scheme."""
+    best = np.empty_like(values[-1])
+    per_value = np.empty_like(values[-1])
+    for raw_order, (power, depth, left) in _SCHEMES.items():
+        columns = p == raw_order
+        if not columns.any():
+            continue
+        tops = _eliminate([v[..., columns] for v in values], dts, power, depth)
+        if len(tops) < 2:
+            return None
+        best[..., columns] = tops[-1]
+        per_value[..., columns] = MARGIN * np.abs(tops[-1] - tops[-2]) / (2.0**left - 1.0)
+    return best, per_value
+
+
 def _ladder(run_level, tolerance: float, p: np.ndarray, log) -> tuple[np.ndarray, np.ndarray, list[dict]]:
     """Run levels k = 0, 1, ... until the extrapolations agree to ``tolerance``.
 
@@ -152,8 +174,6 @@ def _ladder(run_level, tolerance: float, p: np.ndarray, log) -> tuple[np.ndarray
     its columns.
     """
     p = np.asarray(p)
-    # raw order -> (expansion in dt^power, terms removed, order left)
-    schemes = {2: (2, 1, 4), 1: (1, 2, 3)}
     values, dts, levels, gaps = [], [], [], []
     eps = np.finfo(float).eps
     for k in range(MAX_LEVELS):
@@ -161,21 +181,10 @@ def _ladder(run_level, tolerance: float, p: np.ndarray, log) -> tuple[np.ndarray
         values.append(value)
         dts.append(dt)
         levels.append(info)
-        best = np.empty_like(value)
-        per_value = np.empty_like(value)
-        ready = True
-        for raw_order, (power, depth, left) in schemes.items():
-            columns = p == raw_order
-            if not columns.any():
-                continue
-            tops = _eliminate([v[..., columns] for v in values], dts, power, depth)
-            if len(tops) < 2:
-                ready = False
-                break
-            best[..., columns] = tops[-1]
-            per_value[..., columns] = MARGIN * np.abs(tops[-1] - tops[-2]) / (2.0**left - 1.0)
-        if not ready:
+        extrapolated = _extrapolate(values, dts, p)
+        if extrapolated is None:
             continue
+        best, per_value = extrapolated
         # rounding: each of the finest run's steps may add an ulp of the velocities
         floor = MARGIN * info["nsteps"] * eps * max(1.0, float(np.abs(value).max()))
         estimate = np.maximum(np.broadcast_to(per_value.max(axis=-1, keepdims=True), per_value.shape), floor)
