@@ -1,8 +1,9 @@
 """The accuracy study: its arithmetic, its cases, and the quick study run end to end.
 
-The LAMMPS tests run ``spinbounce accuracy --quick`` once (a few seconds) and check what
-the study claims: the observed orders, errors that shrink along the ladder, the step
-counts it reports for a target actually reaching it, and the files it writes.
+The LAMMPS tests run ``spinbounce accuracy --quick`` once (about ten seconds) and check
+what the study claims: the observed orders, errors that shrink along the ladder, the step
+counts it reports for a target actually reaching it, that each case is measured against
+its own theory, and the files it writes.
 """
 
 import argparse
@@ -21,6 +22,7 @@ import pytest
 
 from spinbounce.studies import accuracy
 from spinbounce.studies.accuracy import (
+    ANY,
     EDGE,
     FROZEN,
     MID,
@@ -32,7 +34,9 @@ from spinbounce.studies.accuracy import (
     steps_for,
 )
 from spinbounce.cli import accuracy as accuracy_cli
-from spinbounce.model.scenes import Collision, ContactModel, Frozen
+from spinbounce.model.scenes import STATE_3D, Collision, ContactModel, Frozen
+from spinbounce.studies.tolerance import raw_orders
+from spinbounce.theory import oracle
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 
@@ -90,6 +94,8 @@ def test_ladder_steps_match_the_scenes_defaults():
     assert collision_dt(m, 250, EDGE) == pytest.approx(m.tau / 250)
     damped = ContactModel(gamma_t=1.0)
     assert frozen_dt(damped, 1000) == Frozen(damped, z=0.1, v_t=1.0, omega=0.0, t_end=10.0).dt
+    hertz = ContactModel(normal="hertz")
+    assert collision_dt(hertz, 64000, ANY, speed=0.8) == Collision(hertz, v_n=[-0.8, -0.1]).dt
     with pytest.raises(ValueError, match="form"):
         collision_dt(m, 250, FROZEN)
 
@@ -98,22 +104,28 @@ def test_the_cases_cover_the_brief_and_are_valid_scenes():
     all_cases = cases()
     names = [c.name for c in all_cases]
     assert len(set(names)) == len(names)
-    for name in ("defaults", "magic", "soft", "stiff", "damped_t", "damped_n", "alpha_small", "alpha_shell",
-                 "grazing", "head_on", "head_on_spin", "high_spin", "frozen", "frozen_damped"):
+    for name in ("defaults", "magic", "soft", "stiff", "damped_t", "damped_n", "damped", "alpha_small",
+                 "alpha_shell", "grazing", "head_on", "head_on_spin", "high_spin", "spin_3d", "hertz", "coulomb",
+                 "frozen", "frozen_damped"):
         assert name in names
     for case in all_cases:
-        assert case.why and case.limit and case.expected in (1.0, 2.0, 3.0)
+        assert case.why and case.limit and case.theory
+        assert set(case.expected.values()) <= {1.0, 2.0, 3.0} and set(case.rough) <= set(case.forms)
         if case.kind == "collision":
-            Collision(case.model, v_n=[s[0] for s in case.states], v_t=[s[1] for s in case.states],
-                      omega=[s[2] / case.model.r for s in case.states])
-            assert case.expected_edge in (1.0, 2.0, 3.0)
+            scene = accuracy.collision_scene(case, None)
+            assert scene.state_names == case.state_names
+            np.testing.assert_array_equal(scene.initial, np.array(case.states))
         else:
-            assert len(case.states) == 1 and case.states[0][0] == 0.0
+            assert case.forms == (FROZEN,) and len(case.states) == 1 and case.states[0][0] == 0.0
     by_name = {c.name: c for c in all_cases}
     assert by_name["magic"].model.kt / by_name["magic"].model.kn == pytest.approx(2.0 / 7.0)
     assert all(abs(s[0]) == 0.01 for s in by_name["grazing"].states)
     assert all(abs(s[2]) == pytest.approx(20 * abs(s[0])) for s in by_name["high_spin"].states)
-    assert [c.name for c in all_cases if not c.exact] == ["coulomb"]
+    damped = by_name["damped"].model
+    assert damped.gamma_n > 0 and damped.gamma_t > 0
+    assert by_name["spin_3d"].state_names == STATE_3D and len(by_name["spin_3d"].states) == 64
+    assert by_name["hertz"].model.normal == "hertz" and by_name["hertz"].forms == (MID, ANY)
+    assert by_name["coulomb"].model.mu == 0.5 and "oracle" in by_name["coulomb"].theory
 
 
 def test_cli_options():
@@ -146,6 +158,14 @@ def _summary(record, case, form):
     return row
 
 
+#: How far an observed order may sit from its expected value. The ladder's finest four levels
+#: span a factor 8 in dt, over which a smooth error's next term moves the slope by < 0.05
+#: (measured: every smooth case lands within 0.02); a rough one jumps with where each
+#: switch or contact end falls inside a step (local orders measured from -0.8 to 2.6 for the
+#: Hertzian wall with one dt), so its slope over four levels is only roughly its order.
+ORDER_TOLERANCE = {False: 0.2, True: 0.5}
+
+
 @pytest.mark.lammps
 def test_observed_orders_are_the_integrators(quick):
     _, _, record = quick
@@ -154,25 +174,79 @@ def test_observed_orders_are_the_integrators(quick):
     assert _summary(record, "frozen", FROZEN)["observed_order"] == pytest.approx(2.0, abs=0.2)
     assert _summary(record, "frozen_damped", FROZEN)["observed_order"] == pytest.approx(1.0, abs=0.2)
     # and every case lands on the order its explanation predicts
+    rough = {(c["name"], form) for c in record["cases"] for form in c["rough_forms"]}
     off = [(r["case"], r["form"], r["observed_order"], r["expected_order"]) for r in record["summary"]
-           if abs(r["observed_order"] - r["expected_order"]) > 0.2]
+           if abs(r["observed_order"] - r["expected_order"]) > ORDER_TOLERANCE[(r["case"], r["form"]) in rough]]
     assert not off
+
+
+@pytest.mark.lammps
+def test_new_cases_report_order_and_steps_for_1e4_and_1e6(quick):
+    """Damping, the Coulomb cap, the Hertzian wall and 3-D spin each have an observed order
+    and the steps per collision that 1e-4 and 1e-6 need; aligning the end mid-step pays."""
+    _, _, record = quick
+    for case, form in (("damped", MID), ("coulomb", MID), ("hertz", MID), ("hertz", ANY), ("spin_3d", MID)):
+        row = _summary(record, case, form)
+        assert math.isfinite(row["observed_order"]), (case, form)
+        assert 1 < row["steps_1e-04"] < row["steps_1e-06"] < math.inf, (case, form)
+    # the Hertzian wall with each speed's end mid-step is second order: 1e-6 costs far fewer steps
+    assert _summary(record, "hertz", MID)["steps_1e-06"] * 10 < _summary(record, "hertz", ANY)["steps_1e-06"]
+    # 3-D spin: the in-plane mechanisms in each tangential direction, the same error as the plane's
+    assert _summary(record, "spin_3d", MID)["error_at_default_dt"] == pytest.approx(
+        _summary(record, "defaults", MID)["error_at_default_dt"], rel=1e-6)
+
+
+@pytest.mark.lammps
+def test_tolerance_assumes_no_higher_order_than_measured(quick):
+    """--tolerance extrapolates with raw orders it assumes (tolerance.raw_orders); the study
+    measures them: for every smooth mid-step and frozen case, v_n and the tangential columns
+    converge at least that fast (less 0.2, ORDER_TOLERANCE's margin for a smooth error)."""
+    _, _, record = quick
+    checked = 0
+    for c in record["cases"]:
+        model = ContactModel(**c["model"])
+        if model.mu is not None or model.normal != "hooke":
+            continue  # tolerance refuses these (tests/test_tolerance.py)
+        frozen = c["kind"] == "frozen"
+        row = _summary(record, c["name"], FROZEN if frozen else MID)
+        columns = 2 if frozen else len(c["states"][0])  # frozen: v_t and r omega
+        assumed = raw_orders(model, columns, frozen=frozen)
+        if not frozen and row["order_vn"] is not None:
+            assert row["order_vn"] >= assumed[0] - 0.2, c["name"]
+        if row["order_tangential"] is not None:
+            assert row["order_tangential"] >= assumed[-1] - 0.2, c["name"]
+        checked += 1
+    assert checked == 16
 
 
 @pytest.mark.lammps
 def test_errors_shrink_along_the_ladder(quick):
     _, _, record = quick
-    runs = [r for r in record["runs_table"] if r["in_ladder"] and r["exact_theory"]]
+    rough = {(c["name"], form) for c in record["cases"] for form in c["rough_forms"]}
+    runs = [r for r in record["runs_table"] if r["in_ladder"] and (r["case"], r["form"]) not in rough]
     groups = {}
     for r in runs:
         groups.setdefault((r["case"], r["form"]), []).append(r)
-    assert len(groups) == 26  # 12 collision cases in two forms, plus the two frozen contacts
+    # 16 collision cases in two forms and two frozen contacts, less the three rough forms
+    assert len(groups) == 16 * 2 + 2 - 3
     for key, rows in groups.items():
         rows.sort(key=lambda r: r["steps_per_half_period"])
         assert [r["steps_per_half_period"] for r in rows] == list(accuracy.QUICK_LADDER), key
         errors = [r["error"] for r in rows if r["error"] > accuracy.ERROR_FLOOR]
         assert len(errors) >= 4, key
         assert all(b < a for a, b in itertools.pairwise(errors)), (key, errors)
+
+
+@pytest.mark.lammps
+def test_the_coulomb_case_is_measured_against_the_oracle(tmp_path):
+    """The Coulomb case's error is LAMMPS against theory.oracle.bounce_many, computed here on
+    its own: the two agree to the last bits (the same subtraction of the same numbers)."""
+    (case,) = [c for c in cases() if c.name == "coulomb"]
+    states = np.array(case.states[:4])
+    row, final = accuracy.run_collision_level(case, collision_dt(case.model, 64, MID), tmp_path, states=states)
+    exact = oracle.bounce_many(case.model, states[:, 0], states[:, 1], states[:, 2] / case.model.r)[:, :3]
+    for k, s in enumerate(("vn", "vt", "r_omega")):
+        assert row[f"error_{s}"] == pytest.approx(np.abs(final[:, k] - exact[:, k]).max(), rel=1e-12, abs=1e-15)
 
 
 @pytest.mark.lammps
@@ -224,8 +298,8 @@ def test_corners_bound_the_error_over_the_box(tmp_path):
     (case,) = [c for c in cases() if c.name == "defaults"]
     for form in (MID, EDGE):
         dt = collision_dt(case.model, 64, form)
-        corners, _ = accuracy._run_collision(case, dt, tmp_path / form.replace(" ", "-") / "corners")
-        inside, _ = accuracy._run_collision(case, dt, tmp_path / form.replace(" ", "-") / "inside",
-                                            states=accuracy._box_sample(200, seed=7))
+        corners, _ = accuracy.run_collision_level(case, dt, tmp_path / form.replace(" ", "-") / "corners")
+        inside, _ = accuracy.run_collision_level(case, dt, tmp_path / form.replace(" ", "-") / "inside",
+                                                 states=accuracy.box_sample(200, seed=7))
         for s in ("vn", "vt", "r_omega"):
             assert inside[f"error_{s}"] <= corners[f"error_{s}"] * (1 + 1e-9), (form, s)

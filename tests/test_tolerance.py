@@ -10,8 +10,24 @@ import pytest
 
 from spinbounce import theory
 from spinbounce.cli import main
-from spinbounce.model.scenes import ContactModel, SceneError
-from spinbounce.studies.tolerance import collide_to_tolerance, collision_frame, frozen_to_tolerance
+from spinbounce.model.scenes import (
+    COLLISION_STEPS_PER_HALF_PERIOD,
+    FROZEN_STEPS_PER_HALF_PERIOD,
+    STATE_ARGS,
+    Collision,
+    ContactModel,
+    Frozen,
+    SceneError,
+)
+from spinbounce.studies.accuracy import FROZEN_T_END, FROZEN_Z, collision_scene
+from spinbounce.studies.accuracy import cases as accuracy_cases
+from spinbounce.studies.tolerance import (
+    collide_to_tolerance,
+    collision_frame,
+    collision_rung_dt,
+    frozen_rung_dt,
+    frozen_to_tolerance,
+)
 
 TOL = 1e-6
 RNG = np.random.default_rng(21)
@@ -88,21 +104,20 @@ def test_sweep_with_a_tolerance(tmp_path):
         spec_from_dict({**raw, "tolerance": 0.0})
 
 
-STUDY = {case.name: case for case in __import__("spinbounce.studies.accuracy", fromlist=["cases"]).cases()}
+STUDY = {case.name: case for case in accuracy_cases()}
 
 
 @pytest.mark.lammps
 @pytest.mark.parametrize("name", list(STUDY))
 def test_every_case_of_the_accuracy_study_to_tolerance(tmp_path, name):
     """The acceptance of --tolerance, case by case of `spinbounce accuracy`'s study."""
-    from spinbounce.studies.accuracy import FROZEN_T_END, FROZEN_Z
-
     case = STUDY[name]
     model = case.model
     states = np.array(case.states, dtype=float)
-    if not case.exact:  # a finite Coulomb cap: no exact theory and no smooth error to extrapolate
-        with pytest.raises(SceneError, match="^mu = "):
+    if model.mu is not None or model.normal == "hertz":  # no smooth error to extrapolate
+        with pytest.raises(SceneError, match="^(mu|normal) = .*a tolerance needs a smooth error"):
             collide_to_tolerance(model, states[:, 0], states[:, 1], states[:, 2] / model.r, TOL, tmp_path)
+        assert not any(tmp_path.iterdir())  # refused before any run
         return
     if case.kind == "frozen":
         _, vt0, rw0 = states[0]
@@ -111,10 +126,25 @@ def test_every_case_of_the_accuracy_study_to_tolerance(tmp_path, name):
                                                          model.gamma_t))
         true = np.abs(result.values - exact).max(axis=1)
     else:
-        result, scene = collide_to_tolerance(model, states[:, 0], states[:, 1], states[:, 2] / model.r, TOL,
-                                             tmp_path)
+        scene = collision_scene(case, None)
+        out_of_plane = {name: getattr(scene, name) for name in STATE_ARGS[3:]} if scene.is_3d else {}
+        result, scene = collide_to_tolerance(model, scene.v_n, scene.v_t, scene.omega, TOL, tmp_path,
+                                             **out_of_plane)
         frame = collision_frame(result, scene)
-        true = np.abs(frame[["vn_error", "vt_error", "r_omega_error"]].to_numpy()).max(axis=1)
+        true = np.abs(frame[[f"{s}_error" for s in case.state_names]].to_numpy()).max(axis=1)
     estimate = result.estimate[:, 0]
     assert true.max() <= TOL and (true <= estimate).all()
     assert result.plain_steps_for(true.max()) >= 5 * result.steps
+
+
+def test_tolerance_climbs_the_scenes_own_rungs():
+    """The ladder's rungs are the scenes' defaults at their default resolutions."""
+    for model in (ContactModel(), ContactModel(kt=50.0), ContactModel(gamma_n=1.0)):
+        assert collision_rung_dt(model, COLLISION_STEPS_PER_HALF_PERIOD) == Collision(model).dt
+    damped = ContactModel(gamma_t=1.0)
+    assert frozen_rung_dt(damped, FROZEN_STEPS_PER_HALF_PERIOD, 10.0) == Frozen(damped, t_end=10.0).dt
+
+
+def test_tolerance_with_a_hertzian_wall_is_refused(tmp_path):
+    with pytest.raises(SceneError, match="^normal = 'hertz': a tolerance needs a smooth error"):
+        collide_to_tolerance(ContactModel(normal="hertz"), -0.5, 1.0, 0.0, TOL, tmp_path)

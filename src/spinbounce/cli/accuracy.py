@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import json
-import math
 import sys
 from pathlib import Path
 
@@ -16,8 +14,9 @@ DEFAULT_OUT = Path("figures")
 def register(sub) -> None:
     p = sub.add_parser(
         "accuracy", help=HELP,
-        description=(f"{HELP}: a dt ladder for collisions and frozen contacts across representative parameters, "
-                     "with the observed order of convergence and the steps needed for 1e-4, 1e-6 and 1e-8. "
+        description=(f"{HELP}: a dt ladder for collisions and frozen contacts across representative parameters "
+                     "(damping, 3-D spin, a Hertzian wall, a Coulomb cap against the oracle), with the observed "
+                     "order of convergence and the steps needed for 1e-4, 1e-6 and 1e-8. "
                      "Writes accuracy.png, accuracy.pdf, accuracy.json and ACCURACY.md."),
     )
     p.add_argument("--out", type=Path, default=DEFAULT_OUT, metavar="DIR",
@@ -32,6 +31,7 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
+    from ..records import json_ready, to_json
     from ..studies.accuracy import MID, TARGETS, make_accuracy
 
     log = (lambda line: print(line, file=sys.stderr)) if args.json else print
@@ -40,11 +40,9 @@ def run(args) -> int:
     if args.json:
         rows = s[["case", "form", "observed_order", "expected_order", "error_at_default_dt",
                   *(f"steps_{t:.0e}" for t in TARGETS)]]
-        report = {"files": {k: str(v) for k, v in files.items()},
-                  "summary": [{k: (None if isinstance(v, float) and not math.isfinite(v) else v)
-                               for k, v in r.items()} for r in rows.to_dict(orient="records")],
+        report = {"files": files, "summary": rows.to_dict(orient="records"),
                   "default_costs": study.costs, "study_seconds": study.metadata["study_seconds"]}
-        print(json.dumps(report, indent=2, default=float))
+        print(to_json(json_ready(report)), end="")
         return 0
     print(f"{'case':<15}{'form':<15}{'order':>7}{'expected':>9}{'err@default':>13}"
           + "".join(f"{'steps ' + format(t, '.0e'):>14}" for t in TARGETS))

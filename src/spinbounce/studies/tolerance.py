@@ -17,6 +17,12 @@ estimate. The estimate is trusted only once the differences shrink from one leve
 next. Measured at the paper's defaults with a tolerance of 1e-6: runs at 20, 40 and 80
 steps per half-period, 146 LAMMPS steps in all, give an estimate of 7.9e-7 and a true
 error of 2.0e-7, where one plain run needs ~3,000 steps for the same error.
+
+This module is the per-scene service (``--tolerance``); :mod:`spinbounce.studies.accuracy`
+is the convergence study over cases. Both climb the same rungs (:func:`contact_steps`,
+:func:`collision_rung_dt`, :func:`frozen_rung_dt`: n steps per half-period of the fastest
+mode, the collision's end mid-step through :mod:`spinbounce.model.timestep`), and the study
+measures the raw orders that :func:`raw_orders` assumes here.
 """
 
 from __future__ import annotations
@@ -28,10 +34,11 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ..compare import STATE
-from ..model.scenes import Collision, ContactModel, Frozen, SceneError
+from ..model.scenes import STATE_ARGS, Collision, ContactModel, Frozen, SceneError
+from ..model.timestep import mid_step_dt
 
-__all__ = ["Extrapolated", "collide_to_tolerance", "frozen_to_tolerance", "check_tolerance", "MIN_TOLERANCE"]
+__all__ = ["Extrapolated", "collide_to_tolerance", "frozen_to_tolerance", "collision_frame", "check_tolerance",
+           "contact_steps", "collision_rung_dt", "frozen_rung_dt", "raw_orders", "MIN_TOLERANCE"]
 
 #: Below this, double-precision rounding in LAMMPS's O(1) velocities (amplified ~2x by
 #: the extrapolation) is as large as the request: no ladder can certify it.
@@ -88,8 +95,38 @@ def check_tolerance(tolerance: float) -> float:
     return tol
 
 
-def _damped(model: ContactModel) -> bool:
-    return model.gamma_t > 0.0 or model.gamma_n > 0.0
+def contact_steps(model: ContactModel, per_half_period: float) -> int:
+    """Whole steps in a Hookean contact time that resolve its fastest mode with
+    ``per_half_period`` steps per half-period: the N of tau/(N + 1/2)."""
+    return math.ceil(per_half_period * model.fastest_rate(frozen=False) * model.tau / math.pi - 1e-9)
+
+
+def collision_rung_dt(model: ContactModel, per_half_period: float) -> float:
+    """The mid-step collision dt at ``per_half_period`` steps per half-period (the scenes'
+    default dt for COLLISION_STEPS_PER_HALF_PERIOD)."""
+    return mid_step_dt(model.tau, contact_steps(model, per_half_period))
+
+
+def frozen_rung_dt(model: ContactModel, per_half_period: float, t_end: float) -> float:
+    """The frozen step at ``per_half_period`` steps per half-period, snapped to a whole number
+    of steps in ``t_end`` (the scenes' default for FROZEN_STEPS_PER_HALF_PERIOD). With
+    kt = gamma_t = 0 nothing evolves: 100 steps."""
+    rate = model.fastest_rate(frozen=True)
+    dt = math.pi / rate / per_half_period if rate > 0.0 else t_end / 100
+    return t_end / math.ceil(t_end / dt - 1e-9)
+
+
+def raw_orders(model: ContactModel, columns: int = 3, frozen: bool = False) -> np.ndarray:
+    """The order in dt of a plain mid-step run's error, per output column.
+
+    Collision (v_n, then the tangential columns): v_n is first order only with normal
+    damping; the tangential columns with either dashpot, whose force LAMMPS evaluates with
+    the half-step velocity. Frozen (v_t, r omega): first order with gamma_t, else second.
+    """
+    damped = model.gamma_t > 0.0 or model.gamma_n > 0.0
+    if frozen:
+        return np.full(columns, 1 if model.gamma_t > 0.0 else 2)
+    return np.array([1 if model.gamma_n > 0.0 else 2] + [1 if damped else 2] * (columns - 1))
 
 
 def _eliminate(values: list[np.ndarray], dts: list[float], power: int, depth: int) -> list[np.ndarray]:
@@ -106,6 +143,28 @@ def _eliminate(values: list[np.ndarray], dts: list[float], power: int, depth: in
     return [column[i] for i in range(depth, len(values))]
 
 
+#: Raw order -> (expansion in dt^power, terms removed, order left).
+_SCHEMES = {2: (2, 1, 4), 1: (1, 2, 3)}
+
+
+def _extrapolate(values: list[np.ndarray], dts: list[float], p: np.ndarray):
+    """The best extrapolation of the runs so far and each value's raw estimate (the gap of
+    the last two extrapolations over what the order left predicts, times MARGIN); None
+    while some column has too few levels for its scheme."""
+    best = np.empty_like(values[-1])
+    per_value = np.empty_like(values[-1])
+    for raw_order, (power, depth, left) in _SCHEMES.items():
+        columns = p == raw_order
+        if not columns.any():
+            continue
+        tops = _eliminate([v[..., columns] for v in values], dts, power, depth)
+        if len(tops) < 2:
+            return None
+        best[..., columns] = tops[-1]
+        per_value[..., columns] = MARGIN * np.abs(tops[-1] - tops[-2]) / (2.0**left - 1.0)
+    return best, per_value
+
+
 def _ladder(run_level, tolerance: float, p: np.ndarray, log) -> tuple[np.ndarray, np.ndarray, list[dict]]:
     """Run levels k = 0, 1, ... until the extrapolations agree to ``tolerance``.
 
@@ -115,8 +174,6 @@ def _ladder(run_level, tolerance: float, p: np.ndarray, log) -> tuple[np.ndarray
     its columns.
     """
     p = np.asarray(p)
-    # raw order -> (expansion in dt^power, terms removed, order left)
-    schemes = {2: (2, 1, 4), 1: (1, 2, 3)}
     values, dts, levels, gaps = [], [], [], []
     eps = np.finfo(float).eps
     for k in range(MAX_LEVELS):
@@ -124,21 +181,10 @@ def _ladder(run_level, tolerance: float, p: np.ndarray, log) -> tuple[np.ndarray
         values.append(value)
         dts.append(dt)
         levels.append(info)
-        best = np.empty_like(value)
-        per_value = np.empty_like(value)
-        ready = True
-        for raw_order, (power, depth, left) in schemes.items():
-            columns = p == raw_order
-            if not columns.any():
-                continue
-            tops = _eliminate([v[..., columns] for v in values], dts, power, depth)
-            if len(tops) < 2:
-                ready = False
-                break
-            best[..., columns] = tops[-1]
-            per_value[..., columns] = MARGIN * np.abs(tops[-1] - tops[-2]) / (2.0**left - 1.0)
-        if not ready:
+        extrapolated = _extrapolate(values, dts, p)
+        if extrapolated is None:
             continue
+        best, per_value = extrapolated
         # rounding: each of the finest run's steps may add an ulp of the velocities
         floor = MARGIN * info["nsteps"] * eps * max(1.0, float(np.abs(value).max()))
         estimate = np.maximum(np.broadcast_to(per_value.max(axis=-1, keepdims=True), per_value.shape), floor)
@@ -158,52 +204,68 @@ def _ladder(run_level, tolerance: float, p: np.ndarray, log) -> tuple[np.ndarray
     )
 
 
-def collide_to_tolerance(model: ContactModel, v_n, v_t, omega, tolerance: float, out_dir: Path,
-                         log=lambda *_: None) -> tuple[Extrapolated, Collision]:
-    """Collisions (one sphere or many, as in :class:`Collision`) to a requested accuracy.
-
-    Each level's run lives in ``out_dir/level-K``. Returns the extrapolated final states
-    with their estimates, and the finest level's scene (for its initial states and theory).
-    """
-    from ..pipeline import run_collision
-
-    tol = check_tolerance(tolerance)
+def _refuse_unsmooth(model: ContactModel) -> None:
+    """Refuse, before any run, a model whose error has no smooth expansion in dt."""
     if model.mu is not None:
         # measured: with a finite cap the stick-slip switches leave kinks that fall anywhere
         # within a step, so the error has no smooth expansion and extrapolation gains nothing
         raise SceneError("mu", model.mu, "a tolerance needs a smooth error in dt; a finite Coulomb cap's "
                                          "stick-slip switches break it: give a dt instead")
-    out_dir = Path(out_dir)
-    per_half_period = model.fastest_rate(frozen=False) * model.tau / math.pi
-    # v_n is first order only with normal damping; v_t and r omega with either damping
-    # (gamma_n moves the contact's end at first order, gamma_t acts on the slip)
-    p = np.array([1 if model.gamma_n > 0.0 else 2] + [1 if _damped(model) else 2] * 2)
-    scenes: list[Collision] = []
+    if model.normal != "hooke":
+        # each sphere's contact ends at its own time, somewhere inside a step that moves with dt
+        raise SceneError("normal", model.normal, "a tolerance needs a smooth error in dt; a Hertzian wall's "
+                                                 "contact ends fall anywhere inside a step: give a dt instead")
 
-    def scene_at(k: int) -> Collision:
-        steps = math.ceil(START_STEPS * 2**k * per_half_period - 1e-9)
-        return Collision(model, v_n=v_n, v_t=v_t, omega=omega, dt=model.tau / (steps + 0.5))
 
-    # Near the tunnelling speed a coarse step's overshoot alone would tunnel: start finer.
+def _first_rung(scene_at) -> int:
+    """The first rung whose scene is valid: near the tunnelling speed a coarse step's
+    overshoot alone would tunnel, so start finer (at most 4 doublings)."""
     first = 0
     while True:
         try:
             scene_at(first)
-            break
+            return first
         except SceneError as exc:
             if not exc.parameter.startswith("v_n") or "at dt" not in exc.limit or first >= 4:
                 raise
             first += 1
 
+
+def collide_to_tolerance(model: ContactModel, v_n, v_t, omega, tolerance: float, out_dir: Path,
+                         log=lambda *_: None, **out_of_plane) -> tuple[Extrapolated, Collision]:
+    """Collisions (one sphere or many, as in :class:`Collision`) to a requested accuracy.
+
+    ``out_of_plane``: Collision's 3-D arguments (v_s, omega_s, omega_n), if any. Each
+    level's run lives in ``out_dir/level-K``. Returns the extrapolated final states with
+    their estimates, and the finest level's scene (for its initial states and theory).
+    """
+    from ..pipeline import run_collision
+
+    tol = check_tolerance(tolerance)
+    _refuse_unsmooth(model)
+    unknown = set(out_of_plane) - set(STATE_ARGS[3:])
+    if unknown:
+        raise TypeError(f"collide_to_tolerance: unknown argument(s) {', '.join(sorted(unknown))}")
+    out_dir = Path(out_dir)
+    scenes: list[Collision] = []
+
+    def scene_at(k: int) -> Collision:
+        dt = collision_rung_dt(model, START_STEPS * 2**k)
+        return Collision(model, v_n=v_n, v_t=v_t, omega=omega, dt=dt, **out_of_plane)
+
+    first = _first_rung(scene_at)
+    names = scene_at(first).state_names
+
     def run_level(k: int):
         scene = scene_at(first + k)
         result = run_collision(scene, out_dir / f"level-{k}", atoms="library")
         scenes.append(scene)
-        final = result.table[[f"{s}_final" for s in STATE]].to_numpy()
+        final = result.table[[f"{s}_final" for s in names]].to_numpy()
         return final, scene.dt, {"level": k, "dt": scene.dt, "nsteps": scene.nsteps,
                                  "run": str(out_dir / f"level-{k}"),
                                  "loop_seconds": result.info.loop_seconds}
 
+    p = raw_orders(model, len(names))
     values, estimate, levels = _ladder(run_level, tol, p, log)
     return Extrapolated(values, estimate, tol, int(p.min()), levels), scenes[-1]
 
@@ -220,12 +282,9 @@ def frozen_to_tolerance(model: ContactModel, z: float, v_t: float, omega: float,
 
     tol = check_tolerance(tolerance)
     out_dir = Path(out_dir)
-    rate = model.fastest_rate(frozen=True)
-    coarse = math.pi / rate / START_STEPS if rate > 0.0 else t_end / 100
-    steps0 = math.ceil(t_end / coarse - 1e-9)
-    dt0 = t_end / steps0
-    every0 = max(1, steps0 // samples)
-    p = 1 if model.gamma_t > 0.0 else 2
+    dt0 = frozen_rung_dt(model, START_STEPS, t_end)
+    every0 = max(1, round(t_end / dt0) // samples)
+    p = raw_orders(model, 2, frozen=True)
     times: list[np.ndarray] = []
 
     def run_level(k: int):
@@ -239,15 +298,15 @@ def frozen_to_tolerance(model: ContactModel, z: float, v_t: float, omega: float,
                 {"level": k, "dt": scene.dt, "nsteps": scene.nsteps, "run": str(out_dir / f"level-{k}"),
                  "loop_seconds": result.info.loop_seconds})
 
-    values, estimate, levels = _ladder(run_level, tol, np.array([p, p]), log)
-    return Extrapolated(values, estimate, tol, p, levels, t=times[0])
+    values, estimate, levels = _ladder(run_level, tol, p, log)
+    return Extrapolated(values, estimate, tol, int(p.min()), levels, t=times[0])
 
 
 def collision_frame(result: Extrapolated, scene: Collision) -> pd.DataFrame:
     """The extrapolated final states beside the theory, one row per sphere."""
     theory = scene.predicted()
-    out = {f"{s}_0": scene.initial[:, k] for k, s in enumerate(STATE)}
-    for k, s in enumerate(STATE):
+    out = {f"{s}_0": scene.initial[:, k] for k, s in enumerate(scene.state_names)}
+    for k, s in enumerate(scene.state_names):
         out[f"{s}_final"] = result.values[:, k]
         out[f"{s}_estimate"] = result.estimate[:, k]
         out[f"{s}_theory"] = theory[:, k]

@@ -1,0 +1,238 @@
+"""The study's outputs: accuracy.png/.pdf (error against steps and seconds), accuracy.json
+(every run) and ACCURACY.md (orders, steps per target, costs, and why), each written
+atomically through :mod:`spinbounce.records` (the figures through figures.core.save)."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from ...model.scenes import COLLISION_STEPS_PER_HALF_PERIOD
+from ...records import json_ready, write_atomic
+from .cases import ANY, EDGE, FROZEN_T_END, MECHANISMS, MID
+from .orders import ERROR_FLOOR, FIT_LEVELS, TARGETS
+from .study import Study
+
+__all__ = ["draw", "markdown", "write_study", "EXTRA_CURVES"]
+
+#: Curves drawn besides each case's first form: the end on a step where it is first order
+#: (defaults) or third (magic, head-on), and the Hertzian wall's one dt for all spheres.
+EXTRA_CURVES = {("defaults", EDGE), ("magic", EDGE), ("head_on", EDGE), ("hertz", ANY)}
+_LINESTYLE = {EDGE: "--", ANY: "-."}
+
+
+def _records(frame: pd.DataFrame) -> list[dict]:
+    return [json_ready(r) for r in frame.to_dict(orient="records")]
+
+
+def _curve(table: pd.DataFrame, name: str, form: str) -> pd.DataFrame:
+    return table[(table["case"] == name) & (table["form"] == form) & table["in_ladder"]
+                 & (table["error"] > ERROR_FLOOR)]
+
+
+def _under_the_first(study: Study) -> list[str]:
+    """Names of the cases whose main curve lies on the first case's (the same v_n error sets
+    both): the first case is drawn wide and underneath so that it stays visible."""
+    first = study.cases[0]
+    base = _curve(study.table, first.name, MID)
+    same = []
+    for c in study.cases[1:]:
+        rows = _curve(study.table, c.name, MID)
+        if (c.kind == first.kind and np.array_equal(rows["lammps_steps"], base["lammps_steps"])
+                and np.allclose(rows["error"], base["error"], rtol=1e-6, atol=0.0)):
+            same.append(c.name)
+    return same
+
+
+def _draw_curves(study: Study, ax_steps, ax_wall) -> None:
+    import matplotlib
+
+    colours = list(matplotlib.colormaps["tab20"].colors)
+    markers = "osD^v<>phH*Xd8P"
+    orders = {(r["case"], r["form"]): r["observed_order"] for r in study.summary.to_dict(orient="records")}
+    same = _under_the_first(study)
+    for k, case in enumerate(study.cases):
+        for form in case.forms:
+            main = form == case.forms[0]
+            if not main and (case.name, form) not in EXTRA_CURVES:
+                continue
+            rows = _curve(study.table, case.name, form)
+            label = f"{case.label}{'' if main else ', ' + form}: order {orders[(case.name, form)]:.2f}"
+            colour = colours[k % len(colours)]
+            style = {"color": colour, "marker": markers[k % len(markers)], "markersize": 3.5,
+                     "linestyle": "-" if main else _LINESTYLE[form], "linewidth": 1.3 if main else 1.0,
+                     "markerfacecolor": colour if main else "none"}
+            if k == 0 and main and same:
+                label += f" (wide; under {', '.join(same)})"
+                style.update(linewidth=5.0, alpha=0.35, zorder=1, markersize=0)
+            ax_steps.loglog(rows["lammps_steps"], rows["error"], label=label, **style)
+            ax_wall.loglog(rows["lammps_seconds"], rows["error"], **style)
+
+
+def draw(study: Study):
+    """Error against LAMMPS steps and against LAMMPS's seconds: one curve per case in its first
+    form, plus the EXTRA_CURVES; the legend gives each curve's observed order. Call inside
+    ``matplotlib.style.context(STYLE)``."""
+    from ...figures.core import new_figure
+
+    fig, axes = new_figure(1, 2, figsize=(11.5, 6.6), sharey=True)
+    ax_steps, ax_wall = axes[0]
+    _draw_curves(study, ax_steps, ax_wall)
+    for target in TARGETS:
+        for ax in (ax_steps, ax_wall):
+            ax.axhline(target, color="0.8", linewidth=0.7, zorder=0)
+    ax_steps.set_xlabel("LAMMPS steps per run")
+    ax_steps.set_ylabel("largest |LAMMPS $-$ theory|")
+    # LAMMPS's own seconds: the run's wall seconds also hold the theory (the oracle's take ~0.5 s)
+    ax_wall.set_xlabel("LAMMPS seconds per run (start-up included; 1 to 64 spheres)")
+    ax_steps.set_ylim(ERROR_FLOOR / 2, 0.3)
+    ax_steps.set_title("error against steps (solid: the contact ends mid-step; dashed: on a step)")
+    ax_wall.set_title("error against LAMMPS's wall time (start-up dominates below ~10$^4$ steps)")
+    handles, labels = ax_steps.get_legend_handles_labels()
+    fig.legend(handles, labels, loc="outside lower center", ncol=3, fontsize=7.5)
+    return fig
+
+
+def _fmt_steps(steps: float, extrapolated: bool) -> str:
+    if not math.isfinite(steps):
+        return "n/a"
+    text = f"{steps:.1e}".replace("e+0", "e") if steps >= 1e5 else f"{math.ceil(steps):,}"
+    return f"{text}*" if extrapolated else text
+
+
+def _fmt_order(order) -> str:
+    return "-" if order is None or not math.isfinite(order) else f"{order:.2f}"
+
+
+def _cell(text: str) -> str:
+    """Text for a markdown table cell: a bare | would end the cell."""
+    return text.replace("|", r"\|")
+
+
+def _order_table(study: Study) -> list[str]:
+    lines = [
+        ("| case | form | observed order (v_n; tangential) | expected | error at the default resolution "
+         "| steps for 1e-4 | 1e-6 | 1e-8 |"),
+        "|---|---|---|---|---|---|---|---|",
+    ]
+    labels = {c.name: c.label for c in study.cases}
+    rough = {(c.name, form) for c in study.cases for form in c.rough}
+    for r in study.summary.to_dict(orient="records"):
+        cells = [
+            _cell(labels[r["case"]]), r["form"],
+            f"{'~' if (r['case'], r['form']) in rough else ''}**{_fmt_order(r['observed_order'])}** "
+            f"({_fmt_order(r['order_vn'])}; "
+            f"{_fmt_order(r['order_tangential'])})",
+            f"{r['expected_order']:g}", f"{r['error_at_default_dt']:.2e}",
+            *(_fmt_steps(r[f"steps_{t:.0e}"], r[f"extrapolated_{t:.0e}"]) for t in TARGETS),
+        ]
+        lines.append("| " + " | ".join(cells) + " |")
+    return lines
+
+
+def _intro(study: Study) -> list[str]:
+    meta = study.metadata
+    steps = meta["parameters"]["ladder_steps_per_half_period"]
+    return [
+        "# Speed against accuracy",
+        "",
+        (f"Regenerated by `spinbounce accuracy{' --quick' if meta['quick'] else ''}` "
+         f"(spinbounce {meta['spinbounce_version']}, LAMMPS {meta['lammps_version']}, {meta['created']}); "
+         "figure `accuracy.png`, every run in `accuracy.json`."),
+        "",
+        (f"Each case runs a ladder of n = {steps[0]} to {steps[-1]} steps per half-period of its fastest "
+         "contact mode. Error: the largest |LAMMPS - theory| over the case's states and state columns "
+         "(frozen: over the whole time series), against each case's own theory: Eq. 18 (its exact damped "
+         "form, its 6x6 block form in 3-D, its Omega(v_n) for a Hertzian wall), Eq. 10 for frozen contacts, "
+         "the Coulomb oracle for a finite mu. Forms: the contact's end in the middle of a step "
+         "(dt = tau/(M + 1/2), the default), on a step boundary (dt = tau/M), or, for the Hertzian wall, "
+         "wherever one dt for every speed puts it (its mid-step form runs each speed at its own dt). "
+         f"Observed order: the slope of log error against log dt over the {FIT_LEVELS} finest levels with an "
+         f"error above {ERROR_FLOOR:g}; in brackets the same for v_n alone and for the tangential columns. "
+         "Steps for a target: interpolated on the measured log-log curve, or (marked *) extrapolated along "
+         "the fitted line beyond the measured range. Steps are per run: a collision's whole contact, a "
+         f"frozen contact's {FROZEN_T_END:g} time units."),
+        "",
+    ]
+
+
+def _cost_section(study: Study) -> list[str]:
+    lines = [
+        "## Cost at the paper's defaults",
+        "",
+        ("Runs at the steps the table gives (mid-step end), measured again: the error reached over the "
+         "8 corners of the sweep's box; one collision alone (the worst corner, in a LAMMPS instance of its "
+         "own, start-up included); and one collision's share of a batch of "
+         f"{study.metadata['parameters']['cost_batch_spheres']} states drawn from the box. Wall seconds on "
+         "one core of a shared machine; LAMMPS's own loop time in brackets."),
+        "",
+        ("| target | LAMMPS steps | n per half-period | error reached | one collision alone, s "
+         "| per collision in a batch, s |"),
+        "|---|---|---|---|---|---|",
+    ]
+    for c in study.costs:
+        lines.append(
+            f"| {c['target']:.0e}{'*' if c['extrapolated'] else ''} | {c['lammps_steps']:,} | "
+            f"{c['steps_per_half_period']:.1f} | {c['error_reached']:.2e} | {c['single_wall_seconds']:.2g} "
+            f"({c['single_loop_seconds']:.2g}) | {c['per_collision_wall_seconds']:.2g} "
+            f"({c['per_collision_loop_seconds']:.2g}) |")
+    s = study.summary
+    d = s[(s["case"] == study.cases[0].name) & (s["form"] == MID)].iloc[0]
+    lines += ["", (f"The default step (n = {COLLISION_STEPS_PER_HALF_PERIOD}, {d['default_lammps_steps']} "
+                   f"steps) gives {d['error_at_default_dt']:.2e}."), ""]
+    return lines
+
+
+def markdown(study: Study) -> str:
+    """ACCURACY.md: the orders and steps per case and form, the defaults' costs, and what
+    limits each order."""
+    lines = _intro(study) + _order_table(study) + [
+        "",
+        ("Frozen contacts have one form (no contact end) and hold v_n = 0. ~: an error that is not a smooth "
+         "series in dt (it jumps with where a stick-slip switch or a contact's end falls inside a step), so "
+         "its local orders swing and the fitted order is approximate."),
+        ""]
+    lines += _cost_section(study)
+    lines += [
+        "## What limits the order",
+        "",
+        "Mechanisms:",
+        "",
+        *(f"- **{name}**: {text}." for name, text in MECHANISMS.items()),
+        "",
+        "Per case:",
+        "",
+        *(f"- **{case.label}** ({case.why}; against {case.theory}): {case.limit}." for case in study.cases),
+        "",
+        ("Why a few states per case: without a Coulomb cap the Hookean contact is linear and its end does "
+         "not depend on the state, so LAMMPS's map, like the exact one, is linear in the state; the "
+         "error's largest value over the sweep's box sits at one of its corners, and grazing, head-on and "
+         "high-spin incidence probe single columns of that linear error."),
+        "",
+    ]
+    return "\n".join(lines)
+
+
+def write_study(study: Study, out: Path) -> dict[str, Path]:
+    """Write accuracy.png, accuracy.pdf, accuracy.json and ACCURACY.md into ``out``, each atomically."""
+    import matplotlib.style
+
+    from ...figures.core import STYLE, save
+
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    record = dict(study.metadata)
+    record["cases"] = [c.record() for c in study.cases]
+    record["summary"] = _records(study.summary)
+    record["default_costs"] = json_ready(study.costs)
+    record["runs_table"] = _records(study.table)
+    record["markdown"] = "ACCURACY.md"
+    with matplotlib.style.context(STYLE):
+        fig = draw(study)
+        saved = save(fig, out, "accuracy", json_ready(record))
+    md = out / "ACCURACY.md"
+    write_atomic(md, markdown(study))
+    return {"png": saved.png, "pdf": saved.pdf, "json": saved.json, "markdown": md}
