@@ -295,8 +295,7 @@ def bounce(model: ContactModel, v_n: float, v_t: float = 0.0, omega: float = 0.0
     else:
         raise RuntimeError(f"oracle: more than {MAX_SWITCHES} regime switches (chattering)")
     final = np.array([y[_VN], y[_V][0], y[_W][0], y[_V][1], y[_W][1], r * omega_n])
-    return OracleResult(initial, final, t, tuple(regimes), nfev,
-                        tuple(t for t, _ in regimes[1:]))
+    return OracleResult(initial, final, t, tuple(regimes), nfev)
 
 
 def bounce_many(model: ContactModel, v_n, v_t, omega, v_s=None, omega_s=None, omega_n=None) -> np.ndarray:
