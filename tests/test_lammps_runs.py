@@ -1,11 +1,10 @@
 """LAMMPS runs against the theory, through the whole pipeline (scene -> deck -> run -> dump -> table).
 
-Tolerances. At the default step (tau/(N + 1/2), N = 250 steps per half-period of the
-fastest mode) the collision's integration error is second order: measured at most 3e-5
-over |v_n| <= 1.5, |v_t|, |r omega| <= 2 (1.7e-5 in v_t and r*omega), and up to 5e-5 at
-alpha = 0.1 or kt/kn = 0.29. Tests allow 2e-4, the acceptance bound: still two orders
-below any modelling error (a wrong alpha, a wrong sign, the classic hooke/history wall
-all miss by more than 1e-2).
+Tolerances. The default step (model/timestep.py) is chosen for half the default accuracy,
+1e-4 of the size of the initial state; the collision's integration error is second order.
+Over |v_n| <= 1.5, |v_t| <= 2, |omega| <= 4 that is at most about 1.6e-4 in absolute terms.
+Tests allow 2e-4, the acceptance bound: still two orders below any modelling error (a
+wrong alpha, a wrong sign, the classic hooke/history wall all miss by more than 1e-2).
 """
 
 import math

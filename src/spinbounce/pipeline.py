@@ -18,11 +18,14 @@ import pandas as pd
 from . import theory
 from .theory import hertz
 from .records import software, to_json, write_atomic, write_parquet_atomic
+from . import checks
 from .compare import collision_table, frozen_table
 from .lammps.decks import DUMP_NAME, INLINE_SPHERES, Deck, render_collision, render_frozen, wall_parameters
 from .lammps.dumps import read_dump
 from .lammps.runner import RunInfo, run_deck
 from .model.scenes import Collision, ContactModel, Frozen
+from .model.timestep import StepChoice
+from .stepping import tune
 
 __all__ = [
     "ResultError",
@@ -37,9 +40,6 @@ __all__ = [
     "provenance",
 ]
 
-#: A model with no energy source can gain energy only through integration error, which
-#: is O(dt^2) ~ 1e-6 relative at the coarsest default resolution; more is flagged.
-ENERGY_GAIN_TOLERANCE = 1e-5
 #: A batch's per-sphere table, beside result.json.
 RESULT_TABLE = "result.parquet"
 
@@ -97,6 +97,22 @@ def _check_finite(frames: pd.DataFrame, where: Path) -> None:
 FRAME_COLUMNS = ("x", "y", "z", "vx", "vy", "vz", "omegax", "omegay", "omegaz")
 
 
+def _probe_errors(scene: Collision, folder: Path) -> np.ndarray:
+    """A probe's rows' relative errors (:func:`stepping.tune`): a plain run, nothing recorded."""
+    return run_collision(scene, folder, atoms="library", record=False).table["error"].to_numpy()
+
+
+def _check_finished(scene: Collision, columns: dict, source: Path) -> None:
+    touching = np.flatnonzero(columns["z_final"] <= scene.model.r)
+    if touching.size:
+        first = touching[0]
+        raise ResultError(
+            f"{source}: {touching.size} sphere(s) still touch the wall after {scene.nsteps} steps "
+            f"(first: id {int(columns['id'][first])}, z = {float(columns['z_final'][first])!r}): "
+            "the contact had not finished"
+        )
+
+
 def _memory_frames(info: RunInfo, nsteps: int) -> dict[int, dict[str, np.ndarray]]:
     """A library-route run's sphere states (type-1 atoms) at steps 0 and nsteps, in id order."""
     frames = {}
@@ -149,6 +165,7 @@ class CollisionResult:
     info: RunInfo
     dump: Path | None  # None for a library-route run (no dump)
     warnings: tuple[str, ...]
+    step: StepChoice | None = None  # how dt was chosen
 
     @property
     def max_abs_error(self) -> float:
@@ -156,14 +173,17 @@ class CollisionResult:
 
 
 def run_collision(scene: Collision, out_dir: Path, atoms: str | None = None, record: bool = True,
-                  runner=run_deck) -> CollisionResult:
-    """Run one collision scene in ``out_dir`` and compare every sphere with Eq. 18.
+                  runner=run_deck, probe_states: Collision | None = None) -> CollisionResult:
+    """Run one collision scene in ``out_dir`` and compare every sphere with its theory.
 
+    A scene whose dt is the default first gets the step its accuracy needs
+    (:func:`stepping.tune`; ``probe_states``: the states to probe with, if not its own).
     ``atoms`` picks how the deck receives its spheres (:data:`decks.ATOM_ROUTES`); with
     ``record`` the run folder gets ``result.json`` (and, past INLINE_SPHERES spheres, the
     per-sphere table as ``result.parquet``). ``runner``: :func:`runner.run_deck` (in this
     process) or :func:`runner.run_deck_lmp` (the ``lmp`` executable).
     """
+    scene, step = tune(scene, Path(out_dir) / "probe", _probe_errors, probe_states)
     deck = render_collision(scene, atoms)
     deck_path = _prepare(out_dir, deck)
     info = runner(deck_path, atoms=deck.atoms)
@@ -174,30 +194,18 @@ def run_collision(scene: Collision, out_dir: Path, atoms: str | None = None, rec
         source = deck_path.parent / deck.dump
         frames = _dump_frames(read_dump(source))
     initial, final = _collision_frames(scene, frames, source)
-    m = scene.model
     columns = collision_table(scene, initial, final, as_frame=False)
-    touching = np.flatnonzero(columns["z_final"] <= m.r)
-    if touching.size:
-        first = touching[0]
-        raise ResultError(
-            f"{source}: {touching.size} sphere(s) still touch the wall after {scene.nsteps} steps "
-            f"(first: id {int(columns['id'][first])}, z = {float(columns['z_final'][first])!r}): "
-            "the contact had not finished"
-        )
-    notes = []
+    _check_finished(scene, columns, source)
     names = scene.state_names
-    e0 = theory.energy(np.column_stack([columns[f"{s}_0"] for s in names]), m.m, m.alpha)
-    e1 = theory.energy(np.column_stack([columns[f"{s}_final"] for s in names]), m.m, m.alpha)
+    e0 = theory.energy(np.column_stack([columns[f"{s}_0"] for s in names]), scene.model.m, scene.model.alpha)
+    e1 = theory.energy(np.column_stack([columns[f"{s}_final"] for s in names]), scene.model.m, scene.model.alpha)
     columns["energy_gain"] = (e1 - e0) / e0
-    gain = float(np.max(columns["energy_gain"]))
-    if gain > ENERGY_GAIN_TOLERANCE:
-        notes.append(
-            f"kinetic energy grew by up to {gain:.3g} of E(0) in a model that cannot gain energy: "
-            "the step is too coarse for this scene"
-        )
+    checks.add_row_checks(columns, names, scene.model)
+    notes = checks.notes(columns["status"])
+    m = scene.model
     table = pd.DataFrame(columns)
     dump_path = None if deck.dump is None else deck_path.parent / deck.dump
-    result = CollisionResult(scene, table, info, dump_path, tuple(notes))
+    result = CollisionResult(scene, table, info, dump_path, tuple(notes), step)
     if record:
         if m.normal == "hertz":  # per sphere: the contact time and Omega depend on v_n
             tau = m.contact_times(scene.v_n).tolist()
@@ -212,6 +220,8 @@ def run_collision(scene: Collision, out_dir: Path, atoms: str | None = None, rec
         out["dump"] = None if dump_path is None else str(dump_path)
         out["warnings"] = list(notes)
         out["max_abs_error"] = result.max_abs_error
+        out["step"] = step.record()
+        out["status"] = checks.summary(table["status"])
         if scene.n <= INLINE_SPHERES:
             out["spheres"] = table.to_dict(orient="records")
         else:  # a JSON record per sphere would cost more than the run

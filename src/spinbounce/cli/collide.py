@@ -53,6 +53,7 @@ def run(args) -> int:
     scene = Collision(model_from(args), dt=args.dt, **state)
     out = args.out or default_run_dir("collide", {"model": dataclasses.asdict(scene.model), **state, "dt": scene.dt})
     result = run_collision(scene, out)
+    scene = result.scene  # at the step its accuracy needed
     row = result.table.iloc[0]
     names = scene.state_names
     choice = choose.which(scene.model)
@@ -61,6 +62,7 @@ def run(args) -> int:
         **{key: _states(names, row, suffix, scene.model.r) for key, suffix in SUFFIXES.items()},
         "theory_kind": choice.kind, "theory_name": choice.name,
         "dt": scene.dt, "nsteps": scene.nsteps, "contact_time": _contact_time(scene),
+        "step": result.step.record(), "error_estimate": float(row["error"]), "status": row["status"],
         "Omega": None if np.isnan(omega) else omega,
         "deck": str(result.info.deck), "dump": str(result.dump), "lammps_version": result.info.lammps_version,
         "warnings": list(result.warnings),
@@ -72,6 +74,8 @@ def run(args) -> int:
     print(f"collision: dt = {scene.dt:.6g} ({scene.nsteps} steps, contact time {report['contact_time']:.6g}); "
           f"theory: {choice.name}; {omega_text}")
     _print_states(report, names, label_width=8)
+    print(f"accuracy: |LAMMPS - theory| / |initial state| = {row['error']:.2e} "
+          f"(target {result.step.target:g}; step: {result.step.method}); status {row['status']}")
     for w in result.warnings:
         print(f"warning: {w}")
     print(f"deck: {report['deck']}\ndump: {report['dump']}\nLAMMPS {report['lammps_version']}")

@@ -12,7 +12,8 @@ import os
 from pathlib import Path
 
 from ..model import parameters
-from ..sweeps import SweepError, chunk_table, load_spec, run_one_chunk, run_sweep, spec_from_dict
+from ..model.timestep import duration_text
+from ..sweeps import SweepError, chunk_table, load_spec, run_one_chunk, run_sweep, spec_from_dict, status_counts
 from .options import count, number, sweep_model_flags
 
 HELP = "run many collisions in parallel chunks (resumable) into a Parquet dataset"
@@ -46,6 +47,8 @@ def register(sub) -> None:
     p.add_argument("--list-chunks", action="store_true",
                    help="print the chunks (K, group, chunk, start, stop, file) and exit without running")
     p.add_argument("--json", action="store_true", help="with --list-chunks: print JSON")
+    p.add_argument("--strict", action="store_true",
+                   help="exit with status 1 if any row is not 'ok' (grazing, energy_gained or inaccurate)")
     g = p.add_argument_group("states, from flags (instead of a scene file)")
     g.add_argument("--n", type=count, default=None, help="number of sampled collisions")
     g.add_argument("--seed", type=count, default=None, help="random seed (default 0)")
@@ -135,7 +138,12 @@ def run(args) -> int:
         return 0
     total = spec.n * len(spec.groups)
     print(f"sweep {spec.digest}: {total} collisions in {len(spec.chunks())} chunks, "
-          f"{len(spec.groups)} model group(s), {args.workers} worker(s)")
+          f"{len(spec.groups)} model group(s), {args.workers} worker(s); "
+          f"estimated LAMMPS time {duration_text(spec.estimated_seconds())} on one core (before step probes)")
     dataset = run_sweep(spec, args.out, workers=args.workers)
+    counts = status_counts(dataset)
+    bad = {name: n for name, n in counts.items() if name != "ok" and n}
     print(f"dataset: {dataset} (pandas.read_parquet of that folder)")
-    return 0
+    print(f"rows: {counts['ok']} ok" + "".join(f", {n} {name}" for name, n in bad.items())
+          + " (column 'status'; 'error' holds each row's |LAMMPS - theory| over its state's size)")
+    return 1 if bad and args.strict else 0

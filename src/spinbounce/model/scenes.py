@@ -28,7 +28,7 @@ from ..theory import choose, hertz
 from . import parameters
 from .contact import MIN_STEPS_PER_HALF_PERIOD, NORMAL_LAWS, ContactModel, PhysicsWarning
 from .parameters import SceneError
-from .timestep import mid_step_dt, steps_through
+from .timestep import ACCURACY, FROZEN_ACCURACY, SAFETY, align_mid_step, check_steps, second_order_dt, steps_through
 
 __all__ = [
     "SceneError",
@@ -37,8 +37,6 @@ __all__ = [
     "NORMAL_LAWS",
     "Collision",
     "Frozen",
-    "COLLISION_STEPS_PER_HALF_PERIOD",
-    "FROZEN_STEPS_PER_HALF_PERIOD",
     "HERTZ_STEPS_PER_HALF_PERIOD",
     "MIN_STEPS_PER_HALF_PERIOD",
     "STATE",
@@ -46,14 +44,9 @@ __all__ = [
     "STATE_ARGS",
 ]
 
-#: Default resolution of a collision: steps per half-period of the fastest contact mode,
-#: with the contact's end placed mid-step. The error is then second order in dt; measured
-#: over |v_n| <= 1.5, |v_t|, |r omega| <= 2 at the paper's defaults it is at most 3e-5
-#: (1.7e-5 in v_t and r omega) at 250 steps, 7e-6 at 500 and 1.9e-6 at 1000 (README).
-COLLISION_STEPS_PER_HALF_PERIOD = 250
-#: Default resolution of a frozen contact. There is no contact end to align; velocity
-#: Verlet's phase error grows with time, 5e-6 after 10 time units at this resolution.
-FROZEN_STEPS_PER_HALF_PERIOD = 1000
+#: Frozen contact with tangential damping: first order, error about this times 2 zeta dt
+#: (LAMMPS_FACTS section 5: 2e-5 to 8e-5 at dt = 1e-4 for gamma_t from 0.1 to 2).
+FROZEN_DAMPING_ORDER_ONE = 0.5
 #: Default resolution of a Hertzian collision: steps per half-period of the fastest mode.
 #: Each sphere's contact ends at its own time, so no one dt puts every end mid-step and the
 #: error is first order: cutting the tangential force off somewhere inside the last step
@@ -158,9 +151,12 @@ class Collision:
     v_s: tuple[float, ...] = (0.0,)
     omega_s: tuple[float, ...] = (0.0,)
     omega_n: tuple[float, ...] = (0.0,)
+    #: Whether dt came from the default rule (a run may then tune it: spinbounce.stepping).
+    default_step: bool = field(init=False, default=False)
 
     def __post_init__(self):
         set_ = object.__setattr__
+        set_(self, "default_step", self.dt is None)
         columns = [_as_vector(name, getattr(self, name)) for name in STATE_ARGS]
         sizes = {len(c) for c in columns}
         if len(sizes - {1}) > 1:
@@ -176,6 +172,7 @@ class Collision:
             raise SceneError(f"v_n[{i}]" if n > 1 else "v_n", vn[i], "must be < 0 (towards the wall)")
         if m.normal == "hertz":  # the contact depends on v_n: checks and step of its own
             set_(self, "dt", _hertz_collision_dt(self))
+            self._check_cost()
             return
         reach = float(np.max(theory.max_overlap(np.array(vn), m.m, m.kn, m.gamma_n)))
         if reach >= m.r:
@@ -189,6 +186,7 @@ class Collision:
             )
         dt = self.default_dt() if self.dt is None else self.dt
         set_(self, "dt", m.check_dt(dt, frozen=False))
+        self._check_cost()
         # LAMMPS's velocity Verlet keeps v^2 + w^2 x^2 (1 - (w dt/2)^2) constant in the
         # undamped normal spring, so its largest overlap exceeds the exact one by the factor
         # 1/sqrt(1 - (w dt/2)^2): a coarse step can tunnel where the exact motion would not
@@ -203,13 +201,39 @@ class Collision:
                 "through the wall; use a smaller dt or a slower |v_n|",
             )
 
-    def default_dt(self) -> float:
+    def _check_cost(self) -> None:
+        """Refuse, before anything runs, a collision that needs more steps than one run may take."""
         m = self.model
-        if m.normal == "hertz":  # first order: no mid-step alignment (see HERTZ_STEPS_PER_HALF_PERIOD)
-            speed = max(abs(v) for v in self.v_n)
-            return math.pi / m.fastest_rate(frozen=False, speed=speed) / HERTZ_STEPS_PER_HALF_PERIOD
-        per_tau = COLLISION_STEPS_PER_HALF_PERIOD * m.fastest_rate(frozen=False) * m.tau / math.pi
-        return mid_step_dt(m.tau, math.ceil(per_tau - 1e-9))
+        speed = max(abs(v) for v in self.v_n)
+        modes = m.modes(frozen=False, speed=speed)
+        mode = max(modes, key=lambda name: math.hypot(*modes[name]))
+        causes = {"slip": "kt, alpha and gamma_t", "normal": "kn and gamma_n"}
+        why = (f"dt = {self.dt:.3g}: the {mode} mode ({causes[mode]}) is fast against the contact time "
+               f"{float(np.max(m.contact_times(self.v_n))):.3g}")
+        check_steps(self.nsteps, "dt", self.dt, why, spheres=self.n)
+
+    def default_dt(self) -> float:
+        """The step of the default accuracy (:mod:`.timestep`): second order on every contact
+        mode over the contact's length, the contact's end mid-step. A Hertzian batch whose
+        spheres end at different times cannot be aligned and runs at first order
+        (:data:`HERTZ_STEPS_PER_HALF_PERIOD`); a single speed is aligned like a Hookean contact."""
+        m = self.model
+        speed = max(abs(v) for v in self.v_n)
+        if m.normal == "hertz":
+            times = m.contact_times(self.v_n)
+            if np.ptp(times) > 0.0:
+                return math.pi / m.fastest_rate(frozen=False, speed=speed) / HERTZ_STEPS_PER_HALF_PERIOD
+            t_contact = float(times[0])
+        else:
+            t_contact = m.tau
+        modes = m.modes(frozen=False, speed=speed).values()
+        return align_mid_step(t_contact, second_order_dt(modes, m.t_exit if m.normal == "hooke" else t_contact))
+
+    @property
+    def steps_per_half_period(self) -> float:
+        """How finely dt resolves the fastest contact mode (its half-period over dt)."""
+        m = self.model
+        return math.pi / m.fastest_rate(frozen=False, speed=max(abs(v) for v in self.v_n)) / self.dt
 
     @property
     def n(self) -> int:
@@ -252,9 +276,10 @@ class Collision:
 class Frozen:
     """One sphere held at height z (0 < z < r) with v_n = 0: the frozen contact of Section 3.
 
-    ``dt = None`` resolves the slip's fastest rate with FROZEN_STEPS_PER_HALF_PERIOD steps per
-    half-period; ``every`` is the dump cadence in steps (default: about 2000 frames).
-    The run ends on the first multiple of ``every`` at or after ``t_end``.
+    ``dt = None`` takes the step of the default accuracy (:meth:`default_dt`), shortened so
+    that ``t_end`` is a whole number of dump intervals; ``every`` is the dump cadence in steps
+    (default: about 2000 frames). With a given dt the run goes on to the first dump at or
+    after t_end (:attr:`t_final`).
     """
 
     model: ContactModel = field(default_factory=ContactModel)
@@ -280,15 +305,10 @@ class Frozen:
         set_(self, "v_t", _finite("v_t", self.v_t))
         set_(self, "omega", _finite("omega", self.omega))
         set_(self, "t_end", _positive("t_end", self.t_end))
-        if self.dt is None:
-            rate = m.fastest_rate(frozen=True)
-            # kt = gamma_t = 0: nothing evolves; any dt is exact.
-            dt = math.pi / rate / FROZEN_STEPS_PER_HALF_PERIOD if rate > 0.0 else self.t_end / 1000
-            dt = self.t_end / math.ceil(self.t_end / dt)
-        else:
-            dt = self.dt
-        set_(self, "dt", m.check_dt(dt, frozen=True))
+        given = self.dt is not None
+        set_(self, "dt", m.check_dt(self.dt if given else self.default_dt(), frozen=True))
         steps = math.ceil(self.t_end / self.dt - 1e-9)
+        check_steps(steps, "t_end", self.t_end, f"dt = {self.dt:.3g} resolves the slip mode at the default accuracy")
         if self.every is None:
             set_(self, "every", max(1, steps // 2000))
         else:
@@ -296,8 +316,36 @@ class Frozen:
             if every < 1 or every != int(every):
                 raise SceneError("every", self.every, "must be a whole number of steps >= 1")
             set_(self, "every", int(every))
-        # LAMMPS dumps only on multiples of `every`: end the run on one
-        set_(self, "nsteps", math.ceil(steps / self.every) * self.every)
+        if steps % self.every:
+            # LAMMPS dumps on multiples of `every`: a default step is shortened so that t_end is a
+            # whole number of intervals; a given one runs on to the next dump (t_final says when)
+            steps = math.ceil(steps / self.every) * self.every
+            if not given:
+                set_(self, "dt", self.t_end / steps)
+        set_(self, "nsteps", steps)
+
+    @property
+    def steps_per_half_period(self) -> float:
+        """How finely dt resolves the slip mode (its half-period over dt; inf if nothing moves)."""
+        rate = self.model.fastest_rate(frozen=True)
+        return math.pi / rate / self.dt if rate > 0.0 else math.inf
+
+    @property
+    def t_final(self) -> float:
+        """When the run ends: t_end, or with a given dt the first dump at or after it."""
+        return self.nsteps * self.dt
+
+    def default_dt(self) -> float:
+        """The step for the frozen contact's accuracy (FROZEN_ACCURACY, second order on the slip
+        mode over t_end) and, with gamma_t, the first-order damping bound for the default one."""
+        m = self.model
+        w, c = m.modes(frozen=True)["slip"]
+        if w == 0.0 and c == 0.0:  # kt = gamma_t = 0: nothing evolves; any dt is exact
+            return self.t_end / 1000
+        dt = second_order_dt([(w, c)], self.t_end, FROZEN_ACCURACY)
+        if c > 0.0:
+            dt = min(dt, SAFETY * ACCURACY / (FROZEN_DAMPING_ORDER_ONE * c))  # first order: the default target
+        return self.t_end / math.ceil(self.t_end / dt - 1e-9)
 
     def predicted(self, t) -> tuple[np.ndarray, np.ndarray]:
         """(v_t(t), r omega(t)): Eq. 10, or its exact damped form when gamma_t > 0."""

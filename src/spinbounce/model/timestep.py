@@ -1,4 +1,15 @@
-"""The timestep rule, in one place: where a collision's end falls inside a step.
+"""The timestep rule, in one place: how fine a step the accuracy asks for, and where a
+collision's end falls inside it.
+
+**How fine.** Accuracy is the largest |LAMMPS - theory| over the state columns, divided
+by the size of the initial state |(v_n, v_t, r omega, ...)|; the default target is
+:data:`ACCURACY`. Without damping, LAMMPS's step is second order: a mode of frequency w
+resolved with N steps per half-period (w dt = pi/N) over a contact of length T errs by
+about ``SECOND_ORDER (w dt)^2 max(1, w T/pi)`` (the phase error of each half-period
+adds up). The constant was measured at the paper's defaults (1.16e-4 at N = 100, order
+2.0: tools of studies/accuracy) with a margin. Damping, a Coulomb cap, a Hertzian force
+and the classic wall make the error first order or rough; their step is measured per scene
+by a probe (:mod:`spinbounce.stepping`), which starts from this rule's step.
 
 LAMMPS's velocity-Verlet step cuts the contact force off somewhere inside the step in
 which the overlap closes. With ``dt = t_end/(N + 1/2)`` the end falls in the middle of a
@@ -12,11 +23,87 @@ spheres each end at their own time, cannot be aligned and converges at first ord
 from __future__ import annotations
 
 import math
+from dataclasses import asdict, dataclass
 
-__all__ = ["mid_step_dt", "align_mid_step", "refine_mid_step", "steps_through", "steps_per_contact"]
+__all__ = ["mid_step_dt", "align_mid_step", "refine_mid_step", "steps_through", "steps_per_contact",
+           "ACCURACY", "SECOND_ORDER", "SAFETY", "FROZEN_ACCURACY", "MAX_STEPS", "second_order_dt", "check_steps", "estimate_seconds",
+           "duration_text", "StepChoice"]
 
 #: Guards the rounding of t_end/dt so that an exact multiple is not pushed one step further.
 _ROUNDING = 1e-9
+#: The default accuracy: largest deviation from the theory over the size of the initial state.
+ACCURACY = 1e-4
+#: Second-order error constant (see the module's docstring): measured 0.118 at the paper's defaults.
+SECOND_ORDER = 0.15
+#: Steps are chosen for this fraction of the target: the states a rule or probe did not see,
+#: and its constant, have room (measured at the paper's defaults: 4e-5 where 1e-4 is asked).
+SAFETY = 0.5
+#: The frozen contact keeps its acceptance of 1e-5 over 10 time units (one sphere: cheap).
+FROZEN_ACCURACY = 1e-5
+#: The most steps one run may take: LAMMPS counts steps in a 32-bit integer for `run`, and at
+#: about 2e7 sphere-steps a second on one core this is already an hour for 100 spheres.
+MAX_STEPS = 100_000_000
+#: Fewer steps per half-period than this is a caricature of the contact, whatever the target.
+MIN_STEPS_PER_HALF_PERIOD = 20
+
+
+@dataclass(frozen=True)
+class StepChoice:
+    """How a collision's step was chosen: the rule, a given dt, or a probe (its measurements)."""
+
+    dt: float
+    method: str
+    target: float
+    observed_order: float | None = None
+    probe_errors: tuple[float, ...] = ()
+    predicted_error: float | None = None
+
+    def record(self) -> dict:
+        return asdict(self)
+
+
+def second_order_dt(modes, t_contact: float, target: float = ACCURACY) -> float:
+    """The largest dt whose second-order error estimate stays within ``target``.
+
+    ``modes``: (w, c) pairs of the contact's linear modes (frequency, damping rate); the
+    fastest rate of each (w, or the fast decay of an overdamped mode) must be resolved.
+    """
+    dts = []
+    for w, c in modes:
+        half = 0.5 * c
+        rate = w if half < w else half + math.sqrt(half * half - w * w)
+        if rate <= 0.0:
+            continue
+        periods = max(1.0, rate * t_contact / math.pi)
+        wdt = min(math.sqrt(SAFETY * target / (SECOND_ORDER * periods)), math.pi / MIN_STEPS_PER_HALF_PERIOD)
+        dts.append(wdt / rate)
+    return min(dts) if dts else t_contact / MIN_STEPS_PER_HALF_PERIOD
+
+
+#: LAMMPS's cost on one core for this contact, measured with `spinbounce bench`: a fixed
+#: cost per step, and the spheres' share (sphere-steps per second in a large batch).
+SECONDS_PER_STEP = 2e-6
+SPHERE_STEPS_PER_SECOND = 2e7
+
+
+def estimate_seconds(steps: int, spheres: int = 1) -> float:
+    """About how long LAMMPS takes for ``steps`` steps of ``spheres`` spheres on one core."""
+    return steps * (SECONDS_PER_STEP + spheres / SPHERE_STEPS_PER_SECOND)
+
+
+def duration_text(seconds: float) -> str:
+    return f"{seconds:.3g} s" if seconds < 3600 else f"{seconds / 3600:.3g} core-hours"
+
+
+def check_steps(steps: int, parameter: str, value, why: str, spheres: int = 1) -> int:
+    """Refuse a run of more than :data:`MAX_STEPS` steps, naming the parameter, why and the cost."""
+    from .parameters import SceneError
+
+    if steps > MAX_STEPS:
+        cost = duration_text(estimate_seconds(steps, spheres))
+        raise SceneError(parameter, value, f"needs {steps:.3g} steps ({why}), more than the limit of "
+                                           f"{MAX_STEPS:.0e} for one run (about {cost} on one core)")
+    return steps
 
 
 def mid_step_dt(t_end: float, steps: int) -> float:

@@ -4,8 +4,8 @@
 its keys are in that module's docstring); :mod:`.run` runs its chunks.
 """
 
-from .run import chunk_path, chunk_table, read_results, run_chunk, run_one_chunk, run_sweep
+from .run import chunk_path, chunk_table, read_results, run_chunk, run_one_chunk, run_sweep, status_counts
 from .spec import DEFAULT_CHUNK, MODEL_KEYS, SweepError, SweepSpec, load_spec, spec_from_dict
 
 __all__ = ["SweepError", "SweepSpec", "load_spec", "spec_from_dict", "run_sweep", "run_one_chunk", "chunk_table",
-           "chunk_path", "read_results", "run_chunk", "DEFAULT_CHUNK", "MODEL_KEYS"]
+           "chunk_path", "read_results", "run_chunk", "status_counts", "DEFAULT_CHUNK", "MODEL_KEYS"]

@@ -22,13 +22,14 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .. import __version__
+from .. import __version__, checks
 from ..model import parameters
 from ..model.scenes import Collision
+from ..stepping import PROBE_SPHERES
 from ..theory import choose
 from .spec import SweepError, SweepSpec, spec_from_dict
 
-__all__ = ["run_sweep", "run_one_chunk", "chunk_table", "chunk_path", "read_results", "run_chunk"]
+__all__ = ["run_sweep", "run_one_chunk", "chunk_table", "chunk_path", "read_results", "run_chunk", "status_counts"]
 
 
 def chunk_path(out: Path, group: int, chunk: int) -> Path:
@@ -57,9 +58,9 @@ def run_chunk(raw: dict, out: str, group: int, chunk: int, start: int, stop: int
     n = stop - start
     columns = {"group": np.full(n, group), "chunk": np.full(n, chunk), "index": np.arange(start, stop)}
     if spec.tolerance is None:
-        result = run_collision(scene, run_dir, atoms="library", record=False)
+        result = run_collision(scene, run_dir, atoms="library", record=False, probe_states=_probe_states(spec, group))
         columns.update({name: values.to_numpy() for name, values in result.table.drop(columns=["id"]).items()})
-        dt, nsteps, loop = scene.dt, scene.nsteps, result.info.loop_seconds
+        dt, nsteps, loop = result.scene.dt, result.scene.nsteps, result.info.loop_seconds
     else:  # a ladder of runs per chunk, extrapolated; each row carries its error estimate
         from ..studies.tolerance import collide_to_tolerance, collision_frame
 
@@ -70,6 +71,8 @@ def run_chunk(raw: dict, out: str, group: int, chunk: int, start: int, stop: int
         columns["tolerance"] = np.full(n, spec.tolerance)
         dt, nsteps = finest.dt, extrapolated.steps
         loop = sum(level["loop_seconds"] for level in extrapolated.levels)
+    if "status" not in columns:  # the tolerance route: its extrapolated rows, checked the same way
+        checks.add_row_checks(columns, scene.state_names, model)
     labels = _model_columns(columns, model, n)
     columns["dt"] = np.full(n, dt)  # with a tolerance: the finest run's
     columns["nsteps"] = np.full(n, nsteps)  # with a tolerance: all runs' steps together
@@ -80,6 +83,14 @@ def run_chunk(raw: dict, out: str, group: int, chunk: int, start: int, stop: int
                    "lammps_version": lammps_version(), "spinbounce_version": __version__})
     write_parquet_atomic(chunk_path(out, group, chunk), _arrow_table(columns, labels))
     return stop - start, time.perf_counter() - started, loop
+
+
+def _probe_states(spec: SweepSpec, group: int) -> Collision:
+    """The group's first rows: every chunk of a group probes the same states, so gets the same step."""
+    model, dt = spec.model(group)
+    states = spec.initial_states(group, 0, min(spec.n, PROBE_SPHERES))
+    extra = dict(zip(("v_s", "omega_s", "omega_n"), states[:, 3:].T, strict=False))
+    return Collision(model, v_n=states[:, 0], v_t=states[:, 1], omega=states[:, 2], dt=dt, **extra)
 
 
 def _model_columns(columns: dict, model, n: int) -> dict[str, str]:
@@ -224,12 +235,32 @@ def chunk_table(spec: SweepSpec, out: Path | None = None) -> list[dict]:
     return rows
 
 
-def read_results(path: Path) -> pd.DataFrame:
-    """A sweep's rows, from its output folder or its ``chunks`` dataset folder."""
-    path = Path(path)
+def status_counts(path: Path) -> dict[str, int]:
+    """How many rows of a sweep have each status (reads that one column only)."""
+    import pyarrow.dataset as ds
+
+    table = ds.dataset(_chunk_files(Path(path)), format="parquet").to_table(columns=["status"])
+    return checks.summary(table.column("status").to_numpy(zero_copy_only=False))
+
+
+def _chunk_files(path: Path) -> list[Path]:
     if (path / "chunks").is_dir():
         path = path / "chunks"
     files = sorted(path.glob("chunk-*.parquet")) if path.is_dir() else [path]
-    if not files:
-        raise SweepError(f"{path}: no chunk files")
-    return pd.concat([pd.read_parquet(f) for f in files], ignore_index=True)
+    if not files or not files[0].exists():
+        raise SweepError(f"{path}: no chunk files (a sweep's output folder, or its chunks/ folder, is expected)")
+    return files
+
+
+def read_results(path: Path) -> pd.DataFrame:
+    """A sweep's rows, from its output folder or its ``chunks`` dataset folder."""
+    frames = []
+    for f in _chunk_files(Path(path)):
+        try:
+            frames.append(pd.read_parquet(f))
+        except (OSError, ValueError) as exc:  # pyarrow's errors for a corrupt or foreign file
+            raise SweepError(f"{f}: not a readable sweep chunk ({exc})") from None
+    rows = pd.concat(frames, ignore_index=True)
+    if "vn_0" not in rows:
+        raise SweepError(f"{path}: these Parquet files are not a spinbounce sweep (no vn_0 column)")
+    return rows

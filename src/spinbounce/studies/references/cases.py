@@ -3,9 +3,11 @@
 from __future__ import annotations
 
 import dataclasses
+import math
 from dataclasses import dataclass, field
 
 from ... import theory
+from ...model.timestep import mid_step_dt
 from ...model.scenes import Collision, ContactModel, Frozen
 from ...records import json_ready
 from .tolerances import COLLISION_MU_TOLERANCES, COLLISION_TOLERANCES, FROZEN_TOLERANCES, Tolerance
@@ -24,13 +26,29 @@ _STANDARD = (
 )
 
 
+#: The resolutions the references were made at, in steps per half-period of the fastest
+#: contact mode: collisions mid-step (model.timestep), frozen contacts a whole number of steps.
+REFERENCE_COLLISION_STEPS = 250
+REFERENCE_FROZEN_STEPS = 1000
+
+
+def reference_dt(model: ContactModel, kind: str, t_end: float | None) -> float:
+    """The fixed step of a stored reference (the default step when they were made)."""
+    rate = model.fastest_rate(frozen=kind == "frozen")
+    if kind == "frozen":
+        dt = math.pi / rate / REFERENCE_FROZEN_STEPS if rate > 0.0 else t_end / 1000
+        return t_end / math.ceil(t_end / dt)
+    return mid_step_dt(model.tau, math.ceil(REFERENCE_COLLISION_STEPS * rate * model.tau / math.pi - 1e-9))
+
+
 @dataclass(frozen=True)
 class ReferenceCase:
     """One stored reference: a scene kind, its model, its states and its step.
 
     ``states``: collision, one (v_n, v_t, omega) per sphere, all in one run; frozen, a
-    single (z, v_t, omega). ``dt = None`` takes the scene's default step (recorded in the
-    manifest). ``t_end`` and ``every`` (dump cadence, which subsamples the series) are for
+    single (z, v_t, omega). ``dt = None`` takes the resolution the references were made at
+    (:func:`reference_dt`, recorded in the manifest), not today's default: a stored reference
+    must not move when the default step is retuned. ``t_end`` and ``every`` (dump cadence, which subsamples the series) are for
     frozen cases only.
     """
 
@@ -48,12 +66,16 @@ class ReferenceCase:
 
     def scene(self) -> Collision | Frozen:
         model = self.contact_model()
+        dt = self.dt if self.dt is not None else reference_dt(model, self.kind, self.t_end)
         if self.kind == "collision":
             vn, vt, om = (list(column) for column in zip(*self.states, strict=True))
-            return Collision(model, v_n=vn, v_t=vt, omega=om, dt=self.dt)
+            return Collision(model, v_n=vn, v_t=vt, omega=om, dt=dt)
         if self.kind == "frozen":
             (z, vt, om), = self.states
-            return Frozen(model, z=z, v_t=vt, omega=om, t_end=self.t_end, dt=self.dt, every=self.every)
+            # as they were made: the run goes on to the first dump at or after t_end
+            steps = math.ceil(self.t_end / dt - 1e-9)
+            t_end = math.ceil(steps / self.every) * self.every * dt if self.every else self.t_end
+            return Frozen(model, z=z, v_t=vt, omega=om, t_end=t_end, dt=dt, every=self.every)
         raise ValueError(f"case {self.name!r}: unknown kind {self.kind!r}")
 
     def rows(self, scene=None) -> int:

@@ -1,0 +1,78 @@
+"""The step a collision needs for the default accuracy, measured where no rule can say.
+
+Without damping, cap or Hertz force the paper's contact converges at second order with a
+known constant, and :mod:`spinbounce.model.timestep` sets its step a priori. Every other
+model (damped: first order; a Coulomb cap: rough; a Hertzian wall at one speed; the
+classic wall) is probed: a few of the scene's own states run at the rule's step and at
+half of it, against the exact theory that applies (:mod:`spinbounce.theory.choose`); the
+observed order and constant give the step for :data:`SAFETY` times the target, kept
+mid-step. A probe costs two short runs of at most :data:`PROBE_SPHERES` spheres, and its
+result goes into the run's record. Every row's own error is measured afterwards anyway
+(``error`` and ``status`` columns): the probe only chooses the step.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from pathlib import Path
+
+import numpy as np
+
+from .model.scenes import STATE_ARGS, Collision
+from .model.timestep import ACCURACY, SAFETY, StepChoice, mid_step_dt, steps_per_contact
+from .theory import choose
+
+__all__ = ["StepChoice", "needs_probe", "tune", "PROBE_SPHERES", "SAFETY"]
+
+#: States a probe runs: the scene's own, every k-th of them beyond this many.
+PROBE_SPHERES = 32
+#: Errors below this are rounding: a probe that sees none keeps the rule's step.
+ROUNDING = 1e-13
+
+
+def needs_probe(scene: Collision) -> bool:
+    """Whether the scene's step must be measured: not the paper's linear contact, and not a
+    Hertzian batch of several speeds (its end cannot be aligned; it keeps its fixed rule)."""
+    if choose.which(scene.model).kind == "linear":
+        return False
+    return not (scene.model.normal == "hertz" and np.ptp(scene.model.contact_times(scene.v_n)) > 0.0)
+
+
+def _contact_time(scene: Collision) -> float:
+    return float(np.max(scene.model.contact_times(scene.v_n))) if scene.model.normal == "hertz" else scene.model.tau
+
+
+def _probe_scene(scene: Collision, dt: float, probe_states: Collision | None) -> Collision:
+    source = probe_states or scene
+    rows = np.arange(source.n)[:: max(1, math.ceil(source.n / PROBE_SPHERES))]
+    states = {name: np.asarray(getattr(source, name))[rows] for name in STATE_ARGS}
+    return Collision(scene.model, dt=dt, **states)
+
+
+def tune(scene: Collision, out: Path, run: Callable, probe_states: Collision | None = None,
+         target: float = ACCURACY) -> tuple[Collision, StepChoice]:
+    """The scene at the step its accuracy needs (unchanged where the a priori rule holds).
+
+    ``run(scene, folder)`` runs a probe scene and returns its rows' relative errors;
+    ``probe_states``: the states to probe with (a sweep's group: the same for every chunk,
+    so every chunk of a group gets the same step), by default the scene's own.
+    """
+    if not scene.default_step or not needs_probe(scene):
+        method = "given" if not scene.default_step else "second-order rule"
+        return scene, StepChoice(scene.dt, method, target)
+    t_contact = _contact_time(scene)
+    coarse_steps = steps_per_contact(t_contact, scene.dt)
+    errors = []
+    for k, steps in enumerate((coarse_steps, 2 * coarse_steps)):
+        probe = _probe_scene(scene, mid_step_dt(t_contact, steps), probe_states)
+        errors.append(float(np.max(run(probe, Path(out) / f"probe-{k}"))))
+    coarse, fine = errors
+    if fine <= ROUNDING:
+        return scene, StepChoice(scene.dt, "probe: exact at the rule's step", target, None, tuple(errors), fine)
+    order = min(2.0, max(1.0, math.log2(coarse / fine))) if coarse > fine else 1.0
+    steps = 2 * coarse_steps * (fine / (SAFETY * target)) ** (1.0 / order)
+    steps = max(coarse_steps, math.ceil(steps))
+    predicted = fine * (2 * coarse_steps / steps) ** order
+    tuned = Collision(scene.model, dt=mid_step_dt(t_contact, steps), **{n: getattr(scene, n) for n in STATE_ARGS})
+    return tuned, StepChoice(tuned.dt, "probe", target, order, tuple(errors), predicted)
