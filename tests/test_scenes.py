@@ -9,7 +9,6 @@ from spinbounce import theory
 from spinbounce.lammps.decks import render_collision, render_frozen
 from spinbounce.model.timestep import ACCURACY, SAFETY, SECOND_ORDER
 from spinbounce.model.scenes import (
-    COLLISION_STEPS_PER_HALF_PERIOD,
     Collision,
     ContactModel,
     Frozen,

@@ -137,10 +137,10 @@ class Collision:
     that rolls the sphere along it (LAMMPS's omega_x: that slip is v_s + r omega_s, the same
     form as the paper's) and ``omega_n`` the spin about the wall's normal (omega_z). A scene
     with any of them non-zero is 3-D: its states have six columns (:data:`STATE_3D`).
-    ``dt = None`` picks ``tau/(N + 1/2)`` with N = COLLISION_STEPS_PER_HALF_PERIOD scaled by
-    the fastest contact mode: the half step puts the end of the contact in the middle of
-    a step, where the error made by cutting the tangential force off cancels to
-    first order (README, "accuracy").
+    ``dt = None`` takes the step of the default accuracy (:meth:`default_dt`, and a run may
+    refine it by a probe: :mod:`spinbounce.stepping`), as ``tau/(N + 1/2)``: the half step
+    puts the end of the contact in the middle of a step, where the error made by cutting
+    the tangential force off cancels to first order (:mod:`.timestep`).
     """
 
     model: ContactModel = field(default_factory=ContactModel)
