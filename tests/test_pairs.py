@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import json
+
 import numpy as np
 import pytest
 
@@ -170,3 +172,19 @@ def test_lammps_dense_second_sphere_is_the_wall(tmp_path):
     want = theory.block_matrix(a.alpha, theory.Omega(LAW["kn"], LAW["kt"], a.alpha)) @ state
     got = np.array([row.a_vz, row.a_vx, -a.r * row.a_wy, row.a_vy, a.r * row.a_wx, a.r * row.a_wz])
     assert np.max(np.abs(got - want)) < 1e-4
+
+
+@pytest.mark.lammps
+def test_pair_command_prints_lammps_beside_both_references(tmp_path, capsys):
+    # cli/__init__.py's COMMANDS does not list `pair` yet: build the parser from the module alone.
+    import argparse
+
+    from spinbounce.cli import pair as command
+
+    parser = argparse.ArgumentParser()
+    command.register(parser.add_subparsers())
+    args = parser.parse_args(["pair", "--alpha-a", "0.25", "--w-a", "0", "2", "1", "--out", str(tmp_path), "--json"])
+    assert args.handler(args) == 0
+    row = json.loads(capsys.readouterr().out)
+    assert row["lammps_error"] < 1e-4 and row["alpha_a"] == 0.25
+    assert row["planar_error"] > 100 * row["lammps_error"]  # eps = 0.66: the planar theory is far off

@@ -103,5 +103,7 @@ def pair_to_wall_cost(n: int = 200, seed: int = 3, out_dir: Path | None = None) 
     per_pair = pair.info.loop_seconds / n
     per_wall = wall.info.loop_seconds / n
     return {"collisions": n, "pair_seconds_per_collision": per_pair, "wall_seconds_per_collision": per_wall,
-            "pair_to_wall": per_pair / per_wall, "pair_steps": pair.batch.nsteps, "wall_steps": wall.scene.nsteps,
+            "pair_to_wall": per_pair / per_wall,
+            "pair_to_wall_per_step": (per_pair / pair.batch.nsteps) / (per_wall / wall.scene.nsteps),
+            "pair_steps": pair.batch.nsteps, "wall_steps": wall.scene.nsteps,
             "pair_max_error": pair.max_lammps_error, "wall_max_error": wall.max_abs_error}
