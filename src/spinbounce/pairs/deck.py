@@ -1,0 +1,127 @@
+"""Render a pair batch's deck (``lammps_inputs/pair.lmp.j2``), its data file and bodies file.
+
+Layout: pair k sits in cell k of a cubic grid, its contact point at the cell's centre, its
+spheres backed off along their velocities by the pair's lead time (free flight, which the
+step integrates exactly) so that they touch that much later. Atom ids: the spheres that
+are rigid bodies (alpha other than 2/5) first, then their centre points in the same order,
+then the free spheres; :attr:`PairDeck.ids` maps each pair's a and b to its sphere's id.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .. import __version__
+from ..lammps.decks import Deck, _environment, _num, wall_parameters
+from .scene import PairBatch
+
+__all__ = ["PairDeck", "render_pairs", "DECK_NAME", "DUMP_NAME", "DATA_FILE", "BODIES_FILE"]
+
+DECK_NAME = "in.lammps"
+DUMP_NAME = "state.dump"
+DATA_FILE = "pairs.data"
+BODIES_FILE = "bodies.txt"
+#: LAMMPS caps |F_t| <= mu |F_n| and turns the history back into the tangent plane when
+#: |xi.n| kt > 1e-10 mu |F_n|. With the wall's no-cap mu = 1e12 that rule does fire in the
+#: last steps of a pair's contact (|F_n| -> 0 while xi.n, from the turning line of centres,
+#: does not): measured with a step-by-step copy of LAMMPS that matches it to 1e-14, it moves
+#: the result by 3e-5 of the impact speed at dt = tau/4700 and depends on dt. With 1e100 the
+#: rule and the cap can only fire at |F_n| < 1e-90 |F_t|: the paper's model, with a history
+#: that is never rotated (what :mod:`spinbounce.theory.pair_exact` integrates).
+PAIR_NO_CAP_MU = 1.0e100
+
+
+@dataclass(frozen=True)
+class PairDeck:
+    """The deck and, per pair, the atom ids of its spheres a and b (an (n, 2) array)."""
+
+    deck: Deck
+    ids: np.ndarray
+
+
+def _spheres(batch: PairBatch) -> tuple[list[dict], float, int]:
+    """One record per sphere (pair by pair, a then b): its sphere, start position and
+    velocities; and the cell size and the grid's cells per side."""
+    reach = max(max(abs(x) for x in (*p.v_a, *p.v_b)) for p in batch.pairs)
+    out_speed = max(float(np.max(np.abs(np.concatenate([o.v_a, o.v_b])))) for o in batch.exact)
+    travel = math.sqrt(3.0) * max(reach, out_speed) * batch.nsteps * batch.dt
+    largest = max(p.radsum for p in batch.pairs)
+    cell = 4.0 * (largest + travel)
+    grid = math.ceil(round(batch.n ** (1.0 / 3.0), 9))
+    records = []
+    for k, (pair, lead) in enumerate(zip(batch.pairs, batch.lead, strict=True)):
+        centre = (np.array([k % grid, (k // grid) % grid, k // grid**2]) + 0.5) * cell
+        n = np.asarray(pair.normal)
+        for side, sphere, v, w, place in (("a", pair.a, pair.v_a, pair.w_a, pair.a.r * n),
+                                          ("b", pair.b, pair.v_b, pair.w_b, -pair.b.r * n)):
+            records.append({"pair": k, "side": side, "sphere": sphere, "x": centre + place - lead * np.asarray(v),
+                            "v": np.asarray(v), "w": np.asarray(w)})
+    return records, cell, grid
+
+
+def _number_atoms(records: list[dict]) -> tuple[list[dict], list[dict]]:
+    """Give each sphere its id and type; the rigid spheres and the free ones, in id order."""
+    rigid = [r for r in records if r["sphere"].rigid]
+    free = [r for r in records if not r["sphere"].rigid]
+    for i, record in enumerate(rigid, start=1):
+        record["id"], record["type"] = i, 2
+    for i, record in enumerate(free, start=2 * len(rigid) + 1):
+        record["id"], record["type"] = i, 1
+    return rigid, free
+
+
+def _row(*values) -> str:
+    return " ".join(str(v) if isinstance(v, int) else _num(v) for v in values)
+
+
+def _data_file(rigid: list[dict], free: list[dict], box: float) -> str:
+    atoms, velocities = [], []
+    for record in rigid + free:
+        s = record["sphere"]
+        mass = s.m / 2 if s.rigid else s.m  # a rigid sphere shares its mass with its point
+        density = mass / (math.pi * (2 * s.r) ** 3 / 6.0)
+        atoms.append(_row(record["id"], record["type"], 2 * s.r, density, *record["x"]))
+        velocities.append(_row(record["id"], *record["v"], *record["w"]))
+    for record in rigid:  # centre points: diameter 0, whose 'density' is the mass
+        point = record["id"] + len(rigid)
+        atoms.append(_row(point, 3, 0.0, record["sphere"].m / 2, *record["x"]))
+        velocities.append(_row(point, *record["v"], 0.0, 0.0, 0.0))
+    natoms = len(atoms)
+    return (f"spinbounce {__version__}: sphere pairs for {DECK_NAME}\n\n{natoms} atoms\n3 atom types\n\n"
+            + "".join(f"0.0 {_num(box)} {axis}lo {axis}hi\n" for axis in "xyz")
+            + "\nAtoms # sphere\n\n" + "\n".join(sorted(atoms, key=lambda r: int(r.split()[0])))
+            + "\n\nVelocities\n\n" + "\n".join(sorted(velocities, key=lambda r: int(r.split()[0]))) + "\n")
+
+
+def _bodies_file(rigid: list[dict]) -> str:
+    """fix rigid infile: id mass xcm ycm zcm ixx iyy izz ixy ixz iyz vxcm vycm vzcm lx ly lz ix iy iz."""
+    rows = []
+    for record in rigid:
+        s, i = record["sphere"], record["sphere"].inertia
+        rows.append(_row(record["id"], s.m, *record["x"], i, i, i, 0.0, 0.0, 0.0, *record["v"],
+                         *(i * record["w"]), 0, 0, 0))
+    return f"{len(rigid)}\n" + "\n".join(rows) + "\n"
+
+
+def render_pairs(batch: PairBatch) -> PairDeck:
+    """The batch's deck, with its data file (and bodies file, if any sphere is a rigid body)."""
+    records, cell, grid = _spheres(batch)
+    rigid, free = _number_atoms(records)
+    smallest = min(min(p.a.r, p.b.r) for p in batch.pairs)
+    wall = wall_parameters(batch.pairs[0].equivalent_wall(batch.contact))
+    wall.update(mu=PAIR_NO_CAP_MU, comment=f"no Coulomb cap: mu = {PAIR_NO_CAP_MU:g} (spinbounce.pairs.deck)")
+    files = {DATA_FILE: _data_file(rigid, free, grid * cell)}
+    if rigid:
+        files[BODIES_FILE] = _bodies_file(rigid)
+    text = _environment().get_template("pair.lmp.j2").render(
+        version=__version__, deck_name=DECK_NAME, npairs=batch.n, grid=grid, cell=cell,
+        nsteps=batch.nsteps, dt=batch.dt, skin=0.2 * smallest, binsize=cell / 2, data_file=DATA_FILE,
+        contact=batch.contact, wall=wall, nfree=len(free), nrigid=len(rigid),
+        bodies_file=BODIES_FILE, dump_name=DUMP_NAME)
+    ids = np.zeros((batch.n, 2), dtype=np.int64)
+    for record in records:
+        ids[record["pair"], 0 if record["side"] == "a" else 1] = record["id"]
+    return PairDeck(Deck(text=text, name=DECK_NAME, dump=DUMP_NAME, rigid=bool(rigid), files=files), ids)

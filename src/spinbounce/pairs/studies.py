@@ -1,0 +1,109 @@
+"""Pair studies: the checked cases, the planar theory's validity map, and the cost against the wall.
+
+* :func:`cases`: pairs with unequal radii, masses and alpha, both spinning in 3-D, from
+  head-on to grazing incidence (tests/test_pairs.py checks LAMMPS on them);
+* :func:`validity_map`: the planar theory's error against the exact reference over a grid
+  of eps = v_t tau/(r_a + r_b) and the centrifugal ratio v_t^2 tau/(pi (r_a + r_b) |v_n|)
+  (no LAMMPS: the exact reference is what LAMMPS integrates, checked on the cases);
+* :func:`pair_to_wall_cost`: LAMMPS's loop time per collision of a pair batch over that of a
+  wall batch of the same impacts, each at its default resolution.
+"""
+
+from __future__ import annotations
+
+import math
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+from ..model.scenes import Collision
+from ..pipeline import run_collision
+from ..theory import pair as planar
+from ..theory import pair_exact
+from .run import run_pairs
+from .scene import Pair, PairBatch, PairContact, Sphere
+
+__all__ = ["cases", "validity_map", "pair_to_wall_cost"]
+
+#: (sphere a, sphere b): unequal radii, masses and alpha (2/5 and rigid-body ones).
+_SPHERE_PAIRS = (
+    (Sphere(1.0, 0.5, 0.4), Sphere(1.0, 0.5, 0.4)),
+    (Sphere(1.0, 0.5, 0.25), Sphere(3.0, 0.8, 0.4)),
+    (Sphere(0.5, 0.3, 0.4), Sphere(2.0, 0.7, 0.6)),
+    (Sphere(2.0, 0.6, 0.1), Sphere(1.0, 0.4, 0.5)),
+)
+#: (tangential over normal speed of approach): head-on, oblique and grazing.
+_INCIDENCE = (0.0, 0.5, 1.0, 2.0, 4.0, 8.0)
+
+
+def cases(seed: int = 7) -> list[Pair]:
+    """24 pairs: each sphere pair at each incidence, with random 3-D spins and line of centres."""
+    rng = np.random.default_rng(seed)
+    out = []
+    for a, b in _SPHERE_PAIRS:
+        for ratio in _INCIDENCE:
+            n = rng.normal(size=3)
+            n /= np.linalg.norm(n)
+            t = np.cross(n, rng.normal(size=3))
+            t /= np.linalg.norm(t)
+            v_b = rng.uniform(-0.5, 0.5, size=3)
+            v_rel = -0.6 * n + 0.6 * ratio * t
+            out.append(Pair(a=a, b=b, normal=n, v_a=v_b + v_rel, v_b=v_b,
+                            w_a=rng.uniform(-1.0, 1.0, size=3) / a.r, w_b=rng.uniform(-1.0, 1.0, size=3) / b.r))
+    return out
+
+
+def validity_map(eps_values, centrifugal_values, kn: float = 10.0, kt: float = 1.0) -> dict:
+    """The planar theory's error (in units of the speed) over a grid of eps and the centrifugal ratio.
+
+    Equal spheres (m = 1, r = 0.5, alpha = 2/5), b at rest, no spin. For a given eps and
+    centrifugal ratio c: v_t = eps (r_a + r_b)/tau and |v_n| = v_t eps/(pi c).
+    """
+    eps_values, centrifugal_values = np.asarray(eps_values, float), np.asarray(centrifugal_values, float)
+    sphere = Sphere()
+    tau = float(planar.contact_time(sphere.m, sphere.m, kn))
+    radsum = 2 * sphere.r
+    error = np.full((len(centrifugal_values), len(eps_values)), np.nan)
+    for i, c in enumerate(centrifugal_values):
+        for j, eps in enumerate(eps_values):
+            v_t = eps * radsum / tau
+            v_n = v_t * eps / (math.pi * c)
+            if v_n * math.sqrt(planar.reduced_mass(1.0, 1.0) / kn) >= 0.5 * sphere.r:
+                continue  # the overlap would reach half the radius: not a contact worth mapping
+            pair = Pair(a=sphere, b=sphere, v_a=(v_t, 0.0, -v_n))
+            exact = pair_exact.solve(**pair.vectors(), **pair.properties(), kn=kn, kt=kt)
+            theory = planar.predict(**{k: np.asarray(v)[None] for k, v in pair.vectors().items()},
+                                    **pair.properties(), kn=kn, kt=kt)
+            got = np.concatenate([exact.v_a, exact.v_b, sphere.r * exact.w_a, sphere.r * exact.w_b])
+            want = np.concatenate([theory[0][0], theory[1][0], sphere.r * theory[2][0], sphere.r * theory[3][0]])
+            error[i, j] = np.max(np.abs(got - want)) / pair.speed()
+    return {"eps": eps_values.tolist(), "centrifugal": centrifugal_values.tolist(), "planar_error": error.tolist(),
+            "kn": kn, "kt": kt, "sphere": {"m": sphere.m, "r": sphere.r, "alpha": sphere.alpha}}
+
+
+def pair_to_wall_cost(n: int = 200, seed: int = 3, out_dir: Path | None = None) -> dict:
+    """LAMMPS's loop seconds per collision, pairs against the wall, each at its default resolution.
+
+    The same impacts: equal spheres against each other (b at rest) and one such sphere
+    against the wall, |v_n| in [0.5, 1.5], v_t and r omega in [-1, 1]. Both batches are also
+    checked against their references, so the two costs are at the accuracy each reaches.
+    """
+    rng = np.random.default_rng(seed)
+    v_n = -rng.uniform(0.5, 1.5, n)
+    v_t = rng.uniform(-1.0, 1.0, n)
+    r_omega = rng.uniform(-1.0, 1.0, n)
+    sphere = Sphere()
+    pairs = [Pair(a=sphere, b=sphere, v_a=(t, 0.0, vn), w_a=(0.0, -w / sphere.r, 0.0))
+             for vn, t, w in zip(v_n, v_t, r_omega, strict=True)]
+    with tempfile.TemporaryDirectory() as scratch:
+        where = Path(out_dir or scratch)
+        pair = run_pairs(PairBatch(pairs, PairContact()), where / "pairs", record=False)
+        wall = run_collision(Collision(v_n=v_n, v_t=v_t, omega=r_omega / sphere.r), where / "wall", record=False)
+    per_pair = pair.info.loop_seconds / n
+    per_wall = wall.info.loop_seconds / n
+    return {"collisions": n, "pair_seconds_per_collision": per_pair, "wall_seconds_per_collision": per_wall,
+            "pair_to_wall": per_pair / per_wall,
+            "pair_to_wall_per_step": (per_pair / pair.batch.nsteps) / (per_wall / wall.scene.nsteps),
+            "pair_steps": pair.batch.nsteps, "wall_steps": wall.scene.nsteps,
+            "pair_max_error": pair.max_lammps_error, "wall_max_error": wall.max_abs_error}

@@ -1,0 +1,131 @@
+"""The paper's planar theory generalized to two free spheres a and b.
+
+The wall's derivation (Eqs. 1-18) carries over if the line of centres ``n`` (unit vector
+from b to a) is held fixed during the contact. The normal overlap then obeys
+m* x'' = -kn x - gamma_n x' with the reduced mass m* = m_a m_b/(m_a + m_b), so the
+contact lasts tau = pi sqrt(m*/kn) (Eq. 16 with m -> m*). The slip at the contact point,
+
+    u' = (v_a - v_b)_t - (r_a w_a + r_b w_b) x n,
+
+feels the tangential force F_t = -kt u - gamma_t u' on a (and -F_t on b), which acts at
+lever arms r_a and r_b; so u'' = K F_t with the slip mobility
+
+    K = 1/m_a + 1/m_b + r_a^2/I_a + r_b^2/I_b.
+
+That is the wall's slip equation (Eq. 8) for a sphere of mass m* and
+alpha_eq = 1/(m* K - 1), since (1 + alpha)/(alpha m) = K then. The slip rate after the
+contact is (1 + Omega) u'(0) with the wall's Omega of (m*, alpha_eq) (Eq. 18's, or the
+exact damped one), and the tangential impulse on a is Omega u'(0)/K.
+
+1/alpha_eq = (m_b/(m_a + m_b))/alpha_a + (m_a/(m_a + m_b))/alpha_b: with equal alpha,
+alpha_eq = alpha whatever the masses and radii, so every such pair has the wall's Omega.
+As m_b grows, m* -> m_a and alpha_eq -> alpha_a: the wall is recovered.
+
+The theory is not exact: the line of centres turns by about eps = v_t tau/(r_a + r_b)
+during the contact (:mod:`.pair_exact` integrates what LAMMPS does). Arrays are per pair:
+vectors (P, 3) in LAMMPS's frame, sphere properties (P,) or scalars. Pure numpy.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from . import linear
+
+__all__ = ["reduced_mass", "slip_mobility", "equivalent_alpha", "contact_time", "restitution", "Omega",
+           "slip_rate", "predict", "angular_momentum_about_contact", "line_turn", "centrifugal_ratio"]
+
+
+def reduced_mass(m_a, m_b):
+    return m_a * m_b / (m_a + m_b)
+
+
+def slip_mobility(m_a, r_a, alpha_a, m_b, r_b, alpha_b):
+    """K = 1/m_a + 1/m_b + r_a^2/I_a + r_b^2/I_b, with I = alpha m r^2: u'' = K F_t."""
+    return 1.0 / m_a + 1.0 / m_b + 1.0 / (alpha_a * m_a) + 1.0 / (alpha_b * m_b)
+
+
+def equivalent_alpha(m_a, alpha_a, m_b, alpha_b):
+    """The alpha of the wall problem with the pair's slip equation: 1/(m* K - 1).
+
+    A mass-weighted harmonic mean of the two alphas (independent of the radii), so it lies
+    between them and equals them when they are equal.
+    """
+    return 1.0 / (m_b / (m_a + m_b) / alpha_a + m_a / (m_a + m_b) / alpha_b)
+
+
+def contact_time(m_a, m_b, kn, gamma_n=0.0):
+    """Eq. 16 with the reduced mass: pi sqrt(m*/kn) (its damped form when gamma_n > 0)."""
+    return np.vectorize(linear.collision_time)(reduced_mass(m_a, m_b), kn, gamma_n) + 0.0
+
+
+def restitution(m_a, m_b, kn, gamma_n=0.0):
+    """Normal restitution of the relative velocity (1 without damping)."""
+    return np.vectorize(linear.restitution)(reduced_mass(m_a, m_b), kn, gamma_n) + 0.0
+
+
+def Omega(m_a, alpha_a, m_b, alpha_b, kn, kt, gamma_t=0.0, gamma_n=0.0):
+    """The pair's Omega: the wall's exact Omega (Eq. 18's when undamped) of (m*, alpha_eq).
+
+    cos(pi sqrt((kt/kn) m* K)) - 1 without damping.
+    """
+    return np.vectorize(linear.Omega_exact)(reduced_mass(m_a, m_b), kn, kt,
+                                            equivalent_alpha(m_a, alpha_a, m_b, alpha_b), gamma_t, gamma_n) + 0.0
+
+
+def _column(x):
+    return np.asarray(x, dtype=float)[..., None]
+
+
+def slip_rate(n, v_a, v_b, w_a, w_b, r_a, r_b):
+    """u' = (v_a - v_b)_t - (r_a w_a + r_b w_b) x n: the contact points' relative tangential velocity."""
+    n = np.asarray(n, dtype=float)
+    v_rel = np.asarray(v_a, dtype=float) - np.asarray(v_b, dtype=float)
+    v_t = v_rel - np.sum(v_rel * n, axis=-1, keepdims=True) * n
+    spin = _column(r_a) * np.asarray(w_a, dtype=float) + _column(r_b) * np.asarray(w_b, dtype=float)
+    return v_t - np.cross(spin, n)
+
+
+def predict(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, gamma_n=0.0, gamma_t=0.0):
+    """Final (v_a, v_b, w_a, w_b) of the planar theory: each (P, 3).
+
+    Normal impulse m* (1 + e) |v_n| along n; tangential impulse Omega u'(0)/K on a, acting
+    at the contact point (-r_a n from a's centre, +r_b n from b's); spins about n unchanged.
+    """
+    n = np.asarray(n, dtype=float)
+    m_star = reduced_mass(m_a, m_b)
+    v_rel = np.asarray(v_a, dtype=float) - np.asarray(v_b, dtype=float)
+    v_n = np.sum(v_rel * n, axis=-1)
+    e = restitution(m_a, m_b, kn, gamma_n)
+    normal_impulse = _column(-m_star * (1.0 + e) * v_n) * n
+    K = slip_mobility(m_a, r_a, alpha_a, m_b, r_b, alpha_b)
+    omega = Omega(m_a, alpha_a, m_b, alpha_b, kn, kt, gamma_t, gamma_n)
+    tangential_impulse = _column(omega / K) * slip_rate(n, v_a, v_b, w_a, w_b, r_a, r_b)
+    impulse = normal_impulse + tangential_impulse
+    lever = np.cross(n, tangential_impulse)  # torque impulse on a: (-r_a n) x P_t = -r_a lever
+    v_a1 = np.asarray(v_a, dtype=float) + impulse / _column(m_a)
+    v_b1 = np.asarray(v_b, dtype=float) - impulse / _column(m_b)
+    w_a1 = np.asarray(w_a, dtype=float) - lever / _column(alpha_a * m_a * r_a)
+    w_b1 = np.asarray(w_b, dtype=float) - lever / _column(alpha_b * m_b * r_b)
+    return v_a1, v_b1, w_a1, w_b1
+
+
+def angular_momentum_about_contact(n, v, w, m, r, alpha, side):
+    """One sphere's angular momentum about the contact point: I w + m (x - c) x v.
+
+    ``side`` is +1 for a (centre at +r n from the contact point) and -1 for b. With n held
+    fixed the contact force passes through that point, so this is conserved.
+    """
+    offset = _column(side * np.asarray(r, dtype=float)) * np.asarray(n, dtype=float)
+    return _column(alpha * m * r * r) * np.asarray(w, dtype=float) + _column(m) * np.cross(offset, v)
+
+
+def line_turn(v_t, tau, r_a, r_b):
+    """eps = |v_t| tau/(r_a + r_b): about how far (radians) the line of centres turns in contact."""
+    return np.abs(v_t) * tau / (r_a + r_b)
+
+
+def centrifugal_ratio(v_t, v_n, tau, r_a, r_b):
+    """v_t^2 tau/(pi (r_a + r_b) |v_n|): the centrifugal acceleration v_t^2/(r_a + r_b) over
+    the normal spring's peak deceleration pi |v_n|/tau (it equals eps |v_t/v_n|/pi)."""
+    return v_t**2 * tau / (np.pi * (r_a + r_b) * np.abs(v_n))
