@@ -58,7 +58,7 @@ def template_dir() -> Path:
     raise FileNotFoundError(f"lammps_inputs/ not found next to {package}")
 
 
-def _num(x) -> str:
+def deck_number(x) -> str:
     """A float in full precision (repr round-trips exactly)."""
     v = float(x)
     if not math.isfinite(v):
@@ -82,7 +82,7 @@ def template_environment() -> jinja2.Environment:
         keep_trailing_newline=True,
         autoescape=False,
     )
-    env.filters["num"] = _num
+    env.filters["num"] = deck_number
     return env
 
 
@@ -227,9 +227,9 @@ def _data_file(scene: Collision, state: dict, rigid: bool, box: dict) -> str:
     return (
         f"spinbounce {__version__}: {n} spheres for {DECK_NAME}\n\n"
         f"{natoms} atoms\n{2 if rigid else 1} atom types\n\n"
-        f"{_num(box['xlo'])} {_num(box['xhi'])} xlo xhi\n"
-        f"{_num(box['ylo'])} {_num(box['yhi'])} ylo yhi\n"
-        f"0.0 {_num(box['zhi'])} zlo zhi\n\n"
+        f"{deck_number(box['xlo'])} {deck_number(box['xhi'])} xlo xhi\n"
+        f"{deck_number(box['ylo'])} {deck_number(box['yhi'])} ylo yhi\n"
+        f"0.0 {deck_number(box['zhi'])} zlo zhi\n\n"
         f"Atoms # sphere\n\n{atoms}\nVelocities\n\n{vel}"
     )
 

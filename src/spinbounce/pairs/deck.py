@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import __version__
-from ..lammps.decks import Deck, _environment, _num, wall_parameters
+from ..lammps.decks import Deck, template_environment, deck_number, wall_parameters
 from .scene import PairBatch
 
 __all__ = ["PairDeck", "render_pairs", "DECK_NAME", "DUMP_NAME", "DATA_FILE", "BODIES_FILE"]
@@ -74,7 +74,7 @@ def _number_atoms(records: list[dict]) -> tuple[list[dict], list[dict]]:
 
 
 def _row(*values) -> str:
-    return " ".join(str(v) if isinstance(v, int) else _num(v) for v in values)
+    return " ".join(str(v) if isinstance(v, int) else deck_number(v) for v in values)
 
 
 def _data_file(rigid: list[dict], free: list[dict], box: float) -> str:
@@ -91,7 +91,7 @@ def _data_file(rigid: list[dict], free: list[dict], box: float) -> str:
         velocities.append(_row(point, *record["v"], 0.0, 0.0, 0.0))
     natoms = len(atoms)
     return (f"spinbounce {__version__}: sphere pairs for {DECK_NAME}\n\n{natoms} atoms\n3 atom types\n\n"
-            + "".join(f"0.0 {_num(box)} {axis}lo {axis}hi\n" for axis in "xyz")
+            + "".join(f"0.0 {deck_number(box)} {axis}lo {axis}hi\n" for axis in "xyz")
             + "\nAtoms # sphere\n\n" + "\n".join(sorted(atoms, key=lambda r: int(r.split()[0])))
             + "\n\nVelocities\n\n" + "\n".join(sorted(velocities, key=lambda r: int(r.split()[0]))) + "\n")
 
@@ -116,7 +116,7 @@ def render_pairs(batch: PairBatch) -> PairDeck:
     files = {DATA_FILE: _data_file(rigid, free, grid * cell)}
     if rigid:
         files[BODIES_FILE] = _bodies_file(rigid)
-    text = _environment().get_template("pair.lmp.j2").render(
+    text = template_environment().get_template("pair.lmp.j2").render(
         version=__version__, deck_name=DECK_NAME, npairs=batch.n, grid=grid, cell=cell,
         nsteps=batch.nsteps, dt=batch.dt, skin=0.2 * smallest, binsize=cell / 2, data_file=DATA_FILE,
         contact=batch.contact, wall=wall, nfree=len(free), nrigid=len(rigid),
