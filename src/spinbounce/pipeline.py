@@ -98,8 +98,14 @@ FRAME_COLUMNS = ("x", "y", "z", "vx", "vy", "vz", "omegax", "omegay", "omegaz")
 
 
 def _probe_errors(scene: Collision, folder: Path) -> np.ndarray:
-    """A probe's rows' relative errors (:func:`stepping.tune`): a plain run, nothing recorded."""
-    return run_collision(scene, folder, atoms="library", record=False).table["error"].to_numpy()
+    """A probe's rows' relative errors (:func:`stepping.tune`): a plain run, nothing recorded;
+    inf if the step was too coarse for the run to finish the contact."""
+    try:
+        return run_collision(scene, folder, atoms="library", record=False).table["error"].to_numpy()
+    except ResultError as exc:
+        if "had not finished" not in str(exc):
+            raise
+        return np.array([np.inf])
 
 
 def _check_finished(scene: Collision, columns: dict, source: Path) -> None:

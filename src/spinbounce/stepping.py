@@ -29,6 +29,8 @@ __all__ = ["StepChoice", "needs_probe", "tune", "PROBE_SPHERES", "SAFETY"]
 PROBE_SPHERES = 32
 #: Errors below this are rounding: a probe that sees none keeps the rule's step.
 ROUNDING = 1e-13
+#: How often a probe whose run cannot see the contact's end is refined before giving up.
+MAX_REFINEMENTS = 8
 
 
 def needs_probe(scene: Collision) -> bool:
@@ -54,7 +56,8 @@ def tune(scene: Collision, out: Path, run: Callable, probe_states: Collision | N
          target: float = ACCURACY) -> tuple[Collision, StepChoice]:
     """The scene at the step its accuracy needs (unchanged where the a priori rule holds).
 
-    ``run(scene, folder)`` runs a probe scene and returns its rows' relative errors;
+    ``run(scene, folder)`` runs a probe scene and returns its rows' relative errors (inf
+    where the run was too coarse to finish the contact);
     ``probe_states``: the states to probe with (a sweep's group: the same for every chunk,
     so every chunk of a group gets the same step), by default the scene's own.
     """
@@ -63,16 +66,26 @@ def tune(scene: Collision, out: Path, run: Callable, probe_states: Collision | N
         return scene, StepChoice(scene.dt, method, target)
     t_contact = _contact_time(scene)
     coarse_steps = steps_per_contact(t_contact, scene.dt)
-    errors = []
-    for k, steps in enumerate((coarse_steps, 2 * coarse_steps)):
-        probe = _probe_scene(scene, mid_step_dt(t_contact, steps), probe_states)
-        errors.append(float(np.max(run(probe, Path(out) / f"probe-{k}"))))
+
+    def probe(steps: int, k: int) -> float:
+        return float(np.max(run(_probe_scene(scene, mid_step_dt(t_contact, steps), probe_states),
+                                Path(out) / f"probe-{k}")))
+
+    # a step too coarse to see the contact end (a slow exit: strong normal damping) counts as
+    # an infinite error: refine until both probes finish
+    for k in range(MAX_REFINEMENTS):
+        errors = [probe(coarse_steps, 2 * k), probe(2 * coarse_steps, 2 * k + 1)]
+        if all(math.isfinite(e) for e in errors):
+            break
+        coarse_steps *= 2
+    else:
+        raise RuntimeError(f"no probe of {scene.model} finished its contact within {coarse_steps} steps")
     coarse, fine = errors
-    if fine <= ROUNDING:
-        return scene, StepChoice(scene.dt, "probe: exact at the rule's step", target, None, tuple(errors), fine)
-    order = min(2.0, max(1.0, math.log2(coarse / fine))) if coarse > fine else 1.0
-    steps = 2 * coarse_steps * (fine / (SAFETY * target)) ** (1.0 / order)
-    steps = max(coarse_steps, math.ceil(steps))
-    predicted = fine * (2 * coarse_steps / steps) ** order
+    if fine <= ROUNDING:  # nothing to resolve: the (finishing) coarse step will do
+        order, steps, predicted = None, coarse_steps, fine
+    else:
+        order = min(2.0, max(1.0, math.log2(coarse / fine))) if coarse > fine else 1.0
+        steps = max(coarse_steps, math.ceil(2 * coarse_steps * (fine / (SAFETY * target)) ** (1.0 / order)))
+        predicted = fine * (2 * coarse_steps / steps) ** order
     tuned = Collision(scene.model, dt=mid_step_dt(t_contact, steps), **{n: getattr(scene, n) for n in STATE_ARGS})
     return tuned, StepChoice(tuned.dt, "probe", target, order, tuple(errors), predicted)

