@@ -1,9 +1,18 @@
 """spinbounce: LAMMPS reproduction of a frictional sphere's scattering from a flat wall.
 
+The Python API (:mod:`spinbounce.api`) is at the top::
+
+    import spinbounce
+    print(spinbounce.collide(v_n=-1.0, v_t=1.0, omega=0.0, mu=0.3))
+    spinbounce.theory(gamma_t=0.5)      # the package of theories is also callable
+    rows = spinbounce.sweep(n=1000, out="runs/sweep", kt_over_kn=[0.1, 0.3])
+    spinbounce.fit(rows)
+
 Importing the package never imports LAMMPS; only :mod:`spinbounce.lammps.runner` does, when a
-run starts.
+run starts, and the API's modules load on first use.
 """
 
+import importlib
 from importlib.metadata import PackageNotFoundError, version
 
 try:
@@ -11,4 +20,16 @@ try:
 except PackageNotFoundError:  # running from a source tree that is not installed
     __version__ = "0+unknown"
 
-__all__ = ["__version__"]
+__all__ = ["__version__", "collide", "theory", "sweep", "fit", "model", "parameters"]
+
+_API = ("collide", "sweep", "fit", "model")
+
+
+def __getattr__(name: str):
+    if name in _API:
+        return getattr(importlib.import_module(".api", __name__), name)
+    if name == "theory":
+        return importlib.import_module(".theory", __name__)
+    if name == "parameters":  # the declaration: every parameter's name, unit, default and range
+        return importlib.import_module(".model.parameters", __name__)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

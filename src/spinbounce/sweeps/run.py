@@ -164,6 +164,25 @@ def _claim(out: Path, spec: SweepSpec) -> None:
         write_atomic(record, to_json({"scene_hash": spec.digest, "spec": spec.raw, "spinbounce_version": __version__}))
 
 
+def _context():
+    """Workers forked while this process has not loaded LAMMPS (a script without a ``__main__``
+    guard works then); spawned once it has, since a forked MPI library is not safe."""
+    return multiprocessing.get_context("spawn" if "lammps" in sys.modules else "fork")
+
+
+def _die_with_parent() -> None:
+    """A worker ends when its parent does, even after SIGKILL (Linux's parent-death signal)."""
+    import ctypes
+    import signal
+
+    try:
+        ctypes.CDLL("libc.so.6", use_errno=True).prctl(1, signal.SIGTERM)  # PR_SET_PDEATHSIG = 1
+    except OSError:  # not Linux: workers then end when they find their task queue gone
+        pass
+    if os.getppid() == 1:  # the parent died before the call above
+        os._exit(1)
+
+
 def run_sweep(spec: SweepSpec, out: Path, workers: int | None = None, log=print) -> Path:
     """Run every chunk that has no Parquet file yet; return the dataset folder."""
     out = Path(out)
@@ -183,8 +202,8 @@ def run_sweep(spec: SweepSpec, out: Path, workers: int | None = None, log=print)
                 if bar is not None:
                     bar.update(n)
         else:
-            context = multiprocessing.get_context("spawn")
-            with concurrent.futures.ProcessPoolExecutor(max_workers=workers, mp_context=context) as pool:
+            with concurrent.futures.ProcessPoolExecutor(max_workers=workers, mp_context=_context(),
+                                                        initializer=_die_with_parent) as pool:
                 futures = [pool.submit(run_chunk, spec.raw, str(out), *c) for c in todo]
                 try:
                     for future in concurrent.futures.as_completed(futures):
