@@ -108,7 +108,8 @@ def test_one_timestep_rule():
 def test_one_place_decides_which_theory_applies():
     # which theory a model gets is decided in theory/choose.py; elsewhere mu is read only to
     # write the deck (decks: no cap is 1e12), to refuse a scene no theory covers (a frozen
-    # contact, a tolerance ladder), or inside the oracle's own equations
-    deciders = _files_matching(r"if [\w.]*\.mu is (not )?None")
-    allowed = {"theory/choose.py", "model/scenes.py", "lammps/decks.py", "theory/oracle.py", "studies/tolerance.py"}
+    # contact, a tolerance ladder), or inside a theory's own equations (oracle, classic wall)
+    deciders = _files_matching(r"if [\w .]*\. mu is (not )?None")
+    allowed = {"theory/choose.py", "model/scenes.py", "lammps/decks.py", "theory/oracle.py", "theory/classic.py",
+               "studies/tolerance.py"}
     assert "theory/choose.py" in deciders and deciders <= allowed, deciders
