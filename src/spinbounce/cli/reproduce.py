@@ -8,7 +8,8 @@ from pathlib import Path
 
 from ..studies.claims import Claim, counts, evaluate_claims, write_claims
 
-HELP = "regenerate the paper's figures 2-7 and check its claims (figures/ and figures/CLAIMS.md)"
+HELP = ("regenerate the paper's figures 2-7 and check its claims (into a folder of their own; "
+        "--out figures updates the repository's stored ones)")
 
 
 @dataclass
@@ -24,8 +25,9 @@ class Reproduction:
 
 def register(sub) -> None:
     p = sub.add_parser("reproduce", help=HELP, description=HELP + ".")
-    p.add_argument("--out", type=Path, default=Path("figures"), metavar="DIR",
-                   help="figures, their metadata and CLAIMS.md (default %(default)s)")
+    p.add_argument("--out", type=Path, default=Path("spinbounce-reproduced"), metavar="DIR",
+                   help="figures, their metadata and CLAIMS.md (default %(default)s; the repository keeps its "
+                        "own in figures/)")
     p.add_argument("--run-dir", type=Path, default=Path("spinbounce-runs") / "reproduce", metavar="DIR",
                    help="LAMMPS run folders of the figures and claims (default %(default)s)")
     p.set_defaults(handler=run)
