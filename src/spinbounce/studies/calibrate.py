@@ -107,9 +107,10 @@ def _free_axis(t: Targets, kn: float, gamma_n: float):
     tau = theory.collision_time(t.m, kn, gamma_n, not t.limit_damping)
     if t.kt_over_kn is not None:
         kt = t.kt_over_kn * kn
-        # gamma_t up to a slip damping rate zeta = 50/tau: beyond it the ratio sits at its limit 0
-        top = 50.0 / tau * 2.0 * t.alpha * t.m / (1.0 + t.alpha)
-        grid = np.concatenate([[0.0], np.geomspace(top * 1e-6, top, SCAN_POINTS)])
+        # gamma_t up to a slip damping rate zeta = 1e7/tau, where the ratio is within about
+        # Q tau/(2 zeta) ~ 1e-7 of its overdamped limit 0
+        top = 1e7 / tau * 2.0 * t.alpha * t.m / (1.0 + t.alpha)
+        grid = np.concatenate([[0.0], np.geomspace(top * 1e-13, top, SCAN_POINTS)])
         return "gamma_t", (lambda g: _slip_ratio(t, kn, gamma_n, kt, g)), grid
     # kt up to a slip phase sqrt(Q) tau of 2 pi: one full turn holds the first branch's extremes
     top = (2.0 * math.pi / tau) ** 2 * t.m * t.alpha / (1.0 + t.alpha)
@@ -117,28 +118,32 @@ def _free_axis(t: Targets, kn: float, gamma_n: float):
     return "kt", (lambda k: _slip_ratio(t, kn, gamma_n, k, t.gamma_t)), grid
 
 
-def _extreme(f, grid: np.ndarray, values: np.ndarray, k: int, sign: float) -> float:
-    """The scan's extreme at index k, polished between its neighbours."""
+def _polished(f, grid: np.ndarray, values: np.ndarray, k: int, sign: float) -> float:
+    """Where the scan's extreme at index k really is, between its neighbours."""
     lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, len(grid) - 1)]
-    if hi <= lo:
-        return float(values[k])
     best = minimize_scalar(lambda x: sign * f(x), bounds=(lo, hi), method="bounded", options={"xatol": 1e-12 * hi})
-    return float(min(sign * best.fun, sign * values[k]) * sign)
+    return float(best.x) if best.fun < sign * values[k] else float(grid[k])
 
 
-def tangential_range(t: Targets) -> tuple[float, float, str]:
-    """(lowest, highest) beta reachable with what ``t`` holds, and the parameter solved for.
-
-    The slip ratio's extremes along the free parameter, from the scan and polished; beta = -ratio.
-    """
+def _scan(t: Targets):
+    """(name, f, grid, f on the grid): the free parameter's scan, its two extremes polished and
+    put in, so that the grid reaches every value the range names."""
     kn, gamma_n = _normal(t)
     name, f, grid = _free_axis(t, kn, gamma_n)
     values = np.array([f(x) for x in grid])
-    low = _extreme(f, grid, values, int(np.argmin(values)), 1.0)
-    high = _extreme(f, grid, values, int(np.argmax(values)), -1.0)
-    if name == "gamma_t":
-        high = max(high, 0.0)  # the overdamped limit: the slip rate dies out, ratio -> 0
-        low = min(low, 0.0)
+    extremes = [_polished(f, grid, values, int(np.argmin(values)), 1.0),
+                _polished(f, grid, values, int(np.argmax(values)), -1.0)]
+    grid = np.unique(np.concatenate([grid, extremes]))
+    return name, f, grid, np.array([f(x) for x in grid])
+
+
+def tangential_range(t: Targets) -> tuple[float, float, str]:
+    """(lowest, highest) beta reachable with what ``t`` holds, and the parameter solved for:
+    the slip ratio's extremes along the free parameter (beta = -ratio)."""
+    name, _, _, values = _scan(t)
+    low, high = float(values.min()), float(values.max())
+    if name == "gamma_t":  # the overdamped limit: the slip rate dies out, ratio -> 0
+        low, high = min(low, 0.0), max(high, 0.0)
     return -high, -low, name
 
 
@@ -146,18 +151,19 @@ def _tangential(t: Targets, kn: float, gamma_n: float) -> tuple[float, float]:
     """(kt, gamma_t) giving the slip ratio -beta: the first root along the free parameter."""
     if not -1.0 <= t.beta <= 1.0:
         raise Unreachable("beta", t.beta, "must lie in [-1, 1]: |u'(out)| <= |u'(in)| in a passive contact")
-    name, f, grid = _free_axis(t, kn, gamma_n)
     target = -t.beta
-    if name == "kt" and t.gamma_t == 0.0:  # cos(sqrt(Q) tau) = -beta on the first branch
+    if t.kt_over_kn is None and t.gamma_t == 0.0:  # cos(sqrt(Q) tau) = -beta on the first branch
         tau = theory.collision_time(t.m, kn, gamma_n, not t.limit_damping)
         return t.m * t.alpha / (1.0 + t.alpha) * (math.acos(target) / tau) ** 2, 0.0
-    values = np.array([f(x) for x in grid]) - target
+    name, f, grid, values = _scan(t)
+    values = values - target
     crossing = np.flatnonzero(np.sign(values[:-1]) * np.sign(values[1:]) <= 0.0)
     if crossing.size == 0:
         low, high, _ = tangential_range(t)
         held = (f"kt/kn = {t.kt_over_kn:g}" if name == "gamma_t" else f"gamma_t = {t.gamma_t:g}")
+        limit = " (beta = 0 only as gamma_t grows without bound)" if name == "gamma_t" else ""
         raise Unreachable("beta", t.beta, f"with {held} (e = {t.e:g}, t_c = {t.contact_time:g}) the linear model "
-                          f"reaches beta in [{low:.6g}, {high:.6g}] by varying {name}")
+                          f"reaches beta in [{low:.6g}, {high:.6g}] by varying {name}{limit}")
     k = int(crossing[0])
     x = grid[k] if values[k] == 0.0 else brentq(lambda v: f(v) - target, grid[k], grid[k + 1], xtol=1e-15, rtol=1e-14)
     return (x, t.gamma_t) if name == "kt" else (t.kt_over_kn * kn, x)
