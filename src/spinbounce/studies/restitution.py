@@ -30,7 +30,7 @@ from .validation.digitised import KHARAZ_2001
 from .validation.materials import gamma_n_for_restitution_cut
 
 __all__ = ["Curve", "QUANTITY_LABELS", "CURVES", "angles", "quantities", "run_curve", "fit_kharaz",
-           "kharaz_points", "make_figure", "KHARAZ_SPEED", "KHARAZ_RADIUS", "KHARAZ_E"]
+           "kharaz_points", "kharaz_residuals", "kharaz_model", "make_figure", "KHARAZ_SPEED", "KHARAZ_RADIUS", "KHARAZ_E"]
 
 #: Kharaz's impact speed (m/s) and sphere radius (m): Chung & Ooi Test 4 (validation/cases.py).
 KHARAZ_SPEED, KHARAZ_RADIUS = 3.9, 2.5e-3
@@ -115,26 +115,26 @@ def kharaz_model(kt_over_kn: float, mu: float) -> ContactModel:
 FIT_STARTS = ((0.1, 0.1), (0.4, 0.1), (0.86, 0.092), (1.5, 0.1))
 
 
-def fit_kharaz(starts=FIT_STARTS) -> dict:
-    """(kt/kn, mu) of :func:`kharaz_model` that fit Kharaz's points best, by least squares from
-    each start (the best kept).
+def kharaz_residuals(kt_over_kn: float, mu: float) -> np.ndarray:
+    """Theory minus Kharaz's points for :func:`kharaz_model`: e_t and the spin r omega'/|v| as they
+    are, the rebound angle in radians, so each is of order one (theory: the Coulomb oracle)."""
+    model = kharaz_model(kt_over_kn, mu)
+    out = []
+    for name, points in kharaz_points().items():
+        initial = _states(points["theta"])
+        got = quantities(initial, choose.predict(model, initial))[name]
+        scale = math.pi / 180.0 if name == "rebound_centre" else 1.0
+        out.append((got - points["values"]) * scale)
+    return np.concatenate(out)
 
-    Residuals: e_t as is, the spin r omega'/|v| as is, the rebound angle in radians, so each is
-    of order one; every digitised point weighs the same. Theory: the Coulomb oracle.
-    """
+
+def fit_kharaz(starts=FIT_STARTS) -> dict:
+    """(kt/kn, mu) of :func:`kharaz_model` that fit Kharaz's points best: least squares on
+    :func:`kharaz_residuals` (every digitised point weighs the same) from each start, the best kept."""
     from scipy.optimize import least_squares
 
-    data = kharaz_points()
-
     def residuals(p):
-        model = kharaz_model(*p)
-        out = []
-        for name, points in data.items():
-            initial = _states(points["theta"])
-            got = quantities(initial, choose.predict(model, initial))[name]
-            scale = math.pi / 180.0 if name == "rebound_centre" else 1.0
-            out.append((got - points["values"]) * scale)
-        return np.concatenate(out)
+        return kharaz_residuals(*p)
 
     fits = [least_squares(residuals, start, bounds=([0.01, 0.01], [2.0, 1.0]), x_scale=[0.1, 0.01], xtol=1e-6)
             for start in starts]

@@ -317,14 +317,16 @@ def make_figure(out: Path, runs: Path) -> dict:
         path_ax, energy_ax, error_ax = axes[0]
         bounce = np.arange(FIGURE_BOUNCES + 1)
         for k, case in enumerate(cases):
-            colour = f"C{k}"
+            colour, marker = f"C{k}", "osD^"[k]
             lam, th = case["lammps"], case["theory"]
             alpha = case["model"].alpha
             path_ax.plot(th[:, 2], th[:, 1], "-", color=colour, lw=0.8)
-            path_ax.plot(lam[:, 2], lam[:, 1], "o", color=colour, ms=3, mfc="none", label=case["label"])
+            path_ax.plot(lam[:, 2], lam[:, 1], marker, color=colour, ms=3, mfc="none", label=case["label"])
             energy = 0.5 * (lam[:, 1] ** 2 + alpha * lam[:, 2] ** 2)
-            energy_ax.semilogy(bounce, np.maximum(energy, 1e-30), "o-", color=colour, ms=3, lw=0.8)
-            error_ax.semilogy(bounce[1:], np.abs(lam - th).max(axis=1)[1:], "o-", color=colour, ms=3, lw=0.8)
+            energy_ax.semilogy(bounce, np.maximum(energy, 1e-30), marker + "-", color=colour, ms=3, lw=0.8, mfc="none")
+            # the two undamped cases share their error (v_n's, the same in both): open markers show both
+            error_ax.semilogy(bounce[1:], np.abs(lam - th).max(axis=1)[1:], marker + "-", color=colour, ms=3, lw=0.8,
+                              mfc="none")
         path_ax.set(xlabel=r"$r\omega$ (bottom wall's frame)", ylabel=r"$v_t$",
                     title="(a) tangential state after each bounce")
         path_ax.axhline(0.0, color="0.7", lw=0.5)
