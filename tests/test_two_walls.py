@@ -109,3 +109,23 @@ def test_lammps_damped_and_capped_walls_follow_the_theory_bounce_by_bounce(tmp_p
     assert np.abs(result.states - expected).max() < bound
     # and both lose the tangential state, as only the still state rolls on both walls
     assert np.abs(result.states[-1, :, 1:]).max() < 1e-4
+
+
+@pytest.mark.lammps
+def test_the_command_writes_the_figure_with_its_provenance(tmp_path, capsys):
+    import argparse
+    import json
+
+    from spinbounce.cli import two_walls as command
+
+    parser = argparse.ArgumentParser(prog="spinbounce")
+    command.register(parser.add_subparsers(dest="command"))
+    args = parser.parse_args(["two-walls", "--out", str(tmp_path), "--json"])
+    assert args.handler(args) == 0
+    report = json.loads(capsys.readouterr().out)
+    assert {p.name for p in tmp_path.iterdir()} >= {"two_walls.png", "two_walls.pdf", "two_walls.json"}
+    record = json.loads((tmp_path / "two_walls.json").read_text())
+    assert record["lammps_version"] and len(record["cases"]) == len(report["cases"]) == 4
+    # the same bounds as the tests above: 1e-4 undamped, 6e-4 damped or capped (first order)
+    for case in record["cases"]:
+        assert case["max_abs_deviation"] < (1e-4 if case["theory"] == "linear" else 6e-4)

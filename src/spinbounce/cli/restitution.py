@@ -6,6 +6,7 @@ import json
 import tempfile
 from pathlib import Path
 
+from ..records import json_ready
 from .options import json_flag
 
 HELP = ("map normal and tangential restitution, rebound angle and spin against the incidence angle (Hooke, Hertz, "
@@ -37,9 +38,9 @@ def run(args) -> int:
         meta = make_figure(args.out, args.runs)
     fit = meta["kharaz_fit"]
     if args.json:
-        print(json.dumps({"out": str(args.out), "files": meta["files"], "kharaz_fit": fit,
-                          "curves": [{k: c[k] for k in ("label", "theory_kind", "max_abs_state_deviation")}
-                                     for c in meta["curves"]]}, indent=2, default=float))
+        print(json.dumps(json_ready({"out": str(args.out), "files": meta["files"], "kharaz_fit": fit,
+                                     "curves": [{k: c[k] for k in ("label", "theory_kind", "max_abs_state_deviation")}
+                                                for c in meta["curves"]]}), indent=2))
         return 0
     for c in meta["curves"]:
         print(f"{c['label']:<60} ({c['theory_kind']}): largest |LAMMPS - theory| in the state "

@@ -7,6 +7,7 @@ import sys
 import tempfile
 from pathlib import Path
 
+from ..records import json_ready
 from .options import json_flag
 
 HELP = "bounce a sphere many times between two parallel walls in LAMMPS, against the product of the matrices"
@@ -39,7 +40,7 @@ def run(args) -> int:
     summary = [{"case": c["label"], "theory": c["theory"], "max_abs_deviation": c["max_abs_deviation"],
                 "final_state_lammps": c["lammps_path"][-1]} for c in meta["cases"]]
     if args.json:
-        print(json.dumps({"out": str(args.out), "files": meta["files"], "cases": summary}, indent=2, default=float))
+        print(json.dumps(json_ready({"out": str(args.out), "files": meta["files"], "cases": summary}), indent=2))
         return 0
     for s in summary:
         final = ", ".join(f"{x:.3g}" for x in s["final_state_lammps"])
