@@ -1,0 +1,94 @@
+"""spinbounce calibrate: from a bounce's restitutions and contact time to LAMMPS parameters."""
+
+from __future__ import annotations
+
+import json
+import tempfile
+from pathlib import Path
+
+from ..model.parameters import by_name
+from .options import json_flag, number, optional_number
+
+HELP = ("turn targets (normal restitution e, tangential restitution beta or Omega, mu, contact time) into "
+        "LAMMPS wall/gran and pair granular parameters, and check them in LAMMPS")
+
+
+def register(sub) -> None:
+    p = sub.add_parser(
+        "calibrate", help=HELP,
+        description=(f"{HELP}. Inverts the exact linear theory (docs/theory.md, 'Calibration'): kn and gamma_n from "
+                     "e and the contact time, kt (gamma_t held, default 0) or gamma_t (--kt-over-kn held) from the "
+                     "tangential restitution of the contact point, beta = -u'(out)/u'(in) = -(1 + Omega), which a "
+                     "sticking collision obeys. Unreachable targets are refused with the reachable range. Then runs "
+                     "one LAMMPS bounce with the parameters and prints what it achieved."),
+    )
+    t = p.add_argument_group("targets")
+    t.add_argument("--e", type=number, required=True, help="normal restitution, in (0, 1]")
+    t.add_argument("--contact-time", type=number, required=True, metavar="T",
+                   help="how long the sphere overlaps the wall (time units)")
+    tangential = t.add_mutually_exclusive_group(required=True)
+    tangential.add_argument("--beta", type=number, help="tangential restitution of the contact point, in [-1, 1]")
+    tangential.add_argument("--Omega", type=number, help="Eq. 18's Omega, in [-2, 0] (beta = -(1 + Omega))")
+    t.add_argument("--mu", type=optional_number, default=None, help="friction coefficient (default: none, no cap)")
+    s = p.add_argument_group("sphere and what is held")
+    for name in ("m", "r", "alpha"):
+        parameter = by_name(name)
+        s.add_argument(*parameter.flags, dest=name, type=number, default=parameter.default,
+                       help=f"{parameter.meaning} (default %(default)s)")
+    s.add_argument("--limit-damping", action="store_true", help="never let the normal force pull (LAMMPS's keyword)")
+    held = s.add_mutually_exclusive_group()
+    held.add_argument("--gamma-t", type=number, default=None, help="hold the tangential damping (default 0), solve kt")
+    held.add_argument("--kt-over-kn", type=number, default=None, help="hold kt/kn, solve gamma_t")
+    p.add_argument("--no-run", action="store_true", help="print the parameters only; do not run LAMMPS")
+    p.add_argument("--runs", type=Path, default=None, metavar="DIR",
+                   help="keep the LAMMPS run here (default: a temporary folder, removed)")
+    json_flag(p)
+    p.set_defaults(handler=run)
+
+
+def _targets(args):
+    from ..studies.calibrate import Targets
+
+    beta = args.beta if args.beta is not None else -(1.0 + args.Omega)
+    gamma_t = None if args.kt_over_kn is not None else (args.gamma_t or 0.0)
+    return Targets(e=args.e, contact_time=args.contact_time, beta=beta, mu=args.mu, m=args.m, r=args.r,
+                   alpha=args.alpha, limit_damping=args.limit_damping, gamma_t=gamma_t, kt_over_kn=args.kt_over_kn)
+
+
+def _measured(calibration, runs: Path | None) -> dict:
+    from ..studies.calibrate import measure
+
+    if runs is not None:
+        return measure([calibration], runs)[0]
+    with tempfile.TemporaryDirectory(prefix="spinbounce-calibrate-") as folder:
+        return {**measure([calibration], Path(folder))[0], "deck": None}
+
+
+def run(args) -> int:
+    from ..studies.calibrate import calibrate, fix_line, pair_lines
+
+    calibration = calibrate(_targets(args))
+    model = calibration.model
+    report = {"targets": {"e": args.e, "beta": calibration.targets.beta, "contact_time": args.contact_time,
+                          "mu": args.mu},
+              "parameters": {k: getattr(model, k) for k in ("m", "r", "alpha", "kn", "kt", "gamma_n", "gamma_t", "mu",
+                                                            "limit_damping")},
+              "fix_wall_gran": fix_line(model), "pair_granular": list(pair_lines(model)),
+              "theory": calibration.achieved_theory()}
+    if not args.no_run:
+        report["lammps"] = _measured(calibration, args.runs)
+    if args.json:
+        print(json.dumps(report, indent=2))
+        return 0
+    print("parameters: " + ", ".join(f"{k} = {v!r}" for k, v in report["parameters"].items()))
+    print(f"wall (z = 0):\n  {report['fix_wall_gran']}")
+    print("two equal spheres (kn, gamma_n, kt, gamma_t halved: reduced mass m/2):\n  "
+          + "\n  ".join(report["pair_granular"]))
+    rows = [("e", "e"), ("beta", "beta"), ("contact time", "contact_time")]
+    print(f"{'':<14}{'target':>14}{'theory':>14}" + ("" if args.no_run else f"{'LAMMPS':>14}"))
+    for label, key in rows:
+        line = f"{label:<14}{report['targets'][key]:>14.8g}{report['theory'][key]:>14.8g}"
+        print(line + ("" if args.no_run else f"{report['lammps'][key]:>14.8g}"))
+    if args.mu is not None and not args.no_run:
+        print("(LAMMPS's beta from a sticking bounce: slip u'(0) = 1e-3 mu |v_n|)")
+    return 0
