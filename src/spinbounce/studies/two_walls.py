@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import __version__
-from ..lammps.decks import Deck, _environment, wall_parameters
+from ..lammps.decks import Deck, template_environment, wall_parameters
 from ..lammps.dumps import read_dump
 from ..lammps.runner import run_deck
 from ..model.parameters import SceneError
@@ -203,7 +203,7 @@ def render_two_walls(scene: TwoWalls) -> Deck:
            "bounces": scene.bounces, "spheres": spheres, "r": r, "m": scene.models[0].m, "groups": groups,
            "box": {"xlo": -span, "xhi": span, "ylo": -span, "yhi": span, "zlo": 0.0, "zhi": scene.gap},
            "every": every, "dump_name": DUMP_NAME, "dt": scene.dt, "run_steps": math.ceil(end / scene.dt)}
-    return Deck(text=_environment().get_template("two_walls.lmp.j2").render(**ctx), dump=DUMP_NAME)
+    return Deck(text=template_environment().get_template("two_walls.lmp.j2").render(**ctx), dump=DUMP_NAME)
 
 
 @dataclass(frozen=True)
