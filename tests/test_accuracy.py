@@ -34,7 +34,8 @@ from spinbounce.studies.accuracy import (
     steps_for,
 )
 from spinbounce.cli import accuracy as accuracy_cli
-from spinbounce.model.scenes import STATE_3D, Collision, ContactModel, Frozen
+from spinbounce.model.timestep import ACCURACY
+from spinbounce.model.scenes import HERTZ_STEPS_PER_HALF_PERIOD, STATE_3D, Collision, ContactModel
 from spinbounce.studies.tolerance import raw_orders
 from spinbounce.theory import oracle
 
@@ -88,16 +89,40 @@ def test_steps_for_interpolates_inside_and_extrapolates_outside():
     assert flagged and coarse == pytest.approx(20.0)  # below the ladder: the fitted line, marked
 
 
-def test_ladder_steps_match_the_scenes_defaults():
+def _mid_step_count(t_end, dt):
+    """M of dt = t_end/(M + 1/2): a whole number exactly when the contact ends mid-step."""
+    return t_end / dt - 0.5
+
+
+def test_ladder_rungs_and_default_steps_end_mid_step():
+    """The ladder's mid-step rungs and the scenes' default step both put the contact's end in
+    the middle of a step (to rounding: 1e-9 of M), each rung resolving the fastest mode with at
+    least its n steps per half-period; the Hertzian batch's default is the ANY rung at its
+    fixed resolution, the only fixed one left."""
+    for model in (ContactModel(), ContactModel(kt=50.0), ContactModel(gamma_n=1.0)):
+        for n in (32, 250, 1000):
+            m = _mid_step_count(model.tau, collision_dt(model, n, MID))
+            assert m == pytest.approx(round(m), abs=1e-9)
+            assert math.pi / model.fastest_rate(frozen=False) / collision_dt(model, n, MID) >= n
+        m = _mid_step_count(model.tau, Collision(model).dt)
+        assert m == pytest.approx(round(m), abs=1e-9)
     m = ContactModel()
-    assert collision_dt(m, 250, MID) == Collision(m).dt
     assert collision_dt(m, 250, EDGE) == pytest.approx(m.tau / 250)
-    damped = ContactModel(gamma_t=1.0)
-    assert frozen_dt(damped, 1000) == Frozen(damped, z=0.1, v_t=1.0, omega=0.0, t_end=10.0).dt
+    steps = 10.0 / frozen_dt(ContactModel(gamma_t=1.0), 1000)
+    assert steps == pytest.approx(round(steps), abs=1e-9)
     hertz = ContactModel(normal="hertz")
-    assert collision_dt(hertz, 64000, ANY, speed=0.8) == Collision(hertz, v_n=[-0.8, -0.1]).dt
+    assert collision_dt(hertz, HERTZ_STEPS_PER_HALF_PERIOD, ANY, speed=0.8) == Collision(hertz, v_n=[-0.8, -0.1]).dt
     with pytest.raises(ValueError, match="form"):
         collision_dt(m, 250, FROZEN)
+
+
+def test_no_default_step_ends_on_a_step_and_unknown_cases_are_refused(tmp_path):
+    (case,) = [c for c in cases() if c.name == "defaults"]
+    with pytest.raises(ValueError, match="no default step takes it"):
+        accuracy.run_default(case, EDGE, tmp_path)
+    with pytest.raises(ValueError, match="unknown case"):
+        accuracy.default_step_table(["defaults", "no_such_case"], runs=tmp_path)
+    assert not any(tmp_path.iterdir())  # refused before any run
 
 
 def test_the_cases_cover_the_brief_and_are_valid_scenes():
@@ -251,10 +276,13 @@ def test_the_coulomb_case_is_measured_against_the_oracle(tmp_path):
 
 @pytest.mark.lammps
 def test_default_error_is_the_normal_over_kick(quick):
-    """At the defaults the largest error is v_n's, |v_n| (w_n dt)^2/8 with the end mid-step."""
+    """At the defaults the largest error is v_n's, |v_n| (w_n dt)^2/8 with the end mid-step, at
+    the scenes' own default step. The next term of the over-kick is smaller by about (w_n dt)^2
+    (3e-4 at the default step), hence rel=1e-3."""
     _, _, record = quick
     row = _summary(record, "defaults", MID)
     m = ContactModel()
+    assert row["default_dt"] == Collision(m).dt
     w_dt = math.sqrt(m.kn / m.m) * row["default_dt"]
     assert row["error_at_default_dt"] == pytest.approx(1.5 * w_dt**2 / 8.0, rel=1e-3)
 
@@ -262,8 +290,13 @@ def test_default_error_is_the_normal_over_kick(quick):
 @pytest.mark.lammps
 def test_steps_reported_for_a_target_reach_it(quick):
     report, _, record = quick
-    costs = record["default_costs"]
-    assert [c["target"] for c in costs] == list(TARGETS)
+    default, *costs = record["default_costs"]
+    assert default["step"] == "default" and default["target"] == ACCURACY
+    # the default step's target is relative to the state's size, over the corners and over the batch
+    # drawn from inside the box (which the corners bound: the map is linear)
+    assert default["relative_error_reached"] <= ACCURACY and default["batch_relative_error"] <= ACCURACY
+    assert default["lammps_steps"] == Collision(ContactModel()).nsteps
+    assert [c["target"] for c in costs] == list(TARGETS) and {c["step"] for c in costs} == {"for the target"}
     for c in costs:
         # interpolation on a curve that is a clean power law: on target to within a few percent
         assert c["error_reached"] <= 1.05 * c["target"], c
@@ -271,7 +304,58 @@ def test_steps_reported_for_a_target_reach_it(quick):
         assert c["single_error"] <= 1.05 * c["target"] and c["batch_error"] <= 1.05 * c["target"]
         assert c["single_wall_seconds"] > 0 and c["per_collision_wall_seconds"] > 0
     assert [c["lammps_steps"] for c in costs] == sorted(c["lammps_steps"] for c in costs)
-    assert report["default_costs"] == costs
+    assert report["default_costs"] == record["default_costs"]
+
+
+#: The default step is chosen for SAFETY = 1/2 of its target with a constant measured on the
+#: paper's worst state; states whose error has a smaller leading term sit lower (grazing and
+#: high spin: 0.09 of the target; the Hertzian batch, whose fixed resolution bounds a slip of 2,
+#: 0.06). Below a twentieth of the target the default would be spending steps for nothing.
+DEFAULT_ERROR_FLOOR = 1.0 / 20.0
+
+
+@pytest.mark.lammps
+def test_the_default_step_reaches_its_target(quick):
+    """Every case at the scenes' default step: within its target, not grossly below it, every
+    row ok; where the a priori rule chose the step, the run is that of Collision's own dt."""
+    report, _, record = quick
+    defaults = record["default_steps"]
+    assert report["default_steps"] == defaults
+    by_case = {c["name"]: c for c in record["cases"]}
+    forms = {(c["name"], form) for c in record["cases"] for form in c["expected_order"]
+             if form in accuracy.DEFAULT_FORMS}
+    assert {(r["case"], r["form"]) for r in defaults} == forms
+    for r in defaults:
+        assert DEFAULT_ERROR_FLOOR * r["target"] <= r["error_reached"] <= r["target"], r
+        assert r["within_target"] and r["worst_status"] == "ok", r
+        case = by_case[r["case"]]
+        model = ContactModel(**case["model"])
+        if r["step_method"] == "second-order rule" and model.normal == "hooke":
+            states = np.array(case["states"])
+            scene = Collision(model, v_n=states[:, 0], v_t=states[:, 1], omega=states[:, 2] / model.r)
+            assert (r["steps_per_collision"], r["dt"]) == (scene.nsteps, scene.dt), r
+    # the probe refines the damped cases well past the rule's step: their error is first order
+    rule = Collision(ContactModel()).nsteps
+    assert all(r["steps_per_collision"] > 4 * rule for r in defaults if r["case"] in ("damped_t", "damped"))
+    # the summary's default columns: present for the forms a default takes, absent on a step
+    for row in record["summary"]:
+        has_default = row["form"] in accuracy.DEFAULT_FORMS
+        assert (row["error_at_default_dt"] is not None) == has_default, row
+
+
+@pytest.mark.lammps
+def test_bench_table_is_the_studys(quick, tmp_path):
+    """default_step_table, which bench prints, runs the same default steps as the study: LAMMPS
+    on one rank is deterministic, so the numbers agree exactly."""
+    _, _, record = quick
+    table = accuracy.default_step_table(["defaults", "damped_n", "frozen"], runs=tmp_path)
+    assert list(table.columns) == list(accuracy.POLICY_COLUMNS)
+    study = {(r["case"], r["form"]): r for r in record["default_steps"]}
+    assert len(table) == 3
+    for r in table.to_dict(orient="records"):
+        expected = study[(r["case"], r["form"])]
+        for key in ("steps_per_collision", "dt", "error_reached", "target", "step_method"):
+            assert r[key] == expected[key], (r["case"], key)
 
 
 @pytest.mark.lammps
@@ -288,6 +372,7 @@ def test_files_are_written_with_provenance(quick):
     for case in cases():
         assert case.label.replace("|", r"\|") in md
     assert "## Cost at the paper's defaults" in md and "## What limits the order" in md
+    assert "## The default step" in md
     assert not list(out.glob(".*.tmp"))
 
 

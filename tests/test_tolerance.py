@@ -5,23 +5,18 @@ plain refinement that would reach the same error: its steps follow from the fine
 run's error and the raw order (2, or 1 with damping), both measured in the same ladder.
 """
 
+import math
+
 import numpy as np
 import pytest
 
 from spinbounce import theory
 from spinbounce.cli import main
-from spinbounce.model.scenes import (
-    COLLISION_STEPS_PER_HALF_PERIOD,
-    FROZEN_STEPS_PER_HALF_PERIOD,
-    STATE_ARGS,
-    Collision,
-    ContactModel,
-    Frozen,
-    SceneError,
-)
+from spinbounce.model.scenes import STATE_ARGS, Collision, ContactModel, SceneError
 from spinbounce.studies.accuracy import FROZEN_T_END, FROZEN_Z, collision_scene
 from spinbounce.studies.accuracy import cases as accuracy_cases
 from spinbounce.studies.tolerance import (
+    START_STEPS,
     collide_to_tolerance,
     collision_frame,
     collision_rung_dt,
@@ -137,12 +132,31 @@ def test_every_case_of_the_accuracy_study_to_tolerance(tmp_path, name):
     assert result.plain_steps_for(true.max()) >= 5 * result.steps
 
 
-def test_tolerance_climbs_the_scenes_own_rungs():
-    """The ladder's rungs are the scenes' defaults at their default resolutions."""
+def test_tolerance_climbs_mid_step_rungs_of_its_own():
+    """The rungs end the contact mid-step (M of tau/(M + 1/2) whole, to rounding) at the
+    requested resolution or finer, like the scenes' default step; the ladder starts at
+    START_STEPS, coarser than that default, which targets a plain run's accuracy."""
     for model in (ContactModel(), ContactModel(kt=50.0), ContactModel(gamma_n=1.0)):
-        assert collision_rung_dt(model, COLLISION_STEPS_PER_HALF_PERIOD) == Collision(model).dt
+        half_period = math.pi / model.fastest_rate(frozen=False)
+        for k in range(4):
+            dt = collision_rung_dt(model, START_STEPS * 2**k)
+            m = model.tau / dt - 0.5
+            assert m == pytest.approx(round(m), abs=1e-9) and half_period / dt >= START_STEPS * 2**k
+        assert collision_rung_dt(model, START_STEPS) > Collision(model).dt
     damped = ContactModel(gamma_t=1.0)
-    assert frozen_rung_dt(damped, FROZEN_STEPS_PER_HALF_PERIOD, 10.0) == Frozen(damped, t_end=10.0).dt
+    dt = frozen_rung_dt(damped, START_STEPS, 10.0)
+    assert 10.0 / dt == pytest.approx(round(10.0 / dt), abs=1e-9)
+    assert math.pi / damped.fastest_rate(frozen=True) / dt >= START_STEPS
+
+
+@pytest.mark.lammps
+def test_a_ladder_to_1e6_costs_less_than_one_run_at_the_default_step(tmp_path):
+    """Why the ladder keeps its own start: at the paper's defaults every rung it climbs to reach
+    1e-6 together takes fewer steps than one plain run at the default step (which reaches only
+    its 1e-4 target)."""
+    result, _ = collide_to_tolerance(ContactModel(), *STATES, TOL, tmp_path)
+    default = Collision(ContactModel(), v_n=STATES[0], v_t=STATES[1], omega=STATES[2])
+    assert result.steps < default.nsteps, (result.steps, default.nsteps)
 
 
 def test_tolerance_with_a_hertzian_wall_is_refused(tmp_path):

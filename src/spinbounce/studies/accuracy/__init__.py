@@ -3,10 +3,12 @@
 The convergence study: for each named case (:mod:`.cases`: the paper's model and its
 variations, damping, 3-D spin, a Hertzian wall, a finite Coulomb cap against the oracle,
 frozen contacts) a ladder of plain LAMMPS runs, n steps per half-period of the fastest
-contact mode, each measured against the case's theory (:mod:`.measure`). From the ladder
-come the observed order of convergence and the steps plain refinement needs for a given
-accuracy (:mod:`.orders`); :mod:`.study` runs it all with its provenance, :mod:`.report`
-writes the figure, the JSON record and ACCURACY.md.
+contact mode, each measured against the case's theory (:mod:`.measure`), and one run at
+the step the scenes choose by default. From the ladder come the observed order of
+convergence and the steps plain refinement needs for a given accuracy (:mod:`.orders`);
+from the default runs, the steps per collision the default chooses and the error it reaches
+(:mod:`.defaults`; :func:`default_step_table` runs only those). :mod:`.study` runs it all
+with its provenance, :mod:`.report` writes the figure, the JSON record and ACCURACY.md.
 
 Not to be confused with :mod:`spinbounce.studies.tolerance`, which reaches a requested
 accuracy for one scene by Richardson extrapolation. The two climb the same rungs (the
@@ -20,14 +22,18 @@ from __future__ import annotations
 from pathlib import Path
 
 from .cases import ANY, BOX, EDGE, FROZEN, FROZEN_T_END, FROZEN_Z, MECHANISMS, MID, Case, box_sample, cases, corners
+from .defaults import POLICY_COLUMNS, default_step_table, policy_table
 from .measure import (
+    DEFAULT_FORMS,
     FULL_LADDER,
     QUICK_LADDER,
     collision_dt,
     collision_scene,
+    default_target,
     frozen_dt,
     ladder,
     run_collision_level,
+    run_default,
     steps_of_dt,
 )
 from .orders import ERROR_FLOOR, FIT_LEVELS, TARGETS, fit_order, steps_for, summarise
@@ -35,10 +41,11 @@ from .report import draw, markdown, write_study
 from .study import Study, run_study
 
 __all__ = [
-    "ANY", "BOX", "EDGE", "ERROR_FLOOR", "FIT_LEVELS", "FROZEN", "FROZEN_T_END", "FROZEN_Z", "FULL_LADDER",
-    "MECHANISMS", "MID", "QUICK_LADDER", "TARGETS", "Case", "Study", "box_sample", "cases", "collision_dt",
-    "collision_scene", "corners", "draw", "fit_order", "frozen_dt", "ladder", "make_accuracy", "markdown",
-    "run_collision_level", "run_study", "steps_for", "steps_of_dt", "summarise", "write_study",
+    "ANY", "BOX", "DEFAULT_FORMS", "EDGE", "ERROR_FLOOR", "FIT_LEVELS", "FROZEN", "FROZEN_T_END", "FROZEN_Z",
+    "FULL_LADDER", "MECHANISMS", "MID", "POLICY_COLUMNS", "QUICK_LADDER", "TARGETS", "Case", "Study", "box_sample",
+    "cases", "collision_dt", "collision_scene", "corners", "default_step_table", "default_target", "draw",
+    "fit_order", "frozen_dt", "ladder", "make_accuracy", "markdown", "policy_table", "run_collision_level",
+    "run_default", "run_study", "steps_for", "steps_of_dt", "summarise", "write_study",
 ]
 
 

@@ -102,7 +102,7 @@ MECHANISMS = {
         "with the end mid-step, the contact's last kick applies the normal spring at overlap "
         "|v_n| dt/2 for a whole half step, while the exact force fades to zero within it: the "
         "outgoing |v_n| comes out too large by |v_n| (w_n dt)^2/8, second order (w_n = sqrt(kn/m)). At "
-        "the paper's defaults this is the largest error: 1.5 (pi/250.5)^2/8 = 2.95e-5 at the default step"),
+        "the paper's defaults this is the largest error"),
     "tangential cut": (
         "the tangential spring force -kt u(tau) is still finite when the contact ends and drops to zero "
         "in one step. With the end mid-step the cut's first-order error cancels and second order is "

@@ -4,6 +4,8 @@ A level is n steps per half-period of the case's fastest contact mode. The colli
 step comes from the rungs shared with :mod:`spinbounce.studies.tolerance` (the mid-step
 rule itself lives in :mod:`spinbounce.model.timestep`); the other forms are the study's own
 contrasts: the end on a step boundary, and one dt for spheres that end at their own times.
+Beside the ladder, each case runs once at the step the scenes choose by default
+(:func:`run_default`): no constant resolution, but the one their accuracy target asks for.
 """
 
 from __future__ import annotations
@@ -14,37 +16,28 @@ from pathlib import Path
 
 import numpy as np
 
-from ...model.scenes import (
-    COLLISION_STEPS_PER_HALF_PERIOD,
-    FROZEN_STEPS_PER_HALF_PERIOD,
-    HERTZ_STEPS_PER_HALF_PERIOD,
-    STATE_ARGS,
-    Collision,
-    ContactModel,
-    Frozen,
-)
-from ...model.timestep import mid_step_dt, steps_through
+from ...model.scenes import STATE_ARGS, Collision, ContactModel, Frozen
+from ...checks import STATUSES
+from ...model.timestep import ACCURACY, FROZEN_ACCURACY, mid_step_dt, steps_through
 from ...pipeline import run_collision, run_frozen
 from ..tolerance import collision_rung_dt, contact_steps, frozen_rung_dt
 from .cases import ANY, EDGE, FROZEN, FROZEN_T_END, FROZEN_Z, MID, Case
 
-__all__ = ["FULL_LADDER", "QUICK_LADDER", "ladder", "collision_dt", "frozen_dt", "default_resolution",
-           "run_collision_level", "run_frozen_level", "run_case", "warm_up", "steps_of_dt"]
+__all__ = ["FULL_LADDER", "QUICK_LADDER", "DEFAULT_FORMS", "ladder", "collision_dt", "frozen_dt", "run_default",
+           "default_target", "labelled_row", "run_collision_level", "run_frozen_level", "run_case", "warm_up",
+           "steps_of_dt"]
 
 #: Steps per half-period of the fastest mode along the full ladder, and the quick one.
 FULL_LADDER = tuple(2**k for k in range(5, 17))  # 32 .. 65536
 QUICK_LADDER = (64, 128, 256, 512, 1024)
-#: The scenes' own resolution of each kind of case: the ladder adds it as a level.
-_DEFAULT_RESOLUTION = {"collision": COLLISION_STEPS_PER_HALF_PERIOD, "frozen": FROZEN_STEPS_PER_HALF_PERIOD,
-                       "hertz": HERTZ_STEPS_PER_HALF_PERIOD}
+#: The forms a scene's default step can take: its end mid-step (every Hookean contact, and a
+#: Hertzian wall at one speed), one dt for several Hertzian speeds, a frozen contact. No
+#: default puts the end on a step boundary: that form is the study's contrast only.
+DEFAULT_FORMS = (MID, ANY, FROZEN)
 
 
 def ladder(quick: bool = False) -> tuple[int, ...]:
     return QUICK_LADDER if quick else FULL_LADDER
-
-
-def default_resolution(case: Case) -> int:
-    return _DEFAULT_RESOLUTION["hertz" if case.model.normal == "hertz" else case.kind]
 
 
 def _speed(states) -> float:
@@ -54,10 +47,10 @@ def _speed(states) -> float:
 def collision_dt(model: ContactModel, n: float, form: str, speed: float | None = None) -> float:
     """The collision step for ``n`` steps per half-period of the fastest mode, in ``form``.
 
-    Hookean: the mid-step rung (for n = COLLISION_STEPS_PER_HALF_PERIOD the scenes' default
-    dt) or its end on a step, tau/M. ``ANY``: pi/(n w) for a Hertzian wall, whose fastest
-    mode w depends on the fastest |v_n|, ``speed`` (for n = HERTZ_STEPS_PER_HALF_PERIOD the
-    scenes' default). A Hertzian mid-step dt is one speed's own: :func:`_hertz_mid_dt`.
+    Hookean: the mid-step rung or its end on a step, tau/M. ``ANY``: pi/(n w) for a Hertzian
+    wall, whose fastest mode w depends on the fastest |v_n|, ``speed`` (for n =
+    HERTZ_STEPS_PER_HALF_PERIOD the default of a Hertzian batch of several speeds). A
+    Hertzian mid-step dt is one speed's own: :func:`_hertz_mid_dt`.
     """
     if form == MID:
         return collision_rung_dt(model, n)
@@ -77,8 +70,7 @@ def _hertz_mid_dt(model: ContactModel, n: float, v_n: float, speed: float) -> fl
 
 
 def frozen_dt(model: ContactModel, n: float, t_end: float = FROZEN_T_END) -> float:
-    """The frozen rung (snapped to whole steps in t_end; the scenes' default for n =
-    FROZEN_STEPS_PER_HALF_PERIOD)."""
+    """The frozen rung (snapped to whole steps in t_end)."""
     return frozen_rung_dt(model, n, t_end)
 
 
@@ -109,8 +101,9 @@ def _timed(run, repeats: int):
     return best, best_wall
 
 
-def collision_scene(case: Case, dt: float, states=None) -> Collision:
-    """The case's collision (or ``states``, in the case's columns) at step ``dt``."""
+def collision_scene(case: Case, dt: float | None, states=None) -> Collision:
+    """The case's collision (or ``states``, in the case's columns) at step ``dt`` (None: the
+    scenes' default, which a run may still tune: :func:`spinbounce.stepping.tune`)."""
     s = np.asarray(case.states if states is None else states, dtype=float)
     r = case.model.r
     # spins are stored as r omega (STATE_3D); Collision takes the angular velocities
@@ -119,49 +112,63 @@ def collision_scene(case: Case, dt: float, states=None) -> Collision:
     return Collision(case.model, dt=dt, **columns)
 
 
-def run_collision_level(case: Case, dt: float, folder: Path, states=None, repeats: int = 1):
-    """One batch at ``dt``: (row, final states). The row holds the largest error of each
-    state column against the case's theory, the LAMMPS steps and the seconds."""
-    scene = collision_scene(case, dt, states)
-    result, wall = _timed(lambda: run_collision(scene, folder, atoms="library", record=False), repeats)
-    t = result.table
-    row = {"dt": scene.dt, "lammps_steps": scene.nsteps, "spheres": scene.n,
-           "loop_seconds": result.info.loop_seconds, "lammps_seconds": result.info.wall_seconds,
-           "wall_seconds": wall}
-    for s in scene.state_names:
+def _worst_status(statuses) -> str:
+    return min(statuses, key=STATUSES.index)
+
+
+def run_collision_level(case: Case, dt: float | None, folder: Path, states=None, repeats: int = 1):
+    """One batch at ``dt`` (None: the default step): (row, final states). The row holds the
+    largest error of each state column against the case's theory, the largest error relative
+    to the state's size (the default step's measure, checks.add_row_checks), how the step was
+    chosen, the step LAMMPS ran at, its steps and the seconds."""
+    result, wall = _timed(lambda: run_collision(collision_scene(case, dt, states), folder, atoms="library",
+                                                record=False), repeats)
+    ran, t = result.scene, result.table
+    row = {"dt": ran.dt, "lammps_steps": ran.nsteps, "resolution": ran.steps_per_half_period, "spheres": ran.n,
+           "step_method": result.step.method, "relative_error": float(t["error"].max()),
+           "worst_status": _worst_status(t["status"]), "loop_seconds": result.info.loop_seconds,
+           "lammps_seconds": result.info.wall_seconds, "wall_seconds": wall}
+    for s in ran.state_names:
         row[f"error_{s}"] = float(np.max(np.abs(t[f"{s}_error"])))
-    return row, t[[f"{s}_final" for s in scene.state_names]].to_numpy()
+    return row, t[[f"{s}_final" for s in ran.state_names]].to_numpy()
 
 
-def _run_hertz_mid(case: Case, n: float, folder: Path, repeats: int) -> dict:
-    """Each Hertzian speed alone at its own mid-step dt; the row takes the largest errors,
-    the longest run's dt and steps, and the seconds of all the runs together."""
+def _run_hertz_mid(case: Case, dt_of_speed, folder: Path, repeats: int) -> dict:
+    """Each Hertzian speed alone at ``dt_of_speed(v_n)`` (None: that scene's default). The row
+    takes the largest errors, the coarsest resolution, the longest run's dt and steps, and the
+    seconds of all the runs together."""
     states = np.asarray(case.states, dtype=float)
-    speed = _speed(states)
     rows = []
     for k, v_n in enumerate(np.unique(states[:, 0])):
-        dt = _hertz_mid_dt(case.model, n, float(v_n), speed)
-        row, _ = run_collision_level(case, dt, folder / f"speed-{k}", states[states[:, 0] == v_n], repeats)
+        row, _ = run_collision_level(case, dt_of_speed(float(v_n)), folder / f"speed-{k}",
+                                     states[states[:, 0] == v_n], repeats)
         rows.append(row)
     longest = max(rows, key=lambda r: r["lammps_steps"])
-    out = {"dt": longest["dt"], "lammps_steps": longest["lammps_steps"]}
+    out = {"dt": longest["dt"], "lammps_steps": longest["lammps_steps"],
+           "resolution": min(r["resolution"] for r in rows),
+           "step_method": ", ".join(sorted({r["step_method"] for r in rows})),
+           "worst_status": _worst_status([r["worst_status"] for r in rows])}
     for key in ("spheres", "loop_seconds", "lammps_seconds", "wall_seconds"):
         out[key] = sum(r[key] for r in rows)
-    for key in (k for k in rows[0] if k.startswith("error_")):
+    for key in (k for k in rows[0] if k.startswith("error_") or k == "relative_error"):
         out[key] = max(r[key] for r in rows)
     return out
 
 
-def run_frozen_level(case: Case, dt: float, folder: Path, repeats: int = 1) -> dict:
+def run_frozen_level(case: Case, dt: float | None, folder: Path, repeats: int = 1) -> dict:
+    """The frozen contact at ``dt`` (None: the scene's default): its row, as a collision's."""
     ((_, v_t, r_omega),) = case.states
     scene = Frozen(case.model, z=FROZEN_Z, v_t=v_t, omega=r_omega / case.model.r, t_end=FROZEN_T_END, dt=dt)
     result, wall = _timed(lambda: run_frozen(scene, folder), repeats)
     t = result.table
-    return {"dt": scene.dt, "lammps_steps": scene.nsteps, "spheres": 1,
+    errors = {"error_vn": 0.0,  # held: v_n = 0 exactly
+              "error_vt": float(np.max(np.abs(t["vt"] - t["vt_theory"]))),
+              "error_r_omega": float(np.max(np.abs(t["r_omega"] - t["r_omega_theory"])))}
+    return {"dt": scene.dt, "lammps_steps": scene.nsteps, "resolution": scene.steps_per_half_period,
+            "spheres": 1, "step_method": "frozen rule" if dt is None else "given",
+            "relative_error": max(errors.values()) / math.hypot(v_t, r_omega), "worst_status": "ok",
             "loop_seconds": result.info.loop_seconds, "lammps_seconds": result.info.wall_seconds,
-            "wall_seconds": wall, "error_vn": 0.0,  # held: v_n = 0 exactly
-            "error_vt": float(np.max(np.abs(t["vt"] - t["vt_theory"]))),
-            "error_r_omega": float(np.max(np.abs(t["r_omega"] - t["r_omega_theory"])))}
+            "wall_seconds": wall, **errors}
 
 
 def run_level(case: Case, n: float, form: str, folder: Path, repeats: int = 1) -> dict:
@@ -169,9 +176,35 @@ def run_level(case: Case, n: float, form: str, folder: Path, repeats: int = 1) -
     if form == FROZEN:
         return run_frozen_level(case, frozen_dt(case.model, n), folder, repeats)
     if case.model.normal == "hertz" and form == MID:
-        return _run_hertz_mid(case, n, folder, repeats)
+        speed = _speed(case.states)
+        return _run_hertz_mid(case, lambda v_n: _hertz_mid_dt(case.model, n, v_n, speed), folder, repeats)
     dt = collision_dt(case.model, n, form, speed=_speed(case.states))
     row, _ = run_collision_level(case, dt, folder, repeats=repeats)
+    return row
+
+
+def default_target(case: Case) -> float:
+    """The accuracy the scenes' default step aims at for ``case`` (model.timestep): ACCURACY for
+    a collision; for a frozen contact FROZEN_ACCURACY, but with gamma_t its first-order dashpot
+    lag is held to ACCURACY only (Frozen.default_dt), so that is all the default promises."""
+    if case.kind == "frozen" and case.model.gamma_t == 0.0:
+        return FROZEN_ACCURACY
+    return ACCURACY
+
+
+def run_default(case: Case, form: str, folder: Path, repeats: int = 1) -> dict:
+    """``case`` in ``form`` at the step the scenes choose by default: the a priori rule, the
+    probe (pipeline.run_collision tunes a default step), a Hertzian batch's fixed resolution,
+    or the frozen rule. Its row, with the target that step aims at."""
+    if form == FROZEN:
+        row = run_frozen_level(case, None, folder, repeats)
+    elif form == MID and case.model.normal == "hertz":  # each speed is a scene of its own
+        row = _run_hertz_mid(case, lambda v_n: None, folder, repeats)
+    elif form in DEFAULT_FORMS:
+        row, _ = run_collision_level(case, None, folder, repeats=repeats)
+    else:
+        raise ValueError(f"form = {form!r}: no default step takes it (only {', '.join(DEFAULT_FORMS)})")
+    row["target"] = default_target(case)
     return row
 
 
@@ -186,26 +219,28 @@ def warm_up(all_cases: list[Case], root: Path) -> None:
             run_level(case, 32, case.forms[0], root / "warm-up" / case.name)
 
 
-def _levels(case: Case, steps: tuple[int, ...]) -> list[tuple[int, bool]]:
-    """(n, at the scene's default resolution) for the ladder plus that resolution."""
-    default = default_resolution(case)
-    levels = {n: n == default for n in steps}
-    levels[default] = True
-    return sorted(levels.items())
+def labelled_row(row: dict, case: Case, form: str, n: float, in_ladder: bool) -> dict:
+    """``row`` with its case, form and level (``n`` steps per half-period), and its largest error."""
+    row.update(case=case.name, label=case.label, kind=case.kind, form=form, steps_per_half_period=n,
+               default_dt=not in_ladder, in_ladder=in_ladder, theory=case.theory)
+    row["error"] = max(row[f"error_{s}"] for s in case.state_names)
+    return row
 
 
 def run_case(case: Case, steps: tuple[int, ...], root: Path, log, repeats: int = 1) -> list[dict]:
-    """Every form and level of ``case``: one row per run."""
+    """Every form and level of ``case``, and each form a default step takes: one row per run."""
     rows = []
     for form in case.forms:
-        for n, is_default in _levels(case, steps):
-            folder = root / case.name / form.replace(" ", "-") / f"n{n:06d}"
-            row = run_level(case, n, form, folder, repeats)
-            row.update(case=case.name, label=case.label, kind=case.kind, form=form, steps_per_half_period=n,
-                       default_dt=is_default, in_ladder=n in steps, theory=case.theory)
-            row["error"] = max(row[f"error_{s}"] for s in case.state_names)
-            rows.append(row)
+        folder = root / case.name / form.replace(" ", "-")
+        for n in steps:
+            rows.append(labelled_row(run_level(case, n, form, folder / f"n{n:06d}", repeats), case, form, n, True))
+        if form in DEFAULT_FORMS:
+            row = run_default(case, form, folder / "default", repeats)
+            rows.append(labelled_row(row, case, form, row["resolution"], False))
     ends = [r for r in rows if r["in_ladder"] and r["steps_per_half_period"] in (steps[0], steps[-1])]
+    defaults = [r for r in rows if r["default_dt"]]
     log(f"  {case.name:<14}" + "  ".join(f"{r['form']} n={r['steps_per_half_period']}: {r['error']:.2e}"
-                                         for r in ends))
+                                         for r in ends)
+        + "".join(f"  default ({r['form']}): {r['lammps_steps']} steps, {r['relative_error']:.2e} of the state"
+                  for r in defaults))
     return rows

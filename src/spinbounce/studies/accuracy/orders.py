@@ -76,19 +76,36 @@ def _order_of(group: pd.DataFrame, columns) -> float:
     return fit_order(group["dt"], group[present].max(axis=1))["order"]
 
 
+#: A form that no default step takes (the end on a step boundary) has none of these.
+_NO_DEFAULT = {"default_dt": float("nan"), "default_lammps_steps": float("nan"),
+               "default_steps_per_half_period": float("nan"), "default_step_method": None,
+               "error_at_default_dt": float("nan"), "relative_error_at_default_dt": float("nan"),
+               "default_target": float("nan")}
+
+
+def _default_columns(group: pd.DataFrame) -> dict:
+    """The run at the scenes' default step, if this form has one."""
+    rows = group[group["default_dt"]]
+    if rows.empty:
+        return dict(_NO_DEFAULT)
+    default = rows.iloc[0]
+    return {"default_dt": float(default["dt"]), "default_lammps_steps": int(default["lammps_steps"]),
+            "default_steps_per_half_period": float(default["resolution"]),
+            "default_step_method": default["step_method"], "error_at_default_dt": float(default["error"]),
+            "relative_error_at_default_dt": float(default["relative_error"]),
+            "default_target": float(default["target"])}
+
+
 def _summary_row(case: Case, form: str, group: pd.DataFrame) -> dict:
     ladder_rows = group[group["in_ladder"]]
     fit = fit_order(ladder_rows["dt"], ladder_rows["error"])
-    default = group[group["default_dt"]].iloc[0]
     tangential = [f"error_{s}" for s in case.state_names[1:]]
     row = {"case": case.name, "label": case.label, "kind": case.kind, "form": form,
            "observed_order": fit["order"], "prefactor": fit["prefactor"],
            "expected_order": case.expected[form],
            "order_vn": _order_of(ladder_rows, ["error_vn"]),
            "order_tangential": _order_of(ladder_rows, tangential),
-           "local_orders": fit["local_orders"], "fit_dt": fit["fit_dt"],
-           "default_dt": float(default["dt"]), "default_lammps_steps": int(default["lammps_steps"]),
-           "error_at_default_dt": float(default["error"]),
+           "local_orders": fit["local_orders"], "fit_dt": fit["fit_dt"], **_default_columns(group),
            "finest_error": float(ladder_rows["error"].iloc[-1]), "theory": case.theory}
     for target in TARGETS:
         steps, extrapolated = steps_for(ladder_rows["lammps_steps"], ladder_rows["error"], target, fit,
@@ -100,8 +117,8 @@ def _summary_row(case: Case, form: str, group: pd.DataFrame) -> dict:
 
 def summarise(table: pd.DataFrame, all_cases: list[Case]) -> pd.DataFrame:
     """One row per (case, form): observed order (overall, of v_n, and of the tangential
-    columns), error at the scene's default resolution, and the steps plain refinement needs
-    for each of TARGETS."""
+    columns), the scenes' default step and the error it reaches (where the form has one), and
+    the steps plain refinement needs for each of TARGETS."""
     by_name = {c.name: c for c in all_cases}
     rows = [_summary_row(by_name[name], form, group)
             for (name, form), group in table.groupby(["case", "form"], sort=False)]

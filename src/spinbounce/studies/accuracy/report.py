@@ -1,5 +1,5 @@
 """The study's outputs: accuracy.png/.pdf (error against steps and seconds), accuracy.json
-(every run) and ACCURACY.md (orders, steps per target, costs, and why), each written
+(every run) and ACCURACY.md (orders, steps per target, the default step, costs, and why), each written
 atomically through :mod:`spinbounce.records` (the figures through figures.core.save)."""
 
 from __future__ import annotations
@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ...model.scenes import COLLISION_STEPS_PER_HALF_PERIOD
+from ...model.scenes import ContactModel
 from ...records import json_ready, write_atomic
 from .cases import ANY, EDGE, FROZEN_T_END, MECHANISMS, MID
 from .orders import ERROR_FLOOR, FIT_LEVELS, TARGETS
@@ -47,6 +47,13 @@ def _under_the_first(study: Study) -> list[str]:
     return same
 
 
+def _draw_default(table: pd.DataFrame, name: str, form: str, colour, ax_steps) -> None:
+    """The case's run at the scenes' default step, a star on its curve (if the form has one)."""
+    rows = table[(table["case"] == name) & (table["form"] == form) & table["default_dt"]]
+    ax_steps.loglog(rows["lammps_steps"], rows["error"], linestyle="none", marker="*", markersize=10,
+                    color=colour, markeredgecolor="black", markeredgewidth=0.6, zorder=5)
+
+
 def _draw_curves(study: Study, ax_steps, ax_wall) -> None:
     import matplotlib
 
@@ -70,6 +77,7 @@ def _draw_curves(study: Study, ax_steps, ax_wall) -> None:
                 style.update(linewidth=5.0, alpha=0.35, zorder=1, markersize=0)
             ax_steps.loglog(rows["lammps_steps"], rows["error"], label=label, **style)
             ax_wall.loglog(rows["lammps_seconds"], rows["error"], **style)
+            _draw_default(study.table, case.name, form, colour, ax_steps)
 
 
 def draw(study: Study):
@@ -89,7 +97,7 @@ def draw(study: Study):
     # LAMMPS's own seconds: the run's wall seconds also hold the theory (the oracle's take ~0.5 s)
     ax_wall.set_xlabel("LAMMPS seconds per run (start-up included; 1 to 64 spheres)")
     ax_steps.set_ylim(ERROR_FLOOR / 2, 0.3)
-    ax_steps.set_title("error against steps (solid: the contact ends mid-step; dashed: on a step)")
+    ax_steps.set_title("error against steps (dashed: the end on a step; star: the default step)")
     ax_wall.set_title("error against LAMMPS's wall time (start-up dominates below ~10$^4$ steps)")
     handles, labels = ax_steps.get_legend_handles_labels()
     fig.legend(handles, labels, loc="outside lower center", ncol=3, fontsize=7.5)
@@ -107,6 +115,10 @@ def _fmt_order(order) -> str:
     return "-" if order is None or not math.isfinite(order) else f"{order:.2f}"
 
 
+def _fmt_error(error) -> str:
+    return "-" if not math.isfinite(error) else f"{error:.2e}"
+
+
 def _cell(text: str) -> str:
     """Text for a markdown table cell: a bare | would end the cell."""
     return text.replace("|", r"\|")
@@ -114,7 +126,7 @@ def _cell(text: str) -> str:
 
 def _order_table(study: Study) -> list[str]:
     lines = [
-        ("| case | form | observed order (v_n; tangential) | expected | error at the default resolution "
+        ("| case | form | observed order (v_n; tangential) | expected | error at the default step "
          "| steps for 1e-4 | 1e-6 | 1e-8 |"),
         "|---|---|---|---|---|---|---|---|",
     ]
@@ -126,7 +138,7 @@ def _order_table(study: Study) -> list[str]:
             f"{'~' if (r['case'], r['form']) in rough else ''}**{_fmt_order(r['observed_order'])}** "
             f"({_fmt_order(r['order_vn'])}; "
             f"{_fmt_order(r['order_tangential'])})",
-            f"{r['expected_order']:g}", f"{r['error_at_default_dt']:.2e}",
+            f"{r['expected_order']:g}", _fmt_error(r["error_at_default_dt"]),
             *(_fmt_steps(r[f"steps_{t:.0e}"], r[f"extrapolated_{t:.0e}"]) for t in TARGETS),
         ]
         lines.append("| " + " | ".join(cells) + " |")
@@ -148,7 +160,8 @@ def _intro(study: Study) -> list[str]:
          "(frozen: over the whole time series), against each case's own theory: Eq. 18 (its exact damped "
          "form, its 6x6 block form in 3-D, its Omega(v_n) for a Hertzian wall), Eq. 10 for frozen contacts, "
          "the Coulomb oracle for a finite mu. Forms: the contact's end in the middle of a step "
-         "(dt = tau/(M + 1/2), the default), on a step boundary (dt = tau/M), or, for the Hertzian wall, "
+         "(dt = tau/(M + 1/2), the form of every default step but a Hertzian batch's), on a step boundary "
+         "(dt = tau/M), or, for the Hertzian wall, "
          "wherever one dt for every speed puts it (its mid-step form runs each speed at its own dt). "
          f"Observed order: the slope of log error against log dt over the {FIT_LEVELS} finest levels with an "
          f"error above {ERROR_FLOOR:g}; in brackets the same for v_n alone and for the tangential columns. "
@@ -159,43 +172,73 @@ def _intro(study: Study) -> list[str]:
     ]
 
 
+def _default_section(study: Study) -> list[str]:
+    """The default step of every case: what chose it, its steps, the error it reached."""
+    meta = study.metadata["parameters"]
+    lines = [
+        "## The default step",
+        "",
+        ("What the scenes run when no dt is given: the step follows from a target accuracy, "
+         f"{meta['accuracy']:g} of the size of the initial state |(v_n, v_t, r omega, ...)| "
+         f"({meta['frozen_accuracy']:g} for a frozen contact without damping), chosen for {meta['safety']:g} "
+         "of it: by the a priori second-order rule for the paper's linear contact, by a probe at two "
+         "resolutions against the exact theory for damped, capped and single-speed Hertzian contacts, by a "
+         "fixed resolution for a Hertzian batch of several speeds (which no dt can end mid-step). Error "
+         "reached: the largest |LAMMPS - theory| over the case's states, over the size of each state (the "
+         "target's measure); absolute: the same undivided (the ladder's measure). Steps: one run, a "
+         f"collision's whole contact or a frozen contact's {FROZEN_T_END:g} time units."),
+        "",
+        "| case | form | chosen by | n per half-period | LAMMPS steps | error reached | target | absolute error |",
+        "|---|---|---|---|---|---|---|---|",
+    ]
+    for r in study.defaults.to_dict(orient="records"):
+        flag = "" if r["within_target"] else " (over)"
+        lines.append(f"| {_cell(r['label'])} | {r['form']} | {r['step_method']} | {r['steps_per_half_period']:.1f} "
+                     f"| {r['steps_per_collision']:,} | {r['error_reached']:.2e}{flag} | {r['target']:g} "
+                     f"| {r['absolute_error']:.2e} |")
+    return lines + [""]
+
+
 def _cost_section(study: Study) -> list[str]:
     lines = [
         "## Cost at the paper's defaults",
         "",
-        ("Runs at the steps the table gives (mid-step end), measured again: the error reached over the "
-         "8 corners of the sweep's box; one collision alone (the worst corner, in a LAMMPS instance of its "
-         "own, start-up included); and one collision's share of a batch of "
+        ("Runs at the default step, then at the steps the table gives for each target (mid-step end), "
+         "measured again: the error reached over the 8 corners of the sweep's box (absolute; in brackets over "
+         "the size of the state); one collision alone (the worst corner at the default step, in a LAMMPS "
+         "instance of its own, start-up included); and one collision's share of a batch of "
          f"{study.metadata['parameters']['cost_batch_spheres']} states drawn from the box. Wall seconds on "
          "one core of a shared machine; LAMMPS's own loop time in brackets."),
         "",
-        ("| target | LAMMPS steps | n per half-period | error reached | one collision alone, s "
+        ("| step | target | LAMMPS steps | n per half-period | error reached | one collision alone, s "
          "| per collision in a batch, s |"),
-        "|---|---|---|---|---|---|",
+        "|---|---|---|---|---|---|---|",
     ]
     for c in study.costs:
         lines.append(
-            f"| {c['target']:.0e}{'*' if c['extrapolated'] else ''} | {c['lammps_steps']:,} | "
-            f"{c['steps_per_half_period']:.1f} | {c['error_reached']:.2e} | {c['single_wall_seconds']:.2g} "
-            f"({c['single_loop_seconds']:.2g}) | {c['per_collision_wall_seconds']:.2g} "
-            f"({c['per_collision_loop_seconds']:.2g}) |")
-    s = study.summary
-    d = s[(s["case"] == study.cases[0].name) & (s["form"] == MID)].iloc[0]
-    lines += ["", (f"The default step (n = {COLLISION_STEPS_PER_HALF_PERIOD}, {d['default_lammps_steps']} "
-                   f"steps) gives {d['error_at_default_dt']:.2e}."), ""]
+            f"| {c['step']} | {c['target']:.0e}{'*' if c['extrapolated'] else ''} | {c['lammps_steps']:,} | "
+            f"{c['steps_per_half_period']:.1f} | {c['error_reached']:.2e} ({c['relative_error_reached']:.2e}) | "
+            f"{c['single_wall_seconds']:.2g} ({c['single_loop_seconds']:.2g}) | "
+            f"{c['per_collision_wall_seconds']:.2g} ({c['per_collision_loop_seconds']:.2g}) |")
+    default = study.costs[0]
+    model = ContactModel()
+    over_kick = 1.5 * (model.kn / model.m) * default["dt"] ** 2 / 8.0
+    lines += ["", (f"The default step's target is relative to the size of the state, the other rows' absolute. Its "
+                   f"largest error is the normal over-kick at |v_n| = 1.5: 1.5 (w_n dt)^2/8 = {over_kick:.2e} at "
+                   f"its dt = {default['dt']:.4g}, measured {default['error_reached']:.2e}."), ""]
     return lines
 
 
 def markdown(study: Study) -> str:
-    """ACCURACY.md: the orders and steps per case and form, the defaults' costs, and what
-    limits each order."""
+    """ACCURACY.md: the orders and steps per case and form, the default step of each case,
+    the costs at the paper's defaults, and what limits each order."""
     lines = _intro(study) + _order_table(study) + [
         "",
         ("Frozen contacts have one form (no contact end) and hold v_n = 0. ~: an error that is not a smooth "
          "series in dt (it jumps with where a stick-slip switch or a contact's end falls inside a step), so "
          "its local orders swing and the fitted order is approximate."),
         ""]
-    lines += _cost_section(study)
+    lines += _default_section(study) + _cost_section(study)
     lines += [
         "## What limits the order",
         "",
@@ -227,6 +270,7 @@ def write_study(study: Study, out: Path) -> dict[str, Path]:
     record = dict(study.metadata)
     record["cases"] = [c.record() for c in study.cases]
     record["summary"] = _records(study.summary)
+    record["default_steps"] = _records(study.defaults)
     record["default_costs"] = json_ready(study.costs)
     record["runs_table"] = _records(study.table)
     record["markdown"] = "ACCURACY.md"
