@@ -1,0 +1,303 @@
+"""Exact Coulomb-capped Hookean wall collisions in the paper's plane, many spheres at once.
+
+The model is :mod:`.oracle`'s (read its docstring), restricted to the plane (v_n, v_t,
+r omega) and the Hookean normal force. There the contact problem is piecewise linear and
+every piece has a closed form, so nothing is integrated:
+
+* the normal motion is the damped oscillator of Eq. 15 (with gamma_n): the overlap, the
+  force F_n and so the cap c = mu |F_n| are explicit functions of time, all proportional
+  to |v_n|. The cap is mu F_n until F_n turns tensile (at ``collision_time(tensile=False)``)
+  and -mu F_n after it, up to the exit (or zero, under ``limit_damping``);
+* sticking: the trial force A = kt xi + gamma_t u' and the slip rate u' obey
+  A' = kt u' - gamma_t s A, u'' = -s A with s = (1 + 1/alpha)/m (the slip's inverse
+  reduced mass, as in Eq. 8): a 2x2 linear system solved by its matrix exponential;
+* sliding: A = sigma c with sigma = +-1, so u'' = -s sigma c, and the integral of c is
+  the normal impulse, m times the change of the overlap rate: u' is explicit too.
+
+A stick ends at the first downward zero of h = c - |A|; a slide ends at the first
+downward zero of g = sigma kt u' - gamma_t s c - c' (the rate at which sticking would push
+A outwards, less the cap's growth: the oracle's ``to_stick``). Both are located on a grid
+fine against every rate of the contact, local minima between grid points included, then
+to machine precision by safeguarded Newton. A switching function counts as crossed only
+once it is below zero by more than its rounding noise, so ties (a contact that rides the
+cap, as at the magic ratio of Eq. 20) do not chatter.
+
+Everything scales with |v_n|: the sphere enters only through u'(0)/|v_n|, the normal
+motion is tabulated once per model, and the final velocities follow from the change of
+u' as in Eq. 10: Delta v_t = alpha/(1 + alpha) Delta u', Delta(r omega) = Delta u'/(1 + alpha).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+
+from ._coulomb_search import first_crossing, root
+
+__all__ = ["bounce_2d", "MAX_SWITCHES"]
+
+#: More regime switches than this in one contact mean the regimes chatter: refuse.
+MAX_SWITCHES = 200
+#: Grid step times the fastest rate of the contact (normal or tangential, oscillation or decay).
+GRID_STEP = 0.2
+#: Fewest grid intervals per normal phase.
+MIN_INTERVALS = 24
+#: A switching function must fall below zero by this much of its rounding scale to count.
+NOISE = 1e-13
+
+
+class _Normal:
+    """Overlap rate, force and the force's rates per unit |v_n| (Eq. 15 with damping)."""
+
+    def __init__(self, m: float, kn: float, gamma_n: float):
+        self.m, self.beta = m, gamma_n / (2.0 * m)
+        self.w0_sq = kn / m
+        self.wd = math.sqrt(self.w0_sq - self.beta**2)
+        self.t_exit = math.pi / self.wd
+        # F_n = 0 on the way out: kn x + gamma_n x' = 0 (the oracle's force_zero)
+        self.t_turn = (math.pi - math.atan2(2.0 * self.beta * self.wd,
+                                             self.w0_sq - 2.0 * self.beta**2)) / self.wd
+
+    def at(self, t):
+        """(x', F, F', F'', F''') at times t, x being the overlap, for |v_n| = 1."""
+        t = np.asarray(t, dtype=float)
+        decay = np.exp(-self.beta * t)
+        sin, cos = np.sin(self.wd * t), np.cos(self.wd * t)
+        x = [decay * sin / self.wd, decay * (cos - self.beta / self.wd * sin)]
+        forces = []
+        for k in range(4):  # F^(k) = m (w0^2 x^(k) + 2 beta x^(k+1)), and x^(k+2) = -F^(k)/m
+            forces.append(self.m * (self.w0_sq * x[k] + 2.0 * self.beta * x[k + 1]))
+            x.append(-forces[-1] / self.m)
+        return (x[1], *forces)
+
+
+class _Stick:
+    """y = (A, u') with y' = M y, M = [[-gamma_t s, kt], [-s, 0]] while the contact sticks.
+
+    E(tau) = e^(a tau) [C I + S (M - a I)], a = -gamma_t s / 2: C, S are cos and sin/w
+    (underdamped), cosh and sinh/w (overdamped), written without overflow or cancellation.
+    """
+
+    def __init__(self, kt: float, gts: float, s: float):
+        self.kt, self.gts, self.s = kt, gts, s
+        self.a = -0.5 * gts
+        self.disc = self.a**2 - kt * s  # < 0: the stuck slip oscillates
+
+    def rates(self) -> float:
+        return abs(self.a) + math.sqrt(abs(self.disc))
+
+    def propagator(self, tau):
+        tau = np.asarray(tau, dtype=float)
+        if self.disc < 0.0:
+            w = math.sqrt(-self.disc)
+            grow = np.exp(self.a * tau)
+            e_c, e_s = grow * np.cos(w * tau), grow * np.sin(w * tau) / w
+        else:
+            kappa = math.sqrt(self.disc)
+            slow, fast = np.exp((self.a + kappa) * tau), np.exp((self.a - kappa) * tau)
+            z = 2.0 * kappa * tau
+            ratio = np.where(z > 0.0, -np.expm1(-z) / np.where(z > 0.0, z, 1.0), 1.0)
+            e_c, e_s = 0.5 * (slow + fast), tau * slow * ratio
+        return e_c + self.a * e_s, self.kt * e_s, -self.s * e_s, e_c - self.a * e_s
+
+    def advance(self, tau, force, slip_rate):
+        e11, e12, e21, e22 = self.propagator(tau)
+        return e11 * force + e12 * slip_rate, e21 * force + e22 * slip_rate
+
+    def rates_of(self, force, slip_rate):
+        """(A', A'', A''') from (A, u')."""
+        d1 = self.kt * slip_rate - self.gts * force
+        u2 = -self.s * force
+        d2 = self.kt * u2 - self.gts * d1
+        return d1, d2, self.kt * (-self.s * d1) - self.gts * d2
+
+
+@dataclass
+class _Phase:
+    """A stretch of the contact over which the cap is one smooth function: c = sign mu F_n."""
+
+    t_a: float
+    t_b: float
+    sign: float
+    grid: np.ndarray
+    cap: np.ndarray  # c, c' on the grid, per unit |v_n|
+    cap_rate: np.ndarray
+    push: np.ndarray  # H, H' on the grid: g = K + H(t) while sliding (K per sphere)
+    push_rate: np.ndarray
+    cap_scale: float
+    push_scale: float
+    stick_table: tuple  # E(j dt), j = 0, 1, ...: the sticking propagator from a grid point on
+
+
+def _sign(x, fallback):
+    """sign(x), else sign(fallback), else +1: the oracle's choice of a direction."""
+    return np.where(x != 0.0, np.sign(x), np.where(fallback != 0.0, np.sign(fallback), 1.0))
+
+
+class _Solver:
+    """One model's tables and the stick/slide segments of a batch of spheres."""
+
+    def __init__(self, model):
+        if model.mu is None:
+            raise ValueError("a Coulomb solver needs a finite mu (theory.scattering_matrix is "
+                             "exact without one)")
+        if model.normal != "hooke":
+            raise ValueError("the closed-form Coulomb solver is Hookean: use the oracle for hertz")
+        self.mu, self.kt, self.alpha = model.mu, model.kt, model.alpha
+        self.s = (1.0 + 1.0 / model.alpha) / model.m
+        self.gts = model.gamma_t * self.s
+        self.m = model.m
+        self.normal = _Normal(model.m, model.kn, model.gamma_n)
+        self.stick = _Stick(self.kt, self.gts, self.s)
+        turn = self.normal.t_turn if model.gamma_n > 0.0 else self.normal.t_exit
+        fastest = max(math.sqrt(model.kn / model.m), self.normal.beta, self.stick.rates())
+        self.phases = [self._phase(0.0, turn, 1.0, fastest)]
+        if model.gamma_n > 0.0 and not model.limit_damping:
+            self.phases.append(self._phase(turn, self.normal.t_exit, -1.0, fastest))
+        self.t_scale = self.normal.t_exit
+
+    def _phase(self, t_a, t_b, sign, fastest) -> _Phase:
+        intervals = max(MIN_INTERVALS, math.ceil((t_b - t_a) * fastest / GRID_STEP))
+        grid = np.linspace(t_a, t_b, intervals + 1)
+        cap, cap_rate, push, push_rate, _ = self.cap_and_push(grid, sign)
+        return _Phase(t_a, t_b, sign, grid, cap, cap_rate, push, push_rate,
+                      float(np.abs(cap).max()), float(np.abs(push).max() + np.abs(cap_rate).max()),
+                      self.stick.propagator(grid - t_a))
+
+    def cap_and_push(self, t, sign):
+        """c, c' and H, H', H'' at times t (per unit |v_n|), where sliding has
+        g = K + H with H = kt s sign mu m x' - gamma_t s c - c'."""
+        rate, f0, f1, f2, f3 = self.normal.at(t)
+        k = sign * self.mu
+        c, c1, c2, c3 = k * f0, k * f1, k * f2, k * f3
+        ks = self.kt * self.s
+        push = ks * k * self.m * rate - self.gts * c - c1
+        return c, c1, push, -ks * c - self.gts * c1 - c2, -ks * c1 - self.gts * c2 - c3
+
+    def cap(self, t, sign):
+        _, f0, f1, f2, _ = self.normal.at(t)
+        return sign * self.mu * f0, sign * self.mu * f1, sign * self.mu * f2
+
+    # -- the contact ------------------------------------------------------------------
+    def final_slip_rate(self, slip_rate):
+        """u' at the end of the contact, per unit |v_n|, from u'(0) per unit |v_n|."""
+        u = np.array(slip_rate, dtype=float)
+        force = self.gts / self.s * u  # A = gamma_t u' at first touch: no history yet
+        for k, phase in enumerate(self.phases):
+            t = np.full(u.shape, phase.t_a)
+            c, rate, _ = self.cap(phase.t_a, phase.sign)
+            if k:  # the tensile turn: the cap restarts from zero, the force with it
+                force, c, rate = np.zeros_like(u), 0.0, abs(rate)
+            force, sliding, direction = self._start(force, u, c, rate)
+            for _ in range(MAX_SWITCHES + 1):
+                live = t < phase.t_b
+                if not live.any():
+                    break
+                stuck = np.flatnonzero(live & ~sliding)
+                if stuck.size:
+                    self._stick_segment(phase, stuck, t, force, u, sliding, direction)
+                slides = np.flatnonzero((t < phase.t_b) & sliding)
+                if slides.size:
+                    self._slide_segment(phase, slides, t, force, u, sliding, direction)
+            else:
+                raise RuntimeError(f"more than {MAX_SWITCHES} regime switches (chattering)")
+        return u
+
+    def _start(self, force, u, c, c_rate):
+        """The regime where the cap starts (first touch or tensile turn), as the oracle's
+        ``start``: stick inside the cap; on it, slide if sticking would push A outwards
+        faster than the cap grows, else stick on the cap."""
+        inside = np.abs(force) < c
+        direction = _sign(force, u)
+        sliding = ~inside & (direction * self.kt * u - self.gts * c > c_rate)
+        return np.where(inside, force, direction * c), sliding, direction
+
+    def _stick_segment(self, phase, rows, t, force, u, sliding, direction):
+        t_s, a_s, u_s = t[rows], force[rows], u[rows]
+        k0 = np.searchsorted(phase.grid, t_s, side="right")
+        a0, u0 = self.stick.advance(phase.grid[k0] - t_s, a_s, u_s)
+        table = phase.stick_table
+
+        def on_grid(sel, offsets, k):
+            a = table[0][offsets] * a0[sel, None] + table[1][offsets] * u0[sel, None]
+            v = table[2][offsets] * a0[sel, None] + table[3][offsets] * u0[sel, None]
+            a_rate = self.kt * v - self.gts * a
+            return phase.cap[k] - np.abs(a), phase.cap_rate[k] - np.sign(a) * a_rate
+
+        def exact(sel, times):
+            a, v = self.stick.advance(times - t_s[sel], a_s[sel], u_s[sel])
+            c, c1, c2 = self.cap(times, phase.sign)
+            d1, d2, _ = self.stick.rates_of(a, v)
+            sg = np.sign(a)
+            return c - np.abs(a) + noise[sel], c1 - sg * d1, c2 - sg * d2
+
+        noise = NOISE * (phase.cap_scale + np.abs(a_s) + self.kt * np.abs(u_s) * self.t_scale)
+        h_s, h1_s, _ = exact(np.arange(rows.size), t_s)
+        lo, hi, h_lo, h_hi = first_crossing(phase.grid, k0, t_s, h_s, h1_s, noise, on_grid, exact)
+        event = np.isfinite(hi)
+        ends = np.full(rows.size, phase.t_b)
+        if event.any():
+            sel = np.flatnonzero(event)
+            ends[sel] = root(lambda which, x: exact(sel[which], x)[:2], lo[sel], hi[sel],
+                             h_lo[sel], h_hi[sel], self.t_scale)
+        a_e, u_e = self.stick.advance(ends - t_s, a_s, u_s)
+        t[rows], force[rows], u[rows] = ends, a_e, u_e
+        sliding[rows] = event
+        direction[rows] = np.where(event, _sign(a_e, u_e), direction[rows])
+
+    def _slide_segment(self, phase, rows, t, force, u, sliding, direction):
+        t_s, u_s, sigma = t[rows], u[rows], direction[rows]
+        impulse = phase.sign * self.mu * self.m  # integral of c = impulse * (x'(t_s) - x'(t))
+        rate_s = self.normal.at(t_s)[0]
+        offset = sigma * self.kt * u_s - self.kt * self.s * impulse * rate_s  # g = offset + H
+
+        def on_grid(sel, offsets, k):
+            return offset[sel, None] + phase.push[k], phase.push_rate[k]
+
+        def exact(sel, times):
+            _, _, push, push_rate, push_accel = self.cap_and_push(times, phase.sign)
+            return offset[sel] + push + noise[sel], push_rate, push_accel
+
+        noise = NOISE * (self.kt * np.abs(u_s) + phase.push_scale)
+        k0 = np.searchsorted(phase.grid, t_s, side="right")
+        g_s, g1_s, _ = exact(np.arange(rows.size), t_s)
+        lo, hi, h_lo, h_hi = first_crossing(phase.grid, k0, t_s, g_s, g1_s, noise, on_grid, exact)
+        event = np.isfinite(hi)
+        ends = np.full(rows.size, phase.t_b)
+        if event.any():
+            sel = np.flatnonzero(event)
+            ends[sel] = root(lambda which, x: exact(sel[which], x)[:2], lo[sel], hi[sel],
+                             h_lo[sel], h_hi[sel], self.t_scale)
+        u_e = u_s - self.s * sigma * impulse * (rate_s - self.normal.at(ends)[0])
+        t[rows], u[rows] = ends, u_e
+        force[rows] = sigma * self.cap(ends, phase.sign)[0]
+        sliding[rows] = ~event
+
+
+@lru_cache(maxsize=16)
+def _solver(model) -> _Solver:
+    return _Solver(model)
+
+
+def bounce_2d(model, v_n, v_t, omega) -> np.ndarray:
+    """(n, 3) final (v_n, v_t, r omega) of spheres that start touching the wall with
+    velocity v_n < 0, tangential velocity v_t and spin omega (the paper's sign).
+
+    Same contract as :func:`.oracle.bounce_many` for states in the plane, exact to
+    rounding: the normal outcome is Eq. 15's (restitution e), the tangential one follows
+    the stick and slide segments in closed form.
+    """
+    v_n, v_t, omega = (np.atleast_1d(np.asarray(x, dtype=float)) for x in (v_n, v_t, omega))
+    v_n, v_t, omega = np.broadcast_arrays(v_n, v_t, omega)
+    if not np.all(v_n < 0.0):
+        raise ValueError("every v_n must be < 0 (towards the wall)")
+    speed = -v_n
+    r_omega = model.r * omega
+    start = (v_t + r_omega) / speed
+    change = (_solver(model).final_slip_rate(start) - start) * speed
+    share = model.alpha / (1.0 + model.alpha)  # Delta v_t / Delta u' (Eq. 10's weights)
+    return np.column_stack([model.restitution * speed, v_t + share * change,
+                            r_omega + change / (1.0 + model.alpha)])
