@@ -86,7 +86,8 @@ class _Stick:
         self.a = -0.5 * gts
         self.disc = self.a**2 - kt * s  # < 0: the stuck slip oscillates
 
-    def rates(self) -> float:
+    def fastest_rate(self) -> float:
+        """The larger decay rate (overdamped) or |a| plus the frequency (underdamped)."""
         return abs(self.a) + math.sqrt(abs(self.disc))
 
     def propagator(self, tau):
@@ -108,11 +109,9 @@ class _Stick:
         return e11 * force + e12 * slip_rate, e21 * force + e22 * slip_rate
 
     def rates_of(self, force, slip_rate):
-        """(A', A'', A''') from (A, u')."""
+        """(A', A'') from (A, u')."""
         d1 = self.kt * slip_rate - self.gts * force
-        u2 = -self.s * force
-        d2 = self.kt * u2 - self.gts * d1
-        return d1, d2, self.kt * (-self.s * d1) - self.gts * d2
+        return d1, -self.kt * self.s * force - self.gts * d1
 
 
 @dataclass
@@ -130,6 +129,21 @@ class _Phase:
     cap_scale: float
     push_scale: float
     stick_table: tuple  # E(j dt), j = 0, 1, ...: the sticking propagator from a grid point on
+
+
+@dataclass(frozen=True)
+class _Fields:
+    """The parts of a ContactModel the solver reads (a cache key whatever the model class)."""
+
+    m: float
+    alpha: float
+    kn: float
+    kt: float
+    gamma_n: float
+    gamma_t: float
+    mu: float | None
+    limit_damping: bool
+    normal: str
 
 
 def _sign(x, fallback):
@@ -153,7 +167,7 @@ class _Solver:
         self.normal = _Normal(model.m, model.kn, model.gamma_n)
         self.stick = _Stick(self.kt, self.gts, self.s)
         turn = self.normal.t_turn if model.gamma_n > 0.0 else self.normal.t_exit
-        fastest = max(math.sqrt(model.kn / model.m), self.normal.beta, self.stick.rates())
+        fastest = max(math.sqrt(model.kn / model.m), self.normal.beta, self.stick.fastest_rate())
         self.phases = [self._phase(0.0, turn, 1.0, fastest)]
         if model.gamma_n > 0.0 and not model.limit_damping:
             self.phases.append(self._phase(turn, self.normal.t_exit, -1.0, fastest))
@@ -230,7 +244,7 @@ class _Solver:
         def exact(sel, times):
             a, v = self.stick.advance(times - t_s[sel], a_s[sel], u_s[sel])
             c, c1, c2 = self.cap(times, phase.sign)
-            d1, d2, _ = self.stick.rates_of(a, v)
+            d1, d2 = self.stick.rates_of(a, v)
             sg = np.sign(a)
             return c - np.abs(a) + noise[sel], c1 - sg * d1, c2 - sg * d2
 
@@ -277,9 +291,14 @@ class _Solver:
         sliding[rows] = ~event
 
 
+#: The model's fields the solver reads, in the order _solver takes them.
+_FIELDS = ("m", "alpha", "kn", "kt", "gamma_n", "gamma_t", "mu", "limit_damping", "normal")
+
+
 @lru_cache(maxsize=16)
-def _solver(model) -> _Solver:
-    return _Solver(model)
+def _solver(*fields) -> _Solver:
+    """One solver per model: its tables are built once for every batch it solves."""
+    return _Solver(_Fields(*fields))
 
 
 def bounce_2d(model, v_n, v_t, omega) -> np.ndarray:
@@ -297,7 +316,8 @@ def bounce_2d(model, v_n, v_t, omega) -> np.ndarray:
     speed = -v_n
     r_omega = model.r * omega
     start = (v_t + r_omega) / speed
-    change = (_solver(model).final_slip_rate(start) - start) * speed
+    solver = _solver(*(getattr(model, name) for name in _FIELDS))
+    change = (solver.final_slip_rate(start) - start) * speed
     share = model.alpha / (1.0 + model.alpha)  # Delta v_t / Delta u' (Eq. 10's weights)
     return np.column_stack([model.restitution * speed, v_t + share * change,
                             r_omega + change / (1.0 + model.alpha)])
