@@ -111,6 +111,28 @@ def test_gross_slip_is_the_rigid_body_impulse(kw):
     assert np.abs(got - closed).max() < EXACT_TOLERANCE
 
 
+def test_gross_slip_through_a_tensile_turn_takes_mu_times_the_absolute_normal_impulse():
+    # the cap is mu |F_n|: once F_n turns tensile (at collision_time(tensile=False)) the
+    # friction impulse keeps its direction while the normal impulse changes sign, so the
+    # friction impulse is mu m (|v_n| - 2 x'(t_turn) + x'(t_exit)), x' the overlap rate of
+    # the damped oscillator; gamma_t |u'| > mu gamma_n |v_n| makes the slide start at once
+    model = ContactModel(mu=0.02, gamma_n=1.0, gamma_t=0.5)
+    beta = model.gamma_n / (2.0 * model.m)
+    omega_d = math.sqrt(model.kn / model.m - beta**2)
+
+    def overlap_rate(t, speed):
+        return speed * math.exp(-beta * t) * (math.cos(omega_d * t) - beta / omega_d * math.sin(omega_d * t))
+
+    t_turn = theory.collision_time(model.m, model.kn, model.gamma_n, tensile=False)
+    for v_n, v_t, omega in [(-1.0, 0.5, -60.0), (-0.6, 2.0, 40.0), (-1.2, -1.0, 50.0)]:
+        speed = -v_n
+        impulse = model.mu * model.m * (speed - 2.0 * overlap_rate(t_turn, speed)
+                                        + overlap_rate(math.pi / omega_d, speed))
+        dv_t = -impulse / model.m * math.copysign(1.0, v_t + model.r * omega)
+        closed = [model.restitution * speed, v_t + dv_t, model.r * omega + dv_t / model.alpha]
+        assert np.abs(coulomb.bounce_2d(model, v_n, v_t, omega)[0] - closed).max() < EXACT_TOLERANCE
+
+
 @pytest.mark.parametrize("alpha", [0.4, 0.25, 0.5])
 def test_no_slip_at_the_magic_ratio_is_the_rough_sphere(alpha):
     # kt/kn = alpha/(1 + alpha): slip and overlap stay in proportion, so a contact that
