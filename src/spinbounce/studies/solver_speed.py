@@ -22,13 +22,15 @@ KT_OVER_KN = (0.05, 2.0 / 7.0, 0.5, 1.0, 2.0)
 ALPHAS = (0.1, 0.25, 0.4, 2.0 / 3.0, 1.0)
 
 
-def random_case(rng: np.random.Generator) -> tuple[ContactModel, tuple[float, float, float]]:
+def random_case(rng: np.random.Generator,
+                normal: str = "hooke") -> tuple[ContactModel, tuple[float, float, float]]:
     """One model and one state (v_n, v_t, omega) from the ranges the solver must cover.
 
     mu log-uniform on [1e-3, 1e3]; gamma_n zero or up to 0.99 of critical 2 sqrt(m kn);
     gamma_t zero or up to twice the tangential critical 2 sqrt(kt m alpha/(1 + alpha));
     limit_damping on or off; incidence from head-on to 89 degrees; r omega zero or up to
-    30 |v| either way.
+    30 |v| either way. ``normal = "hertz"`` draws the same numbers and drops gamma_n
+    (the Hertzian model has none).
     """
     kn = 10.0
     alpha = float(rng.choice(ALPHAS))
@@ -38,7 +40,8 @@ def random_case(rng: np.random.Generator) -> tuple[ContactModel, tuple[float, fl
     gamma_t = 0.0 if rng.random() < 0.3 else 2.0 * rng.random() * critical_t
     with warnings.catch_warnings():  # alpha = 1 is a thin shell's inertia, on purpose
         warnings.simplefilter("ignore", PhysicsWarning)
-        model = ContactModel(kn=kn, kt=kt, alpha=alpha, gamma_n=gamma_n, gamma_t=gamma_t,
+        model = ContactModel(kn=kn, kt=kt, alpha=alpha, gamma_t=gamma_t, normal=normal,
+                             gamma_n=gamma_n if normal == "hooke" else 0.0,
                              mu=float(10.0 ** rng.uniform(-3.0, 3.0)),
                              limit_damping=bool(rng.random() < 0.5))
     speed = rng.uniform(0.1, 2.0)
@@ -47,9 +50,9 @@ def random_case(rng: np.random.Generator) -> tuple[ContactModel, tuple[float, fl
     return model, (-speed * math.cos(angle), speed * math.sin(angle), spin / model.r)
 
 
-def random_cases(n: int, seed: int):
+def random_cases(n: int, seed: int, normal: str = "hooke"):
     rng = np.random.default_rng(seed)
-    return [random_case(rng) for _ in range(n)]
+    return [random_case(rng, normal) for _ in range(n)]
 
 
 def worst_deviation(cases) -> tuple[float, int, np.ndarray]:

@@ -67,17 +67,17 @@ def _resolve_dips(exact, rows, t_left, t_right, d_left, d_right, scale):
     return value < 0.0, t_min, value
 
 
-def first_crossing(grid, k0, t_s, f_s, d_s, noise, on_grid, exact):
+def first_crossing(times, last, k0, t_s, f_s, d_s, noise, on_grid, exact, scale):
     """(lo, hi, f_lo, f_hi): brackets of each sphere's first downward zero of f + noise after
     t_s, and f + noise at their ends.
 
-    grid: the shared times (t_s < grid[-1]); k0: each sphere's first grid index after t_s;
+    ``times(rows, k)``: the grid's times (indices 0 to ``last``, t_s before the last);
+    k0: each sphere's first grid index after t_s;
     f_s, d_s: f + noise and f' at t_s; ``on_grid(rows, offsets, k)`` gives (f, f') at grid
     indices k = k0[rows] + offsets; ``exact(rows, t)`` gives (f + noise, f', f'') at
-    times t. hi is NaN where f stays above -noise to the grid's end.
+    times t; ``scale``: the time scale, for the roots' tolerance. hi is NaN where f stays
+    above -noise to the grid's end.
     """
-    last = grid.size - 1
-    scale = float(grid[-1] - grid[0]) or 1.0
     lo, hi, f_lo, f_hi = (np.full(k0.shape, np.nan) for _ in range(4))
     pending = np.arange(k0.size)
     t_l, f_l, d_l = t_s, f_s, d_s
@@ -91,8 +91,8 @@ def first_crossing(grid, k0, t_s, f_s, d_s, noise, on_grid, exact):
         f = f + noise[pending, None]
         f_left = np.column_stack([f_l, f[:, :-1]])
         d_left = np.column_stack([d_l, d[:, :-1]])
-        t_left = np.column_stack([t_l, grid[k[:, :-1]]])
-        t_right = grid[k]
+        t_right = times(pending, k)
+        t_left = np.column_stack([t_l, t_right[:, :-1]])
         crossing = f < 0.0
         dip, dip_value = _dips(exact, pending, valid & ~crossing, t_left, t_right, f_left, f,
                                d_left, d, scale)

@@ -1,13 +1,14 @@
-"""Exact Coulomb-capped Hookean wall collisions in the paper's plane, many spheres at once.
+"""Exact Coulomb-capped wall collisions in the paper's plane, many spheres at once.
 
 The model is :mod:`.oracle`'s (read its docstring), restricted to the plane (v_n, v_t,
-r omega) and the Hookean normal force. There the contact problem is piecewise linear and
-every piece has a closed form, so nothing is integrated:
+r omega). There every piece of the contact problem has a closed form, so nothing is
+integrated:
 
 * the normal motion is the damped oscillator of Eq. 15 (with gamma_n): the overlap, the
   force F_n and so the cap c = mu |F_n| are explicit functions of time, all proportional
   to |v_n|. The cap is mu F_n until F_n turns tensile (at ``collision_time(tensile=False)``)
-  and -mu F_n after it, up to the exit (or zero, under ``limit_damping``);
+  and -mu F_n after it, up to the exit (or zero, under ``limit_damping``). The Hertzian
+  overlap (``normal = "hertz"``) is exact too (:mod:`._coulomb_normal`);
 * sticking: the trial force A = kt xi + gamma_t u' and the slip rate u' obey
   A' = kt u' - gamma_t s A, u'' = -s A with s = (1 + 1/alpha)/m (the slip's inverse
   reduced mass, as in Eq. 8): a 2x2 linear system solved by its matrix exponential;
@@ -22,9 +23,10 @@ to machine precision by safeguarded Newton. A switching function counts as cross
 once it is below zero by more than its rounding noise, so ties (a contact that rides the
 cap, as at the magic ratio of Eq. 20) do not chatter.
 
-Everything scales with |v_n|: the sphere enters only through u'(0)/|v_n|, the normal
-motion is tabulated once per model, and the final velocities follow from the change of
-u' as in Eq. 10: Delta v_t = alpha/(1 + alpha) Delta u', Delta(r omega) = Delta u'/(1 + alpha).
+With a Hookean force everything scales with |v_n|: the sphere enters only through
+u'(0)/|v_n| and the normal motion is tabulated once per model. The final velocities
+follow from the change of u' as in Eq. 10: Delta v_t = alpha/(1 + alpha) Delta u',
+Delta(r omega) = Delta u'/(1 + alpha).
 """
 
 from __future__ import annotations
@@ -35,6 +37,7 @@ from functools import lru_cache
 
 import numpy as np
 
+from ._coulomb_normal import HertzPhase, HookeNormal, HookePhase
 from ._coulomb_search import first_crossing, root
 
 __all__ = ["bounce_2d", "MAX_SWITCHES"]
@@ -47,31 +50,6 @@ GRID_STEP = 0.2
 MIN_INTERVALS = 24
 #: A switching function must fall below zero by this much of its rounding scale to count.
 NOISE = 1e-13
-
-
-class _Normal:
-    """Overlap rate, force and the force's rates per unit |v_n| (Eq. 15 with damping)."""
-
-    def __init__(self, m: float, kn: float, gamma_n: float):
-        self.m, self.beta = m, gamma_n / (2.0 * m)
-        self.w0_sq = kn / m
-        self.wd = math.sqrt(self.w0_sq - self.beta**2)
-        self.t_exit = math.pi / self.wd
-        # F_n = 0 on the way out: kn x + gamma_n x' = 0 (the oracle's force_zero)
-        self.t_turn = (math.pi - math.atan2(2.0 * self.beta * self.wd,
-                                             self.w0_sq - 2.0 * self.beta**2)) / self.wd
-
-    def at(self, t):
-        """(x', F, F', F'', F''') at times t, x being the overlap, for |v_n| = 1."""
-        t = np.asarray(t, dtype=float)
-        decay = np.exp(-self.beta * t)
-        sin, cos = np.sin(self.wd * t), np.cos(self.wd * t)
-        x = [decay * sin / self.wd, decay * (cos - self.beta / self.wd * sin)]
-        forces = []
-        for k in range(4):  # F^(k) = m (w0^2 x^(k) + 2 beta x^(k+1)), and x^(k+2) = -F^(k)/m
-            forces.append(self.m * (self.w0_sq * x[k] + 2.0 * self.beta * x[k + 1]))
-            x.append(-forces[-1] / self.m)
-        return (x[1], *forces)
 
 
 class _Stick:
@@ -114,28 +92,12 @@ class _Stick:
         return d1, -self.kt * self.s * force - self.gts * d1
 
 
-@dataclass
-class _Phase:
-    """A stretch of the contact over which the cap is one smooth function: c = sign mu F_n."""
-
-    t_a: float
-    t_b: float
-    sign: float
-    grid: np.ndarray
-    cap: np.ndarray  # c, c' on the grid, per unit |v_n|
-    cap_rate: np.ndarray
-    push: np.ndarray  # H, H' on the grid: g = K + H(t) while sliding (K per sphere)
-    push_rate: np.ndarray
-    cap_scale: float
-    push_scale: float
-    stick_table: tuple  # E(j dt), j = 0, 1, ...: the sticking propagator from a grid point on
-
-
 @dataclass(frozen=True)
 class _Fields:
     """The parts of a ContactModel the solver reads (a cache key whatever the model class)."""
 
     m: float
+    r: float
     alpha: float
     kn: float
     kt: float
@@ -152,68 +114,58 @@ def _sign(x, fallback):
 
 
 class _Solver:
-    """One model's tables and the stick/slide segments of a batch of spheres."""
+    """One model: its coefficients, its phases, and the stick/slide segments of a batch."""
 
     def __init__(self, model):
         if model.mu is None:
             raise ValueError("a Coulomb solver needs a finite mu (theory.scattering_matrix is "
                              "exact without one)")
-        if model.normal != "hooke":
-            raise ValueError("the closed-form Coulomb solver is Hookean: use the oracle for hertz")
-        self.mu, self.kt, self.alpha = model.mu, model.kt, model.alpha
+        self.hertz = model.normal == "hertz"
+        self.mu, self.kt, self.alpha, self.m = model.mu, model.kt, model.alpha, model.m
         self.s = (1.0 + 1.0 / model.alpha) / model.m
         self.gts = model.gamma_t * self.s
-        self.m = model.m
-        self.normal = _Normal(model.m, model.kn, model.gamma_n)
         self.stick = _Stick(self.kt, self.gts, self.s)
-        turn = self.normal.t_turn if model.gamma_n > 0.0 else self.normal.t_exit
-        fastest = max(math.sqrt(model.kn / model.m), self.normal.beta, self.stick.fastest_rate())
-        self.phases = [self._phase(0.0, turn, 1.0, fastest)]
+        self.kn_r = model.kn * math.sqrt(model.r)
+        if self.hertz:  # one phase per batch: its times depend on each sphere's speed
+            return
+        normal = HookeNormal(model.m, model.kn, model.gamma_n)
+        turn = normal.t_turn if model.gamma_n > 0.0 else normal.t_exit
+        fastest = max(math.sqrt(model.kn / model.m), normal.beta, self.stick.fastest_rate())
+
+        def phase(t_a, t_b, sign):
+            intervals = max(MIN_INTERVALS, math.ceil((t_b - t_a) * fastest / GRID_STEP))
+            return HookePhase(self, normal, t_a, t_b, sign, intervals)
+
+        self.hooke_phases = [phase(0.0, turn, 1.0)]
         if model.gamma_n > 0.0 and not model.limit_damping:
-            self.phases.append(self._phase(turn, self.normal.t_exit, -1.0, fastest))
-        self.t_scale = self.normal.t_exit
+            self.hooke_phases.append(phase(turn, normal.t_exit, -1.0))
 
-    def _phase(self, t_a, t_b, sign, fastest) -> _Phase:
-        intervals = max(MIN_INTERVALS, math.ceil((t_b - t_a) * fastest / GRID_STEP))
-        grid = np.linspace(t_a, t_b, intervals + 1)
-        cap, cap_rate, push, push_rate, _ = self.cap_and_push(grid, sign)
-        return _Phase(t_a, t_b, sign, grid, cap, cap_rate, push, push_rate,
-                      float(np.abs(cap).max()), float(np.abs(push).max() + np.abs(cap_rate).max()),
-                      self.stick.propagator(grid - t_a))
-
-    def cap_and_push(self, t, sign):
-        """c, c' and H, H', H'' at times t (per unit |v_n|), where sliding has
-        g = K + H with H = kt s sign mu m x' - gamma_t s c - c'."""
-        rate, f0, f1, f2, f3 = self.normal.at(t)
-        k = sign * self.mu
-        c, c1, c2, c3 = k * f0, k * f1, k * f2, k * f3
-        ks = self.kt * self.s
-        push = ks * k * self.m * rate - self.gts * c - c1
-        return c, c1, push, -ks * c - self.gts * c1 - c2, -ks * c1 - self.gts * c2 - c3
-
-    def cap(self, t, sign):
-        _, f0, f1, f2, _ = self.normal.at(t)
-        return sign * self.mu * f0, sign * self.mu * f1, sign * self.mu * f2
+    def phases(self, speed):
+        if not self.hertz:
+            return self.hooke_phases
+        return [HertzPhase(self, speed, self.kn_r, self.stick.fastest_rate(), MIN_INTERVALS, GRID_STEP)]
 
     # -- the contact ------------------------------------------------------------------
-    def final_slip_rate(self, slip_rate):
+    def final_slip_rate(self, slip_rate, speed):
         """u' at the end of the contact, per unit |v_n|, from u'(0) per unit |v_n|."""
         u = np.array(slip_rate, dtype=float)
+        everyone = np.arange(u.size)
         force = self.gts / self.s * u  # A = gamma_t u' at first touch: no history yet
-        for k, phase in enumerate(self.phases):
-            t = np.full(u.shape, phase.t_a)
-            c, rate, _ = self.cap(phase.t_a, phase.sign)
+        for k, phase in enumerate(self.phases(speed)):
+            t = np.full(u.shape, 0.0 if k == 0 else phase.t_a)
+            end = phase.end(everyone)
+            c, rate, _ = phase.cap(everyone, t)
             if k:  # the tensile turn: the cap restarts from zero, the force with it
-                force, c, rate = np.zeros_like(u), 0.0, abs(rate)
+                force, c, rate = np.zeros_like(u), 0.0, np.abs(rate)
             force, sliding, direction = self._start(force, u, c, rate)
             for _ in range(MAX_SWITCHES + 1):
-                live = t < phase.t_b
+                live = t < end
                 if not live.any():
                     break
                 stuck = np.flatnonzero(live & ~sliding)
                 if stuck.size:
                     self._stick_segment(phase, stuck, t, force, u, sliding, direction)
-                slides = np.flatnonzero((t < phase.t_b) & sliding)
+                slides = np.flatnonzero((t < end) & sliding)
                 if slides.size:
                     self._slide_segment(phase, slides, t, force, u, sliding, direction)
             else:
@@ -229,34 +181,40 @@ class _Solver:
         sliding = ~inside & (direction * self.kt * u - self.gts * c > c_rate)
         return np.where(inside, force, direction * c), sliding, direction
 
+    def _segment_end(self, phase, rows, t_s, lo, hi, f_lo, f_hi, exact):
+        """Each sphere's switching time (where the bracket holds one), else the phase's end."""
+        event = np.isfinite(hi)
+        ends = np.broadcast_to(phase.end(rows), rows.shape).copy()
+        if event.any():
+            sel = np.flatnonzero(event)
+            ends[sel] = root(lambda which, x: exact(sel[which], x)[:2], lo[sel], hi[sel],
+                             f_lo[sel], f_hi[sel], phase.t_scale)
+        return event, ends
+
     def _stick_segment(self, phase, rows, t, force, u, sliding, direction):
         t_s, a_s, u_s = t[rows], force[rows], u[rows]
-        k0 = np.searchsorted(phase.grid, t_s, side="right")
-        a0, u0 = self.stick.advance(phase.grid[k0] - t_s, a_s, u_s)
-        table = phase.stick_table
+        k0 = phase.first_index(rows, t_s)
+        a0, u0 = self.stick.advance(phase.times(rows, k0) - t_s, a_s, u_s)
 
         def on_grid(sel, offsets, k):
-            a = table[0][offsets] * a0[sel, None] + table[1][offsets] * u0[sel, None]
-            v = table[2][offsets] * a0[sel, None] + table[3][offsets] * u0[sel, None]
-            a_rate = self.kt * v - self.gts * a
-            return phase.cap[k] - np.abs(a), phase.cap_rate[k] - np.sign(a) * a_rate
+            e11, e12, e21, e22 = phase.steps(rows[sel], offsets)
+            a = e11 * a0[sel, None] + e12 * u0[sel, None]
+            v = e21 * a0[sel, None] + e22 * u0[sel, None]
+            c, c1 = phase.cap_on_grid(rows[sel], k)
+            return c - np.abs(a), c1 - np.sign(a) * (self.kt * v - self.gts * a)
 
         def exact(sel, times):
             a, v = self.stick.advance(times - t_s[sel], a_s[sel], u_s[sel])
-            c, c1, c2 = self.cap(times, phase.sign)
+            c, c1, c2 = phase.cap(rows[sel], times)
             d1, d2 = self.stick.rates_of(a, v)
             sg = np.sign(a)
             return c - np.abs(a) + noise[sel], c1 - sg * d1, c2 - sg * d2
 
-        noise = NOISE * (phase.cap_scale + np.abs(a_s) + self.kt * np.abs(u_s) * self.t_scale)
+        noise = NOISE * (phase.cap_scale(rows) + np.abs(a_s) + self.kt * np.abs(u_s) * phase.t_scale)
         h_s, h1_s, _ = exact(np.arange(rows.size), t_s)
-        lo, hi, h_lo, h_hi = first_crossing(phase.grid, k0, t_s, h_s, h1_s, noise, on_grid, exact)
-        event = np.isfinite(hi)
-        ends = np.full(rows.size, phase.t_b)
-        if event.any():
-            sel = np.flatnonzero(event)
-            ends[sel] = root(lambda which, x: exact(sel[which], x)[:2], lo[sel], hi[sel],
-                             h_lo[sel], h_hi[sel], self.t_scale)
+        brackets = first_crossing(lambda sel, k: phase.times(rows[sel], k), phase.last, k0, t_s,
+                                  h_s, h1_s, noise, on_grid, exact, phase.t_scale)
+        event, ends = self._segment_end(phase, rows, t_s, *brackets, exact)
         a_e, u_e = self.stick.advance(ends - t_s, a_s, u_s)
         t[rows], force[rows], u[rows] = ends, a_e, u_e
         sliding[rows] = event
@@ -265,34 +223,31 @@ class _Solver:
     def _slide_segment(self, phase, rows, t, force, u, sliding, direction):
         t_s, u_s, sigma = t[rows], u[rows], direction[rows]
         impulse = phase.sign * self.mu * self.m  # integral of c = impulse * (x'(t_s) - x'(t))
-        rate_s = self.normal.at(t_s)[0]
+        rate_s = phase.rate(rows, t_s)
         offset = sigma * self.kt * u_s - self.kt * self.s * impulse * rate_s  # g = offset + H
 
         def on_grid(sel, offsets, k):
-            return offset[sel, None] + phase.push[k], phase.push_rate[k]
+            push, push_rate = phase.push_on_grid(rows[sel], k)
+            return offset[sel, None] + push, push_rate
 
         def exact(sel, times):
-            _, _, push, push_rate, push_accel = self.cap_and_push(times, phase.sign)
+            _, _, push, push_rate, push_accel = phase.cap_and_push(rows[sel], times)
             return offset[sel] + push + noise[sel], push_rate, push_accel
 
-        noise = NOISE * (self.kt * np.abs(u_s) + phase.push_scale)
-        k0 = np.searchsorted(phase.grid, t_s, side="right")
+        noise = NOISE * (self.kt * np.abs(u_s) + phase.push_scale(rows))
+        k0 = phase.first_index(rows, t_s)
         g_s, g1_s, _ = exact(np.arange(rows.size), t_s)
-        lo, hi, h_lo, h_hi = first_crossing(phase.grid, k0, t_s, g_s, g1_s, noise, on_grid, exact)
-        event = np.isfinite(hi)
-        ends = np.full(rows.size, phase.t_b)
-        if event.any():
-            sel = np.flatnonzero(event)
-            ends[sel] = root(lambda which, x: exact(sel[which], x)[:2], lo[sel], hi[sel],
-                             h_lo[sel], h_hi[sel], self.t_scale)
-        u_e = u_s - self.s * sigma * impulse * (rate_s - self.normal.at(ends)[0])
+        brackets = first_crossing(lambda sel, k: phase.times(rows[sel], k), phase.last, k0, t_s,
+                                  g_s, g1_s, noise, on_grid, exact, phase.t_scale)
+        event, ends = self._segment_end(phase, rows, t_s, *brackets, exact)
+        u_e = u_s - self.s * sigma * impulse * (rate_s - phase.rate(rows, ends))
         t[rows], u[rows] = ends, u_e
-        force[rows] = sigma * self.cap(ends, phase.sign)[0]
+        force[rows] = sigma * phase.cap(rows, ends)[0]
         sliding[rows] = ~event
 
 
 #: The model's fields the solver reads, in the order _solver takes them.
-_FIELDS = ("m", "alpha", "kn", "kt", "gamma_n", "gamma_t", "mu", "limit_damping", "normal")
+_FIELDS = ("m", "r", "alpha", "kn", "kt", "gamma_n", "gamma_t", "mu", "limit_damping", "normal")
 
 
 @lru_cache(maxsize=16)
@@ -305,9 +260,10 @@ def bounce_2d(model, v_n, v_t, omega) -> np.ndarray:
     """(n, 3) final (v_n, v_t, r omega) of spheres that start touching the wall with
     velocity v_n < 0, tangential velocity v_t and spin omega (the paper's sign).
 
-    Same contract as :func:`.oracle.bounce_many` for states in the plane, exact to
-    rounding: the normal outcome is Eq. 15's (restitution e), the tangential one follows
-    the stick and slide segments in closed form.
+    Same contract as :func:`.oracle.bounce_many` for states in the plane, Hookean or
+    Hertzian, exact to rounding: the normal outcome is Eq. 15's (restitution e; 1 for
+    Hertz, which has no normal damping), the tangential one follows the stick and slide
+    segments in closed form.
     """
     v_n, v_t, omega = (np.atleast_1d(np.asarray(x, dtype=float)) for x in (v_n, v_t, omega))
     v_n, v_t, omega = np.broadcast_arrays(v_n, v_t, omega)
@@ -317,7 +273,8 @@ def bounce_2d(model, v_n, v_t, omega) -> np.ndarray:
     r_omega = model.r * omega
     start = (v_t + r_omega) / speed
     solver = _solver(*(getattr(model, name) for name in _FIELDS))
-    change = (solver.final_slip_rate(start) - start) * speed
+    change = (solver.final_slip_rate(start, speed) - start) * speed
     share = model.alpha / (1.0 + model.alpha)  # Delta v_t / Delta u' (Eq. 10's weights)
-    return np.column_stack([model.restitution * speed, v_t + share * change,
+    restitution = 1.0 if solver.hertz else model.restitution  # Hertz here has gamma_n = 0
+    return np.column_stack([restitution * speed, v_t + share * change,
                             r_omega + change / (1.0 + model.alpha)])
