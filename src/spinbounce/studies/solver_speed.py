@@ -15,7 +15,7 @@ import numpy as np
 from ..model.scenes import ContactModel, PhysicsWarning
 from ..theory import coulomb, oracle
 
-__all__ = ["random_case", "random_cases", "worst_deviation", "measure_throughput"]
+__all__ = ["random_case", "random_cases", "worst_deviation", "measure_throughput", "main"]
 
 #: kt/kn values sampled: soft, the magic ratio of alpha = 2/5 (2/7), stiff, stiffer than kn.
 KT_OVER_KN = (0.05, 2.0 / 7.0, 0.5, 1.0, 2.0)
@@ -46,7 +46,8 @@ def random_case(rng: np.random.Generator,
                              limit_damping=bool(rng.random() < 0.5))
     speed = rng.uniform(0.1, 2.0)
     angle = math.radians(rng.uniform(0.0, 89.0))
-    spin = 0.0 if rng.random() < 0.2 else speed * 10.0 ** rng.uniform(-2.0, 1.5) * rng.choice([-1.0, 1.0])
+    spin = (0.0 if rng.random() < 0.2
+            else speed * 10.0 ** rng.uniform(-2.0, 1.5) * rng.choice([-1.0, 1.0]))
     return model, (-speed * math.cos(angle), speed * math.sin(angle), spin / model.r)
 
 
@@ -89,3 +90,23 @@ def measure_throughput(n: int = 200_000, seed: int = 0, repeats: int = 3, **mode
         coulomb.bounce_2d(contact, v_n, v_t, omega)
         best = min(best, time.perf_counter() - started)
     return n / best
+
+
+#: Models the throughput is reported for: the paper's, damped, and Hertzian.
+SPEED_MODELS = {
+    "Hooke, mu = 0.3": {},
+    "Hooke, mu = 0.05, gamma_n = 1, gamma_t = 0.5": {"mu": 0.05, "gamma_n": 1.0, "gamma_t": 0.5},
+    "Hooke, mu = 3, kt = 8, gamma_n = 2, limit_damping": {"mu": 3.0, "kt": 8.0, "gamma_n": 2.0,
+                                                          "limit_damping": True},
+    "Hertz, mu = 0.3": {"normal": "hertz"},
+}
+
+
+def main() -> None:
+    """Print the throughput (``python -m spinbounce.studies.solver_speed``)."""
+    for label, model in SPEED_MODELS.items():
+        print(f"{label}: {measure_throughput(**model):,.0f} collisions/s")
+
+
+if __name__ == "__main__":
+    main()

@@ -155,8 +155,8 @@ def hertz_forces(x, rate):
 class HertzPhase(_Phase):
     """The whole Hertzian contact of a batch of spheres (no tensile turn: gamma_n = 0)."""
 
-    def __init__(self, contact, speed, kn_r: float, fastest_tangential: float, min_intervals: int,
-                 grid_step: float):
+    def __init__(self, contact, speed, kn_r: float, fastest_tangential: float,
+                 min_intervals: int, grid_step: float):
         super().__init__(contact, 1.0)
         m = contact.m
         overlap = (m * speed**2 / kn_r) ** 0.4
@@ -173,12 +173,15 @@ class HertzPhase(_Phase):
         self.shape = (rate, *hertz_forces(x, rate))
         self.cap_unit = float(np.abs(self.shape[1]).max())
 
+    @staticmethod
+    def _scaled(period, factor, rate, f0, f1, f2, f3):
+        """x' and the cap with its rates, per unit |v_n|, from the shape's X' and F(tau)."""
+        return rate, factor * f0, factor / period * f1, factor / period**2 * f2, factor / period**3 * f3
+
     def _normal(self, rows, t):
         period = self.period[rows]
         x, rate = hertz_shape(t / period)
-        f0, f1, f2, f3 = hertz_forces(x, rate)
-        factor = self.cap_factor[rows]
-        return rate, factor * f0, factor / period * f1, factor / period**2 * f2, factor / period**3 * f3
+        return self._scaled(period, self.cap_factor[rows], rate, *hertz_forces(x, rate))
 
     def end(self, rows):
         return self.t_b[rows]
@@ -193,10 +196,8 @@ class HertzPhase(_Phase):
         return (period[:, None] if k.ndim == 2 else period) * self.tau[k]
 
     def _on_grid(self, rows, k):
-        period = self.period[rows][:, None]
-        factor = self.cap_factor[rows][:, None]
-        rate, f0, f1, f2, f3 = (s[k] for s in self.shape)
-        return rate, factor * f0, factor / period * f1, factor / period**2 * f2, factor / period**3 * f3
+        return self._scaled(self.period[rows][:, None], self.cap_factor[rows][:, None],
+                            *(table[k] for table in self.shape))
 
     def cap_on_grid(self, rows, k):
         return self._on_grid(rows, k)[1:3]
@@ -211,5 +212,6 @@ class HertzPhase(_Phase):
         return self.cap_factor[rows] * self.cap_unit
 
     def push_scale(self, rows):
-        ks = self.contact.kt * self.contact.s
-        return ks * self.contact.mu * self.contact.m + (self.contact.gts + 2.0 / self.period[rows]) * self.cap_scale(rows)
+        ks, gts = self.contact.kt * self.contact.s, self.contact.gts
+        cap_rate = 2.0 / self.period[rows] * self.cap_scale(rows)  # |F'| < 2 max F / T
+        return ks * self.contact.mu * self.contact.m + gts * self.cap_scale(rows) + cap_rate

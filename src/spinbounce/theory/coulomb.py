@@ -143,7 +143,8 @@ class _Solver:
     def phases(self, speed):
         if not self.hertz:
             return self.hooke_phases
-        return [HertzPhase(self, speed, self.kn_r, self.stick.fastest_rate(), MIN_INTERVALS, GRID_STEP)]
+        return [HertzPhase(self, speed, self.kn_r, self.stick.fastest_rate(), MIN_INTERVALS,
+                           GRID_STEP)]
 
     # -- the contact ------------------------------------------------------------------
     def final_slip_rate(self, slip_rate, speed):
@@ -210,7 +211,8 @@ class _Solver:
             sg = np.sign(a)
             return c - np.abs(a) + noise[sel], c1 - sg * d1, c2 - sg * d2
 
-        noise = NOISE * (phase.cap_scale(rows) + np.abs(a_s) + self.kt * np.abs(u_s) * phase.t_scale)
+        noise = NOISE * (phase.cap_scale(rows) + np.abs(a_s)
+                         + self.kt * np.abs(u_s) * phase.t_scale)
         h_s, h1_s, _ = exact(np.arange(rows.size), t_s)
         brackets = first_crossing(lambda sel, k: phase.times(rows[sel], k), phase.last, k0, t_s,
                                   h_s, h1_s, noise, on_grid, exact, phase.t_scale)
