@@ -72,11 +72,14 @@ def worst_deviation(cases) -> tuple[float, int, np.ndarray]:
     return float(deviations[worst]), worst, deviations
 
 
-def measure_throughput(n: int = 200_000, seed: int = 0, repeats: int = 3, **model) -> float:
-    """Collisions per second of :func:`coulomb.bounce_2d` on one batch of n spheres.
+def measure_throughput(n: int = 200_000, seed: int = 0, repeats: int = 3, three_d: bool = False,
+                       **model) -> float:
+    """Collisions per second of :func:`coulomb.bounce_2d` (or ``bounce_3d``) on one batch
+    of n spheres.
 
     Default model: the paper's (kn = 10, kt = 1, alpha = 0.4) with mu = 0.3; states over
-    the acceptance sweep's ranges (|v_n| in [0.1, 1.5], v_t and r omega in [-2, 2]).
+    the acceptance sweep's ranges (|v_n| in [0.1, 1.5], v_t and r omega in [-2, 2]; in
+    3-D v_s, r omega_s and r omega_n too).
     The best of ``repeats`` runs (the machine is shared).
     """
     rng = np.random.default_rng(seed)
@@ -84,10 +87,15 @@ def measure_throughput(n: int = 200_000, seed: int = 0, repeats: int = 3, **mode
     v_n = -rng.uniform(0.1, 1.5, n)
     v_t = rng.uniform(-2.0, 2.0, n)
     omega = rng.uniform(-2.0, 2.0, n) / contact.r
+    states = [v_n, v_t, omega]
+    if three_d:
+        states += [rng.uniform(-2.0, 2.0, n), rng.uniform(-2.0, 2.0, n) / contact.r,
+                   rng.uniform(-2.0, 2.0, n) / contact.r]
+    bounce = coulomb.bounce_3d if three_d else coulomb.bounce_2d
     best = math.inf
     for _ in range(repeats):
         started = time.perf_counter()
-        coulomb.bounce_2d(contact, v_n, v_t, omega)
+        bounce(contact, *states)
         best = min(best, time.perf_counter() - started)
     return n / best
 
@@ -99,6 +107,7 @@ SPEED_MODELS = {
     "Hooke, mu = 3, kt = 8, gamma_n = 2, limit_damping": {"mu": 3.0, "kt": 8.0, "gamma_n": 2.0,
                                                           "limit_damping": True},
     "Hertz, mu = 0.3": {"normal": "hertz"},
+    "3-D Hooke, mu = 0.3": {"three_d": True},
 }
 
 

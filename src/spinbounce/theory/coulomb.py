@@ -40,7 +40,7 @@ import numpy as np
 from ._coulomb_normal import HertzPhase, HookeNormal, HookePhase
 from ._coulomb_search import first_crossing, root
 
-__all__ = ["bounce_2d", "MAX_SWITCHES"]
+__all__ = ["bounce_2d", "bounce_3d", "MAX_SWITCHES"]
 
 #: More regime switches than this in one contact mean the regimes chatter: refuse.
 MAX_SWITCHES = 200
@@ -258,6 +258,22 @@ def _solver(*fields) -> _Solver:
     return _Solver(_Fields(*fields))
 
 
+def _slip_change(model, v_n, slip):
+    """(speed |v_n|, restitution, Delta u') for slip rates u'(0) along one line."""
+    if not np.all(v_n < 0.0):
+        raise ValueError("every v_n must be < 0 (towards the wall)")
+    speed = -v_n
+    solver = _solver(*(getattr(model, name) for name in _FIELDS))
+    start = slip / speed
+    restitution = 1.0 if solver.hertz else model.restitution  # Hertz here has gamma_n = 0
+    return speed, restitution, (solver.final_slip_rate(start, speed) - start) * speed
+
+
+def _states(*columns):
+    columns = [np.atleast_1d(np.asarray(x, dtype=float)) for x in columns]
+    return np.broadcast_arrays(*columns)
+
+
 def bounce_2d(model, v_n, v_t, omega) -> np.ndarray:
     """(n, 3) final (v_n, v_t, r omega) of spheres that start touching the wall with
     velocity v_n < 0, tangential velocity v_t and spin omega (the paper's sign).
@@ -267,16 +283,34 @@ def bounce_2d(model, v_n, v_t, omega) -> np.ndarray:
     Hertz, which has no normal damping), the tangential one follows the stick and slide
     segments in closed form.
     """
-    v_n, v_t, omega = (np.atleast_1d(np.asarray(x, dtype=float)) for x in (v_n, v_t, omega))
-    v_n, v_t, omega = np.broadcast_arrays(v_n, v_t, omega)
-    if not np.all(v_n < 0.0):
-        raise ValueError("every v_n must be < 0 (towards the wall)")
-    speed = -v_n
+    v_n, v_t, omega = _states(v_n, v_t, omega)
     r_omega = model.r * omega
-    start = (v_t + r_omega) / speed
-    solver = _solver(*(getattr(model, name) for name in _FIELDS))
-    change = (solver.final_slip_rate(start, speed) - start) * speed
+    speed, restitution, change = _slip_change(model, v_n, v_t + r_omega)
     share = model.alpha / (1.0 + model.alpha)  # Delta v_t / Delta u' (Eq. 10's weights)
-    restitution = 1.0 if solver.hertz else model.restitution  # Hertz here has gamma_n = 0
     return np.column_stack([restitution * speed, v_t + share * change,
                             r_omega + change / (1.0 + model.alpha)])
+
+
+def bounce_3d(model, v_n, v_t, omega, v_s, omega_s, omega_n) -> np.ndarray:
+    """(n, 6) final states in the order of ``STATE_3D`` (v_n, v_t, r omega, v_s,
+    r omega_s, r omega_n), as :func:`.oracle.bounce_many` gives them.
+
+    The 3-D contact is the plane's along the first slip direction, exactly: the history
+    starts at zero, so the trial force A = gamma_t u' is parallel to the slip rate u' at
+    first touch; sticking moves A and u' by kt u' - gamma_t s A and -s A, sliding moves
+    u' by -s c (A/|A|), and turns A only by the part of u' across it (the oracle's
+    s' = kt u'_perp/c), which is zero. So A and u' stay on the line of u'(0) (reversing
+    along it as in the plane), and the solver of the plane gives the slip along it.
+    The spin about the normal never changes.
+    """
+    v_n, v_t, omega, v_s, omega_s, omega_n = _states(v_n, v_t, omega, v_s, omega_s, omega_n)
+    r = model.r
+    slip = np.stack([v_t + r * omega, v_s + r * omega_s])
+    size = np.hypot(*slip)
+    line = np.divide(slip, size, out=np.zeros_like(slip), where=size > 0.0)
+    speed, restitution, change = _slip_change(model, v_n, size)
+    share = model.alpha / (1.0 + model.alpha)
+    dv = share * change * line
+    dr_omega = change * line / (1.0 + model.alpha)
+    return np.column_stack([restitution * speed, v_t + dv[0], r * omega + dr_omega[0],
+                            v_s + dv[1], r * omega_s + dr_omega[1], r * omega_n])
