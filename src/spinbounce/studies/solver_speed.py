@@ -1,0 +1,121 @@
+"""The closed-form Coulomb solver (:mod:`spinbounce.theory.coulomb`) measured: its agreement
+with the scipy oracle over random models and states, and its throughput on one core.
+
+Both are measurements, not checks; tests/test_coulomb_fast.py holds the checks.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+import warnings
+
+import numpy as np
+
+from ..model.scenes import ContactModel, PhysicsWarning
+from ..theory import coulomb, oracle
+
+__all__ = ["random_case", "random_cases", "worst_deviation", "measure_throughput", "main"]
+
+#: kt/kn values sampled: soft, the magic ratio of alpha = 2/5 (2/7), stiff, stiffer than kn.
+KT_OVER_KN = (0.05, 2.0 / 7.0, 0.5, 1.0, 2.0)
+ALPHAS = (0.1, 0.25, 0.4, 2.0 / 3.0, 1.0)
+
+
+def random_case(rng: np.random.Generator,
+                normal: str = "hooke") -> tuple[ContactModel, tuple[float, float, float]]:
+    """One model and one state (v_n, v_t, omega) from the ranges the solver must cover.
+
+    mu log-uniform on [1e-3, 1e3]; gamma_n zero or up to 0.99 of critical 2 sqrt(m kn);
+    gamma_t zero or up to twice the tangential critical 2 sqrt(kt m alpha/(1 + alpha));
+    limit_damping on or off; incidence from head-on to 89 degrees; r omega zero or up to
+    30 |v| either way. ``normal = "hertz"`` draws the same numbers and drops gamma_n
+    (the Hertzian model has none).
+    """
+    kn = 10.0
+    alpha = float(rng.choice(ALPHAS))
+    kt = kn * float(rng.choice(KT_OVER_KN))
+    critical_t = 2.0 * math.sqrt(kt * alpha / (1.0 + alpha))
+    gamma_n = 0.0 if rng.random() < 0.3 else 0.99 * rng.random() * 2.0 * math.sqrt(kn)
+    gamma_t = 0.0 if rng.random() < 0.3 else 2.0 * rng.random() * critical_t
+    with warnings.catch_warnings():  # alpha = 1 is a thin shell's inertia, on purpose
+        warnings.simplefilter("ignore", PhysicsWarning)
+        model = ContactModel(kn=kn, kt=kt, alpha=alpha, gamma_t=gamma_t, normal=normal,
+                             gamma_n=gamma_n if normal == "hooke" else 0.0,
+                             mu=float(10.0 ** rng.uniform(-3.0, 3.0)),
+                             limit_damping=bool(rng.random() < 0.5))
+    speed = rng.uniform(0.1, 2.0)
+    angle = math.radians(rng.uniform(0.0, 89.0))
+    spin = (0.0 if rng.random() < 0.2
+            else speed * 10.0 ** rng.uniform(-2.0, 1.5) * rng.choice([-1.0, 1.0]))
+    return model, (-speed * math.cos(angle), speed * math.sin(angle), spin / model.r)
+
+
+def random_cases(n: int, seed: int, normal: str = "hooke"):
+    rng = np.random.default_rng(seed)
+    return [random_case(rng, normal) for _ in range(n)]
+
+
+def worst_deviation(cases) -> tuple[float, int, np.ndarray]:
+    """Largest |solver - oracle| over the cases, in units of each impact speed |v|:
+    (worst, its index, every case's deviation). A case the oracle refuses (its regimes
+    chatter beyond its switch limit) has deviation NaN and is left out of the worst."""
+    deviations = np.full(len(cases), np.nan)
+    for i, (model, state) in enumerate(cases):
+        try:
+            slow = oracle.bounce(model, *state).final[:3]
+        except RuntimeError:
+            continue
+        fast = coulomb.bounce_2d(model, *state)[0]
+        deviations[i] = np.abs(fast - slow).max() / math.hypot(state[0], state[1])
+    worst = int(np.nanargmax(deviations))
+    return float(deviations[worst]), worst, deviations
+
+
+def measure_throughput(n: int = 200_000, seed: int = 0, repeats: int = 3, three_d: bool = False,
+                       **model) -> float:
+    """Collisions per second of :func:`coulomb.bounce_2d` (or ``bounce_3d``) on one batch
+    of n spheres.
+
+    Default model: the paper's (kn = 10, kt = 1, alpha = 0.4) with mu = 0.3; states over
+    the acceptance sweep's ranges (|v_n| in [0.1, 1.5], v_t and r omega in [-2, 2]; in
+    3-D v_s, r omega_s and r omega_n too).
+    The best of ``repeats`` runs (the machine is shared).
+    """
+    rng = np.random.default_rng(seed)
+    contact = ContactModel(**({"mu": 0.3} | model))
+    v_n = -rng.uniform(0.1, 1.5, n)
+    v_t = rng.uniform(-2.0, 2.0, n)
+    omega = rng.uniform(-2.0, 2.0, n) / contact.r
+    states = [v_n, v_t, omega]
+    if three_d:
+        states += [rng.uniform(-2.0, 2.0, n), rng.uniform(-2.0, 2.0, n) / contact.r,
+                   rng.uniform(-2.0, 2.0, n) / contact.r]
+    bounce = coulomb.bounce_3d if three_d else coulomb.bounce_2d
+    best = math.inf
+    for _ in range(repeats):
+        started = time.perf_counter()
+        bounce(contact, *states)
+        best = min(best, time.perf_counter() - started)
+    return n / best
+
+
+#: Models the throughput is reported for: the paper's, damped, and Hertzian.
+SPEED_MODELS = {
+    "Hooke, mu = 0.3": {},
+    "Hooke, mu = 0.05, gamma_n = 1, gamma_t = 0.5": {"mu": 0.05, "gamma_n": 1.0, "gamma_t": 0.5},
+    "Hooke, mu = 3, kt = 8, gamma_n = 2, limit_damping": {"mu": 3.0, "kt": 8.0, "gamma_n": 2.0,
+                                                          "limit_damping": True},
+    "Hertz, mu = 0.3": {"normal": "hertz"},
+    "3-D Hooke, mu = 0.3": {"three_d": True},
+}
+
+
+def main() -> None:
+    """Print the throughput (``python -m spinbounce.studies.solver_speed``)."""
+    for label, model in SPEED_MODELS.items():
+        print(f"{label}: {measure_throughput(**model):,.0f} collisions/s")
+
+
+if __name__ == "__main__":
+    main()
