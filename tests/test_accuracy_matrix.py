@@ -83,7 +83,7 @@ REFUSED = {
     "gamma_t = 1e6": ({"gamma_t": 1e6}, "dt", "steps"),
     "gamma_n at critical": ({"gamma_n": 2 * np.sqrt(10.0)}, "gamma_n", "critical"),
     "gamma_n = 6 (restitution 8e-5)": ({"gamma_n": 6.0}, "gamma_n", "restitution"),
-    "mu = 1e3": ({"mu": 1e3}, "mu", "in [0, 100]"),
+    "mu = 1e3": ({"mu": 1e3}, "mu", "<= 100 at the default step"),
     "kt/kn = 1e9": ({"kt": 1e10}, "dt", "steps"),
     "alpha = 1.5": ({"alpha": 1.5}, "alpha", "in (0, 1]"),
     "mu < 0": ({"mu": -0.1}, "mu", "not negative"),

@@ -245,7 +245,7 @@ def test_hertz_approaches_the_uncapped_theory_as_mu_to_the_minus_two_thirds():
     deviations = []
     for mu in (1e4, 1e6):
         model = ContactModel(normal="hertz", mu=mu, kt=3.0)
-        exact = np.einsum("nij,nj->ni", model.matrices(states[:, 0]), initial)
+        exact = np.einsum("nij,nj->ni", model.replace(mu=None).matrices(states[:, 0]), initial)
         deviations.append(np.abs(coulomb.bounce_2d(model, *states.T) - exact).max())
     assert deviations[1] < 1e-3
     assert 18.0 < deviations[0] / deviations[1] < 25.0

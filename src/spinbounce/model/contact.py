@@ -79,14 +79,6 @@ class ContactPhysics:
                 f"must be below critical normal damping 2*sqrt(m*kn) = {critical:.6g}: "
                 "at or above it the sphere never leaves the wall",
             )
-        if self.normal == "hooke" and self.restitution < MIN_RESTITUTION:
-            limit = theory.gamma_n_for_restitution(MIN_RESTITUTION, self.m, self.kn)
-            raise SceneError(
-                "gamma_n",
-                self.gamma_n,
-                f"must be below {limit:.6g} (restitution {MIN_RESTITUTION:g}); here the sphere leaves at "
-                f"{self.restitution:.3g} of its speed, too slowly for a run to locate the contact's end",
-            )
 
     def replace(self, **changes):
         """A copy with some parameters changed (checked again)."""
@@ -141,6 +133,22 @@ class ContactPhysics:
     def block_matrix(self) -> np.ndarray:
         """The 6x6 map of 3-D states (:data:`STATE_3D`)."""
         return choose.matrix(self, three_d=True)
+
+    def matrices(self, v_n) -> np.ndarray:
+        """(n, 3, 3): each sphere's scattering matrix (:func:`spinbounce.theory.choose.matrices`)."""
+        return choose.matrices(self, v_n)
+
+    def check_default_step(self) -> None:
+        """Refuse what a run at the default step cannot resolve: each declared parameter's own
+        limit, and a sphere that leaves the wall too slowly for a run to see it go."""
+        for parameter in MODEL:
+            parameter.check_default_step(getattr(self, parameter.name))
+        if self.normal == "hooke" and self.restitution < MIN_RESTITUTION:
+            limit = theory.gamma_n_for_restitution(MIN_RESTITUTION, self.m, self.kn)
+            raise SceneError("gamma_n", self.gamma_n,
+                             f"must be below {limit:.6g} (restitution {MIN_RESTITUTION:g}) at the default step: here "
+                             f"the sphere leaves at {self.restitution:.3g} of its speed, too slowly for the step's "
+                             "probe to see the contact end; give a dt of your own")
 
     def contact_times(self, v_n) -> np.ndarray:
         """Each sphere's time until it is out of the overlap (Hertz: tau(v_n); Hooke: t_exit)."""

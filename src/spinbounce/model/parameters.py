@@ -53,6 +53,9 @@ class Parameter:
     sweepable: bool = True
     changes_outcome: bool = True
     deck: str = ""
+    #: Where the default step's accuracy stops holding (a LAMMPS run beyond it needs a given dt).
+    default_step_high: float | None = None
+    default_step_why: str = ""
     #: Command-line flags besides the name with dashes (``gamma_n`` -> ``--gamma-n``); the first is shown.
     aliases: tuple[str, ...] = ()
 
@@ -86,6 +89,12 @@ class Parameter:
         else:
             text = "any finite number"
         return text + (" or none" if self.optional else "")
+
+    def check_default_step(self, value) -> None:
+        """Refuse a value beyond which a run at the default step misses the default accuracy."""
+        if self.default_step_high is not None and value is not None and value > self.default_step_high:
+            raise SceneError(self.name, value, f"must be <= {self.default_step_high:g} at the default step "
+                                               f"({self.default_step_why})")
 
     def check(self, value, where: str | None = None):
         """``value`` as this parameter's type, or a :class:`SceneError` naming the limit."""
@@ -140,9 +149,10 @@ MODEL: tuple[Parameter, ...] = (
     Parameter("gamma_t", "tangential viscous damping on the slip rate", "mass/time", 0.0, low=0.0,
               why="negative damping would create energy", deck="tangential linear_history KT X_T (X_T ETA_N = gamma_t)"),
     Parameter("mu", "Coulomb friction coefficient, |F_t| <= mu |F_n|; none: the paper's model (no cap)", "1", None,
-              low=0.0, high=100.0, optional=True, why_low="a friction coefficient is not negative",
-              why="above 100 the cap acts only where F_n vanishes, at the contact's ends, and LAMMPS's step "
-                  "converges there too slowly for the default accuracy: give none for no cap",
+              low=0.0, optional=True, why="a friction coefficient is not negative", default_step_high=100.0,
+              default_step_why="above 100 the cap acts only where F_n vanishes, at the contact's ends, and "
+                               "LAMMPS's step converges there too slowly for the default accuracy: give none for "
+                               "no cap, or a dt of your own (each row then reports its error)",
               deck="tangential linear_history ... MU (none: 1e12)"),
     Parameter("limit_damping", "never let the normal force pull (LAMMPS's limit_damping)", "-", False, kind="flag",
               deck="wall/gran ... limit_damping"),
@@ -191,6 +201,7 @@ def markdown_table(parameters=MODEL) -> str:
     rows = ["| parameter (flag) | meaning | unit | default | accepted | sweepable |", "|---|---|---|---|---|---|"]
     for p in parameters:
         default = "none" if p.default is None else str(p.default).lower() if p.kind == "flag" else p.default
-        rows.append(f"| `{p.name}` (`{p.flag}`) | {p.meaning} | {p.unit} | {default} | {p.range_text()} "
+        accepted = p.range_text() + (f"; default step up to {p.default_step_high:g}" if p.default_step_high else "")
+        rows.append(f"| `{p.name}` (`{p.flag}`) | {p.meaning} | {p.unit} | {default} | {accepted} "
                     f"| {'yes' if p.sweepable else 'no'} |")
     return "\n".join(rows)

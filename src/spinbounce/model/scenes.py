@@ -160,6 +160,8 @@ class Collision:
     def __post_init__(self):
         set_ = object.__setattr__
         set_(self, "default_step", self.dt is None)
+        if self.dt is None:
+            self.model.check_default_step()
         columns = [_as_vector(name, getattr(self, name)) for name in STATE_ARGS]
         sizes = {len(c) for c in columns}
         if len(sizes - {1}) > 1:

@@ -12,7 +12,7 @@ damped    Hookean with gamma_n or gamma_t, no cap: Eq. 18 with the     yes
 hertz     Hertzian normal force, no cap: Eq. 18 sphere by sphere with  no (Omega(v_n))
           the Omega of each contact time (:mod:`.hertz`)
 coulomb   a finite mu: the contact sticks and slides in turn            no
-          (:mod:`.oracle`, integrated with stick-slip events)
+          (:mod:`.coulomb`, exact and batched; checked against :mod:`.oracle`)
 ========  ==========================================================  ===========
 
 States are rows of (v_n, v_t, r omega) or, in 3-D, (v_n, v_t, r omega, v_s, r omega_s,
@@ -27,7 +27,7 @@ import numpy as np
 
 from . import hertz, linear
 
-__all__ = ["Choice", "which", "predict", "matrix", "omega_per_sphere", "frozen", "NoMatrix"]
+__all__ = ["Choice", "which", "predict", "matrix", "matrices", "omega_per_sphere", "frozen", "NoMatrix"]
 
 
 class NoMatrix(ValueError):
@@ -50,7 +50,7 @@ class Choice:
 def which(model) -> Choice:
     """The theory that applies to collisions of ``model``."""
     if model.mu is not None:
-        return Choice("coulomb", "Coulomb oracle (stick-slip events, rtol 1e-12)",
+        return Choice("coulomb", "Coulomb stick-slip solution (exact in each phase, switches to machine precision)",
                       f"with mu = {model.mu!r} the contact sticks and slides in turn, so the outcome is not "
                       "linear in the initial state: give a state (v_n, v_t, omega) for its outcome")
     if model.normal == "hertz":
@@ -90,6 +90,15 @@ def matrix(model, v_n: float | None = None, three_d: bool = False) -> np.ndarray
     return linear.block_from(m3) if three_d else m3
 
 
+def matrices(model, v_n) -> np.ndarray:
+    """(n, 3, 3): each sphere's scattering matrix (one per v_n for a Hertzian model; the one
+    matrix repeated otherwise); :class:`NoMatrix` with a Coulomb cap."""
+    v_n = np.atleast_1d(np.asarray(v_n, dtype=float))
+    if which(model).kind == "hertz":
+        return _hertz_matrices(model, v_n)
+    return np.broadcast_to(matrix(model), (v_n.size, 3, 3))
+
+
 def _hertz_matrices(model, v_n: np.ndarray) -> np.ndarray:
     return hertz.scattering_matrices(v_n, model.m, model.kn, model.r, model.kt, model.alpha, model.gamma_t)
 
@@ -112,14 +121,14 @@ def predict(model, initial) -> np.ndarray:
     initial = np.atleast_2d(np.asarray(initial, dtype=float))
     width = initial.shape[1]
     kind = which(model).kind
-    if kind == "coulomb":
-        from . import oracle  # scipy's integrator: loaded only when a cap asks for it
+    if kind == "coulomb":  # the exact batched solver; the scipy oracle is its independent check
+        from . import coulomb
 
         r = model.r
         columns = [initial[:, 0], initial[:, 1], initial[:, 2] / r]
         if width == 6:
-            columns += [initial[:, 3], initial[:, 4] / r, initial[:, 5] / r]
-        return oracle.bounce_many(model, *columns)[:, :width]
+            return coulomb.bounce_3d(model, *columns, initial[:, 3], initial[:, 4] / r, initial[:, 5] / r)
+        return coulomb.bounce_2d(model, *columns)
     if kind == "hertz":
         matrices = _hertz_matrices(model, initial[:, 0])
         if width == 6:
