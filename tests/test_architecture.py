@@ -106,10 +106,9 @@ def test_one_timestep_rule():
 
 
 def test_one_place_decides_which_theory_applies():
-    # which theory a model gets is decided in theory/choose.py; elsewhere mu is read only to
-    # write the deck (decks: no cap is 1e12), to refuse a scene no theory covers (a frozen
-    # contact, a tolerance ladder), or inside a theory's own equations (oracle, classic wall)
-    deciders = _files_matching(r"if [\w .]*\. mu is (not )?None")
-    allowed = {"theory/choose.py", "model/scenes.py", "lammps/decks.py", "theory/oracle.py", "theory/classic.py",
-               "studies/tolerance.py"}
-    assert "theory/choose.py" in deciders and deciders <= allowed, deciders
+    # predictions come from theory/choose.py; the solvers behind it are imported elsewhere
+    # only to measure them (solver_speed) or, for the published benchmarks, as the
+    # independent oracle whose regime patterns the report shows
+    solvers = _files_matching(r"import [\w ,]*\b(oracle|coulomb)\b")
+    assert "theory/choose.py" in solvers
+    assert solvers <= {"theory/choose.py", "studies/solver_speed.py", "studies/validation/run.py"}, solvers

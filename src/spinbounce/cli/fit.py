@@ -81,7 +81,8 @@ def _print_group(f: dict) -> None:
     print("group: " + ", ".join(f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}" for k, v in p.items()))
     print(f"  collisions {f['n']}; theory: {f['theory']}; {f['regime']}")
     print(f"  per collision |LAMMPS - theory|: worst {f['worst_deviation']:.2e}, median {f['median_deviation']:.2e} "
-          f"(over the impact speed: worst {f['worst_relative_deviation']:.2e})")
+          f"(over the state's size: worst {f['worst_relative_deviation']:.2e})"
+          + ("; rows " + ", ".join(f"{n} {s}" for s, n in f["status"].items()) if "status" in f else ""))
     if not f["has_matrix"]:
         return
     print(f"  Omega = {f['Omega']:.8f} +/- {f['Omega_stderr']:.1e} "
