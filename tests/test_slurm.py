@@ -5,6 +5,7 @@ one-node one on this machine (CI does it before the tests). Without one these te
 skipped, except under CI=true, where a missing cluster is a failure.
 """
 
+import getpass
 import os
 import re
 import shutil
@@ -41,8 +42,9 @@ r_omega = [-2.0, 2.0]
 """
 
 
-def slurm_partition() -> str:
-    """The default partition of a SLURM that answers, or skip (fail under CI=true) saying why."""
+def slurm_site() -> dict[str, str]:
+    """The profile's overrides for a SLURM that answers: its default partition and this
+    user's default account; or skip (fail under CI=true) saying why."""
     why = None
     if shutil.which("sbatch") is None or shutil.which("sacct") is None:
         why = "no SLURM client here (sbatch, sacct)"
@@ -54,7 +56,11 @@ def slurm_partition() -> str:
         elif subprocess.run(["sacct", "-n", "-X", "-S", "now"], capture_output=True, check=False).returncode:
             why = "sacct fails: the workflow's SLURM plugin needs job accounting (slurmdbd)"
     if why is None:
-        return default[0]
+        user = subprocess.run(["sacctmgr", "-n", "-P", "show", "user", getpass.getuser(), "format=DefaultAccount"],
+                              capture_output=True, text=True, check=False).stdout.split()
+        if user:
+            return {"SPINBOUNCE_SLURM_PARTITION": default[0], "SPINBOUNCE_SLURM_ACCOUNT": user[0]}
+        why = f"SLURM knows no account of user {getpass.getuser()} (sacctmgr show user)"
     why += "; start one with `workflows/ci/slurm up` (as root)"
     if os.environ.get("CI") == "true":
         pytest.fail(why)
@@ -62,17 +68,18 @@ def slurm_partition() -> str:
 
 
 @pytest.fixture(scope="module")
-def partition() -> str:
-    return slurm_partition()
+def site() -> dict[str, str]:
+    return slurm_site()
 
 
-def snakemake_on_slurm(workdir: Path, scene: Path, partition: str, *args: str, seconds: int = 400):
-    """The workflow with the real SLURM profile, the partition set through its override.
+def snakemake_on_slurm(workdir: Path, scene: Path, site: dict[str, str], *args: str, seconds: int = 400):
+    """The workflow with the real SLURM profile, its partition and account set through the
+    profile's environment variables (the plugin refuses an account SLURM does not know).
 
     `timeout -k 30`: on SIGTERM Snakemake waits for the jobs it believes are running.
     The first status check comes after 1 s instead of 40 s (a test's jobs take seconds).
     """
-    env = dict(os.environ, SPINBOUNCE_SLURM_PARTITION=partition)
+    env = dict(os.environ, **site)
     env["PATH"] = str(Path(sys.executable).parent) + os.pathsep + env.get("PATH", "")
     command = ["timeout", "-k", "30", str(seconds), sys.executable, "-m", "snakemake",
                "--snakefile", str(WORKFLOW / "Snakefile"), "--directory", str(workdir),
@@ -87,8 +94,8 @@ def finish(process: subprocess.Popen) -> str:
 
 def submitted(text: str) -> dict[str, str]:
     """Snakemake's log: rule/wildcards -> SLURM job id, from its 'submitted with SLURM jobid' lines."""
-    found = re.findall(r"submitted with SLURM jobid (\d+) \(log: \S*/slurm_logs/rule_(\w+)/(\S*?)/\1\.log\)", text)
-    return {f"{rule}/{wildcards}".rstrip("/"): job for job, rule, wildcards in found}
+    found = re.findall(r"submitted with SLURM jobid (\d+) \(log: \S*/slurm_logs/rule_(\w+)/(?:([^/\s]+)/)?\1\.log\)", text)
+    return {f"{rule}/{wildcards}" if wildcards else rule: job for job, rule, wildcards in found}
 
 
 def states(job_ids) -> dict[str, str]:
@@ -112,10 +119,10 @@ def assert_identical(left: pd.DataFrame, right: pd.DataFrame) -> None:
             assert np.array_equal(left[name].to_numpy().view(np.uint64), right[name].to_numpy().view(np.uint64)), name
 
 
-def test_sweep_through_sbatch_matches_the_same_sweep_on_one_machine(tmp_path, partition):
+def test_sweep_through_sbatch_matches_the_same_sweep_on_one_machine(tmp_path, site):
     scene = tmp_path / "mixed.toml"
     scene.write_text(MIXED_SCENE)
-    text = finish(snakemake_on_slurm(tmp_path, scene, partition))
+    text = finish(snakemake_on_slurm(tmp_path, scene, site))
     assert "steps (100%) done" in text, text[-4000:]
 
     spec = load_spec(scene)
@@ -133,7 +140,7 @@ def test_sweep_through_sbatch_matches_the_same_sweep_on_one_machine(tmp_path, pa
         assert asked == [f"{request.mem_mb}M|{minutes}|{request.cpus_per_task}"], (name, asked)
 
     reference = tmp_path / "reference"
-    local = subprocess.run([sys.executable, "-m", "spinbounce", "sweep", str(scene), "--out", str(reference),
+    local = subprocess.run([sys.executable, "-m", "spinbounce.cli", "sweep", str(scene), "--out", str(reference),
                             "--workers", "2"], capture_output=True, text=True, check=False)
     assert local.returncode == 0, local.stderr[-3000:]
     assert_identical(read_results(tmp_path / "out"), read_results(reference))
@@ -180,7 +187,7 @@ def leftovers(out: Path) -> list[str]:
     return temporary + [f"process {pid}" for pid in processes]
 
 
-def test_cancelled_and_timed_out_chunks_leave_nothing_and_a_rerun_finishes_them(tmp_path, partition):
+def test_cancelled_and_timed_out_chunks_leave_nothing_and_a_rerun_finishes_them(tmp_path, site):
     # One finite-mu group in chunks of ~100 s on one core here: chunk 0 runs into a 1-minute
     # limit, chunk 1 is cancelled while it runs, chunk 2 (10 collisions) completes.
     size = round(100 / seconds_per_oracle_collision())
@@ -190,7 +197,7 @@ def test_cancelled_and_timed_out_chunks_leave_nothing_and_a_rerun_finishes_them(
     spec = load_spec(scene)
     out = tmp_path / "out"
     # No retries: a failed chunk stays failed, for the rerun to find.
-    first = snakemake_on_slurm(tmp_path, scene, partition, "--set-resources", "chunk:runtime=1", "--retries", "0")
+    first = snakemake_on_slurm(tmp_path, scene, site, "--set-resources", "chunk:runtime=1", "--retries", "0")
     log: list[str] = []
     cancelled = wait_for_submission(first, "chunk/chunk-0000-000001", log)
     wait_until_running(cancelled)
@@ -206,7 +213,7 @@ def test_cancelled_and_timed_out_chunks_leave_nothing_and_a_rerun_finishes_them(
     assert {n for n in chunk_files(out) if not n.startswith(".")} == {"chunk-0000-000002.parquet"}
     assert leftovers(out) == []
 
-    second = finish(snakemake_on_slurm(tmp_path, scene, partition, "--retries", "0"))
+    second = finish(snakemake_on_slurm(tmp_path, scene, site, "--retries", "0"))
     assert "steps (100%) done" in second, second[-4000:]
     rerun = submitted(second)
     assert sorted(n for n in rerun if n.startswith("chunk/")) == ["chunk/chunk-0000-000000", "chunk/chunk-0000-000001"]
