@@ -102,7 +102,7 @@ def states(job_ids) -> dict[str, str]:
     """The scheduler's final state of each job (its accounting record)."""
     done = subprocess.run(["sacct", "-n", "-X", "-P", "-o", "JobID,State", "-j", ",".join(job_ids)],
                           capture_output=True, text=True, check=True)
-    return dict(line.split("|")[:2] for line in done.stdout.split())
+    return dict(line.split("|")[:2] for line in done.stdout.splitlines())
 
 
 def chunk_files(out: Path) -> set[str]:
@@ -117,33 +117,6 @@ def assert_identical(left: pd.DataFrame, right: pd.DataFrame) -> None:
     for name in left.columns:
         if left[name].dtype.kind == "f":
             assert np.array_equal(left[name].to_numpy().view(np.uint64), right[name].to_numpy().view(np.uint64)), name
-
-
-def test_sweep_through_sbatch_matches_the_same_sweep_on_one_machine(tmp_path, site):
-    scene = tmp_path / "mixed.toml"
-    scene.write_text(MIXED_SCENE)
-    text = finish(snakemake_on_slurm(tmp_path, scene, site))
-    assert "steps (100%) done" in text, text[-4000:]
-
-    spec = load_spec(scene)
-    jobs = submitted(text)
-    chunk_jobs = {name: job for name, job in jobs.items() if name.startswith("chunk/")}
-    assert len(chunk_jobs) == len(spec.chunks()) == 4
-    assert {"fit", "figure"} <= set(jobs)  # the fit and the figure went through sbatch too
-    assert set(states(jobs.values()).values()) == {"COMPLETED"}
-    for name, job in chunk_jobs.items():  # each job asked for its chunk's own estimate
-        group = int(name.split("-")[1])
-        request = job_request(chunk_cost(spec, group, spec.chunk_size))
-        asked = subprocess.run(["sacct", "-n", "-X", "-P", "-o", "ReqMem,Timelimit,ReqCPUS", "-j", job],
-                               capture_output=True, text=True, check=True).stdout.split()
-        minutes = f"{request.runtime // 60:02d}:{request.runtime % 60:02d}:00"
-        assert asked == [f"{request.mem_mb}M|{minutes}|{request.cpus_per_task}"], (name, asked)
-
-    reference = tmp_path / "reference"
-    local = subprocess.run([sys.executable, "-m", "spinbounce.cli", "sweep", str(scene), "--out", str(reference),
-                            "--workers", "2"], capture_output=True, text=True, check=False)
-    assert local.returncode == 0, local.stderr[-3000:]
-    assert_identical(read_results(tmp_path / "out"), read_results(reference))
 
 
 def seconds_per_oracle_collision() -> float:
@@ -180,40 +153,88 @@ def wait_for_submission(process: subprocess.Popen, name: str, log: list[str], se
     pytest.fail(f"{name} was not submitted within {seconds} s:\n{''.join(log)[-3000:]}")
 
 
-def leftovers(out: Path) -> list[str]:
-    """Half-written files and live chunk processes of this output folder."""
+def leftovers(out: Path, scene: Path) -> list[str]:
+    """Half-written files in the output folder, and live processes of the scene's chunks."""
     temporary = [p.name for p in out.rglob(f"*{TEMP_SUFFIX}")]
-    processes = subprocess.run(["pgrep", "-f", f"--out {out}"], capture_output=True, text=True).stdout.split()
+    processes = subprocess.run(["pgrep", "-f", "--", f"spinbounce sweep {scene}"],
+                               capture_output=True, text=True).stdout.split()
     return temporary + [f"process {pid}" for pid in processes]
 
 
-def test_cancelled_and_timed_out_chunks_leave_nothing_and_a_rerun_finishes_them(tmp_path, site):
-    # One finite-mu group in chunks of ~100 s on one core here: chunk 0 runs into a 1-minute
-    # limit, chunk 1 is cancelled while it runs, chunk 2 (10 collisions) completes.
+# No retries: a failed chunk stays failed, for the rerun to find. Job states from squeue:
+# plugin 2.8.0 reads sacct's "CANCELLED by 0" as still running and would wait forever. A
+# failed job's outputs are awaited for `latency-wait` (60 s in the profile, for shared
+# filesystems); this one is local.
+FAULT_OPTIONS = ("--retries", "0", "--slurm-status-command", "squeue", "--latency-wait", "5")
+
+
+@pytest.fixture(scope="module")
+def faults(tmp_path_factory, site):
+    """A finite-mu sweep started with a 1-minute limit per chunk, one chunk cancelled.
+
+    Chunks of ~100 s on one core here: chunk 0 runs into its limit (SLURM kills it 60 to
+    90 s after its start), chunk 1 is cancelled while it runs, chunk 2 (10 collisions)
+    completes. Returns the folder, the scene, the running Snakemake, its output so far and
+    the cancelled job's id.
+    """
+    workdir = tmp_path_factory.mktemp("faults")
     size = round(100 / seconds_per_oracle_collision())
-    scene = tmp_path / "faults.toml"
+    scene = workdir / "faults.toml"
     scene.write_text(MIXED_SCENE.replace("mu = [0.0, 0.5]", "mu = 0.5")
                      .replace("chunk_size = 30", f"chunk_size = {size}").replace("n = 60", f"n = {2 * size + 10}"))
-    spec = load_spec(scene)
-    out = tmp_path / "out"
-    # No retries: a failed chunk stays failed, for the rerun to find.
-    first = snakemake_on_slurm(tmp_path, scene, site, "--set-resources", "chunk:runtime=1", "--retries", "0")
+    first = snakemake_on_slurm(workdir, scene, site, "--set-resources", "chunk:runtime=1", *FAULT_OPTIONS)
     log: list[str] = []
     cancelled = wait_for_submission(first, "chunk/chunk-0000-000001", log)
     wait_until_running(cancelled)
     time.sleep(3)  # into its run: LAMMPS or the oracle, not the start-up
     subprocess.run(["scancel", cancelled], check=True)
+    yield workdir, scene, first, log, cancelled
+    if first.poll() is None:
+        first.kill()
+
+
+def test_sweep_through_sbatch_matches_the_same_sweep_on_one_machine(tmp_path, site, faults):
+    # `faults` first: its chunk runs into its time limit on one core while this runs on the other.
+    scene = tmp_path / "mixed.toml"
+    scene.write_text(MIXED_SCENE)
+    text = finish(snakemake_on_slurm(tmp_path, scene, site))
+    assert "steps (100%) done" in text, text[-4000:]
+
+    spec = load_spec(scene)
+    jobs = submitted(text)
+    chunk_jobs = {name: job for name, job in jobs.items() if name.startswith("chunk/")}
+    assert len(chunk_jobs) == len(spec.chunks()) == 4
+    assert {"fit", "figure"} <= set(jobs)  # the fit and the figure went through sbatch too
+    assert set(states(jobs.values()).values()) == {"COMPLETED"}
+    for name, job in chunk_jobs.items():  # each job asked for its chunk's own estimate
+        group = int(name.split("-")[1])
+        request = job_request(chunk_cost(spec, group, spec.chunk_size))
+        asked = subprocess.run(["sacct", "-n", "-X", "-P", "-o", "ReqMem,Timelimit,ReqCPUS", "-j", job],
+                               capture_output=True, text=True, check=True).stdout.split()
+        minutes = f"{request.runtime // 60:02d}:{request.runtime % 60:02d}:00"
+        assert asked == [f"{request.mem_mb}M|{minutes}|{request.cpus_per_task}"], (name, asked)
+
+    reference = tmp_path / "reference"
+    local = subprocess.run([sys.executable, "-m", "spinbounce.cli", "sweep", str(scene), "--out", str(reference),
+                            "--workers", "2"], capture_output=True, text=True, check=False)
+    assert local.returncode == 0, local.stderr[-3000:]
+    assert_identical(read_results(tmp_path / "out"), read_results(reference))
+
+
+def test_cancelled_and_timed_out_chunks_leave_nothing_and_a_rerun_finishes_them(site, faults):
+    workdir, scene, first, log, cancelled = faults
+    spec, out = load_spec(scene), workdir / "out"
     text = "".join(log) + finish(first)
     assert first.returncode != 0  # two chunks failed, so no fit
     jobs = submitted(text)
     ended = states([jobs[f"chunk/chunk-0000-00000{c}"] for c in range(3)])
-    assert sorted(ended.values()) == ["CANCELLED by 0", "COMPLETED", "TIMEOUT"], ended
-    assert ended[jobs["chunk/chunk-0000-000000"]] == "TIMEOUT"
+    assert ended == {jobs["chunk/chunk-0000-000000"]: "TIMEOUT", cancelled: "CANCELLED by 0",
+                     jobs["chunk/chunk-0000-000002"]: "COMPLETED"}
     # Only the finished chunk has a file: nothing half-written, no process left behind.
     assert {n for n in chunk_files(out) if not n.startswith(".")} == {"chunk-0000-000002.parquet"}
-    assert leftovers(out) == []
+    assert leftovers(out, scene) == []
 
-    second = finish(snakemake_on_slurm(tmp_path, scene, site, "--retries", "0"))
+    second = finish(snakemake_on_slurm(workdir, scene, site, *FAULT_OPTIONS))
     assert "steps (100%) done" in second, second[-4000:]
     rerun = submitted(second)
     assert sorted(n for n in rerun if n.startswith("chunk/")) == ["chunk/chunk-0000-000000", "chunk/chunk-0000-000001"]
@@ -221,4 +242,4 @@ def test_cancelled_and_timed_out_chunks_leave_nothing_and_a_rerun_finishes_them(
     rows = read_results(out)
     assert len(rows) == spec.n and not rows.duplicated(["group", "index"]).any()
     assert sorted(rows["index"]) == list(range(spec.n))
-    assert leftovers(out) == []
+    assert leftovers(out, scene) == []
