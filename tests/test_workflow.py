@@ -11,9 +11,12 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 import pytest
+import yaml
 
 from spinbounce.cli import main
 from spinbounce.fit import GROUP_KEYS, plot_groups
+from spinbounce.studies.cost import chunk_cost, job_request
+from spinbounce.sweeps import load_spec
 
 ROOT = Path(__file__).resolve().parents[1]
 WORKFLOW = ROOT / "workflows"
@@ -30,9 +33,9 @@ def snakemake(workdir: Path, *args: str) -> subprocess.CompletedProcess:
     return subprocess.run(command, capture_output=True, text=True, env=env, timeout=300, check=False)
 
 
-def job_counts(done: subprocess.CompletedProcess) -> dict[str, int]:
+def job_counts(done) -> dict[str, int]:
     """The 'Job stats' table Snakemake prints: rule -> number of jobs."""
-    text = done.stdout + done.stderr
+    text = done if isinstance(done, str) else done.stdout + done.stderr
     return {m[1]: int(m[2]) for m in re.finditer(r"^(chunk|fit|figure|all)\s+(\d+)$", text, re.MULTILINE)}
 
 
@@ -89,12 +92,56 @@ def test_slurm_profile_plans_the_jobs_without_a_cluster(tmp_path):
     n, groups, chunk_size = tiny_layout()
     assert job_counts(done) == {"chunk": groups * -(-n // chunk_size), "fit": 1, "figure": 1, "all": 1}
     text = done.stdout + done.stderr
-    # The profile's requests reach the jobs: its partition placeholder, and the chunk rule's
-    # own memory (500 MB + 4 kB per sphere) rather than the profile's 1000 MB default.
+    # The profile's requests reach the jobs: its partition placeholder, and each chunk's own
+    # estimate (studies/cost.py) rather than the profile's 1000 MB and 30 minutes.
     assert "slurm_partition=CHANGE_ME" in text
     assert "rule chunk:" in text and "localrule chunk:" not in text  # chunks go to sbatch
-    assert "mem_mb=500," in text
+    request = job_request(chunk_cost(load_spec(TINY), 0, chunk_size))
+    assert re.search(rf"mem_mb={request.mem_mb},.*runtime={request.runtime}\b", text)
     assert not (tmp_path / "out").exists()  # a plan writes nothing
+
+
+MILLION_FINITE_MU = """seed = 1
+chunk_size = {chunk_size}
+[model]
+mu = [0.0, 0.5]
+[states]
+n = 500000
+v_n = [-1.5, -0.1]
+v_t = [-2.0, 2.0]
+r_omega = [-2.0, 2.0]
+"""
+
+
+def slurm_plan(tmp_path: Path, chunk_size: int) -> subprocess.CompletedProcess:
+    """`snakemake -n` with the SLURM profile on a million finite-mu collisions (two groups)."""
+    scene = tmp_path / f"million-{chunk_size}.toml"
+    scene.write_text(MILLION_FINITE_MU.format(chunk_size=chunk_size))
+    return snakemake(tmp_path, "--dry-run", "--profile", str(WORKFLOW / "profiles" / "slurm"),
+                     "--config", f"scene={scene}", "out=out")
+
+
+@pytest.mark.workflow
+def test_slurm_plan_of_a_million_finite_mu_collisions_fits_the_profile_limits(tmp_path):
+    limits = yaml.safe_load((WORKFLOW / "profiles" / "slurm" / "limits.yaml").read_text())["job_limits"]
+    done = slurm_plan(tmp_path, 25_000)
+    assert done.returncode == 0, done.stderr[-3000:]
+    text = done.stdout + done.stderr
+    assert job_counts(text)["chunk"] == 40
+    asked = re.findall(r"mem_mb=(\d+),.*runtime=(\d+)\b", text)
+    assert len(asked) >= 42  # every chunk, the fit and the figure (Snakemake prints each twice)
+    for mem_mb, runtime in asked:
+        assert int(mem_mb) <= limits["mem_mb"] and int(runtime) <= limits["runtime"]
+
+
+@pytest.mark.workflow
+def test_slurm_plan_refuses_a_sweep_whose_chunk_cannot_fit(tmp_path):
+    # 250,000 finite-mu collisions take about an hour on one core, three with the margin.
+    done = slurm_plan(tmp_path, 250_000)
+    assert done.returncode != 0
+    text = done.stdout + done.stderr
+    assert "chunk 0 (250000 collisions of group 0) would ask for" in text and "chunk_size <=" in text
+    assert "rule chunk:" not in text and not (tmp_path / "out").exists()
 
 
 @pytest.mark.workflow

@@ -1,0 +1,144 @@
+"""What one sweep chunk costs on one core, known before it runs: its cluster job's requests.
+
+A chunk is one serial LAMMPS run of its spheres followed by the theory columns
+(:func:`spinbounce.sweeps.run_chunk`). On one core it takes
+
+    seconds = START_SECONDS + n * (steps * SPHERE_STEP_SECONDS + ORACLE_SECONDS [finite mu])
+
+where ``steps`` is the run's LAMMPS steps per collision (the contact's exit time over the
+model's step, as :attr:`Collision.nsteps` counts them), and it peaks at
+
+    mb = BASE_MB + ORACLE_BASE_MB [finite mu] + n * KB_PER_SPHERE / 1024.
+
+A finite Coulomb limit (``mu``) makes the theory columns come from the Coulomb oracle,
+one adaptive integration per sphere in Python: ~14 ms a collision, a hundred times the
+LAMMPS run's share (252 steps at the default step), so it decides such a chunk's cost.
+
+A job asks for the estimate times a margin (TIME_MARGIN, MEM_MARGIN), which must stay
+under the site's limits; the same numbers size chunks (:func:`largest_chunk_size`).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from ..model.scenes import Collision
+
+__all__ = ["CostError", "ChunkCost", "JobRequest", "chunk_cost", "job_request", "chunk_requests",
+           "check_fits", "largest_chunk_size"]
+
+#: Measured on this project's 2-core Debian machine (Python 3.11, LAMMPS 2025.7.22), one
+#: chunk per core, by `spinbounce sweep SCENE --chunk 0` under /usr/bin/time:
+#: a 100-sphere chunk took 1.16 s and 158 MB (157 MB, 197 MB with mu = 0.3); 20,000
+#: spheres took 1.85 s and 181 MB without mu, so 0.69 s for 20,000 x 252 sphere-steps.
+START_SECONDS = 1.2
+SPHERE_STEP_SECONDS = 1.7e-7  # 200,000 collisions x 252 steps ran in 8.4 s (workflows/README.md)
+#: oracle.bounce_many, CPU time per collision over mu = 0.05 to 10 and kt/kn = 0.1 and 2/7:
+#: 11.3 to 14.5 ms.
+ORACLE_SECONDS = 0.015
+BASE_MB = 160
+ORACLE_BASE_MB = 40  # scipy, loaded for the oracle
+KB_PER_SPHERE = 1.5  # 1.1 (no mu) to 1.4 (mu) kB measured between 100 and 20,000 spheres
+#: A job asks for three times the estimate: with both cores busy the oracle ran at 26 ms
+#: a collision (1.9 times its idle rate), and cluster nodes may be slower than this one.
+TIME_MARGIN = 3.0
+#: Memory was measured to the megabyte; twice that covers other Python and library builds.
+MEM_MARGIN = 2.0
+#: A chunk is one serial LAMMPS run in one process: a second core would sit idle.
+CPUS_PER_CHUNK = 1
+#: Rungs a tolerance sweep's ladder is assumed to climb (studies/tolerance.py measured three
+#: at a tolerance of 1e-6); a ladder that climbs further runs past the estimate.
+LADDER_RUNGS = 4
+
+
+class CostError(ValueError):
+    """A chunk's job cannot fit the limits it must run under."""
+
+
+@dataclass(frozen=True)
+class ChunkCost:
+    """The estimate for one chunk on one core: wall seconds and peak memory (MB)."""
+
+    collisions: int
+    steps: int  # LAMMPS steps per collision, summed over a tolerance ladder's runs
+    seconds: float
+    mem_mb: float
+    cpus: int = CPUS_PER_CHUNK
+
+
+@dataclass(frozen=True)
+class JobRequest:
+    """What a job asks the scheduler for: minutes of run time, MB of memory, cores."""
+
+    runtime: int
+    mem_mb: int
+    cpus_per_task: int = CPUS_PER_CHUNK
+
+
+def _steps_per_collision(spec, group: int) -> int:
+    """LAMMPS steps each collision of ``group`` runs for: its slowest sphere's (Hertz) or the one contact's."""
+    fast, slow = spec.normal_speeds()
+    model, dt = spec.model(group)
+    scene = Collision(model, v_n=[-fast, -slow], v_t=0.0, omega=0.0, dt=dt)
+    if spec.tolerance is None:
+        return scene.nsteps
+    from .tolerance import START_STEPS
+
+    per_half_period = model.fastest_rate(frozen=False) * model.tau / math.pi
+    rungs = (math.ceil(START_STEPS * 2**k * per_half_period - 1e-9) for k in range(LADDER_RUNGS))
+    return sum(Collision(model, v_n=[-fast], dt=model.tau / (n + 0.5)).nsteps for n in rungs)
+
+
+def chunk_cost(spec, group: int, collisions: int) -> ChunkCost:
+    """The estimate for a chunk of ``collisions`` spheres of model group ``group`` of ``spec``."""
+    steps = _steps_per_collision(spec, group)
+    finite_mu = spec.groups[group].get("mu") is not None
+    per_collision = steps * SPHERE_STEP_SECONDS + (ORACLE_SECONDS if finite_mu else 0.0)
+    mem_mb = BASE_MB + (ORACLE_BASE_MB if finite_mu else 0) + collisions * KB_PER_SPHERE / 1024
+    return ChunkCost(collisions, steps, START_SECONDS + collisions * per_collision, mem_mb)
+
+
+def job_request(cost: ChunkCost) -> JobRequest:
+    """The estimate with its margins, in the scheduler's units (whole minutes, whole MB)."""
+    minutes = max(1, math.ceil(cost.seconds * TIME_MARGIN / 60.0))
+    return JobRequest(minutes, math.ceil(cost.mem_mb * MEM_MARGIN), cost.cpus)
+
+
+def chunk_requests(spec) -> list[JobRequest]:
+    """Every chunk's request, in chunk order (the K of ``spinbounce sweep --chunk K``)."""
+    return [job_request(chunk_cost(spec, group, stop - start)) for group, _, start, stop in spec.chunks()]
+
+
+def _fits(request: JobRequest, limit: JobRequest) -> bool:
+    return (request.runtime <= limit.runtime and request.mem_mb <= limit.mem_mb
+            and request.cpus_per_task <= limit.cpus_per_task)
+
+
+def largest_chunk_size(spec, group: int, limit: JobRequest) -> int:
+    """The most collisions of ``group`` one chunk may hold and still fit ``limit`` (0: none fits)."""
+    if not _fits(job_request(chunk_cost(spec, group, 1)), limit):
+        return 0
+    low, high = 1, max(1, spec.n)
+    if _fits(job_request(chunk_cost(spec, group, high)), limit):
+        return high
+    while high - low > 1:  # the cost grows with the chunk: bisect for the last size that fits
+        middle = (low + high) // 2
+        low, high = (middle, high) if _fits(job_request(chunk_cost(spec, group, middle)), limit) else (low, middle)
+    return low
+
+
+def check_fits(spec, limit: JobRequest) -> list[JobRequest]:
+    """Every chunk's request; :class:`CostError` naming the first chunk that exceeds ``limit``."""
+    requests = chunk_requests(spec)
+    for k, ((group, _, start, stop), request) in enumerate(zip(spec.chunks(), requests, strict=True)):
+        if not _fits(request, limit):
+            size = largest_chunk_size(spec, group, limit)
+            advice = f"chunk_size <= {size} would fit" if size else "no chunk of this model fits"
+            raise CostError(
+                f"chunk {k} ({stop - start} collisions of group {group}) would ask for {request.runtime} min, "
+                f"{request.mem_mb} MB and {request.cpus_per_task} core(s) (the estimate times "
+                f"{TIME_MARGIN:g} in time, {MEM_MARGIN:g} in memory), over the limit of {limit.runtime} min, "
+                f"{limit.mem_mb} MB and {limit.cpus_per_task} core(s): {advice}"
+            )
+    return requests

@@ -1,0 +1,245 @@
+"""The workflow through a real SLURM scheduler: every chunk an sbatch job, faults, resuming.
+
+Needs a running SLURM whose default partition takes jobs: `workflows/ci/slurm up` makes a
+one-node one on this machine (CI does it before the tests). Without one these tests are
+skipped, except under CI=true, where a missing cluster is a failure.
+"""
+
+import getpass
+import os
+import re
+import shutil
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from spinbounce.model.scenes import ContactModel
+from spinbounce.records import TEMP_SUFFIX
+from spinbounce.studies.cost import chunk_cost, job_request
+from spinbounce.sweeps import load_spec, read_results
+from spinbounce.theory import oracle
+
+pytestmark = [pytest.mark.slurm, pytest.mark.workflow, pytest.mark.lammps]
+
+ROOT = Path(__file__).resolve().parents[1]
+WORKFLOW = ROOT / "workflows"
+# Frictionless (mu = 0: no tangential force) and finite-mu groups, 60 collisions each in
+# chunks of 30: four chunk jobs of ~2 s (the Coulomb oracle runs for both groups).
+MIXED_SCENE = """seed = 3
+chunk_size = 30
+[model]
+mu = [0.0, 0.5]
+[states]
+n = 60
+v_n = [-1.5, -0.1]
+v_t = [-2.0, 2.0]
+r_omega = [-2.0, 2.0]
+"""
+
+
+def slurm_site() -> dict[str, str]:
+    """The profile's overrides for a SLURM that answers: its default partition and this
+    user's default account; or skip (fail under CI=true) saying why."""
+    why = None
+    if shutil.which("sbatch") is None or shutil.which("sacct") is None:
+        why = "no SLURM client here (sbatch, sacct)"
+    else:
+        info = subprocess.run(["sinfo", "-h", "-o", "%P %a"], capture_output=True, text=True, check=False)
+        default = [line.split()[0][:-1] for line in info.stdout.splitlines() if line.split()[0].endswith("*")]
+        if info.returncode != 0 or not default:
+            why = f"SLURM does not answer or has no default partition: {info.stderr.strip() or info.stdout!r}"
+        elif subprocess.run(["sacct", "-n", "-X", "-S", "now"], capture_output=True, check=False).returncode:
+            why = "sacct fails: the workflow's SLURM plugin needs job accounting (slurmdbd)"
+    if why is None:
+        user = subprocess.run(["sacctmgr", "-n", "-P", "show", "user", getpass.getuser(), "format=DefaultAccount"],
+                              capture_output=True, text=True, check=False).stdout.split()
+        if user:
+            return {"SPINBOUNCE_SLURM_PARTITION": default[0], "SPINBOUNCE_SLURM_ACCOUNT": user[0]}
+        why = f"SLURM knows no account of user {getpass.getuser()} (sacctmgr show user)"
+    why += "; start one with `workflows/ci/slurm up` (as root)"
+    if os.environ.get("CI") == "true":
+        pytest.fail(why)
+    pytest.skip(why)
+
+
+@pytest.fixture(scope="module")
+def site() -> dict[str, str]:
+    return slurm_site()
+
+
+def snakemake_on_slurm(workdir: Path, scene: Path, site: dict[str, str], *args: str, seconds: int = 400):
+    """The workflow with the real SLURM profile, its partition and account set through the
+    profile's environment variables (the plugin refuses an account SLURM does not know).
+
+    `timeout -k 30`: on SIGTERM Snakemake waits for the jobs it believes are running.
+    The first status check comes after 1 s instead of 40 s (a test's jobs take seconds).
+    """
+    env = dict(os.environ, **site)
+    env["PATH"] = str(Path(sys.executable).parent) + os.pathsep + env.get("PATH", "")
+    command = ["timeout", "-k", "30", str(seconds), sys.executable, "-m", "snakemake",
+               "--snakefile", str(WORKFLOW / "Snakefile"), "--directory", str(workdir),
+               "--profile", str(WORKFLOW / "profiles" / "slurm"), "--config", f"scene={scene}", "out=out",
+               "--slurm-init-seconds-before-status-checks", "1", *args]
+    return subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
+
+
+def finish(process: subprocess.Popen) -> str:
+    return process.communicate()[0]
+
+
+def submitted(text: str) -> dict[str, str]:
+    """Snakemake's log: rule/wildcards -> SLURM job id, from its 'submitted with SLURM jobid' lines."""
+    found = re.findall(r"submitted with SLURM jobid (\d+) \(log: \S*/slurm_logs/rule_(\w+)/(?:([^/\s]+)/)?\1\.log\)", text)
+    return {f"{rule}/{wildcards}" if wildcards else rule: job for job, rule, wildcards in found}
+
+
+def states(job_ids) -> dict[str, str]:
+    """The scheduler's final state of each job (its accounting record)."""
+    done = subprocess.run(["sacct", "-n", "-X", "-P", "-o", "JobID,State", "-j", ",".join(job_ids)],
+                          capture_output=True, text=True, check=True)
+    return dict(line.split("|")[:2] for line in done.stdout.splitlines())
+
+
+def chunk_files(out: Path) -> set[str]:
+    return {p.name for p in (out / "chunks").iterdir()}
+
+
+def assert_identical(left: pd.DataFrame, right: pd.DataFrame) -> None:
+    """Same columns in the same order, same rows after sorting, every float the same bits."""
+    left, right = (f.sort_values(["group", "index"], ignore_index=True) for f in (left, right))
+    assert list(left.columns) == list(right.columns)
+    pd.testing.assert_frame_equal(left, right, check_exact=True)
+    for name in left.columns:
+        if left[name].dtype.kind == "f":
+            assert np.array_equal(left[name].to_numpy().view(np.uint64), right[name].to_numpy().view(np.uint64)), name
+
+
+def seconds_per_oracle_collision() -> float:
+    """This machine's Coulomb-oracle rate, which sets a finite-mu chunk's length."""
+    rng = np.random.default_rng(0)
+    n = 40
+    started = time.perf_counter()
+    oracle.bounce_many(ContactModel(mu=0.5), rng.uniform(-1.5, -0.1, n), rng.uniform(-2, 2, n),
+                       rng.uniform(-4, 4, n))
+    return (time.perf_counter() - started) / n
+
+
+def wait_until_running(job: str, seconds: float = 60) -> None:
+    deadline = time.monotonic() + seconds
+    while time.monotonic() < deadline:
+        state = subprocess.run(["squeue", "-h", "-j", job, "-o", "%T"], capture_output=True, text=True).stdout
+        if state.strip() == "RUNNING":
+            return
+        time.sleep(0.5)
+    pytest.fail(f"job {job} did not start within {seconds} s")
+
+
+def wait_for_submission(process: subprocess.Popen, name: str, log: list[str], seconds: float = 60) -> str:
+    """Read Snakemake's output until it reports the job of ``name`` submitted; its job id."""
+    deadline = time.monotonic() + seconds
+    while time.monotonic() < deadline:
+        line = process.stdout.readline()
+        if not line:
+            break
+        log.append(line)
+        job = submitted("".join(log)).get(name)
+        if job:
+            return job
+    pytest.fail(f"{name} was not submitted within {seconds} s:\n{''.join(log)[-3000:]}")
+
+
+def leftovers(out: Path, scene: Path) -> list[str]:
+    """Half-written files in the output folder, and live processes of the scene's chunks."""
+    temporary = [p.name for p in out.rglob(f"*{TEMP_SUFFIX}")]
+    processes = subprocess.run(["pgrep", "-f", "--", f"spinbounce sweep {scene}"],
+                               capture_output=True, text=True).stdout.split()
+    return temporary + [f"process {pid}" for pid in processes]
+
+
+# No retries: a failed chunk stays failed, for the rerun to find. Job states from squeue:
+# plugin 2.8.0 reads sacct's "CANCELLED by 0" as still running and would wait forever. A
+# failed job's outputs are awaited for `latency-wait` (60 s in the profile, for shared
+# filesystems); this one is local.
+FAULT_OPTIONS = ("--retries", "0", "--slurm-status-command", "squeue", "--latency-wait", "5")
+
+
+@pytest.fixture(scope="module")
+def faults(tmp_path_factory, site):
+    """A finite-mu sweep started with a 1-minute limit per chunk, one chunk cancelled.
+
+    Chunks of ~100 s on one core here: chunk 0 runs into its limit (SLURM kills it 60 to
+    90 s after its start), chunk 1 is cancelled while it runs, chunk 2 (10 collisions)
+    completes. Returns the folder, the scene, the running Snakemake, its output so far and
+    the cancelled job's id.
+    """
+    workdir = tmp_path_factory.mktemp("faults")
+    size = round(100 / seconds_per_oracle_collision())
+    scene = workdir / "faults.toml"
+    scene.write_text(MIXED_SCENE.replace("mu = [0.0, 0.5]", "mu = 0.5")
+                     .replace("chunk_size = 30", f"chunk_size = {size}").replace("n = 60", f"n = {2 * size + 10}"))
+    first = snakemake_on_slurm(workdir, scene, site, "--set-resources", "chunk:runtime=1", *FAULT_OPTIONS)
+    log: list[str] = []
+    cancelled = wait_for_submission(first, "chunk/chunk-0000-000001", log)
+    wait_until_running(cancelled)
+    time.sleep(3)  # into its run: LAMMPS or the oracle, not the start-up
+    subprocess.run(["scancel", cancelled], check=True)
+    yield workdir, scene, first, log, cancelled
+    if first.poll() is None:
+        first.kill()
+
+
+def test_sweep_through_sbatch_matches_the_same_sweep_on_one_machine(tmp_path, site, faults):
+    # `faults` first: its chunk runs into its time limit on one core while this runs on the other.
+    scene = tmp_path / "mixed.toml"
+    scene.write_text(MIXED_SCENE)
+    text = finish(snakemake_on_slurm(tmp_path, scene, site))
+    assert "steps (100%) done" in text, text[-4000:]
+
+    spec = load_spec(scene)
+    jobs = submitted(text)
+    chunk_jobs = {name: job for name, job in jobs.items() if name.startswith("chunk/")}
+    assert len(chunk_jobs) == len(spec.chunks()) == 4
+    assert {"fit", "figure"} <= set(jobs)  # the fit and the figure went through sbatch too
+    assert set(states(jobs.values()).values()) == {"COMPLETED"}
+    for name, job in chunk_jobs.items():  # each job asked for its chunk's own estimate
+        group = int(name.split("-")[1])
+        request = job_request(chunk_cost(spec, group, spec.chunk_size))
+        asked = subprocess.run(["sacct", "-n", "-X", "-P", "-o", "ReqMem,Timelimit,ReqCPUS", "-j", job],
+                               capture_output=True, text=True, check=True).stdout.split()
+        minutes = f"{request.runtime // 60:02d}:{request.runtime % 60:02d}:00"
+        assert asked == [f"{request.mem_mb}M|{minutes}|{request.cpus_per_task}"], (name, asked)
+
+    reference = tmp_path / "reference"
+    local = subprocess.run([sys.executable, "-m", "spinbounce.cli", "sweep", str(scene), "--out", str(reference),
+                            "--workers", "2"], capture_output=True, text=True, check=False)
+    assert local.returncode == 0, local.stderr[-3000:]
+    assert_identical(read_results(tmp_path / "out"), read_results(reference))
+
+
+def test_cancelled_and_timed_out_chunks_leave_nothing_and_a_rerun_finishes_them(site, faults):
+    workdir, scene, first, log, cancelled = faults
+    spec, out = load_spec(scene), workdir / "out"
+    text = "".join(log) + finish(first)
+    assert first.returncode != 0  # two chunks failed, so no fit
+    jobs = submitted(text)
+    ended = states([jobs[f"chunk/chunk-0000-00000{c}"] for c in range(3)])
+    assert ended == {jobs["chunk/chunk-0000-000000"]: "TIMEOUT", cancelled: "CANCELLED by 0",
+                     jobs["chunk/chunk-0000-000002"]: "COMPLETED"}
+    # Only the finished chunk has a file: nothing half-written, no process left behind.
+    assert {n for n in chunk_files(out) if not n.startswith(".")} == {"chunk-0000-000002.parquet"}
+    assert leftovers(out, scene) == []
+
+    second = finish(snakemake_on_slurm(workdir, scene, site, *FAULT_OPTIONS))
+    assert "steps (100%) done" in second, second[-4000:]
+    rerun = submitted(second)
+    assert sorted(n for n in rerun if n.startswith("chunk/")) == ["chunk/chunk-0000-000000", "chunk/chunk-0000-000001"]
+    assert set(states(rerun.values()).values()) == {"COMPLETED"}
+    rows = read_results(out)
+    assert len(rows) == spec.n and not rows.duplicated(["group", "index"]).any()
+    assert sorted(rows["index"]) == list(range(spec.n))
+    assert leftovers(out, scene) == []
