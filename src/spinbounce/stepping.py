@@ -23,7 +23,7 @@ from .model.scenes import STATE_ARGS, Collision
 from .model.timestep import ACCURACY, SAFETY, StepChoice, mid_step_dt, steps_per_contact
 from .theory import choose
 
-__all__ = ["StepChoice", "needs_probe", "tune", "PROBE_SPHERES", "SAFETY"]
+__all__ = ["StepChoice", "needs_probe", "tune", "expected_steps", "PROBE_SPHERES", "SAFETY"]
 
 #: States a probe runs: the scene's own, every k-th of them beyond this many.
 PROBE_SPHERES = 32
@@ -89,3 +89,27 @@ def tune(scene: Collision, out: Path, run: Callable, probe_states: Collision | N
         predicted = fine * (2 * coarse_steps / steps) ** order
     tuned = Collision(scene.model, dt=mid_step_dt(t_contact, steps), **{n: getattr(scene, n) for n in STATE_ARGS})
     return tuned, StepChoice(tuned.dt, "probe", target, order, tuple(errors), predicted)
+
+
+#: A priori bounds on what a probe chooses, for costs known before anything runs (cluster
+#: jobs are sized before their probes): a damped contact's error is first order, about
+#: DAMPED c T dt over a contact of length T with damping rate c (measured 0.13 to 0.29 in
+#: studies/accuracy's default-step table); a cap with tangential but no normal damping also
+#: errs at first touch, about CAPPED_FIRST_TOUCH mu (gamma_t/m) T dt (measured 2.8 at mu =
+#: 10); Coulomb and Hertzian contacts refine the rule's step by at most ROUGH (measured 1.3).
+DAMPED = 0.4
+CAPPED_FIRST_TOUCH = 4.0
+ROUGH = 3
+
+
+def expected_steps(scene: Collision, target: float = ACCURACY) -> int:
+    """About how many steps a run of ``scene`` takes once probed (an upper estimate)."""
+    if not scene.default_step or not needs_probe(scene):
+        return scene.nsteps
+    m = scene.model
+    t_contact = _contact_time(scene)
+    rate = max(m.gamma_n / m.m, 2.0 * m.zeta)
+    if m.mu is not None and m.gamma_n == 0.0:
+        rate = max(rate, CAPPED_FIRST_TOUCH / DAMPED * m.mu * m.gamma_t / m.m)
+    first_order = math.ceil(DAMPED * rate * t_contact**2 / (SAFETY * target))
+    return max(ROUGH * scene.nsteps, first_order + scene.nsteps)

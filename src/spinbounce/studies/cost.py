@@ -3,16 +3,17 @@
 A chunk is one serial LAMMPS run of its spheres followed by the theory columns
 (:func:`spinbounce.sweeps.run_chunk`). On one core it takes
 
-    seconds = START_SECONDS + n * (steps * SPHERE_STEP_SECONDS + ORACLE_SECONDS [finite mu])
+    seconds = START_SECONDS + PROBE_SECONDS + n * (steps * SPHERE_STEP_SECONDS + CAPPED_THEORY_SECONDS [finite mu])
 
 where ``steps`` is the run's LAMMPS steps per collision (the contact's exit time over the
 model's step, as :attr:`Collision.nsteps` counts them), and it peaks at
 
-    mb = BASE_MB + ORACLE_BASE_MB [finite mu] + n * KB_PER_SPHERE / 1024.
+    mb = BASE_MB + SCIPY_MB [finite mu] + n * KB_PER_SPHERE / 1024.
 
-A finite Coulomb limit (``mu``) makes the theory columns come from the Coulomb oracle,
-one adaptive integration per sphere in Python: ~14 ms a collision, a hundred times the
-LAMMPS run's share (252 steps at the default step), so it decides such a chunk's cost.
+A finite Coulomb limit (``mu``) takes its theory columns from the exact batched stick-slip
+solver, about 1e-5 s a collision; a scene whose step is probed first runs its two probes
+(PROBE_SECONDS), and its steps per collision are estimated a priori
+(:func:`spinbounce.stepping.expected_steps`).
 
 A job asks for the estimate times a margin (TIME_MARGIN, MEM_MARGIN), which must stay
 under the site's limits; the same numbers size chunks (:func:`largest_chunk_size`).
@@ -24,6 +25,7 @@ import math
 from dataclasses import dataclass
 
 from ..model.scenes import Collision
+from ..stepping import expected_steps
 
 __all__ = ["CostError", "ChunkCost", "JobRequest", "chunk_cost", "job_request", "chunk_requests",
            "check_fits", "largest_chunk_size"]
@@ -34,14 +36,16 @@ __all__ = ["CostError", "ChunkCost", "JobRequest", "chunk_cost", "job_request", 
 #: spheres took 1.85 s and 181 MB without mu, so 0.69 s for 20,000 x 252 sphere-steps.
 START_SECONDS = 1.2
 SPHERE_STEP_SECONDS = 1.7e-7  # 200,000 collisions x 252 steps ran in 8.4 s (workflows/README.md)
-#: oracle.bounce_many, CPU time per collision over mu = 0.05 to 10 and kt/kn = 0.1 and 2/7:
-#: 11.3 to 14.5 ms.
-ORACLE_SECONDS = 0.015
+#: theory.coulomb's exact batched solver, per collision: 150,000 to 400,000 a second on one
+#: core (studies/solver_speed), so 1e-5 s with room.
+CAPPED_THEORY_SECONDS = 1e-5
+#: A chunk whose step is probed (stepping.tune) runs two small LAMMPS runs first.
+PROBE_SECONDS = 1.0
 BASE_MB = 160
-ORACLE_BASE_MB = 40  # scipy, loaded for the oracle
+SCIPY_MB = 40  # scipy, loaded for the capped theory
 KB_PER_SPHERE = 1.5  # 1.1 (no mu) to 1.4 (mu) kB measured between 100 and 20,000 spheres
-#: A job asks for three times the estimate: with both cores busy the oracle ran at 26 ms
-#: a collision (1.9 times its idle rate), and cluster nodes may be slower than this one.
+#: A job asks for three times the estimate: with both cores busy a chunk ran 1.9 times
+#: slower than on an idle machine, and cluster nodes may be slower than this one.
 TIME_MARGIN = 3.0
 #: Memory was measured to the megabyte; twice that covers other Python and library builds.
 MEM_MARGIN = 2.0
@@ -77,26 +81,26 @@ class JobRequest:
 
 
 def _steps_per_collision(spec, group: int) -> int:
-    """LAMMPS steps each collision of ``group`` runs for: its slowest sphere's (Hertz) or the one contact's."""
+    """LAMMPS steps each collision of ``group`` runs for: its slowest sphere's (Hertz) or the
+    one contact's, at the step its probe will choose (:func:`stepping.expected_steps`)."""
     fast, slow = spec.normal_speeds()
     model, dt = spec.model(group)
     scene = Collision(model, v_n=[-fast, -slow], v_t=0.0, omega=0.0, dt=dt)
     if spec.tolerance is None:
-        return scene.nsteps
-    from .tolerance import START_STEPS
+        return expected_steps(scene)
+    from .tolerance import START_STEPS, collision_rung_dt
 
-    per_half_period = model.fastest_rate(frozen=False) * model.tau / math.pi
-    rungs = (math.ceil(START_STEPS * 2**k * per_half_period - 1e-9) for k in range(LADDER_RUNGS))
-    return sum(Collision(model, v_n=[-fast], dt=model.tau / (n + 0.5)).nsteps for n in rungs)
+    rungs = (START_STEPS * 2**k for k in range(LADDER_RUNGS))
+    return sum(Collision(model, v_n=[-fast], dt=collision_rung_dt(model, n)).nsteps for n in rungs)
 
 
 def chunk_cost(spec, group: int, collisions: int) -> ChunkCost:
     """The estimate for a chunk of ``collisions`` spheres of model group ``group`` of ``spec``."""
     steps = _steps_per_collision(spec, group)
     finite_mu = spec.groups[group].get("mu") is not None
-    per_collision = steps * SPHERE_STEP_SECONDS + (ORACLE_SECONDS if finite_mu else 0.0)
-    mem_mb = BASE_MB + (ORACLE_BASE_MB if finite_mu else 0) + collisions * KB_PER_SPHERE / 1024
-    return ChunkCost(collisions, steps, START_SECONDS + collisions * per_collision, mem_mb)
+    per_collision = steps * SPHERE_STEP_SECONDS + (CAPPED_THEORY_SECONDS if finite_mu else 0.0)
+    mem_mb = BASE_MB + (SCIPY_MB if finite_mu else 0) + collisions * KB_PER_SPHERE / 1024
+    return ChunkCost(collisions, steps, START_SECONDS + PROBE_SECONDS + collisions * per_collision, mem_mb)
 
 
 def job_request(cost: ChunkCost) -> JobRequest:
