@@ -13,6 +13,7 @@ from pathlib import Path
 
 from ..model import parameters
 from ..model.timestep import duration_text
+from ..studies.cost import chunk_cost
 from ..sweeps import SweepError, chunk_table, load_spec, run_one_chunk, run_sweep, spec_from_dict, status_counts
 from .options import count, number, sweep_model_flags
 
@@ -138,8 +139,9 @@ def run(args) -> int:
         return 0
     total = spec.n * len(spec.groups)
     print(f"sweep {spec.digest}: {total} collisions in {len(spec.chunks())} chunks, "
-          f"{len(spec.groups)} model group(s), {args.workers} worker(s); "
-          f"estimated LAMMPS time {duration_text(spec.estimated_seconds())} on one core (before step probes)")
+          f"{len(spec.groups)} model group(s), {args.workers} worker(s); estimated "
+          f"{duration_text(sum(chunk_cost(spec, g, stop - start).seconds for g, _, start, stop in spec.chunks()))} "
+          "on one core")
     dataset = run_sweep(spec, args.out, workers=args.workers)
     counts = status_counts(dataset)
     bad = {name: n for name, n in counts.items() if name != "ok" and n}

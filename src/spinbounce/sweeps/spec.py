@@ -44,7 +44,6 @@ from ..model import parameters
 from ..model.contact import ContactModel
 from ..model.parameters import SceneError
 from ..model.scenes import Collision
-from ..model.timestep import estimate_seconds
 
 __all__ = ["SweepError", "SweepSpec", "load_spec", "spec_from_dict", "MODEL_KEYS", "DEFAULT_CHUNK"]
 
@@ -188,17 +187,6 @@ class SweepSpec:
         cos = np.cos(np.radians(angle))
         top = 1.0 if (self.mode == "random" and angle[0] <= 0.0 <= angle[1]) or 0.0 in angle else cos.max()
         return float(speed.max() * top), float(speed.min() * cos.min())
-
-    def estimated_seconds(self) -> float:
-        """LAMMPS's time for the whole sweep at each group's rule step, on one core."""
-        fast, slow = self.normal_speeds()
-        seconds = 0.0
-        for g in range(len(self.groups)):
-            model, dt = self.model(g)
-            scene = Collision(model, v_n=[-fast, -slow], v_t=0.0, omega=0.0, dt=dt)
-            for _, _, start, stop in (c for c in self.chunks() if c[0] == g):
-                seconds += estimate_seconds(scene.nsteps, stop - start)
-        return seconds
 
     def chunks(self) -> list[tuple[int, int, int, int]]:
         """(group, chunk, start, stop) for every chunk, in order."""
