@@ -11,7 +11,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from spinbounce.fit import fit_groups
+from spinbounce.fitting import fit_groups
 from spinbounce.sweeps import SweepError, load_spec, read_results, run_sweep
 
 GOOD = """

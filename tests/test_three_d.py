@@ -12,7 +12,7 @@ import pytest
 from spinbounce import theory
 from spinbounce.theory import oracle
 from spinbounce.studies.validation import refined_dt
-from spinbounce.fit import fit_matrix
+from spinbounce.fitting import fit_matrix
 from spinbounce.pipeline import run_collision
 from spinbounce.model.scenes import STATE_3D, Collision, ContactModel
 
@@ -93,7 +93,7 @@ def test_a_3d_sweep_needs_every_out_of_plane_axis():
 
 @pytest.mark.lammps
 def test_a_3d_sweep_and_its_fit_recover_the_block_matrix(tmp_path):
-    from spinbounce.fit import fit_groups
+    from spinbounce.fitting import fit_groups
     from spinbounce.sweeps import read_results, run_sweep
 
     out = run_sweep(_spec_3d(), tmp_path / "sweep", workers=1, log=lambda *a, **k: None)

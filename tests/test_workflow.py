@@ -14,7 +14,7 @@ import pytest
 import yaml
 
 from spinbounce.cli import main
-from spinbounce.fit import GROUP_KEYS, plot_groups
+from spinbounce.fitting import GROUP_KEYS, plot_groups
 from spinbounce.studies.cost import chunk_cost, job_request
 from spinbounce.sweeps import load_spec
 

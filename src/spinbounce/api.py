@@ -30,7 +30,7 @@ from .model.contact import ContactModel
 from .model.scenes import Collision
 from .theory import choose
 
-__all__ = ["collide", "theory", "sweep", "fit", "CollisionReport", "model"]
+__all__ = ["collide", "theory", "sweep", "fit", "CollisionReport", "model"]  # model: spinbounce.api.model
 
 _MODEL_NAMES = {p.name for p in parameters.MODEL}
 
@@ -127,7 +127,7 @@ def sweep(n: int, out: str | Path, *, v_n=(-1.5, -0.1), v_t=(-2.0, 2.0), r_omega
 def fit(results: str | Path | pd.DataFrame) -> pd.DataFrame:
     """One row per model group: its parameters, regime, per-collision deviation and (where one
     matrix applies) the fitted Omega beside the theory's; ``matrix`` holds the fitted matrix."""
-    from .fit import fit_groups
+    from .fitting import fit_groups
     from .sweeps import read_results
 
     rows = results if isinstance(results, pd.DataFrame) else read_results(results)

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..fit import fit_groups, plot_groups
+from ..fitting import fit_groups, plot_groups
 from ..model import parameters
 from ..sweeps import SweepError, read_results
 from .options import optional_number

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from ... import theory
-from ...fit import fit_matrix, fit_omega
+from ...fitting import fit_matrix, fit_omega
 from ...model.scenes import ContactModel
 from .ledger import COLLISION_TOL, Claim, Runs, checked, damped_dt, final, initial, maximise, random_states, verdict
 
