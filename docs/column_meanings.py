@@ -27,8 +27,8 @@ WHEN = {
     "lammps_0": "initial, as LAMMPS holds it after setting it up",
     "final": "final (LAMMPS, after the contact)",
     "theory": "final, from the theory that applies",
-    "error": "final LAMMPS minus theory:",
-    "estimate": "estimated error of the extrapolated final (with a tolerance):",
+    "error": "final LAMMPS minus theory",
+    "estimate": "estimated error of the extrapolated final (sweeps with a tolerance)",
 }
 OTHER = {
     "group": "model group: one point of the model grid",
@@ -60,5 +60,5 @@ def meaning(column: str) -> str:
     for suffix in sorted(WHEN, key=len, reverse=True):
         state = column.removesuffix(f"_{suffix}")
         if state != column and state in STATES:
-            return f"{WHEN[suffix]} {STATES[state]}"
+            return f"{STATES[state]}: {WHEN[suffix]}"
     raise KeyError(f"column {column!r} has no meaning in docs/column_meanings.py")

@@ -23,7 +23,10 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "src"))  # the checkout's package, also when it is not installed
+sys.path.insert(0, str(Path(__file__).resolve().parent))
 
+from column_meanings import meaning  # noqa: E402  (beside this file)
+from griffe_rst import markdown  # noqa: E402
 from spinbounce import cli  # noqa: E402
 from spinbounce.model import parameters  # noqa: E402
 from spinbounce.sweeps import spec  # noqa: E402
@@ -75,14 +78,24 @@ def cli_page() -> str:
     return "\n".join(lines) + "\n"
 
 
+def declaration_table(group) -> str:
+    """The declared parameters as a table (the cells escaped: meanings hold |F_t| and the like)."""
+    rows = ["| parameter | flag | meaning | unit | default | accepted | sweepable |", "|---|---|---|---|---|---|---|"]
+    for p in group:
+        default = "none" if p.default is None else str(p.default).lower() if p.kind == "flag" else p.default
+        rows.append(f"| `{p.name}` | `{p.flag}` | {_cell(p.meaning)} | {p.unit} | {default} | {p.range_text()} "
+                    f"| {'yes' if p.sweepable else 'no'} |")
+    return "\n".join(rows)
+
+
 def parameters_page() -> str:
     """The declaration as tables, with the reason for every bound."""
-    out = [f"# Parameters\n\n{GENERATED}", _cell(parameters.__doc__.split("\n\n")[1]), "",
+    out = [f"# Parameters\n\n{GENERATED}", markdown(_cell(parameters.__doc__.split("\n\n")[1])), "",
            "The same name is the command-line flag (with dashes), the scene-file key, the Python keyword "
            "and the sweep table's column.\n"]
     for title, group in (("Contact model", parameters.MODEL), ("Initial state", parameters.STATE),
                          ("Run", parameters.RUN)):
-        out += [f"## {title}\n", parameters.markdown_table(group), "", "| parameter | why its range | in the deck |",
+        out += [f"## {title}\n", declaration_table(group), "", "| parameter | why its range | in the deck |",
                 "|---|---|---|"]
         out += [f"| `{p.name}` | {_cell('; '.join(w for w in (p.why_low, p.why) if w)) or '-'} "
                 f"| {_cell(p.deck) or '-'} |" for p in group]
@@ -100,8 +113,8 @@ def scene_files_page() -> str:
     intro, _, tail = spec.__doc__.partition("::\n")
     closing = tail.split("\nEvery model group", 1)[1]
     return "\n".join([
-        f"# Scene files\n\n{GENERATED}", _cell(intro), "", "```toml", scene_file_example().rstrip(), "```", "",
-        "Every model group" + _cell(closing), "",
+        f"# Scene files\n\n{GENERATED}", markdown(_cell(intro)), "", "```toml", scene_file_example().rstrip(), "```", "",
+        "Every model group " + _cell(closing), "",
         "| section | keys |", "|---|---|",
         f"| top level | {', '.join(f'`{k}`' for k in spec.TOP_KEYS)} |",
         f"| `[model]` | {', '.join(f'`{k}`' for k in spec.MODEL_KEYS)} |",
@@ -128,10 +141,9 @@ def _tree(folder: Path) -> list[str]:
 
 
 def outputs_page() -> str:
-    """Run a 3-sphere collision and a 16-sphere sweep now; list their files and columns."""
+    """Run one collision and a 16-sphere sweep now; list their files and columns."""
     from spinbounce.sweeps import read_results
 
-    from column_meanings import meaning  # beside this file
 
     with tempfile.TemporaryDirectory() as tmp:
         collide_dir, sweep_dir = Path(tmp) / "collide", Path(tmp) / "sweep"
@@ -178,7 +190,6 @@ def on_files(files, config):
     """MkDocs event: add the generated pages and the figures they show."""
     from mkdocs.structure.files import File
 
-    sys.path.insert(0, str(Path(__file__).parent))
     for uri, content in pages().items():
         files.append(File.generated(config, uri, content=content))
     images = {figure for _, figure, _ in REPORTS.values()} | set(FIGURES)
@@ -188,7 +199,6 @@ def on_files(files, config):
 
 
 if __name__ == "__main__":
-    sys.path.insert(0, str(Path(__file__).parent))
     target = Path(sys.argv[1])
     for uri, content in pages().items():
         (target / uri).parent.mkdir(parents=True, exist_ok=True)
