@@ -27,7 +27,7 @@ from .model.contact import ContactModel
 from .records import write_atomic_with
 from .theory import choose
 
-__all__ = ["GROUP_KEYS", "fit_matrix", "fit_omega", "fit_groups", "plot_groups", "STICK_TOLERANCE"]
+__all__ = ["GROUP_KEYS", "model_of_group", "fit_matrix", "fit_omega", "fit_groups", "plot_groups", "STICK_TOLERANCE"]
 
 #: Columns that separate fit groups: every declared parameter that changes the outcome, and dt.
 GROUP_KEYS = [p.column for p in parameters.MODEL if p.changes_outcome] + ["dt"]
@@ -61,7 +61,7 @@ def fit_omega(initial: np.ndarray, final: np.ndarray, alpha: float) -> tuple[flo
     return omega, math.sqrt(float(((y - omega * x) ** 2).sum()) / dof / xx)
 
 
-def _model_of(params: dict) -> ContactModel:
+def model_of_group(params: dict) -> ContactModel:
     """The group's contact model, from its columns (mu NaN: none; columns an older sweep lacks: default)."""
     values = {}
     for p in parameters.MODEL:
@@ -109,7 +109,7 @@ def _fit_one(group: pd.DataFrame, params: dict) -> dict:
     initial = group[[f"{s}_0" for s in names]].to_numpy()
     final = group[[f"{s}_final" for s in names]].to_numpy()
     theory = group[[f"{s}_theory" for s in names]].to_numpy()
-    model = _model_of(params)
+    model = model_of_group(params)
     matrix_theory, regime = _regime(model, initial, theory)
     out = {"parameters": {k: (None if isinstance(v, float) and math.isnan(v) else v) for k, v in params.items()},
            "n": len(group), "theory": choose.which(model).kind, "regime": regime,

@@ -96,10 +96,11 @@ def tune(scene: Collision, out: Path, run: Callable, probe_states: Collision | N
 #: DAMPED c T dt over a contact of length T with damping rate c (measured 0.13 to 0.29 in
 #: studies/accuracy's default-step table); a cap with tangential but no normal damping also
 #: errs at first touch, about CAPPED_FIRST_TOUCH mu (gamma_t/m) T dt (measured 2.8 at mu =
-#: 10); Coulomb and Hertzian contacts refine the rule's step by at most ROUGH (measured 1.3).
+#: 10); Coulomb and Hertzian contacts refine the rule's step by about ROUGH (measured 1.0
+#: to 1.3 for mu from 0.3 to 3, 1.6 for a Hertzian speed of its own).
 DAMPED = 0.4
 CAPPED_FIRST_TOUCH = 4.0
-ROUGH = 3
+ROUGH = 1.5
 
 
 def expected_steps(scene: Collision, target: float = ACCURACY) -> int:
@@ -112,4 +113,4 @@ def expected_steps(scene: Collision, target: float = ACCURACY) -> int:
     if m.mu is not None and m.gamma_n == 0.0:
         rate = max(rate, CAPPED_FIRST_TOUCH / DAMPED * m.mu * m.gamma_t / m.m)
     first_order = math.ceil(DAMPED * rate * t_contact**2 / (SAFETY * target))
-    return max(ROUGH * scene.nsteps, first_order + scene.nsteps)
+    return max(math.ceil(ROUGH * scene.nsteps), first_order + scene.nsteps)

@@ -1,11 +1,14 @@
-"""spinbounce bench: collisions per second, one lmp process / one instance / batched."""
+"""spinbounce bench: collisions per second (one lmp process / one instance / batched), and
+what each model, the exact solver, the cores, the cluster jobs and two spheres cost."""
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
-from ..studies.speed import SPEED_DEFAULTS, measure_speed
 from ..records import to_json, write_atomic
+from ..studies.speed import SPEED_DEFAULTS, measure_speed
+from .options import count
 
 HELP = "measure collisions/s of one lmp process per collision, one in-process instance, and a batched sweep"
 
@@ -30,6 +33,9 @@ def register(sub) -> None:
     p.add_argument("--out", type=Path, default=Path("bench.json"), metavar="FILE",
                    help="JSON report (default %(default)s)")
     p.add_argument("--keep-runs", type=Path, metavar="DIR", help="keep every run's folder here")
+    p.add_argument("--n-models", type=count, default=100_000, metavar="N",
+                   help="collisions per model sweep (frictionless, mu 2-D and 3-D; Hertz takes N/100) "
+                        "(default %(default)s)")
     p.set_defaults(handler=run)
 
 
@@ -51,6 +57,43 @@ def run(args) -> int:
     print(f"contact only vs free flight before/after and a dump every step ({d['collisions']} spheres): "
           f"{d['contact_only']['wall_seconds']:.2f} s vs {d['free_flight_and_dump_every_step']['wall_seconds']:.2f} s, "
           f"{d['ratio']:.1f}x")
+    report["models"] = _print_models(args.n_models, args.seed)
     write_atomic(args.out, to_json(report))
     print(f"report: {args.out}")
     return 0
+
+
+def _print_models(n: int, seed: int) -> dict:
+    """Per model: a sweep's cost beside the frictionless one's, the solvers, the cores, the
+    cluster jobs' estimates, the default step's accuracy and the pair-to-wall ratio."""
+    from ..pairs.studies import pair_to_wall_cost
+    from ..studies.accuracy import default_step_table
+    from ..studies.solver_speed import measure_throughput
+    from ..studies.speed_models import chunk_jobs, measure_models, parallel_efficiency
+
+    models = measure_models(n=n, n_hertz=max(1, n // 100), seed=seed)["models"]
+    print(f"{'sweep (one core)':<18}{'collisions':>11}{'coll/s':>10}{'time/coll vs frictionless':>27}"
+          f"{'theory':>8}{'checks':>8}{'steps':>8}{'max error':>11}")
+    for m in models:
+        print(f"{m['model']:<18}{m['collisions']:>11}{m['collisions_per_second']:>10.0f}"
+              f"{m['time_per_collision_over_frictionless']:>26.2f}x{m['theory_seconds'] / m['wall_seconds']:>8.1%}"
+              f"{m['checks_share']:>8.1%}{m['steps_per_collision']:>8}{m['max_error']:>11.2e}")
+    solvers = {"2-D": measure_throughput(n=100_000), "3-D": measure_throughput(n=100_000, three_d=True)}
+    print("exact Coulomb solver alone: " + ", ".join(f"{k} {v:,.0f} collisions/s" for k, v in solvers.items()))
+    cores = parallel_efficiency(n=n, workers=os.cpu_count() or 1, seed=seed)
+    print(f"frictionless sweep per core: {cores['per_core_at_one']:,.0f}/s at 1 worker, "
+          f"{cores['per_core_at_all']:,.0f}/s at {cores['workers']} ({cores['efficiency']:.0%})")
+    jobs = chunk_jobs(n=min(n, 20_000), seed=seed)
+    for j in jobs:
+        print(f"chunk job ({j['model']}, {j['collisions']} collisions): estimated {j['estimated_seconds']:.2f} s, "
+              f"measured {j['measured_seconds']:.2f} s ({j['estimated_over_measured']:.2f}x)")
+    steps = default_step_table()
+    print("default step, per case: steps per collision and the error reached (target in brackets)")
+    for row in steps[steps["kind"] != "frozen"].itertuples():
+        print(f"  {row.case:<28}{row.step_method:<22}{row.steps_per_collision:>9}{row.error_reached:>11.2e} "
+              f"({row.target:g})")
+    pairs = pair_to_wall_cost(200)
+    print(f"pair / wall, per collision at each one's default accuracy: {pairs['pair_to_wall']:.1f}x "
+          f"({pairs['pair_steps']} vs {pairs['wall_steps']} steps; per step {pairs['pair_to_wall_per_step']:.2f}x)")
+    return {"sweeps": models, "solver_collisions_per_second": solvers, "cores": cores, "chunk_jobs": jobs,
+            "default_steps": steps.to_dict(orient="records"), "pairs": pairs}

@@ -25,7 +25,7 @@ import math
 from dataclasses import dataclass
 
 from ..model.scenes import Collision
-from ..stepping import expected_steps
+from ..stepping import expected_steps, needs_probe
 
 __all__ = ["CostError", "ChunkCost", "JobRequest", "chunk_cost", "job_request", "chunk_requests",
            "check_fits", "largest_chunk_size"]
@@ -39,8 +39,9 @@ SPHERE_STEP_SECONDS = 1.7e-7  # 200,000 collisions x 252 steps ran in 8.4 s (wor
 #: theory.coulomb's exact batched solver, per collision: 150,000 to 400,000 a second on one
 #: core (studies/solver_speed), so 1e-5 s with room.
 CAPPED_THEORY_SECONDS = 1e-5
-#: A chunk whose step is probed (stepping.tune) runs two small LAMMPS runs first.
-PROBE_SECONDS = 1.0
+#: A chunk whose step is probed (stepping.tune) runs two small LAMMPS runs first (measured
+#: 0.2 s for a finite-mu chunk, `spinbounce bench`).
+PROBE_SECONDS = 0.3
 BASE_MB = 160
 SCIPY_MB = 40  # scipy, loaded for the capped theory
 KB_PER_SPHERE = 1.5  # 1.1 (no mu) to 1.4 (mu) kB measured between 100 and 20,000 spheres
@@ -100,7 +101,14 @@ def chunk_cost(spec, group: int, collisions: int) -> ChunkCost:
     finite_mu = spec.groups[group].get("mu") is not None
     per_collision = steps * SPHERE_STEP_SECONDS + (CAPPED_THEORY_SECONDS if finite_mu else 0.0)
     mem_mb = BASE_MB + (SCIPY_MB if finite_mu else 0) + collisions * KB_PER_SPHERE / 1024
-    return ChunkCost(collisions, steps, START_SECONDS + PROBE_SECONDS + collisions * per_collision, mem_mb)
+    probe = PROBE_SECONDS if _probed(spec, group) else 0.0
+    return ChunkCost(collisions, steps, START_SECONDS + probe + collisions * per_collision, mem_mb)
+
+
+def _probed(spec, group: int) -> bool:
+    model, dt = spec.model(group)
+    fast, slow = spec.normal_speeds()
+    return spec.tolerance is None and needs_probe(Collision(model, v_n=[-fast, -slow], dt=dt))
 
 
 def job_request(cost: ChunkCost) -> JobRequest:
