@@ -64,7 +64,10 @@ def provenance(info: RunInfo, scene_kind: str, parameters: dict) -> dict:
     }
 
 
-def _prepare(out_dir: Path, deck: Deck) -> Path:
+def prepare_run_dir(out_dir: Path, deck: Deck) -> Path:
+    """``out_dir`` made ready to run ``deck`` (created, earlier outputs removed, the deck and the
+    files it reads written); the deck's path. For decks run outside :func:`run_collision`, such
+    as the speed measurement's padded ones."""
     out_dir = Path(out_dir).resolve()
     out_dir.mkdir(parents=True, exist_ok=True)
     for stale in (DUMP_NAME, "log.lammps", "result.json", RESULT_TABLE):
@@ -74,13 +77,6 @@ def _prepare(out_dir: Path, deck: Deck) -> Path:
     deck_path = out_dir / deck.name
     write_atomic(deck_path, deck.text)
     return deck_path
-
-
-def prepare_run_dir(out_dir: Path, deck: Deck) -> Path:
-    """``out_dir`` made ready to run ``deck`` (created, earlier outputs removed, the deck and the
-    files it reads written); the deck's path. For decks run outside :func:`run_collision`, such
-    as the speed measurement's padded ones."""
-    return _prepare(out_dir, deck)
 
 
 def _check_finite(frames: pd.DataFrame, where: Path) -> None:
@@ -191,7 +187,7 @@ def run_collision(scene: Collision, out_dir: Path, atoms: str | None = None, rec
     """
     scene, step = tune(scene, Path(out_dir) / "probe", _probe_errors, probe_states)
     deck = render_collision(scene, atoms)
-    deck_path = _prepare(out_dir, deck)
+    deck_path = prepare_run_dir(out_dir, deck)
     info = runner(deck_path, atoms=deck.atoms)
     if deck.dump is None:
         source = info.log
@@ -255,7 +251,7 @@ class FrozenResult:
 def run_frozen(scene: Frozen, out_dir: Path) -> FrozenResult:
     """Run a frozen contact in ``out_dir`` and set its time series beside Eq. 10."""
     deck = render_frozen(scene)
-    deck_path = _prepare(out_dir, deck)
+    deck_path = prepare_run_dir(out_dir, deck)
     info = run_deck(deck_path)
     dump_path = deck_path.parent / deck.dump
     frames = read_dump(dump_path)

@@ -8,12 +8,11 @@ from pathlib import Path
 
 import numpy as np
 
-from ..model.parameters import SceneError
-from ..model.scenes import STATE_3D, Collision
+from ..model.scenes import Collision
 from ..pipeline import run_collision
 from ..records import to_json, write_atomic
 from ..theory import choose
-from .options import default_run_dir, json_flag, model_from, model_parser, number, state_from, state_parser
+from .options import check_run_folder, default_run_dir, force_flag, json_flag, model_from, model_parser, number, state_from, state_parser
 
 HELP = "bounce one sphere off the wall in LAMMPS and compare it with the theory that applies"
 SUFFIXES = {"initial": "0", "final": "final", "theory": "theory", "error": "error"}
@@ -31,6 +30,7 @@ def register(sub) -> None:
                            "until the estimated error is below TOL (reported with the result)")
     p.add_argument("--out", type=Path, default=None, metavar="DIR",
                    help="run folder for the deck, dump, log and result.json (default: spinbounce-runs/collide-<hash>)")
+    force_flag(p)
     json_flag(p)
     p.set_defaults(handler=run)
 
@@ -47,6 +47,7 @@ def _contact_time(scene: Collision) -> float:
 
 
 def run(args) -> int:
+    check_run_folder(args.out, args.force)
     state = state_from(args)
     if args.tolerance is not None:
         return _run_to_tolerance(args, state)
@@ -95,15 +96,13 @@ def _run_to_tolerance(args, state: dict) -> int:
     from ..studies.tolerance import collide_to_tolerance, collision_frame
 
     model = model_from(args)
-    if any(state.get(name, 0.0) for name in ("v_s", "omega_s", "omega_n")):
-        raise SceneError("tolerance", args.tolerance, "the extrapolation ladder is planar: a 3-D state "
-                                                      "(v_s, omega_s, omega_n) takes --dt or the default step")
     out = args.out or default_run_dir("collide", {"model": dataclasses.asdict(model), **state,
                                                   "tolerance": args.tolerance})
+    out_of_plane = {k: v for k, v in state.items() if k in ("v_s", "omega_s", "omega_n") and v}
     result, scene = collide_to_tolerance(model, state["v_n"], state["v_t"], state["omega"], args.tolerance, out,
-                                         log=(lambda *_: None) if args.json else print)
+                                         log=(lambda *_: None) if args.json else print, **out_of_plane)
     row = collision_frame(result, scene).iloc[0]
-    names = STATE_3D[:3]
+    names = scene.state_names
     report = {
         **{key: _states(names, row, suffix, model.r) for key, suffix in SUFFIXES.items()},
         "estimate": result.max_estimate,

@@ -10,7 +10,8 @@ from ..pipeline import frozen_metadata, run_frozen
 
 from ..records import to_json, write_atomic
 from ..model.scenes import Frozen
-from .options import count, default_run_dir, json_flag, model_from, model_parser, number
+from ..model.parameters import SceneError
+from .options import check_run_folder, count, default_run_dir, force_flag, json_flag, model_from, model_parser, number
 
 HELP = "hold a sphere in contact at height z (v_n = 0) and compare v_t(t), omega(t) with Eq. 10"
 COLUMNS = ["t", "vt", "omega", "r_omega", "vt_theory", "r_omega_theory"]
@@ -34,11 +35,15 @@ def register(sub) -> None:
                    help="time series to write; its provenance goes to FILE.meta.json beside it")
     p.add_argument("--run-dir", type=Path, default=None, metavar="DIR",
                    help="folder for the deck, dump and log (default: spinbounce-runs/frozen-<hash>)")
+    force_flag(p)
     json_flag(p)
     p.set_defaults(handler=run)
 
 
 def run(args) -> int:
+    check_run_folder(args.run_dir, args.force)
+    if Path(args.out).exists() and not args.force:
+        raise SceneError("--out", str(args.out), "exists: give another file, or --force to replace it")
     if args.tolerance is not None:
         return _run_to_tolerance(args)
     scene = Frozen(model_from(args), z=args.z, v_t=args.vt, omega=args.omega, t_end=args.t_end,

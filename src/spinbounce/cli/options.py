@@ -17,10 +17,10 @@ from pathlib import Path
 
 from ..model import parameters
 from ..model.contact import ContactModel
-from ..model.parameters import Parameter
+from ..model.parameters import Parameter, SceneError
 
 __all__ = ["number", "count", "model_parser", "state_parser", "model_from", "state_from", "json_flag",
-           "default_run_dir", "optional_number", "allow_negative_numbers", "sweep_model_flags", "parameter_help"]
+           "default_run_dir", "optional_number", "force_flag", "check_run_folder", "allow_negative_numbers", "sweep_model_flags", "parameter_help"]
 
 #: argparse reads "-1e-3" as an option unless it looks like a negative number to it; its own
 #: pattern misses e-notation, so every parser here gets this one.
@@ -134,6 +134,26 @@ def sweep_model_flags(p: argparse.ArgumentParser) -> None:
             _add(group, parameter, nargs="+", default=None)
     group.add_argument("--kt-over-kn", dest="kt_over_kn", type=number, nargs="+", default=None, metavar="RATIO",
                        help="instead of --kt: the stiffness ratio kt/kn (kt = ratio * kn)")
+
+
+#: What an earlier run leaves in its folder.
+RUN_OUTPUTS = ("result.json", "log.lammps", "state.dump", "tolerance.json")
+
+
+def force_flag(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--force", action="store_true",
+                   help="run into an --out folder that holds an earlier run, replacing its results")
+
+
+def check_run_folder(out: Path | None, force: bool) -> None:
+    """Refuse to replace an earlier run's results in a folder the user named, unless forced.
+    (Folders under spinbounce-runs/ are named by their parameters: the same run, replaced.)"""
+    if out is None or force or not Path(out).is_dir():
+        return
+    earlier = [name for name in RUN_OUTPUTS if (Path(out) / name).exists()]
+    if earlier:
+        raise SceneError("--out", str(out), f"holds an earlier run ({', '.join(earlier)}): give another folder, "
+                                            "or --force to replace it")
 
 
 def json_flag(p: argparse.ArgumentParser) -> None:
