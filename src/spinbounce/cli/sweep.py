@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import json
 import os
+import sys
 from pathlib import Path
 
 from ..model import parameters
@@ -142,7 +143,12 @@ def run(args) -> int:
           f"{len(spec.groups)} model group(s), {args.workers} worker(s); estimated "
           f"{duration_text(sum(chunk_cost(spec, g, stop - start).seconds for g, _, start, stop in spec.chunks()))} "
           "on one core")
-    dataset = run_sweep(spec, args.out, workers=args.workers)
+    try:
+        dataset = run_sweep(spec, args.out, workers=args.workers)
+    except KeyboardInterrupt:
+        print(f"spinbounce sweep: interrupted; the finished chunks in {args.out} are kept: rerun the same "
+              "command to resume", file=sys.stderr)
+        raise SystemExit(130) from None
     counts = status_counts(dataset)
     bad = {name: n for name, n in counts.items() if name != "ok" and n}
     print(f"dataset: {dataset} (pandas.read_parquet of that folder)")
