@@ -24,7 +24,9 @@ def register(sub) -> None:
     p = sub.add_parser("collide", parents=[model_parser(), state_parser()], help=HELP, description=HELP + ".")
     step = p.add_mutually_exclusive_group()
     step.add_argument("--dt", type=number, default=None,
-                      help="timestep (default: tau/(N + 1/2), N = 250 steps per half-period of the fastest mode)")
+                      help="timestep (default: the accuracy rule's step, model/timestep.py, with the contact's "
+                           "end mid-step; damped, Coulomb-capped and Hertzian scenes measure theirs with a short "
+                           "probe, stepping.py)")
     step.add_argument("--tolerance", type=number, default=None, metavar="TOL",
                       help="ask for an accuracy instead: runs at doubling resolutions, extrapolated to dt = 0 "
                            "until the estimated error is below TOL (reported with the result)")
