@@ -93,9 +93,7 @@ def theory(v_n: float | None = None, v_t: float = 0.0, omega: float = 0.0, v_s: 
     choice = choose.which(contact)
     out = {"theory": choice.kind, "name": choice.name}
     if v_n is not None:
-        scene = Collision(contact, v_n=v_n, v_t=v_t, omega=omega, v_s=v_s, omega_s=omega_s, omega_n=omega_n)
-        out["initial"] = dict(zip(scene.state_names, scene.initial[0].tolist(), strict=True))
-        out["final"] = dict(zip(scene.state_names, scene.predicted()[0].tolist(), strict=True))
+        out["initial"], out["final"] = choose.outcome(contact, v_n, v_t, omega, v_s, omega_s, omega_n)
     elif choice.has_matrix:
         out["matrix"] = np.asarray(contact.matrix())
         out["Omega"] = contact.Omega

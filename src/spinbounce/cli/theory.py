@@ -9,7 +9,6 @@ import numpy as np
 
 from .. import theory
 from ..model.parameters import SceneError
-from ..model.scenes import Collision
 from ..theory import choose
 from .options import json_flag, model_from, model_parser, number
 
@@ -91,14 +90,11 @@ def _matrix(args, model, choice) -> int:
 
 def _outcome(args, model, state: dict) -> int:
     """The final state of one collision from the theory that applies (no LAMMPS run)."""
-    scene = Collision(model, **{k: v for k, v in state.items()})
-    final = scene.predicted()[0]
-    names = scene.state_names
+    initial, final = choose.outcome(model, **state)
+    names = list(initial)
     choice = choose.which(model)
-    report = {"theory_kind": choice.kind, "theory_name": choice.name,
-              "initial": dict(zip(names, scene.initial[0].tolist(), strict=True)),
-              "final": dict(zip(names, final.tolist(), strict=True)),
-              "contact_time": float(model.contact_times(scene.v_n)[0])}
+    report = {"theory_kind": choice.kind, "theory_name": choice.name, "initial": initial, "final": final,
+              "contact_time": float(model.contact_times(state["v_n"])[0])}
     if args.json:
         print(json.dumps(report, indent=2))
         return 0

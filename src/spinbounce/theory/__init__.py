@@ -2,7 +2,11 @@
 
 * :mod:`.linear`: the paper's exact results (Eqs. 8-23) and their exact damped forms;
 * :mod:`.hertz`: the Hertzian normal contact, whose Omega depends on v_n;
-* :mod:`.oracle`: the Coulomb-capped contact, integrated with stick-slip events.
+* :mod:`.coulomb`: the Coulomb-capped contact, exact in each stick or slip phase and batched;
+* :mod:`.oracle`: the same contact integrated with scipy and stick-slip events, its
+  independent check;
+* :mod:`.classic`: LAMMPS's classic wall as this build implements it;
+* :mod:`.pair`, :mod:`.pair_exact`: two spheres, planar and as LAMMPS integrates them.
 
 Importing ``spinbounce.theory`` gives :mod:`.linear`'s functions at the top, as the paper's
 equations are the ones most code asks for; :mod:`.choose` decides which theory applies.

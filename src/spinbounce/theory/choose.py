@@ -27,7 +27,7 @@ import numpy as np
 
 from . import hertz, linear
 
-__all__ = ["Choice", "which", "predict", "matrix", "matrices", "omega_per_sphere", "frozen", "NoMatrix"]
+__all__ = ["Choice", "which", "predict", "outcome", "matrix", "matrices", "omega_per_sphere", "frozen", "NoMatrix"]
 
 
 class NoMatrix(ValueError):
@@ -135,6 +135,27 @@ def predict(model, initial) -> np.ndarray:
             matrices = np.array([linear.block_from(m3) for m3 in matrices])
         return np.einsum("nij,nj->ni", matrices, initial)
     return initial @ matrix(model, three_d=width == 6).T
+
+
+#: The columns of a state, in the plane and in 3-D (each spin times r).
+PLANE_COLUMNS = ("vn", "vt", "r_omega")
+SPACE_COLUMNS = PLANE_COLUMNS + ("vs", "r_omega_s", "r_omega_n")
+
+
+def outcome(model, v_n: float, v_t: float = 0.0, omega: float = 0.0, v_s: float = 0.0, omega_s: float = 0.0,
+            omega_n: float = 0.0) -> tuple[dict, dict]:
+    """One state's (initial, final) by column name, from the theory that applies: no run, so
+    none of a run's limits (the default step's) apply."""
+    r = model.r
+    initial = [v_n, v_t, r * omega]
+    names = PLANE_COLUMNS
+    if v_s or omega_s or omega_n:
+        initial += [v_s, r * omega_s, r * omega_n]
+        names = SPACE_COLUMNS
+    if not v_n < 0.0:
+        raise NoMatrix(f"v_n = {v_n!r}: a collision needs v_n < 0 (towards the wall)")
+    final = predict(model, np.array([initial]))[0]
+    return dict(zip(names, map(float, initial), strict=True)), dict(zip(names, map(float, final), strict=True))
 
 
 def frozen(model, t, v_t0: float, r_omega0: float) -> tuple[np.ndarray, np.ndarray]:
