@@ -34,6 +34,7 @@ CASES = {
     "mu": ({}, {"mu": 0.2}),
     "limit_damping": ({"gamma_n": 0.5}, {"gamma_n": 0.5, "limit_damping": True}),
     "normal": ({}, {"normal": "hertz"}),
+    "wall": ({}, {"wall": "classic"}),
 }
 STATE = {"v_n": -0.6, "v_t": 0.8, "omega": 0.5}
 #: LAMMPS at the default step against the theory. Damped contacts converge at first order

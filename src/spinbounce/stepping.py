@@ -31,6 +31,13 @@ PROBE_SPHERES = 32
 ROUNDING = 1e-13
 #: How often a probe whose run cannot see the contact's end is refined before giving up.
 MAX_REFINEMENTS = 8
+#: Checks of a chosen step on the probe (a rough convergence's extrapolation can miss), the
+#: slack a check allows over SAFETY times the target, the slowest order assumed between two
+#: points, and the largest refinement one extrapolation may ask for.
+MAX_CHECKS = 4
+CHECK_SLACK = 1.5
+ORDER_FLOOR = 0.5
+MAX_GROWTH = 64
 
 
 def needs_probe(scene: Collision) -> bool:
@@ -84,11 +91,33 @@ def tune(scene: Collision, out: Path, run: Callable, probe_states: Collision | N
     if fine <= ROUNDING:  # nothing to resolve: the (finishing) coarse step will do
         order, steps, predicted = None, coarse_steps, fine
     else:
-        order = min(2.0, max(1.0, math.log2(coarse / fine))) if coarse > fine else 1.0
-        steps = max(coarse_steps, math.ceil(2 * coarse_steps * (fine / (SAFETY * target)) ** (1.0 / order)))
+        steps, order = _extrapolate((coarse_steps, coarse), (2 * coarse_steps, fine), target)
         predicted = fine * (2 * coarse_steps / steps) ** order
+        # a rough convergence (a cap's switches, a contact-radius spring) can miss: check the
+        # chosen step on the probe itself, and go on from the last two points while it misses
+        last = (2 * coarse_steps, fine)
+        for k in range(MAX_CHECKS):
+            if steps <= last[0]:
+                break
+            measured = probe(steps, 2 * MAX_REFINEMENTS + k)
+            errors.append(measured)
+            if measured <= target * SAFETY * CHECK_SLACK:
+                predicted = measured
+                break
+            previous, last = last, (steps, measured)
+            steps, order = _extrapolate(previous, last, target)
+            predicted = measured * (last[0] / steps) ** order
     tuned = Collision(scene.model, dt=mid_step_dt(t_contact, steps), **{n: getattr(scene, n) for n in STATE_ARGS})
     return tuned, StepChoice(tuned.dt, "probe", target, order, tuple(errors), predicted)
+
+
+def _extrapolate(coarser: tuple[int, float], finer: tuple[int, float], target: float) -> tuple[int, float]:
+    """Steps for SAFETY * target from two (steps, error) points: the observed order, held to
+    [ORDER_FLOOR, 2], and at most MAX_GROWTH times the finer point's steps at once."""
+    (n0, e0), (n1, e1) = coarser, finer
+    order = min(2.0, max(ORDER_FLOOR, math.log(e0 / e1) / math.log(n1 / n0))) if e0 > e1 else ORDER_FLOOR
+    steps = n1 * (e1 / (SAFETY * target)) ** (1.0 / order)
+    return max(n1 // 2, min(MAX_GROWTH * n1, math.ceil(steps))), order
 
 
 #: A priori bounds on what a probe chooses, for costs known before anything runs (cluster

@@ -89,7 +89,7 @@ def _run_to_tolerance(args) -> int:
                    "t_end": args.t_end, "tolerance": args.tolerance})
     result = frozen_to_tolerance(model, args.z, args.vt, args.omega, args.t_end, args.tolerance, run_dir,
                                  log=(lambda *_: None) if args.json else print)
-    vt_theory, rw_theory = choose.frozen(model, result.t, args.vt, args.omega * model.r)
+    vt_theory, rw_theory = choose.frozen(model, result.t, args.vt, args.omega * model.r, args.z)
     table = pd.DataFrame({"t": result.t, "vt": result.values[:, 0], "omega": result.values[:, 1] / model.r,
                           "r_omega": result.values[:, 1], "vt_theory": vt_theory, "r_omega_theory": rw_theory,
                           "estimate": result.estimate[:, 0]})

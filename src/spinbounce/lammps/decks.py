@@ -154,6 +154,8 @@ def wall_parameters(model: ContactModel) -> dict:
             f"gamma_n = 0, gamma_t = {model.gamma_t!r}: ETA_N = {eta_n!r} is a vanishing normal "
             f"damping so that X_T * ETA_N = gamma_t"
         )
+    if model.wall == "classic":
+        return _classic_wall(model)
     if model.mu is None:
         mu = NO_CAP_MU
         notes.append(f"the paper's model has no Coulomb limit; LAMMPS always applies one, so mu = {NO_CAP_MU:g}")
@@ -161,6 +163,29 @@ def wall_parameters(model: ContactModel) -> dict:
         mu = model.mu
         notes.append(f"Coulomb limit |F_t| <= {mu!r} F_n: not the paper's model")
     return {"eta_n": eta_n, "x_t": x_t, "damping": damping, "mu": mu, "comment": "; ".join(notes)}
+
+
+#: The classic form gives its tangential damping as GAMMA_T/GAMMA_N, so GAMMA_N = 0 is 0/0 (NaN
+#: in this build): a vanishing one stands in, far below any force it could add.
+CLASSIC_VANISHING_GAMMA_N = 1.0e-100
+
+
+def _classic_wall(model: ContactModel) -> dict:
+    """Arguments of ``wall/gran hooke/history KN KT GAMMA_N GAMMA_T MU DAMPFLAG``: its dashpots are
+    rates times the mass (``mass_velocity``), so GAMMA = gamma/m; MU none is its largest, 1e4."""
+    from ..model.contact import CLASSIC_MU_MAX
+
+    notes = ["classic wall: this build scales the tangential spring by the contact radius sqrt(r delta) "
+             "(theory: spinbounce.theory.classic)"]
+    gamma_n = model.gamma_n / model.m
+    if gamma_n == 0.0:
+        gamma_n = CLASSIC_VANISHING_GAMMA_N
+        notes.append(f"GAMMA_N = {gamma_n:g} stands in for 0, which the classic form divides by (0/0 = NaN)")
+    mu = CLASSIC_MU_MAX if model.mu is None else model.mu
+    if model.mu is None:
+        notes.append(f"no cap asked for: MU = {mu:g}, the classic form's largest")
+    return {"classic": True, "gamma_n": gamma_n, "gamma_t": model.gamma_t / model.m, "mu": mu,
+            "comment": "; ".join(notes)}
 
 
 def _common(model: ContactModel, zhi: float) -> dict:

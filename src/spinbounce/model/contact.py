@@ -31,6 +31,8 @@ MIN_STEPS_PER_HALF_PERIOD = 20
 #: Below this normal restitution the sphere creeps out of the overlap so slowly that the
 #: end of the contact cannot be located by a run (measured: e = 4e-3 runs, 8e-5 does not).
 MIN_RESTITUTION = 1e-3
+#: The classic wall command refuses MU above this ("Illegal classic gran model command").
+CLASSIC_MU_MAX = 1.0e4
 #: Above alpha = 2/3 part of the mass would sit outside the sphere (Section 3).
 ALPHA_SHELL = 2.0 / 3.0
 
@@ -71,6 +73,8 @@ class ContactPhysics:
                 "must be 0 with normal = 'hertz': there is no exact theory here of the damped "
                 "Hertzian contact to check it against",
             )
+        if self.wall == "classic":
+            self._check_classic()
         critical = 2.0 * math.sqrt(self.m * self.kn)
         if self.gamma_n >= critical:
             raise SceneError(
@@ -79,6 +83,17 @@ class ContactPhysics:
                 f"must be below critical normal damping 2*sqrt(m*kn) = {critical:.6g}: "
                 "at or above it the sphere never leaves the wall",
             )
+
+    def _check_classic(self) -> None:
+        """What the classic wall command can express, and its theory covers."""
+        if self.normal != "hooke":
+            raise SceneError("normal", self.normal, "must be hooke with wall = classic (hooke/history is Hookean)")
+        if self.limit_damping:
+            raise SceneError("limit_damping", True, "is not covered by the classic wall's theory: leave it out "
+                                                     "with wall = classic")
+        if self.mu is not None and self.mu > CLASSIC_MU_MAX:
+            raise SceneError("mu", self.mu, f"must be <= {CLASSIC_MU_MAX:g} with wall = classic (LAMMPS refuses "
+                                            "a larger MU in the classic form); none means that largest cap")
 
     def replace(self, **changes):
         """A copy with some parameters changed (checked again)."""

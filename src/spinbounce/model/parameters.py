@@ -158,6 +158,10 @@ MODEL: tuple[Parameter, ...] = (
               deck="wall/gran ... limit_damping"),
     Parameter("normal", "normal force law: hooke (the paper's, F = kn delta) or hertz", "-", "hooke",
               kind="choice", choices=("hooke", "hertz"), deck="wall/gran granular hooke|hertz"),
+    Parameter("wall", "the wall command: granular (the paper's model) or classic (wall/gran hooke/history, "
+              "whose tangential spring this LAMMPS build scales by the contact radius)", "-", "granular",
+              kind="choice", choices=("granular", "classic"),
+              deck="wall/gran granular ... | wall/gran hooke/history KN KT GAMMA_N/m GAMMA_T/m MU 1"),
 )
 
 #: The initial state of a collision (per sphere). Spins are angular velocities; a sweep may

@@ -359,4 +359,4 @@ class Frozen:
 
     def predicted(self, t) -> tuple[np.ndarray, np.ndarray]:
         """(v_t(t), r omega(t)): Eq. 10, or its exact damped form when gamma_t > 0."""
-        return choose.frozen(self.model, t, self.v_t, self.omega * self.model.r)
+        return choose.frozen(self.model, t, self.v_t, self.omega * self.model.r, self.z)

@@ -49,6 +49,11 @@ class Choice:
 
 def which(model) -> Choice:
     """The theory that applies to collisions of ``model``."""
+    if getattr(model, "wall", "granular") == "classic":
+        return Choice("classic", "the classic wall as this LAMMPS build integrates it (tangential spring "
+                                 "kt sqrt(r delta); theory.classic)",
+                      "the classic wall's tangential spring grows with the overlap, so Omega depends on v_n "
+                      "and on the length unit: give a state (v_n, v_t, omega) for its outcome")
     if model.mu is not None:
         return Choice("coulomb", "Coulomb stick-slip solution (exact in each phase, switches to machine precision)",
                       f"with mu = {model.mu!r} the contact sticks and slides in turn, so the outcome is not "
@@ -107,7 +112,12 @@ def omega_per_sphere(model, v_n) -> np.ndarray:
     """Each sphere's Omega (Eq. 18's, exact damped or Hertzian); NaN where none exists (Coulomb)."""
     v_n = np.atleast_1d(np.asarray(v_n, dtype=float))
     kind = which(model).kind
-    if kind == "coulomb":
+    if kind == "classic" and model.mu is None:  # the sticking contact's Omega, speed by speed
+        from . import classic
+
+        return np.array([classic.Omega_eff(v, model.kn, model.kt, model.alpha, model.r, model.m,
+                                           model.gamma_n / model.m, model.gamma_t / model.m) for v in v_n])
+    if kind in ("coulomb", "classic"):
         return np.full(v_n.shape, np.nan)
     if kind == "hertz":
         return np.atleast_1d(hertz.Omega(v_n, model.m, model.kn, model.r, model.kt, model.alpha, model.gamma_t))
@@ -121,6 +131,8 @@ def predict(model, initial) -> np.ndarray:
     initial = np.atleast_2d(np.asarray(initial, dtype=float))
     width = initial.shape[1]
     kind = which(model).kind
+    if kind == "classic":
+        return _classic(model, initial)
     if kind == "coulomb":  # the exact batched solver; the scipy oracle is its independent check
         from . import coulomb
 
@@ -158,12 +170,36 @@ def outcome(model, v_n: float, v_t: float = 0.0, omega: float = 0.0, v_s: float 
     return dict(zip(names, map(float, initial), strict=True)), dict(zip(names, map(float, final), strict=True))
 
 
-def frozen(model, t, v_t0: float, r_omega0: float) -> tuple[np.ndarray, np.ndarray]:
-    """(v_t(t), r omega(t)) of the frozen contact: Eq. 10, or its exact damped form.
+def classic_wall(model):
+    """The classic wall's own parameters: its dashpots are rates (gamma/m), its cap at most 1e4."""
+    from . import classic
+
+    mu = classic.MU_MAX if model.mu is None else model.mu
+    return classic.ClassicWall(kn=model.kn, kt=model.kt, gamma_n=model.gamma_n / model.m,
+                               gamma_t=model.gamma_t / model.m, mu=mu, alpha=model.alpha, r=model.r, m=model.m)
+
+
+def _classic(model, initial: np.ndarray) -> np.ndarray:
+    from . import classic
+
+    if initial.shape[1] != 3 or np.any(initial[:, 3:]):
+        raise NoMatrix("the classic wall's theory is in the paper's plane: give no v_s, omega_s or omega_n")
+    wall = classic_wall(model)
+    return np.array([classic.bounce(wall, *state).final for state in initial])
+
+
+def frozen(model, t, v_t0: float, r_omega0: float, z: float | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """(v_t(t), r omega(t)) of the frozen contact at height z: Eq. 10, or its exact damped form
+    (the classic wall: with its spring kt sqrt(r (r - z))).
 
     Held at a fixed height the normal force is constant, so neither the normal law nor
     gamma_n nor limit_damping changes the slip; a Coulomb cap would, and has no theory here.
     """
     if model.mu is not None:
         raise NoMatrix(f"mu = {model.mu!r}: the frozen contact's theory (Eq. 10) has no Coulomb cap")
+    if which(model).kind == "classic":
+        from . import classic
+
+        return classic.frozen_velocities(t, v_t0, r_omega0, model.kt, model.alpha, model.r, model.r - z, model.m,
+                                         model.gamma_t / model.m)
     return linear.frozen_velocities(t, v_t0, r_omega0, model.kt, model.m, model.alpha, model.gamma_t)

@@ -11,6 +11,7 @@ import json
 import tempfile
 from pathlib import Path
 
+from ...model import parameters
 from ...records import json_ready, software, to_json, write_atomic
 from .cases import CASES
 from .deviations import Violation
@@ -103,6 +104,13 @@ def regenerate(directory: Path = DEFAULT_DIR, progress=None) -> dict:
     return record
 
 
+def _with_declared_defaults(case: dict) -> dict:
+    """A stored case's model as this code declares it: a parameter declared since the
+    references were made takes its default, which is what those runs had."""
+    model = {p.name: p.default for p in parameters.MODEL}
+    return {**case, "model": {**model, **case.get("model", {})}} if "model" in case else case
+
+
 def compare_manifest(stored: dict) -> list[Violation]:
     """Differences between a stored manifest and the cases and tolerances in this code."""
     found = []
@@ -113,8 +121,8 @@ def compare_manifest(stored: dict) -> list[Violation]:
     for name in sorted(set(stored_cases) - set(code)):
         found.append(Violation(name, "*", "case is in the manifest but not in the code (regenerate)"))
     for name in sorted(set(code) & set(stored_cases)):
-        changed = sorted(k for k in set(code[name]) | set(stored_cases[name])
-                         if code[name].get(k) != stored_cases[name].get(k))
+        stored_case = _with_declared_defaults(stored_cases[name])
+        changed = sorted(k for k in set(code[name]) | set(stored_case) if code[name].get(k) != stored_case.get(k))
         if changed:
             found.append(Violation(name, "*", f"case definition changed since the references were made: "
                                               f"{', '.join(changed)} (regenerate)"))

@@ -1,0 +1,74 @@
+"""The classic wall (``wall = classic``: ``fix wall/gran hooke/history``) as a first-class
+model: LAMMPS's classic wall at the default settings against the exact theory of what this
+build integrates (spinbounce.theory.classic), in collisions and in the frozen contact.
+
+Tolerance: the default accuracy, 1e-4 of the size of the initial state; the classic theory
+is solved to about 1e-9, so the whole margin is LAMMPS's step."""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from spinbounce.cli import main
+from spinbounce.model.contact import ContactModel
+from spinbounce.model.parameters import SceneError
+from spinbounce.model.scenes import Collision, Frozen
+from spinbounce.model.timestep import ACCURACY
+from spinbounce.pipeline import run_collision, run_frozen
+
+pytestmark = pytest.mark.lammps
+
+#: (v_n, v_t, omega): slow and fast, sliding and rolling, topspin and backspin.
+STATES = ((-1.0, 1.0, 0.0), (-0.3, 0.5, 2.0), (-1.2, -0.4, -3.0), (-0.6, 1.5, 0.5))
+MODELS = [dict(kt=kt, mu=mu) for kt in (1.0, 10 * 2 / 7, 5.0) for mu in (None, 0.3, 1.0)]
+
+
+@pytest.mark.parametrize("params", MODELS, ids=lambda p: f"kt={p['kt']:.3g},mu={p['mu']}")
+def test_classic_collisions_match_their_theory_at_the_defaults(params, tmp_path):
+    model = ContactModel(wall="classic", **params)
+    states = dict(zip(("v_n", "v_t", "omega"), (list(c) for c in zip(*STATES, strict=True)), strict=True))
+    result = run_collision(Collision(model, **states), tmp_path, atoms="library", record=False)
+    assert result.table["error"].max() <= ACCURACY, result.table[["error", "status"]]
+    assert (result.table["status"] == "ok").all() and not result.warnings
+
+
+def test_a_larger_sphere_and_a_faster_impact_change_the_classic_outcome(tmp_path):
+    """The factor sqrt(r delta) makes Omega depend on r and v_n (the paper's depends on kt/kn only)."""
+    finals = []
+    for r, v_n in ((0.5, -1.0), (2.0, -1.0), (0.5, -0.2)):
+        model = ContactModel(wall="classic", r=r)
+        result = run_collision(Collision(model, v_n=v_n, v_t=1.0, omega=0.0), tmp_path / f"{r}-{v_n}",
+                               atoms="library", record=False)
+        assert result.table["error"].max() <= ACCURACY
+        row = result.table.iloc[0]
+        finals.append((row["vt_final"] - 1.0) / (1.0 * 0.4 / 1.4))  # Omega as Eq. 19 defines it
+    assert np.ptp(finals) > 0.1
+
+
+@pytest.mark.parametrize("z", [0.45, 0.4, 0.3])
+def test_the_classic_frozen_contact_oscillates_at_its_own_frequency(z, tmp_path):
+    scene = Frozen(ContactModel(wall="classic"), z=z, v_t=1.0, omega=0.0, t_end=5.0)
+    result = run_frozen(scene, tmp_path)
+    assert result.max_abs_error <= ACCURACY
+    uncapped = Frozen(ContactModel(), z=z, v_t=1.0, omega=0.0, t_end=5.0).predicted(result.table["t"].to_numpy())
+    assert np.abs(result.table["vt"] - uncapped[0]).max() > 0.1  # not the granular wall's Eq. 10
+
+
+def test_a_classic_sweep_from_flags_records_the_wall(tmp_path, capsys):
+    argv = ["sweep", "--out", str(tmp_path / "s"), "--n", "12", "--workers", "1", "--wall", "classic", "granular",
+            "--mu", "none", "0.5"]
+    assert main(argv) == 0
+    rows = pd.read_parquet(tmp_path / "s" / "chunks")
+    assert set(rows["wall"]) == {"classic", "granular"} and (rows["status"] == "ok").all()
+    assert set(rows.loc[rows["wall"] == "classic", "theory"]) == {"classic"}
+    assert "12 ok" not in capsys.readouterr().out  # 48 rows: four groups of 12
+
+
+@pytest.mark.parametrize("params, parameter", [({"normal": "hertz"}, "normal"), ({"mu": 2e4}, "mu"),
+                                               ({"limit_damping": True, "gamma_n": 1.0}, "limit_damping")])
+def test_what_the_classic_form_cannot_express_is_refused(params, parameter):
+    with pytest.raises(SceneError) as info:
+        ContactModel(wall="classic", **params)
+    assert info.value.parameter == parameter
