@@ -37,6 +37,7 @@ ACCEPTED = {
     "kt/kn = 1e-4": {"kt": 1e-3},
     "kt/kn = 10": {"kt": 100.0},
     "kt/kn = 1e4": {"kt": 1e5},
+    "kt/kn = 1e5 (the slip turns 1900 times a contact)": {"kt": 1e6},
     "alpha = 0.01": {"alpha": 0.01},
     "alpha = 2/3": {"alpha": 2 / 3},
     "gamma_t = 0.01": {"gamma_t": 0.01},

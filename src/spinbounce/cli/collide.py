@@ -11,8 +11,9 @@ import numpy as np
 from ..model.scenes import Collision
 from ..pipeline import run_collision
 from ..records import to_json, write_atomic
+from ..stepping import expected_steps
 from ..theory import choose
-from .options import check_run_folder, default_run_dir, force_flag, json_flag, model_from, model_parser, number, state_from, state_parser
+from .options import announce_cost, check_run_folder, default_run_dir, force_flag, json_flag, model_from, model_parser, number, state_from, state_parser
 
 HELP = "bounce one sphere off the wall in LAMMPS and compare it with the theory that applies"
 SUFFIXES = {"initial": "0", "final": "final", "theory": "theory", "error": "error"}
@@ -54,6 +55,7 @@ def run(args) -> int:
     if args.tolerance is not None:
         return _run_to_tolerance(args, state)
     scene = Collision(model_from(args), dt=args.dt, **state)
+    announce_cost(expected_steps(scene), scene.n)
     out = args.out or default_run_dir("collide", {"model": dataclasses.asdict(scene.model), **state, "dt": scene.dt})
     result = run_collision(scene, out)
     scene = result.scene  # at the step its accuracy needed

@@ -11,7 +11,7 @@ from ..pipeline import frozen_metadata, run_frozen
 from ..records import to_json, write_atomic
 from ..model.scenes import Frozen
 from ..model.parameters import SceneError
-from .options import check_run_folder, count, default_run_dir, force_flag, json_flag, model_from, model_parser, number
+from .options import announce_cost, check_run_folder, count, default_run_dir, force_flag, json_flag, model_from, model_parser, number
 
 HELP = "hold a sphere in contact at height z (v_n = 0) and compare v_t(t), omega(t) with Eq. 10"
 COLUMNS = ["t", "vt", "omega", "r_omega", "vt_theory", "r_omega_theory"]
@@ -48,6 +48,7 @@ def run(args) -> int:
         return _run_to_tolerance(args)
     scene = Frozen(model_from(args), z=args.z, v_t=args.vt, omega=args.omega, t_end=args.t_end,
                    dt=args.dt, every=args.every)
+    announce_cost(scene.nsteps)
     run_dir = args.run_dir or default_run_dir(
         "frozen", {"model": dataclasses.asdict(scene.model), "z": scene.z, "vt": scene.v_t,
                    "omega": scene.omega, "nsteps": scene.nsteps, "dt": scene.dt, "every": scene.every}

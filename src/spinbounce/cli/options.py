@@ -13,6 +13,7 @@ import hashlib
 import json
 import math
 import re
+import sys
 from pathlib import Path
 
 from ..model import parameters
@@ -20,7 +21,7 @@ from ..model.contact import ContactModel
 from ..model.parameters import Parameter, SceneError
 
 __all__ = ["number", "count", "model_parser", "state_parser", "model_from", "state_from", "json_flag",
-           "default_run_dir", "optional_number", "force_flag", "check_run_folder", "allow_negative_numbers", "sweep_model_flags", "parameter_help"]
+           "default_run_dir", "optional_number", "force_flag", "check_run_folder", "announce_cost", "allow_negative_numbers", "sweep_model_flags", "parameter_help"]
 
 #: argparse reads "-1e-3" as an option unless it looks like a negative number to it; its own
 #: pattern misses e-notation, so every parser here gets this one.
@@ -154,6 +155,20 @@ def check_run_folder(out: Path | None, force: bool) -> None:
     if earlier:
         raise SceneError("--out", str(out), f"holds an earlier run ({', '.join(earlier)}): give another folder, "
                                             "or --force to replace it")
+
+
+#: A run expected to take longer than this says so before it starts.
+ANNOUNCE_SECONDS = 60.0
+
+
+def announce_cost(steps: int, spheres: int = 1) -> None:
+    """Print, before a long run starts, how long it is expected to take (on stderr)."""
+    from ..model.timestep import duration_text, estimate_seconds
+
+    seconds = estimate_seconds(steps, spheres)
+    if seconds > ANNOUNCE_SECONDS:
+        print(f"estimated {duration_text(seconds)} on one core ({steps:.3g} steps of {spheres} sphere(s)); "
+              "Ctrl-C stops it", file=sys.stderr, flush=True)
 
 
 def json_flag(p: argparse.ArgumentParser) -> None:
