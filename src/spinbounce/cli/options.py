@@ -21,7 +21,7 @@ from ..model.contact import ContactModel
 from ..model.parameters import Parameter, SceneError
 
 __all__ = ["number", "count", "model_parser", "state_parser", "model_from", "state_from", "json_flag",
-           "default_run_dir", "optional_number", "force_flag", "check_run_folder", "announce_cost", "allow_negative_numbers", "sweep_model_flags", "parameter_help"]
+           "default_run_dir", "optional_number", "force_flag", "check_run_folder", "announce_cost", "figure_options", "make_with_runs", "allow_negative_numbers", "sweep_model_flags", "parameter_help"]
 
 #: argparse reads "-1e-3" as an option unless it looks like a negative number to it; its own
 #: pattern misses e-notation, so every parser here gets this one.
@@ -169,6 +169,25 @@ def announce_cost(steps: int, spheres: int = 1) -> None:
     if seconds > ANNOUNCE_SECONDS:
         print(f"estimated {duration_text(seconds)} on one core ({steps:.3g} steps of {spheres} sphere(s)); "
               "Ctrl-C stops it", file=sys.stderr, flush=True)
+
+
+def figure_options(p: argparse.ArgumentParser, default_out: Path) -> None:
+    """--out (the figure's folder), --runs (keep the LAMMPS runs) and --json, for a study's figure."""
+    p.add_argument("--out", type=Path, default=default_out, metavar="DIR",
+                   help="folder for the figure and its JSON record (default: %(default)s)")
+    p.add_argument("--runs", type=Path, default=None, metavar="DIR",
+                   help="keep the LAMMPS runs here (default: a temporary folder, removed)")
+    json_flag(p)
+
+
+def make_with_runs(make, out: Path, runs: Path | None, prefix: str):
+    """``make(out, runs_folder)``, the runs kept in ``runs`` or in a temporary folder removed after."""
+    import tempfile
+
+    if runs is not None:
+        return make(out, runs)
+    with tempfile.TemporaryDirectory(prefix=prefix) as folder:
+        return make(out, Path(folder))
 
 
 def json_flag(p: argparse.ArgumentParser) -> None:

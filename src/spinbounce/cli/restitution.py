@@ -3,11 +3,10 @@
 from __future__ import annotations
 
 import json
-import tempfile
 from pathlib import Path
 
 from ..records import json_ready
-from .options import json_flag
+from .options import figure_options, make_with_runs
 
 HELP = ("map normal and tangential restitution, rebound angle and spin against the incidence angle (Hooke, Hertz, "
         "with and without mu), with Kharaz's measured alumina data and the model fitted to it")
@@ -20,22 +19,14 @@ def register(sub) -> None:
         description=(f"{HELP}. Each curve is one batched LAMMPS run beside the theory that applies. "
                      "Writes restitution.png, restitution.pdf and restitution.json."),
     )
-    p.add_argument("--out", type=Path, default=DEFAULT_OUT, metavar="DIR",
-                   help="folder for the figure and its JSON record (default: %(default)s)")
-    p.add_argument("--runs", type=Path, default=None, metavar="DIR",
-                   help="keep the LAMMPS runs here (default: a temporary folder, removed)")
-    json_flag(p)
+    figure_options(p, DEFAULT_OUT)
     p.set_defaults(handler=run)
 
 
 def run(args) -> int:
     from ..studies.restitution import make_figure
 
-    if args.runs is None:
-        with tempfile.TemporaryDirectory(prefix="spinbounce-restitution-") as folder:
-            meta = make_figure(args.out, Path(folder))
-    else:
-        meta = make_figure(args.out, args.runs)
+    meta = make_with_runs(make_figure, args.out, args.runs, "spinbounce-restitution-")
     fit = meta["kharaz_fit"]
     if args.json:
         print(json.dumps(json_ready({"out": str(args.out), "files": meta["files"], "kharaz_fit": fit,

@@ -4,11 +4,10 @@ from __future__ import annotations
 
 import json
 import sys
-import tempfile
 from pathlib import Path
 
 from ..records import json_ready
-from .options import json_flag
+from .options import figure_options, make_with_runs
 
 HELP = "bounce a sphere many times between two parallel walls in LAMMPS, against the product of the matrices"
 DEFAULT_OUT = Path("figures")
@@ -17,26 +16,18 @@ DEFAULT_OUT = Path("figures")
 def register(sub) -> None:
     p = sub.add_parser(
         "two-walls", help=HELP,
-        description=(f"{HELP} (the top wall's conjugated by the mirror z -> -z) or, with a finite mu, the Coulomb "
-                     "oracle bounce by bounce: the paper's model, the magic kt/kn = 2/7, a damped and a capped "
+        description=(f"{HELP} (the top wall's conjugated by the mirror z -> -z) or, with a finite mu, the exact "
+                     "stick-slip solution bounce by bounce: the paper's model, the magic kt/kn = 2/7, a damped and a capped "
                      "contact. Writes two_walls.png, two_walls.pdf and two_walls.json."),
     )
-    p.add_argument("--out", type=Path, default=DEFAULT_OUT, metavar="DIR",
-                   help="folder for the figure and its JSON record (default: %(default)s)")
-    p.add_argument("--runs", type=Path, default=None, metavar="DIR",
-                   help="keep the LAMMPS runs here (default: a temporary folder, removed)")
-    json_flag(p)
+    figure_options(p, DEFAULT_OUT)
     p.set_defaults(handler=run)
 
 
 def run(args) -> int:
     from ..studies.two_walls import make_figure
 
-    if args.runs is None:
-        with tempfile.TemporaryDirectory(prefix="spinbounce-two-walls-") as folder:
-            meta = make_figure(args.out, Path(folder))
-    else:
-        meta = make_figure(args.out, args.runs)
+    meta = make_with_runs(make_figure, args.out, args.runs, "spinbounce-two-walls-")
     summary = [{"case": c["label"], "theory": c["theory"], "max_abs_deviation": c["max_abs_deviation"],
                 "final_state_lammps": c["lammps_path"][-1]} for c in meta["cases"]]
     if args.json:

@@ -18,7 +18,7 @@ import numpy as np
 
 from .. import theory
 from ..theory import choose, hertz
-from .parameters import MODEL, SceneError
+from .parameters import MODEL, SceneError, positive_number
 from .stability import stability_limit
 
 __all__ = ["ContactModel", "ContactPhysics", "PhysicsWarning", "NORMAL_LAWS", "ALPHA_SHELL",
@@ -39,18 +39,6 @@ ALPHA_SHELL = 2.0 / 3.0
 
 class PhysicsWarning(UserWarning):
     """A scene is allowed but physically unusual or numerically marginal."""
-
-
-def _positive(name: str, value) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise SceneError(name, value, "must be a number") from None
-    if not math.isfinite(v):
-        raise SceneError(name, value, "must be finite")
-    if v <= 0.0:
-        raise SceneError(name, value, "must be > 0")
-    return v
 
 
 class ContactPhysics:
@@ -204,7 +192,7 @@ class ContactPhysics:
         return limits[name], name
 
     def check_dt(self, dt, frozen: bool, speed: float | None = None) -> float:
-        dt = _positive("dt", dt)
+        dt = positive_number("dt", dt)
         limit, mode = self.dt_limit(frozen, speed)
         if dt >= limit:
             raise SceneError(

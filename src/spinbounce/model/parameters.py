@@ -15,7 +15,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-__all__ = ["Parameter", "MODEL", "STATE", "RUN", "ALL", "by_name", "SceneError", "markdown_table"]
+__all__ = ["finite_number", "positive_number", "Parameter", "MODEL", "STATE", "RUN", "ALL", "by_name", "SceneError", "markdown_table"]
 
 
 class SceneError(ValueError):
@@ -26,6 +26,24 @@ class SceneError(ValueError):
         self.value = value
         self.limit = limit
         super().__init__(f"{parameter} = {value!r}: {limit}")
+
+
+def finite_number(name: str, value) -> float:
+    """``value`` as a finite float, or a :class:`SceneError` naming ``name``."""
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        raise SceneError(name, value, "must be a number") from None
+    if not math.isfinite(number):
+        raise SceneError(name, value, "must be finite")
+    return number
+
+
+def positive_number(name: str, value) -> float:
+    number = finite_number(name, value)
+    if number <= 0.0:
+        raise SceneError(name, value, "must be > 0")
+    return number
 
 
 @dataclass(frozen=True)
@@ -114,12 +132,7 @@ class Parameter:
     def _check_number(self, name: str, value) -> float:
         if isinstance(value, bool):
             raise SceneError(name, value, "must be a number")
-        try:
-            number = float(value)
-        except (TypeError, ValueError):
-            raise SceneError(name, value, "must be a number") from None
-        if not math.isfinite(number):
-            raise SceneError(name, value, "must be finite")
+        number = finite_number(name, value)
         below = self.low is not None and (number <= self.low if self.low_open else number < self.low)
         above = self.high is not None and (number >= self.high if self.high_open else number > self.high)
         if below or above:

@@ -27,7 +27,7 @@ from .. import theory
 from ..theory import choose, hertz
 from . import parameters
 from .contact import MIN_STEPS_PER_HALF_PERIOD, NORMAL_LAWS, ContactModel, PhysicsWarning
-from .parameters import SceneError
+from .parameters import SceneError, finite_number, positive_number
 from .timestep import ACCURACY, FROZEN_ACCURACY, SAFETY, align_mid_step, check_steps, second_order_dt, steps_through
 
 __all__ = [
@@ -63,23 +63,6 @@ STATE = ("vn", "vt", "r_omega")
 STATE_3D = STATE + ("vs", "r_omega_s", "r_omega_n")
 #: Collision's per-sphere arguments, in the order of STATE_3D: the declared state.
 STATE_ARGS = tuple(p.name for p in parameters.STATE)
-
-
-def _finite(name: str, value) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise SceneError(name, value, "must be a number") from None
-    if not math.isfinite(v):
-        raise SceneError(name, value, "must be finite")
-    return v
-
-
-def _positive(name: str, value) -> float:
-    v = _finite(name, value)
-    if v <= 0.0:
-        raise SceneError(name, value, "must be > 0")
-    return v
 
 
 def _as_vector(name: str, value) -> tuple[float, ...]:
@@ -308,13 +291,13 @@ class Frozen:
             raise SceneError("mu", m.mu, "a frozen contact is checked against Eq. 10, which has no Coulomb cap: "
                                          "leave mu out (held at a fixed height the cap is constant, so a cap "
                                          "only adds sliding that no theory here predicts)")
-        z = _finite("z", self.z)
+        z = finite_number("z", self.z)
         if not 0.0 < z < m.r:
             raise SceneError("z", self.z, f"must lie in (0, r) = (0, {m.r:g}) to hold the sphere in contact")
         set_(self, "z", z)
-        set_(self, "v_t", _finite("v_t", self.v_t))
-        set_(self, "omega", _finite("omega", self.omega))
-        set_(self, "t_end", _positive("t_end", self.t_end))
+        set_(self, "v_t", finite_number("v_t", self.v_t))
+        set_(self, "omega", finite_number("omega", self.omega))
+        set_(self, "t_end", positive_number("t_end", self.t_end))
         given = self.dt is not None
         set_(self, "dt", m.check_dt(self.dt if given else self.default_dt(), frozen=True))
         steps = math.ceil(self.t_end / self.dt - 1e-9)
@@ -322,7 +305,7 @@ class Frozen:
         if self.every is None:
             set_(self, "every", max(1, steps // 2000))
         else:
-            every = _finite("every", self.every)
+            every = finite_number("every", self.every)
             if every < 1 or every != int(every):
                 raise SceneError("every", self.every, "must be a whole number of steps >= 1")
             set_(self, "every", int(every))
