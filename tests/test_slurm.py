@@ -18,11 +18,9 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from spinbounce.model.scenes import ContactModel
 from spinbounce.records import TEMP_SUFFIX
 from spinbounce.studies.cost import chunk_cost, job_request
 from spinbounce.sweeps import load_spec, read_results
-from spinbounce.theory import oracle
 
 pytestmark = [pytest.mark.slurm, pytest.mark.workflow, pytest.mark.lammps]
 
@@ -119,14 +117,21 @@ def assert_identical(left: pd.DataFrame, right: pd.DataFrame) -> None:
             assert np.array_equal(left[name].to_numpy().view(np.uint64), right[name].to_numpy().view(np.uint64)), name
 
 
-def seconds_per_oracle_collision() -> float:
-    """This machine's Coulomb-oracle rate, which sets a finite-mu chunk's length."""
-    rng = np.random.default_rng(0)
-    n = 40
-    started = time.perf_counter()
-    oracle.bounce_many(ContactModel(mu=0.5), rng.uniform(-1.5, -0.1, n), rng.uniform(-2, 2, n),
-                       rng.uniform(-4, 4, n))
-    return (time.perf_counter() - started) / n
+#: The fault sweep's model: a Coulomb cap and a slip mode that turns 590 times a contact, so
+#: that each collision costs LAMMPS about 0.08 s (311,000 steps): a chunk of a few thousand
+#: runs for minutes, whatever the theory's speed.
+FAULT_MODEL = "mu = 0.5\nkt = 100000.0"
+
+
+def fault_chunk_size(seconds: float) -> int:
+    """Collisions of the fault sweep's model that the cost estimate puts at ``seconds`` on one
+    core (the estimate runs high by up to 2x: `spinbounce bench`)."""
+    from spinbounce.studies.cost import chunk_cost
+    from spinbounce.sweeps import spec_from_dict
+
+    probe = spec_from_dict({"model": {"mu": 0.5, "kt": 100000.0}, "states": {"n": 1000, "v_n": [-1.5, -0.1],
+                                                                              "v_t": [-2, 2], "r_omega": [-2, 2]}})
+    return round(seconds / (chunk_cost(probe, 0, 1000).seconds / 1000))
 
 
 def wait_until_running(job: str, seconds: float = 60) -> None:
@@ -172,15 +177,15 @@ FAULT_OPTIONS = ("--retries", "0", "--slurm-status-command", "squeue", "--latenc
 def faults(tmp_path_factory, site):
     """A finite-mu sweep started with a 1-minute limit per chunk, one chunk cancelled.
 
-    Chunks of ~100 s on one core here: chunk 0 runs into its limit (SLURM kills it 60 to
-    90 s after its start), chunk 1 is cancelled while it runs, chunk 2 (10 collisions)
-    completes. Returns the folder, the scene, the running Snakemake, its output so far and
-    the cancelled job's id.
+    Chunks estimated at 300 s on one core (at least 140 s, as the estimate runs high): chunk 0
+    runs into its limit (SLURM kills it 60 to 90 s after its start), chunk 1 is cancelled
+    while it runs, chunk 2 (10 collisions) completes. Returns the folder, the scene, the
+    running Snakemake, its output so far and the cancelled job's id.
     """
     workdir = tmp_path_factory.mktemp("faults")
-    size = round(100 / seconds_per_oracle_collision())
+    size = fault_chunk_size(300.0)
     scene = workdir / "faults.toml"
-    scene.write_text(MIXED_SCENE.replace("mu = [0.0, 0.5]", "mu = 0.5")
+    scene.write_text(MIXED_SCENE.replace("mu = [0.0, 0.5]", FAULT_MODEL)
                      .replace("chunk_size = 30", f"chunk_size = {size}").replace("n = 60", f"n = {2 * size + 10}"))
     first = snakemake_on_slurm(workdir, scene, site, "--set-resources", "chunk:runtime=1", *FAULT_OPTIONS)
     log: list[str] = []

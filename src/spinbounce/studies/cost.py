@@ -25,6 +25,7 @@ import math
 from dataclasses import dataclass
 
 from ..model.scenes import Collision
+from ..model.timestep import SPHERE_STEP_SECONDS
 from ..stepping import expected_steps, needs_probe
 
 __all__ = ["CostError", "ChunkCost", "JobRequest", "chunk_cost", "job_request", "chunk_requests",
@@ -35,7 +36,6 @@ __all__ = ["CostError", "ChunkCost", "JobRequest", "chunk_cost", "job_request", 
 #: a 100-sphere chunk took 1.16 s and 158 MB (157 MB, 197 MB with mu = 0.3); 20,000
 #: spheres took 1.85 s and 181 MB without mu, so 0.69 s for 20,000 x 252 sphere-steps.
 START_SECONDS = 1.2
-SPHERE_STEP_SECONDS = 1.7e-7  # 200,000 collisions x 252 steps ran in 8.4 s (workflows/README.md)
 #: theory.coulomb's exact batched solver, per collision: 150,000 to 400,000 a second on one
 #: core (studies/solver_speed), so 1e-5 s with room.
 CAPPED_THEORY_SECONDS = 1e-5
