@@ -11,8 +11,9 @@ Keywords are the declared parameter names (:data:`spinbounce.model.parameters.MO
     rows = spinbounce.sweep(n=2000, out="my-sweep", mu=[None, 0.3])
     spinbounce.fit("my-sweep")       # one row per model group
 
-Nothing here needs a ``if __name__ == "__main__"`` guard: sweeps fork their workers
-while LAMMPS is not loaded in the calling process, and run in-process otherwise.
+A script needs no ``if __name__ == "__main__"`` guard: a sweep runs in this process by
+default (``workers=1``); with more workers it forks them while LAMMPS is not loaded here,
+and spawns them (which does need the guard) once it is.
 """
 
 from __future__ import annotations
@@ -30,7 +31,7 @@ from .model.contact import ContactModel
 from .model.scenes import Collision
 from .theory import choose
 
-__all__ = ["collide", "theory", "sweep", "fit", "CollisionReport", "model"]  # model: spinbounce.api.model
+__all__ = ["collide", "theory", "sweep", "fit", "CollisionReport", "model"]
 
 _MODEL_NAMES = {p.name for p in parameters.MODEL}
 
