@@ -72,3 +72,14 @@ def test_what_the_classic_form_cannot_express_is_refused(params, parameter):
     with pytest.raises(SceneError) as info:
         ContactModel(wall="classic", **params)
     assert info.value.parameter == parameter
+
+
+def test_a_tolerance_is_refused_for_the_classic_wall(tmp_path, capsys):
+    """Its error has no smooth expansion in dt (an extrapolation's estimate came out below the
+    error it had), so a tolerance is refused with the reason, before any run."""
+    argv = ["collide", "--wall", "classic", "--tolerance", "1e-6", "--out", str(tmp_path / "t")]
+    try:
+        code = main(argv)
+    except SystemExit as exc:
+        code = exc.code
+    assert code == 2 and "not smooth" in capsys.readouterr().err and not (tmp_path / "t").exists()
