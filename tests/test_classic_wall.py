@@ -66,6 +66,11 @@ def test_a_classic_sweep_from_flags_records_the_wall(tmp_path, capsys):
     assert "12 ok" not in capsys.readouterr().out  # 48 rows: four groups of 12
 
 
+def test_a_3d_state_is_refused_for_the_classic_wall_before_any_run():
+    with pytest.raises(SceneError, match="paper's plane"):
+        Collision(ContactModel(wall="classic"), v_n=-1.0, v_t=1.0, omega=0.0, v_s=0.5)
+
+
 @pytest.mark.parametrize("params, parameter", [({"normal": "hertz"}, "normal"), ({"mu": 2e4}, "mu"),
                                                ({"limit_damping": True, "gamma_n": 1.0}, "limit_damping")])
 def test_what_the_classic_form_cannot_express_is_refused(params, parameter):

@@ -154,6 +154,9 @@ class Collision:
             set_(self, name, values * n if len(values) == 1 else values)
         vn = self.v_n
         m = self.model
+        if m.wall == "classic" and self.is_3d:
+            raise SceneError("wall", m.wall, "the classic wall's theory is in the paper's plane: give no v_s, "
+                                             "omega_s or omega_n with wall = classic")
         away = np.flatnonzero(np.asarray(vn) >= 0.0)
         if away.size:
             i = int(away[0])
