@@ -10,6 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from ..fitting import fit_groups, plot_groups
+from ..fitting_stream import fit_dataset
 from ..model import parameters
 from ..sweeps import SweepError, read_results
 from .options import optional_number
@@ -63,8 +64,12 @@ def _select(rows, args):
 
 
 def run(args) -> int:
-    rows = _select(read_results(args.results), args)
-    fits = fit_groups(rows)
+    selected = any(hasattr(args, p.name) for p in parameters.MODEL)
+    if selected or args.plot:  # a selection or a figure needs the rows themselves
+        rows = _select(read_results(args.results), args)
+        fits = fit_groups(rows)
+    else:  # streamed: memory bounded whatever the sweep's size
+        fits = fit_dataset(args.results)
     if args.plot:
         plot_groups(rows, args.plot)
         print(f"figure: {args.plot}")

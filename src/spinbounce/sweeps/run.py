@@ -258,11 +258,11 @@ def status_counts(path: Path) -> dict[str, int]:
     """How many rows of a sweep have each status (reads that one column only)."""
     import pyarrow.dataset as ds
 
-    table = ds.dataset(_chunk_files(Path(path)), format="parquet").to_table(columns=["status"])
+    table = ds.dataset(chunk_files(Path(path)), format="parquet").to_table(columns=["status"])
     return checks.summary(table.column("status").to_numpy(zero_copy_only=False))
 
 
-def _chunk_files(path: Path) -> list[Path]:
+def chunk_files(path: Path) -> list[Path]:
     if (path / "chunks").is_dir():
         path = path / "chunks"
     files = sorted(path.glob("chunk-*.parquet")) if path.is_dir() else [path]
@@ -274,7 +274,7 @@ def _chunk_files(path: Path) -> list[Path]:
 def read_results(path: Path) -> pd.DataFrame:
     """A sweep's rows, from its output folder or its ``chunks`` dataset folder."""
     frames = []
-    for f in _chunk_files(Path(path)):
+    for f in chunk_files(Path(path)):
         try:
             frames.append(pd.read_parquet(f))
         except (OSError, ValueError) as exc:  # pyarrow's errors for a corrupt or foreign file

@@ -1,0 +1,190 @@
+"""The fit of a sweep of any size in bounded memory: the dataset read in batches, twice.
+
+Pass one accumulates, per model group, the normal equations of the least-squares matrix
+(X^T X and X^T Y), Eq. 19's sums for Omega, the largest deviation of the theory from the
+frictionless matrix (does the group stick throughout?), and each row's deviation (kept for
+the median: 8 bytes a row). Pass two, with the matrix known, sums the residuals. The
+result is :func:`spinbounce.fitting.fit_groups`'s, to rounding, whatever the row count:
+memory grows with the number of groups and the batch, not with the rows.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import pandas as pd
+
+from .compare import STATE, STATE_3D
+from .fitting import GROUP_KEYS, STICK_TOLERANCE, model_of_group
+from .theory import choose
+
+__all__ = ["fit_dataset", "BATCH_ROWS"]
+
+#: Rows read at once.
+BATCH_ROWS = 200_000
+
+
+@dataclass
+class _Group:
+    params: dict
+    names: tuple
+    n: int = 0
+    xtx: np.ndarray | None = None
+    xty: np.ndarray | None = None
+    omega_xx: float = 0.0
+    omega_xy: float = 0.0
+    scale: float = 0.0
+    off_uncapped: float = 0.0
+    speeds: set = field(default_factory=set)
+    errors: list = field(default_factory=list)
+    relative: list = field(default_factory=list)
+    status: dict = field(default_factory=dict)
+    residual_ss: np.ndarray | None = None
+    residual_max: np.ndarray | None = None
+    omega_ss: float = 0.0
+
+
+def _batches(files, columns):
+    """The files' rows, BATCH_ROWS at a time, one file after another (no read-ahead)."""
+    import pyarrow.parquet as pq
+
+    for path in files:
+        reader = pq.ParquetFile(str(path))
+        present = [c for c in columns if c in reader.schema_arrow.names]
+        for batch in reader.iter_batches(batch_size=BATCH_ROWS, columns=present):
+            yield batch.to_pandas()
+
+
+def _arrays(frame: pd.DataFrame, names) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    return tuple(frame[[f"{s}_{suffix}" for s in names]].to_numpy() for suffix in ("0", "final", "theory"))
+
+
+def _slip_sums(initial, final, alpha) -> tuple[np.ndarray, np.ndarray]:
+    slip = initial[:, 1] + initial[:, 2]
+    x = np.concatenate([alpha / (1 + alpha) * slip, slip / (1 + alpha)])
+    y = np.concatenate([final[:, 1] - initial[:, 1], final[:, 2] - initial[:, 2]])
+    return x, y
+
+
+def _first_pass(g: _Group, frame: pd.DataFrame, model) -> None:
+    initial, final, theory = _arrays(frame, g.names)
+    g.n += len(frame)
+    g.xtx = initial.T @ initial + (0.0 if g.xtx is None else g.xtx)
+    g.xty = initial.T @ final + (0.0 if g.xty is None else g.xty)
+    x, y = _slip_sums(initial[:, :3], final[:, :3], model.alpha)
+    g.omega_xx += float(x @ x)
+    g.omega_xy += float(x @ y)
+    g.scale = max(g.scale, float(np.abs(initial).max()))
+    if choose.which(model).kind == "coulomb":
+        uncapped = choose.matrix(model.replace(mu=None), three_d=len(g.names) == 6)
+        g.off_uncapped = max(g.off_uncapped, float(np.abs(theory - initial @ uncapped.T).max()))
+    if len(g.speeds) < 2:
+        g.speeds.update(np.unique(initial[:, 0])[:2].tolist())
+    g.errors.append(np.abs(frame[[f"{s}_error" for s in g.names]].to_numpy()).max(axis=1))
+    # a copy: a column's array is a view of the whole batch's block, which would stay alive
+    g.relative.append(frame["error"].to_numpy().copy() if "error" in frame else
+                      g.errors[-1] / np.linalg.norm(initial, axis=1))
+    if "status" in frame:
+        for name, count in frame["status"].value_counts().items():
+            g.status[name] = g.status.get(name, 0) + int(count)
+
+
+def _matrix_theory(g: _Group, model) -> tuple[np.ndarray | None, str]:
+    """The group's one matrix and its regime, as fitting._regime decides it, from the sums."""
+    choice = choose.which(model)
+    three_d = len(g.names) == 6
+    if choice.has_matrix:
+        return choose.matrix(model, three_d=three_d), "matrix"
+    if choice.kind == "coulomb" and model.normal == "hooke":
+        if g.off_uncapped <= STICK_TOLERANCE * g.scale:
+            return choose.matrix(model.replace(mu=None), three_d=three_d), \
+                "sticks throughout: the frictionless matrix applies"
+        return None, "stick and slip: no single matrix (outcomes are not linear in the initial state)"
+    if choice.kind == "hertz" and len(g.speeds) == 1:
+        return choose.matrix(model, v_n=next(iter(g.speeds)), three_d=three_d), "matrix at one v_n"
+    return None, f"{choice.name}: no single matrix"
+
+
+def _second_pass(g: _Group, frame: pd.DataFrame, coef: np.ndarray, omega: float, alpha: float) -> None:
+    initial, final, _ = _arrays(frame, g.names)
+    residuals = final - initial @ coef
+    g.residual_ss = (residuals**2).sum(axis=0) + (0.0 if g.residual_ss is None else g.residual_ss)
+    worst = np.abs(residuals).max(axis=0)
+    g.residual_max = worst if g.residual_max is None else np.maximum(g.residual_max, worst)
+    x, y = _slip_sums(initial[:, :3], final[:, :3], alpha)
+    g.omega_ss += float(((y - omega * x) ** 2).sum())
+
+
+def _parts(frame: pd.DataFrame, keys):
+    """(label, rows) of each model group in a batch; the label is the same in every batch."""
+    for values, part in frame.groupby(keys, dropna=False, sort=False, observed=True):
+        yield repr(tuple(values) if isinstance(values, tuple) else (values,)), part
+
+
+def fit_dataset(files, names=None) -> list[dict]:
+    """:func:`spinbounce.fitting.fit_groups` of the rows in ``files`` (Parquet), streamed."""
+    from .sweeps.run import chunk_files
+
+    files = chunk_files(files) if not isinstance(files, list) else files
+    import pyarrow.parquet as pq
+
+    schema = pq.read_schema(str(files[0])).names
+    names = names or (STATE_3D if f"{STATE_3D[-1]}_0" in schema else STATE)
+    keys = [k for k in GROUP_KEYS if k in schema]
+    columns = keys + [f"{s}_{x}" for s in names for x in ("0", "final", "theory", "error")] + ["error", "status"]
+    groups: dict[str, _Group] = {}
+    for frame in _batches(files, columns):
+        for label, part in _parts(frame, keys):
+            if label not in groups:
+                first = (v.item() if isinstance(v, np.generic) else v for v in part[keys].iloc[0])
+                groups[label] = _Group(dict(zip(keys, first, strict=True)), names)
+            group = groups[label]
+            _first_pass(group, part, model_of_group(group.params))
+    fits = {label: _solve(g) for label, g in groups.items()}
+    for frame in _batches(files, columns):  # pass two: the residuals of the groups that have a matrix
+        for label, part in _parts(frame, keys):
+            if fits[label] is not None:
+                g = groups[label]
+                _second_pass(g, part, fits[label][0], fits[label][1], model_of_group(g.params).alpha)
+    order = sorted(groups, key=lambda label: tuple(str(groups[label].params[k]) for k in keys))
+    return [_report(groups[label], fits[label]) for label in order]
+
+
+def _solve(g: _Group):
+    model = model_of_group(g.params)
+    matrix_theory, regime = _matrix_theory(g, model)
+    g.params["_regime"], g.params["_matrix_theory"] = regime, matrix_theory
+    if matrix_theory is None:
+        return None
+    coef = np.linalg.solve(g.xtx, g.xty)
+    omega = g.omega_xy / g.omega_xx if g.omega_xx else math.nan
+    return coef, omega
+
+
+def _report(g: _Group, fit) -> dict:
+    regime, matrix_theory = g.params.pop("_regime"), g.params.pop("_matrix_theory")
+    model = model_of_group(g.params)
+    errors, relative = np.concatenate(g.errors), np.concatenate(g.relative)
+    out = {"parameters": {k: (None if isinstance(v, float) and math.isnan(v) else v) for k, v in g.params.items()},
+           "n": g.n, "theory": choose.which(model).kind, "regime": regime, "has_matrix": fit is not None,
+           "worst_deviation": float(errors.max()), "median_deviation": float(np.median(errors)),
+           "worst_relative_deviation": float(relative.max()), "median_relative_deviation": float(np.median(relative))}
+    if g.status:
+        out["status"] = g.status
+    if fit is None:
+        return out
+    coef, omega = fit
+    k = len(g.names)
+    dof = max(g.n - k, 1)
+    stderr = np.sqrt(np.outer(g.residual_ss / dof, np.diag(np.linalg.inv(g.xtx))))
+    omega_theory = (matrix_theory[2, 2] - 1.0) * (1.0 + model.alpha)
+    out.update({
+        "matrix": coef.T.tolist(), "matrix_stderr": stderr.tolist(), "matrix_theory": matrix_theory.tolist(),
+        "max_element_diff": float(np.abs(coef.T - matrix_theory).max()),
+        "Omega": omega, "Omega_stderr": math.sqrt(g.omega_ss / max(2 * g.n - 1, 1) / g.omega_xx),
+        "Omega_theory": float(omega_theory), "Omega_diff": omega - float(omega_theory),
+        "residual_rms": np.sqrt(g.residual_ss / g.n).tolist(), "residual_max": g.residual_max.tolist(),
+    })
+    return out
