@@ -92,9 +92,10 @@ def _print_group(f: dict) -> None:
         return
     print(f"  Omega = {f['Omega']:.8f} +/- {f['Omega_stderr']:.1e} "
           f"(theory {f['Omega_theory']:.8f}, diff {f['Omega_diff']:.2e})")
+    fitted, theory = (np.round(np.array(f[key]), 7) + 0.0 for key in ("matrix", "matrix_theory"))  # no "-0"
     with np.printoptions(precision=7, suppress=True, floatmode="fixed"):
-        for fitted, theory in zip(np.array(f["matrix"]), np.array(f["matrix_theory"]), strict=True):
-            print(f"  fit {fitted}   theory {theory}")
+        for fitted_row, theory_row in zip(fitted, theory, strict=True):
+            print(f"  fit {fitted_row}   theory {theory_row}")
     rms = " ".join(f"{x:.1e}" for x in f["residual_rms"])
     print(f"  largest element difference {f['max_element_diff']:.2e}; residual rms {rms}")
     if math.isnan(f["Omega"]):
