@@ -179,6 +179,10 @@ def _die_with_parent() -> None:
         ctypes.CDLL("libc.so.6", use_errno=True).prctl(1, signal.SIGTERM)  # PR_SET_PDEATHSIG = 1
     except OSError:  # not Linux: workers then end when they find their task queue gone
         pass
+    # Ctrl-C reaches the whole process group: a worker leaves quietly (SystemExit prints no
+    # traceback) after the write it is in has removed its temporary file; the parent says
+    # how to resume
+    signal.signal(signal.SIGINT, lambda *_: sys.exit(130))
     if os.getppid() == 1:  # the parent died before the call above
         os._exit(1)
 
