@@ -179,10 +179,9 @@ def _die_with_parent() -> None:
         ctypes.CDLL("libc.so.6", use_errno=True).prctl(1, signal.SIGTERM)  # PR_SET_PDEATHSIG = 1
     except OSError:  # not Linux: workers then end when they find their task queue gone
         pass
-    # Ctrl-C reaches the whole process group: a worker leaves quietly (SystemExit prints no
-    # traceback) after the write it is in has removed its temporary file; the parent says
-    # how to resume
-    signal.signal(signal.SIGINT, lambda *_: sys.exit(130))
+    # Ctrl-C reaches the whole process group: the parent alone answers it, letting the
+    # running chunks finish whole (a worker stopped inside LAMMPS's clean-up would print)
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
     if os.getppid() == 1:  # the parent died before the call above
         os._exit(1)
 
@@ -215,8 +214,8 @@ def run_sweep(spec: SweepSpec, out: Path, workers: int | None = None, log=print)
                         if bar is not None:
                             bar.update(n)
                 except BaseException:
-                    for f in futures:
-                        f.cancel()
+                    for f in futures:  # the chunks not started are dropped; those running finish
+                        f.cancel()  # and write their files whole (the workers ignore Ctrl-C)
                     raise
         if bar is not None:
             bar.close()
