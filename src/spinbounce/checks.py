@@ -4,6 +4,7 @@ Each theory spinbounce checks against is exact to far better than the default ac
 (closed forms to 1e-15, the oracle and the classic-wall solver to about 1e-9), so a row's
 deviation from it *is* its error. Columns added to a collision table:
 
+* ``energy_gain``: (E(final) - E(0)) / E(0), as LAMMPS ran it;
 * ``error``: the largest |LAMMPS - theory| over the state columns, divided by the size of
   the initial state |(v_n, v_t, r omega, ...)|;
 * ``energy_excess``: kinetic energy LAMMPS ended with beyond the theory's, over E(0);
@@ -55,8 +56,9 @@ def add_row_checks(columns: dict, names, model, target: float = ACCURACY) -> Non
     predicted = np.column_stack([columns[f"{s}_theory"] for s in names])
     size = np.linalg.norm(initial, axis=1)
     error = np.abs(final - predicted).max(axis=1) / size
-    e0 = theory.energy(initial, model.m, model.alpha)
-    excess = (theory.energy(final, model.m, model.alpha) - theory.energy(predicted, model.m, model.alpha)) / e0
+    e0, e1 = theory.energy(initial, model.m, model.alpha), theory.energy(final, model.m, model.alpha)
+    columns["energy_gain"] = (e1 - e0) / e0
+    excess = (e1 - theory.energy(predicted, model.m, model.alpha)) / e0
     status = np.full(len(size), "ok", dtype=object)
     status[error > target] = "inaccurate"
     status[excess > _energy_allowance(initial, np.maximum(error, target), model.alpha)] = "energy_gained"

@@ -15,7 +15,6 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from . import theory
 from .theory import hertz
 from .records import software, to_json, write_atomic, write_parquet_atomic
 from . import checks
@@ -199,9 +198,6 @@ def run_collision(scene: Collision, out_dir: Path, atoms: str | None = None, rec
     columns = collision_table(scene, initial, final, as_frame=False)
     _check_finished(scene, columns, source)
     names = scene.state_names
-    e0 = theory.energy(np.column_stack([columns[f"{s}_0"] for s in names]), scene.model.m, scene.model.alpha)
-    e1 = theory.energy(np.column_stack([columns[f"{s}_final"] for s in names]), scene.model.m, scene.model.alpha)
-    columns["energy_gain"] = (e1 - e0) / e0
     checks.add_row_checks(columns, names, scene.model)
     notes = checks.notes(columns["status"])
     m = scene.model
