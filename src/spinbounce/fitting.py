@@ -86,22 +86,33 @@ def _deviations(group: pd.DataFrame, names) -> dict:
     return out
 
 
-def _regime(model: ContactModel, initial: np.ndarray, theory: np.ndarray) -> tuple[np.ndarray | None, str]:
-    """The matrix that describes every collision of the group, or None, and the regime's name."""
+def regime(model: ContactModel, three_d: bool, off_uncapped: float, scale: float,
+           speeds) -> tuple[np.ndarray | None, str]:
+    """The matrix that describes every collision of a group, or None, and the regime's name.
+
+    ``off_uncapped``: the largest |theory - frictionless matrix @ initial| over the group (a
+    capped group sticks throughout where it is within STICK_TOLERANCE of ``scale``, its
+    largest initial component); ``speeds``: its distinct v_n (a Hertzian group at one speed
+    has one matrix)."""
     choice = choose.which(model)
-    three_d = initial.shape[1] == 6
     if choice.has_matrix:
         return choose.matrix(model, three_d=three_d), "matrix"
     if choice.kind == "coulomb" and model.normal == "hooke":
-        uncapped = choose.matrix(model.replace(mu=None), three_d=three_d)
-        scale = np.abs(initial).max()
-        if np.abs(theory - initial @ uncapped.T).max() <= STICK_TOLERANCE * scale:
-            return uncapped, "sticks throughout: the frictionless matrix applies"
+        if off_uncapped <= STICK_TOLERANCE * scale:
+            return choose.matrix(model.replace(mu=None), three_d=three_d), \
+                "sticks throughout: the frictionless matrix applies"
         return None, "stick and slip: no single matrix (outcomes are not linear in the initial state)"
-    vn = np.unique(initial[:, 0])
-    if choice.kind == "hertz" and vn.size == 1:
-        return choose.matrix(model, v_n=float(vn[0]), three_d=three_d), "matrix at one v_n"
+    if choice.kind == "hertz" and len(speeds) == 1:
+        return choose.matrix(model, v_n=float(next(iter(speeds))), three_d=three_d), "matrix at one v_n"
     return None, f"{choice.name}: no single matrix"
+
+
+def off_uncapped(model: ContactModel, initial: np.ndarray, theory: np.ndarray) -> float:
+    """A capped Hookean group's largest |theory - frictionless matrix @ initial| (0 otherwise)."""
+    if choose.which(model).kind != "coulomb" or model.normal != "hooke":
+        return 0.0
+    uncapped = choose.matrix(model.replace(mu=None), three_d=initial.shape[1] == 6)
+    return float(np.abs(theory - initial @ uncapped.T).max())
 
 
 def _fit_one(group: pd.DataFrame, params: dict) -> dict:
@@ -110,9 +121,10 @@ def _fit_one(group: pd.DataFrame, params: dict) -> dict:
     final = group[[f"{s}_final" for s in names]].to_numpy()
     theory = group[[f"{s}_theory" for s in names]].to_numpy()
     model = model_of_group(params)
-    matrix_theory, regime = _regime(model, initial, theory)
+    matrix_theory, regime_name = regime(model, initial.shape[1] == 6, off_uncapped(model, initial, theory),
+                                        float(np.abs(initial).max()), set(np.unique(initial[:, 0])[:2].tolist()))
     out = {"parameters": {k: (None if isinstance(v, float) and math.isnan(v) else v) for k, v in params.items()},
-           "n": len(group), "theory": choose.which(model).kind, "regime": regime,
+           "n": len(group), "theory": choose.which(model).kind, "regime": regime_name,
            "has_matrix": matrix_theory is not None, **_deviations(group, names)}
     if matrix_theory is None:
         return out

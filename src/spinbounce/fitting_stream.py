@@ -17,7 +17,7 @@ import numpy as np
 import pandas as pd
 
 from .compare import STATE, STATE_3D
-from .fitting import GROUP_KEYS, STICK_TOLERANCE, model_of_group
+from .fitting import GROUP_KEYS, model_of_group, off_uncapped, regime
 from .theory import choose
 
 __all__ = ["fit_dataset", "BATCH_ROWS"]
@@ -77,9 +77,7 @@ def _first_pass(g: _Group, frame: pd.DataFrame, model) -> None:
     g.omega_xx += float(x @ x)
     g.omega_xy += float(x @ y)
     g.scale = max(g.scale, float(np.abs(initial).max()))
-    if choose.which(model).kind == "coulomb":
-        uncapped = choose.matrix(model.replace(mu=None), three_d=len(g.names) == 6)
-        g.off_uncapped = max(g.off_uncapped, float(np.abs(theory - initial @ uncapped.T).max()))
+    g.off_uncapped = max(g.off_uncapped, off_uncapped(model, initial, theory))
     if len(g.speeds) < 2:
         g.speeds.update(np.unique(initial[:, 0])[:2].tolist())
     g.errors.append(np.abs(frame[[f"{s}_error" for s in g.names]].to_numpy()).max(axis=1))
@@ -89,22 +87,6 @@ def _first_pass(g: _Group, frame: pd.DataFrame, model) -> None:
     if "status" in frame:
         for name, count in frame["status"].value_counts().items():
             g.status[name] = g.status.get(name, 0) + int(count)
-
-
-def _matrix_theory(g: _Group, model) -> tuple[np.ndarray | None, str]:
-    """The group's one matrix and its regime, as fitting._regime decides it, from the sums."""
-    choice = choose.which(model)
-    three_d = len(g.names) == 6
-    if choice.has_matrix:
-        return choose.matrix(model, three_d=three_d), "matrix"
-    if choice.kind == "coulomb" and model.normal == "hooke":
-        if g.off_uncapped <= STICK_TOLERANCE * g.scale:
-            return choose.matrix(model.replace(mu=None), three_d=three_d), \
-                "sticks throughout: the frictionless matrix applies"
-        return None, "stick and slip: no single matrix (outcomes are not linear in the initial state)"
-    if choice.kind == "hertz" and len(g.speeds) == 1:
-        return choose.matrix(model, v_n=next(iter(g.speeds)), three_d=three_d), "matrix at one v_n"
-    return None, f"{choice.name}: no single matrix"
 
 
 def _second_pass(g: _Group, frame: pd.DataFrame, coef: np.ndarray, omega: float, alpha: float) -> None:
@@ -154,8 +136,8 @@ def fit_dataset(files, names=None) -> list[dict]:
 
 def _solve(g: _Group):
     model = model_of_group(g.params)
-    matrix_theory, regime = _matrix_theory(g, model)
-    g.params["_regime"], g.params["_matrix_theory"] = regime, matrix_theory
+    matrix_theory, regime_name = regime(model, len(g.names) == 6, g.off_uncapped, g.scale, g.speeds)
+    g.params["_regime"], g.params["_matrix_theory"] = regime_name, matrix_theory
     if matrix_theory is None:
         return None
     coef = np.linalg.solve(g.xtx, g.xty)
@@ -164,11 +146,11 @@ def _solve(g: _Group):
 
 
 def _report(g: _Group, fit) -> dict:
-    regime, matrix_theory = g.params.pop("_regime"), g.params.pop("_matrix_theory")
+    regime_name, matrix_theory = g.params.pop("_regime"), g.params.pop("_matrix_theory")
     model = model_of_group(g.params)
     errors, relative = np.concatenate(g.errors), np.concatenate(g.relative)
     out = {"parameters": {k: (None if isinstance(v, float) and math.isnan(v) else v) for k, v in g.params.items()},
-           "n": g.n, "theory": choose.which(model).kind, "regime": regime, "has_matrix": fit is not None,
+           "n": g.n, "theory": choose.which(model).kind, "regime": regime_name, "has_matrix": fit is not None,
            "worst_deviation": float(errors.max()), "median_deviation": float(np.median(errors)),
            "worst_relative_deviation": float(relative.max()), "median_relative_deviation": float(np.median(relative))}
     if g.status:
