@@ -137,7 +137,8 @@ class Padding:
 
 
 def wall_parameters(model: ContactModel) -> dict:
-    """Arguments of ``wall/gran granular hooke|hertz ... tangential linear_history ...``.
+    """Arguments of ``wall/gran granular hooke|hertz ... tangential linear_history ...`` (or of the
+    classic form); ``style`` holds them as the one text every deck and printed line uses.
 
     LAMMPS's granular form gives the normal damping force -ETA_N v_n (``damping
     velocity``) and the tangential one -(X_T ETA_N) u_dot.
@@ -162,7 +163,11 @@ def wall_parameters(model: ContactModel) -> dict:
     else:
         mu = model.mu
         notes.append(f"Coulomb limit |F_t| <= {mu!r} F_n: not the paper's model")
-    return {"eta_n": eta_n, "x_t": x_t, "damping": damping, "mu": mu, "comment": "; ".join(notes)}
+    style = (f"granular {model.normal} {deck_number(model.kn)} {deck_number(eta_n)}"
+             + (" damping velocity" if damping else "")
+             + f" tangential linear_history {deck_number(model.kt)} {deck_number(x_t)} {deck_number(mu)}"
+             + (" limit_damping" if model.limit_damping else ""))
+    return {"eta_n": eta_n, "x_t": x_t, "damping": damping, "mu": mu, "style": style, "comment": "; ".join(notes)}
 
 
 #: The classic form gives its tangential damping as GAMMA_T/GAMMA_N, so GAMMA_N = 0 is 0/0 (NaN
@@ -184,7 +189,9 @@ def _classic_wall(model: ContactModel) -> dict:
     mu = CLASSIC_MU_MAX if model.mu is None else model.mu
     if model.mu is None:
         notes.append(f"no cap asked for: MU = {mu:g}, the classic form's largest")
-    return {"classic": True, "gamma_n": gamma_n, "gamma_t": model.gamma_t / model.m, "mu": mu,
+    gamma_t = model.gamma_t / model.m
+    style = "hooke/history " + " ".join(deck_number(x) for x in (model.kn, model.kt, gamma_n, gamma_t, mu)) + " 1"
+    return {"classic": True, "gamma_n": gamma_n, "gamma_t": gamma_t, "mu": mu, "style": style,
             "comment": "; ".join(notes)}
 
 

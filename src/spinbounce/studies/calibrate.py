@@ -185,15 +185,9 @@ def calibrate(t: Targets) -> Calibration:
     return Calibration(t, model)
 
 
-def _granular(model: ContactModel, wall: dict) -> str:
-    damping = " damping velocity" if wall["damping"] else ""
-    return (f"granular hooke {model.kn!r} {wall['eta_n']!r}{damping} tangential linear_history {model.kt!r} "
-            f"{wall['x_t']!r} {wall['mu']!r}" + (" limit_damping" if model.limit_damping else ""))
-
-
 def fix_line(model: ContactModel, group: str = "all") -> str:
     """The ``fix wall/gran`` line of a flat wall at z = 0 (the one spinbounce runs)."""
-    return f"fix wall {group} wall/gran {_granular(model, wall_parameters(model))} zplane 0.0 NULL"
+    return f"fix wall {group} wall/gran {wall_parameters(model)['style']} zplane 0.0 NULL"
 
 
 def pair_lines(model: ContactModel) -> tuple[str, str]:
@@ -206,7 +200,7 @@ def pair_lines(model: ContactModel) -> tuple[str, str]:
     """
     half = model.replace(kn=model.kn / 2.0, kt=model.kt / 2.0, gamma_n=model.gamma_n / 2.0,
                          gamma_t=model.gamma_t / 2.0)
-    return "pair_style granular", f"pair_coeff * * {_granular(half, wall_parameters(half)).removeprefix('granular ')}"
+    return "pair_style granular", f"pair_coeff * * {wall_parameters(half)['style'].removeprefix('granular ')}"
 
 
 def measure(calibrations, out_dir, steps_per_half_period: int = 2000) -> list[dict]:
