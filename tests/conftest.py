@@ -11,8 +11,9 @@ def run_dir(tmp_path):
 
 @pytest.fixture(scope="session")
 def reproduction(tmp_path_factory):
-    """Figures 2-7 and the claims, made once per session by `spinbounce reproduce`'s own function
-    (about 40 s): the figure, claim and command tests all read this one result."""
+    """Everything `spinbounce reproduce` makes (catalogue.PRODUCTS: figures 2-7, the claims and the
+    studies beyond the paper, about 4 minutes), made once per session by its own function: the figure,
+    claim, stored-record and command tests all read this one result."""
     from spinbounce.cli.reproduce import reproduce
 
     root = tmp_path_factory.mktemp("reproduce")
@@ -28,7 +29,7 @@ def figures_made(reproduction):
 
     made, lines = reproduction
     figure_lines = [line for line in lines if line.split(":")[0] in FIGURES]
-    return made.out, {r["figure"]: r for r in made.records}, figure_lines
+    return made.out, {r["figure"]: r for r in made.figures}, figure_lines
 
 
 @pytest.fixture(scope="session")

@@ -1,4 +1,4 @@
-"""spinbounce reproduce: the paper's figures 2-7 and its claims, in one go."""
+"""spinbounce reproduce: the paper's figures 2-7, its claims and the studies beyond it, in one go."""
 
 from __future__ import annotations
 
@@ -6,54 +6,64 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..studies.claims import Claim, counts, evaluate_claims, write_claims
+from ..catalogue import LISTED, PRODUCTS, make, product_names
+from ..studies.claims import Claim, counts
 
-HELP = ("regenerate the paper's figures 2-7 and check its claims (into a folder of their own; "
-        "--out figures updates the repository's stored ones)")
+HELP = ("regenerate the paper's figures 2-7, judge its claims and make the studies beyond it (into a folder of "
+        "their own; --out figures updates the repository's stored ones)")
 
 
 @dataclass
 class Reproduction:
-    """What one ``reproduce`` made: the figures' records, the judged claims and CLAIMS.md."""
+    """What one ``reproduce`` made: every JSON record by name, the judged claims, CLAIMS.md."""
 
     out: Path
-    records: list[dict]
+    records: dict[str, dict]
     claims: list[Claim]
     claims_md: Path
     seconds: float
 
+    @property
+    def figures(self) -> list[dict]:
+        """The paper's figures' records, fig2 to fig7."""
+        return [record for name, record in self.records.items() if name.startswith("fig")]
+
 
 def register(sub) -> None:
-    p = sub.add_parser("reproduce", help=HELP, description=HELP + ".")
+    listing = "; ".join(f"{p.name}: {p.what} ({p.command})" for p in PRODUCTS)
+    elsewhere = "; ".join(f"{command}: {what}" for command, what, _ in LISTED)
+    p = sub.add_parser("reproduce", help=HELP, description=f"{HELP}. Makes {listing}. Not run here: {elsewhere}.")
     p.add_argument("--out", type=Path, default=Path("spinbounce-reproduced"), metavar="DIR",
-                   help="figures, their metadata and CLAIMS.md (default %(default)s; the repository keeps its "
-                        "own in figures/)")
+                   help="figures, their JSON records, CLAIMS.md and the studies' reports (default %(default)s; the "
+                        "repository keeps its own in figures/)")
     p.add_argument("--run-dir", type=Path, default=Path("spinbounce-runs") / "reproduce", metavar="DIR",
-                   help="LAMMPS run folders of the figures and claims (default %(default)s)")
+                   help="LAMMPS run folders, one per product (default %(default)s)")
     p.set_defaults(handler=run)
 
 
 def reproduce(out: Path, run_dir: Path, log=print) -> Reproduction:
-    """Figures 2-7 into ``out`` and the claims into ``out``/CLAIMS.md, runs under ``run_dir``."""
-    from ..figures import make_figures
-
+    """Every product of :data:`spinbounce.catalogue.PRODUCTS` into ``out``, runs under ``run_dir``."""
     started = time.perf_counter()
-    log(f"figures 2-7 -> {out}")
-    records = make_figures(out, runs=Path(run_dir) / "figures", log=log)
-    log(f"claims (LAMMPS runs in {Path(run_dir) / 'claims'}):")
-    claims = evaluate_claims(Path(run_dir) / "claims", log=log)
-    md, _ = write_claims(claims, out)
-    return Reproduction(Path(out), records, claims, md, time.perf_counter() - started)
+    records: dict[str, dict] = {}
+    for product in PRODUCTS:
+        log(f"{product.name}: {product.what} -> {out}")
+        began = time.perf_counter()
+        made = make(product, out, run_dir, log=log)
+        records.update(made)
+        log(f"{product.name}: {', '.join(sorted(made))} ({time.perf_counter() - began:.0f} s)")
+    claims = [Claim(**claim) for claim in records["claims"]["claims"]]
+    return Reproduction(Path(out), records, claims, Path(out) / "CLAIMS.md", time.perf_counter() - started)
 
 
 def summary(made: Reproduction) -> list[str]:
-    """The closing lines: where the figures went, their worst deviation, the verdict counts."""
-    worst = max(made.records, key=lambda r: r["max_deviation_exact"])
+    """The closing lines: where everything went, the paper figures' worst deviation, the verdicts."""
+    worst = max(made.figures, key=lambda r: r["max_deviation_exact"])
     tally = counts(made.claims)
-    return [f"done in {made.seconds:.0f} s:",
-            f"  {len(made.records)} figures in {made.out}/ (PNG, PDF, JSON); largest LAMMPS-theory deviation "
-            f"{worst['max_deviation_exact']:.1e} ({worst['figure']})",
-            f"  {made.claims_md}: {len(made.claims)} claims: " + ", ".join(f"{n} {v}" for v, n in tally.items())]
+    lines = [f"done in {made.seconds:.0f} s: {len(made.records)} JSON records in {made.out}/ ({', '.join(product_names())})",
+             f"  figures 2-7: largest LAMMPS-theory deviation {worst['max_deviation_exact']:.1e} ({worst['figure']})",
+             f"  {made.claims_md}: {len(made.claims)} claims: " + ", ".join(f"{n} {v}" for v, n in tally.items())]
+    lines += [f"  not run here: {command} ({what}; {why})" for command, what, why in LISTED]
+    return lines
 
 
 def run(args) -> int:

@@ -1,83 +1,83 @@
-"""figures/classic: this build's classic wall, Omega_eff against v_n, beside the paper's Omega.
+"""figures/classic: this build's classic wall against the paper's model, for one contact model.
 
-The curves are theory.classic's exact sticking Omega (contact radius a = sqrt(r delta),
-mu -> infinity); the points are LAMMPS's classic wall (``fix wall/gran hooke/history``,
-mu = 1e4, gamma_n = 1e-100) at a few speeds; the dashed lines are the paper's Eq. 18,
-which does not depend on v_n.
+Left: Omega against |v_n| for the model's kt/kn and three others. The curves are
+theory.classic's exact sticking Omega (contact radius a = sqrt(r delta), no cap); the points
+are LAMMPS's classic wall (``fix wall/gran hooke/history``, MU = 1e4, the form's largest) at
+the default step; the dashed lines are the paper's Omega (Eq. 18 or its damped form), which
+does not depend on v_n. Right: for the model's own state, cap and damping, how far the
+classic wall's rebound (v_t, r omega) lies from the paper's, and the kinetic energy each
+form gains (> 0: the wall gave the sphere energy).
 """
 
 from __future__ import annotations
 
-import tempfile
+import dataclasses
 import time
 from pathlib import Path
 
 import numpy as np
 
-from ..model.timestep import mid_step_dt
+from ..model.contact import ContactModel
 from ..records import software
-from ..studies.doctor import run_wall
-from ..theory import classic, linear
+from ..studies import classic_effect as effect
 from .core import STYLE, FigureRecord, new_figure, save
 
-__all__ = ["KT_OVER_KN", "compute", "draw", "make_classic"]
-
-KN, M, R, ALPHA = 10.0, 1.0, 0.5, 0.4
-KT_OVER_KN = (0.1, 2.0 / 7.0, 0.5)
-#: Below the tunnelling speed r sqrt(kn/m) = 1.58 (LAMMPS_FACTS section 6).
-SPEEDS = np.linspace(0.05, 1.5, 59)
-LAMMPS_SPEEDS = (0.25, 0.75, 1.5)
-STEPS = 4000
+__all__ = ["compute", "draw", "make_classic"]
 
 
-def _lammps_omegas(kt: float, folder: Path) -> list[float]:
-    wall = classic.ClassicWall(KN, kt, 0.0, 0.0, None, ALPHA, R, M)
-    states = [(-v, 1.0, 0.0) for v in LAMMPS_SPEEDS]
-    final = run_wall(f"hooke/history {KN!r} {kt!r} 1e-100 0.0 10000.0 1", states, folder,
-                     mid_step_dt(wall.tau, STEPS), STEPS + 50, r=R, m=M)
-    return (final[:, 1] + final[:, 2] - 1.0).tolist()
-
-
-def compute(folder: Path) -> dict:
-    """The figure's numbers: theory curves, the paper's Omega and LAMMPS's points, per kt/kn."""
-    series = []
-    for ratio in KT_OVER_KN:
-        kt = ratio * KN
-        series.append({
-            "kt_over_kn": ratio,
-            "v_n": SPEEDS.tolist(),
-            "omega_eff": [classic.Omega_eff(-v, KN, kt, ALPHA, R, M) for v in SPEEDS],
-            "omega_paper": linear.Omega(KN, kt, ALPHA),
-            "lammps_v_n": list(LAMMPS_SPEEDS),
-            "lammps_omega": _lammps_omegas(kt, Path(folder) / f"kt{kt:g}"),
-        })
-    return {"kn": KN, "m": M, "r": R, "alpha": ALPHA, "steps_per_contact": STEPS, "series": series}
+def compute(model: ContactModel, v_t: float, omega: float, runs: Path) -> dict:
+    """The figure's numbers: Omega curves with LAMMPS's points per kt/kn, and the user's state's
+    rebound through both forms along the curves' speeds."""
+    curves = effect.omega_curves(model)
+    for curve in curves:
+        curve["lammps"] = effect.lammps_omegas(model, curve["kt_over_kn"], Path(runs) / f"kt_over_kn_{curve['kt_over_kn']:.6g}")
+    speeds = effect.CURVE_FRACTIONS * effect.tunnelling_speed(model)
+    rebound = effect.compare(model, speeds, v_t, omega)
+    return {"model": dataclasses.asdict(model), "state": {"v_t": v_t, "omega": omega}, "curves": curves,
+            "rebound": rebound, "fix_lines": effect.fix_lines(model)}
 
 
 def draw(data: dict):
     import matplotlib.style
 
     with matplotlib.style.context(STYLE):
-        fig, axes = new_figure(figsize=(5.0, 3.6))
-        ax = axes[0, 0]
-        for s in data["series"]:
-            line, = ax.plot(s["v_n"], s["omega_eff"], label=f"kt/kn = {s['kt_over_kn']:.3g}")
-            ax.axhline(s["omega_paper"], color=line.get_color(), linestyle="--", linewidth=0.8)
-            ax.plot(s["lammps_v_n"], s["lammps_omega"], "o", color=line.get_color(), markersize=4)
-        ax.set_xlabel("|v_n|")
-        ax.set_ylabel("Omega")
-        ax.set_title("classic wall in this build (lines: theory, dots: LAMMPS; dashed: Eq. 18)", fontsize=8)
-        ax.legend(fontsize=7)
+        fig, axes = new_figure(1, 2, figsize=(10.0, 3.9))
+        omega_ax, rebound_ax = axes[0]
+        for curve in data["curves"]:
+            line, = omega_ax.plot(curve["v_n"], curve["omega_classic"], label=f"kt/kn = {curve['kt_over_kn']:.3g}")
+            omega_ax.axhline(curve["omega_meant"], color=line.get_color(), linestyle="--", linewidth=0.8)
+            omega_ax.plot(curve["lammps"]["v_n"], curve["lammps"]["omega"], "o", color=line.get_color(), ms=4)
+        omega_ax.set(xlabel="|v_n| (impact speed)", ylabel="Omega = u'(out)/u'(in) - 1 (sticking)",
+                     title="lines: classic theory, dots: LAMMPS classic wall, dashed: paper")
+        omega_ax.legend(fontsize=7)
+        rows = data["rebound"]
+        speeds = [row["v_n"] for row in rows]
+        rebound_ax.plot(speeds, [row["d_vt"] for row in rows], label="v_t: classic - paper")
+        rebound_ax.plot(speeds, [row["d_r_omega"] for row in rows], label="r omega: classic - paper")
+        rebound_ax.plot(speeds, [row["energy_gain_classic"] for row in rows], ":", color="k",
+                        label="energy gained, classic (E_out/E_in - 1)")
+        rebound_ax.plot(speeds, [row["energy_gain_meant"] for row in rows], ":", color="0.6",
+                        label="energy gained, paper")
+        rebound_ax.axhline(0.0, color="0.8", linewidth=0.6, zorder=0)
+        state = data["state"]
+        rebound_ax.set(xlabel="|v_n| (impact speed)", ylabel="difference in the rebound",
+                       title=f"the model's state: v_t = {state['v_t']:g}, omega = {state['omega']:g}")
+        rebound_ax.legend(fontsize=7)
     return fig
 
 
-def make_classic(out: Path) -> FigureRecord:
-    """Compute, draw and save figures/classic.{png,pdf,json} with provenance."""
+def make_classic(out: Path, runs: Path, model: ContactModel | None = None, v_t: float = 1.0,
+                 omega: float = 0.0) -> FigureRecord:
+    """Compute, draw and save classic.{png,pdf,json} into ``out`` with provenance (LAMMPS runs in ``runs``)."""
     started = time.perf_counter()
-    with tempfile.TemporaryDirectory(prefix="spinbounce-classic-") as folder:
-        data = compute(Path(folder))
-    metadata = {"figure": "classic", "title": "Omega_eff of the classic wall's contact-radius spring against v_n",
-                "theory": "spinbounce.theory.classic.Omega_eff (exact, sticking); paper's Eq. 18",
+    data = compute(model or ContactModel(), v_t, omega, runs)
+    metadata = {"figure": "classic", "title": "this build's classic wall against the paper's model",
+                "theory": "spinbounce.theory.classic (exact, contact radius); the paper's Eq. 18 / exact damped",
                 "upstream": "LAMMPS PR #5007 removes the contact radius from linear_history_classic",
                 "software": software(), **data}
     return save(draw(data), out, "classic", metadata, started)
+
+
+def largest_lammps_error(record: dict) -> float:
+    """The largest per-row error of LAMMPS's classic wall against the classic theory, in a record."""
+    return float(np.max([np.max(c["lammps"]["error"]) for c in record["curves"]]))

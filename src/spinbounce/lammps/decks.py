@@ -170,6 +170,11 @@ def wall_parameters(model: ContactModel) -> dict:
     return {"eta_n": eta_n, "x_t": x_t, "damping": damping, "mu": mu, "style": style, "comment": "; ".join(notes)}
 
 
+def fix_line(model: ContactModel, group: str = "all") -> str:
+    """The ``fix wall/gran`` line of a flat wall at z = 0 (the one spinbounce runs), to paste."""
+    return f"fix wall {group} wall/gran {wall_parameters(model)['style']} zplane 0.0 NULL"
+
+
 #: The classic form gives its tangential damping as GAMMA_T/GAMMA_N, so GAMMA_N = 0 is 0/0 (NaN
 #: in this build): a vanishing one stands in, far below any force it could add.
 CLASSIC_VANISHING_GAMMA_N = 1.0e-100

@@ -27,7 +27,7 @@ import numpy as np
 from scipy.optimize import brentq, minimize_scalar
 
 from .. import theory
-from ..lammps.decks import wall_parameters
+from ..lammps.decks import fix_line, wall_parameters
 from ..model.contact import ContactModel
 from ..model.parameters import SceneError
 from .validation.materials import gamma_n_for_restitution_cut
@@ -183,11 +183,6 @@ def calibrate(t: Targets) -> Calibration:
     model = ContactModel(m=t.m, r=t.r, alpha=t.alpha, kn=kn, kt=kt, gamma_n=gamma_n, gamma_t=gamma_t, mu=t.mu,
                          limit_damping=t.limit_damping)
     return Calibration(t, model)
-
-
-def fix_line(model: ContactModel, group: str = "all") -> str:
-    """The ``fix wall/gran`` line of a flat wall at z = 0 (the one spinbounce runs)."""
-    return f"fix wall {group} wall/gran {wall_parameters(model)['style']} zplane 0.0 NULL"
 
 
 def pair_lines(model: ContactModel) -> tuple[str, str]:

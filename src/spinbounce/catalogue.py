@@ -1,0 +1,144 @@
+"""Everything ``spinbounce reproduce`` makes, in one list: the paper's figures, the claims
+ledger and the studies beyond the paper, each with the command that makes it alone.
+
+Each :class:`Product` writes its files into one folder and returns its JSON records by name
+(``figures/<name>.json`` in the repository is the stored copy of each). The repository's
+``figures/`` is this list made with ``spinbounce reproduce --out figures``; a test makes it
+afresh and compares every record with the stored one (:func:`compare_records`).
+
+Two studies are listed but not run by ``reproduce``: the convergence study (``spinbounce
+accuracy``, tens of minutes) and the speed measurement (``spinbounce bench``, whose numbers
+belong to the machine).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable
+
+__all__ = ["Product", "PRODUCTS", "LISTED", "product_names", "record_names", "make", "compare_records", "IGNORED_KEYS"]
+
+
+@dataclass(frozen=True)
+class Product:
+    """One thing ``reproduce`` makes: ``make(out, runs, log)`` writes it and returns its JSON
+    records ``{name: record}``, one per name in ``records`` (``<name>.json`` in the out folder)."""
+
+    name: str
+    command: str
+    what: str
+    make: Callable[[Path, Path, Callable], dict]
+    records: tuple[str, ...]
+
+
+def _paper_figures(out, runs, log):
+    from .figures import make_figures
+
+    return {record["figure"]: record for record in make_figures(out, runs=runs, log=log)}
+
+
+def _claims(out, runs, log):
+    import json
+
+    from .studies.claims import evaluate_claims, write_claims
+
+    _, record = write_claims(evaluate_claims(runs, log=log), out)
+    return {"claims": json.loads(record.read_text())}
+
+
+def _figure(module: str, function: str):
+    """A study whose ``function(out, runs)`` returns its record (a dict or a FigureRecord)."""
+    def make_one(out, runs, log):
+        from importlib import import_module
+
+        made = getattr(import_module(f"spinbounce.{module}"), function)(out, runs=runs)
+        record = getattr(made, "metadata", made)
+        return {Path(record["files"]["png"]).stem: record}
+    return make_one
+
+
+def _benchmarks(out, runs, log):
+    import json
+
+    from .studies.validation.report import make_benchmarks
+
+    _, files = make_benchmarks(out, runs=runs, log=log)
+    return {"benchmarks": json.loads(Path(files["json"]).read_text())}
+
+
+PRODUCTS: tuple[Product, ...] = (
+    Product("paper", "spinbounce figures", "the paper's figures 2-7 (fig2 ... fig7)", _paper_figures,
+            tuple(f"fig{n}" for n in range(2, 8))),
+    Product("claims", "spinbounce claims", "the claims ledger, CLAIMS.md", _claims, ("claims",)),
+    Product("benchmarks", "spinbounce benchmarks", "published validation cases, BENCHMARKS.md", _benchmarks,
+            ("benchmarks",)),
+    Product("hertz", "spinbounce hertz", "Hertzian contact time and scattering, HERTZ.md",
+            _figure("figures.hertz", "make_hertz"), ("hertz",)),
+    Product("classic", "spinbounce classic --figure", "this build's classic wall against the paper's model",
+            _figure("figures.classic", "make_classic"), ("classic",)),
+    Product("two_walls", "spinbounce two-walls", "many bounces between two walls against the matrices",
+            _figure("studies.two_walls", "make_figure"), ("two_walls",)),
+    Product("restitution", "spinbounce restitution", "restitution maps against incidence, Kharaz's data",
+            _figure("studies.restitution", "make_figure"), ("restitution",)),
+    Product("pair_validity", "spinbounce pair --figure", "where the planar two-sphere theory holds",
+            _figure("pairs.figure", "make_pair_validity"), ("pair_validity",)),
+)
+
+#: Made by a command of their own, not by ``reproduce``: (command, what, why).
+LISTED = (
+    ("spinbounce accuracy", "the convergence study, ACCURACY.md", "tens of minutes"),
+    ("spinbounce bench", "speed and cost ratios, bench.json", "its numbers belong to the machine"),
+)
+
+
+def product_names() -> list[str]:
+    return [p.name for p in PRODUCTS]
+
+
+def record_names() -> list[str]:
+    """Every JSON record ``reproduce`` writes, by name."""
+    return [name for p in PRODUCTS for name in p.records]
+
+
+def make(product: Product, out: Path, runs: Path, log=print) -> dict:
+    """Make one product into ``out``, its LAMMPS runs under ``runs``/<name>."""
+    return product.make(Path(out), Path(runs) / product.name, log)
+
+
+#: Keys whose values say when, where and how fast a record was made, not what it found.
+IGNORED_KEYS = frozenset({"created", "runtime_seconds", "seconds", "files", "run", "run_dir", "deck", "software", "python",
+                          "machine", "runs_kept_in", "spinbounce_version", "lammps_version", "numpy_version", "scipy_version",
+                          "pandas_version", "pyarrow_version", "matplotlib_version", "jinja2_version"})
+
+
+def compare_records(stored, fresh, tolerance: float, path: str = "") -> list[str]:
+    """Where ``fresh`` differs from ``stored``: numbers by more than ``tolerance`` (absolute, or
+    relative to the stored value where that is larger than 1), anything else when unequal.
+    Keys of :data:`IGNORED_KEYS` are skipped at every depth."""
+    if isinstance(stored, dict) and isinstance(fresh, dict):
+        found = [f"{path}/{k}: missing" for k in stored.keys() - fresh.keys() - IGNORED_KEYS]
+        found += [f"{path}/{k}: new" for k in fresh.keys() - stored.keys() - IGNORED_KEYS]
+        for key in sorted(stored.keys() & fresh.keys() - IGNORED_KEYS):
+            found += compare_records(stored[key], fresh[key], tolerance, f"{path}/{key}")
+        return found
+    if isinstance(stored, list) and isinstance(fresh, list):
+        if len(stored) != len(fresh):
+            return [f"{path}: {len(fresh)} items, stored {len(stored)}"]
+        return [d for k, (a, b) in enumerate(zip(stored, fresh)) for d in compare_records(a, b, tolerance, f"{path}[{k}]")]
+    if _is_number(stored) and _is_number(fresh):
+        if _numbers_agree(float(stored), float(fresh), tolerance):
+            return []
+        return [f"{path}: {fresh!r}, stored {stored!r}"]
+    return [] if stored == fresh else [f"{path}: {fresh!r}, stored {stored!r}"]
+
+
+def _is_number(value) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+
+def _numbers_agree(stored: float, fresh: float, tolerance: float) -> bool:
+    if math.isnan(stored) or math.isnan(fresh):
+        return math.isnan(stored) and math.isnan(fresh)
+    return abs(fresh - stored) <= tolerance * max(1.0, abs(stored))
