@@ -1,7 +1,7 @@
 """Every quantitative claim of the paper, measured with LAMMPS and set beside the exact theory.
 
 * :mod:`.ledger`: the claim record, the verdict kinds and what every claim shares;
-* :mod:`.collisions`, :mod:`.contact`, :mod:`.frozen`, :mod:`.damping`, :mod:`.energy`: the
+* :mod:`.collisions`, :mod:`.contact`, :mod:`.frozen`, :mod:`.damping`, :mod:`.energy`, :mod:`.classic`: the
   claims by topic, one function each;
 * :mod:`.write`: CLAIMS.md and claims.json.
 """
@@ -11,7 +11,7 @@ from __future__ import annotations
 import warnings
 from pathlib import Path
 
-from . import collisions, contact, damping, energy, frozen
+from . import classic, collisions, contact, damping, energy, frozen
 from .ledger import COLLISION_TOL, FROZEN_TOL, VERDICTS, Claim, Runs, verdict
 from .write import counts, write_claims
 
@@ -25,7 +25,7 @@ CLAIMS = (
     frozen.frozen_slope, collisions.rolling_unchanged, collisions.harmonic_ratios, collisions.magic_ratio,
     collisions.rough_no_spin, collisions.rough_no_slide, collisions.reflection_angle, damping.eq22,
     frozen.decay_rate, damping.rapid_damping_rolls, damping.eq23_matrix, damping.rolling_vs_rough,
-    energy.no_slip_no_loss, energy.friction_less_dissipation,
+    energy.no_slip_no_loss, energy.friction_less_dissipation, classic.classic_wall_is_eq1,
 )
 
 
