@@ -23,7 +23,7 @@ from .lammps.decks import DUMP_NAME, INLINE_SPHERES, Deck, render_collision, ren
 from .lammps.dumps import read_dump
 from .lammps.runner import RunInfo, run_deck
 from .model.scenes import Collision, ContactModel, Frozen
-from .model.timestep import StepChoice
+from .model.timestep import ACCURACY, StepChoice
 from .stepping import tune
 
 __all__ = [
@@ -174,17 +174,18 @@ class CollisionResult:
 
 
 def run_collision(scene: Collision, out_dir: Path, atoms: str | None = None, record: bool = True,
-                  runner=run_deck, probe_states: Collision | None = None) -> CollisionResult:
+                  runner=run_deck, probe_states: Collision | None = None, target: float = ACCURACY) -> CollisionResult:
     """Run one collision scene in ``out_dir`` and compare every sphere with its theory.
 
     A scene whose dt is the default first gets the step its accuracy needs
-    (:func:`stepping.tune`; ``probe_states``: the states to probe with, if not its own).
+    (:func:`stepping.tune`; ``probe_states``: the states to probe with, if not its own;
+    ``target``: the accuracy the probe's step is chosen for).
     ``atoms`` picks how the deck receives its spheres (:data:`decks.ATOM_ROUTES`); with
     ``record`` the run folder gets ``result.json`` (and, past INLINE_SPHERES spheres, the
     per-sphere table as ``result.parquet``). ``runner``: :func:`runner.run_deck` (in this
     process) or :func:`runner.run_deck_lmp` (the ``lmp`` executable).
     """
-    scene, step = tune(scene, Path(out_dir) / "probe", _probe_errors, probe_states)
+    scene, step = tune(scene, Path(out_dir) / "probe", _probe_errors, probe_states, target)
     deck = render_collision(scene, atoms)
     deck_path = prepare_run_dir(out_dir, deck)
     info = runner(deck_path, atoms=deck.atoms)

@@ -123,6 +123,6 @@ def _run_to_tolerance(args, state: dict) -> int:
     print(f"collision to tolerance {result.tolerance:g}: {len(result.levels)} runs, {result.steps} LAMMPS steps "
           f"(one plain run would need ~{report['plain_steps_for_same_estimate']:.0f} for the same error)")
     _print_states(report, names, label_width=10)
-    print(f"estimated error {result.max_estimate:.2e} (extrapolated to dt = 0 from the runs in {out})")
+    print(f"estimated error {result.max_estimate:.2e} ({result.how} from the runs in {out})")
     print(f"record: {out_json}")
     return 0

@@ -24,6 +24,16 @@ the paper's defaults), while the extrapolation only needs its rungs in the asymp
 regime, which :data:`START_STEPS` already is; at the defaults the whole ladder for 1e-6
 costs fewer steps than one run at the default step.
 
+Where the error has no smooth expansion in dt (a finite Coulomb cap's stick-slip switches
+fall anywhere inside a step; the classic wall's spring kt sqrt(r delta) has an infinite
+slope where the contact starts and ends), extrapolation gains nothing. There the tolerance
+is met by measurement instead (:func:`measured_to_tolerance`): the step is probed against
+the exact theory of what LAMMPS integrates (:func:`spinbounce.stepping.tune` with the
+tolerance as its target, as the default step is for the default accuracy), and each row's
+estimate is its own measured distance to that theory, which the run must bring below the
+tolerance. Those theories are solved to ~1e-9, so the tolerance there is at least
+:data:`MIN_MEASURED_TOLERANCE`.
+
 This module is the per-scene service (``--tolerance``); :mod:`spinbounce.studies.accuracy`
 is the convergence study over cases. Both climb the same rungs (:func:`contact_steps`,
 :func:`collision_rung_dt`, :func:`frozen_rung_dt`: n steps per half-period of the fastest
@@ -33,6 +43,7 @@ measures the raw orders that :func:`raw_orders` assumes here.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -41,10 +52,11 @@ import numpy as np
 import pandas as pd
 
 from ..model.scenes import STATE_ARGS, Collision, ContactModel, Frozen, SceneError
-from ..model.timestep import mid_step_dt
+from ..model.timestep import mid_step_dt, refine_mid_step
 
 __all__ = ["Extrapolated", "collide_to_tolerance", "frozen_to_tolerance", "collision_frame", "check_tolerance",
-           "contact_steps", "collision_rung_dt", "frozen_rung_dt", "raw_orders", "MIN_TOLERANCE"]
+           "contact_steps", "collision_rung_dt", "frozen_rung_dt", "raw_orders", "MIN_TOLERANCE",
+           "MIN_MEASURED_TOLERANCE", "smooth_in_dt", "measured_to_tolerance"]
 
 #: Below this, double-precision rounding in LAMMPS's O(1) velocities (amplified ~2x by
 #: the extrapolation) is as large as the request: no ladder can certify it.
@@ -73,7 +85,7 @@ class Extrapolated:
     values: np.ndarray
     estimate: np.ndarray
     tolerance: float
-    order: int  # the order of the raw runs (2 undamped, 1 damped)
+    order: int  # the order of the raw runs (2 undamped, 1 damped; 0: measured against the exact theory)
     levels: list[dict] = field(default_factory=list)
     t: np.ndarray | None = None
 
@@ -82,13 +94,21 @@ class Extrapolated:
         return float(np.max(self.estimate))
 
     @property
+    def how(self) -> str:
+        """How the values and their estimates were obtained."""
+        return "measured against the exact theory" if self.order == 0 else "extrapolated to dt = 0"
+
+    @property
     def steps(self) -> int:
         return int(sum(level["nsteps"] for level in self.levels))
 
     def plain_steps_for(self, error: float) -> float:
         """LAMMPS steps one plain run would need for ``error``, from the measured error of
-        the finest raw run (its distance from the extrapolation) and the raw order."""
+        the finest raw run (its distance from the extrapolation) and the raw order; a measured
+        result is itself one plain run."""
         finest = self.levels[-1]
+        if self.order == 0:
+            return float(finest["nsteps"])
         return finest["nsteps"] * (finest["error_vs_extrapolation"] / error) ** (1.0 / self.order)
 
 
@@ -212,19 +232,23 @@ def _ladder(run_level, tolerance: float, p: np.ndarray, log) -> tuple[np.ndarray
     )
 
 
+def smooth_in_dt(model: ContactModel) -> bool:
+    """Whether a collision's error has a smooth expansion in dt, so that extrapolation works.
+
+    Not with a finite cap (its stick-slip switches leave kinks anywhere inside a step), nor
+    for the classic wall (measured: at tolerance 1e-6 the ladder's estimate was 1.0e-6 where
+    the error was 2.1e-6; its spring kt sqrt(r delta) has an infinite slope at contact).
+    """
+    return model.mu is None and model.wall != "classic"
+
+
+#: The exact theories the measured route checks against (theory.coulomb, theory.classic)
+#: are solved to ~1e-9 of the speed: a tolerance below ten times that cannot be told apart.
+MIN_MEASURED_TOLERANCE = 1e-8
+
+
 def _refuse_unsmooth(model: ContactModel) -> None:
-    """Refuse, before any run, a model whose error has no smooth expansion in dt."""
-    if model.mu is not None:
-        # measured: with a finite cap the stick-slip switches leave kinks that fall anywhere
-        # within a step, so the error has no smooth expansion and extrapolation gains nothing
-        raise SceneError("mu", model.mu, "a tolerance needs a smooth error in dt; a finite Coulomb cap's "
-                                         "stick-slip switches break it: give a dt instead")
-    if model.wall == "classic":
-        # measured: at tolerance 1e-6 the ladder's estimate was 1.0e-6 where the error was 2.1e-6;
-        # the spring kt sqrt(r delta) has an infinite slope where the contact starts and ends
-        raise SceneError("wall", model.wall, "a tolerance needs a smooth error in dt; the classic wall's spring "
-                                             "kt sqrt(r delta) is not smooth where the contact starts and ends: "
-                                             "give a dt, or take the default step, whose error each row reports")
+    """Refuse, before any run, a model that neither extrapolation nor measurement can serve."""
     if model.normal != "hooke":
         # each sphere's contact ends at its own time, somewhere inside a step that moves with dt
         raise SceneError("normal", model.normal, "a tolerance needs a smooth error in dt; a Hertzian wall's "
@@ -257,6 +281,8 @@ def collide_to_tolerance(model: ContactModel, v_n, v_t, omega, tolerance: float,
 
     tol = check_tolerance(tolerance)
     _refuse_unsmooth(model)
+    if not smooth_in_dt(model):
+        return measured_to_tolerance(model, v_n, v_t, omega, tol, out_dir, log, **out_of_plane)
     unknown = set(out_of_plane) - set(STATE_ARGS[3:])
     if unknown:
         raise TypeError(f"collide_to_tolerance: unknown argument(s) {', '.join(sorted(unknown))}")
@@ -282,6 +308,37 @@ def collide_to_tolerance(model: ContactModel, v_n, v_t, omega, tolerance: float,
     p = raw_orders(model, len(names))
     values, estimate, levels = _ladder(run_level, tol, p, log)
     return Extrapolated(values, estimate, tol, int(p.min()), levels), scenes[-1]
+
+
+def measured_to_tolerance(model: ContactModel, v_n, v_t, omega, tolerance: float, out_dir: Path,
+                          log=lambda *_: None, **out_of_plane) -> tuple[Extrapolated, Collision]:
+    """Collisions to ``tolerance`` where extrapolation cannot serve: one run at the step a probe
+    against the exact theory chooses for the tolerance; each row's estimate is its measured
+    |LAMMPS - theory| (the largest over its columns), and every row must be within it."""
+    from ..pipeline import ResultError, run_collision
+
+    if tolerance < MIN_MEASURED_TOLERANCE:
+        raise SceneError("tolerance", tolerance, f"must be >= {MIN_MEASURED_TOLERANCE:g} for this model: its error is "
+                                                 "measured against an exact theory solved to ~1e-9")
+    scene = Collision(model, v_n=v_n, v_t=v_t, omega=omega, **out_of_plane)
+    folder, levels = Path(out_dir) / "measured", []
+    for refinement in range(MAX_LEVELS):
+        result = run_collision(scene, folder / f"run-{refinement}", atoms="library", target=tolerance)
+        final = result.table[[f"{s}_final" for s in result.scene.state_names]].to_numpy()
+        distance = np.abs(final - result.scene.predicted()).max(axis=1, keepdims=True)
+        log(f"  run at {result.scene.nsteps} steps: largest |LAMMPS - theory| {distance.max():.2e}")
+        levels.append({"level": refinement, "dt": result.scene.dt, "nsteps": result.scene.nsteps,
+                       "run": str(folder / f"run-{refinement}"), "loop_seconds": result.info.loop_seconds,
+                       "error_vs_theory": float(distance.max())})
+        if distance.max() <= tolerance:
+            break
+        # the probe's states missed a harder row: twice the steps, the contact's end kept mid-step
+        scene = dataclasses.replace(scene, dt=refine_mid_step(model.tau, result.scene.dt, 2))
+    else:
+        raise ResultError(f"tolerance = {tolerance:g} not reached: |LAMMPS - theory| = {distance.max():.2g} at "
+                          f"dt = {result.scene.dt:.4g}; give a smaller dt or a looser tolerance")
+    estimate = np.broadcast_to(distance, final.shape).copy()
+    return Extrapolated(final, estimate, tolerance, 0, levels), result.scene
 
 
 def frozen_to_tolerance(model: ContactModel, z: float, v_t: float, omega: float, t_end: float,
