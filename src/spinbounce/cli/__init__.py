@@ -16,10 +16,10 @@ from ..sweeps import SweepError
 from ..theory.choose import NoMatrix
 from .options import allow_negative_numbers
 from . import (accuracy, bench, benchmarks, calibrate, claims, collide, doctor, figures, fit, frozen, hertz, pair,
-               references, reproduce, restitution, sweep, theory, two_walls)
+               references, reproduce, restitution, sweep, tangential, theory, two_walls)
 
 COMMANDS = (theory, collide, frozen, sweep, fit, bench, accuracy, benchmarks, figures, hertz, claims, reproduce,
-            references, doctor, pair, two_walls, restitution, calibrate)
+            references, doctor, pair, two_walls, restitution, tangential, calibrate)
 
 
 def build_parser() -> argparse.ArgumentParser:
