@@ -82,6 +82,8 @@ PRODUCTS: tuple[Product, ...] = (
             _figure("studies.two_walls", "make_figure"), ("two_walls",)),
     Product("restitution", "spinbounce restitution", "restitution maps against incidence, Kharaz's data",
             _figure("studies.restitution", "make_figure"), ("restitution",)),
+    Product("tangential", "spinbounce tangential", "tangential restitution against the velocity ratio (Becker et al.)",
+            _figure("studies.tangential", "make_figure"), ("tangential",)),
     Product("pair_validity", "spinbounce pair --figure", "where the planar two-sphere theory holds",
             _figure("pairs.figure", "make_pair_validity"), ("pair_validity",)),
 )

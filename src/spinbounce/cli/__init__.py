@@ -15,11 +15,11 @@ from ..model.parameters import SceneError
 from ..sweeps import SweepError
 from ..theory.choose import NoMatrix
 from .options import allow_negative_numbers
-from . import (accuracy, bench, benchmarks, calibrate, claims, classic, collide, doctor, figures, fit, frozen, hertz, pair,
-               references, reproduce, restitution, sweep, theory, two_walls)
+from . import (accuracy, bench, benchmarks, calibrate, claims, classic, collide, doctor, figures, fit, frozen, hertz,
+               pair, references, reproduce, restitution, sweep, tangential, theory, two_walls)
 
 COMMANDS = (theory, collide, frozen, sweep, fit, bench, accuracy, benchmarks, figures, hertz, claims, reproduce,
-            references, doctor, classic, pair, two_walls, restitution, calibrate)
+            references, doctor, classic, pair, two_walls, restitution, tangential, calibrate)
 
 
 def build_parser() -> argparse.ArgumentParser:
