@@ -70,6 +70,6 @@ def _print_table(rows: list[dict], args) -> None:
           f" {'classic':>10s} {'paper':>10s}")
     for row in rows:
         classic, meant = row["final_classic"], row["final_meant"]
-        print(f"{row['v_n']:9.4g} {row['omega_classic']:9.5f} {row['omega_meant']:9.5f} {classic[1]:9.5f} "
-              f"{meant[1]:9.5f} {classic[2]:9.5f} {meant[2]:9.5f} {row['energy_gain_classic']:+10.2e} "
-              f"{row['energy_gain_meant']:+10.2e}")
+        columns = (row["omega_classic"], row["omega_meant"], classic[1], meant[1], classic[2], meant[2])
+        print(f"{row['v_n']:9.4g} " + " ".join(f"{round(x, 5) + 0.0:9.5f}" for x in columns)
+              + f" {row['energy_gain_classic']:+10.2e} {row['energy_gain_meant']:+10.2e}")
