@@ -2,7 +2,8 @@
 
 * :mod:`.ledger`: the claim record, the verdict kinds and what every claim shares;
 * :mod:`.collisions`, :mod:`.contact`, :mod:`.frozen`, :mod:`.damping`, :mod:`.energy`: the
-  claims by topic, one function each;
+  claims by topic, one function each; :mod:`.pairs`: the pair claim (two spheres of equal
+  alpha have the wall's Omega), after the paper's;
 * :mod:`.write`: CLAIMS.md and claims.json.
 """
 
@@ -11,7 +12,7 @@ from __future__ import annotations
 import warnings
 from pathlib import Path
 
-from . import collisions, contact, damping, energy, frozen
+from . import collisions, contact, damping, energy, frozen, pairs
 from .ledger import COLLISION_TOL, FROZEN_TOL, VERDICTS, Claim, Runs, verdict
 from .write import counts, write_claims
 
@@ -25,7 +26,7 @@ CLAIMS = (
     frozen.frozen_slope, collisions.rolling_unchanged, collisions.harmonic_ratios, collisions.magic_ratio,
     collisions.rough_no_spin, collisions.rough_no_slide, collisions.reflection_angle, damping.eq22,
     frozen.decay_rate, damping.rapid_damping_rolls, damping.eq23_matrix, damping.rolling_vs_rough,
-    energy.no_slip_no_loss, energy.friction_less_dissipation,
+    energy.no_slip_no_loss, energy.friction_less_dissipation, pairs.equal_alpha,
 )
 
 
