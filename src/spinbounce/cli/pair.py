@@ -43,6 +43,9 @@ def register(sub) -> None:
     p.add_argument("--out", type=Path, default=None, metavar="DIR", help="run folder (default: spinbounce-runs/pair-*)")
     p.add_argument("--figure", type=Path, default=None, metavar="DIR",
                    help="write pair_validity.png/.pdf/.json into DIR instead")
+    p.add_argument("--published", type=Path, default=None, metavar="DIR",
+                   help="run the published sphere-sphere benchmarks (Chung & Ooi tests 1, 7, 8; "
+                        "studies/validation/pair_cases.py) and write pair_benchmarks.json into DIR instead")
     p.add_argument("--cost", type=count, default=None, metavar="N",
                    help="measure LAMMPS's cost per pair collision against the wall's, over N impacts, instead")
     json_flag(p)
@@ -140,7 +143,30 @@ def pair_collide(args, model, b, state: dict) -> int:
     return _report(batch, run_pairs(batch, out).table.iloc[0], out, args.json)
 
 
+def _published(out: Path, as_json: bool) -> int:
+    import tempfile
+
+    from ..records import software, to_json, write_atomic
+    from ..studies.validation.pair_cases import PAIR_BENCHMARKS, run_pair_benchmark
+
+    with tempfile.TemporaryDirectory() as scratch:
+        records = [run_pair_benchmark(bench, Path(scratch)) for bench in PAIR_BENCHMARKS.values()]
+    Path(out).mkdir(parents=True, exist_ok=True)
+    path = write_atomic(Path(out) / "pair_benchmarks.json", to_json({"benchmarks": records, **software()}))
+    if as_json:
+        print(json.dumps(records, indent=2))
+        return 0
+    for r in records:
+        print(f"{r['name']:<22} {'agrees' if r['agrees'] else 'DISAGREES'}: {r['published']}; {r['quantity']} "
+              f"within {r['lammps_vs_published']:.1e} (bound {r['tolerance']:.1e}); LAMMPS vs exact "
+              f"{r['lammps_vs_exact']:.1e}, planar vs exact {r['planar_vs_exact']:.1e}")
+    print(f"wrote {path}")
+    return 0 if all(r["agrees"] for r in records) else 1
+
+
 def run(args) -> int:
+    if args.published is not None:
+        return _published(args.published, args.json)
     if args.figure is not None:
         from ..pairs.figure import make_pair_validity
 
