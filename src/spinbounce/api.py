@@ -10,6 +10,8 @@ Keywords are the declared parameter names (:data:`spinbounce.model.parameters.MO
     spinbounce.theory(gamma_t=0.5)   # the scattering matrix that applies
     rows = spinbounce.sweep(n=2000, out="my-sweep", mu=[None, 0.3])
     spinbounce.fit("my-sweep")       # one row per model group
+    spinbounce.collide(scene="pair", m_b=3.0, r_b=0.8)   # sphere a against a free sphere b at rest
+    spinbounce.sweep(n=100, out="pairs", scene="pair", m_b=[1.0, 3.0])
 
 A script needs no ``if __name__ == "__main__"`` guard: a sweep runs in this process by
 default (``workers=1``); with more workers it forks them while LAMMPS is not loaded here,
@@ -31,9 +33,21 @@ from .model.contact import ContactModel
 from .model.scenes import Collision
 from .theory import choose
 
-__all__ = ["collide", "theory", "sweep", "fit", "CollisionReport", "model"]
+__all__ = ["collide", "theory", "sweep", "fit", "CollisionReport", "PairReport", "model"]
 
 _MODEL_NAMES = {p.name for p in parameters.MODEL}
+#: The scene's keywords (wall or pair, sphere b's m_b, r_b, alpha_b): :data:`parameters.SCENE`.
+_SCENE_NAMES = {p.name for p in parameters.SCENE}
+
+
+def _split_scene(keywords: dict):
+    """(model keywords, sphere b or None for the wall), b's keywords refused without scene="pair"."""
+    from .pairs.kind import scene_of, sphere_b
+
+    scene = {k: keywords.pop(k) for k in list(keywords) if k in _SCENE_NAMES}
+    if scene_of(scene) == "wall":
+        return keywords, None
+    return keywords, sphere_b(**{k: v for k, v in scene.items() if k != "scene"})
 
 
 def model(**parameters_) -> ContactModel:
@@ -62,6 +76,46 @@ class CollisionReport:
         return head + self.table.to_string(float_format=lambda x: f"{x:.10f}")
 
 
+@dataclass(frozen=True)
+class PairReport:
+    """One pair scene in LAMMPS: both spheres' final states (``table``: LAMMPS, exact reference,
+    planar theory), LAMMPS's error against the exact reference and the planar theory's model error."""
+
+    table: pd.DataFrame
+    dt: float
+    nsteps: int
+    error: float
+    planar_error: float
+    eps: float
+    run_dir: Path
+
+    def __str__(self) -> str:
+        head = (f"pair: dt = {self.dt:.6g} ({self.nsteps} steps); LAMMPS vs exact {self.error:.2e}; planar theory's "
+                f"model error {self.planar_error:.2e} (eps = {self.eps:.3g})\n")
+        return head + self.table.to_string(float_format=lambda x: f"{x:.10f}")
+
+
+def _pair_batch(b, model_parameters: dict, state: dict, dt=None):
+    from .pairs.kind import pair_contact, pairs_from_states
+    from .pairs.scene import PairBatch
+
+    contact = model(**model_parameters)
+    row = [state[k] for k in ("v_n", "v_t", "omega", "v_s", "omega_s", "omega_n")]
+    return PairBatch(pairs_from_states(contact, b, [row]), pair_contact(contact), dt)
+
+
+def _collide_pair(b, model_parameters: dict, state: dict, dt, out) -> PairReport:
+    from .pairs import QUANTITIES, run_pairs
+
+    batch = _pair_batch(b, model_parameters, state, dt)
+    out = Path(out) if out is not None else _run_folder("collide-pair", {"pairs": repr(batch.pairs), "dt": batch.dt})
+    row = run_pairs(batch, out).table.iloc[0]
+    table = pd.DataFrame({label: [float(row[q + suffix]) for q in QUANTITIES] for label, suffix in
+                          (("LAMMPS", ""), ("exact", "_exact"), ("planar", "_planar"))}, index=list(QUANTITIES))
+    return PairReport(table, batch.dt, batch.nsteps, float(row["lammps_error"]), float(row["planar_error"]),
+                      float(row["eps"]), out)
+
+
 def _run_folder(kind: str, record: dict) -> Path:
     digest = hashlib.sha256(json.dumps(record, sort_keys=True, default=str).encode()).hexdigest()[:10]
     return Path("spinbounce-runs") / f"{kind}-{digest}"
@@ -69,9 +123,15 @@ def _run_folder(kind: str, record: dict) -> Path:
 
 def collide(v_n: float = -1.0, v_t: float = 1.0, omega: float = 0.0, v_s: float = 0.0, omega_s: float = 0.0,
             omega_n: float = 0.0, *, dt: float | None = None, out: str | Path | None = None,
-            **model_parameters) -> CollisionReport:
-    """Bounce one sphere off the wall in LAMMPS and compare it with the theory that applies."""
+            **model_parameters) -> CollisionReport | PairReport:
+    """Bounce one sphere off the wall in LAMMPS and compare it with the theory that applies; with
+    ``scene="pair"`` (and ``m_b``, ``r_b``, ``alpha_b``) against a free sphere b at rest instead."""
     from .pipeline import run_collision
+
+    model_parameters, b = _split_scene(model_parameters)
+    if b is not None:
+        state = {"v_n": v_n, "v_t": v_t, "omega": omega, "v_s": v_s, "omega_s": omega_s, "omega_n": omega_n}
+        return _collide_pair(b, model_parameters, state, dt, out)
 
     scene = Collision(model(**model_parameters), v_n=v_n, v_t=v_t, omega=omega, v_s=v_s, omega_s=omega_s,
                       omega_n=omega_n, dt=dt)
@@ -89,7 +149,12 @@ def collide(v_n: float = -1.0, v_t: float = 1.0, omega: float = 0.0, v_s: float 
 def theory(v_n: float | None = None, v_t: float = 0.0, omega: float = 0.0, v_s: float = 0.0, omega_s: float = 0.0,
            omega_n: float = 0.0, **model_parameters) -> dict:
     """The theory that applies: with ``v_n`` the final state of that collision, else the
-    scattering matrix (or, where none exists, why not)."""
+    scattering matrix (or, where none exists, why not). With ``scene="pair"``: the planar
+    pair theory's matrix of sphere a (b at rest), or one state's exact and planar outcomes."""
+    model_parameters, b = _split_scene(model_parameters)
+    if b is not None:
+        return _pair_theory(b, model_parameters, v_n, {"v_t": v_t, "omega": omega, "v_s": v_s, "omega_s": omega_s,
+                                                       "omega_n": omega_n})
     contact = model(**model_parameters)
     choice = choose.which(contact)
     out = {"theory": choice.kind, "name": choice.name}
@@ -103,13 +168,26 @@ def theory(v_n: float | None = None, v_t: float = 0.0, omega: float = 0.0, v_s: 
     return out
 
 
+def _pair_theory(b, model_parameters: dict, v_n, state: dict) -> dict:
+    from .pairs.kind import planar_matrix, planar_Omega
+    from .pairs.run import pair_table
+
+    contact = model(**model_parameters)
+    out = {"theory": "pair", "name": "planar pair theory (exact only as eps -> 0) and the exact reference",
+           "matrix": planar_matrix(contact, b), "Omega": planar_Omega(contact, b)}
+    if v_n is not None:
+        out["outcome"] = pair_table(_pair_batch(b, model_parameters, {"v_n": v_n, **state}), None).iloc[0].to_dict()
+    return out
+
+
 def sweep(n: int, out: str | Path, *, v_n=(-1.5, -0.1), v_t=(-2.0, 2.0), r_omega=(-2.0, 2.0), seed: int = 0,
           workers: int = 1, dt: float | None = None, **model_grid) -> pd.DataFrame:
     """Sample ``n`` collisions for every combination of the model values given (a number or a
-    list each; ``None`` in ``mu``'s list is the paper's uncapped model) into ``out``; return the rows."""
+    list each; ``None`` in ``mu``'s list is the paper's uncapped model) into ``out``; return the rows.
+    ``scene="pair"`` with ``m_b``, ``r_b``, ``alpha_b``: sphere a against a free sphere b at rest."""
     from .sweeps import read_results, run_sweep, spec_from_dict
 
-    unknown = set(model_grid) - _MODEL_NAMES - {"kt_over_kn"}
+    unknown = set(model_grid) - _MODEL_NAMES - _SCENE_NAMES - {"kt_over_kn"}
     if unknown:
         raise TypeError(f"unknown model parameter(s) {sorted(unknown)}")
     grid = {k: ["none" if v is None else v for v in (vals if isinstance(vals, (list, tuple)) else [vals])]

@@ -10,7 +10,13 @@ first asks whether one matrix describes the group at all:
   end, where the frictionless matrix holds; that is checked on the theory's own columns
   (they must equal the frictionless matrix's outcome within :data:`STICK_TOLERANCE`);
 * otherwise (sliding collisions, or a Hertzian group with several v_n) no matrix is claimed:
-  the group reports its per-collision deviation from the theory (worst and median).
+  the group reports its per-collision deviation from the theory (worst and median);
+* a pair scene's group (sphere b at rest instead of the wall; :mod:`spinbounce.pairs.kind`)
+  is checked against the exact reference; the planar theory's matrix of a's state is claimed
+  only where its model error (the rows' ``planar_error``, the quantity of the validity map
+  over eps and the centrifugal ratio, figures/pair_validity) stays within the accuracy
+  :data:`~spinbounce.model.timestep.ACCURACY`; elsewhere the group's regime says by how much
+  it misses, with the group's largest eps and centrifugal ratio.
 """
 
 from __future__ import annotations
@@ -27,10 +33,15 @@ from .model.contact import ContactModel
 from .records import write_atomic_with
 from .theory import choose
 
-__all__ = ["GROUP_KEYS", "model_of_group", "fit_matrix", "fit_omega", "fit_groups", "plot_groups", "STICK_TOLERANCE"]
+__all__ = ["GROUP_KEYS", "model_of_group", "fit_matrix", "fit_omega", "fit_groups", "plot_groups", "STICK_TOLERANCE",
+           "omega_gains", "pair_regime", "PAIR_GEOMETRY"]
 
-#: Columns that separate fit groups: every declared parameter that changes the outcome, and dt.
-GROUP_KEYS = [p.column for p in parameters.MODEL if p.changes_outcome] + ["dt"]
+#: Columns that separate fit groups: every declared parameter that changes the outcome (the
+#: scene's too: a wall sweep has none of them), and dt.
+GROUP_KEYS = ([p.column for p in parameters.MODEL if p.changes_outcome] + [p.column for p in parameters.SCENE]
+              + ["dt"])
+#: A pair group's columns that decide its regime: the planar theory's model error and the geometry.
+PAIR_GEOMETRY = ("planar_error", "eps", "centrifugal")
 #: A group sticks throughout when its theory columns match the frictionless matrix's outcome
 #: to this, relative to the largest initial speed: the oracle's own accuracy is ~1e-12, and
 #: any slip, however brief, moves the outcome by far more than this.
@@ -48,10 +59,29 @@ def fit_matrix(initial: np.ndarray, final: np.ndarray) -> tuple[np.ndarray, np.n
     return coef.T, stderr, residuals
 
 
-def fit_omega(initial: np.ndarray, final: np.ndarray, alpha: float) -> tuple[float, float]:
-    """Omega from Eq. 19 by least squares over both tangential rows; (Omega, its standard error)."""
+def omega_gains(params: dict) -> tuple[float, float]:
+    """Eq. 19's coefficients (c_t, c_r): Delta v_t = c_t Omega u'(0) and r Delta omega = c_r Omega u'(0).
+
+    The wall: alpha/(1 + alpha) and 1/(1 + alpha). A pair with b at rest (theory/pair.py):
+    the impulse Omega u'(0)/K on a gives 1/(m K) and 1/(alpha m K), which are the wall's
+    as m_b grows without bound.
+    """
+    m, r, alpha = params["m"], params["r"], params["alpha"]
+    if params.get("scene") == "pair":
+        from .theory.pair import slip_mobility
+
+        mobility = slip_mobility(m, r, alpha, params["m_b"], params["r_b"], params["alpha_b"])
+        return 1.0 / (m * mobility), 1.0 / (alpha * m * mobility)
+    return alpha / (1 + alpha), 1.0 / (1 + alpha)
+
+
+def fit_omega(initial: np.ndarray, final: np.ndarray, alpha: float,
+              gains: tuple[float, float] | None = None) -> tuple[float, float]:
+    """Omega from Eq. 19 by least squares over both tangential rows; (Omega, its standard error).
+    ``gains``: Eq. 19's coefficients where they are not the wall's of ``alpha`` (:func:`omega_gains`)."""
+    c_t, c_r = gains or (alpha / (1 + alpha), 1.0 / (1 + alpha))
     slip = initial[:, 1] + initial[:, 2]
-    x = np.concatenate([alpha / (1 + alpha) * slip, slip / (1 + alpha)])
+    x = np.concatenate([c_t * slip, c_r * slip])
     y = np.concatenate([final[:, 1] - initial[:, 1], final[:, 2] - initial[:, 2]])
     xx = float(x @ x)
     if xx == 0.0:
@@ -107,6 +137,36 @@ def regime(model: ContactModel, three_d: bool, off_uncapped: float, scale: float
     return None, f"{choice.name}: no single matrix"
 
 
+def pair_regime(params: dict, three_d: bool, geometry: dict) -> tuple[np.ndarray | None, str]:
+    """A pair group's planar matrix of a's state, or None where the planar theory's model error
+    (``geometry``: the group's largest planar_error, eps and centrifugal ratio) exceeds the accuracy."""
+    from .model.timestep import ACCURACY
+    from .pairs.kind import planar_matrix, sphere_b
+
+    where = f"eps up to {geometry['eps']:.2g}, centrifugal ratio up to {geometry['centrifugal']:.2g}"
+    if geometry["planar_error"] > ACCURACY:
+        return None, (f"pair, planar theory not exact here: its model error {geometry['planar_error']:.1e} exceeds "
+                      f"the accuracy {ACCURACY:g} ({where}); no matrix is claimed, the rows' theory is the exact "
+                      "reference")
+    b = sphere_b(*(params[name] for name in parameters.PAIR_ONLY))
+    return planar_matrix(model_of_group(params), b, three_d), \
+        f"pair, planar matrix valid: its model error {geometry['planar_error']:.1e} <= the accuracy {ACCURACY:g} ({where})"
+
+
+def theory_kind(params: dict) -> str:
+    """The theory a group's rows are checked against: the exact pair reference, or choose's."""
+    return "pair_exact" if params.get("scene") == "pair" else choose.which(model_of_group(params)).kind
+
+
+def omega_of_theory(params: dict, matrix_theory: np.ndarray) -> float:
+    """The theory's Omega: Eq. 18's r omega row (the wall), the planar theory's (a pair)."""
+    if params.get("scene") == "pair":
+        from .pairs.kind import planar_Omega, sphere_b
+
+        return planar_Omega(model_of_group(params), sphere_b(*(params[name] for name in parameters.PAIR_ONLY)))
+    return float((matrix_theory[2, 2] - 1.0) * (1.0 + params["alpha"]))
+
+
 def off_uncapped(model: ContactModel, initial: np.ndarray, theory: np.ndarray) -> float:
     """A capped Hookean group's largest |theory - frictionless matrix @ initial| (0 otherwise)."""
     if choose.which(model).kind != "coulomb" or model.normal != "hooke":
@@ -121,16 +181,20 @@ def _fit_one(group: pd.DataFrame, params: dict) -> dict:
     final = group[[f"{s}_final" for s in names]].to_numpy()
     theory = group[[f"{s}_theory" for s in names]].to_numpy()
     model = model_of_group(params)
-    matrix_theory, regime_name = regime(model, initial.shape[1] == 6, off_uncapped(model, initial, theory),
-                                        float(np.abs(initial).max()), set(np.unique(initial[:, 0])[:2].tolist()))
+    if params.get("scene") == "pair":
+        matrix_theory, regime_name = pair_regime(params, initial.shape[1] == 6,
+                                                 {k: float(group[k].max()) for k in PAIR_GEOMETRY})
+    else:
+        matrix_theory, regime_name = regime(model, initial.shape[1] == 6, off_uncapped(model, initial, theory),
+                                            float(np.abs(initial).max()), set(np.unique(initial[:, 0])[:2].tolist()))
     out = {"parameters": {k: (None if isinstance(v, float) and math.isnan(v) else v) for k, v in params.items()},
-           "n": len(group), "theory": choose.which(model).kind, "regime": regime_name,
+           "n": len(group), "theory": theory_kind(params), "regime": regime_name,
            "has_matrix": matrix_theory is not None, **_deviations(group, names)}
     if matrix_theory is None:
         return out
     matrix, stderr, residuals = fit_matrix(initial, final)
-    omega, omega_err = fit_omega(initial[:, :3], final[:, :3], model.alpha)
-    omega_theory = (matrix_theory[2, 2] - 1.0) * (1.0 + model.alpha)  # Eq. 18's r omega row
+    omega, omega_err = fit_omega(initial[:, :3], final[:, :3], model.alpha, omega_gains(params))
+    omega_theory = omega_of_theory(params, matrix_theory)
     out.update({
         "matrix": matrix.tolist(), "matrix_stderr": stderr.tolist(), "matrix_theory": matrix_theory.tolist(),
         "max_element_diff": float(np.abs(matrix - matrix_theory).max()),
@@ -171,6 +235,7 @@ def plot_groups(rows: pd.DataFrame, path: Path) -> Path:
         omegas = group["Omega_theory"].to_numpy()
         one_omega = bool(np.all(omegas == omegas[0]))  # NaN (Coulomb) or several (Hertz): per sphere
         alpha, big_omega = params["alpha"], float(omegas[0]) if one_omega else math.nan
+        c_t, c_r = omega_gains(params)  # Eq. 19's (the pair's with b at rest)
         slip = (group["vt_0"] + group["r_omega_0"]).to_numpy()
         line = np.array([slip.min(), slip.max()])
         label = (f"$\\alpha$ = {alpha:g}, $k_t/k_n$ = {params['kt'] / params['kn']:g}, "
@@ -178,8 +243,8 @@ def plot_groups(rows: pd.DataFrame, path: Path) -> Path:
         d_vt = group["vt_final"] - group["vt_0"]
         d_rw = group["r_omega_final"] - group["r_omega_0"]
         for ax, change, column, slope, name in (
-            (ax_vt, d_vt, "vt", alpha * big_omega / (1 + alpha), r"$\Delta v_t$"),
-            (ax_rw, d_rw, "r_omega", big_omega / (1 + alpha), r"$r\,\Delta\omega$"),
+            (ax_vt, d_vt, "vt", c_t * big_omega, r"$\Delta v_t$"),
+            (ax_rw, d_rw, "r_omega", c_r * big_omega, r"$r\,\Delta\omega$"),
         ):
             ax.plot(slip, change, ".", ms=2, color="tab:blue", rasterized=True, label="LAMMPS")
             if math.isnan(slope):  # no single Omega (Coulomb, Hertz): the theory sphere by sphere

@@ -17,8 +17,8 @@ import numpy as np
 import pandas as pd
 
 from .compare import STATE, STATE_3D
-from .fitting import GROUP_KEYS, model_of_group, off_uncapped, regime
-from .theory import choose
+from .fitting import (GROUP_KEYS, PAIR_GEOMETRY, model_of_group, off_uncapped, omega_gains, omega_of_theory,
+                      pair_regime, regime, theory_kind)
 
 __all__ = ["fit_dataset", "BATCH_ROWS"]
 
@@ -44,6 +44,8 @@ class _Group:
     residual_ss: np.ndarray | None = None
     residual_max: np.ndarray | None = None
     omega_ss: float = 0.0
+    #: A pair group's largest planar_error, eps and centrifugal ratio (fitting.pair_regime).
+    geometry: dict = field(default_factory=dict)
 
 
 def _batches(files, columns):
@@ -61,9 +63,9 @@ def _arrays(frame: pd.DataFrame, names) -> tuple[np.ndarray, np.ndarray, np.ndar
     return tuple(frame[[f"{s}_{suffix}" for s in names]].to_numpy() for suffix in ("0", "final", "theory"))
 
 
-def _slip_sums(initial, final, alpha) -> tuple[np.ndarray, np.ndarray]:
+def _slip_sums(initial, final, gains) -> tuple[np.ndarray, np.ndarray]:
     slip = initial[:, 1] + initial[:, 2]
-    x = np.concatenate([alpha / (1 + alpha) * slip, slip / (1 + alpha)])
+    x = np.concatenate([gains[0] * slip, gains[1] * slip])
     y = np.concatenate([final[:, 1] - initial[:, 1], final[:, 2] - initial[:, 2]])
     return x, y
 
@@ -73,11 +75,14 @@ def _first_pass(g: _Group, frame: pd.DataFrame, model) -> None:
     g.n += len(frame)
     g.xtx = initial.T @ initial + (0.0 if g.xtx is None else g.xtx)
     g.xty = initial.T @ final + (0.0 if g.xty is None else g.xty)
-    x, y = _slip_sums(initial[:, :3], final[:, :3], model.alpha)
+    x, y = _slip_sums(initial[:, :3], final[:, :3], omega_gains(g.params))
     g.omega_xx += float(x @ x)
     g.omega_xy += float(x @ y)
     g.scale = max(g.scale, float(np.abs(initial).max()))
     g.off_uncapped = max(g.off_uncapped, off_uncapped(model, initial, theory))
+    for key in PAIR_GEOMETRY:
+        if key in frame:
+            g.geometry[key] = max(g.geometry.get(key, 0.0), float(frame[key].max()))
     if len(g.speeds) < 2:
         g.speeds.update(np.unique(initial[:, 0])[:2].tolist())
     g.errors.append(np.abs(frame[[f"{s}_error" for s in g.names]].to_numpy()).max(axis=1))
@@ -89,13 +94,13 @@ def _first_pass(g: _Group, frame: pd.DataFrame, model) -> None:
             g.status[name] = g.status.get(name, 0) + int(count)
 
 
-def _second_pass(g: _Group, frame: pd.DataFrame, coef: np.ndarray, omega: float, alpha: float) -> None:
+def _second_pass(g: _Group, frame: pd.DataFrame, coef: np.ndarray, omega: float) -> None:
     initial, final, _ = _arrays(frame, g.names)
     residuals = final - initial @ coef
     g.residual_ss = (residuals**2).sum(axis=0) + (0.0 if g.residual_ss is None else g.residual_ss)
     worst = np.abs(residuals).max(axis=0)
     g.residual_max = worst if g.residual_max is None else np.maximum(g.residual_max, worst)
-    x, y = _slip_sums(initial[:, :3], final[:, :3], alpha)
+    x, y = _slip_sums(initial[:, :3], final[:, :3], omega_gains(g.params))
     g.omega_ss += float(((y - omega * x) ** 2).sum())
 
 
@@ -115,7 +120,8 @@ def fit_dataset(files, names=None) -> list[dict]:
     schema = pq.read_schema(str(files[0])).names
     names = names or (STATE_3D if f"{STATE_3D[-1]}_0" in schema else STATE)
     keys = [k for k in GROUP_KEYS if k in schema]
-    columns = keys + [f"{s}_{x}" for s in names for x in ("0", "final", "theory", "error")] + ["error", "status"]
+    columns = (keys + [f"{s}_{x}" for s in names for x in ("0", "final", "theory", "error")]
+               + ["error", "status", *PAIR_GEOMETRY])
     groups: dict[str, _Group] = {}
     for frame in _batches(files, columns):
         for label, part in _parts(frame, keys):
@@ -129,14 +135,17 @@ def fit_dataset(files, names=None) -> list[dict]:
         for label, part in _parts(frame, keys):
             if fits[label] is not None:
                 g = groups[label]
-                _second_pass(g, part, fits[label][0], fits[label][1], model_of_group(g.params).alpha)
+                _second_pass(g, part, fits[label][0], fits[label][1])
     order = sorted(groups, key=lambda label: tuple(str(groups[label].params[k]) for k in keys))
     return [_report(groups[label], fits[label]) for label in order]
 
 
 def _solve(g: _Group):
-    model = model_of_group(g.params)
-    matrix_theory, regime_name = regime(model, len(g.names) == 6, g.off_uncapped, g.scale, g.speeds)
+    if g.params.get("scene") == "pair":
+        matrix_theory, regime_name = pair_regime(g.params, len(g.names) == 6, g.geometry)
+    else:
+        matrix_theory, regime_name = regime(model_of_group(g.params), len(g.names) == 6, g.off_uncapped, g.scale,
+                                            g.speeds)
     g.params["_regime"], g.params["_matrix_theory"] = regime_name, matrix_theory
     if matrix_theory is None:
         return None
@@ -147,10 +156,10 @@ def _solve(g: _Group):
 
 def _report(g: _Group, fit) -> dict:
     regime_name, matrix_theory = g.params.pop("_regime"), g.params.pop("_matrix_theory")
-    model = model_of_group(g.params)
     errors, relative = np.concatenate(g.errors), np.concatenate(g.relative)
     out = {"parameters": {k: (None if isinstance(v, float) and math.isnan(v) else v) for k, v in g.params.items()},
-           "n": g.n, "theory": choose.which(model).kind, "regime": regime_name, "has_matrix": fit is not None,
+           "n": g.n, "theory": theory_kind(g.params), "regime": regime_name,
+           "has_matrix": fit is not None,
            "worst_deviation": float(errors.max()), "median_deviation": float(np.median(errors)),
            "worst_relative_deviation": float(relative.max()), "median_relative_deviation": float(np.median(relative))}
     if g.status:
@@ -161,7 +170,7 @@ def _report(g: _Group, fit) -> dict:
     k = len(g.names)
     dof = max(g.n - k, 1)
     stderr = np.sqrt(np.outer(g.residual_ss / dof, np.diag(np.linalg.inv(g.xtx))))
-    omega_theory = (matrix_theory[2, 2] - 1.0) * (1.0 + model.alpha)
+    omega_theory = omega_of_theory(g.params, matrix_theory)
     out.update({
         "matrix": coef.T.tolist(), "matrix_stderr": stderr.tolist(), "matrix_theory": matrix_theory.tolist(),
         "max_element_diff": float(np.abs(coef.T - matrix_theory).max()),

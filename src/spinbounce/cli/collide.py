@@ -13,7 +13,8 @@ from ..pipeline import run_collision
 from ..records import to_json, write_atomic
 from ..stepping import expected_steps
 from ..theory import choose
-from .options import announce_cost, check_run_folder, default_run_dir, force_flag, json_flag, model_from, model_parser, number, state_from, state_parser
+from .options import (announce_cost, check_run_folder, default_run_dir, force_flag, json_flag, model_from, model_parser,
+                      number, scene_from, scene_parser, state_from, state_parser)
 
 HELP = "bounce one sphere off the wall in LAMMPS and compare it with the theory that applies"
 SUFFIXES = {"initial": "0", "final": "final", "theory": "theory", "error": "error"}
@@ -22,7 +23,8 @@ LABELS = {"vn": "v_n", "vt": "v_t", "r_omega": "r*omega", "vs": "v_s", "r_omega_
 
 
 def register(sub) -> None:
-    p = sub.add_parser("collide", parents=[model_parser(), state_parser()], help=HELP, description=HELP + ".")
+    p = sub.add_parser("collide", parents=[model_parser(), state_parser(), scene_parser()], help=HELP,
+                       description=HELP + " (--scene pair: a free sphere b at rest instead of the wall).")
     step = p.add_mutually_exclusive_group()
     step.add_argument("--dt", type=number, default=None,
                       help="timestep (default: the accuracy rule's step, model/timestep.py, with the contact's "
@@ -52,6 +54,11 @@ def _contact_time(scene: Collision) -> float:
 def run(args) -> int:
     check_run_folder(args.out, args.force)
     state = state_from(args)
+    b = scene_from(args)
+    if b is not None:
+        from .pair import pair_collide
+
+        return pair_collide(args, model_from(args), b, state)
     if args.tolerance is not None:
         return _run_to_tolerance(args, state)
     scene = Collision(model_from(args), dt=args.dt, **state)

@@ -15,6 +15,8 @@ from ..model import parameters
 from ..sweeps import SweepError, read_results
 from .options import optional_number
 
+#: Parameters a group can be selected by: the model's and the scene's (wall or pair, sphere b's).
+SELECTABLE = parameters.MODEL + parameters.SCENE
 HELP = ("fit the 3x3 scattering matrix (6x6 for a 3-D sweep) and Omega (Eq. 19) per model group, where one "
         "matrix applies; otherwise report each group's per-collision deviation from its theory")
 
@@ -27,7 +29,7 @@ def register(sub) -> None:
                    help="also draw Delta v_t and r Delta omega against the initial slip, per group "
                         "(Eq. 19), to PATH (.png or .pdf)")
     g = p.add_argument_group("select groups (any model parameter: fit only the groups with that value)")
-    for parameter in parameters.MODEL:
+    for parameter in SELECTABLE:
         kind = {"flag": _flag_value, "choice": str}.get(parameter.kind, optional_number)
         g.add_argument(*parameter.flags, dest=parameter.name, type=kind, default=argparse.SUPPRESS,
                        metavar="VALUE", help=f"{parameter.meaning} ({parameter.range_text()})")
@@ -50,7 +52,7 @@ def _figure_path(text: str) -> Path:
 
 def _select(rows, args):
     """Only the rows of groups whose parameters equal the values given."""
-    for parameter in parameters.MODEL:
+    for parameter in SELECTABLE:
         if not hasattr(args, parameter.name):
             continue
         value = getattr(args, parameter.name)
@@ -64,7 +66,7 @@ def _select(rows, args):
 
 
 def run(args) -> int:
-    selected = any(hasattr(args, p.name) for p in parameters.MODEL)
+    selected = any(hasattr(args, p.name) for p in SELECTABLE)
     if selected or args.plot:  # a selection or a figure needs the rows themselves
         rows = _select(read_results(args.results), args)
         fits = fit_groups(rows)
@@ -85,8 +87,9 @@ def _print_group(f: dict) -> None:
     p = f["parameters"]
     print("group: " + ", ".join(f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}" for k, v in p.items()))
     print(f"  collisions {f['n']}; theory: {f['theory']}; {f['regime']}")
+    size = "the pair's speed, both spheres" if p.get("scene") == "pair" else "the state's size"
     print(f"  per collision |LAMMPS - theory|: worst {f['worst_deviation']:.2e}, median {f['median_deviation']:.2e} "
-          f"(over the state's size: worst {f['worst_relative_deviation']:.2e})"
+          f"(over {size}: worst {f['worst_relative_deviation']:.2e})"
           + ("; rows " + ", ".join(f"{n} {s}" for s, n in f["status"].items()) if "status" in f else ""))
     if not f["has_matrix"]:
         return

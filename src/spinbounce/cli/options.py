@@ -198,3 +198,24 @@ def default_run_dir(kind: str, parameters: dict) -> Path:
     """``spinbounce-runs/<kind>-<hash of the parameters>`` under the current folder."""
     digest = hashlib.sha256(json.dumps(parameters, sort_keys=True, default=str).encode()).hexdigest()[:10]
     return Path("spinbounce-runs") / f"{kind}-{digest}"
+
+
+def scene_parser() -> argparse.ArgumentParser:
+    """The scene's options (declared in :data:`spinbounce.model.parameters.SCENE`): --scene wall|pair
+    and sphere b's --m-b, --r-b, --alpha-b, as a parent parser."""
+    p = argparse.ArgumentParser(add_help=False)
+    group = p.add_argument_group("scene: the wall (default), or a free sphere b at rest along the normal (a pair)")
+    for parameter in parameters.SCENE:
+        _add(group, parameter, default=None)
+    return p
+
+
+def scene_from(args: argparse.Namespace):
+    """``None`` for the wall; sphere b for a pair (b's options without --scene pair are refused)."""
+    from ..pairs.kind import scene_of, sphere_b
+
+    values = {p.name: getattr(args, p.name) for p in parameters.SCENE}
+    if scene_of(values) == "wall":
+        return None
+    return sphere_b(*(values[name] if values[name] is not None else parameters.by_name(name).default
+                      for name in parameters.PAIR_ONLY))

@@ -34,12 +34,13 @@ STATE_RANGES = (
     ("omega_n", ("--omega-n",), None, "3-D: range of omega_n"),
 )
 SCENE_FLAGS = ("n", "seed", "chunk_size", "dt", "tolerance", "kt_over_kn",
-               *(p.name for p in parameters.MODEL if p.sweepable), *(dest for dest, *_ in STATE_RANGES))
+               *(p.name for p in parameters.MODEL if p.sweepable), *(p.name for p in parameters.SCENE),
+               *(dest for dest, *_ in STATE_RANGES))
 
 
 def register(sub) -> None:
     p = sub.add_parser("sweep", help=HELP, description=HELP + ". Give a TOML scene file, or the flags below.")
-    p.add_argument("scene", nargs="?", type=Path, help="TOML scene file (its keys: spinbounce.sweeps.spec)")
+    p.add_argument("scene_file", nargs="?", type=Path, metavar="scene", help="TOML scene file (its keys: spinbounce.sweeps.spec)")
     p.add_argument("--out", type=Path, metavar="DIR", help="output folder (rerun to resume); required to run")
     p.add_argument("--workers", type=count, default=os.cpu_count() or 1,
                    help="parallel worker processes, >= 1 (default: the machine's cores, %(default)s)")
@@ -62,7 +63,22 @@ def register(sub) -> None:
     step.add_argument("--tolerance", type=number, default=None, metavar="TOL",
                       help="instead of --dt: extrapolate each chunk's runs until every row's estimated error is below TOL")
     sweep_model_flags(p)
+    _scene_flags(p)
     p.set_defaults(handler=run)
+
+
+def _scene_flags(p) -> None:
+    """--scene pair and sphere b's parameters (each one value or several), from the declaration."""
+    group = p.add_argument_group("scene, from flags: sphere a (the model's m, r, alpha) against a free sphere b "
+                                 "at rest instead of the wall")
+    for parameter in parameters.SCENE:
+        if parameter.kind == "choice":
+            group.add_argument(*parameter.flags, dest=parameter.name, choices=parameter.choices, default=None,
+                               help=f"{parameter.meaning} (default {parameter.default})")
+        else:
+            group.add_argument(*parameter.flags, dest=parameter.name, type=number, nargs="+", default=None,
+                               metavar=parameter.name.upper(),
+                               help=f"{parameter.meaning}; {parameter.range_text()} (default {parameter.default})")
 
 
 def _given(args) -> list[str]:
@@ -105,6 +121,9 @@ def spec_from_flags(args) -> dict:
             values = [True]
         if values is not None:
             model[key] = [v if v is not None else "none" for v in values]
+    for parameter in parameters.SCENE:
+        if getattr(args, parameter.name) is not None:
+            model[parameter.name] = getattr(args, parameter.name)
     if args.dt is not None:
         model["dt"] = args.dt
     if model:
@@ -113,13 +132,13 @@ def spec_from_flags(args) -> dict:
 
 
 def run(args) -> int:
-    if args.scene is not None:
+    if args.scene_file is not None:
         given = _given(args)
         if given:
             flags = ", ".join("--" + name.replace("_", "-") for name in given)
-            raise SweepError(f"{flags}: a scene file is the whole sweep; put these in {args.scene} instead "
+            raise SweepError(f"{flags}: a scene file is the whole sweep; put these in {args.scene_file} instead "
                              "(beside a scene file only --out, --workers, --chunk, --list-chunks and --json apply)")
-        spec = load_spec(args.scene)
+        spec = load_spec(args.scene_file)
     else:
         spec = spec_from_dict(spec_from_flags(args))
     if args.list_chunks:
@@ -152,6 +171,8 @@ def run(args) -> int:
     counts = status_counts(dataset)
     bad = {name: n for name, n in counts.items() if name != "ok" and n}
     print(f"dataset: {dataset} (pandas.read_parquet of that folder)")
+    size = ("the pair's speed, over both spheres (theory: the exact reference; planar_error: the planar theory's "
+            "model error)" if spec.scene == "pair" else "its state's size")
     print(f"rows: {counts['ok']} ok" + "".join(f", {n} {name}" for name, n in bad.items())
-          + " (column 'status'; 'error' holds each row's |LAMMPS - theory| over its state's size)")
+          + f" (column 'status'; 'error' holds each row's |LAMMPS - theory| over {size})")
     return 1 if bad and args.strict else 0

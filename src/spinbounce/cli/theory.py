@@ -10,7 +10,7 @@ import numpy as np
 from .. import theory
 from ..model.parameters import SceneError
 from ..theory import choose
-from .options import json_flag, model_from, model_parser, number
+from .options import json_flag, model_from, model_parser, number, scene_from, scene_parser
 
 HELP = ("print the theory that applies to a contact model: its scattering matrix (Eq. 18) and Omega, "
         "or, for a given state, the outcome")
@@ -21,7 +21,7 @@ STATE_FLAGS = (("--vn", "v_n", "normal velocity v_n(0) (< 0)"), ("--vt", "v_t", 
 
 
 def register(sub) -> None:
-    p = sub.add_parser("theory", parents=[model_parser()], help=HELP, description=HELP + ".")
+    p = sub.add_parser("theory", parents=[model_parser(), scene_parser()], help=HELP, description=HELP + ".")
     g = p.add_argument_group("a state (optional): print its outcome instead of the matrix")
     for flag, dest, text in STATE_FLAGS:
         g.add_argument(flag, dest=dest, type=number, default=None, help=text)
@@ -47,6 +47,11 @@ def _state(args, r: float) -> dict | None:
 def run(args) -> int:
     model = model_from(args)
     state = _state(args, model.r)
+    b = scene_from(args)
+    if b is not None:
+        from .pair import pair_theory
+
+        return pair_theory(args, model, b, state)
     if state is not None:
         return _outcome(args, model, state)
     choice = choose.which(model)

@@ -15,7 +15,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-__all__ = ["finite_number", "positive_number", "Parameter", "MODEL", "STATE", "RUN", "ALL", "by_name", "SceneError", "markdown_table"]
+__all__ = ["finite_number", "positive_number", "Parameter", "MODEL", "STATE", "RUN", "SCENE", "PAIR_ONLY", "ALL",
+           "by_name", "SceneError", "markdown_table"]
 
 
 class SceneError(ValueError):
@@ -203,7 +204,26 @@ RUN: tuple[Parameter, ...] = (
               why="an accuracy is positive"),
 )
 
-ALL = MODEL + STATE + RUN
+#: The scene: sphere a (the model's m, r, alpha) against the wall, or against a second free
+#: sphere b with its own m_b, r_b and alpha_b (:mod:`spinbounce.pairs`; b starts at rest,
+#: the line of centres along LAMMPS's z, so a's state is the wall's). Not fields of
+#: ContactModel: a wall scene has none of b's columns, and its rows and groups are unchanged.
+SCENE: tuple[Parameter, ...] = (
+    Parameter("scene", "what sphere a hits: the wall, or a second free sphere b at rest (pair granular)", "-",
+              "wall", kind="choice", choices=("wall", "pair"), sweepable=False,
+              deck="fix wall/gran | pair_style granular (spinbounce.pairs.deck)"),
+    Parameter("m_b", "pair: sphere b's mass", "mass", 1.0, low=0.0, low_open=True, why="a mass is positive",
+              deck="pairs.data: b's density"),
+    Parameter("r_b", "pair: sphere b's radius", "length", 0.5, low=0.0, low_open=True, why="a radius is positive",
+              deck="pairs.data: b's diameter (2 r_b)"),
+    Parameter("alpha_b", "pair: sphere b's I/(m r^2)", "1", 0.4, low=0.0, low_open=True, high=1.0,
+              why="above 1 the mass would lie beyond the radius",
+              deck="fix nve/sphere (alpha_b = 2/5) or fix rigid with a centre point"),
+)
+#: The scene parameters that only a pair has.
+PAIR_ONLY = tuple(p.name for p in SCENE[1:])
+
+ALL = MODEL + STATE + RUN + SCENE
 
 
 def by_name(name: str) -> Parameter:

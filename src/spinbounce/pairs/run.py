@@ -38,6 +38,8 @@ class PairResult:
     table: pd.DataFrame
     info: RunInfo
     dump: Path
+    #: Per pair, the atom ids of a and b in the dump (an (n, 2) array).
+    ids: np.ndarray | None = None
 
     @property
     def max_lammps_error(self) -> float:
@@ -130,7 +132,7 @@ def run_pairs(batch: PairBatch, out_dir: Path, record: bool = True) -> PairResul
     if np.any(gap <= 0.0):
         raise ResultError(f"{dump}: pair {int(np.argmin(gap))} still in contact after {batch.nsteps} steps")
     table = pair_table(batch, lammps)
-    result = PairResult(batch, table, info, dump)
+    result = PairResult(batch, table, info, dump, rendered.ids)
     if record:
         out = {"scene": "pairs", "parameters": {"contact": batch.contact.law(), "dt": batch.dt,
                                                 "nsteps": batch.nsteps, "mu": "none (1e12)"},

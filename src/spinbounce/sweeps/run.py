@@ -39,10 +39,10 @@ def chunk_path(out: Path, group: int, chunk: int) -> Path:
 def run_chunk(raw: dict, out: str, group: int, chunk: int, start: int, stop: int) -> tuple[int, float, float]:
     """Run one chunk and write its Parquet file atomically.
 
-    Returns (collisions, seconds in this call, seconds in LAMMPS's run loop). The spheres
-    reach LAMMPS in memory (the library route): no data file to write, no dump to parse.
+    Returns (collisions, seconds in this call, seconds in LAMMPS's run loop). The wall's
+    spheres reach LAMMPS in memory (the library route): no data file to write, no dump to
+    parse; a pair scene's chunk is one pair batch (:func:`spinbounce.pairs.sweep.pair_chunk`).
     """
-    from ..pipeline import run_collision  # keeps a parent process free of LAMMPS
     from ..records import write_parquet_atomic
 
     started = time.perf_counter()
@@ -50,39 +50,55 @@ def run_chunk(raw: dict, out: str, group: int, chunk: int, start: int, stop: int
     out = Path(out)
     model, dt = spec.model(group)
     states = spec.initial_states(group, start, stop)
-    extra = dict(zip(("v_s", "omega_s", "omega_n"), states[:, 3:].T, strict=False))
-    scene = Collision(model, v_n=states[:, 0], v_t=states[:, 1], omega=states[:, 2], dt=dt, **extra)
     run_dir = out / "runs" / f"chunk-{group:04d}-{chunk:06d}"
     if run_dir.exists():
         shutil.rmtree(run_dir)  # a killed earlier attempt
     n = stop - start
     columns = {"group": np.full(n, group), "chunk": np.full(n, chunk), "index": np.arange(start, stop)}
-    if spec.tolerance is None:
-        result = run_collision(scene, run_dir, atoms="library", record=False, probe_states=_probe_states(spec, group))
-        columns.update({name: values.to_numpy() for name, values in result.table.drop(columns=["id"]).items()})
-        dt, nsteps, loop = result.scene.dt, result.scene.nsteps, result.info.loop_seconds
-    else:  # a ladder of runs per chunk, extrapolated; each row carries its error estimate
-        from ..studies.tolerance import collide_to_tolerance, collision_frame
+    if spec.scene == "pair":  # sphere b instead of the wall: the wall's columns and both spheres'
+        from ..pairs.sweep import pair_chunk
 
-        extrapolated, finest = collide_to_tolerance(model, scene.v_n, scene.v_t, scene.omega, spec.tolerance,
-                                                    run_dir)
-        columns.update({name: values.to_numpy() for name, values in collision_frame(extrapolated, finest).items()})
-        columns["omega_0"] = np.asarray(scene.omega)
-        columns["tolerance"] = np.full(n, spec.tolerance)
-        dt, nsteps = finest.dt, extrapolated.steps
-        loop = sum(level["loop_seconds"] for level in extrapolated.levels)
-    if "status" not in columns:  # the tolerance route: its extrapolated rows, checked the same way
-        checks.add_row_checks(columns, scene.state_names, model)
+        pair_columns, dt, nsteps, loop = pair_chunk(model, spec.sphere_b(group), states, dt, run_dir)
+        columns.update(pair_columns)
+    else:
+        scene = Collision(model, v_n=states[:, 0], v_t=states[:, 1], omega=states[:, 2], dt=dt,
+                          **dict(zip(("v_s", "omega_s", "omega_n"), states[:, 3:].T, strict=False)))
+        dt, nsteps, loop = _wall_columns(columns, spec, group, scene, run_dir)
     labels = _model_columns(columns, model, n)
     columns["dt"] = np.full(n, dt)  # with a tolerance: the finest run's
     columns["nsteps"] = np.full(n, nsteps)  # with a tolerance: all runs' steps together
-    columns["Omega_theory"] = choose.omega_per_sphere(model, scene.v_n)  # NaN where none exists (Coulomb)
+    if spec.scene == "pair":
+        labels.update(_pair_columns(columns, spec, group, model, n))
+    else:
+        columns["Omega_theory"] = choose.omega_per_sphere(model, scene.v_n)  # NaN where none exists (Coulomb)
+        labels["theory"] = choose.which(model).kind
     from ..records import lammps_version
 
-    labels.update({"theory": choose.which(model).kind, "scene_hash": spec.digest,
-                   "lammps_version": lammps_version(), "spinbounce_version": __version__})
+    labels.update({"scene_hash": spec.digest, "lammps_version": lammps_version(), "spinbounce_version": __version__})
     write_parquet_atomic(chunk_path(out, group, chunk), _arrow_table(columns, labels))
     return stop - start, time.perf_counter() - started, loop
+
+
+def _wall_columns(columns: dict, spec: SweepSpec, group: int, scene: Collision, run_dir: Path):
+    """Run a wall chunk, its rows into ``columns``; (dt, steps, LAMMPS loop seconds)."""
+    from ..pipeline import run_collision  # keeps a parent process free of LAMMPS
+
+    n = scene.n
+    if spec.tolerance is None:
+        result = run_collision(scene, run_dir, atoms="library", record=False, probe_states=_probe_states(spec, group))
+        columns.update({name: values.to_numpy() for name, values in result.table.drop(columns=["id"]).items()})
+        return result.scene.dt, result.scene.nsteps, result.info.loop_seconds
+    # a ladder of runs per chunk, extrapolated; each row carries its error estimate
+    from ..studies.tolerance import collide_to_tolerance, collision_frame
+
+    extrapolated, finest = collide_to_tolerance(scene.model, scene.v_n, scene.v_t, scene.omega, spec.tolerance,
+                                                run_dir)
+    columns.update({name: values.to_numpy() for name, values in collision_frame(extrapolated, finest).items()})
+    columns["omega_0"] = np.asarray(scene.omega)
+    columns["tolerance"] = np.full(n, spec.tolerance)
+    if "status" not in columns:  # its extrapolated rows, checked the same way
+        checks.add_row_checks(columns, scene.state_names, scene.model)
+    return finest.dt, extrapolated.steps, sum(level["loop_seconds"] for level in extrapolated.levels)
 
 
 def _probe_states(spec: SweepSpec, group: int) -> Collision:
@@ -103,6 +119,17 @@ def _model_columns(columns: dict, model, n: int) -> dict[str, str]:
         else:
             columns[p.column] = np.full(n, np.nan if value is None else value)
     return labels
+
+
+def _pair_columns(columns: dict, spec: SweepSpec, group: int, model, n: int) -> dict[str, str]:
+    """A pair group's scene columns (sphere b's, and the pair's Omega); its labels."""
+    from ..pairs.kind import planar_Omega
+
+    b = spec.sphere_b(group)
+    for name in parameters.PAIR_ONLY:
+        columns[parameters.by_name(name).column] = np.full(n, spec.groups[group][name])
+    columns["Omega_theory"] = np.full(n, planar_Omega(model, b))  # the planar theory's (the wall's at equal alpha)
+    return {"scene": "pair", "theory": "pair_exact"}
 
 
 def _arrow_table(columns: dict[str, np.ndarray], labels: dict[str, str]):

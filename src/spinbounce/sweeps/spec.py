@@ -11,6 +11,8 @@
     mu = ["none", 0.3]          # "none": no Coulomb cap (the paper's model)
     normal = "hooke"            # or "hertz"; limit_damping = true/false
     # kt_over_kn = [...] instead of kt; dt = ... (or tolerance = ... at the top level)
+    # scene = "pair" (one per sweep): sphere a (m, r, alpha) hits a free sphere b at rest
+    # instead of the wall; m_b, r_b, alpha_b = b's (one value or a list each; pairs.kind)
 
     [states]                    # seeded uniform samples over [low, high] ...
     n = 100000
@@ -44,11 +46,13 @@ from ..model import parameters
 from ..model.contact import ContactModel
 from ..model.parameters import SceneError
 from ..model.scenes import Collision
+from ..pairs.kind import scene_of
 
 __all__ = ["SweepError", "SweepSpec", "load_spec", "spec_from_dict", "MODEL_KEYS", "DEFAULT_CHUNK"]
 
 #: Model keys of a scene file: every sweepable declared parameter, kt_over_kn and dt.
-MODEL_KEYS = tuple(p.name for p in parameters.MODEL if p.sweepable) + ("kt_over_kn", "dt")
+MODEL_KEYS = (tuple(p.name for p in parameters.MODEL if p.sweepable) + tuple(p.name for p in parameters.SCENE)
+              + ("kt_over_kn", "dt"))
 STATE_KEYS = ("v_n", "v_t", "speed", "angle_deg", "omega", "r_omega",
               "v_s", "omega_s", "r_omega_s", "omega_n", "r_omega_n")
 #: Optional out-of-plane states (3-D): each given as an angular velocity or times r.
@@ -58,6 +62,8 @@ EXTRA_KEYS = (("v_s",), ("omega_s", "r_omega_s"), ("omega_n", "r_omega_n"))
 VELOCITY_KEYS = {"components": ("v_n", "v_t"), "polar": ("speed", "angle_deg")}
 TOP_KEYS = ("name", "seed", "chunk_size", "tolerance", "model", "states")
 DEFAULT_CHUNK = 25_000
+#: The scene's keys (wall or pair, and sphere b's): a wall sweep's groups have none of them.
+SCENE_KEYS = tuple(p.name for p in parameters.SCENE)
 #: How "no value" is written for an optional parameter (mu) in a scene file or a flag.
 NONE = "none"
 
@@ -100,6 +106,8 @@ def _model_values(key: str, value) -> list:
     values = value if isinstance(value, list) else [value]
     if not values:
         _fail(f"model.{key}", value, "is an empty list")
+    if key == "scene" and len(values) > 1:
+        _fail("model.scene", value, "one scene per sweep (run a wall sweep and a pair sweep apart)")
     declared = parameters.by_name("kt" if key == "kt_over_kn" else key)
     out = []
     for v in values:
@@ -145,10 +153,21 @@ class SweepSpec:
     def is_3d(self) -> bool:
         return len(self.states["axes"]) == 6
 
+    @property
+    def scene(self) -> str:
+        """``wall``, or ``pair`` (sphere b's parameters are then in every group)."""
+        return self.groups[0].get("scene", "wall")
+
     def model(self, group: int) -> tuple[ContactModel, float | None]:
-        params = dict(self.groups[group])
+        params = {k: v for k, v in self.groups[group].items() if k not in SCENE_KEYS}
         dt = params.pop("dt", None)
         return ContactModel(**params), dt
+
+    def sphere_b(self, group: int):
+        """A pair group's sphere b (:func:`spinbounce.pairs.kind.sphere_b`)."""
+        from ..pairs.kind import sphere_b
+
+        return sphere_b(*(self.groups[group][name] for name in parameters.PAIR_ONLY))
 
     def initial_states(self, group: int, start: int = 0, stop: int | None = None) -> np.ndarray:
         """States (v_n, v_t, omega) of rows [start, stop), then (v_s, omega_s, omega_n) for a
@@ -226,6 +245,12 @@ def _groups(model: dict) -> list[dict]:
     axes = {key: (_numbers(f"model.{key}", model[key]) if key == "dt" else _model_values(key, model[key]))
             for key in MODEL_KEYS if key in model}
     defaults = {p.name: p.default for p in parameters.MODEL}
+    try:
+        scene = scene_of({k: v[0] for k, v in axes.items()})
+    except SceneError as exc:
+        raise SweepError(f"model.{exc}") from None
+    if scene == "pair":  # b's defaults too; a wall sweep's groups stay as they were
+        defaults.update({p.name: p.default for p in parameters.SCENE}, scene="pair")
     groups = []
     for combo in itertools.product(*axes.values()):
         params = {**defaults, **dict(zip(axes, combo, strict=True))}
@@ -323,6 +348,9 @@ def _parse_states(states, tolerance) -> tuple[str, int, dict]:
 
 def _check_physics(spec: SweepSpec) -> None:
     """Build every group's model and its most demanding collision now, before any run."""
+    if spec.scene == "pair":
+        _check_pairs(spec)
+        return
     fast, slow = spec.normal_speeds()
     key_vn = "states.v_n" if "v_n" in spec.states["axes"] else "states.speed"
     for g in range(len(spec.groups)):
@@ -337,4 +365,28 @@ def _check_physics(spec: SweepSpec) -> None:
             Collision(model, v_n=[-fast, -slow], v_t=0.0, omega=0.0, dt=dt)
         except SceneError as exc:
             key = key_vn if exc.parameter.startswith("v_n") else f"model.{exc.parameter}"
+            raise SweepError(f"{key}: {exc}") from None
+
+
+def _check_pairs(spec: SweepSpec) -> None:
+    """A pair sweep: what the pair deck can run, and its fastest impact's overlap and step."""
+    from ..pairs.kind import pair_contact, pairs_from_states
+    from ..pairs.scene import PairBatch
+
+    if spec.tolerance is not None:
+        _fail("tolerance", spec.tolerance, "is for the wall only: a pair sweep takes model.dt or the default step")
+    fast, _ = spec.normal_speeds()
+    for g in range(len(spec.groups)):
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                model, dt = spec.model(g)
+                b = spec.sphere_b(g)
+                contact = pair_contact(model)
+        except SceneError as exc:
+            raise SweepError(f"model.{exc.parameter}: {exc}") from None
+        try:  # head-on at the fastest |v_n|: the deepest overlap (the step's checks are per pair)
+            PairBatch(pairs_from_states(model, b, [[-fast, 0.0, 0.0]]), contact, dt)
+        except SceneError as exc:
+            key = "states.v_n" if "v_n" in exc.parameter else f"model.{exc.parameter}"
             raise SweepError(f"{key}: {exc}") from None

@@ -12,3 +12,5 @@ KRATOS_G3 = (f"{KRATOS} applications/DEMApplication/tests/DEM3D_chung_ooi_tests/
 KRATOS_T10 = f"{KRATOS} applications/DEM_application/test_examples/basic_benchmarks/paper_data/"
 MFIX_DEM05 = "MFIX VVUQ manual, DEM05 (https://mfix.netl.doe.gov/doc/vvuq-manual/main/html/dem/dem-05.html)"
 YADE_T2 = "Yade Chung-Ooi Test2.py (Angelidakis, Chareyre & Caulk 2023; repository path not resolved)"
+YADE_T1 = "Yade Chung-Ooi Test1.py (Angelidakis, Chareyre & Caulk 2023; repository path not resolved)"
+PYSPH_T8 = "PySPH Chung-Ooi test 8 example (two differently sized spheres; repository path not resolved)"

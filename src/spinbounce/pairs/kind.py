@@ -1,0 +1,95 @@
+"""The pair as a scene kind: sphere a of the wall's scene against a free sphere b at rest.
+
+A pair scene is the wall's scene with the wall replaced by sphere b (``scene = "pair"``,
+with b's ``m_b``, ``r_b`` and ``alpha_b``; :data:`spinbounce.model.parameters.SCENE`).
+Sphere a keeps the model's m, r and alpha and the wall scene's initial state, in the same
+frame: the line of centres is LAMMPS's z (b below a), so a's (v_n, v_t, r omega, v_s,
+r omega_s, r omega_n) are the wall's columns, and b starts at rest without spin. The
+contact law is the model's kn, kt, gamma_n and gamma_t; what the pair deck cannot express
+is refused here with the reason (:func:`pair_contact`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..model.contact import ContactModel
+from ..model.parameters import PAIR_ONLY, SceneError, by_name
+from ..theory import pair as planar
+from .scene import Pair, PairContact, Sphere
+
+__all__ = ["pair_contact", "sphere_b", "pairs_from_states", "wall_frame", "planar_matrix", "planar_Omega",
+           "scene_of"]
+
+
+def scene_of(values: dict) -> str:
+    """The scene kind of a set of declared values; b's parameters without ``scene = pair`` are refused."""
+    scene = by_name("scene").check(values.get("scene") or "wall")
+    given = [name for name in PAIR_ONLY if values.get(name) is not None]
+    if scene == "wall" and given:
+        raise SceneError(given[0], values[given[0]], "is sphere b's: give scene = pair (the wall has no sphere b)")
+    return scene
+
+
+def pair_contact(model: ContactModel) -> PairContact:
+    """The pair deck's contact law from a contact model, or why the pair cannot run it."""
+    if model.mu is not None:
+        raise SceneError("mu", model.mu, "must be none with scene = pair (the pair runs the paper's uncapped model; "
+                                         "its exact reference has no Coulomb cap)")
+    if model.normal != "hooke":
+        raise SceneError("normal", model.normal, "must be hooke with scene = pair (the pair's theories are Hookean)")
+    if model.limit_damping:
+        raise SceneError("limit_damping", True, "is not covered by the pair's exact reference: leave it out")
+    if model.wall != "granular":
+        raise SceneError("wall", model.wall, "must be granular with scene = pair (there is no wall; the classic "
+                                             "pair style is not covered by the pair's references)")
+    return PairContact(model.kn, model.kt, model.gamma_n, model.gamma_t)
+
+
+def sphere_b(m_b=1.0, r_b=0.5, alpha_b=0.4) -> Sphere:
+    """Sphere b from its declared parameters (each checked against its declaration, named)."""
+    return Sphere(*(by_name(name).check(value) for name, value in zip(PAIR_ONLY, (m_b, r_b, alpha_b), strict=True)))
+
+
+def pairs_from_states(model: ContactModel, b: Sphere, states: np.ndarray) -> list[Pair]:
+    """One pair per row of (v_n, v_t, omega[, v_s, omega_s, omega_n]): a as the wall's sphere, b at rest.
+
+    LAMMPS's frame as the wall's (:mod:`spinbounce.compare`): v = (v_t, v_s, v_n) and
+    angular velocity (omega_s, -omega, omega_n).
+    """
+    a = Sphere(model.m, model.r, model.alpha)
+    states = np.atleast_2d(np.asarray(states, dtype=float))
+    full = np.zeros((len(states), 6))
+    full[:, : states.shape[1]] = states
+    return [Pair(a=a, b=b, v_a=(s[1], s[3], s[0]), w_a=(s[4], -s[2], s[5])) for s in full]
+
+
+def wall_frame(v: np.ndarray, w: np.ndarray, r: float) -> np.ndarray:
+    """(n, 6) states (v_n, v_t, r omega, v_s, r omega_s, r omega_n) of a sphere's (n, 3) v and w."""
+    v, w = np.atleast_2d(v), np.atleast_2d(w)
+    return np.column_stack([v[:, 2], v[:, 0], -r * w[:, 1], v[:, 1], r * w[:, 0], r * w[:, 2]]) + 0.0
+
+
+def planar_matrix(model: ContactModel, b: Sphere, three_d: bool = False) -> np.ndarray:
+    """The planar theory's map of a's state (b at rest), 3x3 (6x6 in 3-D): final = M @ initial.
+
+    :func:`spinbounce.theory.pair.predict` is linear in a's state when b starts at rest, so
+    its columns are its outcomes for the unit states.
+    """
+    size = 6 if three_d else 3
+    states = np.eye(size)
+    states[:, 0] = -1.0  # row 0: v_n = -1 alone; row k: v_n = -1 and unit component k
+    spins = [2, 4, 5] if three_d else [2]
+    states[:, spins] /= model.r  # the matrix acts on r omega: a unit r omega is omega = 1/r
+    pairs = pairs_from_states(model, b, states)
+    vectors = {k: np.array([p.vectors()[k] for p in pairs]) for k in ("n", "v_a", "v_b", "w_a", "w_b")}
+    v_a, _, w_a, _ = planar.predict(**vectors, **pairs[0].properties(), **pair_contact(model).law())
+    outcome = wall_frame(v_a, w_a, model.r)[:, :size]
+    return np.column_stack([-outcome[0], *(outcome[k] - outcome[0] for k in range(1, size))]) + 0.0
+
+
+def planar_Omega(model: ContactModel, b: Sphere) -> float:
+    """The pair's Omega (the planar theory's; the wall's for equal alpha)."""
+    law = pair_contact(model).law()
+    return float(planar.Omega(model.m, model.alpha, b.m, b.alpha, law["kn"], law["kt"], law["gamma_t"],
+                              law["gamma_n"]))
