@@ -49,11 +49,14 @@ def _claims(out, runs, log):
 
 
 def _figure(module: str, function: str):
-    """A study whose ``function(out, runs)`` returns its record (a dict or a FigureRecord)."""
+    """A study whose ``function(out, runs[, log])`` returns its record (a dict or a FigureRecord)."""
     def make_one(out, runs, log):
+        import inspect
         from importlib import import_module
 
-        made = getattr(import_module(f"spinbounce.{module}"), function)(out, runs=runs)
+        maker = getattr(import_module(f"spinbounce.{module}"), function)
+        logging = {"log": log} if "log" in inspect.signature(maker).parameters else {}
+        made = maker(out, runs=runs, **logging)
         record = getattr(made, "metadata", made)
         return {Path(record["files"]["png"]).stem: record}
     return make_one

@@ -46,7 +46,7 @@ def reproduce(out: Path, run_dir: Path, log=print) -> Reproduction:
     started = time.perf_counter()
     records: dict[str, dict] = {}
     for product in PRODUCTS:
-        log(f"{product.name}: {product.what} -> {out}")
+        log(f"{product.name}: {product.what} -> {out}/")
         began = time.perf_counter()
         made = make(product, out, run_dir, log=log)
         records.update(made)
@@ -59,7 +59,8 @@ def summary(made: Reproduction) -> list[str]:
     """The closing lines: where everything went, the paper figures' worst deviation, the verdicts."""
     worst = max(made.figures, key=lambda r: r["max_deviation_exact"])
     tally = counts(made.claims)
-    lines = [f"done in {made.seconds:.0f} s: {len(made.records)} JSON records in {made.out}/ ({', '.join(product_names())})",
+    lines = [f"done in {made.seconds:.0f} s: {len(made.records)} JSON records in {made.out}/",
+             f"  made: {', '.join(product_names())}",
              f"  figures 2-7: largest LAMMPS-theory deviation {worst['max_deviation_exact']:.1e} ({worst['figure']})",
              f"  {made.claims_md}: {len(made.claims)} claims: " + ", ".join(f"{n} {v}" for v, n in tally.items())]
     lines += [f"  not run here: {command} ({what}; {why})" for command, what, why in LISTED]
