@@ -2,11 +2,15 @@
 with the scipy oracle over random models and states, and its throughput on one core.
 
 Both are measurements, not checks; tests/test_coulomb_fast.py holds the checks.
+``python -m spinbounce.studies.solver_speed`` prints the throughput;
+``python -m spinbounce.studies.solver_speed agreement [N]`` the agreement over N random
+cases in the plane and N/10 each in 3-D and with the Hertzian force.
 """
 
 from __future__ import annotations
 
 import math
+import sys
 import time
 import warnings
 
@@ -15,7 +19,8 @@ import numpy as np
 from ..model.scenes import ContactModel, PhysicsWarning
 from ..theory import coulomb, oracle
 
-__all__ = ["random_case", "random_cases", "worst_deviation", "measure_throughput", "main"]
+__all__ = ["random_case", "random_cases", "random_cases_3d", "worst_deviation", "agreement",
+           "KINDS", "print_agreement", "measure_throughput", "main"]
 
 #: kt/kn values sampled: soft, the magic ratio of alpha = 2/5 (2/7), stiff, stiffer than kn.
 KT_OVER_KN = (0.05, 2.0 / 7.0, 0.5, 1.0, 2.0)
@@ -56,6 +61,40 @@ def random_cases(n: int, seed: int, normal: str = "hooke"):
     return [random_case(rng, normal) for _ in range(n)]
 
 
+def random_cases_3d(n: int, seed: int):
+    """Hookean cases of :func:`random_case` turned out of the plane: the tangential velocity
+    along an angle drawn uniformly, the spin's axis along another (so the slip is not
+    parallel to either), and a spin about the normal up to |v| / r either way."""
+    rng = np.random.default_rng(seed)
+    cases = []
+    for model, (v_n, v_t, omega) in random_cases(n, seed):
+        speed = math.hypot(v_n, v_t)
+        along, spin_axis = rng.uniform(0.0, 2.0 * math.pi, 2)
+        state = (v_n, v_t * math.cos(along), omega * math.cos(spin_axis), v_t * math.sin(along),
+                 omega * math.sin(spin_axis), rng.uniform(-1.0, 1.0) * speed / model.r)
+        cases.append((model, state))
+    return cases
+
+
+#: kind -> (its cases, the oracle's tolerance there in the acceptance line)
+KINDS = {"2-D": (random_cases, 1e-9), "3-D": (random_cases_3d, 1e-8),
+         "Hertz": (lambda n, seed: random_cases(n, seed, "hertz"), 1e-8)}
+
+
+def _deviation(model, state) -> float:
+    """|solver - oracle| over the final state, per unit impact speed |v|."""
+    if len(state) == 3:
+        slow = oracle.bounce(model, *state).final[:3]
+        fast = coulomb.bounce_2d(model, *state)[0]
+    else:
+        v_n, v_t, omega, v_s, omega_s, omega_n = state
+        slow = oracle.bounce(model, v_n, v_t, omega, v_s=v_s, omega_s=omega_s,
+                             omega_n=omega_n).final
+        fast = coulomb.bounce_3d(model, *state)[0]
+    speed = math.hypot(state[0], state[1], *state[3:4])  # v_s too, in 3-D
+    return float(np.abs(fast - slow).max() / speed)
+
+
 def worst_deviation(cases) -> tuple[float, int, np.ndarray]:
     """Largest |solver - oracle| over the cases, in units of each impact speed |v|:
     (worst, its index, every case's deviation). A case the oracle refuses (its regimes
@@ -63,13 +102,22 @@ def worst_deviation(cases) -> tuple[float, int, np.ndarray]:
     deviations = np.full(len(cases), np.nan)
     for i, (model, state) in enumerate(cases):
         try:
-            slow = oracle.bounce(model, *state).final[:3]
+            deviations[i] = _deviation(model, state)
         except RuntimeError:
             continue
-        fast = coulomb.bounce_2d(model, *state)[0]
-        deviations[i] = np.abs(fast - slow).max() / math.hypot(state[0], state[1])
     worst = int(np.nanargmax(deviations))
     return float(deviations[worst]), worst, deviations
+
+
+def agreement(n: int, seed: int, kind: str = "2-D") -> dict:
+    """The solver against the oracle over n random cases of a kind (``KINDS``): how many
+    the oracle refused, the largest and median deviation per unit |v|, the worst case's
+    index, and how many exceed the kind's tolerance."""
+    make, tolerance = KINDS[kind]
+    worst, where, deviations = worst_deviation(make(n, seed))
+    return {"kind": kind, "cases": n, "refused": int(np.isnan(deviations).sum()),
+            "worst": worst, "worst_case": where, "median": float(np.nanmedian(deviations)),
+            "tolerance": tolerance, "above": int((deviations > tolerance).sum())}
 
 
 def measure_throughput(n: int = 200_000, seed: int = 0, repeats: int = 3, three_d: bool = False,
@@ -111,8 +159,21 @@ SPEED_MODELS = {
 }
 
 
-def main() -> None:
-    """Print the throughput (``python -m spinbounce.studies.solver_speed``)."""
+def print_agreement(n: int = 10_000, seed: int = 2026) -> None:
+    """n random cases in the plane, n/10 in 3-D and n/10 Hertzian, as one table."""
+    for kind in KINDS:
+        row = agreement(n if kind == "2-D" else max(1, n // 10), seed, kind)
+        print(f"{kind}: {row['cases']} cases ({row['refused']} refused), worst "
+              f"{row['worst']:.2e} (case {row['worst_case']}), median {row['median']:.2e}, "
+              f"{row['above']} above {row['tolerance']:g}")
+
+
+def main(argv: list[str] | None = None) -> None:
+    """Print the throughput, or with ``agreement [N]`` the agreement with the oracle."""
+    argv = sys.argv[1:] if argv is None else argv
+    if argv[:1] == ["agreement"]:
+        print_agreement(*(int(a) for a in argv[1:2]))
+        return
     for label, model in SPEED_MODELS.items():
         print(f"{label}: {measure_throughput(**model):,.0f} collisions/s")
 

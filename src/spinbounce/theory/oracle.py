@@ -93,16 +93,22 @@ class _Contact:
         self.tensile = not model.limit_damping
         self.hertz = model.normal == "hertz"
         self.slip_mass = (1.0 + 1.0 / self.alpha) / self.m  # u'' = slip_mass * F_t
-        self.floor = 0.0  # set per collision (bounce)
+        # set per collision (bounce): a force and a rate of force negligible against the
+        # contact's own, the margins by which a switching function must pass zero to count
+        self.floor = self.floor_rate = 0.0
         self.turned = False  # whether F_n has passed through zero on the way out
 
     def normal(self, y) -> tuple[float, float]:
-        """(F_n, dF_n/dt) before any cut at zero; none once the overlap has gone."""
+        """(F_n, dF_n/dt) before any cut at zero, continued smoothly past the exit.
+
+        Every event function stays smooth where a step overshoots a switch (the exit, the
+        normal force's turn): scipy locates an event by a root search over the whole step,
+        and a function held flat at zero there hands the search the step's far end as
+        its root, which then hides an earlier event (a turn just before the exit).
+        """
         delta, rate = y[_D], -y[_VN]
-        if delta < 0.0:  # past the exit: keeps event functions from turning back
-            return 0.0, 0.0
-        if self.hertz:  # F = kn sqrt(r) delta^(3/2): LAMMPS's hertz wall
-            root = math.sqrt(self.r * delta)
+        if self.hertz:  # F = kn sqrt(r) delta^(3/2) (LAMMPS's hertz wall), odd beyond the exit
+            root = math.sqrt(self.r * abs(delta))
             f = self.kn * root * delta + self.gn * rate
             stiffness = 1.5 * self.kn * root
         else:
@@ -112,24 +118,24 @@ class _Contact:
         return f, stiffness * rate + self.gn * accel
 
     def cap(self, y) -> tuple[float, float]:
-        """(mu |F_n|, its rate), after limit_damping's cut.
+        """(mu |F_n|, its rate), after limit_damping's cut, continued smoothly past a turn.
 
         F_n >= 0 until the normal force turns (the ``force_zero`` event sets ``turned``)
-        and <= 0 after it, so the sign of |F_n| is known from the phase, never from a
-        value that rounding may leave a hair on the wrong side of zero.
+        and <= 0 after it, so |F_n| = F_n or -F_n by the phase, never by a value that
+        rounding may leave a hair on the wrong side of zero. Within a step that overshoots
+        the turn the cap goes on smoothly below zero (the event cuts the step there).
         """
         f, df = self.normal(y)
         if self.turned:
             if not self.tensile:
                 return 0.0, 0.0
-            return max(-self.mu * f, 0.0), -self.mu * df
-        return max(self.mu * f, 0.0), self.mu * df
+            return -self.mu * f, -self.mu * df
+        return self.mu * f, self.mu * df
 
     def normal_accel(self, y) -> float:
-        f, _ = self.normal(y)
-        if not self.tensile and (self.turned or f < 0.0):
+        if not self.tensile and self.turned:
             return 0.0
-        return f / self.m
+        return self.normal(y)[0] / self.m
 
     def rhs(self, phase: str):
         kt, gt, m, alpha = self.kt, self.gt, self.m, self.alpha
@@ -169,14 +175,14 @@ class _Contact:
         if phase == "stick":
             def to_slip(t, y):
                 c, _ = self.cap(y)
-                return c - math.hypot(*y[_A])
+                return c - math.hypot(*y[_A]) + self.floor
 
             to_slip.terminal, to_slip.direction = True, -1.0
             out.append(to_slip)
         elif phase == "slip":
             def to_stick(t, y):
                 c, dc = self.cap(y)
-                return self.push(y, y[_A], c) - dc
+                return self.push(y, y[_A], c) - dc + self.floor_rate
 
             def cap_gone(t, y):
                 return self.cap(y)[0] - self.floor
@@ -194,6 +200,32 @@ class _Contact:
             out.append(force_zero)
         return out
 
+    def switch(self, name: str, y, phase: str) -> str:
+        """The regime after the event ``name`` (puts A on or inside the cap).
+
+        A switching function must fall below zero by a negligible margin (``floor``,
+        ``floor_rate``) to count, and at a tangency the new regime would be left as soon
+        as entered: the function it starts with is zero, and the first step's rounding may
+        put it below zero, a spurious event at the switch itself. So a switch into a
+        slide is checked as on the cap at first touch (``on_cap``): a contact that would leave the
+        cap no faster than the cap grows sticks on it instead.
+        """
+        cap, dcap = self.cap(y)
+        if name == "force_zero":
+            self.turned = True  # F_n stays below zero from here to the exit
+            if not self.tensile:
+                return "free"
+            if phase == "slip":
+                y[_A] = 0.0  # a slide's cap is zero here
+            return self.start(y, cap_rising=True)
+        if name == "cap_gone" or (cap < self.floor and dcap <= 0.0):
+            y[_A] = 0.0  # the cap is gone or going: no tangential force left to speak of
+            return "coast"
+        if name == "to_slip":
+            return self.on_cap(y, cap, dcap)
+        y[_A] = cap * y[_A]  # to_stick: A rides the cap along s
+        return "stick"
+
     def push(self, y, s, c: float) -> float:
         """How fast sticking would carry A outwards along s, with A on a cap of radius c:
         s . (kt u' + gamma_t u''), the sticking force being -c s."""
@@ -210,10 +242,14 @@ class _Contact:
         c, dc = self.cap(y)
         if cap_rising:  # at a tensile turn the cap restarts from zero
             c, dc = 0.0, abs(dc)
-        u_rate = y[_V] + y[_W]
         if math.hypot(*y[_A]) < c:
             return "stick"
-        s = _direction(y[_A], u_rate)
+        return self.on_cap(y, c, dc)
+
+    def on_cap(self, y, c: float, dc: float) -> str:
+        """With A on the cap c (rising at dc), or just past it: slide if sticking would
+        push A outwards faster than the cap grows, else stick with A on the cap."""
+        s = _direction(y[_A], y[_V] + y[_W])
         if self.push(y, s, c) > dc:
             y[_A] = s
             return "slip"
@@ -243,6 +279,7 @@ def bounce(model: ContactModel, v_n: float, v_t: float = 0.0, omega: float = 0.0
     # a slide whose cap has shrunk below 1e-12 of its typical value (mu m |v_n| / tau)
     # coasts to the exit or to the tensile turn with no tangential force
     c.floor = 1e-12 * (model.mu * model.m * abs(v_n) / tau or 1.0)
+    c.floor_rate = c.floor / tau
     r = model.r
     y = np.zeros(8)
     y[_VN] = v_n
@@ -274,25 +311,7 @@ def bounce(model: ContactModel, v_n: float, v_t: float = 0.0, omega: float = 0.0
         y = sol.y_events[hit][0].copy()
         if hit == 0 or (y[_D] <= 0.0 and y[_VN] > 0.0):  # exit (a switch can fall on it)
             break
-        name = events[hit].__name__
-        cap, dcap = c.cap(y)
-        if name == "force_zero":
-            c.turned = True  # F_n stays below zero from here to the exit
-            if c.tensile:
-                if phase == "slip":
-                    y[_A] = 0.0  # a slide's cap is zero here
-                phase = c.start(y, cap_rising=True)
-            else:
-                phase = "free"
-        elif name == "cap_gone" or (cap < c.floor and dcap <= 0.0):
-            phase = "coast"  # the cap is gone or going: no tangential force left to speak of
-            y[_A] = 0.0
-        elif name == "to_slip":
-            phase = "slip"
-            y[_A] = _direction(y[_A], y[_V] + y[_W])
-        elif name == "to_stick":
-            phase = "stick"
-            y[_A] = cap * y[_A]
+        phase = c.switch(events[hit].__name__, y, phase)
         regimes.append((t, phase))
     else:
         raise RuntimeError(f"oracle: more than {MAX_SWITCHES} regime switches (chattering)")
