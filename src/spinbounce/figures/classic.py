@@ -70,7 +70,7 @@ def make_classic(out: Path, runs: Path, model: ContactModel | None = None, v_t: 
                  omega: float = 0.0) -> FigureRecord:
     """Compute, draw and save classic.{png,pdf,json} into ``out`` with provenance (LAMMPS runs in ``runs``)."""
     started = time.perf_counter()
-    data = compute(model or ContactModel(), v_t, omega, runs)
+    data = compute((model or ContactModel()).replace(wall="classic"), v_t, omega, runs)
     metadata = {"figure": "classic", "title": "this build's classic wall against the paper's model",
                 "theory": "spinbounce.theory.classic (exact, contact radius); the paper's Eq. 18 / exact damped",
                 "upstream": "LAMMPS PR #5007 removes the contact radius from linear_history_classic",
