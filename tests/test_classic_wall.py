@@ -56,6 +56,19 @@ def test_the_classic_frozen_contact_oscillates_at_its_own_frequency(z, tmp_path)
     assert np.abs(result.table["vt"] - uncapped[0]).max() > 0.1  # not the granular wall's Eq. 10
 
 
+@pytest.mark.parametrize("z", [0.45, 0.4, 0.3])
+def test_the_classic_frozen_contact_to_a_tolerance(z, tmp_path):
+    """Held at one height the classic spring is the constant kt sqrt(r delta0): the error is smooth in
+    dt and the ladder extrapolates it; every sample is within 1e-6 of the classic frozen theory."""
+    from spinbounce.studies.tolerance import frozen_to_tolerance
+
+    model = ContactModel(wall="classic")
+    result = frozen_to_tolerance(model, z, 1.0, 0.0, 5.0, 1e-6, tmp_path)
+    exact = np.column_stack(Frozen(model, z=z, v_t=1.0, omega=0.0, t_end=5.0).predicted(result.t))
+    true = np.abs(result.values - exact).max(axis=1)
+    assert true.max() <= 1e-6 and (true <= result.estimate.max(axis=1)).all()
+
+
 def test_a_classic_sweep_from_flags_records_the_wall(tmp_path, capsys):
     argv = ["sweep", "--out", str(tmp_path / "s"), "--n", "12", "--workers", "1", "--wall", "classic", "granular",
             "--mu", "none", "0.5"]
