@@ -22,8 +22,16 @@ COMMANDS = (theory, collide, frozen, sweep, fit, bench, accuracy, benchmarks, fi
             references, doctor, pair, two_walls, restitution, calibrate)
 
 
+class OneLineParser(argparse.ArgumentParser):
+    """An argument parser whose refusals are one line on stderr (exit 2): what is wrong, and where
+    the options are listed, instead of the usage block above the message."""
+
+    def error(self, message: str):
+        self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
+
+
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = OneLineParser(
         prog="spinbounce",
         description="Frictional sphere-wall collisions in LAMMPS against Wang and Harrowell's theory.",
     )
