@@ -29,6 +29,24 @@ class OneLineParser(argparse.ArgumentParser):
     def error(self, message: str):
         self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
 
+    def parse_known_args(self, args=None, namespace=None):
+        self._refuse_repeats(sys.argv[1:] if args is None else list(args))
+        return super().parse_known_args(args, namespace)
+
+    def _refuse_repeats(self, tokens: list[str]) -> None:
+        """An option that holds one value, given twice, is refused: which one was meant is unclear."""
+        given = {}
+        for token in tokens:
+            if token == "--":
+                break
+            flag = token.split("=", 1)[0]
+            action = self._option_string_actions.get(flag)
+            if action is None or isinstance(action, (argparse._AppendAction, argparse._StoreConstAction, argparse._HelpAction)):
+                continue
+            if action.dest in given:
+                self.error(f"argument {flag}: given twice (also as {given[action.dest]}): give it once")
+            given[action.dest] = flag
+
 
 def build_parser() -> argparse.ArgumentParser:
     parser = OneLineParser(

@@ -27,8 +27,9 @@ __all__ = ["number", "count", "model_parser", "state_parser", "model_from", "sta
            "positive_count", "worker_count"]
 
 #: argparse reads "-1e-3" as an option unless it looks like a negative number to it; its own
-#: pattern misses e-notation, so every parser here gets this one.
-NEGATIVE_NUMBER = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-inf$|^-nan$", re.IGNORECASE)
+#: pattern misses e-notation. Every parser here takes a word that starts like a negative number
+#: ("-1e-3", "-.5", "-inf", also "-1m/s") as a value, so that the number parser names what is wrong.
+NEGATIVE_NUMBER = re.compile(r"^-(\d|\.\d|inf|nan)", re.IGNORECASE)
 
 
 def number(text: str) -> float:
