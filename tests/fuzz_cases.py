@@ -277,6 +277,8 @@ RUNS = [
     ok("frozen-small", FROZEN, frozen_series(1.0)),
     ok("figures-runs-beside-user-file", "figures --only fig2 --runs figout", figure_beside_user_file("fig2"),
        files=("figout",)),
+    ok("figures-out-beside-user-file", "figures --only fig2 --out figout", figure_beside_user_file("fig2", "figout"),
+       files=("figout",)),
     ok("frozen-e-notation", "frozen --z 4.5e-1 --vt 1e0 --omega 0 --t-end 1e0 --out f.csv", frozen_series(1.0)),
 ]
 
