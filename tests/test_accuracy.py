@@ -155,7 +155,7 @@ def test_the_cases_cover_the_brief_and_are_valid_scenes():
 
 def test_cli_options():
     args = parse(["accuracy"])
-    assert args.out == Path("figures") and not args.quick and args.runs is None
+    assert args.out == Path("spinbounce-figures") and not args.quick and args.runs is None
     args = parse(["accuracy", "--quick", "--out", "somewhere", "--json"])
     assert args.quick and args.out == Path("somewhere") and args.json
 

@@ -4,6 +4,7 @@ import json
 import math
 import subprocess
 import sys
+from pathlib import Path
 
 import pandas as pd
 import pytest
@@ -99,3 +100,27 @@ def test_bad_input_exits_before_lammps(capsys, tmp_path, args, needle):
     err = capsys.readouterr().err
     assert needle in err
     assert not out_dir.exists()  # nothing was written, LAMMPS never started
+
+
+STUDIES = ("claims", "figures", "hertz", "benchmarks", "two-walls", "restitution", "accuracy")
+
+
+@pytest.mark.parametrize("command", STUDIES)
+def test_studies_write_into_a_folder_of_their_own_by_default(command, capsys):
+    """No study writes into the repository's figures/ (or a folder of the user's) unless told to."""
+    from spinbounce.cli import build_parser
+
+    assert build_parser().parse_args([command]).out == Path("spinbounce-figures")
+    with pytest.raises(SystemExit):
+        main([command, "--help"])
+    assert "only with --out figures" in " ".join(capsys.readouterr().out.split())
+
+
+@pytest.mark.parametrize("command", STUDIES)
+def test_studies_refuse_a_file_as_their_folder(command, tmp_path, capsys):
+    user_file = tmp_path / "notes.txt"
+    user_file.write_text("the user's notes")
+    with pytest.raises(SystemExit) as info:
+        main([command, "--out", str(user_file)])
+    assert info.value.code == 2 and "is a file, not a folder" in capsys.readouterr().err
+    assert user_file.read_text() == "the user's notes"

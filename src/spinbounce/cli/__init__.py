@@ -22,8 +22,34 @@ COMMANDS = (theory, collide, frozen, sweep, fit, bench, accuracy, benchmarks, fi
             references, doctor, classic, pair, two_walls, restitution, tangential, calibrate)
 
 
+class OneLineParser(argparse.ArgumentParser):
+    """An argument parser whose refusals are one line on stderr (exit 2): what is wrong, and where
+    the options are listed, instead of the usage block above the message."""
+
+    def error(self, message: str):
+        self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
+
+    def parse_known_args(self, args=None, namespace=None):
+        self._refuse_repeats(sys.argv[1:] if args is None else list(args))
+        return super().parse_known_args(args, namespace)
+
+    def _refuse_repeats(self, tokens: list[str]) -> None:
+        """An option that holds one value, given twice, is refused: which one was meant is unclear."""
+        given = {}
+        for token in tokens:
+            if token == "--":
+                break
+            flag = token.split("=", 1)[0]
+            action = self._option_string_actions.get(flag)
+            if action is None or isinstance(action, (argparse._AppendAction, argparse._StoreConstAction, argparse._HelpAction)):
+                continue
+            if action.dest in given:
+                self.error(f"argument {flag}: given twice (also as {given[action.dest]}): give it once")
+            given[action.dest] = flag
+
+
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = OneLineParser(
         prog="spinbounce",
         description="Frictional sphere-wall collisions in LAMMPS against Wang and Harrowell's theory.",
     )

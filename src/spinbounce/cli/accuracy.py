@@ -3,12 +3,10 @@
 from __future__ import annotations
 
 import sys
-from pathlib import Path
 
-from .options import json_flag
+from .options import json_flag, out_folder, out_option
 
 HELP = "measure how LAMMPS's error against the exact theory falls with dt, and its cost in steps and seconds"
-DEFAULT_OUT = Path("figures")
 
 
 def register(sub) -> None:
@@ -20,12 +18,11 @@ def register(sub) -> None:
                      "(the steps per collision it chooses and the error it reaches). "
                      "Writes accuracy.png, accuracy.pdf, accuracy.json and ACCURACY.md."),
     )
-    p.add_argument("--out", type=Path, default=DEFAULT_OUT, metavar="DIR",
-                   help="folder for the figure, the JSON record and ACCURACY.md (default: %(default)s)")
+    out_option(p, "the figure, the JSON record and ACCURACY.md")
     p.add_argument("--quick", action="store_true",
                    help="five levels (n = 64 .. 1024 steps per half-period) and a small cost batch: seconds, "
                         "for checks; the orders hold, the steps for 1e-8 are extrapolated")
-    p.add_argument("--runs", type=Path, default=None, metavar="DIR",
+    p.add_argument("--runs", type=out_folder, default=None, metavar="DIR",
                    help="keep every LAMMPS run's folder here (default: a temporary folder, removed)")
     json_flag(p)
     p.set_defaults(handler=run)

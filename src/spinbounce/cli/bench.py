@@ -6,9 +6,10 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
+from ..model.parameters import SceneError
 from ..records import to_json, write_atomic
 from ..studies.speed import SPEED_DEFAULTS, measure_speed
-from .options import count
+from .options import count, out_file, out_folder, positive_count, worker_count
 
 HELP = "measure collisions/s of one lmp process per collision, one in-process instance, and a batched sweep"
 
@@ -18,28 +19,32 @@ LABELS = {"a_lmp_process": "(a) one lmp process each", "b_in_process": "(b) one 
 
 def register(sub) -> None:
     p = sub.add_parser("bench", help=HELP, description=HELP + ", side by side on the same states and dt.")
-    p.add_argument("--n-lmp", type=int, default=SPEED_DEFAULTS["n_lmp"], metavar="N",
+    p.add_argument("--n-lmp", type=positive_count, default=SPEED_DEFAULTS["n_lmp"], metavar="N",
                    help="collisions for (a) (default %(default)s)")
-    p.add_argument("--n-inprocess", type=int, default=SPEED_DEFAULTS["n_inprocess"], metavar="N",
+    p.add_argument("--n-inprocess", type=positive_count, default=SPEED_DEFAULTS["n_inprocess"], metavar="N",
                    help="collisions for (b) (default %(default)s)")
-    p.add_argument("--n-batched", type=int, default=SPEED_DEFAULTS["n_batched"], metavar="N",
+    p.add_argument("--n-batched", type=positive_count, default=SPEED_DEFAULTS["n_batched"], metavar="N",
                    help="collisions for (c) (default %(default)s)")
-    p.add_argument("--workers", type=int, default=1,
+    p.add_argument("--workers", type=worker_count, default=1,
                    help="worker processes for (c); rates are reported per core (default %(default)s)")
-    p.add_argument("--chunk-size", type=int, default=None, help="spheres per LAMMPS run in (c) (default: the sweep's)")
-    p.add_argument("--n-needs", type=int, default=1000, metavar="N",
+    p.add_argument("--chunk-size", type=positive_count, default=None, help="spheres per LAMMPS run in (c) (default: the sweep's)")
+    p.add_argument("--n-needs", type=positive_count, default=1000, metavar="N",
                    help="spheres for the contact-only vs free-flight-and-dump comparison (default %(default)s)")
-    p.add_argument("--seed", type=int, default=0)
-    p.add_argument("--out", type=Path, default=Path("bench.json"), metavar="FILE",
+    p.add_argument("--seed", type=count, default=0, help="random seed of the states (default %(default)s)")
+    p.add_argument("--out", type=out_file, default=Path("bench.json"), metavar="FILE",
                    help="JSON report (default %(default)s)")
-    p.add_argument("--keep-runs", type=Path, metavar="DIR", help="keep every run's folder here")
-    p.add_argument("--n-models", type=count, default=100_000, metavar="N",
+    p.add_argument("--keep-runs", type=out_folder, metavar="DIR", help="keep every run's folder here")
+    p.add_argument("--n-models", type=positive_count, default=100_000, metavar="N",
                    help="collisions per model sweep (frictionless, mu 2-D and 3-D; Hertz takes N/100) "
                         "(default %(default)s)")
     p.set_defaults(handler=run)
 
 
 def run(args) -> int:
+    reused = max(args.n_lmp, args.n_inprocess, args.n_needs)
+    if reused > args.n_batched:
+        raise SceneError("--n-batched", args.n_batched, f"must be at least --n-lmp, --n-inprocess and --n-needs "
+                                                        f"({reused}): they reuse its states")
     report = measure_speed(n_lmp=args.n_lmp, n_inprocess=args.n_inprocess, n_batched=args.n_batched,
                        workers=args.workers, seed=args.seed, chunk_size=args.chunk_size, keep=args.keep_runs,
                        n_needs=args.n_needs)

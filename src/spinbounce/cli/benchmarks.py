@@ -5,10 +5,10 @@ from __future__ import annotations
 
 import argparse
 import sys
-from pathlib import Path
+
+from .options import out_folder, out_option
 
 HELP = "run the published sphere-wall benchmarks (Chung & Ooi Tests 4-6, Thornton's linear law) and report"
-DEFAULT_OUT = Path("figures")
 
 
 def _names(text: str) -> list[str]:
@@ -29,12 +29,11 @@ def register(sub) -> None:
                      "refinement, beside the Coulomb oracle, Walton's rigid-body law and digitised data. Writes "
                      "BENCHMARKS.md, benchmarks.json, benchmarks.png and benchmarks.pdf."),
     )
-    p.add_argument("--out", type=Path, default=DEFAULT_OUT, metavar="DIR",
-                   help="folder for the report, the JSON record and the figure (default: %(default)s)")
+    out_option(p, "the report, the JSON record and the figure")
     p.add_argument("--only", type=_names, default=None, metavar="NAME,...",
                    help="run only these benchmarks (comma-separated): chung-ooi-4, chung-ooi-5, chung-ooi-6, "
                         "thornton-linear")
-    p.add_argument("--runs", type=Path, default=None, metavar="DIR",
+    p.add_argument("--runs", type=out_folder, default=None, metavar="DIR",
                    help="keep every LAMMPS run's folder here (default: a temporary folder, removed)")
     p.set_defaults(handler=run)
 

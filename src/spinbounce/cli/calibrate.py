@@ -7,7 +7,7 @@ import tempfile
 from pathlib import Path
 
 from ..model.parameters import by_name
-from .options import json_flag, number, optional_number
+from .options import json_flag, number, optional_number, out_folder
 
 HELP = ("turn targets (normal restitution e, tangential restitution beta or Omega, mu, contact time) into "
         "LAMMPS wall/gran and pair granular parameters, and check them in LAMMPS")
@@ -40,7 +40,7 @@ def register(sub) -> None:
     held.add_argument("--gamma-t", type=number, default=None, help="hold the tangential damping (default 0), solve kt")
     held.add_argument("--kt-over-kn", type=number, default=None, help="hold kt/kn, solve gamma_t")
     p.add_argument("--no-run", action="store_true", help="print the parameters only; do not run LAMMPS")
-    p.add_argument("--runs", type=Path, default=None, metavar="DIR",
+    p.add_argument("--runs", type=out_folder, default=None, metavar="DIR",
                    help="keep the LAMMPS run here (default: a temporary folder, removed)")
     json_flag(p)
     p.set_defaults(handler=run)

@@ -5,15 +5,15 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..studies.claims import evaluate_claims, write_claims
+from .options import out_folder, out_option
 
 HELP = "check the paper's quantitative claims with LAMMPS and the exact theory; write CLAIMS.md and claims.json"
 
 
 def register(sub) -> None:
     p = sub.add_parser("claims", help=HELP, description=HELP + ".")
-    p.add_argument("--out", type=Path, default=Path("figures"), metavar="DIR",
-                   help="where CLAIMS.md and claims.json go (default %(default)s)")
-    p.add_argument("--run-dir", type=Path, default=Path("spinbounce-runs") / "claims", metavar="DIR",
+    out_option(p, "CLAIMS.md and claims.json")
+    p.add_argument("--run-dir", type=out_folder, default=Path("spinbounce-runs") / "claims", metavar="DIR",
                    help="LAMMPS run folders (default %(default)s)")
     p.set_defaults(handler=run)
 

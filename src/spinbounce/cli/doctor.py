@@ -8,7 +8,7 @@ from pathlib import Path
 
 from ..records import json_ready, software
 from ..studies import doctor
-from .options import json_flag
+from .options import json_flag, out_folder
 
 HELP = ("run a few tiny collisions and say whether this LAMMPS build's classic granular forms give "
         "the paper's tangential spring or the contact-radius variant (exit 0: paper, 3: variant, 4: neither)")
@@ -16,7 +16,7 @@ HELP = ("run a few tiny collisions and say whether this LAMMPS build's classic g
 
 def register(sub) -> None:
     p = sub.add_parser("doctor", help=HELP, description=HELP + ".")
-    p.add_argument("--run-dir", type=Path, default=None, metavar="DIR",
+    p.add_argument("--run-dir", type=out_folder, default=None, metavar="DIR",
                    help="keep the decks and logs here (default: a temporary folder, removed afterwards)")
     json_flag(p)
     p.set_defaults(handler=run)

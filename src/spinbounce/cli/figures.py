@@ -5,13 +5,11 @@ from __future__ import annotations
 import argparse
 import json
 import sys
-from pathlib import Path
 
 from ..figures import FIGURES, FigureNameError, check_names
-from .options import json_flag
+from .options import json_flag, out_folder, out_option
 
 HELP = "regenerate the paper's Figs. 2-7 (PNG, PDF and a JSON record each) from LAMMPS runs"
-DEFAULT_OUT = Path("figures")
 
 
 def figure_names(text: str) -> list[str]:
@@ -30,9 +28,8 @@ def register(sub) -> None:
     p = sub.add_parser("figures", help=HELP, description=f"{HELP}. Figures: {listing}.")
     p.add_argument("--only", action="append", type=figure_names, default=None, metavar="FIG[,FIG...]",
                    help=f"make only these figures (repeat or separate by commas; from {', '.join(FIGURES)})")
-    p.add_argument("--out", type=Path, default=DEFAULT_OUT, metavar="DIR",
-                   help="folder for figN.png, figN.pdf and figN.json (default: %(default)s)")
-    p.add_argument("--runs", type=Path, default=None, metavar="DIR",
+    out_option(p, "figN.png, figN.pdf and figN.json")
+    p.add_argument("--runs", type=out_folder, default=None, metavar="DIR",
                    help="folder for the LAMMPS runs, one subfolder per figure (default: OUT/runs)")
     json_flag(p)
     p.set_defaults(handler=run)

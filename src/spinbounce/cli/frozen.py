@@ -11,7 +11,8 @@ from ..pipeline import frozen_metadata, run_frozen
 from ..records import to_json, write_atomic
 from ..model.scenes import Frozen
 from ..model.parameters import SceneError
-from .options import announce_cost, check_run_folder, count, default_run_dir, force_flag, json_flag, model_from, model_parser, number
+from .options import (announce_cost, check_run_folder, count, default_run_dir, force_flag, json_flag, model_from,
+                      model_parser, number, out_file, out_folder)
 
 HELP = "hold a sphere in contact at height z (v_n = 0) and compare v_t(t), omega(t) with Eq. 10"
 COLUMNS = ["t", "vt", "omega", "r_omega", "vt_theory", "r_omega_theory"]
@@ -31,9 +32,9 @@ def register(sub) -> None:
                       help="ask for an accuracy instead: runs at halving dt, extrapolated to dt = 0 until the "
                            "estimated error is below TOL (the CSV gets an 'estimate' column)")
     p.add_argument("--every", type=count, default=None, help="output every this many steps (default: ~2000 rows)")
-    p.add_argument("--out", type=Path, required=True, metavar="FILE.csv",
+    p.add_argument("--out", type=out_file, required=True, metavar="FILE.csv",
                    help="time series to write; its provenance goes to FILE.meta.json beside it")
-    p.add_argument("--run-dir", type=Path, default=None, metavar="DIR",
+    p.add_argument("--run-dir", type=out_folder, default=None, metavar="DIR",
                    help="folder for the deck, dump and log (default: spinbounce-runs/frozen-<hash>)")
     force_flag(p)
     json_flag(p)

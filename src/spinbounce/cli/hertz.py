@@ -6,10 +6,9 @@ import json
 import sys
 from pathlib import Path
 
-from .options import json_flag
+from .options import json_flag, number, out_folder, out_option, positive_count
 
 HELP = "measure how the energy-conserving kt depends on v_n with a Hertzian normal force, and plot it"
-DEFAULT_OUT = Path("figures")
 
 
 def register(sub) -> None:
@@ -22,21 +21,20 @@ def register(sub) -> None:
                      "closed form kt*/kn ~ |v_n|^(2/5), the energy lost at that kt*, and the energy lost at one "
                      "kt for every speed. Writes hertz.png, hertz.pdf, hertz.json and HERTZ.md."),
     )
-    p.add_argument("--out", type=Path, default=DEFAULT_OUT, metavar="DIR",
-                   help="folder for the figure, its JSON record and HERTZ.md (default: %(default)s)")
-    p.add_argument("--runs", type=Path, default=None, metavar="DIR",
+    out_option(p, "the figure, its JSON record and HERTZ.md")
+    p.add_argument("--runs", type=out_folder, default=None, metavar="DIR",
                    help="folder for the LAMMPS runs (default: OUT/runs/hertz)")
-    p.add_argument("--v-min", type=float, default=d.v_min, metavar="V", help="slowest |v_n| (default %(default)s)")
-    p.add_argument("--v-max", type=float, default=d.v_max, metavar="V", help="fastest |v_n| (default %(default)s)")
-    p.add_argument("--points", type=int, default=d.points, metavar="N",
+    p.add_argument("--v-min", type=number, default=d.v_min, metavar="V", help="slowest |v_n| (default %(default)s)")
+    p.add_argument("--v-max", type=number, default=d.v_max, metavar="V", help="fastest |v_n| (default %(default)s)")
+    p.add_argument("--points", type=positive_count, default=d.points, metavar="N",
                    help="speeds on the log grid (default %(default)s)")
-    p.add_argument("--v-ref", type=float, default=d.v_ref, metavar="V",
+    p.add_argument("--v-ref", type=number, default=d.v_ref, metavar="V",
                    help="the speed at which the one-kt series conserves energy (default %(default)s)")
-    p.add_argument("--kn", type=float, default=d.kn,
+    p.add_argument("--kn", type=number, default=d.kn,
                    help="Hertzian stiffness K, F = K sqrt(r) delta^1.5 (default %(default)s)")
-    p.add_argument("--mass", type=float, default=d.m, metavar="M", help="sphere mass (default %(default)s)")
-    p.add_argument("--radius", type=float, default=d.r, metavar="R", help="sphere radius (default %(default)s)")
-    p.add_argument("--alpha", type=float, default=d.alpha, metavar="A", help="I/(m r^2) (default %(default)s)")
+    p.add_argument("--mass", type=number, default=d.m, metavar="M", help="sphere mass (default %(default)s)")
+    p.add_argument("--radius", type=number, default=d.r, metavar="R", help="sphere radius (default %(default)s)")
+    p.add_argument("--alpha", type=number, default=d.alpha, metavar="A", help="I/(m r^2) (default %(default)s)")
     json_flag(p)
     p.set_defaults(handler=run)
 

@@ -12,6 +12,7 @@ import argparse
 import hashlib
 import json
 import math
+import os
 import re
 import sys
 from pathlib import Path
@@ -21,11 +22,14 @@ from ..model.contact import ContactModel
 from ..model.parameters import Parameter, SceneError
 
 __all__ = ["number", "count", "model_parser", "state_parser", "model_from", "state_from", "json_flag",
-           "default_run_dir", "optional_number", "force_flag", "check_run_folder", "announce_cost", "figure_options", "make_with_runs", "allow_negative_numbers", "sweep_model_flags", "parameter_help"]
+           "default_run_dir", "optional_number", "force_flag", "check_run_folder", "announce_cost", "figure_options", "make_with_runs", "allow_negative_numbers", "sweep_model_flags", "parameter_help",
+           "FIGURES_OUT", "out_folder", "out_file", "out_option",
+           "positive_count", "worker_count"]
 
 #: argparse reads "-1e-3" as an option unless it looks like a negative number to it; its own
-#: pattern misses e-notation, so every parser here gets this one.
-NEGATIVE_NUMBER = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-inf$|^-nan$", re.IGNORECASE)
+#: pattern misses e-notation. Every parser here takes a word that starts like a negative number
+#: ("-1e-3", "-.5", "-inf", also "-1m/s") as a value, so that the number parser names what is wrong.
+NEGATIVE_NUMBER = re.compile(r"^-(\d|\.\d|inf|nan)", re.IGNORECASE)
 
 
 def number(text: str) -> float:
@@ -52,6 +56,23 @@ def count(text: str) -> int:
     if value != int(value):
         raise argparse.ArgumentTypeError(f"{text!r} is not a whole number")
     return int(value)
+
+
+def positive_count(text: str) -> int:
+    """A whole number >= 1 (collisions, spheres, points)."""
+    value = count(text)
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"{text!r}: must be >= 1")
+    return value
+
+
+def worker_count(text: str) -> int:
+    """Worker processes: >= 1 and at most the cores this process may use (more only slow each other)."""
+    value = positive_count(text)
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
+    if value > cores:
+        raise argparse.ArgumentTypeError(f"{text!r}: must be at most the {cores} core(s) available")
+    return value
 
 
 def allow_negative_numbers(parser: argparse.ArgumentParser) -> None:
@@ -171,11 +192,62 @@ def announce_cost(steps: int, spheres: int = 1) -> None:
               "Ctrl-C stops it", file=sys.stderr, flush=True)
 
 
-def figure_options(p: argparse.ArgumentParser, default_out: Path) -> None:
+#: Where a study writes its figures and records unless told otherwise: a folder of its own, so that
+#: neither the repository's stored outputs (figures/) nor a folder of the user's is written into by default.
+FIGURES_OUT = Path("spinbounce-figures")
+
+
+def _writable_ancestor(path: Path, text: str) -> None:
+    """Refuse ``path`` unless its nearest existing ancestor is a folder a file can be created in
+    (probed with a temporary file, removed at once: a permission check alone passes for root)."""
+    import tempfile
+
+    ancestor = path.absolute()
+    while not ancestor.exists():
+        ancestor = ancestor.parent
+    if not ancestor.is_dir():
+        raise argparse.ArgumentTypeError(f"{text!r}: {ancestor} is a file, not a folder")
+    try:
+        with tempfile.TemporaryFile(dir=ancestor):
+            pass
+    except OSError as exc:
+        raise argparse.ArgumentTypeError(f"{text!r}: cannot write in {ancestor} ({exc.strerror or exc})") from None
+
+
+def out_folder(text: str) -> Path:
+    """argparse type of an output folder: not an existing file, and somewhere writable."""
+    path = Path(text)
+    if not text.strip():
+        raise argparse.ArgumentTypeError("an empty name is not a folder")
+    if path.exists() and not path.is_dir():
+        raise argparse.ArgumentTypeError(f"{text!r} is a file, not a folder")
+    _writable_ancestor(path, text)
+    return path
+
+
+def out_file(text: str) -> Path:
+    """argparse type of an output file: not an existing folder, and somewhere writable."""
+    path = Path(text)
+    if not text.strip() or text.endswith(os.sep):
+        raise argparse.ArgumentTypeError(f"{text!r} is not a file name")
+    if path.is_dir():
+        raise argparse.ArgumentTypeError(f"{text!r} is a folder, not a file")
+    _writable_ancestor(path.parent, text)
+    return path
+
+
+def out_option(p: argparse.ArgumentParser, what: str) -> None:
+    """The one --out of the studies: a folder, by default :data:`FIGURES_OUT`. Only the files the
+    command writes (``what``) are replaced in it; the repository's stored outputs only when asked."""
+    p.add_argument("--out", type=out_folder, default=FIGURES_OUT, metavar="DIR",
+                   help=f"folder for {what} (default: %(default)s; the repository's stored ones are "
+                        "updated only with --out figures)")
+
+
+def figure_options(p: argparse.ArgumentParser) -> None:
     """--out (the figure's folder), --runs (keep the LAMMPS runs) and --json, for a study's figure."""
-    p.add_argument("--out", type=Path, default=default_out, metavar="DIR",
-                   help="folder for the figure and its JSON record (default: %(default)s)")
-    p.add_argument("--runs", type=Path, default=None, metavar="DIR",
+    out_option(p, "the figure and its JSON record")
+    p.add_argument("--runs", type=out_folder, default=None, metavar="DIR",
                    help="keep the LAMMPS runs here (default: a temporary folder, removed)")
     json_flag(p)
 

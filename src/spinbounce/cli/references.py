@@ -6,6 +6,7 @@ import sys
 import time
 from pathlib import Path
 
+from ..model.parameters import SceneError
 from ..studies import references
 
 HELP = "compare fresh runs with the stored reference tables and golden decks (--check), or remake them (--regenerate)"
@@ -54,9 +55,8 @@ def run(args) -> int:
         return 0
     try:
         report = references.check(args.dir, names=args.case, progress=_progress)
-    except FileNotFoundError as exc:
-        print(f"spinbounce references: {exc}", file=sys.stderr)
-        return 1
+    except FileNotFoundError as exc:  # nothing to compare with: a wrong --dir, refused like any bad value
+        raise SceneError("--dir", str(args.dir), str(exc)) from None
     print(references.format_report(report), end="")
     seconds = time.perf_counter() - started
     cases = len(report.deviations)

@@ -3,14 +3,12 @@
 from __future__ import annotations
 
 import json
-from pathlib import Path
 
 from ..records import json_ready
 from .options import figure_options, make_with_runs
 
 HELP = ("map normal and tangential restitution, rebound angle and spin against the incidence angle (Hooke, Hertz, "
         "with and without mu), with Kharaz's measured alumina data and the model fitted to it")
-DEFAULT_OUT = Path("figures")
 
 
 def register(sub) -> None:
@@ -19,7 +17,7 @@ def register(sub) -> None:
         description=(f"{HELP}. Each curve is one batched LAMMPS run beside the theory that applies. "
                      "Writes restitution.png, restitution.pdf and restitution.json."),
     )
-    figure_options(p, DEFAULT_OUT)
+    figure_options(p)
     p.set_defaults(handler=run)
 
 

@@ -4,13 +4,11 @@ from __future__ import annotations
 
 import json
 import sys
-from pathlib import Path
 
 from ..records import json_ready
 from .options import figure_options, make_with_runs
 
 HELP = "bounce a sphere many times between two parallel walls in LAMMPS, against the product of the matrices"
-DEFAULT_OUT = Path("figures")
 
 
 def register(sub) -> None:
@@ -20,7 +18,7 @@ def register(sub) -> None:
                      "stick-slip solution bounce by bounce: the paper's model, the magic kt/kn = 2/7, a damped and a capped "
                      "contact. Writes two_walls.png, two_walls.pdf and two_walls.json."),
     )
-    figure_options(p, DEFAULT_OUT)
+    figure_options(p)
     p.set_defaults(handler=run)
 
 

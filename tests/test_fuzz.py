@@ -1,0 +1,126 @@
+"""The fuzz set: unusual and wrong invocations of ``spinbounce``, each run as a user runs it.
+
+Every case (tests/fuzz_cases.py) runs as a subprocess ``python -m spinbounce.cli ...`` in a
+folder of its own holding the files it needs; two at a time, since the machine may have no more
+cores. A case that does not end within :data:`TIMEOUT` fails: the set is made of refusals that
+come before LAMMPS starts and runs of one tiny collision.
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import time
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass
+from pathlib import Path
+
+import pytest
+
+import spinbounce
+from fuzz_cases import CASES, Case
+from fuzz_support import make, snapshot
+
+#: Seconds one invocation may take; the slowest case (a frozen contact in LAMMPS) takes about 2.
+TIMEOUT = 60.0
+#: At most this many invocations at once.
+PARALLEL = 2
+
+
+@dataclass
+class Outcome:
+    code: int | None
+    stdout: str
+    stderr: str
+    seconds: float
+    before: dict
+    after: dict
+
+
+def _environment() -> dict:
+    env = dict(os.environ)
+    source = str(Path(spinbounce.__file__).resolve().parents[1])
+    env["PYTHONPATH"] = os.pathsep.join(filter(None, [source, env.get("PYTHONPATH")]))
+    env.pop("COLUMNS", None)
+    return env
+
+
+def _kill(process: subprocess.Popen) -> None:
+    """The whole process group: a sweep's workers go with their parent."""
+    try:
+        os.killpg(process.pid, signal.SIGKILL)
+    except ProcessLookupError:
+        pass
+
+
+def _invoke(case: Case, folder: Path) -> tuple[int | None, str, str]:
+    command = [sys.executable, "-m", "spinbounce.cli", *case.argv]
+    process = subprocess.Popen(command, cwd=folder, env=_environment(), stdin=subprocess.DEVNULL,
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
+    try:
+        if case.expect == "pipe":  # the reader takes one line and goes away, as `| head -1` does
+            first = process.stdout.readline()
+            process.stdout.close()
+            return process.wait(timeout=TIMEOUT), first, process.stderr.read()
+        stdout, stderr = process.communicate(timeout=TIMEOUT)
+        return process.returncode, stdout, stderr
+    except subprocess.TimeoutExpired:
+        _kill(process)
+        process.wait()
+        return None, "", f"timed out after {TIMEOUT:.0f} s"
+
+
+def run_case(case: Case, folder: Path) -> Outcome:
+    make(folder, case.files)
+    before = snapshot(folder)
+    started = time.perf_counter()
+    code, stdout, stderr = _invoke(case, folder)
+    return Outcome(code, stdout, stderr, time.perf_counter() - started, before, snapshot(folder))
+
+
+@pytest.fixture(scope="module")
+def outcomes(request, tmp_path_factory) -> dict[str, tuple[Outcome, Path]]:
+    """Every selected case, run PARALLEL at a time, once: {case id: (outcome, its folder)}."""
+    selected = [item.callspec.params["case"] for item in request.session.items
+                if item.module.__name__ == __name__ and hasattr(item, "callspec")]
+    folders = [tmp_path_factory.mktemp(f"fuzz-{case.id}") for case in selected]
+    with ThreadPoolExecutor(max_workers=PARALLEL) as pool:
+        results = list(pool.map(run_case, selected, folders))
+    return {case.id: (result, folder) for case, result, folder in zip(selected, results, folders)}
+
+
+def _marks(case: Case):
+    return [pytest.mark.lammps] if case.expect == "ok" and case.argv[0] in ("collide", "frozen") else []
+
+
+@pytest.mark.parametrize("case", [pytest.param(c, id=c.id, marks=_marks(c)) for c in CASES])
+def test_invocation(case: Case, outcomes):
+    got, folder = outcomes[case.id]
+    shown = f"spinbounce {' '.join(case.argv)} -> exit {got.code}\nstdout: {got.stdout[-2000:]}\nstderr: {got.stderr}"
+    assert got.code is not None, shown
+    assert "Traceback" not in got.stderr, shown
+    if case.expect == "refused":
+        lines = got.stderr.strip().splitlines()
+        assert got.code == 2 and len(lines) == 1 and lines[0].startswith("spinbounce"), shown
+        missing = [needle for needle in case.needles if needle not in lines[0]]
+        assert not missing, f"the refusal does not name {missing}\n{shown}"
+        assert got.after == got.before, f"a refusal changed the files\n{shown}"
+    elif case.expect == "ok":
+        assert got.code == 0, shown
+        if "--force" not in case.argv:
+            changed = [name for name, content in got.before.items() if got.after.get(name) != content]
+            assert not changed, f"a user's file was changed: {changed}\n{shown}"
+        case.check(got.stdout, folder)
+    else:
+        assert got.code == 0 and got.stdout and not got.stderr.strip(), shown
+
+
+def test_the_set_is_large_and_readable():
+    """At least 150 invocations, each with a unique readable id and an expected class."""
+    ids = [case.id for case in CASES]
+    assert len(CASES) >= 150 and len(set(ids)) == len(ids)
+    assert all(case.expect in ("refused", "ok", "pipe") for case in CASES)
+    assert all(case.needles for case in CASES if case.expect == "refused")
+    assert all(case.check is not None for case in CASES if case.expect == "ok")
