@@ -3,14 +3,12 @@
 from __future__ import annotations
 
 import json
-from pathlib import Path
 
 from ..records import json_ready
 from .options import figure_options, make_with_runs, model_from, model_parser, number, state_parser
 
 HELP = ("for your contact model: how this build's classic wall (fix wall/gran hooke/history) scatters "
         "against the paper's model, speed by speed, and the granular line that gives the paper's model")
-DEFAULT_OUT = Path("spinbounce-figures")
 
 
 def register(sub) -> None:
@@ -21,7 +19,7 @@ def register(sub) -> None:
                    help="impact speeds |v_n| for the table (default: 1%%, 10%%, 30%%, 60%% and 90%% of the "
                         "tunnelling speed r sqrt(kn/m), and the state's own)")
     p.add_argument("--figure", action="store_true", help="also write the figure and its JSON record into --out")
-    figure_options(p, DEFAULT_OUT)
+    figure_options(p)
     p.set_defaults(handler=run)
 
 

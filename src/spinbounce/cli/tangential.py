@@ -4,7 +4,6 @@
 from __future__ import annotations
 
 import json
-from pathlib import Path
 
 from ..records import json_ready
 from .options import figure_options, make_with_runs
@@ -12,7 +11,6 @@ from .options import figure_options, make_with_runs
 HELP = ("tangential restitution beta = -g_t'/g_t against |g_t|/|v_n| with Coulomb friction (Becker et al. 2008): "
         "LAMMPS, the exact solver, Walton's gross-slip line and the sticking plateau")
 #: Not figures/: the repository's committed outputs change only when asked with --out figures.
-DEFAULT_OUT = Path("spinbounce-figures")
 
 
 def register(sub) -> None:
@@ -21,7 +19,7 @@ def register(sub) -> None:
         description=(f"{HELP}. Each parameter set is one batched LAMMPS run at the default accuracy beside the "
                      "theory. Writes tangential.png, tangential.pdf and tangential.json."),
     )
-    figure_options(p, DEFAULT_OUT)
+    figure_options(p)
     p.set_defaults(handler=run)
 
 
