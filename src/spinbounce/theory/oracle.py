@@ -133,9 +133,11 @@ class _Contact:
         return self.mu * f, self.mu * df
 
     def normal_accel(self, y) -> float:
-        if not self.tensile and self.turned:
+        f, _ = self.normal(y)
+        # limit_damping: no pull, also in a phase that follows no force_zero event (a coast)
+        if not self.tensile and (self.turned or f < 0.0):
             return 0.0
-        return self.normal(y)[0] / self.m
+        return f / self.m
 
     def rhs(self, phase: str):
         kt, gt, m, alpha = self.kt, self.gt, self.m, self.alpha
