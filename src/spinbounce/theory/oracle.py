@@ -133,11 +133,9 @@ class _Contact:
         return self.mu * f, self.mu * df
 
     def normal_accel(self, y) -> float:
-        f, _ = self.normal(y)
-        # limit_damping: no pull, also in a phase that follows no force_zero event (a coast)
-        if not self.tensile and (self.turned or f < 0.0):
+        if not self.tensile and self.turned:
             return 0.0
-        return f / self.m
+        return self.normal(y)[0] / self.m
 
     def rhs(self, phase: str):
         kt, gt, m, alpha = self.kt, self.gt, self.m, self.alpha
@@ -222,6 +220,10 @@ class _Contact:
             return self.start(y, cap_rising=True)
         if name == "cap_gone" or (cap < self.floor and dcap <= 0.0):
             y[_A] = 0.0  # the cap is gone or going: no tangential force left to speak of
+            if self.gn > 0.0 and not self.turned and self.normal(y)[1] < 0.0:
+                # F_n is within 1e-12 of its scale and falling: this is the turn, and a
+                # force_zero event starting at its own root could miss it
+                return self.switch("force_zero", y, "coast")
             return "coast"
         if name == "to_slip":
             return self.on_cap(y, cap, dcap)
