@@ -30,14 +30,16 @@ class Case:
     needles: tuple[str, ...] = ()
     files: tuple[str, ...] = ()
     check: Callable | None = None
+    #: The module run by ``python -m``: the command's own, or the package's (python -m spinbounce).
+    module: str = "spinbounce.cli"
 
 
-def refused(id_: str, line: str, *needles: str, files: tuple[str, ...] = ()) -> Case:
-    return Case(id_, tuple(shlex.split(line)), "refused", needles, files)
+def refused(id_: str, line: str, *needles: str, files: tuple[str, ...] = (), module: str = "spinbounce.cli") -> Case:
+    return Case(id_, tuple(shlex.split(line)), "refused", needles, files, module=module)
 
 
-def ok(id_: str, line: str, check: Callable, files: tuple[str, ...] = ()) -> Case:
-    return Case(id_, tuple(shlex.split(line)), "ok", (), files, check)
+def ok(id_: str, line: str, check: Callable, files: tuple[str, ...] = (), module: str = "spinbounce.cli") -> Case:
+    return Case(id_, tuple(shlex.split(line)), "ok", (), files, check, module)
 
 
 def pipe(id_: str, line: str) -> Case:
@@ -298,4 +300,34 @@ TOP = [
     refused("dash-dash", "theory -- --vn -1", "--vn"),
 ]
 
-CASES = [*NUMBERS, *MODEL_LIMITS, *FLAGS, *COUNTS, *TIME, *FILES, *RUNS, *PIPES, *TOP]
+#: Found failing after the first set passed: each now refused at its root, or checked.
+FOUND_LATER = [
+    refused("dt-denormal", f"collide {STATE} --dt 5e-324 --out c", "dt", "5e-324", "1e+08"),
+    refused("frozen-dt-denormal", f"{FROZEN} --dt 5e-324", "dt", "5e-324", "1e+08"),
+    refused("frozen-dt-coarse", f"{FROZEN} --dt 1", "dt = 1.0", "steps per half-period", "at most"),
+    refused("collide-dt-coarse", f"collide {STATE} --dt 0.3 --out c", "dt = 0.3", "steps per half-period"),
+    refused("fit-corrupt", "fit corrupt", "corrupt/chunks/chunk-0000-000000.parquet", files=("corrupt",)),
+    refused("fit-random-bytes", "fit random", "random/chunks/chunk-0000-000000.parquet", files=("random",)),
+    refused("fit-corrupt-selected", "fit corrupt --alpha 0.4", "corrupt/chunks", files=("corrupt",)),
+    refused("fit-text-file", "fit notes.txt", "notes.txt", "Parquet", files=("notes.txt",)),
+    refused("fit-text-named-parquet", "fit x.parquet", "x.parquet", files=("x.parquet",)),
+    refused("fit-foreign", "fit foreign", "foreign/chunks", "vn_0", files=("foreign",)),
+    refused("fit-foreign-plot", "fit foreign --plot x.png", "foreign/chunks", "vn_0", files=("foreign",)),
+    refused("sweep-too-many-chunks", "sweep --n 1e12 --out s --list-chunks", "n = 1000000000000", "100000"),
+    refused("sweep-over-an-hour", "sweep --n 1e9 --out s", "--n = 1000000000", "core-hours", "--force"),
+    ok("sweep-over-an-hour-listed", "sweep --n 1e9 --out s --list-chunks --json", chunks_listed(10**9)),
+    refused("sweep-scene-vn-positive", "sweep vn_positive.toml --out s", "v_n", "0.1", "< 0",
+            files=("vn_positive.toml",)),
+    refused("sweep-vn-positive-flags", "sweep --n 10 --vn 0.1 1.5 --out s", "v_n", "0.1", "< 0"),
+    refused("sweep-workers-above-cores", "sweep --n 10 --workers 4096 --out s", "--workers", "4096", "core"),
+    refused("pair-earlier-run", "pair --out run", "--out", "run", "--force", files=("run",)),
+    refused("pair-cost-huge", "pair --cost 1e12", "--cost", "1e12", "100000"),
+    refused("pair-cost-zero", "pair --cost 0", "--cost", "0", ">= 1"),
+    refused("pair-cost-fraction", "pair --cost 2.5", "--cost", "2.5"),
+    refused("figures-runs-holds-user-file", "figures --only fig2 --runs figout", "--runs", "figout/fig2",
+            files=("figout-fig2",)),
+    ok("python-m-spinbounce", "--version", printed("spinbounce "), module="spinbounce"),
+    refused("python-m-spinbounce-refusal", "theory --vn nan", "--vn", "nan", module="spinbounce"),
+]
+
+CASES = [*NUMBERS, *MODEL_LIMITS, *FLAGS, *COUNTS, *TIME, *FILES, *RUNS, *PIPES, *TOP, *FOUND_LATER]

@@ -42,6 +42,15 @@ def _corrupt_parquet(folder: Path) -> None:
     (chunks / "chunk-0000-000000.parquet").write_bytes(b"PAR1 this is not a parquet file\x00\x01")
 
 
+def _random_parquet(folder: Path) -> None:
+    """A chunk of random bytes (seeded: the same every run) under a chunk's name."""
+    import numpy as np
+
+    chunks = folder / "random" / "chunks"
+    chunks.mkdir(parents=True)
+    (chunks / "chunk-0000-000000.parquet").write_bytes(np.random.default_rng(16).bytes(4096))
+
+
 def _foreign_parquet(folder: Path) -> None:
     import pandas as pd
 
@@ -77,6 +86,10 @@ MAKERS = {
     "vn_one.toml": _text("vn_one.toml", SCENE_OK.replace("v_n = [-1.5, -0.1]", "v_n = -1.0")),
     "ok.toml": _text("ok.toml", SCENE_OK),
     "corrupt": _corrupt_parquet,
+    "random": _random_parquet,
+    "x.parquet": _text("x.parquet", "a note, named like a Parquet file\n"),
+    "vn_positive.toml": _text("vn_positive.toml", SCENE_OK.replace("v_n = [-1.5, -0.1]", "v_n = [0.1, 1.5]")),
+    "figout-fig2": _text("figout/fig2/notes.txt", "the user's notes\n"),
     "foreign": _foreign_parquet,
     "emptydir": _folder("emptydir"),
 }

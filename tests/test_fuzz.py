@@ -1,6 +1,7 @@
 """The fuzz set: unusual and wrong invocations of ``spinbounce``, each run as a user runs it.
 
-Every case (tests/fuzz_cases.py) runs as a subprocess ``python -m spinbounce.cli ...`` in a
+Every case (tests/fuzz_cases.py) runs as a subprocess ``python -m spinbounce.cli ...`` (or
+``python -m spinbounce``) in a
 folder of its own holding the files it needs; two at a time, since the machine may have no more
 cores. A case that does not end within :data:`TIMEOUT` fails: the set is made of refusals that
 come before LAMMPS starts and runs of one tiny collision.
@@ -56,7 +57,7 @@ def _kill(process: subprocess.Popen) -> None:
 
 
 def _invoke(case: Case, folder: Path) -> tuple[int | None, str, str]:
-    command = [sys.executable, "-m", "spinbounce.cli", *case.argv]
+    command = [sys.executable, "-m", case.module, *case.argv]
     process = subprocess.Popen(command, cwd=folder, env=_environment(), stdin=subprocess.DEVNULL,
                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
     try:

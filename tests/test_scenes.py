@@ -78,18 +78,34 @@ def test_dt_must_be_positive(bad_dt):
         Collision(ContactModel(), v_n=-1, v_t=0, omega=0, dt=bad_dt)
 
 
-def test_dt_above_stability_limit_is_refused_below_is_accepted():
+def test_dt_above_stability_limit_or_too_coarse_is_refused():
     model = ContactModel()
-    limit = 2.0 / math.sqrt(model.kn / model.m)  # undamped normal mode is the stiffest
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", PhysicsWarning)
-        Collision(model, v_n=-0.3, v_t=0, omega=0, dt=0.9 * limit)
-        # stable, but the step's own overshoot (x 1/sqrt(1 - 0.81) = 2.29) would carry a
-        # faster sphere's centre through the wall (exact overlap 0.32, stretched 0.73 > r)
-        with pytest.raises(SceneError, match=r"^v_n = -1\.0: at dt = .* stretches the overlap to 0\.72"):
-            Collision(model, v_n=-1, v_t=0, omega=0, dt=0.9 * limit)
+    w = math.sqrt(model.kn / model.m)  # undamped normal mode is the stiffest
     with pytest.raises(SceneError, match="stability limit 0.632456 of the normal mode"):
-        Collision(model, v_n=-1, v_t=0, omega=0, dt=1.1 * limit)
+        Collision(model, v_n=-1, v_t=0, omega=0, dt=1.1 * 2.0 / w)
+    # stable, but 1.7 steps per half-period: refused, naming the coarsest dt accepted (pi/w/20)
+    with pytest.raises(SceneError, match=rf"^dt = .*only 1\.75 steps per half-period: must be at most {math.pi / w / 20:.6g}"):
+        Collision(model, v_n=-0.3, v_t=0, omega=0, dt=0.9 * 2.0 / w)
+    assert Collision(model, v_n=-1, v_t=0, omega=0, dt=math.pi / w / 20).dt == math.pi / w / 20
+
+
+def test_frozen_refuses_a_dt_collide_refuses():
+    """The same rule (ContactModel.check_dt) for the frozen contact's slip mode: at z = 0.45,
+    dt = 1 would be 1.7 steps per half-period (its one step erred by 0.32)."""
+    model = ContactModel()
+    with pytest.raises(SceneError, match=r"^dt = 1\.0: resolves the fastest contact mode with only 1\.68 steps"):
+        Frozen(model, z=0.45, v_t=1.0, omega=0.0, t_end=1.0, dt=1.0)
+
+
+@pytest.mark.parametrize("scene", [lambda dt: Collision(ContactModel(), v_n=-1, v_t=0, omega=0, dt=dt),
+                                   lambda dt: Frozen(ContactModel(), z=0.45, v_t=1.0, omega=0.0, t_end=1.0, dt=dt)],
+                         ids=["collision", "frozen"])
+def test_a_dt_too_fine_for_the_step_cap_is_refused_naming_dt(scene):
+    # 5e-324 (the smallest double) makes t_end/dt infinite: refused, not an overflow
+    with pytest.raises(SceneError, match=r"^dt = 5e-324: needs inf steps .* more than the limit of 1e\+08"):
+        scene(5e-324)
+    with pytest.raises(SceneError, match=r"^dt = 1e-12: needs (9\.93e\+11|1e\+12) steps"):
+        scene(1e-12)
 
 
 def test_stiff_tangential_spring_sets_the_limit():
@@ -107,8 +123,8 @@ def test_damping_lowers_the_stability_limit():
     assert stability_limit(0.0, c=5.0) == pytest.approx(0.4, rel=1e-9)
 
 
-def test_coarse_dt_warns():
-    with pytest.warns(PhysicsWarning, match="steps per half-period"):
+def test_coarse_dt_is_refused():
+    with pytest.raises(SceneError, match="^dt = 0.1: resolves the fastest contact mode with only 9.93 steps"):
         Collision(ContactModel(), v_n=-1, v_t=0, omega=0, dt=0.1)
 
 

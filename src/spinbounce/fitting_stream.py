@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -52,11 +53,16 @@ def _batches(files, columns):
     """The files' rows, BATCH_ROWS at a time, one file after another (no read-ahead)."""
     import pyarrow.parquet as pq
 
+    from .sweeps import SweepError
+
     for path in files:
-        reader = pq.ParquetFile(str(path))
-        present = [c for c in columns if c in reader.schema_arrow.names]
-        for batch in reader.iter_batches(batch_size=BATCH_ROWS, columns=present):
-            yield batch.to_pandas()
+        try:
+            reader = pq.ParquetFile(str(path))
+            present = [c for c in columns if c in reader.schema_arrow.names]
+            for batch in reader.iter_batches(batch_size=BATCH_ROWS, columns=present):
+                yield batch.to_pandas()
+        except (OSError, ValueError) as exc:  # a file whose footer reads and whose rows do not
+            raise SweepError(f"{path}: not a readable sweep chunk ({exc})") from None
 
 
 def _arrays(frame: pd.DataFrame, names) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -114,7 +120,7 @@ def fit_dataset(files, names=None) -> list[dict]:
     """:func:`spinbounce.fitting.fit_groups` of the rows in ``files`` (Parquet), streamed."""
     from .sweeps.run import chunk_files
 
-    files = chunk_files(files) if not isinstance(files, list) else files
+    files = chunk_files(Path(files)) if not isinstance(files, list) else files
     import pyarrow.parquet as pq
 
     schema = pq.read_schema(str(files[0])).names

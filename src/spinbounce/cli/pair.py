@@ -6,11 +6,12 @@ Also the pair scene of ``theory`` and ``collide`` (``--scene pair``): :func:`pai
 
 from __future__ import annotations
 
+import argparse
 import json
 from pathlib import Path
 
 from ..model.parameters import SceneError, by_name
-from .options import count, default_run_dir, json_flag, number
+from .options import check_run_folder, default_run_dir, force_flag, json_flag, number, positive_count
 
 HELP = "collide two free spheres (pair granular) and compare with the exact reference and the planar theory"
 #: Each sphere's options: (flag stem, declared parameter whose range it takes).
@@ -18,6 +19,18 @@ SPHERE_OPTIONS = (("m", "m"), ("r", "r"), ("alpha", "alpha"))
 VECTORS = (("normal", (0.0, 0.0, 1.0)), ("v-a", (1.0, 0.0, -1.0)), ("v-b", (0.0, 0.0, 0.0)),
            ("w-a", (0.0, 0.0, 0.0)), ("w-b", (0.0, 0.0, 0.0)))
 LAW = ("kn", "kt", "gamma_n", "gamma_t")
+#: The most impacts --cost measures over: the cost per collision is steady to a few percent
+#: from a few hundred, and each impact is a Python object before LAMMPS starts.
+MAX_COST_IMPACTS = 100_000
+
+
+def cost_count(text: str) -> int:
+    """argparse type of --cost: a whole number of impacts in [1, MAX_COST_IMPACTS]."""
+    value = positive_count(text)
+    if value > MAX_COST_IMPACTS:
+        raise argparse.ArgumentTypeError(f"{text!r}: must be at most {MAX_COST_IMPACTS} (the cost per "
+                                         "collision is steady to a few percent from a few hundred impacts)")
+    return value
 
 
 def register(sub) -> None:
@@ -41,13 +54,15 @@ def register(sub) -> None:
                        help=f"{declared.meaning}; {declared.range_text()} (default %(default)s)")
     p.add_argument("--dt", type=number, default=None, help="timestep (default: pairs.scene.PAIR_STEPS_PER_HALF_PERIOD)")
     p.add_argument("--out", type=Path, default=None, metavar="DIR", help="run folder (default: spinbounce-runs/pair-*)")
+    force_flag(p)
     p.add_argument("--figure", type=Path, default=None, metavar="DIR",
                    help="write pair_validity.png/.pdf/.json into DIR instead")
     p.add_argument("--published", type=Path, default=None, metavar="DIR",
                    help="run the published sphere-sphere benchmarks (Chung & Ooi tests 1, 7, 8; "
                         "studies/validation/pair_cases.py) and write pair_benchmarks.json into DIR instead")
-    p.add_argument("--cost", type=count, default=None, metavar="N",
-                   help="measure LAMMPS's cost per pair collision against the wall's, over N impacts, instead")
+    p.add_argument("--cost", type=cost_count, default=None, metavar="N",
+                   help=f"measure LAMMPS's cost per pair collision against the wall's, over N impacts "
+                        f"(1 to {MAX_COST_IMPACTS}), instead")
     json_flag(p)
     p.set_defaults(handler=run)
 
@@ -85,6 +100,7 @@ def _report(batch, row, out: Path | None, as_json: bool) -> int:
 def _one_pair(args) -> int:
     from ..pairs import Pair, PairBatch, PairContact, Sphere, run_pairs
 
+    check_run_folder(args.out, args.force)
     spheres = {side: Sphere(*(by_name(name).check(getattr(args, f"{stem}_{side}"), f"--{stem}-{side}")
                               for stem, name in SPHERE_OPTIONS)) for side in "ab"}
     pair = Pair(a=spheres["a"], b=spheres["b"], normal=args.normal, v_a=args.v_a, v_b=args.v_b, w_a=args.w_a, w_b=args.w_b)

@@ -1,7 +1,7 @@
 """spinbounce sweep: many collisions from a scene file or flags, into a Parquet dataset.
 
 A scene file is the whole sweep: beside one, the model and state flags are refused (name
-them in the file instead); the run flags (--out, --workers, --chunk, --list-chunks, --json)
+them in the file instead); the run flags (--out, --workers, --chunk, --list-chunks, --force, --json)
 apply to either. From flags, every sweepable model parameter takes one value or several.
 """
 
@@ -16,7 +16,11 @@ from ..model import parameters
 from ..model.timestep import duration_text
 from ..studies.cost import chunk_cost
 from ..sweeps import SweepError, chunk_table, load_spec, run_one_chunk, run_sweep, spec_from_dict, status_counts
-from .options import count, number, sweep_model_flags
+from .options import count, number, sweep_model_flags, worker_count
+
+#: The most a sweep may be estimated to take (on one core) before it must be forced: a longer
+#: one belongs on a cluster, as chunks run by the workflow (workflows/Snakefile).
+MAX_CORE_HOURS = 1.0
 
 HELP = "run many collisions in parallel chunks (resumable) into a Parquet dataset"
 #: State ranges from flags: (dest, flags, default range or None, help).
@@ -42,14 +46,16 @@ def register(sub) -> None:
     p = sub.add_parser("sweep", help=HELP, description=HELP + ". Give a TOML scene file, or the flags below.")
     p.add_argument("scene_file", nargs="?", type=Path, metavar="scene", help="TOML scene file (its keys: spinbounce.sweeps.spec)")
     p.add_argument("--out", type=Path, metavar="DIR", help="output folder (rerun to resume); required to run")
-    p.add_argument("--workers", type=count, default=os.cpu_count() or 1,
-                   help="parallel worker processes, >= 1 (default: the machine's cores, %(default)s)")
+    p.add_argument("--workers", type=worker_count, default=None,
+                   help="parallel worker processes, >= 1 and at most the cores available (default: all of them)")
     p.add_argument("--chunk", type=count, metavar="K",
                    help="run only chunk K (see --list-chunks), in this process; several such jobs may "
                         "share one --out (as a workflow engine runs them)")
     p.add_argument("--list-chunks", action="store_true",
                    help="print the chunks (K, group, chunk, start, stop, file) and exit without running")
     p.add_argument("--json", action="store_true", help="with --list-chunks: print JSON")
+    p.add_argument("--force", action="store_true",
+                   help=f"run a sweep estimated at more than {MAX_CORE_HOURS:g} core-hour(s) on this machine anyway")
     p.add_argument("--strict", action="store_true",
                    help="exit with status 1 if any row is not 'ok' (grazing, energy_gained or inaccurate)")
     g = p.add_argument_group("states, from flags (instead of a scene file)")
@@ -131,13 +137,28 @@ def spec_from_flags(args) -> dict:
     return raw
 
 
+def _cores() -> int:
+    return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
+
+
+def estimated_seconds(spec) -> float:
+    """The whole sweep on one core (studies.cost): a full chunk's cost times their number, and
+    the last, shorter chunk's, per group; without listing the chunks."""
+    total = 0.0
+    for group in range(len(spec.groups)):
+        full, rest = divmod(spec.n, spec.chunk_size)
+        total += full * chunk_cost(spec, group, spec.chunk_size).seconds if full else 0.0
+        total += chunk_cost(spec, group, rest).seconds if rest else 0.0
+    return total
+
+
 def run(args) -> int:
     if args.scene_file is not None:
         given = _given(args)
         if given:
             flags = ", ".join("--" + name.replace("_", "-") for name in given)
             raise SweepError(f"{flags}: a scene file is the whole sweep; put these in {args.scene_file} instead "
-                             "(beside a scene file only --out, --workers, --chunk, --list-chunks and --json apply)")
+                             "(beside a scene file only --out, --workers, --chunk, --list-chunks, --force and --json apply)")
         spec = load_spec(args.scene_file)
     else:
         spec = spec_from_dict(spec_from_flags(args))
@@ -151,19 +172,22 @@ def run(args) -> int:
         return 0
     if args.out is None:
         raise SweepError("--out = None: an output folder is required to run a sweep")
-    if args.workers < 1:
-        raise SweepError(f"--workers = {args.workers}: must be >= 1")
     if args.chunk is not None:
         path = run_one_chunk(spec, args.out, args.chunk)
         print(f"chunk {args.chunk}: {path}")
         return 0
-    total = spec.n * len(spec.groups)
-    print(f"sweep {spec.digest}: {total} collisions in {len(spec.chunks())} chunks, "
-          f"{len(spec.groups)} model group(s), {args.workers} worker(s); estimated "
-          f"{duration_text(sum(chunk_cost(spec, g, stop - start).seconds for g, _, start, stop in spec.chunks()))} "
-          "on one core")
+    seconds = estimated_seconds(spec)
+    if seconds > MAX_CORE_HOURS * 3600 and not args.force:
+        key = "states.n" if args.scene_file is not None else "--n"
+        raise SweepError(f"{key} = {spec.n}: {spec.n * len(spec.groups)} collisions are estimated at "
+                         f"{duration_text(seconds)} on one core, more than the limit of {MAX_CORE_HOURS:g} "
+                         "core-hour(s) for one machine: run it as chunks on a cluster (workflows/Snakefile, "
+                         "docs/how-to/cluster.md), or give --force to run it here")
+    workers = args.workers or _cores()
+    print(f"sweep {spec.digest}: {spec.n * len(spec.groups)} collisions in {len(spec.chunks())} chunks, "
+          f"{len(spec.groups)} model group(s), {workers} worker(s); estimated {duration_text(seconds)} on one core")
     try:
-        dataset = run_sweep(spec, args.out, workers=args.workers)
+        dataset = run_sweep(spec, args.out, workers=workers)
     except KeyboardInterrupt:
         print(f"spinbounce sweep: interrupted; the finished chunks in {args.out} are kept: rerun the same "
               "command to resume", file=sys.stderr)

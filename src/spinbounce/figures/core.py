@@ -31,6 +31,7 @@ from ..pipeline import (
     run_frozen,
 )
 from ..records import software, to_json, write_atomic, write_atomic_with
+from ..model.parameters import SceneError
 from ..model.scenes import Collision, ContactModel, Frozen
 from ..model.timestep import align_mid_step
 
@@ -156,7 +157,8 @@ def default_runs(out: Path, runs: Path | None, name: str) -> Path:
         if (folder / RUNS_MARKER).exists():
             shutil.rmtree(folder)
         elif any(folder.iterdir()):
-            raise ResultError(f"{folder} holds files that are not a figure's runs; give another --runs folder")
+            raise SceneError("--runs" if runs is not None else "--out", str(folder),
+                             "holds files that are not a figure's runs: give another folder")
     folder.mkdir(parents=True, exist_ok=True)
     write_atomic(folder / RUNS_MARKER, f"LAMMPS runs of {name}, remade with it (spinbounce figures)\n")
     return folder

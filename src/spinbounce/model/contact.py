@@ -20,14 +20,13 @@ from .. import theory
 from ..theory import choose, hertz
 from .parameters import MODEL, SceneError, positive_number
 from .stability import stability_limit
+from .timestep import MIN_STEPS_PER_HALF_PERIOD
 
 __all__ = ["ContactModel", "ContactPhysics", "PhysicsWarning", "NORMAL_LAWS", "ALPHA_SHELL",
            "MIN_STEPS_PER_HALF_PERIOD"]
 
 #: Normal force laws, as declared.
 NORMAL_LAWS = next(p for p in MODEL if p.name == "normal").choices
-#: Below this many steps per half-period a result is a caricature: warn.
-MIN_STEPS_PER_HALF_PERIOD = 20
 #: Below this normal restitution the sphere creeps out of the overlap so slowly that the
 #: end of the contact cannot be located by a run (measured: e = 4e-3 runs, 8e-5 does not).
 MIN_RESTITUTION = 1e-3
@@ -203,12 +202,13 @@ class ContactPhysics:
             )
         rate = self.fastest_rate(frozen, speed)
         steps = math.pi / rate / dt if rate > 0.0 else math.inf
-        if steps < MIN_STEPS_PER_HALF_PERIOD:
-            warnings.warn(
-                f"dt = {dt:g} resolves the fastest contact mode with only {steps:.1f} steps "
-                f"per half-period (fewer than {MIN_STEPS_PER_HALF_PERIOD}): expect a large error",
-                PhysicsWarning,
-                stacklevel=3,
+        if steps < MIN_STEPS_PER_HALF_PERIOD * (1.0 - 1e-9):  # a rung of exactly that many steps is accepted
+            raise SceneError(
+                "dt",
+                dt,
+                f"resolves the fastest contact mode with only {steps:.3g} steps per half-period: must be at most "
+                f"{math.pi / rate / MIN_STEPS_PER_HALF_PERIOD:.6g} ({MIN_STEPS_PER_HALF_PERIOD} steps; fewer "
+                "give a caricature of the contact, whatever the target)",
             )
         return dt
 

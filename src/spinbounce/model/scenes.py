@@ -26,9 +26,9 @@ import numpy as np
 from .. import theory
 from ..theory import choose, hertz
 from . import parameters
-from .contact import MIN_STEPS_PER_HALF_PERIOD, NORMAL_LAWS, ContactModel, PhysicsWarning
+from .contact import NORMAL_LAWS, ContactModel, PhysicsWarning
 from .parameters import SceneError, finite_number, positive_number
-from .timestep import ACCURACY, FROZEN_ACCURACY, SAFETY, align_mid_step, check_steps, second_order_dt, steps_through
+from .timestep import MIN_STEPS_PER_HALF_PERIOD, ACCURACY, FROZEN_ACCURACY, SAFETY, align_mid_step, check_steps, second_order_dt, steps_through
 
 __all__ = [
     "SceneError",
@@ -303,8 +303,10 @@ class Frozen:
         set_(self, "t_end", positive_number("t_end", self.t_end))
         given = self.dt is not None
         set_(self, "dt", m.check_dt(self.dt if given else self.default_dt(), frozen=True))
-        steps = math.ceil(self.t_end / self.dt - 1e-9)
-        check_steps(steps, "t_end", self.t_end, f"dt = {self.dt:.3g} resolves the slip mode at the default accuracy")
+        ratio = self.t_end / self.dt
+        why = f"t_end = {self.t_end:g} at dt = {self.dt:.3g}" + ("" if given else ", the default accuracy's step")
+        steps = check_steps(math.ceil(ratio - 1e-9) if math.isfinite(ratio) else ratio,
+                            *(("dt", self.dt) if given else ("t_end", self.t_end)), why)
         if self.every is None:
             set_(self, "every", max(1, steps // 2000))
         else:

@@ -43,7 +43,8 @@ FROZEN_ACCURACY = 1e-5
 #: The most steps one run may take: LAMMPS counts steps in a 32-bit integer for `run`, and at
 #: about 2e7 sphere-steps a second on one core this is already an hour for 100 spheres.
 MAX_STEPS = 100_000_000
-#: Fewer steps per half-period than this is a caricature of the contact, whatever the target.
+#: Fewer steps per half-period than this is a caricature of the contact, whatever the target:
+#: the rule never goes coarser, and a given dt that coarse is refused (ContactModel.check_dt).
 MIN_STEPS_PER_HALF_PERIOD = 20
 
 
@@ -95,15 +96,16 @@ def duration_text(seconds: float) -> str:
     return f"{seconds:.3g} s" if seconds < 3600 else f"{seconds / 3600:.3g} core-hours"
 
 
-def check_steps(steps: int, parameter: str, value, why: str, spheres: int = 1) -> int:
-    """Refuse a run of more than :data:`MAX_STEPS` steps, naming the parameter, why and the cost."""
+def check_steps(steps: float, parameter: str, value, why: str, spheres: int = 1) -> int:
+    """Refuse a run of more than :data:`MAX_STEPS` steps, naming the parameter, why and the cost.
+    ``steps`` may be a float (t_end/dt), even infinite: a dt of 5e-324 overflows any count."""
     from .parameters import SceneError
 
     if steps > MAX_STEPS:
-        cost = duration_text(estimate_seconds(steps, spheres))
+        cost = "" if math.isinf(steps) else f" (about {duration_text(estimate_seconds(steps, spheres))} on one core)"
         raise SceneError(parameter, value, f"needs {steps:.3g} steps ({why}), more than the limit of "
-                                           f"{MAX_STEPS:.0e} for one run (about {cost} on one core)")
-    return steps
+                                           f"{MAX_STEPS:.0e} for one run{cost}")
+    return int(steps)
 
 
 def mid_step_dt(t_end: float, steps: int) -> float:
@@ -135,5 +137,7 @@ def refine_mid_step(t_end: float, dt: float, factor: int) -> float:
 
 
 def steps_through(t_end: float, dt: float) -> int:
-    """Steps that carry a run past ``t_end``: the step in which it falls, and one more for rounding."""
-    return math.floor(t_end / dt) + 2
+    """Steps that carry a run past ``t_end``: the step in which it falls, and one more for rounding
+    (infinite when t_end/dt overflows a float: :func:`check_steps` refuses it)."""
+    ratio = t_end / dt
+    return math.floor(ratio) + 2 if math.isfinite(ratio) else math.inf

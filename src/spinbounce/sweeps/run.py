@@ -214,9 +214,20 @@ def _die_with_parent() -> None:
 
 
 def run_sweep(spec: SweepSpec, out: Path, workers: int | None = None, log=print) -> Path:
-    """Run every chunk that has no Parquet file yet; return the dataset folder."""
+    """Run every chunk that has no Parquet file yet; return the dataset folder. A sweep that
+    fails or is stopped before its first chunk is written removes the folder it made."""
     out = Path(out)
+    made = not out.exists()
     (out / "chunks").mkdir(parents=True, exist_ok=True)
+    try:
+        return _run_chunks(spec, out, workers, log)
+    except BaseException:
+        if made and not any((out / "chunks").glob("*.parquet")):
+            shutil.rmtree(out, ignore_errors=True)
+        raise
+
+
+def _run_chunks(spec: SweepSpec, out: Path, workers: int | None, log) -> Path:
     with _Lock(out / ".lock"):
         _claim(out, spec)
         todo = [c for c in spec.chunks() if not chunk_path(out, c[0], c[1]).exists()]
@@ -293,11 +304,23 @@ def status_counts(path: Path) -> dict[str, int]:
 
 
 def chunk_files(path: Path) -> list[Path]:
+    """A sweep's chunk files, each checked to be a readable Parquet file of a sweep (from its
+    footer: the rows are not read), or a :class:`SweepError` naming the file. The one check of
+    what ``fit``, its figure and the status counts read."""
+    import pyarrow.parquet as pq
+
     if (path / "chunks").is_dir():
         path = path / "chunks"
     files = sorted(path.glob("chunk-*.parquet")) if path.is_dir() else [path]
     if not files or not files[0].exists():
         raise SweepError(f"{path}: no chunk files (a sweep's output folder, or its chunks/ folder, is expected)")
+    for f in files:
+        try:
+            names = pq.read_schema(str(f)).names
+        except (OSError, ValueError) as exc:  # pyarrow's errors for a corrupt or foreign file
+            raise SweepError(f"{f}: not a readable sweep chunk ({exc})") from None
+        if "vn_0" not in names:
+            raise SweepError(f"{f}: a Parquet file, but not a spinbounce sweep's (no vn_0 column)")
     return files
 
 
@@ -307,9 +330,6 @@ def read_results(path: Path) -> pd.DataFrame:
     for f in chunk_files(Path(path)):
         try:
             frames.append(pd.read_parquet(f))
-        except (OSError, ValueError) as exc:  # pyarrow's errors for a corrupt or foreign file
+        except (OSError, ValueError) as exc:  # a file whose footer reads and whose rows do not
             raise SweepError(f"{f}: not a readable sweep chunk ({exc})") from None
-    rows = pd.concat(frames, ignore_index=True)
-    if "vn_0" not in rows:
-        raise SweepError(f"{path}: these Parquet files are not a spinbounce sweep (no vn_0 column)")
-    return rows
+    return pd.concat(frames, ignore_index=True)

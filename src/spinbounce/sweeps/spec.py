@@ -36,7 +36,6 @@ import itertools
 import json
 import math
 import tomllib
-import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -45,10 +44,9 @@ import numpy as np
 from ..model import parameters
 from ..model.contact import ContactModel
 from ..model.parameters import SceneError
-from ..model.scenes import Collision
 from ..pairs.kind import scene_of
 
-__all__ = ["SweepError", "SweepSpec", "load_spec", "spec_from_dict", "MODEL_KEYS", "DEFAULT_CHUNK"]
+__all__ = ["SweepError", "SweepSpec", "load_spec", "spec_from_dict", "MODEL_KEYS", "DEFAULT_CHUNK", "MAX_CHUNKS"]
 
 #: Model keys of a scene file: every sweepable declared parameter, kt_over_kn and dt.
 MODEL_KEYS = (tuple(p.name for p in parameters.MODEL if p.sweepable) + tuple(p.name for p in parameters.SCENE)
@@ -62,6 +60,9 @@ EXTRA_KEYS = (("v_s",), ("omega_s", "r_omega_s"), ("omega_n", "r_omega_n"))
 VELOCITY_KEYS = {"components": ("v_n", "v_t"), "polar": ("speed", "angle_deg")}
 TOP_KEYS = ("name", "seed", "chunk_size", "tolerance", "model", "states")
 DEFAULT_CHUNK = 25_000
+#: The most chunks one sweep may have: each is a LAMMPS run, a Parquet file and a workflow job;
+#: more is a listing no engine schedules well (a 1e12-row sweep in default chunks: 4e7 of them).
+MAX_CHUNKS = 100_000
 #: The scene's keys (wall or pair, and sphere b's): a wall sweep's groups have none of them.
 SCENE_KEYS = tuple(p.name for p in parameters.SCENE)
 #: How "no value" is written for an optional parameter (mu) in a scene file or a flag.
@@ -289,7 +290,14 @@ def spec_from_dict(raw: dict) -> SweepSpec:
     mode, n, states = _parse_states(raw.get("states"), tolerance)
     spec = SweepSpec(raw=raw, groups=tuple(groups), seed=seed, chunk_size=chunk_size, tolerance=tolerance,
                      mode=mode, n=n, states=states)
-    _check_physics(spec)
+    chunks = math.ceil(n / chunk_size) * len(groups)
+    if chunks > MAX_CHUNKS:
+        _fail("states.n", n, f"makes {chunks:.3g} chunks of chunk_size = {chunk_size} over {len(groups)} model "
+                             f"group(s), more than the limit of {MAX_CHUNKS} for one sweep: give a larger "
+                             "chunk_size, or split the sweep")
+    from .physics import check_physics
+
+    check_physics(spec)
     return spec
 
 
@@ -313,6 +321,17 @@ def _state_keys(states: dict, tolerance) -> list[str]:
     return keys
 
 
+def _declared_state(key: str, given, values: list[float]) -> list[float]:
+    """Each value (a range's bounds, a grid's points) within the declared range of its state."""
+    declared = {p.name: p for p in parameters.STATE}.get(key)
+    for value in values if declared else ():
+        try:
+            declared.check(value)
+        except SceneError as exc:
+            _fail(f"states.{key}", given, f"{value:g} is outside the declared range of {key}: {exc.limit}")
+    return values
+
+
 def _parse_states(states, tolerance) -> tuple[str, int, dict]:
     if not isinstance(states, dict):
         _fail("states", states, "a [states] table is required")
@@ -333,7 +352,7 @@ def _parse_states(states, tolerance) -> tuple[str, int, dict]:
                 _fail(f"states.{key}", states[key], "must be a range [low, high]")
             if not values[0] < values[1]:
                 _fail(f"states.{key}", states[key], "is an empty range: low must be below high")
-        axes[key] = values
+        axes[key] = _declared_state(key, states[key], values)
     if "speed" in axes:
         if min(axes["speed"]) <= 0.0:
             _fail("states.speed", states["speed"], "must be > 0")
@@ -344,49 +363,3 @@ def _parse_states(states, tolerance) -> tuple[str, int, dict]:
     else:
         n = math.prod(len(v) for v in axes.values())
     return mode, n, {"axes": axes}
-
-
-def _check_physics(spec: SweepSpec) -> None:
-    """Build every group's model and its most demanding collision now, before any run."""
-    if spec.scene == "pair":
-        _check_pairs(spec)
-        return
-    fast, slow = spec.normal_speeds()
-    key_vn = "states.v_n" if "v_n" in spec.states["axes"] else "states.speed"
-    for g in range(len(spec.groups)):
-        try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")
-                model, dt = spec.model(g)
-        except SceneError as exc:
-            ratio = exc.parameter == "kt" and "kt_over_kn" in spec.raw.get("model", {})
-            raise SweepError(f"{'model.kt_over_kn' if ratio else f'model.{exc.parameter}'}: {exc}") from None
-        try:
-            Collision(model, v_n=[-fast, -slow], v_t=0.0, omega=0.0, dt=dt)
-        except SceneError as exc:
-            key = key_vn if exc.parameter.startswith("v_n") else f"model.{exc.parameter}"
-            raise SweepError(f"{key}: {exc}") from None
-
-
-def _check_pairs(spec: SweepSpec) -> None:
-    """A pair sweep: what the pair deck can run, and its fastest impact's overlap and step."""
-    from ..pairs.kind import pair_contact, pairs_from_states
-    from ..pairs.scene import PairBatch
-
-    if spec.tolerance is not None:
-        _fail("tolerance", spec.tolerance, "is for the wall only: a pair sweep takes model.dt or the default step")
-    fast, _ = spec.normal_speeds()
-    for g in range(len(spec.groups)):
-        try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")
-                model, dt = spec.model(g)
-                b = spec.sphere_b(g)
-                contact = pair_contact(model)
-        except SceneError as exc:
-            raise SweepError(f"model.{exc.parameter}: {exc}") from None
-        try:  # head-on at the fastest |v_n|: the deepest overlap (the step's checks are per pair)
-            PairBatch(pairs_from_states(model, b, [[-fast, 0.0, 0.0]]), contact, dt)
-        except SceneError as exc:
-            key = "states.v_n" if "v_n" in exc.parameter else f"model.{exc.parameter}"
-            raise SweepError(f"{key}: {exc}") from None

@@ -1,0 +1,7 @@
+"""``python -m spinbounce``: the ``spinbounce`` command."""
+
+import sys
+
+from .cli import main
+
+sys.exit(main())

@@ -1,0 +1,59 @@
+"""A sweep's physics, checked before anything runs: every model group's model, and its most
+demanding collision (the fastest and slowest |v_n| the states reach) or, for a pair sweep, its
+fastest head-on impact, built as the runs will build them."""
+
+from __future__ import annotations
+
+import warnings
+
+from ..model.parameters import SceneError
+from ..model.scenes import Collision
+from .spec import SweepError, SweepSpec, _fail
+
+__all__ = ["check_physics"]
+
+
+def check_physics(spec: SweepSpec) -> None:
+    """Build every group's model and its most demanding collision now, before any run."""
+    if spec.scene == "pair":
+        _check_pairs(spec)
+        return
+    fast, slow = spec.normal_speeds()
+    key_vn = "states.v_n" if "v_n" in spec.states["axes"] else "states.speed"
+    for g in range(len(spec.groups)):
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                model, dt = spec.model(g)
+        except SceneError as exc:
+            ratio = exc.parameter == "kt" and "kt_over_kn" in spec.raw.get("model", {})
+            raise SweepError(f"{'model.kt_over_kn' if ratio else f'model.{exc.parameter}'}: {exc}") from None
+        try:
+            Collision(model, v_n=[-fast, -slow], v_t=0.0, omega=0.0, dt=dt)
+        except SceneError as exc:
+            key = key_vn if exc.parameter.startswith("v_n") else f"model.{exc.parameter}"
+            raise SweepError(f"{key}: {exc}") from None
+
+
+def _check_pairs(spec: SweepSpec) -> None:
+    """A pair sweep: what the pair deck can run, and its fastest impact's overlap and step."""
+    from ..pairs.kind import pair_contact, pairs_from_states
+    from ..pairs.scene import PairBatch
+
+    if spec.tolerance is not None:
+        _fail("tolerance", spec.tolerance, "is for the wall only: a pair sweep takes model.dt or the default step")
+    fast, _ = spec.normal_speeds()
+    for g in range(len(spec.groups)):
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                model, dt = spec.model(g)
+                b = spec.sphere_b(g)
+                contact = pair_contact(model)
+        except SceneError as exc:
+            raise SweepError(f"model.{exc.parameter}: {exc}") from None
+        try:  # head-on at the fastest |v_n|: the deepest overlap (the step's checks are per pair)
+            PairBatch(pairs_from_states(model, b, [[-fast, 0.0, 0.0]]), contact, dt)
+        except SceneError as exc:
+            key = "states.v_n" if "v_n" in exc.parameter else f"model.{exc.parameter}"
+            raise SweepError(f"{key}: {exc}") from None
