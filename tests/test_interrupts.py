@@ -15,7 +15,9 @@ import pytest
 
 pytestmark = pytest.mark.lammps
 
-N, CHUNK = 120_000, 10_000
+#: 30 chunks of about half a second each: the sweep is still running when the first chunk appears,
+#: even on a loaded machine where this test's own polling may wait seconds for the CPU.
+N, CHUNK = 300_000, 10_000
 
 
 def _processes_mentioning(text: str) -> list[int]:
@@ -59,6 +61,7 @@ def test_ctrl_c_leaves_no_temporary_file_and_a_rerun_completes(tmp_path):
     sweep = _start(out)
     chunks = out / "chunks"
     assert _wait_for(lambda: chunks.is_dir() and any(chunks.glob("chunk-*.parquet")), 120)
+    assert sweep.poll() is None, "the sweep ended before it could be interrupted"
     os.killpg(sweep.pid, signal.SIGINT)  # what a terminal's Ctrl-C sends: the whole group
     _, err = sweep.communicate(timeout=60)
     assert sweep.returncode != 0 and b"Traceback" not in err

@@ -24,6 +24,7 @@ def test_comparison_sees_a_change_and_skips_provenance():
     assert compare_records(stored, {**stored, "b": "y"}, TOLERANCE) == ["/b: 'y', stored 'x'"]
     assert compare_records(stored, {**stored, "a": [1.0]}, TOLERANCE) == ["/a: 1 items, stored 2"]
     assert compare_records({"k": float("nan")}, {"k": float("nan")}, TOLERANCE) == []
+    assert compare_records({"run": {"lammps_wall_seconds": 1.0}}, {"run": {"lammps_wall_seconds": 2.0}}, TOLERANCE) == []
     assert "created" in IGNORED_KEYS and "max_deviation_exact" not in IGNORED_KEYS
 
 

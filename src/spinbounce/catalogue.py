@@ -121,11 +121,12 @@ IGNORED_KEYS = frozenset({"created", "runtime_seconds", "seconds", "files", "run
 def compare_records(stored, fresh, tolerance: float, path: str = "") -> list[str]:
     """Where ``fresh`` differs from ``stored``: numbers by more than ``tolerance`` (absolute, or
     relative to the stored value where that is larger than 1), anything else when unequal.
-    Keys of :data:`IGNORED_KEYS` are skipped at every depth."""
+    Keys of :data:`IGNORED_KEYS`, and timings (keys ending in ``_seconds``), are skipped at every depth."""
     if isinstance(stored, dict) and isinstance(fresh, dict):
-        found = [f"{path}/{k}: missing" for k in stored.keys() - fresh.keys() - IGNORED_KEYS]
-        found += [f"{path}/{k}: new" for k in fresh.keys() - stored.keys() - IGNORED_KEYS]
-        for key in sorted(stored.keys() & fresh.keys() - IGNORED_KEYS):
+        kept = {k for k in stored.keys() | fresh.keys() if k not in IGNORED_KEYS and not str(k).endswith("_seconds")}
+        found = [f"{path}/{k}: missing" for k in sorted(kept - fresh.keys())]
+        found += [f"{path}/{k}: new" for k in sorted(kept - stored.keys())]
+        for key in sorted(kept & stored.keys() & fresh.keys()):
             found += compare_records(stored[key], fresh[key], tolerance, f"{path}/{key}")
         return found
     if isinstance(stored, list) and isinstance(fresh, list):
