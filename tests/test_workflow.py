@@ -102,7 +102,7 @@ def test_slurm_profile_plans_the_jobs_without_a_cluster(tmp_path):
 
 
 MILLION_FINITE_MU = """seed = 1
-chunk_size = {chunk_size}
+{chunking}
 [model]
 {model}
 [states]
@@ -113,10 +113,12 @@ r_omega = [-2.0, 2.0]
 """
 
 
-def slurm_plan(tmp_path: Path, chunk_size: int, model: str = "mu = [0.0, 0.5]") -> subprocess.CompletedProcess:
-    """`snakemake -n` with the SLURM profile on a million finite-mu collisions (two groups)."""
+def slurm_plan(tmp_path: Path, chunk_size: int | None, model: str = "mu = [0.0, 0.5]") -> subprocess.CompletedProcess:
+    """`snakemake -n` with the SLURM profile on a million finite-mu collisions (two groups);
+    chunk_size None leaves it to the cost estimate."""
     scene = tmp_path / f"million-{chunk_size}.toml"
-    scene.write_text(MILLION_FINITE_MU.format(chunk_size=chunk_size, model=model))
+    chunking = "" if chunk_size is None else f"chunk_size = {chunk_size}"
+    scene.write_text(MILLION_FINITE_MU.format(chunking=chunking, model=model))
     return snakemake(tmp_path, "--dry-run", "--profile", str(WORKFLOW / "profiles" / "slurm"),
                      "--config", f"scene={scene}", "out=out")
 
@@ -143,6 +145,27 @@ def test_slurm_plan_refuses_a_sweep_whose_chunk_cannot_fit(tmp_path):
     text = done.stdout + done.stderr
     assert "chunk 0 (250000 collisions of group 0) would ask for" in text and "chunk_size <=" in text
     assert "rule chunk:" not in text and not (tmp_path / "out").exists()
+
+
+@pytest.mark.workflow
+def test_chunk_sizes_follow_the_estimated_cost_when_the_scene_leaves_them_open(tmp_path):
+    """The sweep above, with no chunk_size: each chunk holds what is estimated to run in
+    CHUNK_SECONDS, so every job fits the profile; the frictionless default stays 25,000."""
+    from spinbounce.sweeps.spec import CHUNK_SECONDS, DEFAULT_CHUNK
+
+    limits = yaml.safe_load((WORKFLOW / "profiles" / "slurm" / "limits.yaml").read_text())["job_limits"]
+    done = slurm_plan(tmp_path, None, model="mu = [10.0]\ngamma_t = 1.0")
+    assert done.returncode == 0, done.stderr[-3000:]
+    for mem_mb, runtime in re.findall(r"mem_mb=(\d+),.*runtime=(\d+)\b", done.stdout + done.stderr):
+        assert int(mem_mb) <= limits["mem_mb"] and int(runtime) <= limits["runtime"]
+    spec = load_spec(tmp_path / "million-None.toml")
+    (size,) = spec.chunk_sizes
+    assert 1 <= size < DEFAULT_CHUNK
+    assert chunk_cost(spec, 0, size).seconds <= CHUNK_SECONDS < chunk_cost(spec, 0, size + 1).seconds
+    assert job_counts(done.stdout + done.stderr)["chunk"] == -(-500_000 // size)
+    frictionless = tmp_path / "frictionless.toml"
+    frictionless.write_text(MILLION_FINITE_MU.format(chunking="", model="mu = [\"none\"]"))
+    assert load_spec(frictionless).chunk_sizes == (DEFAULT_CHUNK,)
 
 
 @pytest.mark.workflow

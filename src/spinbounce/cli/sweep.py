@@ -61,7 +61,8 @@ def register(sub) -> None:
     g = p.add_argument_group("states, from flags (instead of a scene file)")
     g.add_argument("--n", type=count, default=None, help="number of sampled collisions")
     g.add_argument("--seed", type=count, default=None, help="random seed (default 0)")
-    g.add_argument("--chunk-size", type=count, default=None, help="spheres per LAMMPS run (default 25000)")
+    g.add_argument("--chunk-size", type=count, default=None, help="spheres per LAMMPS run (default: at most 25000, and at most what is estimated to run "
+                        "in 5 minutes on one core)")
     for dest, flags, _, text in STATE_RANGES:
         g.add_argument(*flags, dest=dest, type=number, nargs=2, metavar=("LOW", "HIGH"), default=None, help=text)
     step = g.add_mutually_exclusive_group()
@@ -145,9 +146,9 @@ def estimated_seconds(spec) -> float:
     """The whole sweep on one core (studies.cost): a full chunk's cost times their number, and
     the last, shorter chunk's, per group; without listing the chunks."""
     total = 0.0
-    for group in range(len(spec.groups)):
-        full, rest = divmod(spec.n, spec.chunk_size)
-        total += full * chunk_cost(spec, group, spec.chunk_size).seconds if full else 0.0
+    for group, size in enumerate(spec.chunk_sizes):
+        full, rest = divmod(spec.n, size)
+        total += full * chunk_cost(spec, group, size).seconds if full else 0.0
         total += chunk_cost(spec, group, rest).seconds if rest else 0.0
     return total
 

