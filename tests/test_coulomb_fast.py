@@ -367,10 +367,8 @@ def test_3d_no_slip_at_the_magic_ratio_is_the_rough_block_matrix():
 @pytest.mark.parametrize("kw", [{"mu": 1.0}, {"mu": 1.0, "gamma_n": 1.0, "gamma_t": 0.5},
                                 {"mu": 3.0, "kt": 8.0, "gamma_n": 1.5, "limit_damping": True}])
 def test_3d_agrees_with_the_oracle(kw):
-    # contacts that mostly stick: the oracle integrates these to ~1e-13. Its long 3-D
-    # slides are another matter: against the exact gross-slip outcome above its Radau
-    # slides miss by up to 1.5e-5 at its defaults and 1e-3 at rtol 1e-13 (measured), so
-    # they are left out here
+    # contacts that mostly stick, with the damping on and off; random 3-D contacts of
+    # every regime and the oracle's former refusals are in test_coulomb_3d.py
     model = ContactModel(**kw)
     states = [(-0.8, 0.7, -2.0, -0.9, 1.5, 2.5), (-1.3, -0.2, 1.0, 0.6, 0.3, -1.0)]
     for state in states:

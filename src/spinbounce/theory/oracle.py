@@ -22,8 +22,9 @@ linear_history`` wall contact, written in the paper's variables and in 3-D:
   the history so that |A| stays on the cap (``linear_history``'s rescale); in continuous
   time the cap's radius follows mu |F_n| and s turns towards the slip velocity,
   s' = kt u'_perp / (mu |F_n|), with u'_perp the part of u' across s (zero in the plane;
-  in 3-D this rate is stiff near the contact's ends, and slides use scipy's LSODA). Sliding lasts while the sticking rate of A would carry it
-  beyond the cap: s . (kt u' + gamma_t u''_stick) > d(mu |F_n|)/dt.
+  stiff in 3-D near the contact's ends, see ``_Contact.integrate``). Sliding lasts while
+  the sticking rate of A would carry it beyond the cap: s . (kt u' + gamma_t u''_stick)
+  > d(mu |F_n|)/dt.
 
 The cap mu |F_n| uses the magnitude of the total normal force, as LAMMPS does: a normal
 force that turns tensile (gamma_n > 0 without ``limit_damping``) still holds friction.
@@ -47,6 +48,15 @@ __all__ = ["OracleResult", "bounce", "bounce_many", "gross_slip", "RTOL", "ATOL"
 METHOD = "DOP853"
 RTOL = 1.0e-12
 ATOL = 1.0e-14
+#: A 3-D slide's absolute tolerance on log |u'_perp|: a relative 1e-3 of a slip across s
+#: that starts at rounding level (the history starts at zero, so A is along u' at first touch).
+LOG_ACROSS_ATOL = 1.0e-3
+#: Below this fraction of its typical size (mu m |v_n| / tau) a 3-D slide's cap turns s no
+#: faster than at it. Where the slip opposes s (the cap shrinking fast), u'_perp grows at
+#: kt |p| / c: unchecked, rounding would grow by 1e12 before the cap's end and turn s at a
+#: rate no step can follow. The slower turn only bends a force that small, through an angle
+#: the size of u'_perp / |u'|.
+TURN_FLOOR = 1.0e-8
 #: More regime switches than this in one contact mean the regimes chatter: refuse.
 MAX_SWITCHES = 200
 #: Events are found from sign changes between steps; a cap on the step (in contact
@@ -55,6 +65,9 @@ MIN_STEPS_PER_CONTACT = 64
 
 # state layout: delta, v_n, v (2), w = r*omega (2), A or s (2)
 _D, _VN, _V, _W, _A = 0, 1, slice(2, 4), slice(4, 6), slice(6, 8)
+# a 3-D slide's state (see _Contact.integrate): the same up to w, then the angle of s, the
+# log of |u'_perp| and its sign (constant): _TURNING slots in all
+_THETA, _LOG_ACROSS, _SIDE, _TURNING = 6, 7, 8, 9
 
 
 @dataclass(frozen=True)
@@ -96,6 +109,7 @@ class _Contact:
         # set per collision (bounce): a force and a rate of force negligible against the
         # contact's own, the margins by which a switching function must pass zero to count
         self.floor = self.floor_rate = 0.0
+        self.turn_floor = 0.0  # a 3-D slide turns s no faster than at this cap (TURN_FLOOR)
         self.turned = False  # whether F_n has passed through zero on the way out
 
     def normal(self, y) -> tuple[float, float]:
@@ -141,7 +155,7 @@ class _Contact:
         kt, gt, m, alpha = self.kt, self.gt, self.m, self.alpha
 
         def f(t, y):
-            dy = np.zeros(8)
+            dy = np.zeros(y.size)
             dy[_D] = -y[_VN]
             if phase == "free":
                 return dy
@@ -152,13 +166,16 @@ class _Contact:
             if phase == "stick":
                 force = -y[_A]
                 dy[_A] = kt * u_rate + gt * self.slip_mass * force
-            else:  # slip: y[_A] holds the unit direction s of A, which rides on the cap
+            else:  # slip: A = c s rides on the cap, s turning towards the slip
                 c, _ = self.cap(y)
-                s = y[_A]
+                s = self.slide_direction(y)
                 force = -c * s
-                # s turns towards the slip at kt |u'_perp| / c: stiff as the cap shrinks (3-D
-                # slides are integrated implicitly); in the plane u'_perp = 0 and s stays put
-                dy[_A] = kt * (u_rate - np.dot(u_rate, s) * s) / max(c, self.floor)
+                if y.size == _TURNING and y[_SIDE]:  # in the plane (and at q = 0) s stays put
+                    rate = kt / math.hypot(c, self.turn_floor)
+                    # |q| <= |u'|: bounds a trial step that overshoots log |q| (then rejected)
+                    across = min(math.exp(min(y[_LOG_ACROSS], 700.0)), math.hypot(*u_rate))
+                    dy[_THETA] = rate * y[_SIDE] * across
+                    dy[_LOG_ACROSS] = -rate * float(np.dot(s, u_rate))
             dy[_V] = force / m
             dy[_W] = force / (alpha * m)
             return dy
@@ -182,7 +199,7 @@ class _Contact:
         elif phase == "slip":
             def to_stick(t, y):
                 c, dc = self.cap(y)
-                return self.push(y, y[_A], c) - dc + self.floor_rate
+                return self.push(y, self.slide_direction(y), c) - dc + self.floor_rate
 
             def cap_gone(t, y):
                 return self.cap(y)[0] - self.floor
@@ -229,6 +246,45 @@ class _Contact:
             return self.on_cap(y, cap, dcap)
         y[_A] = cap * y[_A]  # to_stick: A rides the cap along s
         return "stick"
+
+    def slide_direction(self, y) -> np.ndarray:
+        """A slide's unit vector s of A: as stored in the plane, from its angle in 3-D."""
+        if y.size == _TURNING:
+            return np.array([math.cos(y[_THETA]), math.sin(y[_THETA])])
+        return y[_A]
+
+    def integrate(self, phase: str, events, y, t: float, horizon: float, tau: float):
+        """One regime from t to its first event (scipy's ``solve_ivp``).
+
+        A 3-D slide turns s towards the slip: with theta the angle of s, p = u'.s and
+        q = u'_perp the slip along and across s, theta' = kt q / c, and since the friction
+        force lies along s, q' = -theta' p = -(kt p / c) q. That rate grows without bound
+        as the cap shrinks at first touch and at the exit, a stiff decay (growth, where the
+        slip opposes s) that an explicit method cannot follow; but q' is linear in q, so
+        the slide integrates log |q| (its rate -kt p / c a mere quadrature) and keeps q's
+        sign, which never changes. s stays a unit vector, and a slip exactly along s
+        (q = 0) stays so. (LSODA on s stopped in 1 of 7 random 3-D contacts; BDF and
+        Radau, their Jacobian stale as c changes by decades, let s drift off the slip by
+        up to 1 rad.)
+        """
+        atol = ATOL
+        if phase == "slip" and (y[3] or y[5] or y[7]):
+            s = y[_A]
+            across = float(s[0] * (y[5] + y[3]) - s[1] * (y[4] + y[2]))  # q = u' . (-s_y, s_x)
+            y = np.concatenate([y[:_THETA], [math.atan2(s[1], s[0]),
+                                             math.log(abs(across)) if across else 0.0,
+                                             math.copysign(1.0, across) if across else 0.0]])
+            atol = np.full(_TURNING, ATOL)
+            atol[_LOG_ACROSS] = LOG_ACROSS_ATOL
+        return solve_ivp(self.rhs(phase), (t, horizon), y, method=METHOD, rtol=RTOL, atol=atol,
+                         events=events, max_step=tau / MIN_STEPS_PER_CONTACT)
+
+    @staticmethod
+    def unpack(y) -> np.ndarray:
+        """The 8-slot state from an integrated one (a 3-D slide's angle back to s)."""
+        if y.size == _TURNING:
+            return np.concatenate([y[:_THETA], [math.cos(y[_THETA]), math.sin(y[_THETA])]])
+        return y.copy()
 
     def push(self, y, s, c: float) -> float:
         """How fast sticking would carry A outwards along s, with A on a cap of radius c:
@@ -284,6 +340,7 @@ def bounce(model: ContactModel, v_n: float, v_t: float = 0.0, omega: float = 0.0
     # coasts to the exit or to the tensile turn with no tangential force
     c.floor = 1e-12 * (model.mu * model.m * abs(v_n) / tau or 1.0)
     c.floor_rate = c.floor / tau
+    c.turn_floor = TURN_FLOOR * c.floor / 1e-12
     r = model.r
     y = np.zeros(8)
     y[_VN] = v_n
@@ -299,20 +356,14 @@ def bounce(model: ContactModel, v_n: float, v_t: float = 0.0, omega: float = 0.0
     # a generous horizon: the contact must end well within it (checked below)
     horizon = 50.0 * tau
     for _ in range(MAX_SWITCHES):
-        # a 3-D slide turns its direction at a rate that grows without bound as the cap
-        # shrinks: LSODA switches to its stiff method there; everything else is smooth and
-        # non-stiff. (Radau at rtol 1e-12 let the direction drift off the slip by 0.05 rad in
-        # a gross slip whose direction is fixed; LSODA and DOP853 keep it to rounding.)
-        method = "LSODA" if phase == "slip" and (y[3] or y[5] or y[7]) else METHOD
         events = c.events(phase)
-        sol = solve_ivp(c.rhs(phase), (t, horizon), y, method=method, rtol=RTOL, atol=ATOL,
-                        events=events, max_step=tau / MIN_STEPS_PER_CONTACT)
+        sol = c.integrate(phase, events, y, t, horizon, tau)
         nfev += sol.nfev
         if sol.status != 1:
             raise RuntimeError(f"oracle: the contact did not end by t = {horizon:g} ({sol.message})")
         hit = min((k for k, te in enumerate(sol.t_events) if te.size), key=lambda k: sol.t_events[k][0])
         t = float(sol.t_events[hit][0])
-        y = sol.y_events[hit][0].copy()
+        y = c.unpack(sol.y_events[hit][0])
         if hit == 0 or (y[_D] <= 0.0 and y[_VN] > 0.0):  # exit (a switch can fall on it)
             break
         phase = c.switch(events[hit].__name__, y, phase)
