@@ -238,8 +238,7 @@ class _Contact:
         if name == "cap_gone" or (cap < self.floor and dcap <= 0.0):
             y[_A] = 0.0  # the cap is gone or going: no tangential force left to speak of
             if self.gn > 0.0 and not self.turned and self.normal(y)[1] < 0.0:
-                # F_n is within 1e-12 of its scale and falling: this is the turn, and a
-                # force_zero event starting at its own root could miss it
+                # F_n ~ 0 and falling: the turn is here (an event starting at its root may miss it)
                 return self.switch("force_zero", y, "coast")
             return "coast"
         if name == "to_slip":
@@ -378,11 +377,8 @@ def bounce_many(model: ContactModel, v_n, v_t, omega, v_s=None, omega_s=None, om
     """(n, 6) final states for equal-length sequences of initial states."""
     v_n = np.atleast_1d(np.asarray(v_n, dtype=float))
     n = v_n.size
-
-    def full(x):
-        return np.zeros(n) if x is None else np.broadcast_to(np.asarray(x, dtype=float), (n,))
-
-    cols = [full(x) for x in (v_t, omega, v_s, omega_s, omega_n)]
+    cols = [np.zeros(n) if x is None else np.broadcast_to(np.asarray(x, dtype=float), (n,))
+            for x in (v_t, omega, v_s, omega_s, omega_n)]
     return np.array([
         bounce(model, float(v_n[i]), float(cols[0][i]), float(cols[1][i]), v_s=float(cols[2][i]),
                omega_s=float(cols[3][i]), omega_n=float(cols[4][i])).final
