@@ -5,7 +5,7 @@ origin, a's at (r_a + r_b) ``normal``, with any velocities and spins (LAMMPS's f
 sign: omega is LAMMPS's angular velocity). A :class:`PairBatch` holds pairs that share
 one contact law (:class:`PairContact`) and one step, and works out what the deck needs:
 the exact reference of each pair (:mod:`spinbounce.theory.pair_exact`), the step, and
-how long before touching each pair starts so that its contact ends mid-step.
+how long before touching each pair starts (:attr:`PairBatch.lead`: where its first-order errors cancel best).
 
 Each sphere's m, r and alpha, and the contact's kn, kt, gamma_n and gamma_t, are checked
 against their declaration (:mod:`spinbounce.model.parameters`). Every pair is also checked
