@@ -10,6 +10,7 @@ import pytest
 from spinbounce import theory
 from spinbounce.model.parameters import SceneError
 from spinbounce.pairs import QUANTITIES, Pair, PairBatch, PairContact, Sphere, run_pairs
+from spinbounce.pairs.stepping import FALLBACK
 from spinbounce.pairs.studies import cases
 from spinbounce.theory import pair as planar
 from spinbounce.theory import pair_exact
@@ -111,15 +112,58 @@ def test_scene_refuses_bad_input_before_lammps():
 
 @pytest.mark.lammps
 def test_lammps_matches_the_exact_reference_on_24_cases(tmp_path):
-    # Default resolution; the bound is the default accuracy (1e-4 of the speed, the larger of
-    # |v_a - v_b| and |u'(0)|): measured 8.3e-5 at most (scene.PAIR_STEPS_PER_HALF_PERIOD).
+    # Default step; the bound is the default accuracy (1e-4 of the speed, the larger of
+    # |v_a - v_b| and |u'(0)|). The probe cannot reach it coarser here (the line of centres
+    # turns by up to 3.9 rad), so the batch keeps the fine rule: measured 4.3e-5 at most.
     result = run_pairs(PairBatch(cases()), tmp_path)
+    assert result.step.method == FALLBACK and result.batch.dt == PairBatch(cases()).dt
     table = result.table
     assert len(table) == 24 and (table["eps"] > 3.0).any() and (table["r_a"] != table["r_b"]).any()
     assert result.max_lammps_error < 1e-4
     # the planar theory is a model error, far above the run's: the exact reference is needed
     assert result.max_planar_error > 0.1
-    assert (tmp_path / "result.json").exists()
+    assert json.loads((tmp_path / "result.json").read_text())["step"]["method"] == FALLBACK
+
+
+def _sweep_pairs(r: float, n: int = 24) -> list[Pair]:
+    rng = np.random.default_rng(5)
+    sphere = Sphere(1.0, r, 0.4)
+    return [Pair(a=sphere, b=sphere, v_a=(rng.uniform(-1, 1), 0.0, -rng.uniform(0.5, 1.5)),
+                 w_a=(0.0, rng.uniform(-1, 1) / r, 0.0)) for _ in range(n)]
+
+
+@pytest.mark.lammps
+def test_a_small_eps_batch_is_probed_to_far_fewer_steps_within_the_accuracy(tmp_path):
+    # Radii 5e3: the line of centres turns by eps < 1e-4, every contact lasts the same time,
+    # and with that time mid-step LAMMPS converges at about second order (measured 1.6e-5 at
+    # 100 steps per contact, where the fine rule takes 8000). The probe must find a step at
+    # least ten times coarser than the fine rule's, and every row must still be within the
+    # default accuracy of the exact reference.
+    batch = PairBatch(_sweep_pairs(5e3))
+    result = run_pairs(batch, tmp_path)
+    assert result.step.method == "probe" and len(result.step.probe_errors) >= 2
+    assert result.batch.nsteps * 10 < batch.nsteps
+    assert result.max_lammps_error < 1e-4
+    assert result.table["eps"].max() < 1e-4
+    recorded = json.loads((tmp_path / "result.json").read_text())
+    assert recorded["step"]["dt"] == result.batch.dt == recorded["parameters"]["dt"]
+
+
+@pytest.mark.lammps
+def test_a_given_step_is_kept_and_recorded_as_given(tmp_path):
+    batch = PairBatch(_sweep_pairs(5e3, 3), dt=1e-3)
+    result = run_pairs(batch, tmp_path, record=False)
+    assert result.batch is batch and result.step.method == "given" and not result.step.probe_errors
+
+
+def test_contacts_are_placed_where_the_first_order_errors_cancel_best():
+    # PairBatch.lead: touch at a fraction phi = (1 - g)/2 of a step, g = frac(T/dt), so that
+    # touch and release fall in one step's count (phi + g < 1) and release is at (1 + g)/2.
+    batch = PairBatch(cases()[:6], dt=0.013)
+    ends = np.array([o.contact_time for o in batch.exact]) / batch.dt
+    phi = batch.lead / batch.dt
+    assert np.all((phi >= 0) & (phi + ends % 1 < 1))
+    assert np.allclose((phi + ends) % 1, (1 + ends % 1) / 2, atol=1e-9)
 
 
 @pytest.mark.lammps
@@ -127,7 +171,7 @@ def test_a_batch_equals_isolated_runs(tmp_path):
     # Pairs in their own cells never interact: the batch reproduces each pair run alone
     # (same dt, same lead) to rounding, 1e-11.
     chosen = [cases()[i] for i in (3, 9, 16, 23)]
-    batch = PairBatch(chosen)
+    batch = PairBatch(chosen, dt=PairBatch(chosen).dt)
     together = run_pairs(batch, tmp_path / "batch", record=False).table
     for k, pair in enumerate(chosen):
         alone = run_pairs(PairBatch([pair], dt=batch.dt), tmp_path / f"alone{k}", record=False).table

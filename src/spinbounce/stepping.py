@@ -23,7 +23,7 @@ from .model.scenes import STATE_ARGS, Collision
 from .model.timestep import ACCURACY, SAFETY, StepChoice, mid_step_dt, steps_per_contact
 from .theory import choose
 
-__all__ = ["StepChoice", "needs_probe", "tune", "expected_steps", "PROBE_SPHERES", "SAFETY"]
+__all__ = ["StepChoice", "needs_probe", "tune", "extrapolate", "expected_steps", "PROBE_SPHERES", "SAFETY"]
 
 #: States a probe runs: the scene's own, every k-th of them beyond this many.
 PROBE_SPHERES = 32
@@ -91,7 +91,7 @@ def tune(scene: Collision, out: Path, run: Callable, probe_states: Collision | N
     if fine <= ROUNDING:  # nothing to resolve: the (finishing) coarse step will do
         order, steps, predicted = None, coarse_steps, fine
     else:
-        steps, order = _extrapolate((coarse_steps, coarse), (2 * coarse_steps, fine), target)
+        steps, order = extrapolate((coarse_steps, coarse), (2 * coarse_steps, fine), target)
         predicted = fine * (2 * coarse_steps / steps) ** order
         # a rough convergence (a cap's switches, a contact-radius spring) can miss: check the
         # chosen step on the probe itself, and go on from the last two points while it misses
@@ -105,13 +105,13 @@ def tune(scene: Collision, out: Path, run: Callable, probe_states: Collision | N
                 predicted = measured
                 break
             previous, last = last, (steps, measured)
-            steps, order = _extrapolate(previous, last, target)
+            steps, order = extrapolate(previous, last, target)
             predicted = measured * (last[0] / steps) ** order
     tuned = Collision(scene.model, dt=mid_step_dt(t_contact, steps), **{n: getattr(scene, n) for n in STATE_ARGS})
     return tuned, StepChoice(tuned.dt, "probe", target, order, tuple(errors), predicted)
 
 
-def _extrapolate(coarser: tuple[int, float], finer: tuple[int, float], target: float) -> tuple[int, float]:
+def extrapolate(coarser: tuple[int, float], finer: tuple[int, float], target: float) -> tuple[int, float]:
     """Steps for SAFETY * target from two (steps, error) points: the observed order, held to
     [ORDER_FLOOR, 2], and at most MAX_GROWTH times the finer point's steps at once."""
     (n0, e0), (n1, e1) = coarser, finer

@@ -71,7 +71,7 @@ def run(args) -> int:
 def _print_models(n: int, seed: int) -> dict:
     """Per model: a sweep's cost beside the frictionless one's, the solvers, the cores, the
     cluster jobs' estimates, the default step's accuracy and the pair-to-wall ratio."""
-    from ..pairs.studies import pair_to_wall_cost
+    from ..pairs.studies import cost_lines, pair_to_wall_cost
     from ..studies.accuracy import default_step_table
     from ..studies.solver_speed import measure_throughput
     from ..studies.speed_models import chunk_jobs, measure_models, parallel_efficiency
@@ -98,7 +98,6 @@ def _print_models(n: int, seed: int) -> dict:
         print(f"  {row.case:<28}{row.step_method:<22}{row.steps_per_collision:>9}{row.error_reached:>11.2e} "
               f"({row.target:g})")
     pairs = pair_to_wall_cost(200)
-    print(f"pair / wall, per collision at each one's default accuracy: {pairs['pair_to_wall']:.1f}x "
-          f"({pairs['pair_steps']} vs {pairs['wall_steps']} steps; per step {pairs['pair_to_wall_per_step']:.2f}x)")
+    print("\n".join(cost_lines(pairs)))
     return {"sweeps": models, "solver_collisions_per_second": solvers, "cores": cores, "chunk_jobs": jobs,
             "default_steps": steps.to_dict(orient="records"), "pairs": pairs}

@@ -190,13 +190,9 @@ def run(args) -> int:
         print(f"wrote {record.png}, {record.pdf}, {record.json}")
         return 0
     if args.cost is not None:
-        from ..pairs.studies import pair_to_wall_cost
+        from ..pairs.studies import cost_lines, pair_to_wall_cost
 
         report = pair_to_wall_cost(args.cost)
-        print(json.dumps(report, indent=2) if args.json else
-              f"pair {report['pair_seconds_per_collision']:.3g} s, wall {report['wall_seconds_per_collision']:.3g} s "
-              f"per collision: {report['pair_to_wall']:.1f}x ({report['pair_steps']} vs {report['wall_steps']} steps; "
-              f"{report['pair_to_wall_per_step']:.2f}x per step); max errors {report['pair_max_error']:.1e} "
-              f"and {report['wall_max_error']:.1e}")
+        print(json.dumps(report, indent=2) if args.json else "\n".join(cost_lines(report)))
         return 0
     return _one_pair(args)

@@ -21,10 +21,12 @@ import pandas as pd
 from ..lammps.dumps import read_dump
 from ..lammps.runner import RunInfo, run_deck
 from ..pipeline import ResultError, prepare_run_dir
+from ..model.timestep import ACCURACY, StepChoice
 from ..records import software, to_json, write_atomic
 from ..theory import pair as planar
 from .deck import render_pairs
 from .scene import PairBatch
+from .stepping import tune_pairs
 
 __all__ = ["PairResult", "run_pairs", "pair_table", "QUANTITIES"]
 
@@ -40,6 +42,8 @@ class PairResult:
     dump: Path
     #: Per pair, the atom ids of a and b in the dump (an (n, 2) array).
     ids: np.ndarray | None = None
+    #: How dt was chosen (:func:`.stepping.tune_pairs`).
+    step: StepChoice | None = None
 
     @property
     def max_lammps_error(self) -> float:
@@ -118,11 +122,16 @@ def pair_table(batch: PairBatch, lammps: dict[str, np.ndarray] | None) -> pd.Dat
     return table
 
 
-def run_pairs(batch: PairBatch, out_dir: Path, record: bool = True) -> PairResult:
+def run_pairs(batch: PairBatch, out_dir: Path, record: bool = True, target: float = ACCURACY,
+              probe_pairs: tuple | None = None) -> PairResult:
     """Run every pair of ``batch`` in one LAMMPS run in ``out_dir``; compare with both references.
 
-    With ``record``, ``result.json`` beside the deck holds the table and the provenance.
+    A batch at the default step first gets the step ``target`` needs, probed on its own pairs
+    (:func:`.stepping.tune_pairs`, in ``out_dir/probe``; ``probe_pairs``: what to probe with,
+    if not its own). With ``record``, ``result.json``
+    beside the deck holds the table, the step's choice and the provenance.
     """
+    batch, step = tune_pairs(batch, Path(out_dir) / "probe", target, probe_pairs)
     rendered = render_pairs(batch)
     deck_path = prepare_run_dir(out_dir, rendered.deck)
     info = run_deck(deck_path)
@@ -132,12 +141,13 @@ def run_pairs(batch: PairBatch, out_dir: Path, record: bool = True) -> PairResul
     if np.any(gap <= 0.0):
         raise ResultError(f"{dump}: pair {int(np.argmin(gap))} still in contact after {batch.nsteps} steps")
     table = pair_table(batch, lammps)
-    result = PairResult(batch, table, info, dump, rendered.ids)
+    result = PairResult(batch, table, info, dump, rendered.ids, step)
     if record:
         out = {"scene": "pairs", "parameters": {"contact": batch.contact.law(), "dt": batch.dt,
                                                 "nsteps": batch.nsteps, "mu": "none (1e12)"},
                **software(), "deck": str(info.deck), "log": str(info.log), "lammps_wall_seconds": info.wall_seconds,
-               "max_lammps_error": result.max_lammps_error, "max_planar_error": result.max_planar_error,
+               "step": step.record(), "max_lammps_error": result.max_lammps_error,
+               "max_planar_error": result.max_planar_error,
                "pairs": table.to_dict(orient="records")}
         write_atomic(deck_path.parent / "result.json", to_json(out))
     return result

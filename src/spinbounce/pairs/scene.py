@@ -5,7 +5,7 @@ origin, a's at (r_a + r_b) ``normal``, with any velocities and spins (LAMMPS's f
 sign: omega is LAMMPS's angular velocity). A :class:`PairBatch` holds pairs that share
 one contact law (:class:`PairContact`) and one step, and works out what the deck needs:
 the exact reference of each pair (:mod:`spinbounce.theory.pair_exact`), the step, and
-how long before touching each pair starts so that its contact ends mid-step.
+how long before touching each pair starts (:attr:`PairBatch.lead`: where its first-order errors cancel best).
 
 Each sphere's m, r and alpha, and the contact's kn, kt, gamma_n and gamma_t, are checked
 against their declaration (:mod:`spinbounce.model.parameters`). Every pair is also checked
@@ -24,19 +24,20 @@ import numpy as np
 from .. import theory
 from ..model.contact import ContactModel
 from ..model.parameters import SceneError, by_name
-from ..model.timestep import steps_per_contact, steps_through
+from ..model.timestep import steps_through
 from ..theory import pair as planar
 from ..theory import pair_exact
 
 __all__ = ["Sphere", "PairContact", "Pair", "PairBatch", "ALPHA_NVE_SPHERE", "PAIR_STEPS_PER_HALF_PERIOD"]
 
-#: Default resolution: steps per half-period of the fastest mode of any pair. Two errors
-#: stay first order in dt here, unlike the wall's: LAMMPS's pair granular (this build)
-#: projects the half-step relative velocity on the full-step line of centres, which turns;
-#: and a pair that starts inside a step gets a whole step's history increment on its first
-#: contact step (the lead that puts its end mid-step puts its start off a step boundary).
-#: Largest error against the exact reference over the 24 cases of studies.cases():
-#: 3.1e-4 of the speed at 2000 steps, 3.9e-4 at 4000, 8.3e-5 at 8000, 5.3e-5 at 16000.
+#: The finest default resolution: steps per half-period of the fastest mode of any pair, what
+#: a batch falls back to when a probe of its own pairs cannot reach the accuracy coarser
+#: (:mod:`.stepping`). Two errors are first order in dt for pairs, unlike the wall: LAMMPS's
+#: pair granular (this build) projects the half-step relative velocity on the full-step line
+#: of centres, which turns; and one step shared by pairs of different contact times cannot
+#: put every contact in its best place within the steps (:attr:`PairBatch.lead`).
+#: Largest error against the exact reference over the 24 cases of studies.cases(), with
+#: the placement of :attr:`PairBatch.lead`: 5.8e-5 of the speed at this resolution.
 PAIR_STEPS_PER_HALF_PERIOD = 8000
 #: fix nve/sphere's own moment of inertia; any other alpha makes the sphere a rigid body.
 ALPHA_NVE_SPHERE = 0.4
@@ -168,13 +169,16 @@ def _check_overlap(pair: Pair, model: ContactModel, dt: float, where: str) -> No
 @dataclass(frozen=True)
 class PairBatch:
     """Pairs run together, each in its own cell. ``dt = None``: PAIR_STEPS_PER_HALF_PERIOD steps
-    per half-period of the fastest mode of any pair, which the step must also keep stable."""
+    per half-period of the fastest mode of any pair (``default_step``: a run probes for a
+    coarser one, :func:`.stepping.tune_pairs`); a given dt must keep every pair stable."""
 
     pairs: tuple = (Pair(),)
     contact: PairContact = field(default_factory=PairContact)
     dt: float | None = None
+    default_step: bool = field(init=False)
 
     def __post_init__(self):
+        object.__setattr__(self, "default_step", self.dt is None)
         pairs = (self.pairs,) if isinstance(self.pairs, Pair) else tuple(self.pairs)
         if not pairs or not all(isinstance(p, Pair) for p in pairs):
             raise SceneError("pairs", self.pairs, "must be one or more Pair")
@@ -201,11 +205,22 @@ class PairBatch:
 
     @cached_property
     def lead(self) -> np.ndarray:
-        """Time from each pair's start to its first touch, in [0, dt): it puts the exact end
-        of the contact in the middle of a step."""
-        ends = np.array([o.contact_time for o in self.exact])
-        steps = np.array([steps_per_contact(t, self.dt) for t in ends])
-        return np.clip((steps + 0.5) * self.dt - ends, 0.0, None)
+        """Time from each pair's start to its first touch, in [0, dt).
+
+        Where a contact of length T sits within the steps decides LAMMPS's first-order error:
+        with touch at a fraction phi of a step and release at a fraction psi, the history's
+        first increment counts phi dt of slip that never happened, and the last force acts
+        (psi - 1/2) dt too short; for a planar slip both move the final slip velocity along
+        the same direction, by dt (phi + 1/2 - psi) times one factor, so they cancel when
+        psi = phi + 1/2, which needs T/dt to end in a half (g = frac(T/dt) = 1/2). Measured
+        (one pair, eps 1e-4, 200 steps): 2e-6 of the speed there, 4.6e-4 at g = 1/4 for
+        any phi. For other g the error is least, |g - 1/2| times that factor, when touch and
+        release fall in one step's count (phi < 1 - g); phi = (1 - g)/2, the middle of that
+        range, was the best of eight measured placements at g = 1/2.
+        """
+        ends = np.array([o.contact_time for o in self.exact]) / self.dt
+        fraction = ends - np.floor(ends)
+        return 0.5 * (1.0 - fraction) * self.dt
 
     @property
     def nsteps(self) -> int:

@@ -5,8 +5,8 @@
 * :func:`validity_map`: the planar theory's error against the exact reference over a grid
   of eps = v_t tau/(r_a + r_b) and the centrifugal ratio v_t^2 tau/(pi (r_a + r_b) |v_n|)
   (no LAMMPS: the exact reference is what LAMMPS integrates, checked on the cases);
-* :func:`pair_to_wall_cost`: LAMMPS's loop time per collision of a pair batch over that of a
-  wall batch of the same impacts, each at its default resolution.
+* :func:`pair_to_wall_cost`: LAMMPS's loop time per collision of pair batches (small eps,
+  the default radii, the hard cases) over that of a wall batch, each at its default step.
 """
 
 from __future__ import annotations
@@ -24,7 +24,7 @@ from ..theory import pair_exact
 from .run import run_pairs
 from .scene import Pair, PairBatch, PairContact, Sphere
 
-__all__ = ["cases", "validity_map", "pair_to_wall_cost"]
+__all__ = ["cases", "validity_map", "pair_to_wall_cost", "cost_lines", "COST_BATCHES"]
 
 #: (sphere a, sphere b): unequal radii, masses and alpha (2/5 and rigid-body ones).
 _SPHERE_PAIRS = (
@@ -82,28 +82,54 @@ def validity_map(eps_values, centrifugal_values, kn: float = 10.0, kt: float = 1
             "kn": kn, "kt": kt, "sphere": {"m": sphere.m, "r": sphere.r, "alpha": sphere.alpha}}
 
 
-def pair_to_wall_cost(n: int = 200, seed: int = 3, out_dir: Path | None = None) -> dict:
-    """LAMMPS's loop seconds per collision, pairs against the wall, each at its default resolution.
+#: The batches :func:`pair_to_wall_cost` measures: a sweep's states with radii 5e3 (the line
+#: of centres barely turns: where a fit may claim the planar matrix), the same states with
+#: the default radii 0.5 (eps up to 0.7), and the 24 hard cases of :func:`cases`.
+COST_BATCHES = ("small eps", "default radii", "hard cases")
 
-    The same impacts: equal spheres against each other (b at rest) and one such sphere
-    against the wall, |v_n| in [0.5, 1.5], v_t and r omega in [-1, 1]. Both batches are also
-    checked against their references, so the two costs are at the accuracy each reaches.
-    """
+
+def _sweep_pairs(n: int, r: float, seed: int) -> tuple[list[Pair], dict]:
+    """Equal spheres of radius r, b at rest: |v_n| in [0.5, 1.5], v_t and r omega in [-1, 1];
+    and the same impacts as the wall's states."""
     rng = np.random.default_rng(seed)
-    v_n = -rng.uniform(0.5, 1.5, n)
-    v_t = rng.uniform(-1.0, 1.0, n)
-    r_omega = rng.uniform(-1.0, 1.0, n)
-    sphere = Sphere()
-    pairs = [Pair(a=sphere, b=sphere, v_a=(t, 0.0, vn), w_a=(0.0, -w / sphere.r, 0.0))
+    v_n, v_t, r_omega = -rng.uniform(0.5, 1.5, n), rng.uniform(-1.0, 1.0, n), rng.uniform(-1.0, 1.0, n)
+    sphere = Sphere(1.0, r, 0.4)
+    pairs = [Pair(a=sphere, b=sphere, v_a=(t, 0.0, vn), w_a=(0.0, -w / r, 0.0))
              for vn, t, w in zip(v_n, v_t, r_omega, strict=True)]
+    return pairs, {"v_n": v_n, "v_t": v_t, "omega": r_omega / 0.5}
+
+
+def pair_to_wall_cost(n: int = 200, seed: int = 3, out_dir: Path | None = None) -> dict:
+    """LAMMPS's loop seconds per collision, pair batches against a wall batch, each at its default step.
+
+    The wall: n spheres (m = 1, r = 0.5) at its default step. The pairs: each batch of
+    :data:`COST_BATCHES` with n pairs (the hard cases repeated), at the step its probe chose
+    (:func:`.stepping.tune_pairs`; the probe's own runs are not counted). Every batch is
+    checked against its reference, so each cost is at the accuracy its rows reach.
+    """
+    small, wall_states = _sweep_pairs(n, 5e3, seed)
+    batches = {"small eps": small, "default radii": _sweep_pairs(n, 0.5, seed)[0],
+               "hard cases": [cases()[k % 24] for k in range(n)]}
     with tempfile.TemporaryDirectory() as scratch:
         where = Path(out_dir or scratch)
-        pair = run_pairs(PairBatch(pairs, PairContact()), where / "pairs", record=False)
-        wall = run_collision(Collision(v_n=v_n, v_t=v_t, omega=r_omega / sphere.r), where / "wall", record=False)
-    per_pair = pair.info.loop_seconds / n
-    per_wall = wall.info.loop_seconds / n
-    return {"collisions": n, "pair_seconds_per_collision": per_pair, "wall_seconds_per_collision": per_wall,
-            "pair_to_wall": per_pair / per_wall,
-            "pair_to_wall_per_step": (per_pair / pair.batch.nsteps) / (per_wall / wall.scene.nsteps),
-            "pair_steps": pair.batch.nsteps, "wall_steps": wall.scene.nsteps,
-            "pair_max_error": pair.max_lammps_error, "wall_max_error": wall.max_abs_error}
+        wall = run_collision(Collision(**wall_states), where / "wall", record=False)
+        per_wall = wall.info.loop_seconds / n
+        out = {"collisions": n, "wall_seconds_per_collision": per_wall, "wall_steps": wall.scene.nsteps,
+               "wall_max_error": wall.max_abs_error, "batches": {}}
+        for name, pairs in batches.items():
+            pair = run_pairs(PairBatch(pairs, PairContact()), where / name.replace(" ", "-"), record=False)
+            per_pair = pair.info.loop_seconds / n
+            out["batches"][name] = {
+                "pair_seconds_per_collision": per_pair, "pair_to_wall": per_pair / per_wall,
+                "pair_to_wall_per_step": (per_pair / pair.batch.nsteps) / (per_wall / wall.scene.nsteps),
+                "pair_steps": pair.batch.nsteps, "step": pair.step.record(), "max_eps": float(pair.table["eps"].max()),
+                "pair_max_error": pair.max_lammps_error}
+    return out
+
+
+def cost_lines(report: dict) -> list[str]:
+    """One printed line per batch of :func:`pair_to_wall_cost`."""
+    return [f"pair / wall, per collision, {name} (eps up to {b['max_eps']:.2g}): {b['pair_to_wall']:.1f}x "
+            f"({b['pair_steps']} vs {report['wall_steps']} steps, {b['step']['method']}; per step "
+            f"{b['pair_to_wall_per_step']:.2f}x; max errors {b['pair_max_error']:.1e} and {report['wall_max_error']:.1e})"
+            for name, b in report["batches"].items()]

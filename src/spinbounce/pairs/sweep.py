@@ -8,7 +8,9 @@ beside them, and ``z_*`` (a's centre above b's). Added for the pair: both sphere
 states in LAMMPS's frame (``a_vx`` ... ``b_wz``, :data:`.run.QUANTITIES`) with their exact
 (``*_exact``) and planar (``*_planar``) values; a's state by the planar theory
 (``{s}_planar``); the geometry (``eps``, ``centrifugal``, ``turn``, ``contact_time``) and
-``planar_error``, the planar theory's model error (never mixed into ``error``).
+``planar_error``, the planar theory's model error (never mixed into ``error``); and
+``step_method``, how the chunk's step was chosen (:func:`.stepping.tune_pairs`: a probe of
+the chunk's own pairs, the fine rule, or a given dt).
 
 Row checks, as the wall's (:mod:`spinbounce.checks`) but over both spheres: ``error`` is the
 largest |LAMMPS - exact| over both spheres' velocities and r times spins, over the pair's
@@ -99,17 +101,20 @@ def _row_checks(columns: dict, table, pairs, model: ContactModel) -> None:
     columns["status"] = status
 
 
-def pair_chunk(model: ContactModel, b: Sphere, states: np.ndarray, dt: float | None,
-               run_dir: Path) -> tuple[dict, float, int, float]:
+def pair_chunk(model: ContactModel, b: Sphere, states: np.ndarray, dt: float | None, run_dir: Path,
+               probe_states: np.ndarray | None = None) -> tuple[dict, float, int, float]:
     """Run a chunk's pairs in one LAMMPS run; (columns, dt, steps, LAMMPS loop seconds).
 
     ``states``: (n, 3) or (n, 6) rows of (v_n, v_t, omega[, v_s, omega_s, omega_n]), as a
-    wall sweep's chunk gets them (angular velocities).
+    wall sweep's chunk gets them (angular velocities); ``probe_states``: the group's states
+    a default step is probed with (the same for every chunk: one step per group), by
+    default the chunk's own.
     """
     names = STATE_3D if states.shape[1] == 6 else STATE
     pairs = pairs_from_states(model, b, states)
     a = pairs[0].a
-    result = run_pairs(PairBatch(pairs, pair_contact(model), dt), run_dir, record=False)
+    probe = None if probe_states is None else tuple(pairs_from_states(model, b, probe_states))
+    result = run_pairs(PairBatch(pairs, pair_contact(model), dt), run_dir, record=False, probe_pairs=probe)
     table = result.table
     requested = wall_frame(np.array([p.v_a for p in pairs]), np.array([p.w_a for p in pairs]), a.r)
     columns = {f"{name}_0": requested[:, k] for k, name in enumerate(names)}
@@ -128,4 +133,5 @@ def pair_chunk(model: ContactModel, b: Sphere, states: np.ndarray, dt: float | N
     for key in ("eps", "centrifugal", "turn", "contact_time", "planar_error"):
         columns[key] = table[key].to_numpy()
     columns.update({q + suffix: table[q + suffix].to_numpy() for q in QUANTITIES for suffix in ("", "_exact", "_planar")})
+    columns["step_method"] = np.full(len(pairs), result.step.method, dtype=object)
     return columns, result.batch.dt, result.batch.nsteps, result.info.loop_seconds

@@ -58,7 +58,8 @@ def run_chunk(raw: dict, out: str, group: int, chunk: int, start: int, stop: int
     if spec.scene == "pair":  # sphere b instead of the wall: the wall's columns and both spheres'
         from ..pairs.sweep import pair_chunk
 
-        pair_columns, dt, nsteps, loop = pair_chunk(model, spec.sphere_b(group), states, dt, run_dir)
+        probe = spec.initial_states(group, 0, min(spec.n, PROBE_SPHERES))  # one step per group, as the wall's
+        pair_columns, dt, nsteps, loop = pair_chunk(model, spec.sphere_b(group), states, dt, run_dir, probe)
         columns.update(pair_columns)
     else:
         scene = Collision(model, v_n=states[:, 0], v_t=states[:, 1], omega=states[:, 2], dt=dt,

@@ -1,0 +1,79 @@
+"""The step a pair batch needs for the default accuracy, probed on its own pairs as the wall's.
+
+A pair batch's default is the fine rule (:data:`.scene.PAIR_STEPS_PER_HALF_PERIOD`), set for
+the hardest pairs. :func:`tune_pairs` measures instead, with the wall's rules
+(:mod:`spinbounce.stepping`: :data:`SAFETY`, the order floor, the checks of a chosen step):
+a few of the batch's own pairs run at :data:`START_STEPS` steps per contact and at twice
+that, against the exact reference (:mod:`spinbounce.theory.pair_exact`); the observed order
+and constant give the steps for SAFETY times the target. The step puts the batch's median
+contact time T in the middle of a step (T/dt ends in a half), where a pair's two
+first-order errors cancel (:attr:`.scene.PairBatch.lead`): pairs whose line of centres
+barely turns share that T and converge at second order; a spread of contact times (a
+turning line of centres) leaves a first-order error, which the probe sees. A batch whose
+probe cannot reach the target below the fine rule's steps keeps the fine rule. Every
+row's own error is measured afterwards anyway.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+
+from ..model.timestep import ACCURACY, SAFETY, StepChoice, mid_step_dt, steps_per_contact
+from ..stepping import CHECK_SLACK, MAX_CHECKS, PROBE_SPHERES, ROUNDING, extrapolate
+from .scene import PairBatch
+
+__all__ = ["tune_pairs", "START_STEPS", "FALLBACK"]
+
+#: The probe's coarser run: steps per contact (the wall's rule takes 174 at its defaults).
+START_STEPS = 100
+#: The method recorded when the probe could not do better than the fine rule.
+FALLBACK = "fine rule (probe could not reach the target coarser)"
+
+
+def tune_pairs(batch: PairBatch, out: Path, target: float = ACCURACY,
+               probe_pairs: tuple | None = None) -> tuple[PairBatch, StepChoice]:
+    """The batch at the step its accuracy needs, and how that step was chosen.
+
+    ``probe_pairs``: the pairs to probe with (a sweep's group: the same for every chunk, so
+    every chunk of a group gets the same step), by default every k-th of the batch's own, at
+    most :data:`PROBE_SPHERES`. A batch with a given dt is returned as it is (``given``).
+    """
+    from .run import run_pairs  # run imports this module
+
+    if not batch.default_step:
+        return batch, StepChoice(batch.dt, "given", target)
+    source = tuple(probe_pairs or batch.pairs)
+    pairs = source[:: max(1, math.ceil(len(source) / PROBE_SPHERES))]
+    t_contact = float(np.median([o.contact_time for o in PairBatch(pairs, batch.contact).exact]))
+    cap = steps_per_contact(t_contact, batch.dt)
+    errors: list[float] = []
+
+    def probe(steps: int) -> float:
+        sample = PairBatch(pairs, batch.contact, mid_step_dt(t_contact, steps))
+        errors.append(run_pairs(sample, Path(out) / f"probe-{len(errors)}", record=False).max_lammps_error)
+        return errors[-1]
+
+    probe(START_STEPS)
+    last = (2 * START_STEPS, probe(2 * START_STEPS))
+    if last[1] <= ROUNDING:
+        steps, order, predicted = START_STEPS, None, last[1]
+    else:
+        steps, order = extrapolate((START_STEPS, errors[0]), last, target)
+        predicted = last[1] * (last[0] / steps) ** order
+        for _ in range(MAX_CHECKS):  # the wall's checks: a rough convergence's extrapolation can miss
+            if steps <= last[0] or steps >= cap:
+                break
+            measured = probe(steps)
+            if measured <= target * SAFETY * CHECK_SLACK:
+                predicted = measured
+                break
+            previous, last = last, (steps, measured)
+            steps, order = extrapolate(previous, last, target)
+            predicted = measured * (last[0] / steps) ** order
+    if steps >= cap or predicted > target * SAFETY * CHECK_SLACK:
+        return batch, StepChoice(batch.dt, FALLBACK, target, order, tuple(errors), None)
+    tuned = PairBatch(batch.pairs, batch.contact, mid_step_dt(t_contact, steps))
+    return tuned, StepChoice(tuned.dt, "probe", target, order, tuple(errors), predicted)
