@@ -16,6 +16,8 @@ import math
 import numpy as np
 import pytest
 
+from spinbounce.model.timestep import MIN_STEPS_PER_HALF_PERIOD
+
 from spinbounce import theory
 from spinbounce.theory import hertz
 from spinbounce.lammps.decks import render_collision, render_frozen
@@ -136,7 +138,6 @@ def test_damped_hertz_is_refused_and_hooke_only_quantities_ask_for_v_n():
             getattr(model, name)
 
 
-@pytest.mark.filterwarnings("ignore:dt = .* steps per half-period")  # the coarse step below, on purpose
 def test_tunnelling_is_refused_at_the_exact_overlap():
     """kn = 10, r = 0.5: delta_max = r at |v_n| = sqrt(4 kn r^3/(5 m)) = 1 exactly."""
     model = ContactModel(normal="hertz")
@@ -145,9 +146,12 @@ def test_tunnelling_is_refused_at_the_exact_overlap():
         Collision(model, v_n=[-0.5, -1.2], v_t=1.0, omega=0.0)
     assert info.value.parameter == "v_n" and info.value.value == -1.2
     Collision(model, v_n=-0.95, v_t=1.0, omega=0.0)  # 0.96 r: allowed at the default step
-    # a coarse step (w dt = 1: bound 1.155 on the stretch, 0.55 > r) is refused too
+    # 0.9992 r exactly; at the coarsest step the resolution rule accepts (20 steps per half-period
+    # of the fastest mode) the step's stretch, up to 1/sqrt(1 - (pi/40)^2) = 1.0031, passes r
+    speed = 0.999
+    coarsest = math.pi / model.fastest_rate(False, speed) / MIN_STEPS_PER_HALF_PERIOD
     with pytest.raises(SceneError, match="stretch"):
-        Collision(model, v_n=-0.95, v_t=1.0, omega=0.0, dt=1.0 / float(hertz.normal_frequency(0.95, M, 10.0, R)))
+        Collision(model, v_n=-speed, v_t=1.0, omega=0.0, dt=coarsest)
 
 
 def _replayed_overlap(v_n, kn, dt):

@@ -32,10 +32,18 @@ def _processes_mentioning(text: str) -> list[int]:
     return found
 
 
+def _as_from_a_terminal() -> None:
+    """Ctrl-C's default action, as a terminal's shell gives its commands: a test run started in
+    the background of a non-interactive shell hands its children SIGINT ignored, and the sweep
+    rightly keeps what it inherits."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def _start(out: Path) -> subprocess.Popen:
     argv = [sys.executable, "-m", "spinbounce.cli", "sweep", "--n", str(N), "--chunk-size", str(CHUNK),
             "--workers", "2", "--out", str(out)]
-    return subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True)
+    return subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True,
+                            preexec_fn=_as_from_a_terminal)
 
 
 def _wait_for(predicate, seconds: float) -> bool:
