@@ -391,3 +391,31 @@ def test_corners_bound_the_error_over_the_box(tmp_path):
                                                  states=accuracy.box_sample(200, seed=7))
         for s in ("vn", "vt", "r_omega"):
             assert inside[f"error_{s}"] <= corners[f"error_{s}"] * (1 + 1e-9), (form, s)
+
+
+def test_the_stored_accuracy_figure_reads_its_timings_smoothed_and_keeps_its_labels_inside():
+    """The wall-time panel draws each curve against start-up + steps x cost fitted to its own
+    timings (single millisecond timings scatter on a shared machine): drawn from the stored
+    record, every curve's time grows with its steps and no text is cut off."""
+    import json
+    from types import SimpleNamespace
+
+    import matplotlib.style
+    import pandas as pd
+
+    from figure_bounds import texts_outside
+    from spinbounce.figures.core import STYLE
+    from spinbounce.studies.accuracy import report
+    from spinbounce.studies.accuracy.cases import cases as all_cases
+
+    stored = json.loads((Path(__file__).resolve().parents[1] / "figures" / "accuracy.json").read_text())
+    table = pd.DataFrame(stored["runs_table"])
+    names = {c["name"] for c in stored["cases"]}
+    for (_, _), rows in table.groupby(["case", "form"]):
+        rows = rows.sort_values("lammps_steps")
+        fitted = report.fitted_seconds(rows)
+        assert (np.diff(fitted) >= 0.0).all() and (fitted >= 0.0).all()
+    study = SimpleNamespace(cases=[c for c in all_cases() if c.name in names], table=table,
+                            summary=pd.DataFrame(stored["summary"]))
+    with matplotlib.style.context(STYLE):
+        assert texts_outside(report.draw(study)) == []
