@@ -10,7 +10,7 @@ import pytest
 from spinbounce import theory
 from spinbounce.model.parameters import SceneError
 from spinbounce.pairs import QUANTITIES, Pair, PairBatch, PairContact, Sphere, run_pairs
-from spinbounce.pairs.stepping import FALLBACK
+from spinbounce.pairs.scene import time_scaled
 from spinbounce.pairs.studies import cases
 from spinbounce.theory import pair as planar
 from spinbounce.theory import pair_exact
@@ -113,16 +113,47 @@ def test_scene_refuses_bad_input_before_lammps():
 @pytest.mark.lammps
 def test_lammps_matches_the_exact_reference_on_24_cases(tmp_path):
     # Default step; the bound is the default accuracy (1e-4 of the speed, the larger of
-    # |v_a - v_b| and |u'(0)|). The probe cannot reach it coarser here (the line of centres
-    # turns by up to 3.9 rad), so the batch keeps the fine rule: measured 4.3e-5 at most.
+    # |v_a - v_b| and |u'(0)|). The line of centres turns by up to 3.9 rad, which leaves
+    # LAMMPS first order in dt even with every contact ending mid-step (aligned time
+    # scales); the probe sees that order and takes the steps it needs, fewer than the fine
+    # rule's (measured: 3,701 against 22,000, every row within 4.8e-5).
     result = run_pairs(PairBatch(cases()), tmp_path)
-    assert result.step.method == FALLBACK and result.batch.dt == PairBatch(cases()).dt
+    assert result.step.method == "probe" and result.step.observed_order < 1.5
+    assert result.batch.nsteps < PairBatch(cases()).nsteps
     table = result.table
     assert len(table) == 24 and (table["eps"] > 3.0).any() and (table["r_a"] != table["r_b"]).any()
     assert result.max_lammps_error < 1e-4
     # the planar theory is a model error, far above the run's: the exact reference is needed
     assert result.max_planar_error > 0.1
-    assert json.loads((tmp_path / "result.json").read_text())["step"]["method"] == FALLBACK
+    assert json.loads((tmp_path / "result.json").read_text())["step"]["method"] == "probe"
+
+
+def test_a_time_scaled_pair_is_the_same_collision_slower():
+    # pairs.scene.time_scaled: masses x s^2, velocities and spins / s. The exact reference of
+    # the scaled pair must be the original's over s, lasting s times longer: to its own
+    # tolerance (1e-9 of unit speeds), for an oblique pair whose line of centres turns.
+    for pair in (OBLIQUE, cases()[5]):
+        for s in (0.9, 1.003, 2.0):
+            scaled = time_scaled(pair, s)
+            original = pair_exact.solve(**pair.vectors(), **pair.properties(), **LAW)
+            slower = pair_exact.solve(**scaled.vectors(), **scaled.properties(), **LAW)
+            assert slower.contact_time == pytest.approx(s * original.contact_time, rel=1e-9)
+            for q in ("v_a", "v_b", "w_a", "w_b"):
+                assert np.max(np.abs(s * np.asarray(getattr(slower, q)) - getattr(original, q))) < 1e-9
+
+
+def test_an_aligned_batch_ends_every_undamped_contact_mid_step():
+    # Each pair's contact lasts a whole number of steps and a half in the deck, touching a
+    # quarter step after a step (PairBatch.lead with g = 1/2), at a time scale within half a
+    # step per contact of 1; a damped batch cannot be scaled (eta would have to scale too).
+    batch = PairBatch(cases(), dt=0.013, aligned=True)
+    ends = batch.deck_contact_times / batch.dt
+    assert np.allclose(ends % 1, 0.5, atol=1e-9) and np.allclose(batch.lead, 0.25 * batch.dt)
+    contact_steps = np.array([o.contact_time for o in batch.exact]) / batch.dt
+    assert np.all(np.abs(batch.time_scales - 1) <= 0.5 / contact_steps + 1e-12)
+    assert len(set(batch.time_scales)) > 1
+    damped = PairBatch(cases(), PairContact(gamma_n=0.5), dt=0.013, aligned=True)
+    assert np.all(damped.time_scales == 1.0)
 
 
 def _sweep_pairs(r: float, n: int = 24) -> list[Pair]:
@@ -169,12 +200,13 @@ def test_contacts_are_placed_where_the_first_order_errors_cancel_best():
 @pytest.mark.lammps
 def test_a_batch_equals_isolated_runs(tmp_path):
     # Pairs in their own cells never interact: the batch reproduces each pair run alone
-    # (same dt, same lead) to rounding, 1e-11.
+    # (same dt, same lead, same time scale) to rounding, 1e-11.
     chosen = [cases()[i] for i in (3, 9, 16, 23)]
-    batch = PairBatch(chosen, dt=PairBatch(chosen).dt)
+    batch = PairBatch(chosen, dt=PairBatch(chosen).dt, aligned=True)
     together = run_pairs(batch, tmp_path / "batch", record=False).table
+    assert len(set(together["time_scale"])) == len(chosen)
     for k, pair in enumerate(chosen):
-        alone = run_pairs(PairBatch([pair], dt=batch.dt), tmp_path / f"alone{k}", record=False).table
+        alone = run_pairs(PairBatch([pair], dt=batch.dt, aligned=True), tmp_path / f"alone{k}", record=False).table
         assert alone["contact_time"][0] == together["contact_time"][k]
         for q in QUANTITIES:
             assert abs(alone[q][0] - together[q][k]) < 1e-11, q

@@ -2,7 +2,8 @@
 
 Layout: pair k sits in cell k of a cubic grid, its contact point at the cell's centre, its
 spheres backed off along their velocities by the pair's lead time (free flight, which the
-step integrates exactly) so that they touch that much later. Atom ids: the spheres that
+step integrates exactly) so that they touch that much later; each pair at its time scale
+(:attr:`.scene.PairBatch.time_scales`: heavier and slower by it, in an aligned batch). Atom ids: the spheres that
 are rigid bodies (alpha other than 2/5) first, then their centre points in the same order,
 then the free spheres; :attr:`PairDeck.ids` maps each pair's a and b to its sphere's id.
 """
@@ -52,7 +53,7 @@ def _spheres(batch: PairBatch) -> tuple[list[dict], float, int]:
     cell = 4.0 * (largest + travel)
     grid = math.ceil(round(batch.n ** (1.0 / 3.0), 9))
     records = []
-    for k, (pair, lead) in enumerate(zip(batch.pairs, batch.lead, strict=True)):
+    for k, (pair, lead) in enumerate(zip(batch.deck_pairs, batch.lead, strict=True)):
         centre = (np.array([k % grid, (k // grid) % grid, k // grid**2]) + 0.5) * cell
         n = np.asarray(pair.normal)
         for side, sphere, v, w, place in (("a", pair.a, pair.v_a, pair.w_a, pair.a.r * n),

@@ -28,7 +28,7 @@ from .deck import render_pairs
 from .scene import PairBatch
 from .stepping import tune_pairs
 
-__all__ = ["PairResult", "run_pairs", "pair_table", "QUANTITIES"]
+__all__ = ["PairResult", "run_pairs", "pair_table", "pair_states", "QUANTITIES"]
 
 #: The final quantities of each sphere, in table order.
 QUANTITIES = tuple(f"{side}_{q}{axis}" for side in "ab" for q in "vw" for axis in "xyz")
@@ -54,23 +54,31 @@ class PairResult:
         return float(self.table["planar_error"].max())
 
 
-def _final_states(batch: PairBatch, ids: np.ndarray, dump: Path) -> dict[str, np.ndarray]:
-    frames = read_dump(dump)
-    final = frames[frames["step"] == batch.nsteps].set_index("id")
-    if sorted(frames["step"].unique()) != [0, batch.nsteps]:
-        raise ResultError(f"{dump}: expected frames at steps 0 and {batch.nsteps}")
-    if len(final) != 2 * batch.n:
-        raise ResultError(f"{dump}: {len(final)} of {2 * batch.n} spheres at the end (lost atoms)")
+def pair_states(batch: PairBatch, ids: np.ndarray, frames: pd.DataFrame, step: int) -> dict[str, np.ndarray]:
+    """Both spheres' (n, 3) velocities ``a_v``, spins ``a_w`` (each pair's time scale undone:
+    :attr:`PairBatch.time_scales`) and positions ``a_x`` ... ``b_x`` at ``step`` of the dump."""
+    rows = frames[frames["step"] == step].set_index("id")
+    scales = batch.time_scales[:, None]
     out = {}
     for column, side in ((0, "a"), (1, "b")):
-        rows = final.loc[ids[:, column]]
+        sphere = rows.loc[ids[:, column]]
         for q, lammps in (("v", "v"), ("w", "omega")):
-            for axis in "xyz":
-                out[f"{side}_{q}{axis}"] = rows[f"{lammps}{axis}"].to_numpy()
-        out[f"{side}_x"] = rows[["x", "y", "z"]].to_numpy()
-    if not all(np.all(np.isfinite(v)) for v in out.values()):
-        raise ResultError(f"{dump}: non-finite final states: the integration blew up")
+            out[f"{side}_{q}"] = sphere[[f"{lammps}{axis}" for axis in "xyz"]].to_numpy() * scales
+        out[f"{side}_x"] = sphere[["x", "y", "z"]].to_numpy()
     return out
+
+
+def _final_states(batch: PairBatch, ids: np.ndarray, dump: Path) -> dict[str, np.ndarray]:
+    frames = read_dump(dump)
+    if sorted(frames["step"].unique()) != [0, batch.nsteps]:
+        raise ResultError(f"{dump}: expected frames at steps 0 and {batch.nsteps}")
+    if int((frames["step"] == batch.nsteps).sum()) != 2 * batch.n:
+        raise ResultError(f"{dump}: {int((frames['step'] == batch.nsteps).sum())} of {2 * batch.n} spheres "
+                          "at the end (lost atoms)")
+    states = pair_states(batch, ids, frames, batch.nsteps)
+    if not all(np.all(np.isfinite(v)) for v in states.values()):
+        raise ResultError(f"{dump}: non-finite final states: the integration blew up")
+    return _columns(states, "") | {"a_x": states["a_x"], "b_x": states["b_x"]}
 
 
 def _columns(values: dict[str, np.ndarray], suffix: str) -> dict[str, np.ndarray]:
@@ -108,7 +116,7 @@ def pair_table(batch: PairBatch, lammps: dict[str, np.ndarray] | None) -> pd.Dat
                "contact_time": np.array([o.contact_time for o in batch.exact]),
                "eps": planar.line_turn(v_t, tau, props["r_a"], props["r_b"]),
                "centrifugal": planar.centrifugal_ratio(v_t, v_n, tau, props["r_a"], props["r_b"]),
-               "turn": np.array([o.turn for o in batch.exact])}
+               "turn": np.array([o.turn for o in batch.exact]), "time_scale": batch.time_scales}
     exact, theory = _references(batch)
     if lammps is not None:
         columns.update({q: lammps[q] for q in QUANTITIES})

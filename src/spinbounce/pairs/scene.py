@@ -5,7 +5,9 @@ origin, a's at (r_a + r_b) ``normal``, with any velocities and spins (LAMMPS's f
 sign: omega is LAMMPS's angular velocity). A :class:`PairBatch` holds pairs that share
 one contact law (:class:`PairContact`) and one step, and works out what the deck needs:
 the exact reference of each pair (:mod:`spinbounce.theory.pair_exact`), the step, and
-how long before touching each pair starts (:attr:`PairBatch.lead`: where its first-order errors cancel best).
+how long before touching each pair starts (:attr:`PairBatch.lead`: where its first-order errors
+cancel best) and, in an aligned batch, the time scale each pair runs at in the deck
+(:attr:`PairBatch.time_scales`: every contact then ends in the middle of a step).
 
 Each sphere's m, r and alpha, and the contact's kn, kt, gamma_n and gamma_t, are checked
 against their declaration (:mod:`spinbounce.model.parameters`). Every pair is also checked
@@ -16,7 +18,7 @@ critical damping, the step's stability and resolution.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property
 
 import numpy as np
@@ -28,7 +30,8 @@ from ..model.timestep import steps_through
 from ..theory import pair as planar
 from ..theory import pair_exact
 
-__all__ = ["Sphere", "PairContact", "Pair", "PairBatch", "ALPHA_NVE_SPHERE", "PAIR_STEPS_PER_HALF_PERIOD"]
+__all__ = ["Sphere", "PairContact", "Pair", "PairBatch", "ALPHA_NVE_SPHERE", "PAIR_STEPS_PER_HALF_PERIOD",
+           "time_scaled"]
 
 #: The finest default resolution: steps per half-period of the fastest mode of any pair, what
 #: a batch falls back to when a probe of its own pairs cannot reach the accuracy coarser
@@ -95,6 +98,10 @@ class PairContact:
     def law(self) -> dict:
         return {"kn": self.kn, "kt": self.kt, "gamma_n": self.gamma_n, "gamma_t": self.gamma_t}
 
+    @property
+    def damped(self) -> bool:
+        return self.gamma_n > 0.0 or self.gamma_t > 0.0
+
 
 @dataclass(frozen=True)
 class Pair:
@@ -155,6 +162,20 @@ class Pair:
         return float(max(np.linalg.norm(np.subtract(self.v_a, self.v_b)), np.linalg.norm(slip)))
 
 
+def time_scaled(pair: Pair, scale: float) -> Pair:
+    """The same collision in time units ``scale`` times longer: masses (and so moments of inertia)
+    times scale^2, velocities and spins over scale, same radii, springs and geometry. Every
+    overlap and spring force is the same at the same fraction of the contact, which lasts
+    ``scale`` times longer; the final velocities and spins are the original's over ``scale``.
+    Exact for an undamped contact only (a damping force -eta v would need eta times scale)."""
+    def heavier(sphere: Sphere) -> Sphere:
+        return Sphere(sphere.m * scale**2, sphere.r, sphere.alpha)
+
+    return replace(pair, a=heavier(pair.a), b=heavier(pair.b), v_a=tuple(np.divide(pair.v_a, scale)),
+                   v_b=tuple(np.divide(pair.v_b, scale)), w_a=tuple(np.divide(pair.w_a, scale)),
+                   w_b=tuple(np.divide(pair.w_b, scale)))
+
+
 def _check_overlap(pair: Pair, model: ContactModel, dt: float, where: str) -> None:
     """The deepest overlap (stretched by the step, as for the wall) must stay below the
     smaller radius, or the smaller centre would enter the larger sphere."""
@@ -170,11 +191,14 @@ def _check_overlap(pair: Pair, model: ContactModel, dt: float, where: str) -> No
 class PairBatch:
     """Pairs run together, each in its own cell. ``dt = None``: PAIR_STEPS_PER_HALF_PERIOD steps
     per half-period of the fastest mode of any pair (``default_step``: a run probes for a
-    coarser one, :func:`.stepping.tune_pairs`); a given dt must keep every pair stable."""
+    coarser one, :func:`.stepping.tune_pairs`); a given dt must keep every pair stable.
+    ``aligned``: each pair of an undamped batch runs at its own time scale
+    (:attr:`time_scales`), what the probed step assumes; off, every pair runs at ``dt``."""
 
     pairs: tuple = (Pair(),)
     contact: PairContact = field(default_factory=PairContact)
     dt: float | None = None
+    aligned: bool = False
     default_step: bool = field(init=False)
 
     def __post_init__(self):
@@ -204,8 +228,30 @@ class PairBatch:
         return tuple(pair_exact.solve(**p.vectors(), **p.properties(), **law) for p in self.pairs)
 
     @cached_property
+    def time_scales(self) -> np.ndarray:
+        """Per pair, how many times slower its time runs in the deck (:func:`time_scaled`).
+
+        One step shared by pairs of different contact times T puts their contacts' ends at
+        different phases g = frac(T/dt) of a step, and LAMMPS's error is first order in dt
+        unless g = 1/2 (:attr:`lead`). Run in time units lambda = (floor(T/dt) + 1/2)/(T/dt)
+        times longer, a pair's contact lasts a whole number of steps and a half: each pair
+        has in effect its own step dt/lambda, within half a step per contact of the batch's.
+        Measured on one pair (eps 0.84), LAMMPS's error at g = 1/2 is what is left, and the
+        probe of :mod:`.stepping` sees it. All ones unless ``aligned`` and the contact is undamped.
+        """
+        if not self.aligned or self.contact.damped:
+            return np.ones(self.n)
+        ends = np.array([o.contact_time for o in self.exact]) / self.dt
+        return (np.floor(ends) + 0.5) / ends
+
+    @cached_property
+    def deck_pairs(self) -> tuple:
+        """The pairs as the deck runs them: each at its time scale."""
+        return tuple(p if s == 1.0 else time_scaled(p, float(s)) for p, s in zip(self.pairs, self.time_scales))
+
+    @cached_property
     def lead(self) -> np.ndarray:
-        """Time from each pair's start to its first touch, in [0, dt).
+        """Time in the deck from each pair's start to its first touch, in [0, dt).
 
         Where a contact of length T sits within the steps decides LAMMPS's first-order error:
         with touch at a fraction phi of a step and release at a fraction psi, the history's
@@ -218,12 +264,15 @@ class PairBatch:
         release fall in one step's count (phi < 1 - g); phi = (1 - g)/2, the middle of that
         range, was the best of eight measured placements at g = 1/2.
         """
-        ends = np.array([o.contact_time for o in self.exact]) / self.dt
+        ends = self.deck_contact_times / self.dt
         fraction = ends - np.floor(ends)
         return 0.5 * (1.0 - fraction) * self.dt
 
     @property
+    def deck_contact_times(self) -> np.ndarray:
+        return np.array([o.contact_time for o in self.exact]) * self.time_scales
+
+    @property
     def nsteps(self) -> int:
         """Steps that carry every pair past the end of its contact (and one more)."""
-        ends = self.lead + np.array([o.contact_time for o in self.exact])
-        return steps_through(float(np.max(ends)), self.dt)
+        return steps_through(float(np.max(self.lead + self.deck_contact_times)), self.dt)

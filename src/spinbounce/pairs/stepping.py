@@ -5,11 +5,13 @@ the hardest pairs. :func:`tune_pairs` measures instead, with the wall's rules
 (:mod:`spinbounce.stepping`: :data:`SAFETY`, the order floor, the checks of a chosen step):
 a few of the batch's own pairs run at :data:`START_STEPS` steps per contact and at twice
 that, against the exact reference (:mod:`spinbounce.theory.pair_exact`); the observed order
-and constant give the steps for SAFETY times the target. The step puts the batch's median
-contact time T in the middle of a step (T/dt ends in a half), where a pair's two
-first-order errors cancel (:attr:`.scene.PairBatch.lead`): pairs whose line of centres
-barely turns share that T and converge at second order; a spread of contact times (a
-turning line of centres) leaves a first-order error, which the probe sees. A batch whose
+and constant give the steps for SAFETY times the target. Every probed and chosen batch is aligned
+(:attr:`.scene.PairBatch.time_scales`): each undamped pair runs at its own time scale so that
+its contact ends in the middle of a step, where two first-order errors cancel
+(:attr:`.scene.PairBatch.lead`), and pairs whose line of centres barely turns converge at
+second order. A damped batch cannot be aligned that way: its step puts the median contact
+time in the middle of a step, and a spread of contact times leaves a first-order error. So
+does LAMMPS's projection on a turning line of centres. The probe sees what is left. A batch whose
 probe cannot reach the target below the fine rule's steps keeps the fine rule. Every
 row's own error is measured afterwards anyway.
 """
@@ -52,7 +54,7 @@ def tune_pairs(batch: PairBatch, out: Path, target: float = ACCURACY,
     errors: list[float] = []
 
     def probe(steps: int) -> float:
-        sample = PairBatch(pairs, batch.contact, mid_step_dt(t_contact, steps))
+        sample = PairBatch(pairs, batch.contact, mid_step_dt(t_contact, steps), aligned=True)
         errors.append(run_pairs(sample, Path(out) / f"probe-{len(errors)}", record=False).max_lammps_error)
         return errors[-1]
 
@@ -74,6 +76,7 @@ def tune_pairs(batch: PairBatch, out: Path, target: float = ACCURACY,
             steps, order = extrapolate(previous, last, target)
             predicted = measured * (last[0] / steps) ** order
     if steps >= cap or predicted > target * SAFETY * CHECK_SLACK:
-        return batch, StepChoice(batch.dt, FALLBACK, target, order, tuple(errors), None)
-    tuned = PairBatch(batch.pairs, batch.contact, mid_step_dt(t_contact, steps))
+        fine = PairBatch(batch.pairs, batch.contact, batch.dt, aligned=True)
+        return fine, StepChoice(fine.dt, FALLBACK, target, order, tuple(errors), None)
+    tuned = PairBatch(batch.pairs, batch.contact, mid_step_dt(t_contact, steps), aligned=True)
     return tuned, StepChoice(tuned.dt, "probe", target, order, tuple(errors), predicted)

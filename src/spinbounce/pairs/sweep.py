@@ -32,7 +32,7 @@ from ..model.timestep import ACCURACY
 from ..theory import linear
 from ..theory import pair as planar
 from .kind import pair_contact, pairs_from_states, wall_frame
-from .run import QUANTITIES, run_pairs
+from .run import QUANTITIES, pair_states, run_pairs
 from .scene import PairBatch, Sphere
 
 __all__ = ["pair_chunk"]
@@ -53,12 +53,10 @@ def _a_columns(names, when: str, v: np.ndarray, w: np.ndarray, r: float, height:
     return out
 
 
-def _frame(frames, ids: np.ndarray, step: int) -> dict:
+def _frame(batch: PairBatch, frames, ids: np.ndarray, step: int) -> dict:
     """a's v and w, and a's height above b, at ``step`` of the dump."""
-    rows = frames[frames["step"] == step].set_index("id")
-    a, b = rows.loc[ids[:, 0]], rows.loc[ids[:, 1]]
-    return {"v": a[["vx", "vy", "vz"]].to_numpy(), "w": a[["omegax", "omegay", "omegaz"]].to_numpy(),
-            "height": a["z"].to_numpy() - b["z"].to_numpy()}
+    state = pair_states(batch, ids, frames, step)
+    return {"v": state["a_v"], "w": state["a_w"], "height": state["a_x"][:, 2] - state["b_x"][:, 2]}
 
 
 def _energy(spheres: list) -> np.ndarray:
@@ -121,7 +119,7 @@ def pair_chunk(model: ContactModel, b: Sphere, states: np.ndarray, dt: float | N
     columns.update({f"{_SPINS[name]}_0": columns[f"{name}_0"] / a.r for name in names if name in _SPINS})
     frames = read_dump(result.dump)
     for when, step in (("lammps_0", 0), ("final", result.batch.nsteps)):
-        state = _frame(frames, result.ids, step)
+        state = _frame(result.batch, frames, result.ids, step)
         columns.update(_a_columns(names, when, state["v"], state["w"], a.r, state["height"]))
     for suffix, when in (("_exact", "theory"), ("_planar", "planar")):
         v, w = (table[[f"a_{q}{x}{suffix}" for x in "xyz"]].to_numpy() for q in "vw")
