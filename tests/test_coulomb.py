@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 from spinbounce import theory
-from spinbounce.theory import oracle
+from spinbounce.theory import oracle, rigid_body
 from spinbounce.pipeline import run_collision
 from spinbounce.model.scenes import Collision, ContactModel
 
@@ -81,7 +81,7 @@ def test_oracle_gross_slip_is_the_rigid_body_outcome(kw):
     for v_n, v_t, omega in states:
         got = oracle.bounce(model, v_n, v_t, omega)
         assert got.pattern in ("slip", "stick-slip")
-        closed = oracle.gross_slip(model, v_n, v_t, omega, model.restitution)
+        closed = rigid_body.gross_slip(model, v_n, v_t, omega, model.restitution)
         assert np.abs(got.final[:3] - closed).max() < 1e-6
 
 
@@ -142,7 +142,7 @@ def test_lammps_gross_slip_and_no_slip_match_the_closed_forms(tmp_path):
     for name, slide, states in (("e=1", ContactModel(mu=0.02), GROSS),
                                 ("e=0.7", ContactModel(mu=0.02, gamma_n=E_07, limit_damping=True), GROSS_DAMPED)):
         result = _run(slide, *np.array(states).T, 64, tmp_path / name)
-        closed = np.array([oracle.gross_slip(slide, *s, slide.restitution) for s in states])
+        closed = np.array([rigid_body.gross_slip(slide, *s, slide.restitution) for s in states])
         assert np.abs(_final(result) - closed).max() < 1e-4
     rough = ContactModel(kt=10.0 * theory.magic_kt_over_kn(0.4), mu=0.5)
     states = np.array([(-1.0, 0.5, 0.0), (-0.7, 0.2, 0.8), (-1.2, -1.0, -1.0)])

@@ -43,7 +43,7 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:  # the oracle reads a model's fields; it needs nothing else of model/
     from ..model.contact import ContactModel  # noqa: F401
 
-__all__ = ["OracleResult", "bounce", "bounce_many", "gross_slip", "RTOL", "ATOL"]
+__all__ = ["OracleResult", "bounce", "bounce_many", "RTOL", "ATOL"]
 
 METHOD = "DOP853"
 RTOL = 1.0e-12  # a Hertzian contact gets a tenth: at 1e-12 an extreme slide (mu ~ 1e3) kept 1.2e-8
@@ -385,16 +385,3 @@ def bounce_many(model: ContactModel, v_n, v_t, omega, v_s=None, omega_s=None, om
                omega_s=float(cols[3][i]), omega_n=float(cols[4][i])).final
         for i in range(n)
     ])
-
-
-def gross_slip(model: ContactModel, v_n: float, v_t: float, omega: float, e: float) -> np.ndarray:
-    """Rigid-body outcome when the contact slides from first touch to exit in one direction.
-
-    The friction impulse is then mu times the normal impulse, m (1 + e) |v_n|, against the
-    slip: Delta v_t = -mu (1 + e) |v_n| sign(u') and Delta(r omega) = Delta v_t / alpha.
-    Exact for this model whenever F_n >= 0 throughout (gamma_n = 0, or limit_damping).
-    Returns (v_n, v_t, r omega) after the collision.
-    """
-    slip = v_t + model.r * omega
-    dv = -model.mu * (1.0 + e) * abs(v_n) * math.copysign(1.0, slip)
-    return np.array([-e * v_n, v_t + dv, model.r * omega + dv / model.alpha])

@@ -9,31 +9,9 @@ from __future__ import annotations
 import numpy as np
 
 from ...model.scenes import ContactModel
+from ...theory.rigid_body import walton
 
 __all__ = ["first_touch_stick", "impact_speed", "walton"]
-
-
-def walton(model: ContactModel, states: np.ndarray, e: float, beta0: float) -> tuple[np.ndarray, list[str]]:
-    """Walton's rigid-body impact law: final (v_n, v_t, r omega) and the regime of each state.
-
-    The normal impulse is m (1 + e) |v_n|. The contact point's tangential velocity
-    s = v_t + r omega would reverse to -beta0 s under the impulse
-    J* = m alpha/(1 + alpha) (1 + beta0) s (the reduced mass of the slip); the impulse
-    taken is J = sign(s) min(|J*|, mu m (1 + e) |v_n|). Sliding (the Coulomb bound reached)
-    when alpha/(1 + alpha) (1 + beta0) |s| >= mu (1 + e) |v_n|. Then
-    Delta v_t = -J/m and Delta(r omega) = -J/(alpha m). For a solid sphere
-    alpha/(1 + alpha) = 2/7, the 3.5 mu (1 + e) |v_n| threshold of the literature.
-    """
-    states = np.asarray(states, dtype=float)
-    v_n, v_t, w = states.T
-    a = model.alpha
-    s = v_t + w
-    bound = model.mu * (1.0 + e) * np.abs(v_n)
-    wanted = a / (1.0 + a) * (1.0 + beta0) * s
-    sliding = np.abs(wanted) >= bound
-    impulse = np.where(sliding, np.sign(s) * bound, wanted)
-    final = np.column_stack([-e * v_n, v_t - impulse, w - impulse / a])
-    return final, ["sliding" if k else "sticking" for k in sliding]
 
 
 def first_touch_stick(model: ContactModel, states: np.ndarray) -> np.ndarray:
