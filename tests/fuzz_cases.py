@@ -154,6 +154,8 @@ FLAGS = [
     refused("pair-two-components", "pair --v-a 1 2", "--v-a"),
     refused("pair-zero-normal", "pair --normal 0 0 0", "normal"),
     refused("pair-kn-negative", "pair --kn -1", "kn", "-1.0"),
+    refused("pair-mu-3d", "pair --mu 0.3 --w-a 1 0 0", "one plane"),
+    refused("pair-mu-gamma-t", "pair --mu 0.3 --gamma-t 0.5", "gamma_t", "0.5"),
     refused("limit-damping-as-value", "theory --limit-damping=true", "--limit-damping"),
 ]
 

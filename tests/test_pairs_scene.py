@@ -65,7 +65,7 @@ def test_a_wall_sweep_has_no_scene_keys_and_b_needs_a_pair(tmp_path):
         spec_from_dict({"model": {"m_b": 2.0}, "states": wall.raw["states"]})
 
 
-@pytest.mark.parametrize("model,needle", [({"mu": 0.3}, "mu = 0.3: must be none with scene = pair"),
+@pytest.mark.parametrize("model,needle", [({"mu": 0.3, "gamma_t": 0.5}, "gamma_t = 0.5: must be 0 with a Coulomb cap"),
                                           ({"normal": "hertz"}, "normal = 'hertz': must be hooke"),
                                           ({"scene": ["wall", "pair"]}, "one scene per sweep"),
                                           ({"alpha_b": 1.5}, "alpha_b = 1.5: must lie in"),
@@ -88,7 +88,8 @@ def test_planar_matrix_becomes_the_walls_as_m_b_grows():
 
 
 def test_pair_contact_names_what_a_pair_cannot_run():
-    for model, needle in ((ContactModel(mu=0.3), "mu"), (ContactModel(limit_damping=True), "limit_damping"),
+    for model, needle in ((ContactModel(mu=0.3, gamma_t=0.5), "gamma_t"),
+                          (ContactModel(limit_damping=True), "limit_damping"),
                           (ContactModel(wall="classic"), "wall")):
         with pytest.raises(SceneError, match=needle):
             pair_contact(model)
@@ -167,9 +168,9 @@ def test_theory_takes_the_pair_scene_or_refuses_b_without_it(capsys):
     with pytest.raises(SystemExit) as stop:
         main(["theory", "--m-b", "3"])
     assert stop.value.code == 2 and "m_b = 3.0: is sphere b's: give scene = pair" in capsys.readouterr().err
-    with pytest.raises(SystemExit):
-        main(["collide", "--scene", "pair", "--mu", "0.3"])
-    assert "mu = 0.3: must be none with scene = pair" in capsys.readouterr().err
+    with pytest.raises(SystemExit):  # a capped pair has no matrix: its outcome needs a state
+        main(["theory", "--scene", "pair", "--mu", "0.3"])
+    assert "mu = 0.3: has no matrix in a pair" in capsys.readouterr().err
     with pytest.raises(SystemExit):
         main(["pair", "--m-a", "nan"])
     assert "'nan': must be finite" in capsys.readouterr().err

@@ -46,8 +46,10 @@ def test_pair_benchmark_agrees_with_its_reference_and_its_source(name, tmp_path)
         assert record["lammps_vs_published"] < 1e-12  # no slip: no tangential force at all
     if name == "chung-ooi-8":
         # b is 125000 times heavier but still curved: the turning line of centres keeps a's
-        # outcome ~1e-2 of the speed away from the wall's, far beyond the run's accuracy
-        assert record["planar_vs_exact"] > 100 * ACCURACY
+        # outcome away from the wall's by more than the run's own error (measured 1.4e-4 of
+        # the speed against 8.5e-6: with mu = 0.4 the faster spins slide, and a slide follows
+        # the turn less than a stick does; without the cap it was 1e-2)
+        assert record["planar_vs_exact"] > 10 * record["lammps_vs_exact"]
 
 
 @pytest.mark.lammps

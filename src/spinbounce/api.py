@@ -109,10 +109,11 @@ def _collide_pair(b, model_parameters: dict, state: dict, dt, out) -> PairReport
 
     batch = _pair_batch(b, model_parameters, state, dt)
     out = Path(out) if out is not None else _run_folder("collide-pair", {"pairs": repr(batch.pairs), "dt": batch.dt})
-    row = run_pairs(batch, out).table.iloc[0]
+    result = run_pairs(batch, out)  # its batch carries the step the probe chose
+    row = result.table.iloc[0]
     table = pd.DataFrame({label: [float(row[q + suffix]) for q in QUANTITIES] for label, suffix in
                           (("LAMMPS", ""), ("exact", "_exact"), ("planar", "_planar"))}, index=list(QUANTITIES))
-    return PairReport(table, batch.dt, batch.nsteps, float(row["lammps_error"]), float(row["planar_error"]),
+    return PairReport(table, result.batch.dt, result.batch.nsteps, float(row["lammps_error"]), float(row["planar_error"]),
                       float(row["eps"]), out)
 
 

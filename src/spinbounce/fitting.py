@@ -144,6 +144,8 @@ def pair_regime(params: dict, three_d: bool, geometry: dict) -> tuple[np.ndarray
     from .pairs.kind import planar_matrix, sphere_b
 
     where = f"eps up to {geometry['eps']:.2g}, centrifugal ratio up to {geometry['centrifugal']:.2g}"
+    if model_of_group(params).mu is not None:
+        return None, "pair with a Coulomb cap: no matrix (the slides make the outcome depend on the state)"
     if geometry["planar_error"] > ACCURACY:
         return None, (f"pair, planar theory not exact here: its model error {geometry['planar_error']:.1e} exceeds "
                       f"the accuracy {ACCURACY:g} ({where}); no matrix is claimed, the rows' theory is the exact "
@@ -155,7 +157,9 @@ def pair_regime(params: dict, three_d: bool, geometry: dict) -> tuple[np.ndarray
 
 def theory_kind(params: dict) -> str:
     """The theory a group's rows are checked against: the exact pair reference, or choose's."""
-    return "pair_exact" if params.get("scene") == "pair" else choose.which(model_of_group(params)).kind
+    if params.get("scene") == "pair":
+        return "pair_exact" if model_of_group(params).mu is None else "pair_capped"
+    return choose.which(model_of_group(params)).kind
 
 
 def omega_of_theory(params: dict, matrix_theory: np.ndarray) -> float:

@@ -11,14 +11,15 @@ import json
 from pathlib import Path
 
 from ..model.parameters import SceneError, by_name
-from .options import check_run_folder, default_run_dir, force_flag, json_flag, number, positive_count
+from .options import (check_run_folder, default_run_dir, force_flag, json_flag, number, optional_number,
+                      positive_count)
 
 HELP = "collide two free spheres (pair granular) and compare with the exact reference and the planar theory"
 #: Each sphere's options: (flag stem, declared parameter whose range it takes).
 SPHERE_OPTIONS = (("m", "m"), ("r", "r"), ("alpha", "alpha"))
 VECTORS = (("normal", (0.0, 0.0, 1.0)), ("v-a", (1.0, 0.0, -1.0)), ("v-b", (0.0, 0.0, 0.0)),
            ("w-a", (0.0, 0.0, 0.0)), ("w-b", (0.0, 0.0, 0.0)))
-LAW = ("kn", "kt", "gamma_n", "gamma_t")
+LAW = ("kn", "kt", "gamma_n", "gamma_t", "mu")
 #: The most impacts --cost measures over: the cost per collision is steady to a few percent
 #: from a few hundred, and each impact is a Python object before LAMMPS starts.
 MAX_COST_IMPACTS = 100_000
@@ -36,7 +37,8 @@ def cost_count(text: str) -> int:
 def register(sub) -> None:
     p = sub.add_parser("pair", help=HELP, description=(
         f"{HELP}. The state is given at first touch: b's centre at the origin, a's at (r_a + r_b) NORMAL; "
-        "vectors are LAMMPS's x y z, spins LAMMPS's angular velocities. No Coulomb cap. Errors are in units of "
+        "vectors are LAMMPS's x y z, spins LAMMPS's angular velocities. A Coulomb cap (--mu) needs motion in one "
+        "plane and no gamma_t. Errors are in units of "
         "the larger of |v_a - v_b| and the initial slip speed. --figure and --cost run the studies instead. "
         "(The wall's scene with a sphere b at rest: `spinbounce collide --scene pair`.)"))
     for side in "ab":
@@ -50,7 +52,8 @@ def register(sub) -> None:
                        help=f"(default {' '.join(f'{x:g}' for x in default)})")
     for name in LAW:
         declared = by_name(name)
-        p.add_argument(declared.flag, dest=name, type=number, default=declared.default,
+        p.add_argument(declared.flag, dest=name, type=optional_number if declared.optional else number,
+                       default=declared.default,
                        help=f"{declared.meaning}; {declared.range_text()} (default %(default)s)")
     p.add_argument("--dt", type=number, default=None, help="timestep (default: pairs.scene.PAIR_STEPS_PER_HALF_PERIOD)")
     p.add_argument("--out", type=Path, default=None, metavar="DIR", help="run folder (default: spinbounce-runs/pair-*)")
@@ -106,7 +109,8 @@ def _one_pair(args) -> int:
     pair = Pair(a=spheres["a"], b=spheres["b"], normal=args.normal, v_a=args.v_a, v_b=args.v_b, w_a=args.w_a, w_b=args.w_b)
     batch = PairBatch([pair], PairContact(*(getattr(args, name) for name in LAW)), args.dt)
     out = args.out or default_run_dir("pair", vars(args) | {"handler": None})
-    return _report(batch, run_pairs(batch, out).table.iloc[0], out, args.json)
+    result = run_pairs(batch, out)
+    return _report(result.batch, result.table.iloc[0], out, args.json)
 
 
 def _scene_pair(model, b, state: dict, dt=None):
@@ -127,6 +131,9 @@ def pair_theory(args, model, b, state: dict | None) -> int:
     if state is not None:
         batch = _scene_pair(model, b, state)
         return _report(batch, pair_table(batch, None).iloc[0], None, args.json)
+    if model.mu is not None:
+        raise SceneError("mu", model.mu, "has no matrix in a pair: the slides make the outcome depend on the state "
+                                         "(give a state: --vn, --vt, --omega)")
     law = pair_contact(model).law()
     report = {"theory_kind": "pair planar", "matrix": planar_matrix(model, b).tolist(),
               "order": ["v_n", "v_t", "r_omega"], "Omega": planar_Omega(model, b),
@@ -156,7 +163,8 @@ def pair_collide(args, model, b, state: dict) -> int:
                                                        "step, and reports its error against the exact reference")
     batch = _scene_pair(model, b, state, args.dt)
     out = args.out or default_run_dir("collide-pair", {"model": repr(model), "b": repr(b), **state, "dt": batch.dt})
-    return _report(batch, run_pairs(batch, out).table.iloc[0], out, args.json)
+    result = run_pairs(batch, out)
+    return _report(result.batch, result.table.iloc[0], out, args.json)
 
 
 def _published(out: Path, as_json: bool) -> int:

@@ -113,7 +113,10 @@ def render_pairs(batch: PairBatch) -> PairDeck:
     rigid, free = _number_atoms(records)
     smallest = min(min(p.a.r, p.b.r) for p in batch.pairs)
     wall = wall_parameters(batch.pairs[0].equivalent_wall(batch.contact))
-    wall.update(mu=PAIR_NO_CAP_MU, comment=f"no Coulomb cap: mu = {PAIR_NO_CAP_MU:g} (spinbounce.pairs.deck)")
+    if batch.contact.mu is None:
+        wall.update(mu=PAIR_NO_CAP_MU, comment=f"no Coulomb cap: mu = {PAIR_NO_CAP_MU:g} (spinbounce.pairs.deck)")
+    else:
+        wall.update(mu=batch.contact.mu, comment=f"Coulomb cap mu = {batch.contact.mu:g}")
     files = {DATA_FILE: _data_file(rigid, free, grid * cell)}
     if rigid:
         files[BODIES_FILE] = _bodies_file(rigid)

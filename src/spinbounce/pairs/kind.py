@@ -5,7 +5,7 @@ with b's ``m_b``, ``r_b`` and ``alpha_b``; :data:`spinbounce.model.parameters.SC
 Sphere a keeps the model's m, r and alpha and the wall scene's initial state, in the same
 frame: the line of centres is LAMMPS's z (b below a), so a's (v_n, v_t, r omega, v_s,
 r omega_s, r omega_n) are the wall's columns, and b starts at rest without spin. The
-contact law is the model's kn, kt, gamma_n and gamma_t; what the pair deck cannot express
+contact law is the model's kn, kt, gamma_n, gamma_t and mu; what the pair deck cannot express
 is refused here with the reason (:func:`pair_contact`).
 """
 
@@ -33,9 +33,6 @@ def scene_of(values: dict) -> str:
 
 def pair_contact(model: ContactModel) -> PairContact:
     """The pair deck's contact law from a contact model, or why the pair cannot run it."""
-    if model.mu is not None:
-        raise SceneError("mu", model.mu, "must be none with scene = pair (the pair runs the paper's uncapped model; "
-                                         "its exact reference has no Coulomb cap)")
     if model.normal != "hooke":
         raise SceneError("normal", model.normal, "must be hooke with scene = pair (the pair's theories are Hookean)")
     if model.limit_damping:
@@ -43,7 +40,7 @@ def pair_contact(model: ContactModel) -> PairContact:
     if model.wall != "granular":
         raise SceneError("wall", model.wall, "must be granular with scene = pair (there is no wall; the classic "
                                              "pair style is not covered by the pair's references)")
-    return PairContact(model.kn, model.kt, model.gamma_n, model.gamma_t)
+    return PairContact(model.kn, model.kt, model.gamma_n, model.gamma_t, model.mu)
 
 
 def sphere_b(m_b=1.0, r_b=0.5, alpha_b=0.4) -> Sphere:

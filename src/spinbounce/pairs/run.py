@@ -24,7 +24,7 @@ from ..pipeline import ResultError, prepare_run_dir
 from ..model.timestep import ACCURACY, StepChoice
 from ..records import software, to_json, write_atomic
 from ..theory import pair as planar
-from .deck import render_pairs
+from .deck import PAIR_NO_CAP_MU, render_pairs
 from .scene import PairBatch
 from .stepping import tune_pairs
 
@@ -90,6 +90,10 @@ def _columns(values: dict[str, np.ndarray], suffix: str) -> dict[str, np.ndarray
 def _references(batch: PairBatch) -> tuple[dict, dict]:
     exact = {"a_v": np.array([o.v_a for o in batch.exact]), "b_v": np.array([o.v_b for o in batch.exact]),
              "a_w": np.array([o.w_a for o in batch.exact]), "b_w": np.array([o.w_b for o in batch.exact])}
+    if batch.contact.mu is not None:  # the capped planar problem has no closed form: n held fixed, solved
+        held = [batch.contact.solve(p, planar=True) for p in batch.pairs]
+        return exact, {f"{side}_{q}": np.array([getattr(o, f"{q}_{side}") for o in held])
+                       for side in "ab" for q in "vw"}
     vectors = {k: np.array([p.vectors()[k] for p in batch.pairs]) for k in ("n", "v_a", "v_b", "w_a", "w_b")}
     props = {k: np.array([p.properties()[k] for p in batch.pairs]) for k in batch.pairs[0].properties()}
     v_a, v_b, w_a, w_b = planar.predict(**vectors, **props, **batch.contact.law())
@@ -151,8 +155,9 @@ def run_pairs(batch: PairBatch, out_dir: Path, record: bool = True, target: floa
     table = pair_table(batch, lammps)
     result = PairResult(batch, table, info, dump, rendered.ids, step)
     if record:
+        cap = batch.contact.mu if batch.contact.mu is not None else f"none ({PAIR_NO_CAP_MU:g})"
         out = {"scene": "pairs", "parameters": {"contact": batch.contact.law(), "dt": batch.dt,
-                                                "nsteps": batch.nsteps, "mu": "none (1e12)"},
+                                                "nsteps": batch.nsteps, "mu": cap},
                **software(), "deck": str(info.deck), "log": str(info.log), "lammps_wall_seconds": info.wall_seconds,
                "step": step.record(), "max_lammps_error": result.max_lammps_error,
                "max_planar_error": result.max_planar_error,

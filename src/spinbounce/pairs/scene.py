@@ -28,7 +28,7 @@ from ..model.contact import ContactModel
 from ..model.parameters import SceneError, by_name
 from ..model.timestep import steps_through
 from ..theory import pair as planar
-from ..theory import pair_exact
+from ..theory import pair_capped, pair_exact
 
 __all__ = ["Sphere", "PairContact", "Pair", "PairBatch", "ALPHA_NVE_SPHERE", "PAIR_STEPS_PER_HALF_PERIOD",
            "time_scaled"]
@@ -85,22 +85,35 @@ class Sphere:
 
 @dataclass(frozen=True)
 class PairContact:
-    """The contact law shared by every pair of a batch (no Coulomb cap: the paper's model)."""
+    """The contact law shared by every pair of a batch. ``mu``: the Coulomb cap (None: the
+    paper's uncapped model); a capped pair's reference (:mod:`spinbounce.theory.pair_capped`)
+    has no tangential damping and needs planar motion (checked per pair by :class:`PairBatch`)."""
 
     kn: float = 10.0
     kt: float = 1.0
     gamma_n: float = 0.0
     gamma_t: float = 0.0
+    mu: float | None = None
 
     def __post_init__(self):
-        _checked(self, ("kn", "kt", "gamma_n", "gamma_t"))
+        _checked(self, ("kn", "kt", "gamma_n", "gamma_t", "mu"))
+        if self.mu is not None and self.gamma_t != 0.0:
+            raise SceneError("gamma_t", self.gamma_t, "must be 0 with a Coulomb cap (mu) in a pair: the capped "
+                                                      "pair reference has no tangential damping")
 
     def law(self) -> dict:
+        """kn, kt, gamma_n and gamma_t, as the uncapped references and the planar theory take them."""
         return {"kn": self.kn, "kt": self.kt, "gamma_n": self.gamma_n, "gamma_t": self.gamma_t}
 
     @property
     def damped(self) -> bool:
         return self.gamma_n > 0.0 or self.gamma_t > 0.0
+
+    def solve(self, pair: "Pair", planar: bool = False):
+        """The pair's outcome as LAMMPS integrates it (``planar``: with n held fixed), capped or not."""
+        if self.mu is None:
+            return pair_exact.solve(**pair.vectors(), **pair.properties(), **self.law(), planar=planar)
+        return pair_capped.solve(**pair.vectors(), **pair.properties(), **self.law(), mu=self.mu, planar=planar)
 
 
 @dataclass(frozen=True)
@@ -215,6 +228,9 @@ class PairBatch:
         for k, (pair, model) in enumerate(zip(pairs, models, strict=True)):
             dt = model.check_dt(dt, frozen=False)
             _check_overlap(pair, model, dt, f"pairs[{k}].v_n")
+            if self.contact.mu is not None and pair_capped.plane_normal(**pair.vectors()) is None:
+                raise SceneError(f"pairs[{k}]", "3-D motion", "must move in one plane with a Coulomb cap (mu): the "
+                                 "line of centres and both velocities in a plane, both spins along its normal")
         object.__setattr__(self, "dt", dt)
 
     @property
@@ -223,9 +239,8 @@ class PairBatch:
 
     @cached_property
     def exact(self) -> tuple:
-        """Each pair's exact outcome (:func:`pair_exact.solve`)."""
-        law = self.contact.law()
-        return tuple(pair_exact.solve(**p.vectors(), **p.properties(), **law) for p in self.pairs)
+        """Each pair's exact outcome (:meth:`PairContact.solve`: what LAMMPS integrates)."""
+        return tuple(self.contact.solve(p) for p in self.pairs)
 
     @cached_property
     def time_scales(self) -> np.ndarray:

@@ -6,7 +6,9 @@
 * :mod:`.oracle`: the same contact integrated with scipy and stick-slip events, its
   independent check;
 * :mod:`.classic`: LAMMPS's classic wall as this build implements it;
-* :mod:`.pair`, :mod:`.pair_exact`: two spheres, planar and as LAMMPS integrates them.
+* :mod:`.pair`, :mod:`.pair_exact`: two spheres, planar and as LAMMPS integrates them;
+  :mod:`.pair_capped` with a Coulomb cap (motion in one plane);
+* :mod:`.rigid_body`: the rigid-body sliding impulse and Walton's law.
 
 Importing ``spinbounce.theory`` gives :mod:`.linear`'s functions at the top, as the paper's
 equations are the ones most code asks for; :mod:`.choose` decides which theory applies.

@@ -8,20 +8,19 @@ Chung & Ooi (2011), Granular Matter 13:643, number their two-sphere tests 1, 7 a
   with equal and opposite angular velocities, so that their contact points move together.
   Published (Kratos's reading of it): by symmetry no tangential velocity arises and the
   spins keep their size (a rolling contact: no slip, so no tangential force);
-* ``chung-ooi-8``: a spinning aluminium-alloy sphere (r = 0.1 m, 0.2 m/s, e = 0.5) against a
-  sphere five times larger and 1000 times denser, at rest. Published statement: the bigger
-  and denser the second sphere, the more the test resembles the sphere-wall one; here a's
-  outcome is checked against the wall's exact theory (:mod:`spinbounce.theory.choose`), which
-  it reaches within the planar theory's model error: b is heavy but still curved, and at
-  slip speeds up to 11 times v_n the line of centres' turn moves a's outcome by ~1e-2.
+* ``chung-ooi-8``: a spinning aluminium-alloy sphere (r = 0.1 m, 0.2 m/s, e = 0.5, mu = 0.4)
+  against a sphere five times larger and 1000 times denser, at rest. Published statement:
+  the bigger and denser the second sphere, the more the test resembles the sphere-wall one;
+  here a's outcome is checked against the wall's exact stick-slip theory with the same cap
+  (:mod:`spinbounce.theory.choose`), which it reaches within the planar theory's model
+  error: b is heavy but still curved, and the line of centres' turn moves a's outcome.
 
 Each scene's pairs run in one LAMMPS batch (:func:`spinbounce.pairs.run_pairs`) and every
 pair is also checked against the exact reference of what LAMMPS integrates (within the
-default accuracy, 1e-4 of the pair's speed) and set beside the planar theory. The pair's
-references have no Coulomb cap: the friction of tests 7 and 8 (mu = 0.4) is not modelled.
-In test 7 no slip ever occurs, so mu does not matter; test 8's published curves (mostly
-sliding) are therefore not compared, only its wall limit without a cap. Thornton's oblique
-sphere-sphere results: no source giving their parameters was found (see the issue report).
+default accuracy, 1e-4 of the pair's speed; with tests 7 and 8's Coulomb cap, mu = 0.4, the
+capped reference :mod:`spinbounce.theory.pair_capped`) and set beside the planar theory.
+Test 8's published curves are not read here (only their statement, the wall limit).
+Thornton's oblique sphere-sphere results: no source giving their parameters was found.
 
 Units: SI (kg, m, s, N/m), passed through LAMMPS's scale-free lj units.
 """
@@ -110,7 +109,7 @@ def _test_7():
     spins = v_n * np.tan(_angles()) / r
     pairs = [Pair(a=sphere, b=sphere, v_a=(0.0, 0.0, -v_n), v_b=(0.0, 0.0, v_n), w_a=(0.0, w, 0.0),
                   w_b=(0.0, -w, 0.0)) for w in spins]
-    return PairBatch(pairs, PairContact(kn, kt))
+    return PairBatch(pairs, PairContact(kn, kt, mu=CHUNG_OOI_MU))
 
 
 def _rolling_contact(batch, table):
@@ -122,6 +121,8 @@ def _rolling_contact(batch, table):
     return "v_t' of a and b, r omega' of a and b (m/s)", lammps, published, ACCURACY * float(table["speed"].max())
 
 
+#: Tests 7 and 8's friction coefficient (aluminium alloy on itself).
+CHUNG_OOI_MU = 0.4
 #: Test 8's restitution, and the second sphere's size and density over the first's.
 T8_RESTITUTION, T8_SIZE, T8_DENSITY = 0.5, 5.0, 1000.0
 #: How much finer than the pair's default step test 8 runs (its normal damping makes LAMMPS first order).
@@ -154,18 +155,19 @@ def _test_8():
     a, b, kn, kt, gamma_n, v_n = _test_8_parts()
     spins = v_n * np.tan(_angles()) / a.r
     pairs = [Pair(a=a, b=b, v_a=(0.0, 0.0, -v_n), w_a=(0.0, -w, 0.0)) for w in spins]
-    contact = PairContact(kn, kt, gamma_n)
+    contact = PairContact(kn, kt, gamma_n, mu=CHUNG_OOI_MU)
     # damped, so first order in dt: measured 1.8e-4 of the speed at the default step, 3.7e-5 at a quarter
     return PairBatch(pairs, contact, PairBatch(pairs, contact).dt / T8_REFINE)
 
 
 def _wall_limit(batch, table):
-    """a's (v_n, v_t, r omega) against the wall's exact theory for the same sphere and contact."""
+    """a's (v_n, v_t, r omega) against the wall's exact theory for the same sphere and contact (and cap)."""
     from ...pairs.kind import wall_frame
     from ...theory import choose
 
     a, law = batch.pairs[0].a, batch.contact.law()
-    model = ContactModel(m=a.m, r=a.r, alpha=a.alpha, kn=law["kn"], kt=law["kt"], gamma_n=law["gamma_n"])
+    model = ContactModel(m=a.m, r=a.r, alpha=a.alpha, kn=law["kn"], kt=law["kt"], gamma_n=law["gamma_n"],
+                         mu=batch.contact.mu)
     lammps = wall_frame(table[["a_vx", "a_vy", "a_vz"]].to_numpy(), table[["a_wx", "a_wy", "a_wz"]].to_numpy(),
                         a.r)[:, :3]
     published = []
@@ -202,8 +204,8 @@ def _all() -> dict[str, PairBenchmark]:
             (("r = 0.1 m, v_n = +-0.2 m/s, omega = +-v_n tan(theta_i)/r, theta_i = 90 i/18 deg, i = 1..17",
               f"{KRATOS_BENCHMARKS} (Benchmark7)"),
              ("aluminium alloy E = 70 GPa, nu = 0.30, rho = 2699 kg/m^3", AL_ALLOY.source)),
-            "kn gives the Hertz contact time of the two spheres at 0.4 m/s; mu = 0.4 is not modelled (no slip "
-            "occurs, so it does not matter)", _test_7, _rolling_contact,
+            "kn gives the Hertz contact time of the two spheres at 0.4 m/s; mu = 0.4 (no slip occurs, so the cap "
+            "is never reached)", _test_7, _rolling_contact,
             "by symmetry the tangential velocities stay 0 and the spins unchanged"),
         PairBenchmark(
             "chung-ooi-8", "Chung & Ooi Test 8: a spinning sphere against one 5x larger and 1000x denser, at rest",
@@ -213,7 +215,7 @@ def _all() -> dict[str, PairBenchmark]:
               "sphere is, the more this test resembles the sphere versus wall simulation'",
               f"{KRATOS_BENCHMARKS} (Benchmark8) and Kratos's DEM benchmark documentation")),
             "kn gives the Hertz contact time at 0.2 m/s; gamma_n the restitution 0.5 (tensile, no limit_damping); "
-            "no Coulomb cap (the pair's references have none), so the published sliding curves are not compared",
+            "mu = 0.4, so the faster spins slide",
             _test_8, _wall_limit, "a's outcome is the wall's exact outcome for the same sphere and contact, within "
             "the curvature's model error (the planar theory's, from the exact reference)"),
     )}
