@@ -136,3 +136,18 @@ def test_a_capped_pair_sweep_runs_and_its_fit_claims_no_matrix(tmp_path, capsys)
     assert main(["fit", str(out)]) == 0
     printed = capsys.readouterr().out
     assert "theory: pair_capped" in printed and "Coulomb cap: no matrix" in printed
+
+
+def test_a_grazing_pair_separates_in_both_references():
+    # Found by a random search (1,500 planar pairs): |v_t|/|v_n| = 14, the spheres touch for
+    # 0.006 s against tau = 0.5 s, and the integrator's first step carried the capped pair
+    # from touch past separation unseen; pair_exact.longest_step now bounds every step by the
+    # free-flight overlap time.
+    a = Sphere(0.7650724981471964, 0.12315175973341227, 0.4)
+    b = Sphere(0.9041708007029703, 0.11267693379258904, 0.25)
+    pair = Pair(a=a, b=b, normal=(0.9337084177010475, 0.0, -0.35803434292565584),
+                v_a=(-2.7390242701789482, 0.0, -4.379458960909444), v_b=(-0.40258479121281043, 0.0, 0.6129321291679928),
+                w_a=(0.0, 4.174294737346495, 0.0), w_b=(0.0, -3.0660568975684854, 0.0))
+    tau = np.pi * np.sqrt(a.m * b.m / (a.m + b.m) / 10.0)
+    for contact in (PairContact(10.0, 1.2365760546884639), PairContact(10.0, 1.2365760546884639, mu=1.1094679509042449)):
+        assert 0.0 < contact.solve(pair).contact_time < 0.05 * tau

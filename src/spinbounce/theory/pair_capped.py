@@ -27,7 +27,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from .pair_exact import RTOL, PairOutcome
+from .pair_exact import RTOL, PairOutcome, longest_step
 
 __all__ = ["solve", "plane_normal", "MAX_PHASES"]
 
@@ -185,12 +185,13 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, m
     fast = np.sqrt(kn / contact.m_star) + np.sqrt(kt * (1 / m_a + 1 / m_b + r_a**2 / p["i_a"] + r_b**2 / p["i_b"]))
     atol = np.full(16, rtol * speed * min(radsum / speed, 1.0 / fast))
     atol[15] = rtol * contact.force_scale / kt
+    longest = longest_step(contact.tau, v_rel, n0, radsum)
     contact.restart(y)
     t = 0.0
     for _ in range(MAX_PHASES):
         events = _events(contact)
         solution = solve_ivp(contact.rates, (t, t + 20.0 * contact.tau), y, method="DOP853", rtol=rtol, atol=atol,
-                             events=events)
+                             events=events, max_step=longest)
         fired = [(ts[0], k) for k, ts in enumerate(solution.t_events) if len(ts)]
         if not fired:
             raise RuntimeError(f"the capped pair did not separate within 20 contact times: {solution.message}")

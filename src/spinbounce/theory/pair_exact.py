@@ -30,10 +30,18 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.integrate import solve_ivp
 
-__all__ = ["PairOutcome", "solve", "RTOL"]
+__all__ = ["PairOutcome", "solve", "RTOL", "longest_step"]
 
 #: Relative tolerance of the integration (the absolute one is this times the speeds).
 RTOL = 1e-12
+
+
+def longest_step(tau: float, v_rel, n0, radsum: float) -> float:
+    """The integrator's longest step: an eighth of the shorter of tau and the free-flight overlap
+    2 |v.n| (r_a + r_b)/|v|^2, so that no step can carry a grazing pair from touch to separation
+    unseen (the contact's end is found as a sign change between steps)."""
+    v_rel = np.asarray(v_rel, dtype=float)
+    return min(tau, 2.0 * abs(v_rel @ n0) * radsum / (v_rel @ v_rel)) / 8.0
 
 
 @dataclass(frozen=True)
@@ -95,6 +103,7 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, g
     # the start (gap 0, closing) is no upward crossing; the end is the first one
     fast = np.sqrt(kn / m_star) + np.sqrt(kt * (1 / m_a + 1 / m_b + r_a**2 / p["i_a"] + r_b**2 / p["i_b"]))
     solution = solve_ivp(_rates, (0.0, 20.0 * tau), state, method="DOP853", args=(n0, p, planar),
+                         max_step=longest_step(tau, v_rel, n0, radsum),
                          rtol=rtol, atol=rtol * speed * min(radsum / speed, 1.0 / fast), events=separated)
     if solution.status != 1 or not len(solution.t_events[0]):
         raise RuntimeError(f"the pair did not separate within 20 contact times: {solution.message}")
