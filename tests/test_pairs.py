@@ -10,7 +10,7 @@ import pytest
 from spinbounce import theory
 from spinbounce.model.parameters import SceneError
 from spinbounce.pairs import QUANTITIES, Pair, PairBatch, PairContact, Sphere, run_pairs
-from spinbounce.pairs.scene import time_scaled
+from spinbounce.pairs.scene import SCALE_CLASSES, time_scaled
 from spinbounce.pairs.studies import cases
 from spinbounce.theory import pair as planar
 from spinbounce.theory import pair_exact
@@ -142,18 +142,24 @@ def test_a_time_scaled_pair_is_the_same_collision_slower():
                 assert np.max(np.abs(s * np.asarray(getattr(slower, q)) - getattr(original, q))) < 1e-9
 
 
-def test_an_aligned_batch_ends_every_undamped_contact_mid_step():
+def test_an_aligned_batch_ends_every_contact_mid_step():
     # Each pair's contact lasts a whole number of steps and a half in the deck, touching a
     # quarter step after a step (PairBatch.lead with g = 1/2), at a time scale within half a
-    # step per contact of 1; a damped batch cannot be scaled (eta would have to scale too).
+    # step per contact of 1.
     batch = PairBatch(cases(), dt=0.013, aligned=True)
     ends = batch.deck_contact_times / batch.dt
     assert np.allclose(ends % 1, 0.5, atol=1e-9) and np.allclose(batch.lead, 0.25 * batch.dt)
     contact_steps = np.array([o.contact_time for o in batch.exact]) / batch.dt
     assert np.all(np.abs(batch.time_scales - 1) <= 0.5 / contact_steps + 1e-12)
     assert len(set(batch.time_scales)) > 1
+    # A damped batch's pairs share SCALE_CLASSES scales (its damping scales per atom type): each
+    # contact then ends within 1/(2K) of mid-step, times its length over the shortest's.
     damped = PairBatch(cases(), PairContact(gamma_n=0.5), dt=0.013, aligned=True)
-    assert np.all(damped.time_scales == 1.0)
+    index, values = damped.scale_classes
+    assert 1 < len(values) <= SCALE_CLASSES and np.array_equal(damped.time_scales, values[index])
+    ends = damped.contact_times / damped.dt
+    off = np.abs(damped.deck_contact_times / damped.dt % 1 - 0.5)
+    assert np.all(off <= 0.5 / SCALE_CLASSES * ends / ends.min() + 1e-9)
 
 
 def _sweep_pairs(r: float, n: int = 24) -> list[Pair]:
@@ -264,3 +270,16 @@ def test_pair_command_prints_lammps_beside_both_references(tmp_path, capsys):
     row = json.loads(capsys.readouterr().out)
     assert row["lammps_error"] < 1e-4 and row["alpha_a"] == 0.25
     assert row["planar_error"] > 100 * row["lammps_error"]  # eps = 0.66: the planar theory is far off
+
+
+@pytest.mark.lammps
+def test_a_damped_batch_is_probed_coarser_than_the_fine_rule_within_the_accuracy(tmp_path):
+    # 30 damped pairs at the default radii (eps up to 0.7): with one shared step the probe
+    # could not reach the accuracy below the fine rule (measured on 60 such pairs: 8,054
+    # steps); with their time-scale classes it must, and every pair must stay within 1e-4.
+    pairs = [Pair(v_a=(t, 0.0, -n), w_a=(0.0, w, 0.0)) for t, n, w in
+             np.random.default_rng(4).uniform([-1.0, 0.5, -2.0], [1.0, 1.5, 2.0], (30, 3))]
+    batch = PairBatch(pairs, PairContact(gamma_n=0.5))
+    result = run_pairs(batch, tmp_path, record=False)
+    assert result.step.method == "probe" and result.batch.nsteps < batch.nsteps
+    assert len(result.batch.scale_classes[1]) > 1 and result.max_lammps_error < 1e-4

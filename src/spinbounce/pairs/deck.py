@@ -53,14 +53,21 @@ def _spheres(batch: PairBatch) -> tuple[list[dict], float, int]:
     cell = 4.0 * (largest + travel)
     grid = math.ceil(round(batch.n ** (1.0 / 3.0), 9))
     records = []
+    classes = batch.scale_classes[0]
     for k, (pair, lead) in enumerate(zip(batch.deck_pairs, batch.lead, strict=True)):
         centre = (np.array([k % grid, (k // grid) % grid, k // grid**2]) + 0.5) * cell
         n = np.asarray(pair.normal)
         for side, sphere, v, w, place in (("a", pair.a, pair.v_a, pair.w_a, pair.a.r * n),
                                           ("b", pair.b, pair.v_b, pair.w_b, -pair.b.r * n)):
             records.append({"pair": k, "side": side, "sphere": sphere, "x": centre + place - lead * np.asarray(v),
-                            "v": np.asarray(v), "w": np.asarray(w)})
+                            "v": np.asarray(v), "w": np.asarray(w), "class": int(classes[k])})
     return records, cell, grid
+
+
+def atom_type(kind: str, scale_class: int) -> int:
+    """A time-scale class's atom type of each kind: free sphere, rigid sphere, or a rigid one's
+    centre point (three types per class, :attr:`.scene.PairBatch.scale_classes`)."""
+    return 3 * scale_class + {"free": 1, "rigid": 2, "point": 3}[kind]
 
 
 def _number_atoms(records: list[dict]) -> tuple[list[dict], list[dict]]:
@@ -68,9 +75,9 @@ def _number_atoms(records: list[dict]) -> tuple[list[dict], list[dict]]:
     rigid = [r for r in records if r["sphere"].rigid]
     free = [r for r in records if not r["sphere"].rigid]
     for i, record in enumerate(rigid, start=1):
-        record["id"], record["type"] = i, 2
+        record["id"], record["type"] = i, atom_type("rigid", record["class"])
     for i, record in enumerate(free, start=2 * len(rigid) + 1):
-        record["id"], record["type"] = i, 1
+        record["id"], record["type"] = i, atom_type("free", record["class"])
     return rigid, free
 
 
@@ -78,7 +85,7 @@ def _row(*values) -> str:
     return " ".join(str(v) if isinstance(v, int) else deck_number(v) for v in values)
 
 
-def _data_file(rigid: list[dict], free: list[dict], box: float) -> str:
+def _data_file(rigid: list[dict], free: list[dict], box: float, ntypes: int) -> str:
     atoms, velocities = [], []
     for record in rigid + free:
         s = record["sphere"]
@@ -88,10 +95,10 @@ def _data_file(rigid: list[dict], free: list[dict], box: float) -> str:
         velocities.append(_row(record["id"], *record["v"], *record["w"]))
     for record in rigid:  # centre points: diameter 0, whose 'density' is the mass
         point = record["id"] + len(rigid)
-        atoms.append(_row(point, 3, 0.0, record["sphere"].m / 2, *record["x"]))
+        atoms.append(_row(point, atom_type("point", record["class"]), 0.0, record["sphere"].m / 2, *record["x"]))
         velocities.append(_row(point, *record["v"], 0.0, 0.0, 0.0))
     natoms = len(atoms)
-    return (f"spinbounce {__version__}: sphere pairs for {DECK_NAME}\n\n{natoms} atoms\n3 atom types\n\n"
+    return (f"spinbounce {__version__}: sphere pairs for {DECK_NAME}\n\n{natoms} atoms\n{ntypes} atom types\n\n"
             + "".join(f"0.0 {deck_number(box)} {axis}lo {axis}hi\n" for axis in "xyz")
             + "\nAtoms # sphere\n\n" + "\n".join(sorted(atoms, key=lambda r: int(r.split()[0])))
             + "\n\nVelocities\n\n" + "\n".join(sorted(velocities, key=lambda r: int(r.split()[0]))) + "\n")
@@ -117,13 +124,17 @@ def render_pairs(batch: PairBatch) -> PairDeck:
         wall.update(mu=PAIR_NO_CAP_MU, comment=f"no Coulomb cap: mu = {PAIR_NO_CAP_MU:g} (spinbounce.pairs.deck)")
     else:
         wall.update(mu=batch.contact.mu, comment=f"Coulomb cap mu = {batch.contact.mu:g}")
-    files = {DATA_FILE: _data_file(rigid, free, grid * cell)}
+    scales = batch.scale_classes[1]
+    classes = [{"types": f"{atom_type('free', c)}*{atom_type('point', c)}", "eta_n": wall["eta_n"] * scale}
+               for c, scale in enumerate(scales)]
+    files = {DATA_FILE: _data_file(rigid, free, grid * cell, 3 * len(scales))}
     if rigid:
         files[BODIES_FILE] = _bodies_file(rigid)
     text = template_environment().get_template("pair.lmp.j2").render(
         version=__version__, deck_name=DECK_NAME, npairs=batch.n, grid=grid, cell=cell,
         nsteps=batch.nsteps, dt=batch.dt, skin=0.2 * smallest, binsize=cell / 2, data_file=DATA_FILE,
-        contact=batch.contact, wall=wall, nfree=len(free), nrigid=len(rigid),
+        contact=batch.contact, wall=wall, nfree=len(free), nrigid=len(rigid), classes=classes,
+        types={kind: " ".join(str(atom_type(kind, c)) for c in range(len(scales))) for kind in ("free", "rigid", "point")},
         bodies_file=BODIES_FILE, dump_name=DUMP_NAME)
     ids = np.zeros((batch.n, 2), dtype=np.int64)
     for record in records:

@@ -42,6 +42,8 @@ __all__ = ["Sphere", "PairContact", "Pair", "PairBatch", "ALPHA_NVE_SPHERE", "PA
 #: Largest error against the exact reference over the 24 cases of studies.cases(), with
 #: the placement of :attr:`PairBatch.lead`: 5.8e-5 of the speed at this resolution.
 PAIR_STEPS_PER_HALF_PERIOD = 8000
+#: The most time-scale classes (atom types per kind of sphere) of an aligned damped batch.
+SCALE_CLASSES = 32
 #: fix nve/sphere's own moment of inertia; any other alpha makes the sphere a rigid body.
 ALPHA_NVE_SPHERE = 0.4
 
@@ -252,12 +254,33 @@ class PairBatch:
         times longer, a pair's contact lasts a whole number of steps and a half: each pair
         has in effect its own step dt/lambda, within half a step per contact of the batch's.
         Measured on one pair (eps 0.84), LAMMPS's error at g = 1/2 is what is left, and the
-        probe of :mod:`.stepping` sees it. All ones unless ``aligned`` and the contact is undamped.
+        probe of :mod:`.stepping` sees it. A damped contact's damping force must scale with
+        lambda too, which the deck can only do per atom type: its pairs take the nearest of
+        :data:`SCALE_CLASSES` values (:attr:`scale_classes`). All ones unless ``aligned``.
         """
-        if not self.aligned or self.contact.damped:
+        if not self.aligned:
             return np.ones(self.n)
-        ends = np.array([o.contact_time for o in self.exact]) / self.dt
+        if self.contact.damped:
+            index, values = self.scale_classes
+            return values[index]
+        ends = self.contact_times / self.dt
         return (np.floor(ends) + 0.5) / ends
+
+    @cached_property
+    def scale_classes(self) -> tuple[np.ndarray, np.ndarray]:
+        """Each pair's time-scale class and the classes' scales: one class (scale 1) unless the
+        batch is aligned and damped. Then :data:`SCALE_CLASSES` scales 1 + (k - K/2)/(K N), N the
+        fewest steps of any contact, sweep the phase g of every contact's end through a whole
+        step; each pair takes the class whose g is nearest 1/2, within about 1/(2K) of it
+        (where a contact lasts much longer than the shortest, proportionally more)."""
+        if not (self.aligned and self.contact.damped):
+            return np.zeros(self.n, dtype=int), np.ones(1)
+        ends = self.contact_times / self.dt
+        values = 1.0 + (np.arange(SCALE_CLASSES) - SCALE_CLASSES / 2) / (SCALE_CLASSES * ends.min())
+        phase = np.outer(ends, values) % 1.0
+        index = np.argmin(np.abs(phase - 0.5), axis=1)
+        used, index = np.unique(index, return_inverse=True)
+        return index, values[used]
 
     @cached_property
     def deck_pairs(self) -> tuple:
@@ -284,8 +307,12 @@ class PairBatch:
         return 0.5 * (1.0 - fraction) * self.dt
 
     @property
+    def contact_times(self) -> np.ndarray:
+        return np.array([o.contact_time for o in self.exact])
+
+    @property
     def deck_contact_times(self) -> np.ndarray:
-        return np.array([o.contact_time for o in self.exact]) * self.time_scales
+        return self.contact_times * self.time_scales
 
     @property
     def nsteps(self) -> int:

@@ -9,9 +9,9 @@ and constant give the steps for SAFETY times the target. Every probed and chosen
 (:attr:`.scene.PairBatch.time_scales`): each undamped pair runs at its own time scale so that
 its contact ends in the middle of a step, where two first-order errors cancel
 (:attr:`.scene.PairBatch.lead`), and pairs whose line of centres barely turns converge at
-second order. A damped batch cannot be aligned that way: its step puts the median contact
-time in the middle of a step, and a spread of contact times leaves a first-order error. So
-does LAMMPS's projection on a turning line of centres. The probe sees what is left. A batch whose
+second order (a damped batch's pairs share a few time scales, :attr:`.scene.PairBatch.scale_classes`,
+and end within about 1/64 of a step of mid-step). LAMMPS's projection on a turning line of
+centres leaves a first-order error. The probe sees what is left. A batch whose
 probe cannot reach the target below the fine rule's steps keeps the fine rule. Every
 row's own error is measured afterwards anyway.
 """
