@@ -17,6 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..model.contact import ContactModel
 from ..model.scenes import Collision
 from ..pipeline import run_collision
 from ..theory import pair as planar
@@ -84,8 +85,11 @@ def validity_map(eps_values, centrifugal_values, kn: float = 10.0, kt: float = 1
 
 #: The batches :func:`pair_to_wall_cost` measures: a sweep's states with radii 5e3 (the line
 #: of centres barely turns: where a fit may claim the planar matrix), the same states with
-#: the default radii 0.5 (eps up to 0.7), and the 24 hard cases of :func:`cases`.
-COST_BATCHES = ("small eps", "default radii", "hard cases")
+#: the default radii 0.5 (eps up to 0.7), undamped and damped (gamma_n = 0.5, restitution
+#: 0.76; the wall's batch is then damped alike), and the 24 hard cases of :func:`cases`.
+COST_BATCHES = ("small eps", "default radii", "default radii, damped", "hard cases")
+#: The damped batches' normal damping.
+DAMPED_GAMMA_N = 0.5
 
 
 def _sweep_pairs(n: int, r: float, seed: int) -> tuple[list[Pair], dict]:
@@ -102,34 +106,39 @@ def _sweep_pairs(n: int, r: float, seed: int) -> tuple[list[Pair], dict]:
 def pair_to_wall_cost(n: int = 200, seed: int = 3, out_dir: Path | None = None) -> dict:
     """LAMMPS's loop seconds per collision, pair batches against a wall batch, each at its default step.
 
-    The wall: n spheres (m = 1, r = 0.5) at its default step. The pairs: each batch of
-    :data:`COST_BATCHES` with n pairs (the hard cases repeated), at the step its probe chose
+    The wall: n spheres (m = 1, r = 0.5) at its default step, undamped and with
+    :data:`DAMPED_GAMMA_N`. The pairs: each batch of :data:`COST_BATCHES` with n pairs (the hard
+    cases repeated), against the wall batch of its damping, at the step its probe chose
     (:func:`.stepping.tune_pairs`; the probe's own runs are not counted). Every batch is
     checked against its reference, so each cost is at the accuracy its rows reach.
     """
     small, wall_states = _sweep_pairs(n, 5e3, seed)
-    batches = {"small eps": small, "default radii": _sweep_pairs(n, 0.5, seed)[0],
-               "hard cases": [cases()[k % 24] for k in range(n)]}
+    default = _sweep_pairs(n, 0.5, seed)[0]
+    batches = {"small eps": (small, 0.0), "default radii": (default, 0.0),
+               "default radii, damped": (default, DAMPED_GAMMA_N), "hard cases": ([cases()[k % 24] for k in range(n)], 0.0)}
     with tempfile.TemporaryDirectory() as scratch:
         where = Path(out_dir or scratch)
-        wall = run_collision(Collision(**wall_states), where / "wall", record=False)
-        per_wall = wall.info.loop_seconds / n
-        out = {"collisions": n, "wall_seconds_per_collision": per_wall, "wall_steps": wall.scene.nsteps,
-               "wall_max_error": wall.max_abs_error, "batches": {}}
-        for name, pairs in batches.items():
-            pair = run_pairs(PairBatch(pairs, PairContact()), where / name.replace(" ", "-"), record=False)
-            per_pair = pair.info.loop_seconds / n
+        walls = {gamma_n: run_collision(Collision(ContactModel(gamma_n=gamma_n), **wall_states), where / f"wall-{gamma_n:g}",
+                                        record=False) for gamma_n in (0.0, DAMPED_GAMMA_N)}
+        wall = walls[0.0]
+        out = {"collisions": n, "wall_seconds_per_collision": wall.info.loop_seconds / n,
+               "wall_steps": wall.scene.nsteps, "wall_max_error": wall.max_abs_error, "batches": {}}
+        for name, (pairs, gamma_n) in batches.items():
+            pair = run_pairs(PairBatch(pairs, PairContact(gamma_n=gamma_n)), where / name.replace(" ", "-").replace(",", ""),
+                             record=False)
+            per_pair, per_wall = pair.info.loop_seconds / n, walls[gamma_n].info.loop_seconds / n
             out["batches"][name] = {
                 "pair_seconds_per_collision": per_pair, "pair_to_wall": per_pair / per_wall,
-                "pair_to_wall_per_step": (per_pair / pair.batch.nsteps) / (per_wall / wall.scene.nsteps),
-                "pair_steps": pair.batch.nsteps, "step": pair.step.record(), "max_eps": float(pair.table["eps"].max()),
-                "pair_max_error": pair.max_lammps_error}
+                "pair_to_wall_per_step": (per_pair / pair.batch.nsteps) / (per_wall / walls[gamma_n].scene.nsteps),
+                "pair_steps": pair.batch.nsteps, "wall_steps": walls[gamma_n].scene.nsteps,
+                "wall_max_error": walls[gamma_n].max_abs_error, "step": pair.step.record(),
+                "max_eps": float(pair.table["eps"].max()), "pair_max_error": pair.max_lammps_error}
     return out
 
 
 def cost_lines(report: dict) -> list[str]:
     """One printed line per batch of :func:`pair_to_wall_cost`."""
     return [f"pair / wall, per collision, {name} (eps up to {b['max_eps']:.2g}): {b['pair_to_wall']:.1f}x "
-            f"({b['pair_steps']} vs {report['wall_steps']} steps, {b['step']['method']}; per step "
-            f"{b['pair_to_wall_per_step']:.2f}x; max errors {b['pair_max_error']:.1e} and {report['wall_max_error']:.1e})"
+            f"({b['pair_steps']} vs {b['wall_steps']} steps, {b['step']['method']}; per step "
+            f"{b['pair_to_wall_per_step']:.2f}x; max errors {b['pair_max_error']:.1e} and {b['wall_max_error']:.1e})"
             for name, b in report["batches"].items()]
