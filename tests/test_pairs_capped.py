@@ -135,7 +135,7 @@ def test_a_capped_pair_sweep_runs_and_its_fit_claims_no_matrix(tmp_path, capsys)
     assert "8 ok" in capsys.readouterr().out
     assert main(["fit", str(out)]) == 0
     printed = capsys.readouterr().out
-    assert "theory: pair_capped" in printed and "Coulomb cap: no matrix" in printed
+    assert "theory: pair_capped" in printed and "Coulomb cap: a capped pair has no matrix" in printed
 
 
 def test_a_grazing_pair_separates_in_both_references():
@@ -151,3 +151,13 @@ def test_a_grazing_pair_separates_in_both_references():
     tau = np.pi * np.sqrt(a.m * b.m / (a.m + b.m) / 10.0)
     for contact in (PairContact(10.0, 1.2365760546884639), PairContact(10.0, 1.2365760546884639, mu=1.1094679509042449)):
         assert 0.0 < contact.solve(pair).contact_time < 0.05 * tau
+
+
+def test_the_api_gives_a_capped_pair_no_matrix_but_its_outcome():
+    import spinbounce
+
+    report = spinbounce.theory(scene="pair", mu=0.3)
+    assert "matrix" not in report and "a capped pair has no matrix" in report["why_no_matrix"]
+    outcome = spinbounce.theory(v_n=-1.0, v_t=1.0, scene="pair", mu=0.3)["outcome"]
+    exact = PairContact(mu=0.3).solve(Pair(v_a=(1.0, 0.0, -1.0)))
+    assert outcome["a_vx_exact"] == pytest.approx(exact.v_a[0], abs=1e-12)

@@ -170,12 +170,15 @@ def theory(v_n: float | None = None, v_t: float = 0.0, omega: float = 0.0, v_s: 
 
 
 def _pair_theory(b, model_parameters: dict, v_n, state: dict) -> dict:
-    from .pairs.kind import planar_matrix, planar_Omega
+    from .pairs.kind import CAPPED_NO_MATRIX, planar_matrix, planar_Omega
     from .pairs.run import pair_table
 
     contact = model(**model_parameters)
-    out = {"theory": "pair", "name": "planar pair theory (exact only as eps -> 0) and the exact reference",
-           "matrix": planar_matrix(contact, b), "Omega": planar_Omega(contact, b)}
+    out = {"theory": "pair", "name": "planar pair theory (exact only as eps -> 0) and the exact reference"}
+    if contact.mu is None:
+        out.update(matrix=planar_matrix(contact, b), Omega=planar_Omega(contact, b))
+    else:
+        out["why_no_matrix"] = f"mu = {contact.mu!r}: {CAPPED_NO_MATRIX}"
     if v_n is not None:
         out["outcome"] = pair_table(_pair_batch(b, model_parameters, {"v_n": v_n, **state}), None).iloc[0].to_dict()
     return out

@@ -141,11 +141,11 @@ def pair_regime(params: dict, three_d: bool, geometry: dict) -> tuple[np.ndarray
     """A pair group's planar matrix of a's state, or None where the planar theory's model error
     (``geometry``: the group's largest planar_error, eps and centrifugal ratio) exceeds the accuracy."""
     from .model.timestep import ACCURACY
-    from .pairs.kind import planar_matrix, sphere_b
+    from .pairs.kind import CAPPED_NO_MATRIX, planar_matrix, sphere_b
 
     where = f"eps up to {geometry['eps']:.2g}, centrifugal ratio up to {geometry['centrifugal']:.2g}"
     if model_of_group(params).mu is not None:
-        return None, "pair with a Coulomb cap: no matrix (the slides make the outcome depend on the state)"
+        return None, f"pair with a Coulomb cap: {CAPPED_NO_MATRIX}"
     if geometry["planar_error"] > ACCURACY:
         return None, (f"pair, planar theory not exact here: its model error {geometry['planar_error']:.1e} exceeds "
                       f"the accuracy {ACCURACY:g} ({where}); no matrix is claimed, the rows' theory is the exact "

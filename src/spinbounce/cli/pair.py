@@ -124,7 +124,7 @@ def _scene_pair(model, b, state: dict, dt=None):
 
 def pair_theory(args, model, b, state: dict | None) -> int:
     """``theory --scene pair``: the planar matrix of a's state (b at rest), or one state's references."""
-    from ..pairs.kind import pair_contact, planar_matrix, planar_Omega
+    from ..pairs.kind import CAPPED_NO_MATRIX, pair_contact, planar_matrix, planar_Omega
     from ..pairs.run import pair_table
     from ..theory import pair as planar
 
@@ -132,8 +132,7 @@ def pair_theory(args, model, b, state: dict | None) -> int:
         batch = _scene_pair(model, b, state)
         return _report(batch, pair_table(batch, None).iloc[0], None, args.json)
     if model.mu is not None:
-        raise SceneError("mu", model.mu, "has no matrix in a pair: the slides make the outcome depend on the state "
-                                         "(give a state: --vn, --vt, --omega)")
+        raise SceneError("mu", model.mu, f"{CAPPED_NO_MATRIX} (give a state: --vn, --vt, --omega)")
     law = pair_contact(model).law()
     report = {"theory_kind": "pair planar", "matrix": planar_matrix(model, b).tolist(),
               "order": ["v_n", "v_t", "r_omega"], "Omega": planar_Omega(model, b),

@@ -19,7 +19,10 @@ from ..theory import pair as planar
 from .scene import Pair, PairContact, Sphere
 
 __all__ = ["pair_contact", "sphere_b", "pairs_from_states", "wall_frame", "planar_matrix", "planar_Omega",
-           "scene_of"]
+           "scene_of", "CAPPED_NO_MATRIX"]
+
+#: Why a pair with a Coulomb cap has no scattering matrix (theory, the API and fit say it).
+CAPPED_NO_MATRIX = "a capped pair has no matrix: the slides make the outcome depend on the state"
 
 
 def scene_of(values: dict) -> str:
