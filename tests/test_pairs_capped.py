@@ -161,3 +161,18 @@ def test_the_api_gives_a_capped_pair_no_matrix_but_its_outcome():
     outcome = spinbounce.theory(v_n=-1.0, v_t=1.0, scene="pair", mu=0.3)["outcome"]
     exact = PairContact(mu=0.3).solve(Pair(v_a=(1.0, 0.0, -1.0)))
     assert outcome["a_vx_exact"] == pytest.approx(exact.v_a[0], abs=1e-12)
+
+
+def test_the_normal_forces_zero_is_passed_once():
+    # Found by a review's random search: F_n falls through 0 at -883 per unit time, and the
+    # event's root left F_n = +6e-16, above the rounding threshold, so the phase restarted on
+    # the positive side and found the same zero again (200 restarts). After F_n's zero the
+    # contact now takes the side F_n moves to.
+    pair = Pair(a=Sphere(0.4967322894019039, 0.1534741768365512, 0.6), b=Sphere(4.875044127070722, 0.16361539765824082, 0.9),
+                normal=(0.9580500255033809, 0.0, 0.28660102692239464), v_a=(-8.368075443085203, 0.0, 27.47122753775543),
+                v_b=(-0.2279042708821113, 0.0, 0.4894397791841172), w_a=(0.0, -3.4843990815954435, 0.0),
+                w_b=(0.0, 14.181967702278126, 0.0))
+    contact = PairContact(0.6694303158308653, 0.04412180984692765, 0.35247138755000235, mu=195.85450923469128)
+    outcome = contact.solve(pair)
+    before = pair.a.m * np.asarray(pair.v_a) + pair.b.m * np.asarray(pair.v_b)
+    assert np.abs(pair.a.m * outcome.v_a + pair.b.m * outcome.v_b - before).max() < 1e-9 * np.abs(before).max()

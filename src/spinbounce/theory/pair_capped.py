@@ -117,13 +117,14 @@ class _Contact:
         """F_n on the side it started the phase on: falls through 0 when F_n changes sign."""
         return self.f_side * self.kinematics(y)["f_n"]
 
-    def restart(self, y, switched: bool = False) -> None:
+    def restart(self, y, switched: bool = False, normal_zero: bool = False) -> None:
         """Enter the next phase from state y: the other one after a switch (a stick that reached
         the cap slides the history's way, a slide whose cap outgrew it sticks; deciding again
         from y could undo the switch, as the event's root is found only to ~1e-15 s), or the
-        one that holds at first touch or after F_n's zero."""
+        one that holds at first touch or after F_n's zero (``normal_zero``: F_n is then on the
+        side it moves to, whatever the sign of the residue the root leaves)."""
         k = self.kinematics(y)
-        self.f_side = self.side(k)
+        self.f_side = np.sign(k["df_n"]) if normal_zero else self.side(k)
         if switched:
             self.phase = int(np.sign(k["xi"]) or np.sign(k["slip"])) if self.phase == 0 else 0
         else:
@@ -203,5 +204,5 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, m
             return PairOutcome(v_a=end[1], v_b=end[2], w_a=end[3], w_b=end[4], contact_time=float(t), turn=turn)
         if contact.phase != 0:  # leaving a slide (or passing F_n = 0 in one): the history sits on the cap
             y[15] = contact.phase * p["mu"] * abs(contact.kinematics(y)["f_n"]) / kt
-        contact.restart(y, switched=which == 1)
+        contact.restart(y, switched=which == 1, normal_zero=which == 2)
     raise RuntimeError(f"the capped pair switched phase more than {MAX_PHASES} times (chattering)")
