@@ -223,7 +223,9 @@ class PairBatch:
             raise SceneError("pairs", self.pairs, "must be one or more Pair")
         object.__setattr__(self, "pairs", pairs)
         models = [p.equivalent_wall(self.contact) for p in pairs]
-        if self.dt is None:
+        if self.dt is None:  # the wall's limits of the default step, for each distinct equivalent contact
+            for model in {repr(m): m for m in models}.values():
+                model.replace(mu=self.contact.mu).check_default_step()
             dt = min(math.pi / m.fastest_rate(frozen=False) / PAIR_STEPS_PER_HALF_PERIOD for m in models)
         else:
             dt = self.dt

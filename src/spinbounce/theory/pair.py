@@ -51,7 +51,9 @@ def equivalent_alpha(m_a, alpha_a, m_b, alpha_b):
     A mass-weighted harmonic mean of the two alphas (independent of the radii), so it lies
     between them and equals them when they are equal.
     """
-    return 1.0 / (m_b / (m_a + m_b) / alpha_a + m_a / (m_a + m_b) / alpha_b)
+    mean = 1.0 / (m_b / (m_a + m_b) / alpha_a + m_a / (m_a + m_b) / alpha_b)
+    inside = np.clip(mean, np.minimum(alpha_a, alpha_b), np.maximum(alpha_a, alpha_b))  # rounding kept inside
+    return float(inside) if np.ndim(inside) == 0 else inside
 
 
 def contact_time(m_a, m_b, kn, gamma_n=0.0):

@@ -26,6 +26,9 @@ from __future__ import annotations
 
 import numpy as np
 from scipy.integrate import solve_ivp
+from scipy.optimize import brentq
+
+from . import pair as pair_theory
 
 from .pair_exact import RTOL, PairOutcome, longest_step
 
@@ -33,6 +36,8 @@ __all__ = ["solve", "plane_normal", "MAX_PHASES"]
 
 #: More phases than this in one contact is chattering, not a contact (the measured cases take < 10).
 MAX_PHASES = 200
+#: Points inside each integrator step where a phase's switching function is also sampled.
+INTERIOR_SAMPLES = 8
 #: A switch must be passed by this fraction of the cap's scale (as in the wall's oracle).
 MARGIN = 1e-12
 
@@ -161,6 +166,29 @@ def _events(contact: _Contact) -> list:
     return events
 
 
+def _first_event(solution, events) -> tuple[float, int, np.ndarray]:
+    """The first event of a segment: (time, which, state). The integrator sees a switch only
+    as a sign change between its steps; the phase's own switching function (``events[1]``) is
+    also sampled at :data:`INTERIOR_SAMPLES` points inside each step, so that a stick or a slide
+    shorter than a step is not stepped over."""
+    fired = [(ts[0], k) for k, ts in enumerate(solution.t_events) if len(ts)]
+    if not fired:
+        raise RuntimeError(f"the capped pair did not separate within its window: {solution.message}")
+    t_end, which = min(fired)
+    switch, dense = events[1], solution.sol
+    g = lambda time: switch(time, dense(time))  # noqa: E731
+    for start, stop in zip(dense.ts[:-1], dense.ts[1:]):
+        if start >= t_end:
+            break
+        grid = np.linspace(start, min(stop, t_end), INTERIOR_SAMPLES + 2)
+        values = [g(time) for time in grid]
+        for k in range(len(grid) - 1):
+            if switch.direction * values[k] < 0.0 <= switch.direction * values[k + 1] and grid[k + 1] < t_end:
+                root = brentq(g, grid[k], grid[k + 1], xtol=4.0 * np.finfo(float).eps * max(1.0, abs(grid[k])))
+                return root, 1, dense(root)
+    return t_end, which, solution.y_events[which][0].copy()
+
+
 def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, mu, gamma_n=0.0, gamma_t=0.0,
           planar=False, rtol=RTOL) -> PairOutcome:
     """One capped pair from first touch until it separates (arguments as :func:`.pair_exact.solve`)."""
@@ -186,18 +214,16 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, m
     fast = np.sqrt(kn / contact.m_star) + np.sqrt(kt * (1 / m_a + 1 / m_b + r_a**2 / p["i_a"] + r_b**2 / p["i_b"]))
     atol = np.full(16, rtol * speed * min(radsum / speed, 1.0 / fast))
     atol[15] = rtol * contact.force_scale / kt
-    longest = longest_step(contact.tau, v_rel, n0, radsum)
+    longest = contact.tau / 8.0 if planar else longest_step(contact.tau, v_rel, n0, radsum)
+    damped_time = float(pair_theory.contact_time(m_a, m_b, kn, gamma_n))  # the window: 20 contact times
+    window = 20.0 * (max(contact.tau, damped_time) if np.isfinite(damped_time) else contact.tau)
     contact.restart(y)
     t = 0.0
     for _ in range(MAX_PHASES):
         events = _events(contact)
-        solution = solve_ivp(contact.rates, (t, t + 20.0 * contact.tau), y, method="DOP853", rtol=rtol, atol=atol,
-                             events=events, max_step=longest)
-        fired = [(ts[0], k) for k, ts in enumerate(solution.t_events) if len(ts)]
-        if not fired:
-            raise RuntimeError(f"the capped pair did not separate within 20 contact times: {solution.message}")
-        t, which = min(fired)
-        y = solution.y_events[which][0].copy()
+        solution = solve_ivp(contact.rates, (t, t + window), y, method="DOP853", rtol=rtol, atol=atol,
+                             events=events, max_step=longest, dense_output=True)
+        t, which, y = _first_event(solution, events)
         if which == 0:
             end = y[:15].reshape(5, 3)
             turn = float(np.arccos(np.clip(end[0] @ n0 / np.linalg.norm(end[0]), -1.0, 1.0)))
