@@ -103,7 +103,7 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, g
     # the start (gap 0, closing) is no upward crossing; the end is the first one
     fast = np.sqrt(kn / m_star) + np.sqrt(kt * (1 / m_a + 1 / m_b + r_a**2 / p["i_a"] + r_b**2 / p["i_b"]))
     solution = solve_ivp(_rates, (0.0, 20.0 * tau), state, method="DOP853", args=(n0, p, planar),
-                         max_step=longest_step(tau, v_rel, n0, radsum),
+                         max_step=tau / 8.0 if planar else longest_step(tau, v_rel, n0, radsum),
                          rtol=rtol, atol=rtol * speed * min(radsum / speed, 1.0 / fast), events=separated)
     if solution.status != 1 or not len(solution.t_events[0]):
         raise RuntimeError(f"the pair did not separate within 20 contact times: {solution.message}")
