@@ -202,3 +202,20 @@ def test_a_pair_at_the_default_step_has_the_walls_limits():
         PairBatch([Pair(v_a=(0.0, 0.0, -1.0))], PairContact(mu=300.0))
     both_one = PairBatch([Pair(a=Sphere(1.0, 0.5, 1.0), b=Sphere(2.0, 0.4, 1.0), v_a=(0.3, 0.0, -1.0))])
     assert both_one.pairs[0].equivalent_wall(both_one.contact).alpha == 1.0  # was 1 + 2e-16, refused
+
+
+def test_a_pair_sweeps_chunks_are_sized_by_the_pair_references_cost():
+    # A pair's references take ~13 ms (exact, uncapped) and ~80 ms (capped) a collision, far
+    # more than its LAMMPS steps: a chunk planned as a wall's (25,000 collisions) would run for
+    # half an hour. Each pair chunk must be estimated within CHUNK_SECONDS, the theory counted.
+    from spinbounce.studies import cost
+    from spinbounce.sweeps.spec import CHUNK_SECONDS, DEFAULT_CHUNK, spec_from_dict
+
+    states = {"n": 1_000_000, "v_n": [-1.5, -0.5], "v_t": [-1, 1], "r_omega": [-1, 1]}
+    for model, theory in (({"scene": "pair", "mu": 0.3}, cost.CAPPED_PAIR_THEORY_SECONDS),
+                          ({"scene": "pair"}, cost.PAIR_THEORY_SECONDS)):
+        spec = spec_from_dict({"model": model, "states": states})
+        size = spec.chunk_sizes[0]
+        estimate = cost.chunk_cost(spec, 0, size)
+        assert estimate.seconds <= CHUNK_SECONDS and size * theory <= estimate.seconds
+        assert size < DEFAULT_CHUNK  # a wall sweep of these states takes DEFAULT_CHUNK

@@ -5,6 +5,9 @@ A chunk is one serial LAMMPS run of its spheres followed by the theory columns
 
     seconds = START_SECONDS + PROBE_SECONDS + n * (steps * SPHERE_STEP_SECONDS + CAPPED_THEORY_SECONDS [finite mu])
 
+(a pair chunk: two spheres a collision at the fine rule's steps, plus the pair references'
+PAIR_THEORY_SECONDS or CAPPED_PAIR_THEORY_SECONDS, which dominate),
+
 where ``steps`` is the run's LAMMPS steps per collision (the contact's exit time over the
 model's step, as :attr:`Collision.nsteps` counts them), and it peaks at
 
@@ -42,6 +45,14 @@ CAPPED_THEORY_SECONDS = 1e-5
 #: A chunk whose step is probed (stepping.tune) runs two small LAMMPS runs first (measured
 #: 0.2 s for a finite-mu chunk, `spinbounce bench`).
 PROBE_SECONDS = 0.3
+#: A pair's references per collision on one core (pairs.run.pair_table: the exact reference
+#: and the planar theory; the capped reference solves both by events), measured on 100
+#: pairs each: 13 ms uncapped, 76 to 89 ms capped; with room.
+PAIR_THEORY_SECONDS = 0.02
+CAPPED_PAIR_THEORY_SECONDS = 0.12
+#: A pair chunk's probe (pairs.stepping.tune_pairs): up to five LAMMPS runs of at most
+#: PROBE_SPHERES pairs, each at up to the fine rule's steps.
+PAIR_PROBE_SECONDS = 5.0
 BASE_MB = 160
 SCIPY_MB = 40  # scipy, loaded for the capped theory
 KB_PER_SPHERE = 1.5  # 1.1 (no mu) to 1.4 (mu) kB measured between 100 and 20,000 spheres
@@ -95,8 +106,25 @@ def _steps_per_collision(spec, group: int) -> int:
     return sum(Collision(model, v_n=[-fast], dt=collision_rung_dt(model, n)).nsteps for n in rungs)
 
 
+def _pair_cost(spec, group: int, collisions: int) -> ChunkCost:
+    """A pair chunk: two spheres a collision for at most the fine rule's steps (what a batch
+    whose probe fails runs), and the pair references, which outweigh LAMMPS here."""
+    from ..pairs.kind import pair_contact, pairs_from_states
+    from ..pairs.scene import PairBatch
+
+    model, dt = spec.model(group)
+    fast, _ = spec.normal_speeds()
+    steps = PairBatch(pairs_from_states(model, spec.sphere_b(group), [[-fast, 0.0, 0.0]]), pair_contact(model), dt).nsteps
+    theory = CAPPED_PAIR_THEORY_SECONDS if model.mu is not None else PAIR_THEORY_SECONDS
+    probe = PAIR_PROBE_SECONDS if dt is None else 0.0
+    seconds = START_SECONDS + probe + collisions * (2 * steps * SPHERE_STEP_SECONDS + theory)
+    return ChunkCost(collisions, steps, seconds, BASE_MB + SCIPY_MB + 2 * collisions * KB_PER_SPHERE / 1024)
+
+
 def chunk_cost(spec, group: int, collisions: int) -> ChunkCost:
     """The estimate for a chunk of ``collisions`` spheres of model group ``group`` of ``spec``."""
+    if spec.scene == "pair":
+        return _pair_cost(spec, group, collisions)
     steps = _steps_per_collision(spec, group)
     finite_mu = spec.groups[group].get("mu") is not None
     per_collision = steps * SPHERE_STEP_SECONDS + (CAPPED_THEORY_SECONDS if finite_mu else 0.0)
