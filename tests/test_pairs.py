@@ -116,7 +116,7 @@ def test_lammps_matches_the_exact_reference_on_24_cases(tmp_path):
     # |v_a - v_b| and |u'(0)|). The line of centres turns by up to 3.9 rad, which leaves
     # LAMMPS first order in dt even with every contact ending mid-step (aligned time
     # scales); the probe sees that order and takes the steps it needs, fewer than the fine
-    # rule's (measured: 3,701 against 22,000, every row within 4.8e-5).
+    # rule's (measured: 3,701 against 10,865, every row within 4.8e-5).
     result = run_pairs(PairBatch(cases()), tmp_path)
     assert result.step.method == "probe" and result.step.observed_order < 1.5
     assert result.batch.nsteps < PairBatch(cases()).nsteps
