@@ -23,7 +23,7 @@ from .model.scenes import STATE_ARGS, Collision
 from .model.timestep import ACCURACY, SAFETY, StepChoice, mid_step_dt, steps_per_contact
 from .theory import choose
 
-__all__ = ["StepChoice", "needs_probe", "tune", "extrapolate", "expected_steps", "PROBE_SPHERES", "SAFETY"]
+__all__ = ["StepChoice", "needs_probe", "tune", "converge", "extrapolate", "expected_steps", "PROBE_SPHERES", "SAFETY"]
 
 #: States a probe runs: the scene's own, every k-th of them beyond this many.
 PROBE_SPHERES = 32
@@ -87,28 +87,40 @@ def tune(scene: Collision, out: Path, run: Callable, probe_states: Collision | N
         coarse_steps *= 2
     else:
         raise RuntimeError(f"no probe of {scene.model} finished its contact within {coarse_steps} steps")
-    coarse, fine = errors
-    if fine <= ROUNDING:  # nothing to resolve: the (finishing) coarse step will do
-        order, steps, predicted = None, coarse_steps, fine
-    else:
-        steps, order = extrapolate((coarse_steps, coarse), (2 * coarse_steps, fine), target)
-        predicted = fine * (2 * coarse_steps / steps) ** order
-        # a rough convergence (a cap's switches, a contact-radius spring) can miss: check the
-        # chosen step on the probe itself, and go on from the last two points while it misses
-        last = (2 * coarse_steps, fine)
-        for k in range(MAX_CHECKS):
-            if steps <= last[0]:
-                break
-            measured = probe(steps, 2 * MAX_REFINEMENTS + k)
-            errors.append(measured)
-            if measured <= target * SAFETY * CHECK_SLACK:
-                predicted = measured
-                break
-            previous, last = last, (steps, measured)
-            steps, order = extrapolate(previous, last, target)
-            predicted = measured * (last[0] / steps) ** order
+
+    def check(steps: int) -> float:
+        errors.append(probe(steps, len(errors) + 2 * MAX_REFINEMENTS - 2))
+        return errors[-1]
+
+    steps, order, predicted = converge((coarse_steps, errors[0]), (2 * coarse_steps, errors[1]), target, check)
     tuned = Collision(scene.model, dt=mid_step_dt(t_contact, steps), **{n: getattr(scene, n) for n in STATE_ARGS})
     return tuned, StepChoice(tuned.dt, "probe", target, order, tuple(errors), predicted)
+
+
+def converge(coarse: tuple[int, float], fine: tuple[int, float], target: float, measure: Callable[[int], float],
+             limit: float = math.inf) -> tuple[int, float | None, float]:
+    """(steps, observed order, predicted error) for ``target`` from two probes (steps, error).
+
+    Nothing to resolve (the finer probe at rounding): the coarse steps. Else the steps
+    :func:`extrapolate` gives; a rough convergence (a cap's switches, a contact-radius spring)
+    can miss, so ``measure(steps)`` checks the chosen step on the probe itself, going on from
+    the last two points while it misses, at most MAX_CHECKS times and below ``limit`` steps.
+    """
+    if fine[1] <= ROUNDING:
+        return coarse[0], None, fine[1]
+    steps, order = extrapolate(coarse, fine, target)
+    predicted = fine[1] * (fine[0] / steps) ** order
+    last = fine
+    for _ in range(MAX_CHECKS):
+        if steps <= last[0] or steps >= limit:
+            break
+        measured = measure(steps)
+        if measured <= target * SAFETY * CHECK_SLACK:
+            return steps, order, measured
+        previous, last = last, (steps, measured)
+        steps, order = extrapolate(previous, last, target)
+        predicted = measured * (last[0] / steps) ** order
+    return steps, order, predicted
 
 
 def extrapolate(coarser: tuple[int, float], finer: tuple[int, float], target: float) -> tuple[int, float]:

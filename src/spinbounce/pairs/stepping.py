@@ -24,7 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from ..model.timestep import ACCURACY, SAFETY, StepChoice, mid_step_dt, steps_per_contact
-from ..stepping import CHECK_SLACK, MAX_CHECKS, PROBE_SPHERES, ROUNDING, extrapolate
+from ..stepping import CHECK_SLACK, PROBE_SPHERES, converge
 from .scene import PairBatch
 
 __all__ = ["tune_pairs", "START_STEPS", "FALLBACK"]
@@ -58,23 +58,8 @@ def tune_pairs(batch: PairBatch, out: Path, target: float = ACCURACY,
         errors.append(run_pairs(sample, Path(out) / f"probe-{len(errors)}", record=False).max_lammps_error)
         return errors[-1]
 
-    probe(START_STEPS)
-    last = (2 * START_STEPS, probe(2 * START_STEPS))
-    if last[1] <= ROUNDING:
-        steps, order, predicted = START_STEPS, None, last[1]
-    else:
-        steps, order = extrapolate((START_STEPS, errors[0]), last, target)
-        predicted = last[1] * (last[0] / steps) ** order
-        for _ in range(MAX_CHECKS):  # the wall's checks: a rough convergence's extrapolation can miss
-            if steps <= last[0] or steps >= cap:
-                break
-            measured = probe(steps)
-            if measured <= target * SAFETY * CHECK_SLACK:
-                predicted = measured
-                break
-            previous, last = last, (steps, measured)
-            steps, order = extrapolate(previous, last, target)
-            predicted = measured * (last[0] / steps) ** order
+    coarse = (START_STEPS, probe(START_STEPS))
+    steps, order, predicted = converge(coarse, (2 * START_STEPS, probe(2 * START_STEPS)), target, probe, limit=cap)
     if steps >= cap or predicted > target * SAFETY * CHECK_SLACK:
         fine = PairBatch(batch.pairs, batch.contact, batch.dt, aligned=True)
         return fine, StepChoice(fine.dt, FALLBACK, target, order, tuple(errors), None)
