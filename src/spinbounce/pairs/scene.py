@@ -207,8 +207,8 @@ class PairBatch:
     """Pairs run together, each in its own cell. ``dt = None``: PAIR_STEPS_PER_HALF_PERIOD steps
     per half-period of the fastest mode of any pair (``default_step``: a run probes for a
     coarser one, :func:`.stepping.tune_pairs`); a given dt must keep every pair stable.
-    ``aligned``: each pair of an undamped batch runs at its own time scale
-    (:attr:`time_scales`), what the probed step assumes; off, every pair runs at ``dt``."""
+    ``aligned``: each pair runs at its own time scale (:attr:`time_scales`; a damped batch's
+    from a few classes), what the probed step assumes; off, every pair runs at ``dt``."""
 
     pairs: tuple = (Pair(),)
     contact: PairContact = field(default_factory=PairContact)
