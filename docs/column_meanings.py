@@ -42,7 +42,7 @@ OTHER = {
     "nsteps": "LAMMPS steps (with a tolerance: all runs' together)",
     "tolerance": "the accuracy asked for (sweeps with a tolerance only)",
     "Omega_theory": "the theory's Omega (Eq. 18) for this sphere's v_n; NaN where none exists",
-    "theory": "which theory the rows are compared with (spinbounce.theory.choose)",
+    "theory": "which theory the rows are compared with (spinbounce.exact.choose)",
     "scene_hash": "digest of the sweep's description: equal for a scene file and the same flags",
     "lammps_version": "the LAMMPS build that ran",
     "spinbounce_version": "the spinbounce version that ran",

@@ -1,5 +1,6 @@
-"""Text that a saved figure would cut off: for any matplotlib Figure, every drawn text
-artist (titles, axis and tick labels, legend entries, annotations) whose extent, as the
+"""Text that a saved figure would cut off, found on any matplotlib Figure.
+
+For any matplotlib Figure: every drawn text artist (titles, axis and tick labels, legend entries, annotations) whose extent, as the
 figure's own canvas renderer lays it out, reaches beyond the figure's edges.
 
 Used by tests of drawn figures: ``assert texts_outside(fig) == []``.

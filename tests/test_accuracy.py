@@ -36,8 +36,8 @@ from spinbounce.studies.accuracy import (
 from spinbounce.cli import accuracy as accuracy_cli
 from spinbounce.model.timestep import ACCURACY
 from spinbounce.model.scenes import HERTZ_STEPS_PER_HALF_PERIOD, STATE_3D, Collision, ContactModel
-from spinbounce.studies.tolerance import raw_orders
-from spinbounce.theory import coulomb, oracle
+from spinbounce.extrapolation import raw_orders
+from spinbounce.exact import coulomb, oracle
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 

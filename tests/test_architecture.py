@@ -1,5 +1,7 @@
-"""The shape of the code: one direction of flow, no module past 400 lines, one definition
-of each shared decision (the atomic write, the timestep rule, which theory applies, the
+"""The shape of the code: layers, no import cycle, short modules, one definition per decision.
+
+The shape of the code: layers with one direction of flow (imports inside functions count),
+no module past 400 lines, one definition of each shared decision (the atomic write, the timestep rule, which theory applies, the
 LAMMPS version). Read from the source files, not from imports, so nothing here runs LAMMPS.
 """
 
@@ -25,11 +27,52 @@ def _modules() -> dict[str, Path]:
     return out
 
 
+#: The layers, bottom first: a module imports only from its own layer or below, wherever the
+#: import stands (module level or inside a function: a lazy import is still a dependency).
+#: The errors a user sees import nothing; the exact references know nothing else; the model (parameters, contact law, scenes) only
+#: them; the engine (decks, runner, dumps, records, row checks, the step rule) runs a scene;
+#: the pipeline runs one collision; pairs run batches of two spheres on it; extrapolation is
+#: a run mode over either; sweeps and fits use all of that; studies and figures are made from
+#: sweeps and runs; the API and the catalogue of products call them; the CLI calls the API.
+LAYERS = (
+    ("errors",),
+    ("exact",),
+    ("model",),
+    ("lammps", "records", "compare", "checks", "stepping"),
+    ("pipeline",),
+    ("pairs",),
+    ("extrapolation",),
+    ("sweeps", "fitting", "fitting_stream"),
+    ("studies", "figures"),
+    ("api", "catalogue"),
+    ("cli", "__main__"),
+)
+
+
+def _layer(module: str) -> int | None:
+    """The layer of ``spinbounce.<top>...``; None for the package itself (its version, its lazy API)."""
+    top = module.split(".")[1] if "." in module else ""
+    for index, names in enumerate(LAYERS):
+        if top in names:
+            return index
+    return None if not top else -1
+
+
+def _typing_only(tree: ast.AST) -> set[int]:
+    """The nodes under ``if TYPE_CHECKING:``: annotations, not dependencies."""
+    return {id(inner) for node in ast.walk(tree) if isinstance(node, ast.If) and "TYPE_CHECKING" in ast.unparse(node.test)
+            for statement in node.body for inner in ast.walk(statement)}
+
+
 def _imports(name: str, path: Path, modules: dict) -> set[str]:
-    """The spinbounce modules ``name`` imports at its top level (run time, not typing-only)."""
+    """The spinbounce modules ``name`` imports anywhere in its code (typing-only imports aside)."""
     package = name if path.name == "__init__.py" else name.rpartition(".")[0]
+    tree = ast.parse(path.read_text())
+    skip = _typing_only(tree)
     found = set()
-    for node in ast.parse(path.read_text()).body:  # top level only: lazy imports inside functions are calls
+    for node in ast.walk(tree):
+        if id(node) in skip:
+            continue
         if isinstance(node, ast.ImportFrom):
             base = package.split(".")[: len(package.split(".")) - node.level + 1] if node.level else []
             target = ".".join(base + ([node.module] if node.module else [])) if node.level else node.module or ""
@@ -39,6 +82,12 @@ def _imports(name: str, path: Path, modules: dict) -> set[str]:
         elif isinstance(node, ast.Import):
             found.update(alias.name for alias in node.names)
     return {m for m in found if m in modules and m != name}
+
+
+def _graph() -> dict[str, set[str]]:
+    modules = _modules()
+    return {name: {m for m in _imports(name, path, modules) if not name.startswith(m + ".")}
+            for name, path in modules.items()}
 
 
 def _cycle(graph: dict[str, set[str]]) -> list[str] | None:
@@ -65,10 +114,27 @@ def _cycle(graph: dict[str, set[str]]) -> list[str] | None:
 
 
 def test_no_import_cycle_between_modules():
-    modules = _modules()
-    graph = {name: {m for m in _imports(name, path, modules) if not name.startswith(m + ".")}
-             for name, path in modules.items()}
+    graph = _graph()
     assert _cycle(graph) is None, f"import cycle: {' -> '.join(_cycle(graph))}"
+
+
+def test_the_cycle_check_sees_imports_inside_functions():
+    # the check must not pass by missing lazy imports: the API's imports of the pipeline and
+    # the sweeps stand inside functions, and the graph holds them
+    graph = _graph()
+    assert {"spinbounce.pipeline", "spinbounce.sweeps"} <= graph["spinbounce.api"]
+    assert _cycle({"a": {"b"}, "b": {"c"}, "c": {"a"}}) is not None
+
+
+def test_every_module_has_a_layer():
+    unplaced = sorted(name for name in _modules() if _layer(name) == -1)
+    assert not unplaced, f"modules in no layer of LAYERS: {unplaced}"
+
+
+def test_no_module_imports_from_a_layer_above_its_own():
+    upward = sorted(f"{name} -> {target}" for name, targets in _graph().items() for target in targets
+                    if _layer(name) is not None and _layer(target) is not None and _layer(target) > _layer(name))
+    assert not upward, upward
 
 
 def test_no_module_over_400_lines():
@@ -106,9 +172,21 @@ def test_one_timestep_rule():
 
 
 def test_one_place_decides_which_theory_applies():
-    # predictions come from theory/choose.py; the solvers behind it are imported elsewhere
+    # predictions come from exact/choose.py; the solvers behind it are imported elsewhere
     # only to measure them (solver_speed) or, for the published benchmarks, as the
     # independent oracle whose regime patterns the report shows
     solvers = _files_matching(r"import [\w ,]*\b(oracle|coulomb)\b")
-    assert "theory/choose.py" in solvers
-    assert solvers <= {"theory/choose.py", "studies/solver_speed.py", "studies/validation/run.py"}, solvers
+    assert "exact/choose.py" in solvers
+    assert solvers <= {"exact/choose.py", "studies/solver_speed.py", "studies/validation/run.py"}, solvers
+
+
+def test_every_test_module_says_in_one_line_what_it_holds():
+    # a reader picks the file from its first line: a docstring whose first line is whole
+    tests = Path(__file__).resolve().parent
+    unsaid = []
+    for path in sorted(tests.glob("*.py")):
+        doc = ast.get_docstring(ast.parse(path.read_text())) or ""
+        lines = doc.splitlines()
+        if not lines or len(lines[0]) > 120 or (len(lines) > 1 and lines[1].strip()):
+            unsaid.append(path.name)
+    assert not unsaid, f"test modules without a one-line summary: {unsaid}"

@@ -52,6 +52,7 @@ def test_bench_refuses_a_batch_smaller_than_the_baselines():
         measure_speed(n_lmp=10, n_inprocess=10, n_batched=5)
 
 
+@pytest.mark.slow
 @pytest.mark.lammps
 def test_bench_cli_writes_json(tmp_path, capsys):
     out = tmp_path / "bench.json"

@@ -1,4 +1,6 @@
-"""Published benchmarks: LAMMPS against the oracle at each benchmark's refinement, the oracle
+"""Published benchmarks: LAMMPS and the rigid-body law against the oracle, and the CLI's refusal.
+
+Published benchmarks: LAMMPS against the oracle at each benchmark's refinement, the oracle
 against the rigid-body law in gross sliding, the stiffness recipe, and the CLI's refusal.
 
 Tolerances:
@@ -26,7 +28,7 @@ from spinbounce.cli import main
 from spinbounce.figures.core import STYLE
 from spinbounce.studies import validation as B
 from spinbounce.studies.validation.report import draw
-from spinbounce.theory import oracle
+from spinbounce.exact import oracle
 
 #: grid indices per benchmark: near-normal, mid (sticking or micro-slip), gross sliding;
 #: chung-ooi-4's 30 deg and thornton's threshold states are avoided (oracle failures, see report)

@@ -1,4 +1,6 @@
-"""Calibration: targets (e, beta, t_c, mu) -> (kn, kt, gamma_n, gamma_t), checked by the theory
+"""Calibration: targets (e, beta, t_c, mu) to (kn, kt, gamma_n, gamma_t), checked two ways.
+
+Calibration: targets (e, beta, t_c, mu) -> (kn, kt, gamma_n, gamma_t), checked by the theory
 it inverts and by LAMMPS.
 
 LAMMPS tolerance 1e-3 (the acceptance line) on e, beta and t_c/target. The calibrated models
@@ -13,7 +15,7 @@ import argparse
 import numpy as np
 import pytest
 
-from spinbounce import theory
+from spinbounce import exact
 from spinbounce.cli import calibrate as calibrate_cli
 from spinbounce.cli.options import allow_negative_numbers
 from spinbounce.studies.calibrate import (LIMIT_DAMPING_E_MIN, Targets, Unreachable, calibrate, fix_line, measure,
@@ -50,7 +52,7 @@ def test_the_calibrated_model_meets_its_targets_in_the_exact_theory():
 
 
 def test_limit_damping_cannot_go_below_exp_minus_2():
-    assert theory.restitution(1.0, 1.0, 2.0 * (1 - 1e-9), tensile=False) == pytest.approx(LIMIT_DAMPING_E_MIN, 1e-6)
+    assert exact.restitution(1.0, 1.0, 2.0 * (1 - 1e-9), tensile=False) == pytest.approx(LIMIT_DAMPING_E_MIN, 1e-6)
     with pytest.raises(Unreachable, match=r"\(0.135335, 1\]"):
         calibrate(Targets(e=0.1, contact_time=1.0, beta=0.5, limit_damping=True))
     calibrate(Targets(e=0.1, contact_time=1.0, beta=0.5))  # a normal force that may pull gets there

@@ -1,5 +1,8 @@
-"""The claims ledger: verdicts follow from the numbers, every claim is measured, and the
-numbers it quotes are checked here by an independent route (a dense grid, a hand derivation)."""
+"""The claims ledger: verdicts follow from the numbers, each checked by an independent route.
+
+The claims ledger: verdicts follow from the numbers, every claim is measured, and the
+numbers it quotes are checked here by an independent route (a dense grid, a hand derivation).
+"""
 
 import dataclasses
 import json
@@ -9,7 +12,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from spinbounce import theory
+from spinbounce import exact
 from spinbounce.studies.claims import CLAIMS, COLLISION_TOL, VERDICTS, verdict, write_claims
 from spinbounce.studies.claims.damping import EQ23_STATE, eq22_error, eq22_worst, eq23_faults, printed_eq23
 from spinbounce.studies.claims.energy import SPIN_STATE, best_reduction, loss_bracket
@@ -55,7 +58,7 @@ def test_eq23_faults_match_a_hand_derivation():
     assert faults["rolling_moved"] == pytest.approx(0.0, abs=1e-12)  # it does keep a rolling state
     assert EQ23_STATE[1:] == (-1.0, 2.0) and faults["energy_gain"] == pytest.approx(4 / 35, abs=1e-12)
     # and it is not Eq. 18 with Omega = -1, whose bottom row is (-1/(1+alpha), alpha/(1+alpha)) = (-5/7, 2/7)
-    np.testing.assert_allclose(theory.rolling_matrix(ALPHA)[2, 1:], [-5 / 7, 2 / 7], atol=1e-12)
+    np.testing.assert_allclose(exact.rolling_matrix(ALPHA)[2, 1:], [-5 / 7, 2 / 7], atol=1e-12)
     np.testing.assert_allclose(printed_eq23(ALPHA)[2, 1:], [-2 / 7, 5 / 7], atol=1e-12)
 
 
@@ -90,12 +93,12 @@ def test_printed_eq23_dissipates_less_for_a_spinning_normal_impact():
     """(v_n, v_t, r omega) = (-1, 0, 1), E(0) = 0.7 m: printed Eq. 23 -> (1, -2/7, 5/7), f = 4/49;
     Eq. 18 gives f = alpha u'^2 [1 - (1+Omega)^2] / (2 (1+alpha) E(0)): 10/49 at Omega = -1."""
     state = np.array(SPIN_STATE)
-    f_printed = theory.dissipation(state, printed_eq23(ALPHA) @ state, 1.0, ALPHA)
+    f_printed = exact.dissipation(state, printed_eq23(ALPHA) @ state, 1.0, ALPHA)
     assert f_printed == pytest.approx(4 / 49, abs=1e-12)
-    f_rolling = theory.dissipation(state, theory.rolling_matrix(ALPHA) @ state, 1.0, ALPHA)
+    f_rolling = exact.dissipation(state, exact.rolling_matrix(ALPHA) @ state, 1.0, ALPHA)
     assert f_rolling == pytest.approx(10 / 49, abs=1e-12)
-    omega = theory.Omega(10.0, 1.0, ALPHA)
-    f_tenth = theory.dissipation(state, theory.scattering_matrix(ALPHA, omega) @ state, 1.0, ALPHA)
+    omega = exact.Omega(10.0, 1.0, ALPHA)
+    f_tenth = exact.dissipation(state, exact.scattering_matrix(ALPHA, omega) @ state, 1.0, ALPHA)
     assert f_tenth == pytest.approx(10 / 49 * (1 - (1 + omega) ** 2), abs=1e-12)
     assert f_printed < f_tenth < f_rolling
 
@@ -129,7 +132,7 @@ def test_claims_quote_the_optimised_numbers(claims_made):
     by_key = {c.key: c for c in claims_made}
     gamma_t, worst = eq22_worst(0.1)
     eq22 = by_key["eq22"]
-    assert eq22.paper == pytest.approx(theory.Omega_paper_damped(1.0, 10.0, 1.0, ALPHA, gamma_t), abs=1e-12)
+    assert eq22.paper == pytest.approx(exact.Omega_paper_damped(1.0, 10.0, 1.0, ALPHA, gamma_t), abs=1e-12)
     assert eq22.exact - eq22.paper == pytest.approx(-worst, abs=1e-12)
     assert f"{worst:.4f} at gamma_t = {gamma_t:.4f}" in eq22.evidence
     assert "would not even keep" not in by_key["eq23"].evidence

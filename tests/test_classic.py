@@ -1,4 +1,4 @@
-"""The classic wall's exact theory (theory.classic), and LAMMPS's classic wall against it."""
+"""The classic wall's exact theory (exact.classic), and LAMMPS's classic wall against it."""
 
 import math
 
@@ -8,12 +8,12 @@ from scipy.integrate import solve_ivp
 
 from spinbounce.model.timestep import mid_step_dt
 from spinbounce.studies.doctor import run_wall
-from spinbounce.theory import classic, linear
+from spinbounce.exact import classic, linear
 
 
 @pytest.mark.parametrize("gamma_n, gamma_t", [(0.0, 0.0), (0.3, 0.0), (0.3, 0.2), (1.0, 0.7)])
 def test_without_the_contact_radius_it_is_the_papers_exact_omega(gamma_n, gamma_t):
-    # a = 1 is the paper's linear spring, solved in closed form by theory.linear; the
+    # a = 1 is the paper's linear spring, solved in closed form by exact.linear; the
     # hybrid integrator at rtol 1e-12 must reproduce it to well below its 1e-9 target
     wall = classic.ClassicWall(10.0, 1.3, gamma_n, gamma_t, None, 0.4, 0.5, 1.0, contact_radius=False)
     result = classic.bounce(wall, -1.0, 1.0, 0.0)

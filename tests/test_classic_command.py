@@ -12,7 +12,7 @@ from spinbounce.lammps.decks import render_collision
 from spinbounce.model.contact import ContactModel
 from spinbounce.model.scenes import Collision
 from spinbounce.studies import classic_effect
-from spinbounce.theory import linear
+from spinbounce.exact import linear
 
 #: The default accuracy every LAMMPS result is held to (model.timestep.ACCURACY).
 ACCURACY = 1e-4

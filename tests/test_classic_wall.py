@@ -1,9 +1,12 @@
-"""The classic wall (``wall = classic``: ``fix wall/gran hooke/history``) as a first-class
+"""The classic wall (fix wall/gran hooke/history) as a model: LAMMPS against its exact theory.
+
+The classic wall (``wall = classic``: ``fix wall/gran hooke/history``) as a first-class
 model: LAMMPS's classic wall at the default settings against the exact theory of what this
-build integrates (spinbounce.theory.classic), in collisions and in the frozen contact.
+build integrates (spinbounce.exact.classic), in collisions and in the frozen contact.
 
 Tolerance: the default accuracy, 1e-4 of the size of the initial state; the classic theory
-is solved to about 1e-9, so the whole margin is LAMMPS's step."""
+is solved to about 1e-9, so the whole margin is LAMMPS's step.
+"""
 
 from __future__ import annotations
 
@@ -60,7 +63,7 @@ def test_the_classic_frozen_contact_oscillates_at_its_own_frequency(z, tmp_path)
 def test_the_classic_frozen_contact_to_a_tolerance(z, tmp_path):
     """Held at one height the classic spring is the constant kt sqrt(r delta0): the error is smooth in
     dt and the ladder extrapolates it; every sample is within 1e-6 of the classic frozen theory."""
-    from spinbounce.studies.tolerance import frozen_to_tolerance
+    from spinbounce.extrapolation import frozen_to_tolerance
 
     model = ContactModel(wall="classic")
     result = frozen_to_tolerance(model, z, 1.0, 0.0, 5.0, 1e-6, tmp_path)
@@ -92,6 +95,7 @@ def test_what_the_classic_form_cannot_express_is_refused(params, parameter):
     assert info.value.parameter == parameter
 
 
+@pytest.mark.slow
 def test_a_classic_sweep_to_a_tolerance_is_within_it_row_by_row(tmp_path):
     """Its error has no smooth expansion in dt (the spring kt sqrt(r delta) has an infinite slope
     at contact), so the tolerance is met by measurement against the classic theory: 24 states x

@@ -9,7 +9,7 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
-from spinbounce.cli import main
+from spinbounce.cli import COMMANDS, main
 
 
 def run_cli(capsys, *args):
@@ -20,11 +20,26 @@ def run_cli(capsys, *args):
 
 def test_import_does_not_load_lammps():
     code = (
-        "import sys, spinbounce, spinbounce.theory.linear, spinbounce.model.scenes, spinbounce.lammps.decks, "
+        "import sys, spinbounce, spinbounce.exact.linear, spinbounce.model.scenes, spinbounce.lammps.decks, "
         "spinbounce.pipeline, spinbounce.cli; print('lammps' in sys.modules)"
     )
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert done.stdout.strip() == "False"
+
+
+#: What no command's ``--help`` may import: the heavy libraries a run needs (each takes a
+#: tenth of a second or more to import), so that help starts at once.
+HEAVY = ("pandas", "scipy", "matplotlib", "lammps", "pyarrow", "jinja2")
+
+
+@pytest.mark.parametrize("command", [None] + [c.__name__.rsplit(".", 1)[1].replace("_", "-") for c in COMMANDS])
+def test_help_imports_nothing_heavy(command):
+    argv = ["--help"] if command is None else [command, "--help"]
+    code = ("import sys\nfrom spinbounce.cli import main\ntry:\n    main(%r)\nexcept SystemExit:\n    pass\n"
+            "print(' '.join(m for m in %r if m in sys.modules), file=sys.stderr)" % (argv, HEAVY))
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert done.stderr.strip() == "", f"spinbounce {' '.join(argv)} imports {done.stderr.strip()}"
+    assert "usage: spinbounce" in done.stdout
 
 
 def test_theory_json_at_paper_defaults(capsys):

@@ -1,4 +1,6 @@
-"""Coulomb sliding (finite mu): the oracle against the rigid-body closed forms, and LAMMPS
+"""Coulomb sliding (finite mu): the oracle against closed forms, LAMMPS against the oracle.
+
+Coulomb sliding (finite mu): the oracle against the rigid-body closed forms, and LAMMPS
 against the oracle on a mu sweep from 0.01 to 10 at incidence angles from 5 to 85 degrees.
 
 Tolerances:
@@ -16,8 +18,8 @@ import math
 import numpy as np
 import pytest
 
-from spinbounce import theory
-from spinbounce.theory import oracle, rigid_body
+from spinbounce import exact
+from spinbounce.exact import oracle, rigid_body
 from spinbounce.pipeline import run_collision
 from spinbounce.model.scenes import Collision, ContactModel
 
@@ -27,7 +29,7 @@ ANGLES = np.radians([5.0, 20.0, 35.0, 50.0, 65.0, 80.0, 85.0])
 V_N = np.concatenate([-np.cos(ANGLES), [-1.0, -1.0, -0.5]])
 V_T = np.concatenate([np.sin(ANGLES), [0.0, 0.5, -0.3]])
 OMEGA = np.concatenate([np.zeros(ANGLES.size), [4.0, -6.0, 8.0]])
-E_07 = theory.gamma_n_for_restitution(0.7, 1.0, 10.0)
+E_07 = exact.gamma_n_for_restitution(0.7, 1.0, 10.0)
 #: model variants of the sweep -> how much finer than the default dt LAMMPS runs
 VARIANTS = {
     "e=1": ({}, 16),
@@ -88,12 +90,12 @@ def test_oracle_gross_slip_is_the_rigid_body_outcome(kw):
 def test_oracle_no_slip_at_the_magic_ratio_is_the_rough_sphere():
     # at kt/kn = 2/7 (alpha = 2/5) the slip and the overlap stay in proportion, so a contact
     # that sticks at first touch (kt |u'| < mu kn |v_n|) sticks to the end: Eq. 20 exactly
-    model = ContactModel(kt=10.0 * theory.magic_kt_over_kn(0.4), mu=0.5)
+    model = ContactModel(kt=10.0 * exact.magic_kt_over_kn(0.4), mu=0.5)
     for v_n, v_t, omega in [(-1.0, 0.5, 0.0), (-0.7, 0.2, 0.8), (-1.2, -1.0, -1.0)]:
         assert model.kt * abs(v_t + model.r * omega) < model.mu * model.kn * abs(v_n)
         got = oracle.bounce(model, v_n, v_t, omega)
         assert got.pattern == "stick"
-        rough = theory.rough_matrix(0.4) @ np.array([v_n, v_t, model.r * omega])
+        rough = exact.rough_matrix(0.4) @ np.array([v_n, v_t, model.r * omega])
         assert np.abs(got.final[:3] - rough).max() < 1e-6
 
 
@@ -144,10 +146,10 @@ def test_lammps_gross_slip_and_no_slip_match_the_closed_forms(tmp_path):
         result = _run(slide, *np.array(states).T, 64, tmp_path / name)
         closed = np.array([rigid_body.gross_slip(slide, *s, slide.restitution) for s in states])
         assert np.abs(_final(result) - closed).max() < 1e-4
-    rough = ContactModel(kt=10.0 * theory.magic_kt_over_kn(0.4), mu=0.5)
+    rough = ContactModel(kt=10.0 * exact.magic_kt_over_kn(0.4), mu=0.5)
     states = np.array([(-1.0, 0.5, 0.0), (-0.7, 0.2, 0.8), (-1.2, -1.0, -1.0)])
     result = _run(rough, *states.T, 4, tmp_path / "rough")
-    expected = (states * [1.0, 1.0, rough.r]) @ theory.rough_matrix(0.4).T
+    expected = (states * [1.0, 1.0, rough.r]) @ exact.rough_matrix(0.4).T
     assert np.abs(_final(result) - expected).max() < 1e-4
 
 

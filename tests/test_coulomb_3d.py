@@ -1,8 +1,8 @@
-"""The 3-D Coulomb solver (theory.coulomb.bounce_3d) against the scipy oracle in 3-D.
+"""The 3-D Coulomb solver (exact.coulomb.bounce_3d) against the scipy oracle in 3-D.
 
 Tolerance 1e-8 of the impact speed |v|, the acceptance line's. The solver reduces the
 contact exactly to the plane of the first slip; the oracle integrates the 3-D equations
-(a slide turning s towards the slip, theory.oracle's integrate) at rtol 1e-12. Measured
+(a slide turning s towards the slip, exact.oracle's integrate) at rtol 1e-12. Measured
 with studies.solver_speed.agreement: 1,000 random 3-D cases (seed 2026) worst 9.1e-12,
 median 8.5e-16, none refused, 17 s; 3,000 more (seed 11) worst 9.1e-12, none refused.
 Before the oracle integrated a 3-D slide by the angle of s and log |u'_perp| (it ran
@@ -18,11 +18,12 @@ import pytest
 
 from spinbounce.model.scenes import ContactModel, PhysicsWarning
 from spinbounce.studies.solver_speed import agreement
-from spinbounce.theory import coulomb, oracle
+from spinbounce.exact import coulomb, oracle
 
 ORACLE_TOLERANCE_3D = 1e-8
 
 
+@pytest.mark.slow
 def test_random_3d_models_and_states_agree_with_the_oracle():
     # random_cases_3d turns random_case's sample out of the plane: the tangential velocity
     # and the spin's axis along independent angles, a spin about the normal; 17 ms a case

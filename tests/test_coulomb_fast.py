@@ -1,4 +1,4 @@
-"""The closed-form Coulomb solver (theory.coulomb) against the scipy oracle and closed forms.
+"""The closed-form Coulomb solver (exact.coulomb) against the scipy oracle and closed forms.
 
 Tolerances, in units of the impact speed |v|:
 * against the oracle, 1e-9 in the plane and 1e-8 with the Hertzian force (the acceptance
@@ -24,10 +24,10 @@ import warnings
 import numpy as np
 import pytest
 
-from spinbounce import theory
+from spinbounce import exact
 from spinbounce.model.scenes import ContactModel, PhysicsWarning
 from spinbounce.studies.solver_speed import agreement
-from spinbounce.theory import coulomb, oracle, rigid_body
+from spinbounce.exact import coulomb, oracle, rigid_body
 
 ORACLE_TOLERANCE = 1e-9
 #: the acceptance line in 3-D and with the Hertzian force
@@ -208,7 +208,7 @@ def test_gross_slip_through_a_tensile_turn_takes_mu_times_the_absolute_normal_im
         phase = omega_d * t
         return speed * math.exp(-beta * t) * (math.cos(phase) - beta / omega_d * math.sin(phase))
 
-    t_turn = theory.collision_time(model.m, model.kn, model.gamma_n, tensile=False)
+    t_turn = exact.collision_time(model.m, model.kn, model.gamma_n, tensile=False)
     for v_n, v_t, omega in [(-1.0, 0.5, -60.0), (-0.6, 2.0, 40.0), (-1.2, -1.0, 50.0)]:
         speed = -v_n
         impulse = model.mu * model.m * (speed - 2.0 * overlap_rate(t_turn, speed)
@@ -222,12 +222,12 @@ def test_gross_slip_through_a_tensile_turn_takes_mu_times_the_absolute_normal_im
 def test_no_slip_at_the_magic_ratio_is_the_rough_sphere(alpha):
     # kt/kn = alpha/(1 + alpha): slip and overlap stay in proportion, so a contact that
     # sticks at first touch (kt |u'| < mu kn |v_n|) sticks to the end: Eq. 20
-    model = ContactModel(kt=10.0 * theory.magic_kt_over_kn(alpha), alpha=alpha, mu=0.8)
+    model = ContactModel(kt=10.0 * exact.magic_kt_over_kn(alpha), alpha=alpha, mu=0.8)
     states = np.array([(-1.0, 0.5, 0.0), (-0.7, 0.2, 0.8), (-1.2, -1.0, -1.0), (-0.5, 0.0, 1.5)])
     assert np.all(model.kt * np.abs(states[:, 1] + model.r * states[:, 2])
                   < model.mu * model.kn * np.abs(states[:, 0]))
     got = coulomb.bounce_2d(model, *states.T)
-    rough = (theory.rough_matrix(alpha) @ (states * [1.0, 1.0, model.r]).T).T
+    rough = (exact.rough_matrix(alpha) @ (states * [1.0, 1.0, model.r]).T).T
     assert np.abs(got - rough).max() < EXACT_TOLERANCE
 
 
@@ -266,7 +266,7 @@ def test_tie_riding_the_cap_from_first_touch_to_exit():
     # the same motion; the outcome is the rough sphere's (Eq. 20) and nothing chatters
     model = ContactModel(kn=8.0, kt=2.0, alpha=1.0 / 3.0, mu=0.125)
     state = np.array([-1.0, 0.5, 0.0])
-    rough = theory.rough_matrix(model.alpha) @ state
+    rough = exact.rough_matrix(model.alpha) @ state
     assert np.abs(coulomb.bounce_2d(model, *state)[0] - rough).max() < EXACT_TOLERANCE
 
 
@@ -319,7 +319,7 @@ def test_hertz_gross_slip_is_the_rigid_body_impulse():
 def test_hertz_approaches_the_uncapped_theory_as_mu_to_the_minus_two_thirds():
     # at each end of the contact the cap mu K x^(3/2), x ~ |v_n| |t - t_end|, is below the
     # spring's force A for a time ~ (A / mu)^(2/3), and the contact slides then: the outcome
-    # leaves theory.hertz's per-sphere Eq. 18 by an amount proportional to mu^(-2/3)
+    # leaves exact.hertz's per-sphere Eq. 18 by an amount proportional to mu^(-2/3)
     # (a factor 100^(2/3) = 21.5 per factor 100 in mu), not 1/mu as with Hooke's linear cap
     states = np.array(HERTZ_STATES)
     initial = states * [1.0, 1.0, 0.5]
@@ -357,10 +357,10 @@ def test_3d_gross_slip_is_the_rigid_body_impulse(kw):
 
 
 def test_3d_no_slip_at_the_magic_ratio_is_the_rough_block_matrix():
-    model = ContactModel(kt=10.0 * theory.magic_kt_over_kn(0.4), mu=0.8)
+    model = ContactModel(kt=10.0 * exact.magic_kt_over_kn(0.4), mu=0.8)
     states = np.array([(-1.0, 0.5, 0.0, -0.3, 0.4, 2.0), (-0.7, 0.2, 0.8, 0.1, -0.2, -1.0)])
     got = coulomb.bounce_3d(model, *states.T)
-    rough = (theory.block_matrix(0.4, -2.0) @ (states * [1, 1, model.r, 1, model.r, model.r]).T).T
+    rough = (exact.block_matrix(0.4, -2.0) @ (states * [1, 1, model.r, 1, model.r, model.r]).T).T
     assert np.abs(got - rough).max() < EXACT_TOLERANCE
 
 

@@ -1,4 +1,6 @@
-"""The exact damped theory against LAMMPS: gamma_t from 0.01 to overdamped, gamma_n from 0
+"""The exact damped theory against LAMMPS, from light damping to overdamped.
+
+The exact damped theory against LAMMPS: gamma_t from 0.01 to overdamped, gamma_n from 0
 to restitution 0.5, with the tensile normal force allowed (LAMMPS's default) and cut off
 (limit_damping). Results come from --tolerance ladders, so each carries its own error
 estimate; the check is |LAMMPS - exact| <= estimate <= 1e-6 for every sphere or time.
@@ -9,9 +11,9 @@ import math
 import numpy as np
 import pytest
 
-from spinbounce import theory
+from spinbounce.exact import linear
 from spinbounce.model.scenes import ContactModel
-from spinbounce.studies.tolerance import collide_to_tolerance, collision_frame, frozen_to_tolerance
+from spinbounce.extrapolation import collide_to_tolerance, collision_frame, frozen_to_tolerance
 
 TOL = 1e-6
 RNG = np.random.default_rng(33)
@@ -20,7 +22,7 @@ CRITICAL_T = 2 * math.sqrt(0.4 / 1.4 * 3.5)  # zeta^2 = Q at the defaults: criti
 
 
 def _gn(e):
-    return theory.gamma_n_for_restitution(e, 1.0, 10.0)
+    return linear.gamma_n_for_restitution(e, 1.0, 10.0)
 
 
 COLLISIONS = {
@@ -52,7 +54,7 @@ def test_damped_collisions_match_the_exact_theory(tmp_path, name):
 def test_damped_frozen_contact_matches_the_exact_theory(tmp_path, gamma_t):
     model = ContactModel(gamma_t=gamma_t)
     result = frozen_to_tolerance(model, 0.1, 1.0, 2.0, 8.0, TOL, tmp_path)
-    exact = np.column_stack(theory.frozen_velocities(result.t, 1.0, 1.0, model.kt, model.m, model.alpha, gamma_t))
+    exact = np.column_stack(linear.frozen_velocities(result.t, 1.0, 1.0, model.kt, model.m, model.alpha, gamma_t))
     true = np.abs(result.values - exact).max(axis=1)
     assert (true <= result.estimate[:, 0]).all() and result.max_estimate <= TOL
 

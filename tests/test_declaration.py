@@ -19,7 +19,7 @@ from spinbounce.cli import build_parser, main
 from spinbounce.model import parameters
 from spinbounce.model.contact import ContactModel
 from spinbounce.model.scenes import Collision, Frozen
-from spinbounce.theory import choose
+from spinbounce.exact import choose
 
 #: One non-default setting per parameter, on a base where it matters: limit_damping cuts
 #: a tensile normal force, which needs normal damping to exist.

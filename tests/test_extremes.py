@@ -1,4 +1,6 @@
-"""The extremes matrix: every case either matches the exact theory within the error it
+"""The extremes matrix: each case matches the theory within its reported error, or is refused.
+
+The extremes matrix: every case either matches the exact theory within the error it
 reports, or is refused (or flagged) with a message naming the parameter and its limit.
 
 Results are obtained with --tolerance (Richardson-extrapolated ladders), so each carries
@@ -11,7 +13,7 @@ import numpy as np
 import pytest
 
 from spinbounce.model.scenes import Collision, ContactModel, PhysicsWarning, SceneError
-from spinbounce.studies.tolerance import collide_to_tolerance, collision_frame
+from spinbounce.extrapolation import collide_to_tolerance, collision_frame
 
 TOL = 1e-6
 SLIPS = dict(v_t=[-1.0, 0.3, 1.2], omega=[2.0, 0.0, -3.0])

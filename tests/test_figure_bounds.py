@@ -1,5 +1,8 @@
-"""The figure-bounds check (figure_bounds.texts_outside) finds text a saved figure cuts off,
-and only that."""
+"""The figure-bounds check finds the text a saved figure cuts off, and only that.
+
+The figure-bounds check (figure_bounds.texts_outside) finds text a saved figure cuts off,
+and only that.
+"""
 
 import matplotlib.style
 

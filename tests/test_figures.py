@@ -11,7 +11,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from spinbounce import theory
+from spinbounce import exact
 from spinbounce.cli import figures as figures_cli
 from spinbounce.lammps.dumps import read_dump
 from spinbounce.figures import FIGURES, FigureNameError, check_names
@@ -84,11 +84,11 @@ def test_style_file_is_in_the_package_and_readable():
 def test_dissipation_curve_is_eqs_18_and_21():
     alpha, m = 0.4, 1.0
     states = fig6_states(alpha, m)
-    assert np.allclose(theory.energy(states, m, alpha), 1.0, rtol=0, atol=1e-12)
+    assert np.allclose(exact.energy(states, m, alpha), 1.0, rtol=0, atol=1e-12)
     for Omega in (0.0, -0.5, -1.0, -1.2838, -2.0):
-        final = states @ theory.scattering_matrix(alpha, Omega).T
+        final = states @ exact.scattering_matrix(alpha, Omega).T
         slip = states[:, 1] + states[:, 2]
-        assert np.allclose(dissipation_curve(slip, Omega, alpha, m), theory.dissipation(states, final, m, alpha),
+        assert np.allclose(dissipation_curve(slip, Omega, alpha, m), exact.dissipation(states, final, m, alpha),
                            rtol=0, atol=1e-13)
     # the rough sphere loses nothing; the rolling collision loses the most for any slip
     assert dissipation_curve(1.3, -2.0, alpha) == pytest.approx(0.0, abs=1e-15)
@@ -182,7 +182,7 @@ def test_fig2_deviation_recomputed_from_the_dump(made):
     model = record["parameters"]["model"]
     frames = read_dump(out / run["run_dir"] / "state.dump")
     t = frames["step"].to_numpy() * run["dt"]
-    vt, r_omega = theory.frozen_velocities(t, 1.0, 0.0, model["kt"], model["m"], model["alpha"])
+    vt, r_omega = exact.frozen_velocities(t, 1.0, 0.0, model["kt"], model["m"], model["alpha"])
     omega = -frames["omegay"].to_numpy()
     dev = max(np.abs(frames["vx"] - vt).max(), np.abs(omega - r_omega / model["r"]).max())
     assert dev == pytest.approx(record["max_deviation_exact"], rel=1e-9)
@@ -201,7 +201,7 @@ def test_fig7_needs_a_finer_step_and_records_eq22(made):
         # recompute the deviation from Eq. 22 (the paper's damped recipe) from the dump
         frames = read_dump(out / run["run_dir"] / "state.dump")
         t = frames["step"].to_numpy() * run["dt"]
-        vt22, rw22 = theory.frozen_velocities_paper_damped(t, 1.0, 0.5, 1.0, 1.0, 0.4, run["gamma_t"])
+        vt22, rw22 = exact.frozen_velocities_paper_damped(t, 1.0, 0.5, 1.0, 1.0, 0.4, run["gamma_t"])
         dev22 = max(np.abs(frames["vx"] - vt22).max(), np.abs(-frames["omegay"] - rw22 / 0.5).max())
         assert dev22 == pytest.approx(run["max_deviation_eq22"], rel=1e-9)
     # Eq. 22 is an approximation: LAMMPS follows the exact solution, far from the recipe
@@ -216,7 +216,7 @@ def test_fig4_deviation_recomputed_from_the_batch_table(made):
     table = pd.read_parquet(out / run["run_dir"] / "result.parquet")
     initial = table[["vn_0", "vt_0", "r_omega_0"]].to_numpy()
     final = table[["vn_final", "vt_final", "r_omega_final"]].to_numpy()
-    matrix = theory.scattering_matrix(0.4, theory.Omega(10.0, 1.0, 0.4))
+    matrix = exact.scattering_matrix(0.4, exact.Omega(10.0, 1.0, 0.4))
     error = final - initial @ matrix.T
     dev = max(np.abs(error).max(), np.abs(error[:, 2]).max() / 0.5)  # omega = r omega / r
     assert dev == pytest.approx(record["max_deviation_exact"], rel=1e-6)

@@ -1,4 +1,6 @@
-"""`spinbounce fit` at cluster scale: a sweep's fit in memory bounded independently of its row
+"""`spinbounce fit` at cluster scale: bounded memory, the same fit as in memory.
+
+`spinbounce fit` at cluster scale: a sweep's fit in memory bounded independently of its row
 count, equal to the in-memory fit.
 
 The dataset is 4,000,000 rows made here in the sweep's own layout (a LAMMPS sweep of that size
@@ -60,6 +62,7 @@ print(json.dumps({"peak_mb": float(status[0]) / 1024, "fits": fits}))
 """
 
 
+@pytest.mark.slow
 def test_fit_of_four_million_rows_stays_under_500_mb_and_equals_the_in_memory_fit(tmp_path):
     chunks = tmp_path / "chunks"
     chunks.mkdir()

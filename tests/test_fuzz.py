@@ -96,6 +96,7 @@ def _marks(case: Case):
     return [pytest.mark.lammps] if case.expect == "ok" and case.argv[0] in ("collide", "frozen") else []
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", [pytest.param(c, id=c.id, marks=_marks(c)) for c in CASES])
 def test_invocation(case: Case, outcomes):
     got, folder = outcomes[case.id]

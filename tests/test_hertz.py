@@ -1,4 +1,4 @@
-"""The Hertzian normal force: its exact theory (spinbounce.theory.hertz), its scenes and LAMMPS against both.
+"""The Hertzian normal force: its exact theory (spinbounce.exact.hertz), its scenes and LAMMPS against both.
 
 Tolerances. Theory against an ODE solver: the solver's own rtol (1e-11) sets them. LAMMPS:
 each Hertzian contact ends at its own time, somewhere inside a step, and cutting the
@@ -18,8 +18,8 @@ import pytest
 
 from spinbounce.model.timestep import MIN_STEPS_PER_HALF_PERIOD
 
-from spinbounce import theory
-from spinbounce.theory import hertz
+from spinbounce import exact
+from spinbounce.exact import hertz
 from spinbounce.lammps.decks import render_collision, render_frozen
 from spinbounce.model.scenes import (
     HERTZ_STEPS_PER_HALF_PERIOD,
@@ -103,11 +103,11 @@ def test_energy_conserving_ratio_closed_form_and_slope():
         kt = float(hertz.energy_conserving_kt(speed, M, KN, R, ALPHA))
         assert float(hertz.Omega(speed, M, KN, R, kt, ALPHA)) == pytest.approx(-2.0, abs=1e-12)
         scene = Collision(ContactModel(normal="hertz", kn=KN, kt=kt), v_n=-speed, v_t=[1.0, -0.4], omega=[0.0, 6.0])
-        assert np.abs(theory.dissipation(scene.initial, scene.predicted(), M, ALPHA)).max() < 1e-12
+        assert np.abs(exact.dissipation(scene.initial, scene.predicted(), M, ALPHA)).max() < 1e-12
         assert hertz.energy_conserving_speed(kt, M, KN, R, ALPHA) == pytest.approx(speed, rel=1e-12)
     # the Hookean contact time pi sqrt(m/kn) gives back the paper's magic ratio alpha/(1+alpha)
     assert float(hertz.kt_from_contact_time(math.pi * math.sqrt(M / 10.0), M, ALPHA)) / 10.0 == pytest.approx(
-        theory.magic_kt_over_kn(ALPHA), rel=1e-14)
+        exact.magic_kt_over_kn(ALPHA), rel=1e-14)
 
 
 def test_contact_time_is_recovered_from_the_slip_ratio():

@@ -1,5 +1,8 @@
-"""A sweep stopped by a signal leaves nothing behind: no worker outlives a killed parent,
-Ctrl-C leaves no temporary file, and the same command then finishes with exactly its rows."""
+"""A sweep stopped by a signal leaves nothing behind, and the rerun finishes exactly.
+
+A sweep stopped by a signal leaves nothing behind: no worker outlives a killed parent,
+Ctrl-C leaves no temporary file, and the same command then finishes with exactly its rows.
+"""
 
 from __future__ import annotations
 
@@ -64,6 +67,7 @@ def test_no_worker_outlives_a_killed_sweep(tmp_path):
     assert _wait_for(lambda: not _processes_mentioning(str(out)), 5.0), _processes_mentioning(str(out))
 
 
+@pytest.mark.slow
 def test_ctrl_c_leaves_no_temporary_file_and_a_rerun_completes(tmp_path):
     out = tmp_path / "interrupted"
     sweep = _start(out)

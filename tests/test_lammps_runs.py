@@ -13,7 +13,7 @@ import subprocess
 import numpy as np
 import pytest
 
-from spinbounce import theory
+from spinbounce import exact
 from spinbounce.lammps.dumps import read_dump
 from spinbounce.pipeline import ResultError, run_collision, run_frozen
 from spinbounce.lammps.runner import LammpsError, lmp_executable, run_deck
@@ -34,7 +34,7 @@ def test_default_collision_matches_eq18(run_dir):
     result = run_collision(scene, run_dir)
     assert _errors(result).max() < COLLISION_TOL
     # and the theory it is compared with is the paper's Eq. 18 at Omega = -1.2838
-    assert result.table["vt_theory"].iloc[0] == pytest.approx(1 + 0.4 / 1.4 * theory.Omega(10, 1, 0.4), abs=1e-15)
+    assert result.table["vt_theory"].iloc[0] == pytest.approx(1 + 0.4 / 1.4 * exact.Omega(10, 1, 0.4), abs=1e-15)
     assert (run_dir / "in.lammps").is_file() and (run_dir / "result.json").is_file()
 
 
@@ -53,13 +53,13 @@ def test_alpha_is_honoured_by_lammps(run_dir, model):
     result = run_collision(scene, run_dir)
     assert _errors(result).max() < COLLISION_TOL
     # alpha = 2/5 would give a different answer: the test can tell them apart
-    wrong = scene.initial @ theory.scattering_matrix(0.4, theory.Omega(model.kn, model.kt, 0.4)).T
+    wrong = scene.initial @ exact.scattering_matrix(0.4, exact.Omega(model.kn, model.kt, 0.4)).T
     assert np.abs(result.table[["vn_final", "vt_final", "r_omega_final"]].to_numpy() - wrong).max() > 1e-2
 
 
 def test_magic_ratio_conserves_energy_in_lammps(run_dir):
     alpha = 2 / 3
-    model = ContactModel(alpha=alpha, kt=10.0 * theory.magic_kt_over_kn(alpha))
+    model = ContactModel(alpha=alpha, kt=10.0 * exact.magic_kt_over_kn(alpha))
     scene = Collision(model, v_n=[-1.0, -0.5, -0.2], v_t=[1.0, -1.5, 0.3], omega=[0.0, 1.0, -4.0])
     result = run_collision(scene, run_dir)
     # energy is conserved up to the integration error (the same budget as the states)
@@ -123,7 +123,7 @@ def test_damped_frozen_contact_converges_to_exact_solution(tmp_path, gamma_t):
     assert errors[0] / errors[1] == pytest.approx(2.0, rel=0.05)  # first order, 5%: rounding-free ratio
     assert errors[1] < 4e-4  # 3.5e-4 measured for the largest gamma_t
     t = result.table
-    vt_paper, _ = theory.frozen_velocities_paper_damped(t["t"], 1.0, 0.5, model.kt, model.m, model.alpha, gamma_t)
+    vt_paper, _ = exact.frozen_velocities_paper_damped(t["t"], 1.0, 0.5, model.kt, model.m, model.alpha, gamma_t)
     if gamma_t <= 2.0:
         assert np.abs(t["vt"] - vt_paper).max() > 0.05
 

@@ -1,6 +1,9 @@
-"""One model, every entry point: flags and scene files give the same sweep, 3-D from the
+"""One model, every entry point: flags, scene files, 3-D, theory and fit agree.
+
+One model, every entry point: flags and scene files give the same sweep, 3-D from the
 command line, the theory command for a capped contact, the fit that claims a matrix only
-where one applies, and the refusals a user meets before anything runs."""
+where one applies, and the refusals a user meets before anything runs.
+"""
 
 from __future__ import annotations
 
@@ -13,7 +16,7 @@ import pytest
 from spinbounce.cli import main
 from spinbounce.model.contact import ContactModel
 from spinbounce.model.scenes import Collision
-from spinbounce.theory import choose
+from spinbounce.exact import choose
 
 SCENE = """seed = 3
 [model]

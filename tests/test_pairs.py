@@ -7,13 +7,13 @@ import json
 import numpy as np
 import pytest
 
-from spinbounce import theory
+from spinbounce import exact
 from spinbounce.model.parameters import SceneError
 from spinbounce.pairs import QUANTITIES, Pair, PairBatch, PairContact, Sphere, run_pairs
 from spinbounce.pairs.scene import SCALE_CLASSES, time_scaled
 from spinbounce.pairs.studies import cases
-from spinbounce.theory import pair as planar
-from spinbounce.theory import pair_exact
+from spinbounce.exact import pair as planar
+from spinbounce.exact import pair_exact
 
 LAW = {"kn": 10.0, "kt": 1.0}
 OBLIQUE = Pair(a=Sphere(1.0, 0.5, 0.25), b=Sphere(2.5, 0.8, 0.4), normal=(0.2, 0.3, 1.0), v_a=(0.3, 0.1, -1.0),
@@ -81,7 +81,7 @@ def test_a_heavy_sphere_b_at_rest_is_the_wall(m_b):
     a = Sphere(1.0, 0.5, 0.3)
     pair = Pair(a=a, b=Sphere(m_b, 0.7, 0.4), v_a=(0.4, -0.3, -1.0), w_a=(0.6, -0.8, 0.5))
     v_a, v_b, w_a, _ = _planar(pair)
-    wall = theory.block_matrix(a.alpha, theory.Omega(LAW["kn"], LAW["kt"], a.alpha))
+    wall = exact.block_matrix(a.alpha, exact.Omega(LAW["kn"], LAW["kt"], a.alpha))
     # (v_n, v_t, r omega, v_s, r omega_s, r omega_n) with omega = -omega_y, omega_s = omega_x
     state = np.array([pair.v_a[2], pair.v_a[0], -a.r * pair.w_a[1], pair.v_a[1], a.r * pair.w_a[0], a.r * pair.w_a[2]])
     want = wall @ state
@@ -96,7 +96,7 @@ def test_equal_alpha_pairs_have_the_walls_Omega(masses, radii):
     for alpha in (0.1, 0.4, 2.0 / 3.0):
         assert planar.equivalent_alpha(masses[0], alpha, masses[1], alpha) == pytest.approx(alpha, rel=1e-14)
         omega = planar.Omega(masses[0], alpha, masses[1], alpha, **LAW)
-        assert omega == pytest.approx(theory.Omega(LAW["kn"], LAW["kt"], alpha), abs=1e-14)
+        assert omega == pytest.approx(exact.Omega(LAW["kn"], LAW["kt"], alpha), abs=1e-14)
 
 
 def test_scene_refuses_bad_input_before_lammps():
@@ -238,7 +238,7 @@ def test_lammps_gives_equal_alpha_pairs_the_walls_Omega(tmp_path):
         vectors = [np.array([row[f"{s}_{q}{x}"] for x in "xyz"]) for s, q in (("a", "v"), ("b", "v"), ("a", "w"),
                                                                                  ("b", "w"))]
         u1 = planar.slip_rate(n, *vectors, pair.a.r, pair.b.r)
-        wall = theory.Omega(LAW["kn"], LAW["kt"], pair.a.alpha)
+        wall = exact.Omega(LAW["kn"], LAW["kt"], pair.a.alpha)
         assert u1[0] / u0[0] - 1 == pytest.approx(wall, abs=2e-4 / abs(u0[0]))
 
 
@@ -251,7 +251,7 @@ def test_lammps_dense_second_sphere_is_the_wall(tmp_path):
     pair = Pair(a=a, b=Sphere(1e8, 5e3, 0.4), v_a=(0.0, 0.0, -1.0), w_a=(0.6 / a.r, -1.2 / a.r, 0.5 / a.r))
     row = run_pairs(PairBatch([pair]), tmp_path, record=False).table.iloc[0]
     state = np.array([-1.0, 0.0, -a.r * pair.w_a[1], 0.0, a.r * pair.w_a[0], a.r * pair.w_a[2]])
-    want = theory.block_matrix(a.alpha, theory.Omega(LAW["kn"], LAW["kt"], a.alpha)) @ state
+    want = exact.block_matrix(a.alpha, exact.Omega(LAW["kn"], LAW["kt"], a.alpha)) @ state
     got = np.array([row.a_vz, row.a_vx, -a.r * row.a_wy, row.a_vy, a.r * row.a_wx, a.r * row.a_wz])
     assert np.max(np.abs(got - want)) < 1e-4
 

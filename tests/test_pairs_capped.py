@@ -1,8 +1,8 @@
 """Two spheres with a Coulomb cap: the capped reference against the wall's exact solver, and LAMMPS against it.
 
 * The capped reference with its line of centres held fixed is the wall's capped problem of the
-  equivalent sphere (reduced mass, alpha_eq: theory/pair.py), which the wall's exact stick-slip
-  solver (theory.choose) solves independently: 1e-9 of the speeds, the references' own
+  equivalent sphere (reduced mass, alpha_eq: exact/pair.py), which the wall's exact stick-slip
+  solver (exact.choose) solves independently: 1e-9 of the speeds, the references' own
   accuracy (measured worst 1.9e-11 over 200 random cases).
 * LAMMPS converges to the turning reference at first order in dt (second where a contact
   slides throughout), down to 1e-9 of the speed: that the limit is the reference shows both
@@ -18,7 +18,7 @@ import pytest
 from spinbounce.cli import main
 from spinbounce.model.parameters import SceneError
 from spinbounce.pairs import Pair, PairBatch, PairContact, Sphere, run_pairs
-from spinbounce.theory import choose, pair_capped, pair_exact
+from spinbounce.exact import choose, pair_capped, pair_exact
 
 SOLVER_AGREEMENT = 1e-9
 
@@ -208,7 +208,7 @@ def test_a_pair_sweeps_chunks_are_sized_by_the_pair_references_cost():
     # A pair's references take ~13 ms (exact, uncapped) and ~80 ms (capped) a collision, far
     # more than its LAMMPS steps: a chunk planned as a wall's (25,000 collisions) would run for
     # half an hour. Each pair chunk must be estimated within CHUNK_SECONDS, the theory counted.
-    from spinbounce.studies import cost
+    from spinbounce.sweeps import cost
     from spinbounce.sweeps.spec import CHUNK_SECONDS, DEFAULT_CHUNK, spec_from_dict
 
     states = {"n": 1_000_000, "v_n": [-1.5, -0.5], "v_t": [-1, 1], "r_omega": [-1, 1]}

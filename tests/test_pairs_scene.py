@@ -1,5 +1,8 @@
-"""The pair as a scene kind: declared once, swept from flags and scene files, fitted with its regime,
-and taken (or refused with the reason) by theory, collide and the Python API."""
+"""The pair as a scene kind: declared once, swept, fitted, and taken or refused by every command.
+
+The pair as a scene kind: declared once, swept from flags and scene files, fitted with its regime,
+and taken (or refused with the reason) by theory, collide and the Python API.
+"""
 
 from __future__ import annotations
 
@@ -8,7 +11,7 @@ import pandas as pd
 import pytest
 
 import spinbounce
-from spinbounce import theory
+from spinbounce import exact
 from spinbounce.cli import main
 from spinbounce.fitting import fit_groups
 from spinbounce.fitting_stream import fit_dataset
@@ -82,7 +85,7 @@ def test_planar_matrix_becomes_the_walls_as_m_b_grows():
     # The pair's correction is O(m_a/m_b): 1e-14 at m_b = 1e14, so 1e-12 holds with room for rounding.
     model = ContactModel(alpha=0.3, r=0.7, kt=2.0)
     for three_d in (False, True):
-        wall = theory.block_matrix(0.3, theory.Omega(10.0, 2.0, 0.3)) if three_d else model.matrix()
+        wall = exact.block_matrix(0.3, exact.Omega(10.0, 2.0, 0.3)) if three_d else model.matrix()
         for m_b, bound in ((1e6, 1e-5), (1e10, 1e-9), (1e14, 1e-12)):
             assert np.abs(planar_matrix(model, sphere_b(m_b, 0.4, 0.4), three_d) - wall).max() < bound
 
@@ -164,7 +167,7 @@ def test_theory_takes_the_pair_scene_or_refuses_b_without_it(capsys):
     import json
 
     report = json.loads(capsys.readouterr().out)
-    assert report["Omega"] == pytest.approx(theory.Omega(10.0, 1.0, 0.4), abs=1e-14)  # equal alpha: the wall's
+    assert report["Omega"] == pytest.approx(exact.Omega(10.0, 1.0, 0.4), abs=1e-14)  # equal alpha: the wall's
     with pytest.raises(SystemExit) as stop:
         main(["theory", "--m-b", "3"])
     assert stop.value.code == 2 and "m_b = 3.0: is sphere b's: give scene = pair" in capsys.readouterr().err

@@ -11,7 +11,7 @@ from spinbounce.cli import main
 from spinbounce.model.timestep import ACCURACY
 from spinbounce.studies.validation.materials import hertz_contact_time
 from spinbounce.studies.validation.pair_cases import GLASS, PAIR_BENCHMARKS, matched_pair_contact, run_pair_benchmark
-from spinbounce.theory import pair as planar
+from spinbounce.exact import pair as planar
 
 
 def test_every_pair_benchmark_names_its_sources():
@@ -52,6 +52,7 @@ def test_pair_benchmark_agrees_with_its_reference_and_its_source(name, tmp_path)
         assert record["planar_vs_exact"] > 10 * record["lammps_vs_exact"]
 
 
+@pytest.mark.slow
 @pytest.mark.lammps
 def test_pair_command_runs_the_published_benchmarks(tmp_path, capsys):
     assert main(["pair", "--published", str(tmp_path)]) == 0

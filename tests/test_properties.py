@@ -1,5 +1,8 @@
-"""Property-based tests (hypothesis) of the parser, the declaration's checks and the
-model's invariants: what must hold for every input, not for a handful of examples."""
+"""Property-based tests (hypothesis) of the parser, the declaration's checks and the model.
+
+Property-based tests (hypothesis) of the parser, the declaration's checks and the
+model's invariants: what must hold for every input, not for a handful of examples.
+"""
 
 from __future__ import annotations
 
@@ -15,7 +18,7 @@ from spinbounce.cli.options import count, number
 from spinbounce.model import parameters
 from spinbounce.model.contact import ContactModel
 from spinbounce.model.parameters import SceneError
-from spinbounce.theory import choose, linear
+from spinbounce.exact import choose, linear
 
 finite = st.floats(allow_nan=False, allow_infinity=False, width=64)
 

@@ -1,4 +1,6 @@
-"""The README tells the truth: every command it shows is run here and prints what it shows,
+"""The README tells the truth: its commands print what it shows and its table is the declaration.
+
+The README tells the truth: every command it shows is run here and prints what it shows,
 its Python example runs, and its parameter table is the declaration's.
 
 Output is compared line by line. A line ``  ...`` in the README stands for lines left out.
@@ -106,7 +108,10 @@ def _printed(command: str, cwd: Path, shown: list[str], request) -> list[str]:
 
 
 @pytest.mark.lammps
-@pytest.mark.parametrize("session", SESSIONS, ids=[s[0][0].split()[1] for s in SESSIONS])
+@pytest.mark.parametrize("session", [
+    # the reproduction (minutes) is a slow test: its session reads the whole reproduction
+    pytest.param(s, id=s[0][0].split()[1], marks=[pytest.mark.slow] if s[0][0] == "spinbounce reproduce" else [])
+    for s in SESSIONS])
 def test_every_command_prints_what_the_readme_shows(session, tmp_path, request):
     for command, shown in session:
         problem = _match(shown, _printed(command, tmp_path, shown, request))

@@ -1,4 +1,6 @@
-"""Restitution maps against the incidence angle: LAMMPS against the theory that applies, the
+"""Restitution maps against the incidence angle: LAMMPS against theory, and the measured data.
+
+Restitution maps against the incidence angle: LAMMPS against the theory that applies, the
 measured data's units, and the fit to Kharaz et al.'s alumina points.
 
 LAMMPS tolerance 1e-4 in the state (the acceptance line): measured at the scenes' default
@@ -13,7 +15,7 @@ import pytest
 
 from spinbounce.studies.restitution import (CURVES, KHARAZ_RADIUS, KHARAZ_SPEED, angles, fit_kharaz, kharaz_model,
                                             kharaz_points, kharaz_residuals, quantities, run_curve)
-from spinbounce.theory import choose
+from spinbounce.exact import choose
 from spinbounce.studies.validation.digitised import KHARAZ_2001
 
 

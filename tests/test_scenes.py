@@ -5,7 +5,7 @@ import warnings
 
 import pytest
 
-from spinbounce import theory
+from spinbounce import exact
 from spinbounce.lammps.decks import render_collision, render_frozen
 from spinbounce.model.timestep import ACCURACY, SAFETY, SECOND_ORDER
 from spinbounce.model.scenes import (
@@ -63,7 +63,7 @@ def test_tunnelling_speed_is_refused_with_the_limit():
 
 def test_normal_damping_lowers_the_overlap_so_a_faster_sphere_is_allowed():
     model = ContactModel(gamma_n=3.0)
-    assert theory.max_overlap(1.7, model.m, model.kn, model.gamma_n) < model.r
+    assert exact.max_overlap(1.7, model.m, model.kn, model.gamma_n) < model.r
     Collision(model, v_n=-1.7, v_t=0.0, omega=0.0)
 
 

@@ -19,7 +19,7 @@ import pandas as pd
 import pytest
 
 from spinbounce.records import TEMP_SUFFIX
-from spinbounce.studies.cost import chunk_cost, job_request
+from spinbounce.sweeps.cost import chunk_cost, job_request
 from spinbounce.sweeps import load_spec, read_results
 
 pytestmark = [pytest.mark.slurm, pytest.mark.workflow, pytest.mark.lammps]
@@ -126,7 +126,7 @@ FAULT_MODEL = "mu = 0.5\nkt = 100000.0"
 def fault_chunk_size(seconds: float) -> int:
     """Collisions of the fault sweep's model that the cost estimate puts at ``seconds`` on one
     core (the estimate runs high by up to 2x: `spinbounce bench`)."""
-    from spinbounce.studies.cost import chunk_cost
+    from spinbounce.sweeps.cost import chunk_cost
     from spinbounce.sweeps import spec_from_dict
 
     probe = spec_from_dict({"model": {"mu": 0.5, "kt": 100000.0}, "states": {"n": 1000, "v_n": [-1.5, -0.1],

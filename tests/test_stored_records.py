@@ -1,5 +1,8 @@
-"""The repository's figures/ holds what the code makes: every JSON record `spinbounce reproduce`
-writes (catalogue.PRODUCTS) is made afresh once per session and compared with its stored copy."""
+"""The repository's figures/ holds what the code makes, record by record.
+
+The repository's figures/ holds what the code makes: every JSON record `spinbounce reproduce`
+writes (catalogue.PRODUCTS) is made afresh once per session and compared with its stored copy.
+"""
 
 import json
 from pathlib import Path

@@ -1,4 +1,6 @@
-"""Becker, Schwager & Poeschel's tangential restitution: the exact solver against the closed
+"""Tangential restitution: the exact solver against rigid limits, LAMMPS against the solver.
+
+Becker, Schwager & Poeschel's tangential restitution: the exact solver against the closed
 forms of the rigid limits, and LAMMPS against the solver (studies/tangential_limits.py derives
 each closed form).
 

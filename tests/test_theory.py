@@ -1,4 +1,4 @@
-"""Unit tests for spinbounce.theory.linear (Wang & Harrowell, frictional sphere on a wall).
+"""Unit tests for spinbounce.exact.linear (Wang & Harrowell, frictional sphere on a wall).
 
 Covered: Omega and tau at the paper's defaults; Eq. 18 and its rough (Eq. 20) and rolling
 (Eq. 23) cases; the magic kt/kn; the frozen trajectory (Eqs. 10-13); the exact damped
@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from spinbounce import theory as th
+from spinbounce import exact as th
 
 M, R, KN, KT, ALPHA = 1.0, 0.5, 10.0, 1.0, 0.4  # the paper's defaults
 ALPHAS = [0.1, 0.4, 2.0 / 3.0, 1.5]
@@ -322,7 +322,7 @@ def test_dissipation_worked_example_rolling_collision():
 def test_restitution_with_and_without_tensile_force():
     """gamma_n > 0: allowing the dashpot to pull (LAMMPS's default) costs more energy than
     cutting the force at zero (limit_damping), and neither depends on v_n (linear ODE)."""
-    from spinbounce.theory.linear import collision_time, exit_time, gamma_n_for_restitution, restitution
+    from spinbounce.exact.linear import collision_time, exit_time, gamma_n_for_restitution, restitution
 
     m, kn = 1.0, 10.0
     for e in (0.9, 0.7, 0.5):
@@ -339,7 +339,7 @@ def test_force_free_end_against_an_ode_oracle():
     scipy's event location, and compare the end time and the exit speed."""
     from scipy.integrate import solve_ivp
 
-    from spinbounce.theory.linear import collision_time, restitution
+    from spinbounce.exact.linear import collision_time, restitution
 
     m, kn, g = 1.0, 10.0, 2.0
 

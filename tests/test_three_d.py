@@ -1,7 +1,7 @@
 """Full 3-D collisions: both tangential components, spin about any axis.
 
 Without a Coulomb cap the tangential spring acts on each direction alone, so the 6x6 map
-is block diagonal (theory.block_matrix). Tolerance 2e-4 (the acceptance line; LAMMPS's
+is block diagonal (exact.block_matrix). Tolerance 2e-4 (the acceptance line; LAMMPS's
 error at the default dt is at most 3e-5 over these ranges, as in the plane). The spin
 about the normal moves no contact point, so LAMMPS must leave it exactly as it was.
 """
@@ -9,8 +9,8 @@ about the normal moves no contact point, so LAMMPS must leave it exactly as it w
 import numpy as np
 import pytest
 
-from spinbounce import theory
-from spinbounce.theory import oracle
+from spinbounce import exact
+from spinbounce.exact import oracle
 from spinbounce.studies.validation import refined_dt
 from spinbounce.fitting import fit_matrix
 from spinbounce.pipeline import run_collision
@@ -23,8 +23,8 @@ STATES = {"v_n": RNG.uniform(-1.5, -0.1, N), "v_t": RNG.uniform(-2, 2, N), "omeg
 
 
 def test_block_matrix_has_the_paper_block_twice_and_a_one():
-    m3 = theory.scattering_matrix(0.4, -1.3, 0.8)
-    m6 = theory.block_matrix(0.4, -1.3, 0.8)
+    m3 = exact.scattering_matrix(0.4, -1.3, 0.8)
+    m6 = exact.block_matrix(0.4, -1.3, 0.8)
     assert np.array_equal(m6[:3, :3], m3) and np.array_equal(m6[3:5, 3:5], m3[1:, 1:])
     assert m6[5, 5] == 1.0 and np.count_nonzero(m6) == np.count_nonzero(m3) + 4 + 1
 

@@ -10,12 +10,12 @@ import math
 import numpy as np
 import pytest
 
-from spinbounce import theory
+from spinbounce.exact import linear
 from spinbounce.cli import main
 from spinbounce.model.scenes import STATE_ARGS, Collision, ContactModel, SceneError
 from spinbounce.studies.accuracy import FROZEN_T_END, FROZEN_Z, collision_scene
 from spinbounce.studies.accuracy import cases as accuracy_cases
-from spinbounce.studies.tolerance import (
+from spinbounce.extrapolation import (
     START_STEPS,
     collide_to_tolerance,
     collision_frame,
@@ -56,7 +56,7 @@ def test_collision_to_tolerance(tmp_path, name):
 def test_frozen_to_tolerance(tmp_path, gamma_t):
     model = ContactModel(gamma_t=gamma_t)
     result = frozen_to_tolerance(model, 0.1, 1.0, 1.0, 10.0, TOL, tmp_path)
-    exact = np.column_stack(theory.frozen_velocities(result.t, 1.0, 0.5, model.kt, model.m, model.alpha, gamma_t))
+    exact = np.column_stack(linear.frozen_velocities(result.t, 1.0, 0.5, model.kt, model.m, model.alpha, gamma_t))
     true = np.abs(result.values - exact)
     assert true.max() <= TOL
     assert (true <= result.estimate).all()
@@ -74,7 +74,7 @@ def test_unreachable_tolerance_is_refused_before_lammps(tmp_path, bad):
 def test_a_coulomb_cap_meets_its_tolerance_by_measurement(tmp_path):
     """A finite cap's switches leave no smooth error to extrapolate: the step is probed against the
     exact stick-slip solver for the tolerance, and each row's estimate is its distance to it."""
-    from spinbounce.theory import choose
+    from spinbounce.exact import choose
 
     vn, vt, omega = np.array([-1.0, -0.4, -1.3]), np.array([2.0, 0.3, -1.0]), np.array([0.0, 3.0, 1.0])
     model = ContactModel(mu=0.5)
@@ -129,7 +129,7 @@ def test_every_case_of_the_accuracy_study_to_tolerance(tmp_path, name):
     if case.kind == "frozen":
         _, vt0, rw0 = states[0]
         result = frozen_to_tolerance(model, FROZEN_Z, vt0, rw0 / model.r, FROZEN_T_END, TOL, tmp_path)
-        exact = np.column_stack(theory.frozen_velocities(result.t, vt0, rw0, model.kt, model.m, model.alpha,
+        exact = np.column_stack(linear.frozen_velocities(result.t, vt0, rw0, model.kt, model.m, model.alpha,
                                                          model.gamma_t))
         true = np.abs(result.values - exact).max(axis=1)
     else:

@@ -15,7 +15,7 @@ The top wall's map is the bottom wall's conjugated by the mirror R = diag(-1, 1,
 import numpy as np
 import pytest
 
-from spinbounce import theory
+from spinbounce import exact
 from spinbounce.model.parameters import SceneError
 from spinbounce.model.scenes import ContactModel
 from spinbounce.studies.two_walls import TwoWalls, matrix_product, mirror, run_two_walls, theory_path
@@ -47,7 +47,7 @@ def test_two_bounces_shrink_every_tangential_state_unless_energy_is_conserved():
     # kt/kn = 2/7 (Omega = -2), where every bounce conserves energy and nothing decays
     bottom, top = _tangential_blocks(ContactModel())
     assert np.abs(np.linalg.eigvals(top @ bottom)).max() < 0.9
-    magic = ContactModel(kt=10.0 * theory.magic_kt_over_kn(0.4))
+    magic = ContactModel(kt=10.0 * exact.magic_kt_over_kn(0.4))
     bottom, top = _tangential_blocks(magic)
     assert np.allclose(np.abs(np.linalg.eigvals(top @ bottom)), 1.0, atol=1e-12)
 
@@ -111,6 +111,7 @@ def test_lammps_damped_and_capped_walls_follow_the_theory_bounce_by_bounce(tmp_p
     assert np.abs(result.states[-1, :, 1:]).max() < 1e-4
 
 
+@pytest.mark.slow
 @pytest.mark.lammps
 def test_the_command_writes_the_figure_with_its_provenance(tmp_path, capsys):
     import argparse

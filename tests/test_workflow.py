@@ -15,7 +15,7 @@ import yaml
 
 from spinbounce.cli import main
 from spinbounce.fitting import GROUP_KEYS, plot_groups
-from spinbounce.studies.cost import chunk_cost, job_request
+from spinbounce.sweeps.cost import chunk_cost, job_request
 from spinbounce.sweeps import load_spec
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -44,6 +44,7 @@ def tiny_layout() -> tuple[int, int, int]:
     return raw["states"]["n"], len(raw["model"]["kt_over_kn"]), raw["chunk_size"]
 
 
+@pytest.mark.slow
 @pytest.mark.lammps
 @pytest.mark.workflow
 def test_workflow_runs_the_tiny_sweep_end_to_end(tmp_path):
@@ -93,7 +94,7 @@ def test_slurm_profile_plans_the_jobs_without_a_cluster(tmp_path):
     assert job_counts(done) == {"chunk": groups * -(-n // chunk_size), "fit": 1, "figure": 1, "all": 1}
     text = done.stdout + done.stderr
     # The profile's requests reach the jobs: its partition placeholder, and each chunk's own
-    # estimate (studies/cost.py) rather than the profile's 1000 MB and 30 minutes.
+    # estimate (sweeps/cost.py) rather than the profile's 1000 MB and 30 minutes.
     assert "slurm_partition=CHANGE_ME" in text
     assert "rule chunk:" in text and "localrule chunk:" not in text  # chunks go to sbatch
     request = job_request(chunk_cost(load_spec(TINY), 0, chunk_size))

@@ -4,7 +4,7 @@ The Python API (:mod:`spinbounce.api`) is at the top::
 
     import spinbounce
     print(spinbounce.collide(v_n=-1.0, v_t=1.0, omega=0.0, mu=0.3))
-    spinbounce.theory(gamma_t=0.5)      # the package of theories is also callable
+    spinbounce.theory(gamma_t=0.5)      # the theory that applies (the references: spinbounce.exact)
     rows = spinbounce.sweep(n=1000, out="runs/sweep", kt_over_kn=[0.1, 0.3])
     spinbounce.fit(rows)
 
@@ -24,14 +24,12 @@ __all__ = ["__version__", "collide", "theory", "sweep", "fit", "parameters"]
 
 #: The API's functions. None of them shares its name with a module of the package: importing
 #: a submodule sets the package's attribute of that name, which would hide a function.
-_API = ("collide", "sweep", "fit")
+_API = ("collide", "theory", "sweep", "fit")
 
 
 def __getattr__(name: str):
     if name in _API:
         return getattr(importlib.import_module(".api", __name__), name)
-    if name == "theory":
-        return importlib.import_module(".theory", __name__)
     if name == "parameters":  # the declaration: every parameter's name, unit, default and range
         return importlib.import_module(".model.parameters", __name__)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -31,7 +31,7 @@ import pandas as pd
 from .model import parameters
 from .model.contact import ContactModel
 from .model.scenes import Collision
-from .theory import choose
+from .exact import choose
 
 __all__ = ["collide", "theory", "sweep", "fit", "CollisionReport", "PairReport", "model"]
 

@@ -88,7 +88,7 @@ PRODUCTS: tuple[Product, ...] = (
     Product("tangential", "spinbounce tangential", "tangential restitution against the velocity ratio (Becker et al.)",
             _figure("studies.tangential", "make_figure"), ("tangential",)),
     Product("pair_validity", "spinbounce pair --figure", "where the planar two-sphere theory holds",
-            _figure("pairs.figure", "make_pair_validity"), ("pair_validity",)),
+            _figure("figures.pairs", "make_pair_validity"), ("pair_validity",)),
 )
 
 #: Made by a command of their own, not by ``reproduce``: (command, what, why).

@@ -18,9 +18,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import theory
+from . import exact
 from .model.timestep import ACCURACY
-from .theory import hertz
+from .exact import hertz
 
 __all__ = ["STATUSES", "RESOLVABLE_OVERLAP_ULPS", "add_row_checks", "summary", "notes"]
 
@@ -36,7 +36,7 @@ def _largest_overlap(model, v_n: np.ndarray) -> np.ndarray:
     speed = np.abs(v_n)
     if model.normal == "hertz":
         return np.asarray(hertz.max_overlap(speed, model.m, model.kn, model.r), dtype=float)
-    return np.asarray(theory.max_overlap(speed, model.m, model.kn, model.gamma_n), dtype=float)
+    return np.asarray(exact.max_overlap(speed, model.m, model.kn, model.gamma_n), dtype=float)
 
 
 def _energy_allowance(initial: np.ndarray, error: np.ndarray, alpha: float) -> np.ndarray:
@@ -56,9 +56,9 @@ def add_row_checks(columns: dict, names, model, target: float = ACCURACY) -> Non
     predicted = np.column_stack([columns[f"{s}_theory"] for s in names])
     size = np.linalg.norm(initial, axis=1)
     error = np.abs(final - predicted).max(axis=1) / size
-    e0, e1 = theory.energy(initial, model.m, model.alpha), theory.energy(final, model.m, model.alpha)
+    e0, e1 = exact.energy(initial, model.m, model.alpha), exact.energy(final, model.m, model.alpha)
     columns["energy_gain"] = (e1 - e0) / e0
-    excess = (e1 - theory.energy(predicted, model.m, model.alpha)) / e0
+    excess = (e1 - exact.energy(predicted, model.m, model.alpha)) / e0
     status = np.full(len(size), "ok", dtype=object)
     status[error > target] = "inaccurate"
     status[excess > _energy_allowance(initial, np.maximum(error, target), model.alpha)] = "energy_gained"

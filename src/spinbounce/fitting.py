@@ -31,7 +31,7 @@ from .compare import STATE, STATE_3D
 from .model import parameters
 from .model.contact import ContactModel
 from .records import write_atomic_with
-from .theory import choose
+from .exact import choose
 
 __all__ = ["GROUP_KEYS", "model_of_group", "fit_matrix", "fit_omega", "fit_groups", "plot_groups", "STICK_TOLERANCE",
            "omega_gains", "pair_regime", "PAIR_GEOMETRY"]
@@ -62,13 +62,13 @@ def fit_matrix(initial: np.ndarray, final: np.ndarray) -> tuple[np.ndarray, np.n
 def omega_gains(params: dict) -> tuple[float, float]:
     """Eq. 19's coefficients (c_t, c_r): Delta v_t = c_t Omega u'(0) and r Delta omega = c_r Omega u'(0).
 
-    The wall: alpha/(1 + alpha) and 1/(1 + alpha). A pair with b at rest (theory/pair.py):
+    The wall: alpha/(1 + alpha) and 1/(1 + alpha). A pair with b at rest (exact/pair.py):
     the impulse Omega u'(0)/K on a gives 1/(m K) and 1/(alpha m K), which are the wall's
     as m_b grows without bound.
     """
     m, r, alpha = params["m"], params["r"], params["alpha"]
     if params.get("scene") == "pair":
-        from .theory.pair import slip_mobility
+        from .exact.pair import slip_mobility
 
         mobility = slip_mobility(m, r, alpha, params["m_b"], params["r_b"], params["alpha_b"])
         return 1.0 / (m * mobility), 1.0 / (alpha * m * mobility)

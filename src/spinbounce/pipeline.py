@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .theory import hertz
+from .exact import hertz
 from .records import software, to_json, write_atomic, write_parquet_atomic
 from . import checks
 from .compare import collision_table, frozen_table
@@ -25,6 +25,7 @@ from .lammps.runner import RunInfo, run_deck
 from .model.scenes import Collision, ContactModel, Frozen
 from .model.timestep import ACCURACY, StepChoice
 from .stepping import tune
+from .errors import ResultError
 
 __all__ = [
     "ResultError",
@@ -41,10 +42,6 @@ __all__ = [
 
 #: A batch's per-sphere table, beside result.json.
 RESULT_TABLE = "result.parquet"
-
-
-class ResultError(RuntimeError):
-    """LAMMPS finished but its output cannot be trusted (NaN, lost spheres, contact not over)."""
 
 
 def _model_dict(model: ContactModel) -> dict:

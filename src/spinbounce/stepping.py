@@ -4,7 +4,7 @@ Without damping, cap or Hertz force the paper's contact converges at second orde
 known constant, and :mod:`spinbounce.model.timestep` sets its step a priori. Every other
 model (damped: first order; a Coulomb cap: rough; a Hertzian wall at one speed; the
 classic wall) is probed: a few of the scene's own states run at the rule's step and at
-half of it, against the exact theory that applies (:mod:`spinbounce.theory.choose`); the
+half of it, against the exact theory that applies (:mod:`spinbounce.exact.choose`); the
 observed order and constant give the step for :data:`SAFETY` times the target, kept
 mid-step. A probe costs two short runs of at most :data:`PROBE_SPHERES` spheres, and its
 result goes into the run's record. Every row's own error is measured afterwards anyway
@@ -21,7 +21,7 @@ import numpy as np
 
 from .model.scenes import STATE_ARGS, Collision
 from .model.timestep import ACCURACY, SAFETY, StepChoice, mid_step_dt, steps_per_contact
-from .theory import choose
+from .exact import choose
 
 __all__ = ["StepChoice", "needs_probe", "tune", "converge", "extrapolate", "expected_steps", "PROBE_SPHERES", "SAFETY"]
 

@@ -7,13 +7,7 @@ import sys
 import warnings
 
 from .. import __version__
-from ..lammps.dumps import DumpError
-from ..pipeline import ResultError
-from ..lammps.runner import LammpsError
-from ..model.contact import PhysicsWarning
-from ..model.parameters import SceneError
-from ..sweeps import SweepError
-from ..theory.choose import NoMatrix
+from ..errors import DumpError, LammpsError, NoMatrix, PhysicsWarning, ResultError, SceneError, SweepError
 from .options import allow_negative_numbers
 from . import (accuracy, bench, benchmarks, calibrate, claims, classic, collide, doctor, figures, fit, frozen, hertz,
                pair, references, reproduce, restitution, sweep, tangential, theory, two_walls)

@@ -7,8 +7,6 @@ import os
 from pathlib import Path
 
 from ..model.parameters import SceneError
-from ..records import to_json, write_atomic
-from ..studies.speed import SPEED_DEFAULTS, measure_speed
 from .options import count, out_file, out_folder, positive_count, worker_count
 
 HELP = "measure collisions/s of one lmp process per collision, one in-process instance, and a batched sweep"
@@ -18,6 +16,8 @@ LABELS = {"a_lmp_process": "(a) one lmp process each", "b_in_process": "(b) one 
 
 
 def register(sub) -> None:
+    from ..studies.speed import SPEED_DEFAULTS
+
     p = sub.add_parser("bench", help=HELP, description=HELP + ", side by side on the same states and dt.")
     p.add_argument("--n-lmp", type=positive_count, default=SPEED_DEFAULTS["n_lmp"], metavar="N",
                    help="collisions for (a) (default %(default)s)")
@@ -41,6 +41,9 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
+    from ..records import to_json, write_atomic
+    from ..studies.speed import measure_speed
+
     reused = max(args.n_lmp, args.n_inprocess, args.n_needs)
     if reused > args.n_batched:
         raise SceneError("--n-batched", args.n_batched, f"must be at least --n-lmp, --n-inprocess and --n-needs "

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..studies.claims import evaluate_claims, write_claims
 from .options import out_folder, out_option
 
 HELP = "check the paper's quantitative claims with LAMMPS and the exact theory; write CLAIMS.md and claims.json"
@@ -19,6 +18,8 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
+    from ..studies.claims import evaluate_claims, write_claims
+
     print(f"checking the paper's claims (LAMMPS runs in {args.run_dir}):")
     claims = evaluate_claims(args.run_dir)
     md, js = write_claims(claims, args.out)

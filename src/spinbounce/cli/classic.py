@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import json
 
-from ..records import json_ready
 from .options import figure_options, make_with_runs, model_from, model_parser, number, state_parser
 
 HELP = ("for your contact model: how this build's classic wall (fix wall/gran hooke/history) scatters "
@@ -37,6 +36,7 @@ def _speeds(args, model) -> list[float]:
 
 
 def run(args) -> int:
+    from ..records import json_ready
     from ..studies.classic_effect import compare, fix_lines
 
     model = model_from(args).replace(wall="classic")

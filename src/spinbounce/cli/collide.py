@@ -5,16 +5,13 @@ from __future__ import annotations
 import dataclasses
 import json
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-import numpy as np
-
-from ..model.scenes import Collision
-from ..pipeline import run_collision
-from ..records import to_json, write_atomic
-from ..stepping import expected_steps
-from ..theory import choose
 from .options import (announce_cost, check_run_folder, default_run_dir, force_flag, json_flag, model_from, model_parser,
                       number, scene_from, scene_parser, state_from, state_parser)
+
+if TYPE_CHECKING:
+    from ..model.scenes import Collision
 
 HELP = "bounce one sphere off the wall in LAMMPS and compare it with the theory that applies"
 SUFFIXES = {"initial": "0", "final": "final", "theory": "theory", "error": "error"}
@@ -48,10 +45,18 @@ def _states(names, row, suffix: str, r: float) -> dict:
 
 
 def _contact_time(scene: Collision) -> float:
+    import numpy as np
+
     return float(np.max(scene.model.contact_times(scene.v_n)))
 
 
 def run(args) -> int:
+    import numpy as np
+    from ..exact import choose
+    from ..model.scenes import Collision
+    from ..pipeline import run_collision
+    from ..stepping import expected_steps
+
     check_run_folder(args.out, args.force)
     state = state_from(args)
     b = scene_from(args)
@@ -103,8 +108,9 @@ def _print_states(report: dict, names, label_width: int) -> None:
 
 
 def _run_to_tolerance(args, state: dict) -> int:
-    from ..records import software
-    from ..studies.tolerance import collide_to_tolerance, collision_frame
+    from ..exact import choose
+    from ..extrapolation import collide_to_tolerance, collision_frame
+    from ..records import software, to_json, write_atomic
 
     model = model_from(args)
     out = args.out or default_run_dir("collide", {"model": dataclasses.asdict(model), **state,

@@ -6,8 +6,6 @@ import json
 import tempfile
 from pathlib import Path
 
-from ..records import json_ready, software
-from ..studies import doctor
 from .options import json_flag, out_folder
 
 HELP = ("run a few tiny collisions and say whether this LAMMPS build's classic granular forms give "
@@ -23,6 +21,8 @@ def register(sub) -> None:
 
 
 def _diagnose(run_dir: Path | None) -> list:
+    from ..studies import doctor
+
     if run_dir is not None:
         return doctor.diagnose(run_dir)
     with tempfile.TemporaryDirectory(prefix="spinbounce-doctor-") as folder:
@@ -30,6 +30,9 @@ def _diagnose(run_dir: Path | None) -> list:
 
 
 def run(args) -> int:
+    from ..records import json_ready, software
+    from ..studies import doctor
+
     checks = _diagnose(args.run_dir)
     summary, status = doctor.verdict({c.form.key: c.answer for c in checks})
     if args.json:

@@ -6,7 +6,6 @@ import argparse
 import json
 import sys
 
-from ..figures import FIGURES, FigureNameError, check_names
 from .options import json_flag, out_folder, out_option
 
 HELP = "regenerate the paper's Figs. 2-7 (PNG, PDF and a JSON record each) from LAMMPS runs"
@@ -14,6 +13,8 @@ HELP = "regenerate the paper's Figs. 2-7 (PNG, PDF and a JSON record each) from 
 
 def figure_names(text: str) -> list[str]:
     """argparse type for --only: one name or a comma-separated list, each one of FIGURES."""
+    from ..figures import FIGURES, FigureNameError, check_names
+
     names = [part.strip() for part in text.split(",") if part.strip()]
     if not names:
         raise argparse.ArgumentTypeError(f"no figure named in {text!r} (choose from {', '.join(FIGURES)})")
@@ -24,6 +25,8 @@ def figure_names(text: str) -> list[str]:
 
 
 def register(sub) -> None:
+    from ..figures import FIGURES
+
     listing = "; ".join(f"{name}: {what}" for name, (_, what) in FIGURES.items())
     p = sub.add_parser("figures", help=HELP, description=f"{HELP}. Figures: {listing}.")
     p.add_argument("--only", action="append", type=figure_names, default=None, metavar="FIG[,FIG...]",
@@ -36,7 +39,7 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    from ..figures import make_figures
+    from ..figures import check_names, make_figures
 
     only = None if args.only is None else check_names(name for group in args.only for name in group)
     log = (lambda line: print(line, file=sys.stderr)) if args.json else print

@@ -7,12 +7,8 @@ import json
 import math
 from pathlib import Path
 
-import numpy as np
-
-from ..fitting import fit_groups, plot_groups
-from ..fitting_stream import fit_dataset
 from ..model import parameters
-from ..sweeps import SweepError, read_results
+from ..errors import SweepError
 from .options import optional_number
 
 #: Parameters a group can be selected by: the model's and the scene's (wall or pair, sphere b's).
@@ -66,6 +62,10 @@ def _select(rows, args):
 
 
 def run(args) -> int:
+    from ..fitting import fit_groups, plot_groups
+    from ..fitting_stream import fit_dataset
+    from ..sweeps import read_results
+
     selected = any(hasattr(args, p.name) for p in SELECTABLE)
     if selected or args.plot:  # a selection or a figure needs the rows themselves
         rows = _select(read_results(args.results), args)
@@ -84,6 +84,8 @@ def run(args) -> int:
 
 
 def _print_group(f: dict) -> None:
+    import numpy as np
+
     p = f["parameters"]
     print("group: " + ", ".join(f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}" for k, v in p.items()))
     print(f"  collisions {f['n']}; theory: {f['theory']}; {f['regime']}")

@@ -6,10 +6,6 @@ import dataclasses
 import json
 from pathlib import Path
 
-from ..pipeline import frozen_metadata, run_frozen
-
-from ..records import to_json, write_atomic
-from ..model.scenes import Frozen
 from ..model.parameters import SceneError
 from .options import (announce_cost, check_run_folder, count, default_run_dir, force_flag, json_flag, model_from,
                       model_parser, number, out_file, out_folder)
@@ -42,6 +38,10 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
+    from ..model.scenes import Frozen
+    from ..pipeline import frozen_metadata, run_frozen
+    from ..records import to_json, write_atomic
+
     check_run_folder(args.run_dir, args.force)
     if Path(args.out).exists() and not args.force:
         raise SceneError("--out", str(args.out), "exists: give another file, or --force to replace it")
@@ -79,10 +79,10 @@ def run(args) -> int:
 def _run_to_tolerance(args) -> int:
     import numpy as np
     import pandas as pd
-
-    from ..records import software
-    from ..studies.tolerance import frozen_to_tolerance
-    from ..theory import choose
+    from ..exact import choose
+    from ..extrapolation import frozen_to_tolerance
+    from ..model.scenes import Frozen
+    from ..records import software, to_json, write_atomic
 
     model = model_from(args)
     Frozen(model, z=args.z, v_t=args.vt, omega=args.omega, t_end=args.t_end)  # validates before any run

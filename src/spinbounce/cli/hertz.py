@@ -12,7 +12,7 @@ HELP = "measure how the energy-conserving kt depends on v_n with a Hertzian norm
 
 
 def register(sub) -> None:
-    from ..figures.hertz import HertzParameters
+    from ..figures.hertz_parameters import HertzParameters
 
     d = HertzParameters()
     p = sub.add_parser(

@@ -16,10 +16,13 @@ import os
 import re
 import sys
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from ..model import parameters
-from ..model.contact import ContactModel
 from ..model.parameters import Parameter, SceneError
+
+if TYPE_CHECKING:
+    from ..model.contact import ContactModel
 
 __all__ = ["number", "count", "model_parser", "state_parser", "model_from", "state_from", "json_flag",
            "default_run_dir", "optional_number", "force_flag", "check_run_folder", "announce_cost", "figure_options", "make_with_runs", "allow_negative_numbers", "sweep_model_flags", "parameter_help",
@@ -134,6 +137,8 @@ def state_parser(three_d: bool = True) -> argparse.ArgumentParser:
 
 
 def model_from(args: argparse.Namespace) -> ContactModel:
+    from ..model.contact import ContactModel
+
     return ContactModel(**{p.name: getattr(args, p.name) for p in parameters.MODEL})
 
 

@@ -126,7 +126,7 @@ def pair_theory(args, model, b, state: dict | None) -> int:
     """``theory --scene pair``: the planar matrix of a's state (b at rest), or one state's references."""
     from ..pairs.kind import CAPPED_NO_MATRIX, pair_contact, planar_matrix, planar_Omega
     from ..pairs.run import pair_table
-    from ..theory import pair as planar
+    from ..exact import pair as planar
 
     if state is not None:
         batch = _scene_pair(model, b, state)
@@ -191,7 +191,7 @@ def run(args) -> int:
     if args.published is not None:
         return _published(args.published, args.json)
     if args.figure is not None:
-        from ..pairs.figure import make_pair_validity
+        from ..figures.pairs import make_pair_validity
 
         record = make_pair_validity(args.figure)
         print(f"wrote {record.png}, {record.pdf}, {record.json}")

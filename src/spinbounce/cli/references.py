@@ -7,12 +7,13 @@ import time
 from pathlib import Path
 
 from ..model.parameters import SceneError
-from ..studies import references
 
 HELP = "compare fresh runs with the stored reference tables and golden decks (--check), or remake them (--regenerate)"
 
 
 def register(sub) -> None:
+    from ..studies.references.cases import CASES, DEFAULT_DIR
+
     p = sub.add_parser(
         "references", help=HELP,
         description=HELP + ". Only --regenerate writes into the reference folder; --check runs in a "
@@ -22,10 +23,10 @@ def register(sub) -> None:
                       help="run every case afresh and print the largest deviation per case and column")
     mode.add_argument("--regenerate", action="store_true",
                       help="run every case and overwrite the stored tables, golden decks and MANIFEST.json")
-    p.add_argument("--dir", type=Path, default=references.DEFAULT_DIR, metavar="DIR",
+    p.add_argument("--dir", type=Path, default=DEFAULT_DIR, metavar="DIR",
                    help="reference folder (default: %(default)s, from the repository's top folder)")
     p.add_argument("--case", action="append", metavar="NAME",
-                   choices=[c.name for c in references.CASES],
+                   choices=[c.name for c in CASES],
                    help="with --check: only this case (repeatable; default: all)")
     p.set_defaults(handler=run)
 
@@ -36,6 +37,8 @@ def _progress(case) -> None:
 
 
 def run(args) -> int:
+    from ..studies import references
+
     started = time.perf_counter()
     if args.regenerate:
         if args.case:

@@ -5,9 +5,12 @@ from __future__ import annotations
 import time
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from ..catalogue import LISTED, PRODUCTS, make, product_names
-from ..studies.claims import Claim, counts
+
+if TYPE_CHECKING:
+    from ..studies.claims import Claim
 
 HELP = ("regenerate the paper's figures 2-7, judge its claims and make the studies beyond it (into a folder of "
         "their own; --out figures updates the repository's stored ones)")
@@ -43,6 +46,8 @@ def register(sub) -> None:
 
 def reproduce(out: Path, run_dir: Path, log=print) -> Reproduction:
     """Every product of :data:`spinbounce.catalogue.PRODUCTS` into ``out``, runs under ``run_dir``."""
+    from ..studies.claims import Claim
+
     started = time.perf_counter()
     records: dict[str, dict] = {}
     for product in PRODUCTS:
@@ -57,6 +62,8 @@ def reproduce(out: Path, run_dir: Path, log=print) -> Reproduction:
 
 def summary(made: Reproduction) -> list[str]:
     """The closing lines: where everything went, the paper figures' worst deviation, the verdicts."""
+    from ..studies.claims import counts
+
     worst = max(made.figures, key=lambda r: r["max_deviation_exact"])
     tally = counts(made.claims)
     lines = [f"done in {made.seconds:.0f} s: {len(made.records)} JSON records in {made.out}/",
@@ -68,6 +75,8 @@ def summary(made: Reproduction) -> list[str]:
 
 
 def run(args) -> int:
+    from ..studies.claims import counts
+
     made = reproduce(args.out, args.run_dir)
     for line in summary(made):
         print(line)

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import json
 
-from ..records import json_ready
 from .options import figure_options, make_with_runs
 
 HELP = ("map normal and tangential restitution, rebound angle and spin against the incidence angle (Hooke, Hertz, "
@@ -22,6 +21,7 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
+    from ..records import json_ready
     from ..studies.restitution import make_figure
 
     meta = make_with_runs(make_figure, args.out, args.runs, "spinbounce-restitution-")

@@ -13,9 +13,7 @@ import sys
 from pathlib import Path
 
 from ..model import parameters
-from ..model.timestep import duration_text
-from ..studies.cost import chunk_cost
-from ..sweeps import SweepError, chunk_table, load_spec, run_one_chunk, run_sweep, spec_from_dict, status_counts
+from ..errors import SweepError
 from .options import count, number, sweep_model_flags, worker_count
 
 #: The most a sweep may be estimated to take (on one core) before it must be forced: a longer
@@ -143,8 +141,10 @@ def _cores() -> int:
 
 
 def estimated_seconds(spec) -> float:
-    """The whole sweep on one core (studies.cost): a full chunk's cost times their number, and
+    """The whole sweep on one core (sweeps.cost): a full chunk's cost times their number, and
     the last, shorter chunk's, per group; without listing the chunks."""
+    from ..sweeps.cost import chunk_cost
+
     total = 0.0
     for group, size in enumerate(spec.chunk_sizes):
         full, rest = divmod(spec.n, size)
@@ -154,6 +154,9 @@ def estimated_seconds(spec) -> float:
 
 
 def run(args) -> int:
+    from ..model.timestep import duration_text
+    from ..sweeps import chunk_table, load_spec, run_one_chunk, run_sweep, spec_from_dict, status_counts
+
     if args.scene_file is not None:
         given = _given(args)
         if given:

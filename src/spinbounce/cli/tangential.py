@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import json
 
-from ..records import json_ready
 from .options import figure_options, make_with_runs
 
 HELP = ("tangential restitution beta = -g_t'/g_t against |g_t|/|v_n| with Coulomb friction (Becker et al. 2008): "
@@ -31,6 +30,7 @@ def _summary(s: dict) -> dict:
 
 
 def run(args) -> int:
+    from ..records import json_ready
     from ..studies.tangential import make_figure
 
     meta = make_with_runs(make_figure, args.out, args.runs, "spinbounce-tangential-")

@@ -5,11 +5,7 @@ from __future__ import annotations
 import json
 import math
 
-import numpy as np
-
-from .. import theory
 from ..model.parameters import SceneError
-from ..theory import choose
 from .options import json_flag, model_from, model_parser, number, scene_from, scene_parser
 
 HELP = ("print the theory that applies to a contact model: its scattering matrix (Eq. 18) and Omega, "
@@ -45,6 +41,8 @@ def _state(args, r: float) -> dict | None:
 
 
 def run(args) -> int:
+    from ..exact import choose
+
     model = model_from(args)
     state = _state(args, model.r)
     b = scene_from(args)
@@ -67,13 +65,16 @@ def run(args) -> int:
 
 
 def _matrix(args, model, choice) -> int:
+    import numpy as np
+    from .. import exact
+
     report = {
         "theory_kind": choice.kind, "theory_name": choice.name,
         "tau": model.tau, "Q": model.Q, "Omega": model.Omega, "restitution": model.restitution,
         "matrix": model.matrix().tolist(), "order": ["v_n", "v_t", "r_omega"],
-        "Omega_paper": theory.Omega(model.kn, model.kt, model.alpha),
-        "Omega_paper_damped": theory.Omega_paper_damped(model.m, model.kn, model.kt, model.alpha, model.gamma_t),
-        "magic_kt_over_kn": theory.magic_kt_over_kn(model.alpha),
+        "Omega_paper": exact.Omega(model.kn, model.kt, model.alpha),
+        "Omega_paper_damped": exact.Omega_paper_damped(model.m, model.kn, model.kt, model.alpha, model.gamma_t),
+        "magic_kt_over_kn": exact.magic_kt_over_kn(model.alpha),
     }
     if args.json:
         print(json.dumps(report, indent=2))
@@ -95,6 +96,8 @@ def _matrix(args, model, choice) -> int:
 
 def _outcome(args, model, state: dict) -> int:
     """The final state of one collision from the theory that applies (no LAMMPS run)."""
+    from ..exact import choose
+
     initial, final = choose.outcome(model, **state)
     names = list(initial)
     choice = choose.which(model)

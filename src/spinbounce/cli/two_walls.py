@@ -5,7 +5,6 @@ from __future__ import annotations
 import json
 import sys
 
-from ..records import json_ready
 from .options import figure_options, make_with_runs
 
 HELP = "bounce a sphere many times between two parallel walls in LAMMPS, against the product of the matrices"
@@ -23,6 +22,7 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
+    from ..records import json_ready
     from ..studies.two_walls import make_figure
 
     meta = make_with_runs(make_figure, args.out, args.runs, "spinbounce-two-walls-")

@@ -1,7 +1,7 @@
 """figures/classic: this build's classic wall against the paper's model, for one contact model.
 
 Left: Omega against |v_n| for the model's kt/kn and three others. The curves are
-theory.classic's exact sticking Omega (contact radius a = sqrt(r delta), no cap); the points
+exact.classic's exact sticking Omega (contact radius a = sqrt(r delta), no cap); the points
 are LAMMPS's classic wall (``fix wall/gran hooke/history``, MU = 1e4, the form's largest) at
 the default step; the dashed lines are the paper's Omega (Eq. 18 or its damped form), which
 does not depend on v_n. Right: for the model's own state, cap and damping, how far the
@@ -72,7 +72,7 @@ def make_classic(out: Path, runs: Path, model: ContactModel | None = None, v_t: 
     started = time.perf_counter()
     data = compute((model or ContactModel()).replace(wall="classic"), v_t, omega, runs)
     metadata = {"figure": "classic", "title": "this build's classic wall against the paper's model",
-                "theory": "spinbounce.theory.classic (exact, contact radius); the paper's Eq. 18 / exact damped",
+                "theory": "spinbounce.exact.classic (exact, contact radius); the paper's Eq. 18 / exact damped",
                 "upstream": "LAMMPS PR #5007 removes the contact radius from linear_history_classic",
                 "software": software(), **data}
     return save(draw(data), out, "classic", metadata, started)

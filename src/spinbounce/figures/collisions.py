@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .. import theory
+from .. import exact
 from ..pipeline import ResultError
 from ..model.scenes import ContactModel
 from .core import (FigureData, FigureRecord, base_metadata, collision_run, default_runs, dissipation_columns,
@@ -139,13 +139,13 @@ def fig5_data(out: Path, runs: Path | None = None) -> FigureData:
     runs = default_runs(out, runs, "fig5")
     base = ContactModel()
     alpha, r = base.alpha, base.r
-    rough = dataclasses.replace(base, kt=theory.magic_kt_over_kn(alpha) * base.kn)
+    rough = dataclasses.replace(base, kt=exact.magic_kt_over_kn(alpha) * base.kn)
     rolling = dataclasses.replace(base, gamma_t=ROLLING_GAMMA_T)
     states = np.array([s for _, s in FIG5_STATES.values()])
     tuned_rough = collision_run(rough, states, runs / "rough", "fig5 rough sphere")
     tuned_rolling = collision_run(rolling, states, runs / "rolling", "fig5 rolling limit")
-    matrices = {"rough": theory.rough_matrix(alpha), "rolling": theory.rolling_matrix(alpha),
-                "frictionless": theory.scattering_matrix(alpha, 0.0)}
+    matrices = {"rough": exact.rough_matrix(alpha), "rolling": exact.rolling_matrix(alpha),
+                "frictionless": exact.scattering_matrix(alpha, 0.0)}
     paths, finals = [], []
     for k, (panel, (_, state)) in enumerate(FIG5_STATES.items()):
         state = np.asarray(state)
@@ -314,7 +314,7 @@ def fig6_data(out: Path, runs: Path | None = None) -> FigureData:
     alpha = base.alpha
     series = {
         "kt/kn=1/10": base,
-        "kt/kn=2/7": dataclasses.replace(base, kt=theory.magic_kt_over_kn(alpha) * base.kn),
+        "kt/kn=2/7": dataclasses.replace(base, kt=exact.magic_kt_over_kn(alpha) * base.kn),
         f"rolling limit, gamma_t={ROLLING_GAMMA_T:g}": dataclasses.replace(base, gamma_t=ROLLING_GAMMA_T),
     }
     states = fig6_states(alpha, base.m)

@@ -21,7 +21,8 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .. import __version__, theory
+from .. import __version__
+from ..exact import linear
 from ..pipeline import (
     CollisionResult,
     FrozenResult,
@@ -257,8 +258,8 @@ def dissipation_columns(table: pd.DataFrame, model: ContactModel) -> dict[str, n
     final = table[["vn_final", "vt_final", "r_omega_final"]].to_numpy()
     exact = table[["vn_theory", "vt_theory", "r_omega_theory"]].to_numpy()
     return {
-        "f": theory.dissipation(initial, final, model.m, model.alpha),
-        "f_theory": theory.dissipation(initial, exact, model.m, model.alpha),
+        "f": linear.dissipation(initial, final, model.m, model.alpha),
+        "f_theory": linear.dissipation(initial, exact, model.m, model.alpha),
     }
 
 

@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .. import theory
+from .. import exact
 from ..model.scenes import ContactModel
 from .core import (
     FROZEN_Z,
@@ -74,7 +74,7 @@ def fig2_data(out: Path, runs: Path | None = None) -> FigureData:
     model = ContactModel()
     tuned = frozen_run(model, 1.0, 0.0, FIG2_T_END, runs / "vt1_omega0", "fig2")
     table = _frozen_table(tuned, model)
-    vbar, rwbar = theory.frozen_means(1.0, 0.0, model.alpha)
+    vbar, rwbar = exact.frozen_means(1.0, 0.0, model.alpha)
     meta = base_metadata("fig2", "Frozen contact: v_t(t) and omega(t), LAMMPS against Eq. 10",
                          "Fig. 2; Eqs. 8-11")
     meta["parameters"] = _parameters(model, v_t0=1.0, omega0=0.0, t_end=float(table["t"].iloc[-1]))
@@ -121,8 +121,8 @@ def fig3_data(out: Path, runs: Path | None = None) -> FigureData:
         t = _frozen_table(tuned, model)
         t.insert(0, "vt0", vt0)
         paths.append(t)
-        vt_m, rw_m = theory.frozen_extremes(vt0, FIG3_R_OMEGA0, model.alpha)
-        vbar, rwbar = theory.frozen_means(vt0, FIG3_R_OMEGA0, model.alpha)
+        vt_m, rw_m = exact.frozen_extremes(vt0, FIG3_R_OMEGA0, model.alpha)
+        vbar, rwbar = exact.frozen_means(vt0, FIG3_R_OMEGA0, model.alpha)
         slip = vt0 + FIG3_R_OMEGA0
         if slip != 0.0:
             # the slope d v_t / d(r omega) that LAMMPS's points lie on (Eq. 13 says alpha)
@@ -142,7 +142,7 @@ def fig3_data(out: Path, runs: Path | None = None) -> FigureData:
                          "Fig. 3; Eqs. 10-13")
     meta["parameters"] = _parameters(model, r_omega0=FIG3_R_OMEGA0, v_t0=list(FIG3_VT0), t_end=FIG3_T_END)
     slopes = [e["slope_lammps"] for e in ends if not np.isnan(e["slope_lammps"])]
-    meta["slope_eq13"] = theory.frozen_slope(model.alpha)
+    meta["slope_eq13"] = exact.frozen_slope(model.alpha)
     meta["max_slope_deviation"] = float(max(abs(s - model.alpha) for s in slopes))
     meta["notes"] = [
         "axes: r*omega horizontal, v_t vertical, so that Eq. 13's slope d v_t/d(r omega) = alpha is the drawn slope",
@@ -206,7 +206,7 @@ def fig7_data(out: Path, runs: Path | None = None) -> FigureData:
         model = ContactModel(gamma_t=gamma_t)
         tuned = frozen_run(model, 1.0, 1.0, FIG7_T_END, runs / f"gamma_t{gamma_t:g}", f"fig7 gamma_t = {gamma_t:g}")
         t = _frozen_table(tuned, model)
-        vt22, rw22 = theory.frozen_velocities_paper_damped(
+        vt22, rw22 = exact.frozen_velocities_paper_damped(
             t["t"].to_numpy(), 1.0, model.r * 1.0, model.kt, model.m, model.alpha, gamma_t)
         t["vt_eq22"], t["omega_eq22"] = vt22, rw22 / model.r
         t.insert(0, "gamma_t", gamma_t)
@@ -218,7 +218,7 @@ def fig7_data(out: Path, runs: Path | None = None) -> FigureData:
                         "zeta": model.zeta, "max_deviation_eq22": max(dev22.values()),
                         "deviations_eq22": dev22})
     model = ContactModel()
-    vbar, rwbar = theory.frozen_means(1.0, model.r, model.alpha)
+    vbar, rwbar = exact.frozen_means(1.0, model.r, model.alpha)
     meta = base_metadata("fig7", "Damped frozen contact: v_t(t) and omega(t) for three gamma_t",
                          "Fig. 7; Eqs. 10, 11, 22 and the exact damped solution")
     meta["parameters"] = _parameters(model, v_t0=1.0, omega0=1.0, t_end=FIG7_T_END, gamma_t=list(FIG7_GAMMA_T))

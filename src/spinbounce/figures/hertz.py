@@ -2,7 +2,7 @@
 
 The paper's conclusion: with a nonlinear normal force the contact time depends on
 v_n(0), so a collision conserves energy only at special normal speeds. For the
-Hertzian wall (spinbounce.theory.hertz) the energy-conserving kt*(v_n) grows as |v_n|^(2/5).
+Hertzian wall (spinbounce.exact.hertz) the energy-conserving kt*(v_n) grows as |v_n|^(2/5).
 
 Measuring kt* at Omega = -2 itself would be ill-conditioned: the slip ratio u'(tau)/u'(0)
 = cos(sqrt(Q) tau) has its minimum there. So each speed is run at kt = kt*/4, where the
@@ -18,19 +18,18 @@ Flow: scenes -> pipeline runs -> tables -> drawing (the drawing reads only the t
 
 from __future__ import annotations
 
-import math
 import time
-from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
-from ..theory import hertz
-from .. import theory
+from ..exact import hertz
+from ..exact import linear
 from ..pipeline import ResultError, run_collision
 from ..records import write_atomic
-from ..model.scenes import Collision, ContactModel, SceneError
+from ..model.scenes import Collision
+from .hertz_parameters import OMEGA, V_T, HertzParameters
 from .core import STYLE, FigureData, FigureRecord, _relative, base_metadata, default_runs, new_figure, save
 
 __all__ = ["HertzParameters", "hertz_data", "draw_hertz", "hertz_markdown", "make_hertz", "ACCEPTANCE"]
@@ -38,45 +37,6 @@ __all__ = ["HertzParameters", "hertz_data", "draw_hertz", "hertz_markdown", "mak
 #: Largest relative deviation of LAMMPS's kt* from the closed form the command accepts; the
 #: default step's bound dt/tau is about 2e-5.
 ACCEPTANCE = 1e-4
-#: Initial tangential state of every run: v_t = 1, no spin (so u'(0) = 1).
-V_T, OMEGA = 1.0, 0.0
-
-
-@dataclass(frozen=True)
-class HertzParameters:
-    """The measurement's grid and contact. kn = 1000 keeps the overlap at |v_n| = 1.5 at
-    0.22 r (kn = 10, r = 0.5 would tunnel above |v_n| = 1)."""
-
-    v_min: float = 0.05
-    v_max: float = 1.5
-    points: int = 12
-    v_ref: float = 0.5
-    m: float = 1.0
-    r: float = 0.5
-    alpha: float = 0.4
-    kn: float = 1000.0
-
-    def speeds(self) -> np.ndarray:
-        return np.geomspace(self.v_min, self.v_max, self.points)
-
-    def model(self, kt: float) -> ContactModel:
-        return ContactModel(m=self.m, r=self.r, alpha=self.alpha, kn=self.kn, kt=kt, normal="hertz")
-
-    def kt_star(self, v) -> np.ndarray:
-        return hertz.energy_conserving_kt(v, self.m, self.kn, self.r, self.alpha)
-
-    def check(self) -> None:
-        """Refuse a bad grid before LAMMPS starts (the scenes refuse the rest: tunnelling, dt)."""
-        if not isinstance(self.points, int) or self.points < 2:
-            raise SceneError("points", self.points, "must be a whole number >= 2")
-        for name in ("v_min", "v_max", "v_ref"):
-            value = getattr(self, name)
-            if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
-                raise SceneError(name, value, "must be a speed > 0")
-        if self.v_min >= self.v_max:
-            raise SceneError("v_min", self.v_min, f"must be below v_max = {self.v_max!r}")
-        # the fastest sphere overlaps deepest: refused here, by name, if it would tunnel
-        Collision(self.model(float(self.kt_star(self.v_max))), v_n=-self.v_max, v_t=V_T, omega=OMEGA)
 
 
 def _scenes(p: HertzParameters, dt: float | None = None) -> tuple[list[Collision], Collision, float]:
@@ -142,8 +102,8 @@ def hertz_data(p: HertzParameters, runs: Path, log=print) -> FigureData:
     exact = batch[["vn_theory", "vt_theory", "r_omega_theory"]].to_numpy()
     fixed_table = pd.DataFrame({
         "v_n": -batch["vn_0"].to_numpy(),
-        "f_lammps": theory.dissipation(initial, final, p.m, p.alpha),
-        "f_theory": theory.dissipation(initial, exact, p.m, p.alpha),
+        "f_lammps": linear.dissipation(initial, final, p.m, p.alpha),
+        "f_theory": linear.dissipation(initial, exact, p.m, p.alpha),
     })
     records.append({"series": "one kt for all speeds", "v_n": fixed_table["v_n"].tolist(), "kt": fixed.model.kt,
                     "dt": fixed.dt, "nsteps": fixed.nsteps, "run_dir": str(folder)})
@@ -156,7 +116,7 @@ def hertz_data(p: HertzParameters, runs: Path, log=print) -> FigureData:
     lines = pd.DataFrame({
         "v_n": grid,
         "kt_star_over_kn": hertz.energy_conserving_ratio(grid, p.m, p.kn, p.r, p.alpha),
-        "f_fixed_kt": theory.dissipation(states, np.einsum("nij,nj->ni", matrices, states), p.m, p.alpha),
+        "f_fixed_kt": linear.dissipation(states, np.einsum("nij,nj->ni", matrices, states), p.m, p.alpha),
     })
     slope = float(np.polyfit(np.log(table["v_n"]), np.log(table["kt_star_over_kn_lammps"]), 1)[0])
     worst = float(np.abs(table["relative_deviation"]).max())

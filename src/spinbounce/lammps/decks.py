@@ -186,7 +186,7 @@ def _classic_wall(model: ContactModel) -> dict:
     from ..model.contact import CLASSIC_MU_MAX
 
     notes = ["classic wall: this build scales the tangential spring by the contact radius sqrt(r delta) "
-             "(theory: spinbounce.theory.classic)"]
+             "(theory: spinbounce.exact.classic)"]
     gamma_n = model.gamma_n / model.m
     if gamma_n == 0.0:
         gamma_n = CLASSIC_VANISHING_GAMMA_N

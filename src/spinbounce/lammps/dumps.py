@@ -11,12 +11,9 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
+from ..errors import DumpError
 
 __all__ = ["DumpError", "read_dump"]
-
-
-class DumpError(ValueError):
-    """A dump file is not in the expected format."""
 
 
 def read_dump(path: Path) -> pd.DataFrame:

@@ -20,23 +20,11 @@ from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
+from ..errors import LammpsError
 
 __all__ = ["LammpsError", "RunInfo", "run_deck", "run_deck_lmp", "lammps_version", "lmp_executable", "loop_seconds"]
 
 LOG_NAME = "log.lammps"
-
-
-class LammpsError(RuntimeError):
-    """LAMMPS refused or failed a deck. Carries LAMMPS's own ERROR line and the deck path."""
-
-    def __init__(self, error_line: str, deck: Path, input_line: str | None = None):
-        self.error_line = error_line
-        self.deck = Path(deck)
-        self.input_line = input_line
-        where = f"\n  deck: {self.deck}"
-        if input_line:
-            where += f"\n  input line: {input_line}"
-        super().__init__(f"{error_line}{where}")
 
 
 @dataclass(frozen=True)

@@ -2,12 +2,6 @@
 
 ``spinbounce.model`` knows nothing of files or LAMMPS. :mod:`.parameters` declares every
 parameter once; :mod:`.contact` builds the contact model from it; :mod:`.scenes` holds the
-collision and frozen-contact scenes; :mod:`.timestep` the one rule for the step.
+collision and frozen-contact scenes; :mod:`.timestep` the one rule for the step. Importing
+the package imports none of them (a command's ``--help`` reads :mod:`.parameters` only).
 """
-
-from .contact import ContactModel, PhysicsWarning
-from .parameters import MODEL, RUN, STATE, Parameter, SceneError
-from .scenes import STATE_3D, Collision, Frozen
-
-__all__ = ["ContactModel", "PhysicsWarning", "SceneError", "Parameter", "MODEL", "STATE", "RUN", "STATE_3D",
-           "Collision", "Frozen"]

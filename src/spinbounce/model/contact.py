@@ -1,5 +1,5 @@
 """The contact model: its fields come from the declaration (:mod:`.parameters`), its
-physics from :mod:`spinbounce.theory`.
+physics from :mod:`spinbounce.exact`.
 
 ``ContactModel`` is a frozen dataclass built from :data:`.parameters.MODEL`: one field per
 declared parameter, with the declared default, checked against the declared range when
@@ -16,11 +16,12 @@ import warnings
 
 import numpy as np
 
-from .. import theory
-from ..theory import choose, hertz
+from .. import exact
+from ..exact import choose, hertz
 from .parameters import MODEL, SceneError, positive_number
 from .stability import stability_limit
 from .timestep import MIN_STEPS_PER_HALF_PERIOD
+from ..errors import PhysicsWarning
 
 __all__ = ["ContactModel", "ContactPhysics", "PhysicsWarning", "NORMAL_LAWS", "ALPHA_SHELL",
            "MIN_STEPS_PER_HALF_PERIOD"]
@@ -34,10 +35,6 @@ MIN_RESTITUTION = 1e-3
 CLASSIC_MU_MAX = 1.0e4
 #: Above alpha = 2/3 part of the mass would sit outside the sphere (Section 3).
 ALPHA_SHELL = 2.0 / 3.0
-
-
-class PhysicsWarning(UserWarning):
-    """A scene is allowed but physically unusual or numerically marginal."""
 
 
 class ContactPhysics:
@@ -94,42 +91,42 @@ class ContactPhysics:
     def _hooke_only(self, what: str) -> None:
         if self.normal != "hooke":
             raise SceneError("normal", self.normal, f"has no single {what}: it depends on v_n "
-                             "(per-sphere values: Collision.predicted(), spinbounce.theory.hertz)")
+                             "(per-sphere values: Collision.predicted(), spinbounce.exact.hertz)")
 
     @property
     def tau(self) -> float:
         """Contact time, Eq. 16 (damped form when gamma_n > 0): how long the force acts."""
         self._hooke_only("contact time tau")
-        return theory.collision_time(self.m, self.kn, self.gamma_n, not self.limit_damping)
+        return exact.collision_time(self.m, self.kn, self.gamma_n, not self.limit_damping)
 
     @property
     def t_exit(self) -> float:
         """When the sphere is out of the overlap (later than tau with limit_damping)."""
         self._hooke_only("exit time")
-        return theory.exit_time(self.m, self.kn, self.gamma_n, not self.limit_damping)
+        return exact.exit_time(self.m, self.kn, self.gamma_n, not self.limit_damping)
 
     @property
     def Q(self) -> float:
-        return theory.Q(self.kt, self.m, self.alpha)
+        return exact.Q(self.kt, self.m, self.alpha)
 
     @property
     def zeta(self) -> float:
-        return theory.damping_rate(self.gamma_t, self.m, self.alpha)
+        return exact.damping_rate(self.gamma_t, self.m, self.alpha)
 
     @property
     def Omega(self) -> float:
         """Exact Omega (Eq. 18's when undamped)."""
         self._hooke_only("Omega")
-        return theory.Omega_exact(self.m, self.kn, self.kt, self.alpha, self.gamma_t, self.gamma_n,
+        return exact.Omega_exact(self.m, self.kn, self.kt, self.alpha, self.gamma_t, self.gamma_n,
                                   not self.limit_damping)
 
     @property
     def restitution(self) -> float:
         self._hooke_only("restitution")
-        return theory.restitution(self.m, self.kn, self.gamma_n, not self.limit_damping)
+        return exact.restitution(self.m, self.kn, self.gamma_n, not self.limit_damping)
 
     def matrix(self) -> np.ndarray:
-        """The scattering matrix that applies (:func:`spinbounce.theory.choose.matrix`)."""
+        """The scattering matrix that applies (:func:`spinbounce.exact.choose.matrix`)."""
         return choose.matrix(self)
 
     def block_matrix(self) -> np.ndarray:
@@ -137,7 +134,7 @@ class ContactPhysics:
         return choose.matrix(self, three_d=True)
 
     def matrices(self, v_n) -> np.ndarray:
-        """(n, 3, 3): each sphere's scattering matrix (:func:`spinbounce.theory.choose.matrices`)."""
+        """(n, 3, 3): each sphere's scattering matrix (:func:`spinbounce.exact.choose.matrices`)."""
         return choose.matrices(self, v_n)
 
     def check_default_step(self) -> None:
@@ -146,7 +143,7 @@ class ContactPhysics:
         for parameter in MODEL:
             parameter.check_default_step(getattr(self, parameter.name))
         if self.normal == "hooke" and self.restitution < MIN_RESTITUTION:
-            limit = theory.gamma_n_for_restitution(MIN_RESTITUTION, self.m, self.kn)
+            limit = exact.gamma_n_for_restitution(MIN_RESTITUTION, self.m, self.kn)
             raise SceneError("gamma_n", self.gamma_n,
                              f"must be below {limit:.6g} (restitution {MIN_RESTITUTION:g}) at the default step: here "
                              f"the sphere leaves at {self.restitution:.3g} of its speed, too slowly for the step's "

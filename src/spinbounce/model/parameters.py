@@ -15,18 +15,10 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from ..errors import SceneError
+
 __all__ = ["finite_number", "positive_number", "Parameter", "MODEL", "STATE", "RUN", "SCENE", "PAIR_ONLY", "ALL",
            "by_name", "SceneError", "markdown_table"]
-
-
-class SceneError(ValueError):
-    """A parameter is outside its accepted range. Raised before LAMMPS starts."""
-
-    def __init__(self, parameter: str, value, limit: str):
-        self.parameter = parameter
-        self.value = value
-        self.limit = limit
-        super().__init__(f"{parameter} = {value!r}: {limit}")
 
 
 def finite_number(name: str, value) -> float:

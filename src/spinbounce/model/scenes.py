@@ -12,7 +12,7 @@ Two scenes:
   slip evolves; checked against Eq. 10 (or its exact damped form).
 
 The normal force is the paper's Hookean spring or, with ``normal="hertz"``, LAMMPS's
-Hertzian one (theory in :mod:`spinbounce.theory.hertz`), whose contact time depends on v_n.
+Hertzian one (theory in :mod:`spinbounce.exact.hertz`), whose contact time depends on v_n.
 """
 
 from __future__ import annotations
@@ -23,8 +23,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .. import theory
-from ..theory import choose, hertz
+from .. import exact
+from ..exact import choose, hertz
 from . import parameters
 from .contact import NORMAL_LAWS, ContactModel, PhysicsWarning
 from .parameters import SceneError, finite_number, positive_number
@@ -165,10 +165,10 @@ class Collision:
             set_(self, "dt", _hertz_collision_dt(self))
             self._check_cost()
             return
-        reach = float(np.max(theory.max_overlap(np.array(vn), m.m, m.kn, m.gamma_n)))
+        reach = float(np.max(exact.max_overlap(np.array(vn), m.m, m.kn, m.gamma_n)))
         if reach >= m.r:
             fastest = max(vn, key=abs)
-            vmax = m.r / float(theory.max_overlap(1.0, m.m, m.kn, m.gamma_n))
+            vmax = m.r / float(exact.max_overlap(1.0, m.m, m.kn, m.gamma_n))
             raise SceneError(
                 "v_n",
                 fastest,

@@ -31,7 +31,7 @@ BODIES_FILE = "bodies.txt"
 #: does not): measured with a step-by-step copy of LAMMPS that matches it to 1e-14, it moves
 #: the result by 3e-5 of the impact speed at dt = tau/4700 and depends on dt. With 1e100 the
 #: rule and the cap can only fire at |F_n| < 1e-90 |F_t|: the paper's model, with a history
-#: that is never rotated (what :mod:`spinbounce.theory.pair_exact` integrates).
+#: that is never rotated (what :mod:`spinbounce.exact.pair_exact` integrates).
 PAIR_NO_CAP_MU = 1.0e100
 
 

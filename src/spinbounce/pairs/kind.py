@@ -15,7 +15,7 @@ import numpy as np
 
 from ..model.contact import ContactModel
 from ..model.parameters import PAIR_ONLY, SceneError, by_name
-from ..theory import pair as planar
+from ..exact import pair as planar
 from .scene import Pair, PairContact, Sphere
 
 __all__ = ["pair_contact", "sphere_b", "pairs_from_states", "wall_frame", "planar_matrix", "planar_Omega",
@@ -73,7 +73,7 @@ def wall_frame(v: np.ndarray, w: np.ndarray, r: float) -> np.ndarray:
 def planar_matrix(model: ContactModel, b: Sphere, three_d: bool = False) -> np.ndarray:
     """The planar theory's map of a's state (b at rest), 3x3 (6x6 in 3-D): final = M @ initial.
 
-    :func:`spinbounce.theory.pair.predict` is linear in a's state when b starts at rest, so
+    :func:`spinbounce.exact.pair.predict` is linear in a's state when b starts at rest, so
     its columns are its outcomes for the unit states.
     """
     size = 6 if three_d else 3

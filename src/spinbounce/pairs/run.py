@@ -3,8 +3,8 @@
 Table: one row per pair, with the pair's geometry (eps, the centrifugal ratio, how far the
 line of centres turned), and for every final quantity q of sphere a and b (``a_vx`` ...
 ``b_wz``, LAMMPS's frame, omega as LAMMPS's angular velocity) LAMMPS's value ``q``, the
-exact reference ``q_exact`` (:mod:`spinbounce.theory.pair_exact`) and the planar theory's
-``q_planar`` (:mod:`spinbounce.theory.pair`). The errors are the largest differences over
+exact reference ``q_exact`` (:mod:`spinbounce.exact.pair_exact`) and the planar theory's
+``q_planar`` (:mod:`spinbounce.exact.pair`). The errors are the largest differences over
 the velocities and r times the spins, in units of the pair's ``speed``
 (:meth:`Pair.speed`): ``lammps_error`` (LAMMPS against the exact reference: the run's
 accuracy) and ``planar_error`` (the planar theory against the exact reference: a model error).
@@ -23,7 +23,7 @@ from ..lammps.runner import RunInfo, run_deck
 from ..pipeline import ResultError, prepare_run_dir
 from ..model.timestep import ACCURACY, StepChoice
 from ..records import software, to_json, write_atomic
-from ..theory import pair as planar
+from ..exact import pair as planar
 from .deck import PAIR_NO_CAP_MU, render_pairs
 from .scene import PairBatch
 from .stepping import tune_pairs
@@ -134,6 +134,11 @@ def pair_table(batch: PairBatch, lammps: dict[str, np.ndarray] | None) -> pd.Dat
     return table
 
 
+def _probe_error(batch: PairBatch, out_dir: Path) -> float:
+    """The step probe's measurement: a batch at a given step, its largest error against the reference."""
+    return run_pairs(batch, out_dir, record=False).max_lammps_error
+
+
 def run_pairs(batch: PairBatch, out_dir: Path, record: bool = True, target: float = ACCURACY,
               probe_pairs: tuple | None = None) -> PairResult:
     """Run every pair of ``batch`` in one LAMMPS run in ``out_dir``; compare with both references.
@@ -143,7 +148,7 @@ def run_pairs(batch: PairBatch, out_dir: Path, record: bool = True, target: floa
     if not its own). With ``record``, ``result.json``
     beside the deck holds the table, the step's choice and the provenance.
     """
-    batch, step = tune_pairs(batch, Path(out_dir) / "probe", target, probe_pairs)
+    batch, step = tune_pairs(batch, Path(out_dir) / "probe", _probe_error, target, probe_pairs)
     rendered = render_pairs(batch)
     deck_path = prepare_run_dir(out_dir, rendered.deck)
     info = run_deck(deck_path)

@@ -4,14 +4,14 @@ A :class:`Pair` is given at the moment its spheres first touch: sphere b's centr
 origin, a's at (r_a + r_b) ``normal``, with any velocities and spins (LAMMPS's frame and
 sign: omega is LAMMPS's angular velocity). A :class:`PairBatch` holds pairs that share
 one contact law (:class:`PairContact`) and one step, and works out what the deck needs:
-the exact reference of each pair (:mod:`spinbounce.theory.pair_exact`), the step, and
+the exact reference of each pair (:mod:`spinbounce.exact.pair_exact`), the step, and
 how long before touching each pair starts (:attr:`PairBatch.lead`: where its first-order errors
 cancel best) and, in an aligned batch, the time scale each pair runs at in the deck
 (:attr:`PairBatch.time_scales`: every contact then ends in the middle of a step).
 
 Each sphere's m, r and alpha, and the contact's kn, kt, gamma_n and gamma_t, are checked
 against their declaration (:mod:`spinbounce.model.parameters`). Every pair is also checked
-as its equivalent wall contact (reduced mass, :func:`theory.pair.equivalent_alpha`):
+as its equivalent wall contact (reduced mass, :func:`exact.pair.equivalent_alpha`):
 critical damping, the step's stability and resolution.
 """
 
@@ -23,12 +23,12 @@ from functools import cached_property
 
 import numpy as np
 
-from .. import theory
+from .. import exact
 from ..model.contact import ContactModel
 from ..model.parameters import SceneError, by_name
 from ..model.timestep import steps_through
-from ..theory import pair as planar
-from ..theory import pair_capped, pair_exact
+from ..exact import pair as planar
+from ..exact import pair_capped, pair_exact
 
 __all__ = ["Sphere", "PairContact", "Pair", "PairBatch", "ALPHA_NVE_SPHERE", "PAIR_STEPS_PER_HALF_PERIOD",
            "time_scaled"]
@@ -88,7 +88,7 @@ class Sphere:
 @dataclass(frozen=True)
 class PairContact:
     """The contact law shared by every pair of a batch. ``mu``: the Coulomb cap (None: the
-    paper's uncapped model); a capped pair's reference (:mod:`spinbounce.theory.pair_capped`)
+    paper's uncapped model); a capped pair's reference (:mod:`spinbounce.exact.pair_capped`)
     has no tangential damping and needs planar motion (checked per pair by :class:`PairBatch`)."""
 
     kn: float = 10.0
@@ -157,7 +157,7 @@ class Pair:
         return float(np.linalg.norm(v - self.v_n * np.asarray(self.normal)))
 
     def properties(self) -> dict:
-        """The sphere properties as :mod:`theory.pair` and :mod:`pair_exact` take them."""
+        """The sphere properties as :mod:`exact.pair` and :mod:`pair_exact` take them."""
         return {"m_a": self.a.m, "r_a": self.a.r, "alpha_a": self.a.alpha,
                 "m_b": self.b.m, "r_b": self.b.r, "alpha_b": self.b.alpha}
 
@@ -165,7 +165,7 @@ class Pair:
         return {"n": self.normal, "v_a": self.v_a, "v_b": self.v_b, "w_a": self.w_a, "w_b": self.w_b}
 
     def equivalent_wall(self, contact: PairContact) -> ContactModel:
-        """The wall contact with this pair's normal and slip equations (:mod:`theory.pair`)."""
+        """The wall contact with this pair's normal and slip equations (:mod:`exact.pair`)."""
         a, b = self.a, self.b
         return ContactModel(m=planar.reduced_mass(a.m, b.m), r=min(a.r, b.r),
                             alpha=planar.equivalent_alpha(a.m, a.alpha, b.m, b.alpha), **contact.law())
@@ -194,7 +194,7 @@ def time_scaled(pair: Pair, scale: float) -> Pair:
 def _check_overlap(pair: Pair, model: ContactModel, dt: float, where: str) -> None:
     """The deepest overlap (stretched by the step, as for the wall) must stay below the
     smaller radius, or the smaller centre would enter the larger sphere."""
-    reach = float(theory.max_overlap(pair.v_n, model.m, model.kn, model.gamma_n))
+    reach = float(exact.max_overlap(pair.v_n, model.m, model.kn, model.gamma_n))
     half_step = 0.5 * math.sqrt(model.kn / model.m) * dt
     stretch = 1.0 / math.sqrt(1.0 - half_step**2) if half_step < 1.0 else math.inf
     if reach * stretch >= model.r:

@@ -4,7 +4,7 @@ A pair batch's default is the fine rule (:data:`.scene.PAIR_STEPS_PER_HALF_PERIO
 the hardest pairs. :func:`tune_pairs` measures instead, with the wall's rules
 (:mod:`spinbounce.stepping`: :data:`SAFETY`, the order floor, the checks of a chosen step):
 a few of the batch's own pairs run at :data:`START_STEPS` steps per contact and at twice
-that, against the exact reference (:mod:`spinbounce.theory.pair_exact`); the observed order
+that, against the exact reference (:mod:`spinbounce.exact.pair_exact`); the observed order
 and constant give the steps for SAFETY times the target. Every probed and chosen batch is aligned
 (:attr:`.scene.PairBatch.time_scales`): each undamped pair runs at its own time scale so that
 its contact ends in the middle of a step, where two first-order errors cancel
@@ -19,6 +19,7 @@ row's own error is measured afterwards anyway.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -35,16 +36,16 @@ START_STEPS = 100
 FALLBACK = "fine rule (probe could not reach the target coarser)"
 
 
-def tune_pairs(batch: PairBatch, out: Path, target: float = ACCURACY,
-               probe_pairs: tuple | None = None) -> tuple[PairBatch, StepChoice]:
+def tune_pairs(batch: PairBatch, out: Path, measure: Callable[[PairBatch, Path], float],
+               target: float = ACCURACY, probe_pairs: tuple | None = None) -> tuple[PairBatch, StepChoice]:
     """The batch at the step its accuracy needs, and how that step was chosen.
 
     ``probe_pairs``: the pairs to probe with (a sweep's group: the same for every chunk, so
     every chunk of a group gets the same step), by default every k-th of the batch's own, at
     most :data:`PROBE_SPHERES`. A batch with a given dt is returned as it is (``given``).
+    ``measure(batch, folder)`` runs a batch at its given step and returns its largest error
+    against the exact reference (the runner's, handed in: the runner calls this module).
     """
-    from .run import run_pairs  # run imports this module
-
     if not batch.default_step:
         return batch, StepChoice(batch.dt, "given", target)
     source = tuple(probe_pairs or batch.pairs)
@@ -55,7 +56,7 @@ def tune_pairs(batch: PairBatch, out: Path, target: float = ACCURACY,
 
     def probe(steps: int) -> float:
         sample = PairBatch(pairs, batch.contact, mid_step_dt(t_contact, steps), aligned=True)
-        errors.append(run_pairs(sample, Path(out) / f"probe-{len(errors)}", record=False).max_lammps_error)
+        errors.append(measure(sample, Path(out) / f"probe-{len(errors)}"))
         return errors[-1]
 
     coarse = (START_STEPS, probe(START_STEPS))

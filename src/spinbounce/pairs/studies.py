@@ -20,8 +20,8 @@ import numpy as np
 from ..model.contact import ContactModel
 from ..model.scenes import Collision
 from ..pipeline import run_collision
-from ..theory import pair as planar
-from ..theory import pair_exact
+from ..exact import pair as planar
+from ..exact import pair_exact
 from .run import run_pairs
 from .scene import Pair, PairBatch, PairContact, Sphere
 

@@ -2,7 +2,7 @@
 
 Sphere a's columns are the wall sweep's (:func:`spinbounce.compare.collision_table`):
 ``{s}_0`` (requested), ``{s}_lammps_0`` (LAMMPS's first frame), ``{s}_final`` (LAMMPS),
-``{s}_theory`` (the exact reference, :mod:`spinbounce.theory.pair_exact`: what LAMMPS
+``{s}_theory`` (the exact reference, :mod:`spinbounce.exact.pair_exact`: what LAMMPS
 integrates, to 1e-9), ``{s}_error`` (final - theory), the spins as angular velocities
 beside them, and ``z_*`` (a's centre above b's). Added for the pair: both spheres' final
 states in LAMMPS's frame (``a_vx`` ... ``b_wz``, :data:`.run.QUANTITIES`) with their exact
@@ -29,8 +29,8 @@ from ..compare import STATE, STATE_3D
 from ..lammps.dumps import read_dump
 from ..model.contact import ContactModel
 from ..model.timestep import ACCURACY
-from ..theory import linear
-from ..theory import pair as planar
+from ..exact import linear
+from ..exact import pair as planar
 from .kind import pair_contact, pairs_from_states, wall_frame
 from .run import QUANTITIES, pair_states, run_pairs
 from .scene import PairBatch, Sphere

@@ -26,7 +26,7 @@ from pathlib import Path
 import numpy as np
 from scipy.optimize import brentq, minimize_scalar
 
-from .. import theory
+from .. import exact
 from ..lammps.decks import fix_line, wall_parameters
 from ..model.contact import ContactModel
 from ..model.parameters import SceneError
@@ -92,19 +92,19 @@ def _normal(t: Targets) -> tuple[float, float]:
         raise Unreachable("e", t.e, f"with limit_damping the restitution reachable lies in (exp(-2), 1] = "
                           f"({LIMIT_DAMPING_E_MIN:.6f}, 1]: critical damping still returns exp(-2) of v_n")
     ratio = gamma_n_for_restitution_cut(t.e, 1.0, 1.0) / 2.0  # gamma_n/(2 sqrt(m kn))
-    unit_time = theory.exit_time(1.0, 1.0, 2.0 * ratio, tensile=False)  # t_c at m = kn = 1
+    unit_time = exact.exit_time(1.0, 1.0, 2.0 * ratio, tensile=False)  # t_c at m = kn = 1
     kn = t.m * (unit_time / t.contact_time) ** 2
     return kn, 2.0 * ratio * math.sqrt(t.m * kn)
 
 
 def _slip_ratio(t: Targets, kn: float, gamma_n: float, kt: float, gamma_t: float) -> float:
     """u'(tau)/u'(0) = 1 + Omega (exact, damped)."""
-    return theory.Omega_exact(t.m, kn, kt, t.alpha, gamma_t, gamma_n, not t.limit_damping) + 1.0
+    return exact.Omega_exact(t.m, kn, kt, t.alpha, gamma_t, gamma_n, not t.limit_damping) + 1.0
 
 
 def _free_axis(t: Targets, kn: float, gamma_n: float):
     """(name, f(x) = slip ratio, scan grid of x >= 0) for the tangential parameter solved for."""
-    tau = theory.collision_time(t.m, kn, gamma_n, not t.limit_damping)
+    tau = exact.collision_time(t.m, kn, gamma_n, not t.limit_damping)
     if t.kt_over_kn is not None:
         kt = t.kt_over_kn * kn
         # gamma_t up to a slip damping rate zeta = 1e7/tau, where the ratio is within about
@@ -153,7 +153,7 @@ def _tangential(t: Targets, kn: float, gamma_n: float) -> tuple[float, float]:
         raise Unreachable("beta", t.beta, "must lie in [-1, 1]: |u'(out)| <= |u'(in)| in a passive contact")
     target = -t.beta
     if t.kt_over_kn is None and t.gamma_t == 0.0:  # cos(sqrt(Q) tau) = -beta on the first branch
-        tau = theory.collision_time(t.m, kn, gamma_n, not t.limit_damping)
+        tau = exact.collision_time(t.m, kn, gamma_n, not t.limit_damping)
         return t.m * t.alpha / (1.0 + t.alpha) * (math.acos(target) / tau) ** 2, 0.0
     name, f, grid, values = _scan(t)
     values = values - target
@@ -221,7 +221,7 @@ def _measure_run(calibrations, out_dir: Path, steps_per_half_period: int) -> lis
 
     models = tuple(c.model for c in calibrations)
     # each sphere at the speed whose largest overlap is r/2: far from tunnelling through the wall
-    speeds = [0.5 * m.r / float(theory.max_overlap(1.0, m.m, m.kn, m.gamma_n)) for m in models]
+    speeds = [0.5 * m.r / float(exact.max_overlap(1.0, m.m, m.kn, m.gamma_n)) for m in models]
     slips = [v if m.mu is None else 1e-3 * m.mu * v for v, m in zip(speeds, models, strict=True)]
     initial = np.array([[-v, s, 0.0] for v, s in zip(speeds, slips, strict=True)])
     scene = TwoWalls(models, initial, bounces=1, steps_per_half_period=steps_per_half_period)

@@ -1,13 +1,13 @@
 """What this build's classic wall does to a user's collisions, against the physics they meant.
 
 The classic form ``fix wall/gran hooke/history`` scales its tangential spring by the contact
-radius sqrt(r delta) in this LAMMPS build (:mod:`spinbounce.theory.classic`), so the same
+radius sqrt(r delta) in this LAMMPS build (:mod:`spinbounce.exact.classic`), so the same
 numbers give a different collision than the granular form's ``linear_history`` (the paper's
 model). For one contact model and state, over a ladder of impact speeds, this module sets
 the two side by side: Omega = u'(out)/u'(in) - 1 of the sticking contact (no cap, the
 paper's Eq. 18 definition), the rebound v_t and r omega, and the kinetic energy each gains
 (Eq. 21; > 0 means the wall gave the sphere energy). Both sides come from
-:func:`spinbounce.theory.choose.predict`, the one place that picks a theory: the classic
+:func:`spinbounce.exact.choose.predict`, the one place that picks a theory: the classic
 side with ``wall = classic``, the meant side with ``wall = granular``.
 
 Speeds are given as fractions of the tunnelling speed r sqrt(kn/m), above which the
@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from ..model.contact import ContactModel
-from ..theory import choose, linear
+from ..exact import choose, linear
 
 __all__ = ["TABLE_FRACTIONS", "CURVE_FRACTIONS", "FIGURE_KT_OVER_KN", "LAMMPS_FRACTIONS", "tunnelling_speed",
            "table_speeds", "compare", "omega_curves", "lammps_omegas", "fix_lines"]

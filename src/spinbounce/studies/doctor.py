@@ -2,7 +2,7 @@
 
 Between LAMMPS's 28 Mar 2023 GRANULAR refactor and the upstream fix (LAMMPS PR #5007,
 2026), the classic ``linear_history_classic`` tangential model multiplied kt by the
-contact radius a = sqrt(R_eff delta) (see :mod:`spinbounce.theory.classic`). Each form
+contact radius a = sqrt(R_eff delta) (see :mod:`spinbounce.exact.classic`). Each form
 below runs one collision; the measured Omega = u'(out)/u'(in) - 1 is set beside the
 paper's Omega (Eq. 18) and the contact-radius variant's, and :func:`classify` says which
 it is. :func:`verdict` turns the five answers into an exit status. Both are pure
@@ -22,7 +22,7 @@ from ..lammps.decks import LIBRARY_MARKER, LibraryAtoms, template_environment
 from ..lammps.runner import run_deck
 from ..model.timestep import mid_step_dt
 from ..records import write_atomic
-from ..theory import classic, linear
+from ..exact import classic, linear
 
 __all__ = ["Form", "FORMS", "Check", "classify", "verdict", "run_form", "run_wall", "pair_omega", "diagnose", "EXIT", "UPSTREAM",
            "TOLERANCE"]

@@ -5,7 +5,7 @@ initial spin): the normal restitution e_n = -v_n'/v_n, the tangential restitutio
 e_t = v_t'/v_t (Kharaz's), the centre's rebound angle atan(v_t'/v_n') and the rebound spin
 r omega'/|v|, for a Hookean and a Hertzian wall, each without and with a Coulomb cap. Each
 curve is one batched LAMMPS run (:func:`~spinbounce.pipeline.run_collision`, library route)
-and the theory that applies (:func:`~spinbounce.theory.choose.predict`). Kharaz, Gorham &
+and the theory that applies (:func:`~spinbounce.exact.choose.predict`). Kharaz, Gorham &
 Salman's (2001) alumina sphere on an aluminium-alloy plate, as digitised in other DEM codes
 (:data:`~spinbounce.studies.validation.digitised.KHARAZ_2001`), is drawn with its source,
 with the Hookean model fitted to it.
@@ -25,7 +25,7 @@ import numpy as np
 
 from ..model.scenes import Collision, ContactModel
 from ..pipeline import run_collision
-from ..theory import choose
+from ..exact import choose
 from .validation.digitised import KHARAZ_2001
 from .validation.materials import gamma_n_for_restitution_cut
 

@@ -1,4 +1,4 @@
-"""The closed-form Coulomb solver (:mod:`spinbounce.theory.coulomb`) measured: its agreement
+"""The closed-form Coulomb solver (:mod:`spinbounce.exact.coulomb`) measured: its agreement
 with the scipy oracle over random models and states, and its throughput on one core.
 
 Both are measurements, not checks; tests/test_coulomb_fast.py holds the checks.
@@ -17,7 +17,7 @@ import warnings
 import numpy as np
 
 from ..model.scenes import ContactModel, PhysicsWarning
-from ..theory import coulomb, oracle
+from ..exact import coulomb, oracle
 
 __all__ = ["random_case", "random_cases", "random_cases_3d", "worst_deviation", "agreement",
            "KINDS", "print_agreement", "measure_throughput", "main"]

@@ -24,10 +24,6 @@ import tempfile
 import time
 from pathlib import Path
 
-import numpy as np
-
-from ..compare import STATE
-from ..records import software
 
 __all__ = ["measure_speed", "scene_needs", "SPEED_DEFAULTS"]
 
@@ -68,6 +64,8 @@ def _one_at_a_time(spec, count: int, folder: Path, runner, atoms: str) -> dict:
 
 
 def _batched(spec, folder: Path, workers: int) -> dict:
+    import numpy as np
+    from ..compare import STATE
     from ..lammps.runner import loop_seconds
     from ..sweeps import read_results, run_sweep
 
@@ -89,6 +87,7 @@ def scene_needs(spec, count: int, folder: Path) -> dict:
     (2) padded (:class:`decks.Padding`) with a contact time of free flight before and two
     after, dumping every step: the physics is the same, only the work around it differs.
     """
+    import numpy as np
     from ..lammps.decks import Padding, render_collision
     from ..lammps.runner import run_deck
     from ..model.scenes import Collision
@@ -154,6 +153,7 @@ def measure_speed(n_lmp: int = SPEED_DEFAULTS["n_lmp"], n_inprocess: int = SPEED
                   n_needs: int = 1000, log=print) -> dict:
     """Measure (a), (b) and (c); return rates, errors, shares and the ratios c/a and c/b."""
     from ..model.scenes import Collision
+    from ..records import software
     from ..sweeps import DEFAULT_CHUNK, spec_from_dict
 
     chunk_size = DEFAULT_CHUNK if chunk_size is None else chunk_size

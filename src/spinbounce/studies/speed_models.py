@@ -2,10 +2,10 @@
 
 For each model (the paper's, Coulomb friction in the plane and in 3-D, the Hertzian wall)
 one sweep of the same sampled states runs on one core. Its wall time is split into LAMMPS
-(the rest) and the theory columns (:func:`spinbounce.theory.choose.predict` timed again on
+(the rest) and the theory columns (:func:`spinbounce.exact.choose.predict` timed again on
 the same states); the share of the row checks (:mod:`spinbounce.checks`) and of the step
 probes is reported, and the cost estimate that sizes cluster jobs
-(:mod:`spinbounce.studies.cost`) stands beside the measured time. Ratios to the paper's
+(:mod:`spinbounce.sweeps.cost`) stands beside the measured time. Ratios to the paper's
 sweep carry the result: the machine is shared, so absolute rates drift.
 """
 
@@ -20,7 +20,7 @@ from .. import checks
 from ..fitting import model_of_group
 from ..model import parameters
 from ..model.scenes import STATE_3D
-from ..theory import choose
+from ..exact import choose
 
 __all__ = ["MODELS", "measure_models", "parallel_efficiency", "chunk_jobs"]
 
@@ -62,7 +62,7 @@ def _theory_and_checks_seconds(rows) -> tuple[float, float]:
 
 def _one(name: str, n: int, seed: int, root: Path) -> dict:
     from ..sweeps import read_results, run_sweep
-    from .cost import chunk_cost
+    from ..sweeps.cost import chunk_cost
 
     model, states = MODELS[name]
     spec = _spec(n, model, states, seed)
@@ -124,7 +124,7 @@ def chunk_jobs(n: int = 20_000, seed: int = 0) -> list[dict]:
     import subprocess
     import sys
 
-    from .cost import chunk_cost
+    from ..sweeps.cost import chunk_cost
 
     out = []
     with tempfile.TemporaryDirectory(prefix="spinbounce-bench-jobs-") as folder:

@@ -12,7 +12,7 @@ damping. Sign convention, closed forms and their derivations: :mod:`.tangential_
 
 For each set, beta = -g_t'/g_t against psi = |g_t|/|v_n| (speed 1, no spin) comes from
 (a) one batched LAMMPS run at the default accuracy (:func:`~spinbounce.pipeline.run_collision`,
-library route), (b) the exact Coulomb solver through :func:`~spinbounce.theory.choose.predict`
+library route), (b) the exact Coulomb solver through :func:`~spinbounce.exact.choose.predict`
 and (c) Walton's gross-slip line and the sticking plateau. Hookean contacts scale with |v_n|,
 so beta depends on psi alone.
 """
@@ -27,7 +27,7 @@ import numpy as np
 
 from ..model.scenes import Collision, ContactModel
 from ..pipeline import run_collision
-from ..theory import choose
+from ..exact import choose
 from . import tangential_limits as limits
 from .validation.materials import gamma_n_for_restitution_cut
 
@@ -63,7 +63,7 @@ def ratios(model, points: int) -> np.ndarray:
 
 
 def solver_curve(model, psi) -> np.ndarray:
-    """beta from the exact Coulomb solver (theory.choose.predict)."""
+    """beta from the exact Coulomb solver (exact.choose.predict)."""
     initial = limits.states_at(psi)
     return limits.beta(initial, choose.predict(model, initial))
 

@@ -64,7 +64,7 @@ import math
 import numpy as np
 
 from ..model.parameters import SceneError
-from ..theory import rigid_body
+from ..exact import rigid_body
 
 __all__ = ["slip_rate", "beta", "walton_scale", "gross_slip", "plateau", "switch_ratio", "gross_slip_onset",
            "plateau_slope", "is_magic", "states_at"]
@@ -108,7 +108,7 @@ def walton_scale(model) -> float:
 
 
 def gross_slip(model, psi) -> np.ndarray:
-    """Walton's gross-slip branch, beta = -1 + W/psi: :func:`theory.rigid_body.gross_slip`'s
+    """Walton's gross-slip branch, beta = -1 + W/psi: :func:`exact.rigid_body.gross_slip`'s
     outcome of the unit-speed states at psi (a test holds it to the line)."""
     walton_scale(model)  # refuses a model the branch is not exact for
     initial = states_at(np.atleast_1d(psi))

@@ -27,8 +27,8 @@ from ..model.parameters import SceneError
 from ..model.scenes import ContactModel
 from ..model.timestep import mid_step_dt
 from ..pipeline import ResultError, prepare_run_dir
-from .. import theory
-from ..theory import choose
+from .. import exact
+from ..exact import choose
 
 __all__ = ["TwoWalls", "TwoWallsResult", "mirror", "matrix_product", "theory_path", "run_two_walls",
            "FLIGHT_STEPS"]
@@ -63,7 +63,7 @@ def matrix_product(model: ContactModel, bounces: int, width: int = 3) -> np.ndar
     """The map of ``bounces`` successive collisions, bottom wall first: ... M_top M_bottom.
 
     M_top = R M R (R: :func:`mirror`); only for models with one matrix (Eq. 18 or its exact
-    damped form), else :class:`~spinbounce.theory.choose.NoMatrix`.
+    damped form), else :class:`~spinbounce.errors.NoMatrix`.
     """
     bottom = choose.matrix(model, three_d=width == 6)
     r = mirror(width)
@@ -144,7 +144,7 @@ class TwoWalls:
             # a contact of (N + 1/2) steps and a flight of (K + 1/2) steps: the next contact starts
             # at the same phase of a step as this one
             set_(self, "gap", 2.0 * r + slowest * (FLIGHT_STEPS + 0.5) * self.dt)
-        reach = max(float(theory.max_overlap(v, m.m, m.kn, m.gamma_n))
+        reach = max(float(exact.max_overlap(v, m.m, m.kn, m.gamma_n))
                     for v, m in zip(self.initial[:, 0], models, strict=True))
         if reach >= r:
             raise SceneError("v_n", float(self.initial[:, 0].min()), f"the overlap would reach {reach:.6g} >= r: "

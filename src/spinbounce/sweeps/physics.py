@@ -5,10 +5,14 @@ fastest head-on impact, built as the runs will build them."""
 from __future__ import annotations
 
 import warnings
+from typing import TYPE_CHECKING
 
 from ..model.parameters import SceneError
 from ..model.scenes import Collision
-from .spec import SweepError, SweepSpec, _fail
+from .errors import SweepError, fail as _fail
+
+if TYPE_CHECKING:
+    from .spec import SweepSpec
 
 __all__ = ["check_physics"]
 

@@ -26,7 +26,7 @@ from .. import __version__, checks
 from ..model import parameters
 from ..model.scenes import Collision
 from ..stepping import PROBE_SPHERES
-from ..theory import choose
+from ..exact import choose
 from .spec import SweepError, SweepSpec, spec_from_dict
 
 __all__ = ["run_sweep", "run_one_chunk", "chunk_table", "chunk_path", "read_results", "run_chunk", "status_counts"]
@@ -90,7 +90,7 @@ def _wall_columns(columns: dict, spec: SweepSpec, group: int, scene: Collision, 
         columns.update({name: values.to_numpy() for name, values in result.table.drop(columns=["id"]).items()})
         return result.scene.dt, result.scene.nsteps, result.info.loop_seconds
     # a ladder of runs per chunk, extrapolated; each row carries its error estimate
-    from ..studies.tolerance import collide_to_tolerance, collision_frame
+    from ..extrapolation import collide_to_tolerance, collision_frame
 
     extrapolated, finest = collide_to_tolerance(scene.model, scene.v_n, scene.v_t, scene.omega, spec.tolerance,
                                                 run_dir)

@@ -47,6 +47,8 @@ from ..model import parameters
 from ..model.contact import ContactModel
 from ..model.parameters import SceneError
 from ..pairs.kind import scene_of
+from .errors import SweepError, fail as _fail
+from .physics import check_physics
 
 __all__ = ["SweepError", "SweepSpec", "load_spec", "spec_from_dict", "MODEL_KEYS", "DEFAULT_CHUNK", "CHUNK_SECONDS", "MAX_CHUNKS"]
 
@@ -63,7 +65,7 @@ VELOCITY_KEYS = {"components": ("v_n", "v_t"), "polar": ("speed", "angle_deg")}
 TOP_KEYS = ("name", "seed", "chunk_size", "tolerance", "model", "states")
 DEFAULT_CHUNK = 25_000
 #: A sweep that does not set chunk_size gets, per model group, at most DEFAULT_CHUNK collisions a
-#: chunk and at most what the cost model (studies.cost) estimates to run in this many seconds on
+#: chunk and at most what the cost model (sweeps.cost) estimates to run in this many seconds on
 #: one core: a chunk job then asks for a quarter of an hour (the estimate times its margin of 3)
 #: whatever the model, under the SLURM profile's limit (workflows/profiles/slurm/limits.yaml).
 CHUNK_SECONDS = 300.0
@@ -74,14 +76,6 @@ MAX_CHUNKS = 100_000
 SCENE_KEYS = tuple(p.name for p in parameters.SCENE)
 #: How "no value" is written for an optional parameter (mu) in a scene file or a flag.
 NONE = "none"
-
-
-class SweepError(ValueError):
-    """A sweep cannot start: a bad scene file, or an output folder that is not ours."""
-
-
-def _fail(key: str, value, why: str):
-    raise SweepError(f"{key} = {value!r}: {why}")
 
 
 def _number(key: str, value) -> float:
@@ -223,7 +217,7 @@ class SweepSpec:
         smaller of DEFAULT_CHUNK and what runs in CHUNK_SECONDS by the cost estimate."""
         if self.chunk_size is not None:
             return (self.chunk_size,) * len(self.groups)
-        from ..studies.cost import collisions_within
+        from .cost import collisions_within
 
         return tuple(min(DEFAULT_CHUNK, collisions_within(self, g, CHUNK_SECONDS)) for g in range(len(self.groups)))
 
@@ -290,7 +284,7 @@ def _check_top(raw: dict) -> tuple[int, int | None, float | None]:
     chunk_size = _integer("chunk_size", raw["chunk_size"], 1) if "chunk_size" in raw else None
     tolerance = raw.get("tolerance")
     if tolerance is not None:
-        from ..studies.tolerance import check_tolerance
+        from ..extrapolation import check_tolerance
 
         tolerance = _number("tolerance", tolerance)
         try:
@@ -309,8 +303,6 @@ def spec_from_dict(raw: dict) -> SweepSpec:
     mode, n, states = _parse_states(raw.get("states"), tolerance)
     spec = SweepSpec(raw=raw, groups=tuple(groups), seed=seed, chunk_size=chunk_size, tolerance=tolerance,
                      mode=mode, n=n, states=states)
-    from .physics import check_physics
-
     check_physics(spec)  # first: the chunk sizes come from the cost of valid scenes
     chunks = sum(math.ceil(n / size) for size in spec.chunk_sizes)
     if chunks > MAX_CHUNKS:

@@ -10,7 +10,7 @@ from the default runs, the steps per collision the default chooses and the error
 (:mod:`.defaults`; :func:`default_step_table` runs only those). :mod:`.study` runs it all
 with its provenance, :mod:`.report` writes the figure, the JSON record and ACCURACY.md.
 
-Not to be confused with :mod:`spinbounce.studies.tolerance`, which reaches a requested
+Not to be confused with :mod:`spinbounce.extrapolation`, which reaches a requested
 accuracy for one scene by Richardson extrapolation. The two climb the same rungs (the
 study takes them from there), and this study measures the raw orders tolerance assumes.
 

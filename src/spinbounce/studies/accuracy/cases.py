@@ -219,15 +219,15 @@ def _beyond_the_plane_cases(d: ContactModel) -> list[Case]:
              f"{-HERTZ_SPEEDS[-1]:g} to {-HERTZ_SPEEDS[0]:g}, each with the 4 corners of (v_t, r omega): the map "
              "is not linear in v_n, so these states sample the box rather than bound it",
              "Hertzian end: one dt for every sphere, first order; each speed alone at its own mid-step dt, "
-             "second order", {MID: 2.0, ANY: 1.0}, "Eq. 18 with Omega(v_n) (theory.hertz)", rough=(ANY,)),
+             "second order", {MID: 2.0, ANY: 1.0}, "Eq. 18 with Omega(v_n) (exact.hertz)", rough=(ANY,)),
         Case("coulomb", "Coulomb cap mu = 0.5", "collision", ContactModel(mu=0.5),
              tuple(map(tuple, coulomb_states.tolist())),
-             "a finite Coulomb cap (sliding), against the Coulomb oracle (theory.oracle, adaptive DOP853 at "
+             "a finite Coulomb cap (sliding), against the Coulomb oracle (exact.oracle, adaptive DOP853 at "
              "rtol 1e-12 with stick-slip events); 8 corners and 8 states from the box (with sliding the map "
              "is no longer linear, so corners alone need not bound it)",
              "Coulomb cap: no cut at the end, kinks between steps; second order in both forms (v_n is the "
              "defaults': the cap acts on the tangential force only)", {MID: 2.0, EDGE: 2.0},
-             "Coulomb oracle (theory.oracle.bounce_many)", rough=(MID, EDGE)),
+             "Coulomb oracle (exact.oracle.bounce_many)", rough=(MID, EDGE)),
     ]
 
 

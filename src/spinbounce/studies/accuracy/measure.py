@@ -1,7 +1,7 @@
 """Runs over dt: each case's ladder of steps, its error against theory, steps and seconds.
 
 A level is n steps per half-period of the case's fastest contact mode. The collision's
-step comes from the rungs shared with :mod:`spinbounce.studies.tolerance` (the mid-step
+step comes from the rungs shared with :mod:`spinbounce.extrapolation` (the mid-step
 rule itself lives in :mod:`spinbounce.model.timestep`); the other forms are the study's own
 contrasts: the end on a step boundary, and one dt for spheres that end at their own times.
 Beside the ladder, each case runs once at the step the scenes choose by default
@@ -20,7 +20,7 @@ from ...model.scenes import STATE_ARGS, Collision, ContactModel, Frozen
 from ...checks import STATUSES
 from ...model.timestep import ACCURACY, FROZEN_ACCURACY, mid_step_dt, steps_through
 from ...pipeline import run_collision, run_frozen
-from ..tolerance import collision_rung_dt, contact_steps, frozen_rung_dt
+from ...extrapolation import collision_rung_dt, contact_steps, frozen_rung_dt
 from .cases import ANY, EDGE, FROZEN, FROZEN_T_END, FROZEN_Z, MID, Case
 
 __all__ = ["FULL_LADDER", "QUICK_LADDER", "DEFAULT_FORMS", "ladder", "collision_dt", "frozen_dt", "run_default",

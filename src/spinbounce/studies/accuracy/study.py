@@ -169,7 +169,7 @@ def run_study(quick: bool = False, runs: Path | None = None, log=print) -> Study
         "quick": quick,
         "parameters": _parameters(quick, steps),
         "error": "largest |LAMMPS - theory| over the case's states and state columns (frozen: over the "
-                 "time series); theory: each case's own (Eq. 18, Eq. 10, theory.hertz, the Coulomb oracle)",
+                 "time series); theory: each case's own (Eq. 18, Eq. 10, exact.hertz, the Coulomb oracle)",
         "runs": str(root) if runs is not None else None,
         "study_seconds": time.perf_counter() - started,
     }

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ... import theory
+from ... import exact
 from ...model.scenes import ContactModel
-from ...theory import classic
+from ...exact import classic
 from .ledger import COLLISION_TOL, Claim, Runs, checked, final, g
 
 #: Impact speeds that show Omega's dependence on v_n (all below the tunnelling speed 1.58).
@@ -24,7 +24,7 @@ def classic_wall_is_eq1(runs: Runs) -> Claim:
     measured = final(t)[:, 1] + final(t)[:, 2] - 1.0
     contact_radius = np.array([classic.Omega_eff(-v, model.kn, model.kt, model.alpha, model.r, model.m)
                                for v in speeds])
-    paper = theory.Omega(model.kn, model.kt, model.alpha)
+    paper = exact.Omega(model.kn, model.kt, model.alpha)
     agrees = bool(np.abs(measured - contact_radius).max() <= COLLISION_TOL)
     c = Claim("lammps-classic-wall", "LAMMPS's implementation of the Cundall-Strack contact (Silbert et al.'s "
               "hooke/history) is the model of Eq. 1, with Omega = -1.2838 at the paper's parameters (in the LAMMPS "
@@ -33,7 +33,7 @@ def classic_wall_is_eq1(runs: Runs) -> Claim:
     c.verdict = checked(agrees and abs(measured[1] - paper) > 100 * COLLISION_TOL, "contradicted")
     c.evidence = (f"this build's fix wall/gran hooke/history at |v_n| = {', '.join(g(v, 3) for v in speeds)}: "
                   f"Omega = {', '.join(g(x, 6) for x in measured)} (LAMMPS), "
-                  f"{', '.join(g(x, 6) for x in contact_radius)} (spring kt sqrt(r delta), theory.classic), "
+                  f"{', '.join(g(x, 6) for x in contact_radius)} (spring kt sqrt(r delta), exact.classic), "
                   f"against Eq. 18's {g(paper, 6)} at every speed; the granular form's linear_history and the "
                   "classic pair style gran/hooke/history give Eq. 1 (spinbounce doctor); the classic wall gave it "
                   "before the March 2023 refactor of LAMMPS's GRANULAR package and again after its fix upstream "

@@ -4,28 +4,28 @@ from __future__ import annotations
 
 import numpy as np
 
-from ... import theory
+from ...exact import linear
 from ...fitting import fit_omega
 from ...model.scenes import ContactModel
 from .ledger import COLLISION_TOL, Claim, Runs, checked, final, g, initial, maximise, random_states, verdict
 
 ALPHA = 0.4
 #: kt/kn where the contact lasts n half-periods of the slip: tau sqrt(Q) = n pi (Sec. 4).
-HARMONIC = {n: n * n * theory.magic_kt_over_kn(ALPHA) for n in (1, 2, 3)}
+HARMONIC = {n: n * n * linear.magic_kt_over_kn(ALPHA) for n in (1, 2, 3)}
 
 
 def _fitted_omega(runs: Runs, name: str, model: ContactModel, n: int, seed: int):
     """(fitted Omega, largest |f|) of n random LAMMPS collisions."""
     _, t = runs.collide(name, model, *random_states(n, seed))
     fitted = fit_omega(initial(t), final(t), model.alpha)[0]
-    worst_f = float(np.abs(theory.dissipation(initial(t), final(t), model.m, model.alpha)).max())
+    worst_f = float(np.abs(linear.dissipation(initial(t), final(t), model.m, model.alpha)).max())
     return fitted, worst_f
 
 
 def omega_default(runs: Runs) -> Claim:
     model = ContactModel()
     measured, _ = _fitted_omega(runs, "omega-default", model, 400, 1)
-    exact = theory.Omega(model.kn, model.kt, model.alpha)
+    exact = linear.Omega(model.kn, model.kt, model.alpha)
     c = Claim("omega", "Omega = -1.2838 at m = 1, r = 0.5, kn = 10, kt = 1, alpha = 2/5", "Eq. 18-19, Sec. 4",
               -1.2838, measured, exact, runs=["omega-default"])
     c.verdict = verdict(-1.2838, measured, exact, 5e-5, COLLISION_TOL)
@@ -40,10 +40,10 @@ def omega_sign(runs: Runs) -> Claim:
     names = [f"omega-sign-{ratio:.4g}" for ratio in ratios]
     fitted = np.array([_fitted_omega(runs, name, ContactModel(kt=10.0 * ratio), 60, 2)[0]
                        for name, ratio in zip(names, ratios, strict=True)])
-    exact = np.array([theory.Omega(10.0, 10.0 * ratio, ALPHA) for ratio in ratios])
+    exact = np.array([linear.Omega(10.0, 10.0 * ratio, ALPHA) for ratio in ratios])
     # Omega(0) = 0 is the frictionless wall; past it, over [0.02, 2], the one maximum is the
     # first even harmonic (Omega repeats beyond it)
-    at, top = maximise(lambda x: theory.Omega(1.0, x, ALPHA), 0.02, 2.0)
+    at, top = maximise(lambda x: linear.Omega(1.0, x, ALPHA), 0.02, 2.0)
     c = Claim("omega-sign", "Omega <= 0 for all kt and kn", "Sec. 4, after Eq. 19", "<= 0",
               f"max {g(fitted.max(), 4)} over {len(ratios)} kt/kn in [0.02, 2]",
               f"max {top:.0e} at kt/kn = {at:.6f}", runs=names)
@@ -113,14 +113,14 @@ def rough_no_spin(runs: Runs) -> Claim:
     t = _rough_run(runs, "rough-no-spin", vt, 0.0)
     ratio_w = t["r_omega_final"].to_numpy() / vt
     ratio_v = t["vt_final"].to_numpy() / vt
-    exact = float(theory.rough_matrix(ALPHA)[2, 1])
+    exact = float(linear.rough_matrix(ALPHA)[2, 1])
     c = Claim("rough-spin", "rough sphere, omega(0) = 0: r omega(inf) = -10/7 v_t(0) (and v_t(inf) = 3/7 v_t(0))",
               "Sec. 4 text, Eq. 20", -10 / 7, float(ratio_w[np.argmax(np.abs(ratio_w - exact))]), exact,
               runs=["rough-no-spin"])
     c.verdict = verdict(-10 / 7, c.lammps, exact, 1e-12, COLLISION_TOL)
     c.evidence = (f"LAMMPS r omega(inf)/v_t(0) = {', '.join(f'{x:.6f}' for x in ratio_w)}; "
                   f"v_t(inf)/v_t(0) = {', '.join(f'{x:.6f}' for x in ratio_v)} "
-                  f"(Eq. 20: {theory.rough_matrix(ALPHA)[1, 1]:.6f})")
+                  f"(Eq. 20: {linear.rough_matrix(ALPHA)[1, 1]:.6f})")
     return c
 
 
@@ -128,7 +128,7 @@ def rough_no_slide(runs: Runs) -> Claim:
     rw = np.array([-2.0, -1.0, 1.0, 2.0])
     t = _rough_run(runs, "rough-spin-only", 0.0, rw)
     ratio = t["vt_final"].to_numpy() / rw
-    exact = float(theory.rough_matrix(ALPHA)[1, 2])
+    exact = float(linear.rough_matrix(ALPHA)[1, 2])
     c = Claim("rough-vt", "rough sphere, v_t(0) = 0: v_t(inf) = -1/7 r omega(0)", "Sec. 4 text",
               -1 / 7, float(ratio[np.argmax(np.abs(ratio - exact))]), exact, runs=["rough-spin-only"])
     c.verdict = verdict(-1 / 7, c.lammps, exact, 1e-12, COLLISION_TOL)
@@ -146,7 +146,7 @@ def _angles(vn_in, vt_in, vn_out, vt_out) -> dict[str, tuple[np.ndarray, np.ndar
 def reflection_angle(runs: Runs) -> Claim:
     vt = np.array([0.3, 1.0, 2.0])
     t = _rough_run(runs, "rough-angles", vt, 0.0)
-    rough = theory.rough_matrix(ALPHA)
+    rough = linear.rough_matrix(ALPHA)
     measured = _angles(-1.0, vt, t["vn_final"].to_numpy(), t["vt_final"].to_numpy())
     exact = _angles(-1.0, vt, rough[0, 0] * -1.0, rough[1, 1] * vt)
 

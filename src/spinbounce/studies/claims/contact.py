@@ -7,7 +7,7 @@ import math
 import numpy as np
 
 from ...model.scenes import ContactModel
-from ...theory import hertz
+from ...exact import hertz
 from .ledger import Claim, Runs, checked, contact_time, damped_dt, g
 
 #: Speeds of the contact-time runs: a factor 30 in |v_n|.

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ... import theory
+from ...exact import linear
 from ...fitting import fit_matrix, fit_omega
 from ...model.scenes import ContactModel
 from .ledger import COLLISION_TOL, Claim, Runs, checked, damped_dt, final, initial, maximise, random_states, verdict
@@ -21,8 +21,8 @@ EQ23_STATE = (-1.0, -1.0, 2.0)
 def eq22_error(gamma_t: float, kt_over_kn: float, kn: float = 10.0) -> float:
     """Eq. 22's Omega minus the exact damped Omega (m = 1, alpha = 2/5)."""
     kt = kn * kt_over_kn
-    return (theory.Omega_paper_damped(1.0, kn, kt, ALPHA, gamma_t)
-            - theory.Omega_exact(1.0, kn, kt, ALPHA, gamma_t))
+    return (linear.Omega_paper_damped(1.0, kn, kt, ALPHA, gamma_t)
+            - linear.Omega_exact(1.0, kn, kt, ALPHA, gamma_t))
 
 
 def eq22_worst(kt_over_kn: float) -> tuple[float, float]:
@@ -38,7 +38,7 @@ def eq22(runs: Runs) -> Claim:
         name = f"eq22-{ratio:g}"
         _, t = runs.collide(name, model, *random_states(100, 4), dt=damped_dt(model))
         fitted = fit_omega(initial(t), final(t), ALPHA)[0]
-        paper = theory.Omega_paper_damped(model.m, model.kn, model.kt, ALPHA, gamma_t)
+        paper = linear.Omega_paper_damped(model.m, model.kn, model.kt, ALPHA, gamma_t)
         rows.append((ratio, gamma_t, error, paper, fitted, model.Omega))
     _, gamma_t, error, paper, fitted, exact = rows[0]
     c = Claim("eq22", "damped Omega, Eq. 22: exp(-pi gamma_t/sqrt(m kn)) cos(...) - 1", "Eq. 22, Sec. 5",
@@ -98,18 +98,18 @@ def eq23_faults(alpha: float = ALPHA) -> dict[str, float]:
     return {"vt_over_r_omega": float(np.max(change[:, 1] / change[:, 2])),
             "slip_left": float(np.max((change[:, 1] + change[:, 2]) / (states[:, 1] + states[:, 2]) + 1.0)),
             "rolling_moved": float(np.abs(rolling_change).max()),
-            "energy_gain": float(theory.energy_change(state, printed @ state, 1.0, alpha))}
+            "energy_gain": float(linear.energy_change(state, printed @ state, 1.0, alpha))}
 
 
 def eq23_matrix(runs: Runs) -> Claim:
-    printed, correct = printed_eq23(), theory.rolling_matrix(ALPHA)
+    printed, correct = printed_eq23(), linear.rolling_matrix(ALPHA)
     model = ContactModel(gamma_t=ROLLING_GAMMA_T)
     vn, vt, omega = random_states(200, 6)
     state = np.array(EQ23_STATE)
     _, t = runs.collide("eq23", model, np.append(vn, state[0]), np.append(vt, state[1]),
                         np.append(omega, state[2] / model.r), dt=damped_dt(model))
     fitted, _, _ = fit_matrix(initial(t), final(t))
-    lammps_gain = float(theory.energy_change(initial(t)[-1], final(t)[-1], model.m, ALPHA))
+    lammps_gain = float(linear.energy_change(initial(t)[-1], final(t)[-1], model.m, ALPHA))
     faults = eq23_faults()
     c = Claim("eq23", "rolling-collision matrix, Eq. 23 (bottom row -alpha/(1+alpha), 1 - alpha/(1+alpha))",
               "Eq. 23", f"({printed[2, 1]:.4f}, {printed[2, 2]:.4f})", f"({fitted[2, 1]:.4f}, {fitted[2, 2]:.4f})",
@@ -138,12 +138,12 @@ def rolling_vs_rough(runs: Runs) -> Claim:
     """Sec. 5: 'the rolling collisions exhibit even larger deviations from the frictionless case than
     do the energy conserving collisions of the rough sphere' (Fig. 5)."""
     model, t_rolling = rolling_run(runs)
-    rough = ContactModel(kt=10.0 * theory.magic_kt_over_kn(ALPHA))
+    rough = ContactModel(kt=10.0 * linear.magic_kt_over_kn(ALPHA))
     _, t_rough = runs.collide("rough-vs-rolling", rough, *random_states(100, 5))
     ratio = _deviation(t_rough) / _deviation(t_rolling)
     exact = -2.0 / model.Omega  # both changes are Omega/(1+alpha) (alpha, 1) u'(0): Eq. 19
     printed_change = (printed_eq23() - np.eye(3))[1:, 1]  # per unit u'(0): the rows' coefficients agree
-    rough_change = (theory.rough_matrix(ALPHA) - np.eye(3))[1:, 1]
+    rough_change = (linear.rough_matrix(ALPHA) - np.eye(3))[1:, 1]
     printed_ratio = float(np.hypot(*rough_change) / np.hypot(*printed_change))
     c = Claim("rolling-vs-rough", "rolling collisions (Eq. 23) deviate more from the frictionless case than rough-"
               "sphere ones (Eq. 20)", "Sec. 5 after Eq. 23, Fig. 5", "rough/rolling < 1",

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ... import theory
+from ... import exact
 from ...model.scenes import ContactModel
 from .damping import ALPHA, ROLLING_GAMMA_T, printed_eq23
 from .ledger import COLLISION_TOL, Claim, Runs, checked, damped_dt, final, initial, maximise, random_states, verdict
@@ -23,7 +23,7 @@ def no_slip_no_loss(runs: Runs) -> Claim:
         model = ContactModel(kt=10.0 * ratio)
         vt = np.array([-1.0, 0.4, 1.7])
         _, t = runs.collide(f"f-zero-{ratio:.4g}", model, -0.6, vt, -vt / model.r)
-        values.append(np.abs(theory.dissipation(initial(t), final(t), model.m, model.alpha)).max())
+        values.append(np.abs(exact.dissipation(initial(t), final(t), model.m, model.alpha)).max())
     worst = float(max(values))
     c = Claim("f-zero", "f = 0 when the initial slip is zero (for every kt/kn)", "Sec. 5, Fig. 6",
               0.0, worst, 0.0, runs=[f"f-zero-{r:.4g}" for r in ratios])
@@ -34,7 +34,7 @@ def no_slip_no_loss(runs: Runs) -> Claim:
 
 def loss_bracket(gamma_t: float, kt_over_kn: float) -> float:
     """1 - (1 + Omega)^2: f is m alpha u'(0)^2 times this over 2 (1+alpha) E(0) (Eqs. 18, 21)."""
-    omega = theory.Omega_exact(1.0, 10.0, 10.0 * kt_over_kn, ALPHA, gamma_t)
+    omega = exact.Omega_exact(1.0, 10.0, 10.0 * kt_over_kn, ALPHA, gamma_t)
     return 1.0 - (1.0 + omega) ** 2
 
 
@@ -52,7 +52,7 @@ def best_reduction() -> tuple[float, float, float]:
 
 
 def _f(t) -> np.ndarray:
-    return theory.dissipation(initial(t), final(t), 1.0, ALPHA)
+    return exact.dissipation(initial(t), final(t), 1.0, ALPHA)
 
 
 def _pair(runs: Runs, name: str, kt_over_kn: float, gamma_t: float, states):
@@ -72,9 +72,9 @@ def friction_less_dissipation(runs: Runs) -> Claim:
     g0, g1 = _pair(runs, "f-moderate", ratio, gamma_t, states)
     measured = float(g1.sum() / g0.sum())  # f(gamma_t)/f(0) is the same for every state
     spin = np.array(SPIN_STATE)
-    printed = float(theory.dissipation(spin, printed_eq23() @ spin, 1.0, ALPHA))
+    printed = float(exact.dissipation(spin, printed_eq23() @ spin, 1.0, ALPHA))
     every = np.column_stack(states) * np.array([1.0, 1.0, R])
-    printed_less = float(np.mean(theory.dissipation(every, every @ printed_eq23().T, 1.0, ALPHA) < f0))
+    printed_less = float(np.mean(exact.dissipation(every, every @ printed_eq23().T, 1.0, ALPHA) < f0))
     c = Claim("friction-dissipation", "a very large gamma_t can give less dissipation than gamma_t = 0, for a range "
               "of kt/kn", "Sec. 5 (Fig. 6), Conclusions", "f(large gamma_t) < f(0)",
               f"f(40) < f(0) in {np.mean(f40 < f0):.0%}; least f/f(0) {measured:.4f}",

@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from ... import theory
+from ...exact import linear
 from ...model.scenes import ContactModel
 from .ledger import FROZEN_TOL, Claim, Runs, verdict
 
@@ -30,7 +30,7 @@ def frozen_mean_rolling(runs: Runs) -> Claim:
 
 def _far_end_miss(vt: np.ndarray, rw: np.ndarray, vt0: float, rw0: float, alpha: float) -> float:
     """How far the trajectory's extent is from the segment between the start and Eq. 12's far end."""
-    far_vt, far_rw = theory.frozen_extremes(vt0, rw0, alpha)
+    far_vt, far_rw = linear.frozen_extremes(vt0, rw0, alpha)
     return max(abs(vt.min() - min(vt0, far_vt)), abs(vt.max() - max(vt0, far_vt)),
                abs(rw.min() - min(rw0, far_rw)), abs(rw.max() - max(rw0, far_rw)))
 
@@ -69,11 +69,11 @@ def decay_rate(runs: Runs) -> Claim:
     model = ContactModel(gamma_t=gamma_t)
     dt = 2e-4  # first order in dt with damping: the fitted rate is good to ~1e-5 here
     _, t = runs.frozen("decay-rate", model, z=0.1, v_t=1.0, omega=1.0 / model.r, t_end=12.0, dt=dt, every=5)
-    means = theory.frozen_means(1.0, 1.0, model.alpha)
+    means = linear.frozen_means(1.0, 1.0, model.alpha)
     excursion = (t["vt"] - means[0]).to_numpy()
     peaks = _peaks(t["t"].to_numpy(), np.abs(excursion))
     rate = -np.polyfit(peaks[:, 0], np.log(peaks[:, 1]), 1)[0]
-    exact = theory.damping_rate(gamma_t, model.m, model.alpha)
+    exact = linear.damping_rate(gamma_t, model.m, model.alpha)
     c = Claim("decay-rate", "with gamma_t > 0 the frozen oscillation decays as exp(-gamma_t t/m)",
               "Sec. 5, before Eq. 22", gamma_t / model.m, float(rate), exact, runs=["decay-rate"])
     c.verdict = verdict(gamma_t / model.m, float(rate), exact, 1e-6, 1e-3, approx_tol=0.02)

@@ -2,7 +2,7 @@
 
 For two free spheres the slip obeys u'' = -kt K u with K = 1/m_a + 1/m_b + r_a^2/I_a +
 r_b^2/I_b, the contact lasts pi sqrt(m*/kn), and Omega = cos(pi sqrt((kt/kn) m* K)) - 1
-(:mod:`spinbounce.theory.pair`, Eq. 18 with m -> m*). With alpha_a = alpha_b = alpha,
+(:mod:`spinbounce.exact.pair`, Eq. 18 with m -> m*). With alpha_a = alpha_b = alpha,
 m* K = (1 + alpha)/alpha, so Omega is Eq. 18's for that alpha.
 
 Measured head-on (no tangential velocity of the centres) with both spheres spinning, so
@@ -15,8 +15,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ... import theory
-from ...theory import pair as planar
+from ...exact import linear
+from ...exact import pair as planar
 from .ledger import COLLISION_TOL, Claim, Runs, checked, g
 
 __all__ = ["equal_alpha", "RATIOS", "PLANAR_PRECISION"]
@@ -58,11 +58,11 @@ def equal_alpha(runs: Runs) -> Claim:
     pairs = _pairs()
     table = run_pairs(PairBatch(pairs), runs.root / "pair-equal-alpha", record=False).table
     lammps, exact = _slip_ratio(table, pairs, ""), _slip_ratio(table, pairs, "_exact")
-    wall = np.array([theory.Omega(10.0, 1.0, p.a.alpha) for p in pairs])
+    wall = np.array([linear.Omega(10.0, 1.0, p.a.alpha) for p in pairs])
     solid = slice(0, len(RATIOS))  # the alpha = 2/5 pairs: the table's numbers
     worst = int(np.argmax(np.abs(lammps[solid] - wall[solid])))
     c = Claim("pair-equal-alpha", "two spheres of equal alpha have the wall's Omega whatever their masses and "
-              "radii (m* K = (1 + alpha)/alpha)", "theory/pair.py: Eq. 18 with m -> m*, alpha -> alpha_eq",
+              "radii (m* K = (1 + alpha)/alpha)", "exact/pair.py: Eq. 18 with m -> m*, alpha -> alpha_eq",
               float(wall[0]), float(lammps[worst]), float(exact[worst]), runs=["pair-equal-alpha"])
     agree, off = np.abs(lammps - exact).max(), np.abs(exact - wall).max()  # over all six pairs
     c.verdict = checked(agree <= COLLISION_TOL, "reproduced" if off <= PLANAR_PRECISION else "contradicted")

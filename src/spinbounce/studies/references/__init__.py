@@ -14,18 +14,51 @@ the version number in their first line, so a release does not invalidate them bu
 changed command does.
 
 References are written only by :func:`regenerate` (``spinbounce references
---regenerate``); :func:`check` (:mod:`.check`) and the tests run into throw-away folders
+--regenerate``); :func:`check` (:mod:`.checker`) and the tests run into throw-away folders
 and only read the stored files.
 """
 
-from .cases import CASES, ReferenceCase, case_by_name, tolerances_for
-from .check import CheckReport, check, format_report
-from .deviations import Deviation, Violation, compare_tables, deviations
-from .golden import GOLDEN_DECKS, GoldenDeck, compare_decks, normalise_deck, render_golden
-from .store import (DECKS_DIR, DEFAULT_DIR, FORMAT, MANIFEST, REGENERATE_COMMAND, compare_manifest, expected_files,
-                    manifest, read_manifest, regenerate)
-from .tables import read_table, reference_table, run_case, write_table
-from .tolerances import COLLISION_MU_TOLERANCES, COLLISION_TOLERANCES, FROZEN_TOLERANCES, MEASUREMENTS, Tolerance
+import importlib
+
+#: Where each name lives: importing the package loads none of its modules (the command's
+#: ``--help`` reads the case names only), a name's module loads on first use.
+_WHERE = {
+    "CASES": "cases",
+    "COLLISION_MU_TOLERANCES": "tolerances",
+    "COLLISION_TOLERANCES": "tolerances",
+    "CheckReport": "checker",
+    "DECKS_DIR": "store",
+    "DEFAULT_DIR": "cases",
+    "Deviation": "deviations",
+    "FORMAT": "store",
+    "FROZEN_TOLERANCES": "tolerances",
+    "GOLDEN_DECKS": "golden",
+    "GoldenDeck": "golden",
+    "MANIFEST": "store",
+    "MEASUREMENTS": "tolerances",
+    "REGENERATE_COMMAND": "store",
+    "ReferenceCase": "cases",
+    "Tolerance": "tolerances",
+    "Violation": "deviations",
+    "case_by_name": "cases",
+    "check": "checker",
+    "compare_decks": "golden",
+    "compare_manifest": "store",
+    "compare_tables": "deviations",
+    "deviations": "deviations",
+    "expected_files": "store",
+    "format_report": "checker",
+    "manifest": "store",
+    "normalise_deck": "golden",
+    "read_manifest": "store",
+    "read_table": "tables",
+    "reference_table": "tables",
+    "regenerate": "store",
+    "render_golden": "golden",
+    "run_case": "tables",
+    "tolerances_for": "cases",
+    "write_table": "tables",
+}
 
 __all__ = [
     "CASES",
@@ -64,3 +97,9 @@ __all__ = [
     "tolerances_for",
     "write_table",
 ]
+
+
+def __getattr__(name: str):  # no name here is also a module's: importing one would hide it
+    if name in _WHERE:
+        return getattr(importlib.import_module(f".{_WHERE[name]}", __name__), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -5,14 +5,18 @@ from __future__ import annotations
 import dataclasses
 import math
 from dataclasses import dataclass, field
+from pathlib import Path
 
-from ... import theory
+from ... import exact
 from ...model.timestep import mid_step_dt
 from ...model.scenes import Collision, ContactModel, Frozen
 from ...records import json_ready
 from .tolerances import COLLISION_MU_TOLERANCES, COLLISION_TOLERANCES, FROZEN_TOLERANCES, Tolerance
 
 __all__ = ["CASES", "ReferenceCase", "case_by_name", "tolerances_for"]
+
+#: Where the references live, relative to the repository's top folder.
+DEFAULT_DIR = Path("tests") / "reference"
 
 
 # (v_n, v_t, omega) per sphere: head-on, pure spin, mixed signs, near-rolling, glancing.
@@ -105,11 +109,11 @@ CASES: tuple[ReferenceCase, ...] = (
     ReferenceCase("defaults", "collision", "the paper's model: m = 1, r = 0.5, alpha = 2/5, kn = 10, kt = 1",
                   states=_STANDARD),
     ReferenceCase("magic_ratio", "collision", "kt/kn = alpha/(1 + alpha) = 2/7: Omega = -2, energy conserved",
-                  model={"kt": _KN * theory.magic_kt_over_kn(0.4)}, states=_STANDARD),
+                  model={"kt": _KN * exact.magic_kt_over_kn(0.4)}, states=_STANDARD),
     ReferenceCase("alpha_0.1", "collision", "alpha = 0.1: mass near the centre, the rigid-body route",
                   model={"alpha": 0.1}, states=_STANDARD),
     ReferenceCase("shell_magic", "collision", "alpha = 2/3 (thin shell) at its magic ratio kt/kn = 2/5",
-                  model={"alpha": 2.0 / 3.0, "kt": _KN * theory.magic_kt_over_kn(2.0 / 3.0)}, states=_STANDARD),
+                  model={"alpha": 2.0 / 3.0, "kt": _KN * exact.magic_kt_over_kn(2.0 / 3.0)}, states=_STANDARD),
     ReferenceCase("damped_tangential", "collision", "tangential damping gamma_t = 0.3, no normal damping",
                   model={"gamma_t": 0.3}, states=_STANDARD),
     ReferenceCase("damped_normal", "collision", "normal damping gamma_n = 1 (restitution 0.60) with gamma_t = 0.2",

@@ -13,7 +13,7 @@ from pathlib import Path
 
 from ...model import parameters
 from ...records import json_ready, software, to_json, write_atomic
-from .cases import CASES
+from .cases import CASES, DEFAULT_DIR
 from .deviations import Violation
 from .golden import GOLDEN_DECKS, render_golden
 from .tables import run_case, write_table
@@ -24,8 +24,6 @@ __all__ = ["DECKS_DIR", "DEFAULT_DIR", "FORMAT", "MANIFEST", "REGENERATE_COMMAND
 
 MANIFEST = "MANIFEST.json"
 DECKS_DIR = "decks"
-#: Where the references live, relative to the repository's top folder.
-DEFAULT_DIR = Path("tests") / "reference"
 REGENERATE_COMMAND = "spinbounce references --regenerate --dir tests/reference"
 #: Bumped when the layout of the stored files changes.
 FORMAT = 1

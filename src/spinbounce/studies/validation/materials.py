@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from ... import theory
+from ... import exact
 from .sources import KRATOS, YADE_T2
 
 __all__ = ["AL_ALLOY", "ALUMINA", "AL_WALL_T4", "SOLID", "STEEL", "Material", "gamma_n_for_restitution_cut",
@@ -81,7 +81,7 @@ def hookean_matching_hertz(material: Material, r: float, v_n: float,
 def gamma_n_for_restitution_cut(e: float, m: float, kn: float) -> float:
     """gamma_n giving restitution ``e`` when the normal force is never tensile (limit_damping).
 
-    :func:`theory.restitution` with ``tensile=False`` rises monotonically as gamma_n falls,
+    :func:`exact.restitution` with ``tensile=False`` rises monotonically as gamma_n falls,
     so bisection between 0 (e = 1) and critical damping finds it to round-off.
     """
     if not 0.0 < e <= 1.0:
@@ -91,7 +91,7 @@ def gamma_n_for_restitution_cut(e: float, m: float, kn: float) -> float:
     lo, hi = 0.0, 2.0 * math.sqrt(m * kn) * (1.0 - 1e-12)
     for _ in range(200):
         mid = 0.5 * (lo + hi)
-        if theory.restitution(m, kn, mid, tensile=False) > e:
+        if exact.restitution(m, kn, mid, tensile=False) > e:
             lo = mid
         else:
             hi = mid

@@ -12,13 +12,13 @@ Chung & Ooi (2011), Granular Matter 13:643, number their two-sphere tests 1, 7 a
   against a sphere five times larger and 1000 times denser, at rest. Published statement:
   the bigger and denser the second sphere, the more the test resembles the sphere-wall one;
   here a's outcome is checked against the wall's exact stick-slip theory with the same cap
-  (:mod:`spinbounce.theory.choose`), which it reaches within the planar theory's model
+  (:mod:`spinbounce.exact.choose`), which it reaches within the planar theory's model
   error: b is heavy but still curved, and the line of centres' turn moves a's outcome.
 
 Each scene's pairs run in one LAMMPS batch (:func:`spinbounce.pairs.run_pairs`) and every
 pair is also checked against the exact reference of what LAMMPS integrates (within the
 default accuracy, 1e-4 of the pair's speed; with tests 7 and 8's Coulomb cap, mu = 0.4, the
-capped reference :mod:`spinbounce.theory.pair_capped`) and set beside the planar theory.
+capped reference :mod:`spinbounce.exact.pair_capped`) and set beside the planar theory.
 Test 8's published curves are not read here (only their statement, the wall limit).
 Thornton's oblique sphere-sphere results: no source giving their parameters was found.
 
@@ -37,7 +37,7 @@ import pandas as pd
 
 from ...model.contact import ContactModel
 from ...model.timestep import ACCURACY
-from ...theory import pair as planar
+from ...exact import pair as planar
 from .materials import AL_ALLOY, SOLID, Material, hertz_contact_time, mindlin_ratio
 from .sources import KRATOS_BENCHMARKS, PYSPH_T8, YADE_T1
 
@@ -163,7 +163,7 @@ def _test_8():
 def _wall_limit(batch, table):
     """a's (v_n, v_t, r omega) against the wall's exact theory for the same sphere and contact (and cap)."""
     from ...pairs.kind import wall_frame
-    from ...theory import choose
+    from ...exact import choose
 
     a, law = batch.pairs[0].a, batch.contact.law()
     model = ContactModel(m=a.m, r=a.r, alpha=a.alpha, kn=law["kn"], kt=law["kt"], gamma_n=law["gamma_n"],

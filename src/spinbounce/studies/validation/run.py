@@ -1,6 +1,6 @@
 """Running a benchmark: every series in one LAMMPS batch at a refined step, and once at
 twice that refinement for a convergence estimate, tabulated beside the Coulomb oracle
-(:mod:`spinbounce.theory.oracle`, exact for the Hookean model), Walton's rigid-body law
+(:mod:`spinbounce.exact.oracle`, exact for the Hookean model), Walton's rigid-body law
 and the measured points.
 
 Deviations are the largest over (v_n, v_t, r omega), relative to the impact speed
@@ -18,7 +18,7 @@ import pandas as pd
 from ...model.scenes import Collision, ContactModel
 from ...model.timestep import refine_mid_step
 from ...pipeline import run_collision
-from ...theory import oracle
+from ...exact import oracle
 from .cases import Benchmark, Series
 from .quantities import QUANTITIES, quantity
 from .rigid_body import first_touch_stick, impact_speed, walton

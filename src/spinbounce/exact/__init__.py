@@ -10,26 +10,11 @@
   :mod:`.pair_capped` with a Coulomb cap (motion in one plane);
 * :mod:`.rigid_body`: the rigid-body sliding impulse and Walton's law.
 
-Importing ``spinbounce.theory`` gives :mod:`.linear`'s functions at the top, as the paper's
-equations are the ones most code asks for; :mod:`.choose` decides which theory applies.
-Calling it, ``spinbounce.theory(v_n=..., mu=...)``, is the Python API's theory.
+The exact references know nothing of LAMMPS, files or the API: they import numpy and scipy
+only. Importing ``spinbounce.exact`` gives :mod:`.linear`'s functions at the top, as the
+paper's equations are the ones most code asks for; :mod:`.choose` decides which theory
+applies. The Python API's call for them is the function ``spinbounce.theory(...)``.
 """
-
-import sys
-import types
 
 from .linear import *  # noqa: F401,F403  (the paper's equations, at the top)
 from .linear import __all__  # noqa: F401
-
-
-class _CallableTheory(types.ModuleType):
-    """``spinbounce.theory(...)`` is :func:`spinbounce.api.theory`: the theories' package is
-    also the API's call for them, so the name means one thing to a user."""
-
-    def __call__(self, *args, **kwargs):
-        from ..api import theory
-
-        return theory(*args, **kwargs)
-
-
-sys.modules[__name__].__class__ = _CallableTheory

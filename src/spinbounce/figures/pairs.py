@@ -14,11 +14,11 @@ from pathlib import Path
 
 import numpy as np
 
-from ..figures.core import STYLE, new_figure, save
+from .core import STYLE, new_figure, save
 from ..records import software
-from .run import run_pairs
-from .scene import PairBatch
-from .studies import cases, validity_map
+from ..pairs.run import run_pairs
+from ..pairs.scene import PairBatch
+from ..pairs.studies import cases, validity_map
 
 __all__ = ["make_pair_validity", "EPS", "CENTRIFUGAL"]
 

@@ -39,7 +39,7 @@ __all__ = ["CostError", "ChunkCost", "JobRequest", "chunk_cost", "job_request", 
 #: a 100-sphere chunk took 1.16 s and 158 MB (157 MB, 197 MB with mu = 0.3); 20,000
 #: spheres took 1.85 s and 181 MB without mu, so 0.69 s for 20,000 x 252 sphere-steps.
 START_SECONDS = 1.2
-#: theory.coulomb's exact batched solver, per collision: 150,000 to 400,000 a second on one
+#: exact.coulomb's exact batched solver, per collision: 150,000 to 400,000 a second on one
 #: core (studies/solver_speed), so 1e-5 s with room.
 CAPPED_THEORY_SECONDS = 1e-5
 #: A chunk whose step is probed (stepping.tune) runs two small LAMMPS runs first (measured
@@ -63,7 +63,7 @@ TIME_MARGIN = 3.0
 MEM_MARGIN = 2.0
 #: A chunk is one serial LAMMPS run in one process: a second core would sit idle.
 CPUS_PER_CHUNK = 1
-#: Rungs a tolerance sweep's ladder is assumed to climb (studies/tolerance.py measured three
+#: Rungs a tolerance sweep's ladder is assumed to climb (extrapolation.py measured three
 #: at a tolerance of 1e-6); a ladder that climbs further runs past the estimate.
 LADDER_RUNGS = 4
 
@@ -100,7 +100,7 @@ def _steps_per_collision(spec, group: int) -> int:
     scene = Collision(model, v_n=[-fast, -slow], v_t=0.0, omega=0.0, dt=dt)
     if spec.tolerance is None:
         return expected_steps(scene)
-    from .tolerance import START_STEPS, collision_rung_dt
+    from ..extrapolation import START_STEPS, collision_rung_dt
 
     rungs = (START_STEPS * 2**k for k in range(LADDER_RUNGS))
     return sum(Collision(model, v_n=[-fast], dt=collision_rung_dt(model, n)).nsteps for n in rungs)

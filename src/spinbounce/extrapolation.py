@@ -51,8 +51,8 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ..model.scenes import STATE_ARGS, Collision, ContactModel, Frozen, SceneError
-from ..model.timestep import mid_step_dt, refine_mid_step
+from .model.scenes import STATE_ARGS, Collision, ContactModel, Frozen, SceneError
+from .model.timestep import mid_step_dt, refine_mid_step
 
 __all__ = ["Extrapolated", "collide_to_tolerance", "frozen_to_tolerance", "collision_frame", "check_tolerance",
            "contact_steps", "collision_rung_dt", "frozen_rung_dt", "raw_orders", "MIN_TOLERANCE",
@@ -224,7 +224,7 @@ def _ladder(run_level, tolerance: float, p: np.ndarray, log) -> tuple[np.ndarray
             for level, raw in zip(levels, values, strict=True):
                 level["error_vs_extrapolation"] = float(np.abs(raw - best).max())
             return best, estimate, levels
-    from ..pipeline import ResultError
+    from .pipeline import ResultError
 
     raise ResultError(
         f"tolerance = {tolerance:g} not reached in {MAX_LEVELS} levels "
@@ -242,7 +242,7 @@ def smooth_in_dt(model: ContactModel) -> bool:
     return model.mu is None and model.wall != "classic"
 
 
-#: The exact theories the measured route checks against (theory.coulomb, theory.classic)
+#: The exact theories the measured route checks against (exact.coulomb, exact.classic)
 #: are solved to ~1e-9 of the speed: a tolerance below ten times that cannot be told apart.
 MIN_MEASURED_TOLERANCE = 1e-8
 
@@ -277,7 +277,7 @@ def collide_to_tolerance(model: ContactModel, v_n, v_t, omega, tolerance: float,
     level's run lives in ``out_dir/level-K``. Returns the extrapolated final states with
     their estimates, and the finest level's scene (for its initial states and theory).
     """
-    from ..pipeline import run_collision
+    from .pipeline import run_collision
 
     tol = check_tolerance(tolerance)
     _refuse_unsmooth(model)
@@ -315,7 +315,7 @@ def measured_to_tolerance(model: ContactModel, v_n, v_t, omega, tolerance: float
     """Collisions to ``tolerance`` where extrapolation cannot serve: one run at the step a probe
     against the exact theory chooses for the tolerance; each row's estimate is its measured
     |LAMMPS - theory| (the largest over its columns), and every row must be within it."""
-    from ..pipeline import ResultError, run_collision
+    from .pipeline import ResultError, run_collision
 
     if tolerance < MIN_MEASURED_TOLERANCE:
         raise SceneError("tolerance", tolerance, f"must be >= {MIN_MEASURED_TOLERANCE:g} for this model: its error is "
@@ -349,7 +349,7 @@ def frozen_to_tolerance(model: ContactModel, z: float, v_t: float, omega: float,
     Level k halves dt and doubles the dump interval, so every level samples the same times
     exactly (dt is divided by a power of two).
     """
-    from ..pipeline import run_frozen
+    from .pipeline import run_frozen
 
     tol = check_tolerance(tolerance)
     out_dir = Path(out_dir)

@@ -26,12 +26,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import hertz, linear
+from ..errors import NoMatrix
 
 __all__ = ["Choice", "which", "predict", "outcome", "matrix", "matrices", "omega_per_sphere", "frozen", "NoMatrix"]
-
-
-class NoMatrix(ValueError):
-    """No single scattering matrix describes this model's collisions; the reason says why."""
 
 
 @dataclass(frozen=True)
@@ -51,7 +48,7 @@ def which(model) -> Choice:
     """The theory that applies to collisions of ``model``."""
     if getattr(model, "wall", "granular") == "classic":
         return Choice("classic", "the classic wall as this LAMMPS build integrates it (tangential spring "
-                                 "kt sqrt(r delta); theory.classic)",
+                                 "kt sqrt(r delta); exact.classic)",
                       "the classic wall's tangential spring grows with the overlap, so Omega depends on v_n "
                       "and on the length unit: give a state (v_n, v_t, omega) for its outcome")
     if model.mu is not None:

@@ -96,7 +96,7 @@ class ClassicWall:
         if self.gamma_n >= 2.0 * math.sqrt(self.kn / self.m):
             raise ValueError(f"gamma_n = {self.gamma_n!r} is at or above critical damping: no bounce")
         if self.mu is not None and not self.contact_radius:
-            raise ValueError("with a = 1 and a finite mu use theory.oracle (the Coulomb wall)")
+            raise ValueError("with a = 1 and a finite mu use exact.oracle (the Coulomb wall)")
 
     @property
     def beta(self) -> float:

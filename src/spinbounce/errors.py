@@ -1,0 +1,54 @@
+"""What spinbounce raises to a user, declared once and importing nothing heavy.
+
+Every front end (the CLI, the API, the workflow) catches these by name; the module that
+raises one imports it from here. A refusal names the parameter, its value and the limit.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+__all__ = ["SceneError", "PhysicsWarning", "NoMatrix", "SweepError", "DumpError", "LammpsError", "ResultError"]
+
+
+class SceneError(ValueError):
+    """A parameter is outside its accepted range. Raised before LAMMPS starts."""
+
+    def __init__(self, parameter: str, value, limit: str):
+        self.parameter = parameter
+        self.value = value
+        self.limit = limit
+        super().__init__(f"{parameter} = {value!r}: {limit}")
+
+
+class PhysicsWarning(UserWarning):
+    """A scene is allowed but physically unusual or numerically marginal."""
+
+
+class NoMatrix(ValueError):
+    """No single scattering matrix describes this model's collisions; the reason says why."""
+
+
+class SweepError(ValueError):
+    """A sweep cannot start: a bad scene file, or an output folder that is not ours."""
+
+
+class DumpError(ValueError):
+    """A dump file is not in the expected format."""
+
+
+class LammpsError(RuntimeError):
+    """LAMMPS refused or failed a deck. Carries LAMMPS's own ERROR line and the deck path."""
+
+    def __init__(self, error_line: str, deck: Path, input_line: str | None = None):
+        self.error_line = error_line
+        self.deck = Path(deck)
+        self.input_line = input_line
+        where = f"\n  deck: {self.deck}"
+        if input_line:
+            where += f"\n  input line: {input_line}"
+        super().__init__(f"{error_line}{where}")
+
+
+class ResultError(RuntimeError):
+    """LAMMPS finished but its output cannot be trusted (NaN, lost spheres, contact not over)."""
