@@ -1,4 +1,47 @@
+"""Shared fixtures, and the quick default run that leaves the slow tests to SPINBOUNCE_SLOW=1.
+
+Shared fixtures, and the quick default run: tests marked ``slow`` (or that read the
+whole reproduction) run only with SPINBOUNCE_SLOW=1, which ``.ci/run`` sets.
+"""
+
+import os
+
 import pytest
+
+#: Set to 1 to run every test, the slow ones included (CI does; see .ci/run).
+SLOW_SWITCH = "SPINBOUNCE_SLOW"
+#: Fixtures that make a slow product once per session: a test that uses one is slow too.
+SLOW_FIXTURES = {"reproduction"}
+
+
+def run_slow() -> bool:
+    return os.environ.get(SLOW_SWITCH) == "1"
+
+
+def pytest_collection_modifyitems(config, items):
+    """Deselect the slow tests unless SPINBOUNCE_SLOW=1, and say so (never silently)."""
+    for item in items:
+        if SLOW_FIXTURES & set(getattr(item, "fixturenames", ())):
+            item.add_marker(pytest.mark.slow)
+    if run_slow():
+        return
+    slow = [item for item in items if item.get_closest_marker("slow")]
+    if slow:
+        config.hook.pytest_deselected(items=slow)
+        items[:] = [item for item in items if not item.get_closest_marker("slow")]
+        config._spinbounce_slow_left = len(slow)
+
+
+def pytest_report_header(config):
+    if run_slow():
+        return f"{SLOW_SWITCH}=1: every test runs, the slow ones included"
+    return f"the quick run: tests marked slow are deselected (run them with {SLOW_SWITCH}=1, as CI does)"
+
+
+def pytest_terminal_summary(terminalreporter, exitstatus, config):
+    left = getattr(config, "_spinbounce_slow_left", 0)
+    if left:
+        terminalreporter.write_line(f"{left} slow test(s) not run: {SLOW_SWITCH}=1 python -m pytest runs them (CI does)")
 
 
 @pytest.fixture
