@@ -29,14 +29,16 @@ def _modules() -> dict[str, Path]:
 
 #: The layers, bottom first: a module imports only from its own layer or below, wherever the
 #: import stands (module level or inside a function: a lazy import is still a dependency).
-#: The errors a user sees import nothing; the exact references know nothing else; the model (parameters, contact law, scenes) only
+#: The errors a user sees and the unit of declaration import nothing; the exact references know
+#: nothing else; the contact laws' sub-models declare their coefficients and answer from the references; the model (parameters, contact law, scenes) only
 #: them; the engine (decks, runner, dumps, records, row checks, the step rule) runs a scene;
 #: the pipeline runs one collision; pairs run batches of two spheres on it; extrapolation is
 #: a run mode over either; sweeps and fits use all of that; studies and figures are made from
 #: sweeps and runs; the API and the catalogue of products call them; the CLI calls the API.
 LAYERS = (
-    ("errors",),
+    ("errors", "declaration"),
     ("exact",),
+    ("laws",),
     ("model",),
     ("lammps", "records", "compare", "checks", "stepping"),
     ("pipeline",),

@@ -142,7 +142,7 @@ def test_tunnelling_is_refused_at_the_exact_overlap():
     """kn = 10, r = 0.5: delta_max = r at |v_n| = sqrt(4 kn r^3/(5 m)) = 1 exactly."""
     model = ContactModel(normal="hertz")
     assert hertz.tunnelling_speed(M, 10.0, R) == pytest.approx(1.0, rel=1e-15)
-    with pytest.raises(SceneError, match=r"below 1 for the Hertzian wall") as info:
+    with pytest.raises(SceneError, match=r"below 1: the overlap would reach") as info:
         Collision(model, v_n=[-0.5, -1.2], v_t=1.0, omega=0.0)
     assert info.value.parameter == "v_n" and info.value.value == -1.2
     Collision(model, v_n=-0.95, v_t=1.0, omega=0.0)  # 0.96 r: allowed at the default step

@@ -20,7 +20,6 @@ import numpy as np
 
 from . import exact
 from .model.timestep import ACCURACY
-from .exact import hertz
 
 __all__ = ["STATUSES", "RESOLVABLE_OVERLAP_ULPS", "add_row_checks", "summary", "notes"]
 
@@ -33,10 +32,7 @@ RESOLVABLE_OVERLAP_ULPS = 1e7
 
 
 def _largest_overlap(model, v_n: np.ndarray) -> np.ndarray:
-    speed = np.abs(v_n)
-    if model.normal == "hertz":
-        return np.asarray(hertz.max_overlap(speed, model.m, model.kn, model.r), dtype=float)
-    return np.asarray(exact.max_overlap(speed, model.m, model.kn, model.gamma_n), dtype=float)
+    return model.max_overlap(np.abs(v_n))
 
 
 def _energy_allowance(initial: np.ndarray, error: np.ndarray, alpha: float) -> np.ndarray:

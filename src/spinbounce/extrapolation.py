@@ -239,7 +239,7 @@ def smooth_in_dt(model: ContactModel) -> bool:
     for the classic wall (measured: at tolerance 1e-6 the ladder's estimate was 1.0e-6 where
     the error was 2.1e-6; its spring kt sqrt(r delta) has an infinite slope at contact).
     """
-    return model.mu is None and model.wall != "classic"
+    return model.mu is None and model.style.smooth_in_dt
 
 
 #: The exact theories the measured route checks against (exact.coulomb, exact.classic)
@@ -249,10 +249,11 @@ MIN_MEASURED_TOLERANCE = 1e-8
 
 def _refuse_unsmooth(model: ContactModel) -> None:
     """Refuse, before any run, a model that neither extrapolation nor measurement can serve."""
-    if model.normal != "hooke":
+    if model.normal_law.contact_radius:
         # each sphere's contact ends at its own time, somewhere inside a step that moves with dt
-        raise SceneError("normal", model.normal, "a tolerance needs a smooth error in dt; a Hertzian wall's "
-                                                 "contact ends fall anywhere inside a step: give a dt instead")
+        raise SceneError("normal", model.normal, "a tolerance needs a smooth error in dt; with a force that grows "
+                                                 "with the contact radius each contact ends anywhere inside a "
+                                                 "step: give a dt instead")
 
 
 def _first_rung(scene_at) -> int:

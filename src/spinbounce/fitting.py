@@ -127,7 +127,7 @@ def regime(model: ContactModel, three_d: bool, off_uncapped: float, scale: float
     choice = choose.which(model)
     if choice.has_matrix:
         return choose.matrix(model, three_d=three_d), "matrix"
-    if choice.kind == "coulomb" and model.normal == "hooke":
+    if choice.kind == "coulomb" and not model.normal_law.contact_radius:
         if off_uncapped <= STICK_TOLERANCE * scale:
             return choose.matrix(model.replace(mu=None), three_d=three_d), \
                 "sticks throughout: the frictionless matrix applies"
@@ -173,7 +173,7 @@ def omega_of_theory(params: dict, matrix_theory: np.ndarray) -> float:
 
 def off_uncapped(model: ContactModel, initial: np.ndarray, theory: np.ndarray) -> float:
     """A capped Hookean group's largest |theory - frictionless matrix @ initial| (0 otherwise)."""
-    if choose.which(model).kind != "coulomb" or model.normal != "hooke":
+    if choose.which(model).kind != "coulomb" or model.normal_law.contact_radius:
         return 0.0
     uncapped = choose.matrix(model.replace(mu=None), three_d=initial.shape[1] == 6)
     return float(np.abs(theory - initial @ uncapped.T).max())

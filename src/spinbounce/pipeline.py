@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .exact import hertz
+from .exact import choose
 from .records import software, to_json, write_atomic, write_parquet_atomic
 from . import checks
 from .compare import collision_table, frozen_table
@@ -203,9 +203,9 @@ def run_collision(scene: Collision, out_dir: Path, atoms: str | None = None, rec
     dump_path = None if deck.dump is None else deck_path.parent / deck.dump
     result = CollisionResult(scene, table, info, dump_path, tuple(notes), step)
     if record:
-        if m.normal == "hertz":  # per sphere: the contact time and Omega depend on v_n
+        if m.normal_law.contact_radius:  # per sphere: the contact time and Omega depend on v_n
             tau = m.contact_times(scene.v_n).tolist()
-            omega = np.atleast_1d(hertz.Omega(scene.v_n, m.m, m.kn, m.r, m.kt, m.alpha, m.gamma_t)).tolist()
+            omega = choose.omega_per_sphere(m, scene.v_n).tolist()
         else:
             tau, omega = m.tau, m.Omega
         parameters = {"model": _model_dict(m), "dt": scene.dt, "nsteps": scene.nsteps,

@@ -45,11 +45,11 @@ def needs_probe(scene: Collision) -> bool:
     Hertzian batch of several speeds (its end cannot be aligned; it keeps its fixed rule)."""
     if choose.which(scene.model).kind == "linear":
         return False
-    return not (scene.model.normal == "hertz" and np.ptp(scene.model.contact_times(scene.v_n)) > 0.0)
+    return not np.ptp(scene.model.contact_times(scene.v_n)) > 0.0
 
 
 def _contact_time(scene: Collision) -> float:
-    return float(np.max(scene.model.contact_times(scene.v_n))) if scene.model.normal == "hertz" else scene.model.tau
+    return float(np.max(scene.model.normal_law.force_times(scene.model, scene.v_n)))
 
 
 def _probe_scene(scene: Collision, dt: float, probe_states: Collision | None) -> Collision:

@@ -46,7 +46,7 @@ class Choice:
 
 def which(model) -> Choice:
     """The theory that applies to collisions of ``model``."""
-    if getattr(model, "wall", "granular") == "classic":
+    if model.style.tangential_contact_radius:
         return Choice("classic", "the classic wall as this LAMMPS build integrates it (tangential spring "
                                  "kt sqrt(r delta); exact.classic)",
                       "the classic wall's tangential spring grows with the overlap, so Omega depends on v_n "
@@ -55,7 +55,7 @@ def which(model) -> Choice:
         return Choice("coulomb", "Coulomb stick-slip solution (exact in each phase, switches to machine precision)",
                       f"with mu = {model.mu!r} the contact sticks and slides in turn, so the outcome is not "
                       "linear in the initial state: give a state (v_n, v_t, omega) for its outcome")
-    if model.normal == "hertz":
+    if model.normal_law.contact_radius:
         return Choice("hertz", "Eq. 18 per sphere, Omega of the Hertzian contact time tau(v_n)",
                       "with normal = hertz the contact time, and with it Omega, depends on v_n: "
                       "give v_n for its matrix")
@@ -168,12 +168,11 @@ def outcome(model, v_n: float, v_t: float = 0.0, omega: float = 0.0, v_s: float 
 
 
 def classic_wall(model):
-    """The classic wall's own parameters: its dashpots are rates (gamma/m), its cap at most 1e4."""
+    """The classic wall's own parameters, as its style gives them to the deck (its dashpots are
+    rates gamma/m, its cap at most 1e4: :mod:`spinbounce.laws.styles.classic`)."""
     from . import classic
 
-    mu = classic.MU_MAX if model.mu is None else model.mu
-    return classic.ClassicWall(kn=model.kn, kt=model.kt, gamma_n=model.gamma_n / model.m,
-                               gamma_t=model.gamma_t / model.m, mu=mu, alpha=model.alpha, r=model.r, m=model.m)
+    return classic.ClassicWall(**model.style.coefficients(model), alpha=model.alpha, r=model.r, m=model.m)
 
 
 def _classic(model, initial: np.ndarray) -> np.ndarray:
@@ -194,7 +193,7 @@ def frozen(model, t, v_t0: float, r_omega0: float, z: float | None = None) -> tu
     """
     if model.mu is not None:
         raise NoMatrix(f"mu = {model.mu!r}: the frozen contact's theory (Eq. 10) has no Coulomb cap")
-    if which(model).kind == "classic":
+    if model.style.tangential_contact_radius:
         from . import classic
 
         return classic.frozen_velocities(t, v_t0, r_omega0, model.kt, model.alpha, model.r, model.r - z, model.m,

@@ -53,10 +53,8 @@ from scipy.integrate import solve_ivp
 from . import linear
 
 __all__ = ["ClassicWall", "ClassicResult", "bounce", "Omega_eff", "stiffness_group", "frozen_frequency",
-           "frozen_velocities", "MU_MAX", "RTOL", "ATOL"]
+           "frozen_velocities", "RTOL", "ATOL"]
 
-#: The classic form refuses MU above this ("Illegal classic gran model command").
-MU_MAX = 1.0e4
 RTOL = 1.0e-12
 ATOL = 1.0e-14
 #: More stick/slide switches than this in one contact: refuse rather than guess.

@@ -105,7 +105,8 @@ class _Fields:
     gamma_t: float
     mu: float | None
     limit_damping: bool
-    normal: str
+    #: The normal force grows with the contact radius (Hertzian): the model's normal sub-model says.
+    contact_radius: bool
 
 
 def _sign(x, fallback):
@@ -120,7 +121,7 @@ class _Solver:
         if model.mu is None:
             raise ValueError("a Coulomb solver needs a finite mu (theory.scattering_matrix is "
                              "exact without one)")
-        self.hertz = model.normal == "hertz"
+        self.hertz = model.contact_radius
         self.mu, self.kt, self.alpha, self.m = model.mu, model.kt, model.alpha, model.m
         self.s = (1.0 + 1.0 / model.alpha) / model.m
         self.gts = model.gamma_t * self.s
@@ -249,7 +250,7 @@ class _Solver:
 
 
 #: The model's fields the solver reads, in the order _solver takes them.
-_FIELDS = ("m", "r", "alpha", "kn", "kt", "gamma_n", "gamma_t", "mu", "limit_damping", "normal")
+_FIELDS = ("m", "r", "alpha", "kn", "kt", "gamma_n", "gamma_t", "mu", "limit_damping")
 
 
 @lru_cache(maxsize=16)
@@ -263,7 +264,7 @@ def _slip_change(model, v_n, slip):
     if not np.all(v_n < 0.0):
         raise ValueError("every v_n must be < 0 (towards the wall)")
     speed = -v_n
-    solver = _solver(*(getattr(model, name) for name in _FIELDS))
+    solver = _solver(*(getattr(model, name) for name in _FIELDS), model.normal_law.contact_radius)
     start = slip / speed
     restitution = 1.0 if solver.hertz else model.restitution  # Hertz here has gamma_n = 0
     return speed, restitution, (solver.final_slip_rate(start, speed) - start) * speed

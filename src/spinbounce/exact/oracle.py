@@ -104,7 +104,7 @@ class _Contact:
         self.kn, self.kt = model.kn, model.kt
         self.gn, self.gt, self.mu = model.gamma_n, model.gamma_t, model.mu
         self.tensile = not model.limit_damping
-        self.hertz = model.normal == "hertz"
+        self.hertz = model.normal_law.contact_radius
         self.slip_mass = (1.0 + 1.0 / self.alpha) / self.m  # u'' = slip_mass * F_t
         # set per collision (bounce): a force and a rate of force negligible against the
         # contact's own, the margins by which a switching function must pass zero to count

@@ -22,15 +22,8 @@ from .. import __version__
 from ..model.scenes import Collision, ContactModel, Frozen
 
 __all__ = ["Deck", "LibraryAtoms", "Padding", "render_collision", "render_frozen", "wall_parameters", "template_dir",
-           "NO_CAP_MU", "LIBRARY_MARKER", "ATOM_ROUTES"]
+           "LIBRARY_MARKER", "ATOM_ROUTES"]
 
-#: LAMMPS always caps |F_t| <= mu F_n. The paper's model has no cap, so "no cap" is this
-#: large mu; facts measured on this build: 1e4 leaves a 1e-4 error floor, 1e12 does not.
-NO_CAP_MU = 1.0e12
-#: With gamma_n = 0 but gamma_t > 0, LAMMPS's tangential damping is X_T * ETA_N, so ETA_N
-#: must not be 0. This relative size (of critical normal damping) changes the normal
-#: restitution by about 1e-12, far below any other error.
-VANISHING_ETA_N = 1.0e-12
 DECK_NAME = "in.lammps"
 DUMP_NAME = "state.dump"
 BODIES_FILE = "bodies.txt"
@@ -137,67 +130,17 @@ class Padding:
 
 
 def wall_parameters(model: ContactModel) -> dict:
-    """Arguments of ``wall/gran granular hooke|hertz ... tangential linear_history ...`` (or of the
-    classic form); ``style`` holds them as the one text every deck and printed line uses.
-
-    LAMMPS's granular form gives the normal damping force -ETA_N v_n (``damping
-    velocity``) and the tangential one -(X_T ETA_N) u_dot.
-    """
-    notes = []
-    if model.gamma_t == 0.0 and model.gamma_n == 0.0:
-        eta_n, x_t, damping = 0.0, 0.0, False
-    elif model.gamma_n > 0.0:
-        eta_n, x_t, damping = model.gamma_n, model.gamma_t / model.gamma_n, True
-    else:
-        eta_n = VANISHING_ETA_N * 2.0 * math.sqrt(model.m * model.kn)
-        x_t, damping = model.gamma_t / eta_n, True
-        notes.append(
-            f"gamma_n = 0, gamma_t = {model.gamma_t!r}: ETA_N = {eta_n!r} is a vanishing normal "
-            f"damping so that X_T * ETA_N = gamma_t"
-        )
-    if model.wall == "classic":
-        return _classic_wall(model)
-    if model.mu is None:
-        mu = NO_CAP_MU
-        notes.append(f"the paper's model has no Coulomb limit; LAMMPS always applies one, so mu = {NO_CAP_MU:g}")
-    else:
-        mu = model.mu
-        notes.append(f"Coulomb limit |F_t| <= {mu!r} F_n: not the paper's model")
-    style = (f"granular {model.normal} {deck_number(model.kn)} {deck_number(eta_n)}"
-             + (" damping velocity" if damping else "")
-             + f" tangential linear_history {deck_number(model.kt)} {deck_number(x_t)} {deck_number(mu)}"
-             + (" limit_damping" if model.limit_damping else ""))
-    return {"eta_n": eta_n, "x_t": x_t, "damping": damping, "mu": mu, "style": style, "comment": "; ".join(notes)}
+    """The wall's part of a deck, from the model's style and sub-models (:mod:`spinbounce.laws`):
+    its numbers, its ``comment``, and ``style``, the one text after ``wall/gran`` that every deck
+    and printed line uses (each word from a registry, each number in full precision)."""
+    wall = model.style.wall_terms(model)
+    wall["style"] = " ".join(deck_number(x) if isinstance(x, float) else x for x in wall.pop("terms"))
+    return wall
 
 
 def fix_line(model: ContactModel, group: str = "all") -> str:
     """The ``fix wall/gran`` line of a flat wall at z = 0 (the one spinbounce runs), to paste."""
     return f"fix wall {group} wall/gran {wall_parameters(model)['style']} zplane 0.0 NULL"
-
-
-#: The classic form gives its tangential damping as GAMMA_T/GAMMA_N, so GAMMA_N = 0 is 0/0 (NaN
-#: in this build): a vanishing one stands in, far below any force it could add.
-CLASSIC_VANISHING_GAMMA_N = 1.0e-100
-
-
-def _classic_wall(model: ContactModel) -> dict:
-    """Arguments of ``wall/gran hooke/history KN KT GAMMA_N GAMMA_T MU DAMPFLAG``: its dashpots are
-    rates times the mass (``mass_velocity``), so GAMMA = gamma/m; MU none is its largest, 1e4."""
-    from ..model.contact import CLASSIC_MU_MAX
-
-    notes = ["classic wall: this build scales the tangential spring by the contact radius sqrt(r delta) "
-             "(theory: spinbounce.exact.classic)"]
-    gamma_n = model.gamma_n / model.m
-    if gamma_n == 0.0:
-        gamma_n = CLASSIC_VANISHING_GAMMA_N
-        notes.append(f"GAMMA_N = {gamma_n:g} stands in for 0, which the classic form divides by (0/0 = NaN)")
-    mu = CLASSIC_MU_MAX if model.mu is None else model.mu
-    if model.mu is None:
-        notes.append(f"no cap asked for: MU = {mu:g}, the classic form's largest")
-    gamma_t = model.gamma_t / model.m
-    style = "hooke/history " + " ".join(deck_number(x) for x in (model.kn, model.kt, gamma_n, gamma_t, mu)) + " 1"
-    return {"classic": True, "gamma_n": gamma_n, "gamma_t": gamma_t, "mu": mu, "style": style,
-            "comment": "; ".join(notes)}
 
 
 def _common(model: ContactModel, zhi: float) -> dict:
@@ -324,7 +267,7 @@ def render_collision(scene: Collision, atoms: str | None = None, padding: Paddin
         files[BODIES_FILE] = _bodies_file(scene, state)
     library = atoms == "library"
     # the header's run length: Hertzian contacts end at different times, the slowest last
-    tau = float(np.max(model.contact_times(scene.v_n))) if model.normal == "hertz" else model.tau
+    tau = float(np.max(model.normal_law.force_times(model, scene.v_n)))
     ctx.update(n=scene.n, spheres=spheres, tau=tau, dt=scene.dt, nsteps=scene.nsteps,
                run_steps=scene.nsteps + padding.extra_steps(scene.dt), padding=padding,
                padding_dump=PADDING_DUMP_NAME, atoms=atoms, library_marker=LIBRARY_MARKER, data_file=DATA_FILE)

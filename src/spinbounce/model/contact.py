@@ -17,7 +17,8 @@ import warnings
 import numpy as np
 
 from .. import exact
-from ..exact import choose, hertz
+from ..exact import choose
+from ..laws import NORMAL, NormalLaw, Style, normal_coefficients, normal_law, style
 from .parameters import MODEL, SceneError, positive_number
 from .stability import stability_limit
 from .timestep import MIN_STEPS_PER_HALF_PERIOD
@@ -26,13 +27,11 @@ from ..errors import PhysicsWarning
 __all__ = ["ContactModel", "ContactPhysics", "PhysicsWarning", "NORMAL_LAWS", "ALPHA_SHELL",
            "MIN_STEPS_PER_HALF_PERIOD"]
 
-#: Normal force laws, as declared.
-NORMAL_LAWS = next(p for p in MODEL if p.name == "normal").choices
+#: Normal force laws, as registered (:data:`spinbounce.laws.NORMAL`).
+NORMAL_LAWS = tuple(NORMAL)
 #: Below this normal restitution the sphere creeps out of the overlap so slowly that the
 #: end of the contact cannot be located by a run (measured: e = 4e-3 runs, 8e-5 does not).
 MIN_RESTITUTION = 1e-3
-#: The classic wall command refuses MU above this ("Illegal classic gran model command").
-CLASSIC_MU_MAX = 1.0e4
 #: Above alpha = 2/3 part of the mass would sit outside the sphere (Section 3).
 ALPHA_SHELL = 2.0 / 3.0
 
@@ -43,6 +42,9 @@ class ContactPhysics:
     def __post_init__(self):
         for parameter in MODEL:
             object.__setattr__(self, parameter.name, parameter.check(getattr(self, parameter.name)))
+        values = {parameter.name: getattr(self, parameter.name) for parameter in MODEL}
+        for name, value in self.normal_law.settle(values, normal_coefficients()).items():
+            object.__setattr__(self, name, value)
         if self.alpha > ALPHA_SHELL:
             warnings.warn(
                 f"alpha = {self.alpha:g} > 2/3: more than a thin shell's inertia, the sphere "
@@ -50,15 +52,14 @@ class ContactPhysics:
                 PhysicsWarning,
                 stacklevel=4,
             )
-        if self.normal == "hertz" and self.gamma_n > 0.0:
+        if not self.normal_law.damped_theory and self.gamma_n > 0.0:
             raise SceneError(
                 "gamma_n",
                 self.gamma_n,
-                "must be 0 with normal = 'hertz': there is no exact theory here of the damped "
-                "Hertzian contact to check it against",
+                f"must be 0 with normal = {self.normal!r}: there is no exact theory here of its damped "
+                "contact to check it against",
             )
-        if self.wall == "classic":
-            self._check_classic()
+        self.style.check(self)
         critical = 2.0 * math.sqrt(self.m * self.kn)
         if self.gamma_n >= critical:
             raise SceneError(
@@ -68,20 +69,20 @@ class ContactPhysics:
                 "at or above it the sphere never leaves the wall",
             )
 
-    def _check_classic(self) -> None:
-        """What the classic wall command can express, and its theory covers."""
-        if self.normal != "hooke":
-            raise SceneError("normal", self.normal, "must be hooke with wall = classic (hooke/history is Hookean)")
-        if self.limit_damping:
-            raise SceneError("limit_damping", True, "is not covered by the classic wall's theory: leave it out "
-                                                     "with wall = classic")
-        if self.mu is not None and self.mu > CLASSIC_MU_MAX:
-            raise SceneError("mu", self.mu, f"must be <= {CLASSIC_MU_MAX:g} with wall = classic (LAMMPS refuses "
-                                            "a larger MU in the classic form); none means that largest cap")
-
     def replace(self, **changes):
         """A copy with some parameters changed (checked again)."""
         return dataclasses.replace(self, **changes)
+
+    # -- the law -------------------------------------------------------------------
+    @property
+    def normal_law(self) -> NormalLaw:
+        """The normal sub-model (:mod:`spinbounce.laws.normal`): asked for what it can do."""
+        return normal_law(self.normal)
+
+    @property
+    def style(self) -> Style:
+        """The wall command's style (:mod:`spinbounce.laws.styles`): granular, or a fixed assembly."""
+        return style(self.wall)
 
     # -- derived quantities (theory, in the paper's names) -------------------------
     @property
@@ -89,7 +90,7 @@ class ContactPhysics:
         return self.alpha * self.m * self.r**2
 
     def _hooke_only(self, what: str) -> None:
-        if self.normal != "hooke":
+        if self.normal_law.contact_radius:
             raise SceneError("normal", self.normal, f"has no single {what}: it depends on v_n "
                              "(per-sphere values: Collision.predicted(), spinbounce.exact.hertz)")
 
@@ -142,7 +143,7 @@ class ContactPhysics:
         limit, and a sphere that leaves the wall too slowly for a run to see it go."""
         for parameter in MODEL:
             parameter.check_default_step(getattr(self, parameter.name))
-        if self.normal == "hooke" and self.restitution < MIN_RESTITUTION:
+        if not self.normal_law.contact_radius and self.restitution < MIN_RESTITUTION:
             limit = exact.gamma_n_for_restitution(MIN_RESTITUTION, self.m, self.kn)
             raise SceneError("gamma_n", self.gamma_n,
                              f"must be below {limit:.6g} (restitution {MIN_RESTITUTION:g}) at the default step: here "
@@ -151,10 +152,11 @@ class ContactPhysics:
 
     def contact_times(self, v_n) -> np.ndarray:
         """Each sphere's time until it is out of the overlap (Hertz: tau(v_n); Hooke: t_exit)."""
-        v = np.atleast_1d(np.asarray(v_n, dtype=float))
-        if self.normal == "hertz":
-            return hertz.contact_time(v, self.m, self.kn, self.r)
-        return np.full(v.shape, self.t_exit)
+        return self.normal_law.contact_times(self, v_n)
+
+    def max_overlap(self, speed) -> np.ndarray:
+        """The largest overlap of each contact that starts touching at |v_n| = ``speed``."""
+        return self.normal_law.max_overlap(self, speed)
 
     # -- numerics --------------------------------------------------------------------
     def modes(self, frozen: bool, speed: float | None = None) -> dict[str, tuple[float, float]]:
@@ -165,12 +167,7 @@ class ContactPhysics:
         """
         out = {"slip": (math.sqrt(self.Q), 2.0 * self.zeta)}
         if not frozen:
-            if self.normal == "hertz":
-                if speed is None:
-                    raise ValueError("a Hertzian collision's normal mode needs the fastest |v_n| (speed)")
-                out["normal"] = (float(hertz.normal_frequency(speed, self.m, self.kn, self.r)), 0.0)
-            else:
-                out["normal"] = (math.sqrt(self.kn / self.m), self.gamma_n / self.m)
+            out["normal"] = self.normal_law.normal_mode(self, speed)
         return out
 
     def fastest_rate(self, frozen: bool, speed: float | None = None) -> float:

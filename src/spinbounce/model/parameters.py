@@ -12,131 +12,16 @@ Units are LAMMPS's ``lj`` units: mass, length and time are whatever the user's a
 
 from __future__ import annotations
 
-import math
-from dataclasses import dataclass
-
+from ..declaration import Parameter, finite_number, positive_number
 from ..errors import SceneError
+from ..laws import normal_coefficients, normal_parameter, style_parameter
 
 __all__ = ["finite_number", "positive_number", "Parameter", "MODEL", "STATE", "RUN", "SCENE", "PAIR_ONLY", "ALL",
            "by_name", "SceneError", "markdown_table"]
 
 
-def finite_number(name: str, value) -> float:
-    """``value`` as a finite float, or a :class:`SceneError` naming ``name``."""
-    try:
-        number = float(value)
-    except (TypeError, ValueError):
-        raise SceneError(name, value, "must be a number") from None
-    if not math.isfinite(number):
-        raise SceneError(name, value, "must be finite")
-    return number
-
-
-def positive_number(name: str, value) -> float:
-    number = finite_number(name, value)
-    if number <= 0.0:
-        raise SceneError(name, value, "must be > 0")
-    return number
-
-
-@dataclass(frozen=True)
-class Parameter:
-    """One declared parameter. ``kind`` is ``number``, ``choice`` or ``flag`` (true/false).
-
-    ``low``/``high`` bound a number (``None``: unbounded), ``*_open`` excludes the bound;
-    ``optional`` numbers may be ``None`` (for ``mu``: no Coulomb cap, the paper's model).
-    """
-
-    name: str
-    meaning: str
-    unit: str
-    default: object
-    kind: str = "number"
-    low: float | None = None
-    low_open: bool = False
-    high: float | None = None
-    high_open: bool = False
-    why: str = ""
-    #: The reason for the lower bound, where it differs from ``why`` (which then explains the upper).
-    why_low: str = ""
-    choices: tuple[str, ...] = ()
-    optional: bool = False
-    sweepable: bool = True
-    changes_outcome: bool = True
-    deck: str = ""
-    #: Where the default step's accuracy stops holding (a LAMMPS run beyond it needs a given dt).
-    default_step_high: float | None = None
-    default_step_why: str = ""
-    #: Command-line flags besides the name with dashes (``gamma_n`` -> ``--gamma-n``); the first is shown.
-    aliases: tuple[str, ...] = ()
-
-    @property
-    def flags(self) -> tuple[str, ...]:
-        return self.aliases + ("--" + self.name.replace("_", "-"),)
-
-    @property
-    def flag(self) -> str:
-        """The command-line flag a user sees first."""
-        return self.flags[0]
-
-    @property
-    def column(self) -> str:
-        """The sweep table's column: the scene-file key itself."""
-        return self.name
-
-    def range_text(self) -> str:
-        """The accepted values, as the README, ``--help`` and error messages say them."""
-        if self.kind == "choice":
-            return "one of " + ", ".join(self.choices)
-        if self.kind == "flag":
-            return "true or false"
-        if self.low is not None and self.high is not None:
-            text = (f"in {'(' if self.low_open else '['}{self.low:g}, {self.high:g}"
-                    f"{')' if self.high_open else ']'}")
-        elif self.low is not None:
-            text = f"{'>' if self.low_open else '>='} {self.low:g}"
-        elif self.high is not None:
-            text = f"{'<' if self.high_open else '<='} {self.high:g}"
-        else:
-            text = "any finite number"
-        return text + (" or none" if self.optional else "")
-
-    def check_default_step(self, value) -> None:
-        """Refuse a value beyond which a run at the default step misses the default accuracy."""
-        if self.default_step_high is not None and value is not None and value > self.default_step_high:
-            raise SceneError(self.name, value, f"must be <= {self.default_step_high:g} at the default step "
-                                               f"({self.default_step_why})")
-
-    def check(self, value, where: str | None = None):
-        """``value`` as this parameter's type, or a :class:`SceneError` naming the limit."""
-        name = where or self.name
-        if self.kind == "flag":
-            if not isinstance(value, bool):
-                raise SceneError(name, value, "must be true or false")
-            return value
-        if self.kind == "choice":
-            if value not in self.choices:
-                raise SceneError(name, value, f"must be one of {', '.join(self.choices)}")
-            return value
-        if value is None and self.optional:
-            return None
-        return self._check_number(name, value)
-
-    def _check_number(self, name: str, value) -> float:
-        if isinstance(value, bool):
-            raise SceneError(name, value, "must be a number")
-        number = finite_number(name, value)
-        below = self.low is not None and (number <= self.low if self.low_open else number < self.low)
-        above = self.high is not None and (number >= self.high if self.high_open else number > self.high)
-        if below or above:
-            bound = self.range_text().removesuffix(" or none")
-            why = self.why_low if below and self.why_low else self.why
-            raise SceneError(name, value, f"must {'lie ' if bound.startswith('in ') else 'be '}{bound}"
-                             + (f" ({why})" if why else ""))
-        return number + 0.0  # -0.0 -> 0.0
-
-
-#: The contact model (the fields of ContactModel, in order).
+#: The contact model (the fields of ContactModel, in order): the sphere, each normal sub-model's
+#: coefficients (:mod:`spinbounce.laws`), the tangential spring, damping, cap and the law's choices.
 MODEL: tuple[Parameter, ...] = (
     Parameter("m", "sphere mass", "mass", 1.0, low=0.0, low_open=True, why="a mass is positive",
               deck="set type 1 mass", aliases=("--mass",)),
@@ -145,9 +30,7 @@ MODEL: tuple[Parameter, ...] = (
     Parameter("alpha", "I/(m r^2): moment of inertia over m r^2 (2/5 for a solid sphere)", "1", 0.4,
               low=0.0, low_open=True, high=1.0, why="above 1 the mass would lie beyond the radius",
               deck="fix nve/sphere (alpha = 2/5) or fix rigid with a centre point"),
-    Parameter("kn", "normal spring constant (Hertz: LAMMPS's K, F = kn sqrt(r) delta^(3/2))", "force/length",
-              10.0, low=0.0, low_open=True, why="a positive stiffness keeps the sphere out of the wall",
-              deck="wall/gran granular hooke|hertz KN"),
+    *normal_coefficients(),
     Parameter("kt", "tangential spring constant on the slip history (Cundall-Strack)", "force/length", 1.0,
               low=0.0, why="a negative spring would push the slip away", deck="tangential linear_history KT"),
     Parameter("gamma_n", "normal viscous damping (below critical 2 sqrt(m kn))", "mass/time", 0.0, low=0.0,
@@ -162,12 +45,8 @@ MODEL: tuple[Parameter, ...] = (
               deck="tangential linear_history ... MU (none: 1e12)"),
     Parameter("limit_damping", "never let the normal force pull (LAMMPS's limit_damping)", "-", False, kind="flag",
               deck="wall/gran ... limit_damping"),
-    Parameter("normal", "normal force law: hooke (the paper's, F = kn delta) or hertz", "-", "hooke",
-              kind="choice", choices=("hooke", "hertz"), deck="wall/gran granular hooke|hertz"),
-    Parameter("wall", "the wall command: granular (the paper's model) or classic (wall/gran hooke/history, "
-              "whose tangential spring this LAMMPS build scales by the contact radius)", "-", "granular",
-              kind="choice", choices=("granular", "classic"),
-              deck="wall/gran granular ... | wall/gran hooke/history KN KT GAMMA_N/m GAMMA_T/m MU 1"),
+    normal_parameter(),
+    style_parameter(),
 )
 
 #: The initial state of a collision (per sphere). Spins are angular velocities; a sweep may

@@ -11,8 +11,9 @@ Two scenes:
 * :class:`Frozen`: one sphere held at a fixed height z < r, so v_n = 0 and only the
   slip evolves; checked against Eq. 10 (or its exact damped form).
 
-The normal force is the paper's Hookean spring or, with ``normal="hertz"``, LAMMPS's
-Hertzian one (theory in :mod:`spinbounce.exact.hertz`), whose contact time depends on v_n.
+The normal force is the model's normal sub-model (:mod:`spinbounce.laws.normal`): the paper's
+Hookean spring, or a force that grows with the contact radius (Hertz), whose contact time
+depends on v_n; the scene asks the sub-model for the contact's times, overlap and mode.
 """
 
 from __future__ import annotations
@@ -23,8 +24,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .. import exact
-from ..exact import choose, hertz
+from ..exact import choose
 from . import parameters
 from .contact import NORMAL_LAWS, ContactModel, PhysicsWarning
 from .parameters import SceneError, finite_number, positive_number
@@ -79,39 +79,6 @@ def _as_vector(name: str, value) -> tuple[float, ...]:
     return tuple((arr + 0.0).tolist())
 
 
-def _hertz_collision_dt(scene: "Collision") -> float:
-    """Tunnelling and step checks of a Hertzian collision; returns its (checked) dt.
-
-    Only the fastest sphere matters: its overlap is the deepest and the wall stiffest there.
-    """
-    m = scene.model
-    fastest = max(scene.v_n, key=abs)
-    speed = abs(fastest)
-    reach = float(hertz.max_overlap(speed, m.m, m.kn, m.r))
-    if reach >= m.r:
-        raise SceneError(
-            "v_n", fastest,
-            f"|v_n| must be below {hertz.tunnelling_speed(m.m, m.kn, m.r):.6g} for the Hertzian wall: "
-            f"the overlap would reach {reach:.6g} >= r = {m.r:g}, the centre would cross the wall "
-            "and the sphere tunnel through it",
-        )
-    dt = m.check_dt(scene.default_dt() if scene.dt is None else scene.dt, frozen=False, speed=speed)
-    # For a linear spring, LAMMPS's step stretches the largest overlap by 1/sqrt(1 - (w dt/2)^2).
-    # Taking w at the Hertzian wall's stiffest point bounds its stretch: to leading order the
-    # step's modified energy gives 1 + (w dt)^2/36 for the Hertzian wall, against 1 + (w dt)^2/8
-    # (tests/test_hertz.py replays the step to check the bound).
-    half_step = 0.5 * float(hertz.normal_frequency(speed, m.m, m.kn, m.r)) * dt
-    stretch = 1.0 / math.sqrt(1.0 - half_step**2) if half_step < 1.0 else math.inf
-    if reach * stretch >= m.r:
-        raise SceneError(
-            "v_n", fastest,
-            f"at dt = {dt:.6g} the step may stretch the Hertzian overlap to {reach * stretch:.6g} >= "
-            f"r = {m.r:g} (exact: {reach:.6g}): the sphere could tunnel through the wall; use a "
-            "smaller dt or a slower |v_n|",
-        )
-    return dt
-
-
 @dataclass(frozen=True)
 class Collision:
     """Spheres that start touching the wall (centre at z = r) and bounce off it.
@@ -154,34 +121,31 @@ class Collision:
             set_(self, name, values * n if len(values) == 1 else values)
         vn = self.v_n
         m = self.model
-        if m.wall == "classic" and self.is_3d:
-            raise SceneError("wall", m.wall, "the classic wall's theory is in the paper's plane: give no v_s, "
-                                             "omega_s or omega_n with wall = classic")
+        if m.style.planar_only and self.is_3d:
+            raise SceneError("wall", m.wall, f"the {m.wall} wall's theory is in the paper's plane: give no v_s, "
+                                             f"omega_s or omega_n with wall = {m.wall}")
         away = np.flatnonzero(np.asarray(vn) >= 0.0)
         if away.size:
             i = int(away[0])
             raise SceneError(f"v_n[{i}]" if n > 1 else "v_n", vn[i], "must be < 0 (towards the wall)")
-        if m.normal == "hertz":  # the contact depends on v_n: checks and step of its own
-            set_(self, "dt", _hertz_collision_dt(self))
-            self._check_cost()
-            return
-        reach = float(np.max(exact.max_overlap(np.array(vn), m.m, m.kn, m.gamma_n)))
+        speed = max(abs(v) for v in vn)
+        reach = float(np.max(m.max_overlap(np.abs(vn))))
         if reach >= m.r:
-            fastest = max(vn, key=abs)
-            vmax = m.r / float(exact.max_overlap(1.0, m.m, m.kn, m.gamma_n))
             raise SceneError(
                 "v_n",
-                fastest,
-                f"|v_n| must be below {vmax:.6g}: the overlap would reach {reach:.6g} >= r = {m.r:g}, "
-                "the centre would cross the wall and the sphere tunnel through it",
+                max(vn, key=abs),
+                f"|v_n| must be below {m.normal_law.tunnelling_speed(m):.6g}: the overlap would reach {reach:.6g} "
+                f">= r = {m.r:g}, the centre would cross the wall and the sphere tunnel through it",
             )
         dt = self.default_dt() if self.dt is None else self.dt
-        set_(self, "dt", m.check_dt(dt, frozen=False))
+        set_(self, "dt", m.check_dt(dt, frozen=False, speed=speed))
         self._check_cost()
         # LAMMPS's velocity Verlet keeps v^2 + w^2 x^2 (1 - (w dt/2)^2) constant in the
-        # undamped normal spring, so its largest overlap exceeds the exact one by the factor
-        # 1/sqrt(1 - (w dt/2)^2): a coarse step can tunnel where the exact motion would not
-        half_step = 0.5 * math.sqrt(m.kn / m.m) * self.dt
+        # undamped linear spring, so its largest overlap exceeds the exact one by the factor
+        # 1/sqrt(1 - (w dt/2)^2): a coarse step can tunnel where the exact motion would not. With
+        # w at a nonlinear spring's stiffest point this bounds its stretch too (Hertz: to leading
+        # order 1 + (w dt)^2/36 against 1 + (w dt)^2/8; tests/test_hertz.py replays the step).
+        half_step = 0.5 * m.normal_law.normal_mode(m, speed)[0] * self.dt
         stretch = 1.0 / math.sqrt(1.0 - half_step**2) if half_step < 1.0 else math.inf
         if reach * stretch >= m.r:
             raise SceneError(
@@ -210,15 +174,12 @@ class Collision:
         (:data:`HERTZ_STEPS_PER_HALF_PERIOD`); a single speed is aligned like a Hookean contact."""
         m = self.model
         speed = max(abs(v) for v in self.v_n)
-        if m.normal == "hertz":
-            times = m.contact_times(self.v_n)
-            if np.ptp(times) > 0.0:
-                return math.pi / m.fastest_rate(frozen=False, speed=speed) / HERTZ_STEPS_PER_HALF_PERIOD
-            t_contact = float(times[0])
-        else:
-            t_contact = m.tau
+        times = m.contact_times(self.v_n)
+        if np.ptp(times) > 0.0:
+            return math.pi / m.fastest_rate(frozen=False, speed=speed) / HERTZ_STEPS_PER_HALF_PERIOD
+        t_force = float(m.normal_law.force_times(m, self.v_n)[0])
         modes = m.modes(frozen=False, speed=speed).values()
-        return align_mid_step(t_contact, second_order_dt(modes, m.t_exit if m.normal == "hooke" else t_contact))
+        return align_mid_step(t_force, second_order_dt(modes, float(times[0])))
 
     @property
     def steps_per_half_period(self) -> float:
@@ -253,12 +214,11 @@ class Collision:
         """Steps that end the contact: the step after tau, and one more for rounding; with
         strong normal damping more, as the sphere leaves slowly (:data:`EXIT_DELAY`)."""
         m = self.model
-        if m.normal == "hertz":  # the slowest sphere's contact is the longest
-            return steps_through(float(np.max(m.contact_times(self.v_n))), self.dt)
+        t_exit = float(np.max(m.contact_times(self.v_n)))  # a speed-dependent contact: the slowest's
         # LAMMPS's first-order error in the overlap, about gamma_n/m dt |v_n| t_exit, is crossed
         # at the exit speed e |v_n|: the exit is late by that many steps, whatever dt is
-        late = math.ceil(EXIT_DELAY * m.gamma_n / m.m * m.t_exit / m.restitution) if m.gamma_n else 0
-        return steps_through(m.t_exit, self.dt) + max(0, late - 2)
+        late = math.ceil(EXIT_DELAY * m.gamma_n / m.m * t_exit / m.restitution) if m.gamma_n else 0
+        return steps_through(t_exit, self.dt) + max(0, late - 2)
 
     def predicted(self) -> np.ndarray:
         """Final states from the theory, shaped like :attr:`initial`: the scattering matrix

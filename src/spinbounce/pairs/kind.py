@@ -36,11 +36,12 @@ def scene_of(values: dict) -> str:
 
 def pair_contact(model: ContactModel) -> PairContact:
     """The pair deck's contact law from a contact model, or why the pair cannot run it."""
-    if model.normal != "hooke":
-        raise SceneError("normal", model.normal, "must be hooke with scene = pair (the pair's theories are Hookean)")
+    if model.normal_law.contact_radius:
+        raise SceneError("normal", model.normal, "must be hooke with scene = pair (the pair's references integrate a "
+                                                 "force that does not grow with the contact radius)")
     if model.limit_damping:
         raise SceneError("limit_damping", True, "is not covered by the pair's exact reference: leave it out")
-    if model.wall != "granular":
+    if not model.style.pairs:
         raise SceneError("wall", model.wall, "must be granular with scene = pair (there is no wall; the classic "
                                              "pair style is not covered by the pair's references)")
     return PairContact(model.kn, model.kt, model.gamma_n, model.gamma_t, model.mu)

@@ -16,6 +16,7 @@ import warnings
 
 import numpy as np
 
+from ..laws import normal_law
 from ..model.scenes import ContactModel, PhysicsWarning
 from ..exact import coulomb, oracle
 
@@ -45,8 +46,9 @@ def random_case(rng: np.random.Generator,
     gamma_t = 0.0 if rng.random() < 0.3 else 2.0 * rng.random() * critical_t
     with warnings.catch_warnings():  # alpha = 1 is a thin shell's inertia, on purpose
         warnings.simplefilter("ignore", PhysicsWarning)
+        damped = normal_law(normal).damped_theory
         model = ContactModel(kn=kn, kt=kt, alpha=alpha, gamma_t=gamma_t, normal=normal,
-                             gamma_n=gamma_n if normal == "hooke" else 0.0,
+                             gamma_n=gamma_n if damped else 0.0,
                              mu=float(10.0 ** rng.uniform(-3.0, 3.0)),
                              limit_damping=bool(rng.random() < 0.5))
     speed = rng.uniform(0.1, 2.0)

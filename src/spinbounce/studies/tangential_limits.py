@@ -94,7 +94,7 @@ def states_at(psi) -> np.ndarray:
 def _capped(model) -> None:
     if model.mu is None:
         raise SceneError("mu", model.mu, "the tangential-restitution limits need a Coulomb cap (a finite mu)")
-    if model.normal != "hooke":
+    if model.normal_law.contact_radius:
         raise SceneError("normal", model.normal, "the closed forms are the linear (Hookean) dashpot's")
 
 

@@ -126,7 +126,7 @@ class TwoWalls:
         if len(models) != len(self.initial):
             raise SceneError("models", len(models), f"must give one model per sphere ({len(self.initial)})")
         for model in models:
-            if model.normal != "hooke" or model.alpha != ALPHA_NVE_SPHERE:
+            if model.normal_law.contact_radius or model.alpha != ALPHA_NVE_SPHERE:
                 raise SceneError("model", model, "two walls run Hookean spheres with alpha = 2/5 (fix nve/sphere); "
                                  "a Hertzian wall or another alpha is not implemented here")
         if len(set(models)) > MAX_MODELS:

@@ -175,7 +175,7 @@ def run_level(case: Case, n: float, form: str, folder: Path, repeats: int = 1) -
     """One level of ``case`` in ``form`` at ``n`` steps per half-period: its row."""
     if form == FROZEN:
         return run_frozen_level(case, frozen_dt(case.model, n), folder, repeats)
-    if case.model.normal == "hertz" and form == MID:
+    if case.model.normal_law.contact_radius and form == MID:
         speed = _speed(case.states)
         return _run_hertz_mid(case, lambda v_n: _hertz_mid_dt(case.model, n, v_n, speed), folder, repeats)
     dt = collision_dt(case.model, n, form, speed=_speed(case.states))
@@ -198,7 +198,7 @@ def run_default(case: Case, form: str, folder: Path, repeats: int = 1) -> dict:
     or the frozen rule. Its row, with the target that step aims at."""
     if form == FROZEN:
         row = run_frozen_level(case, None, folder, repeats)
-    elif form == MID and case.model.normal == "hertz":  # each speed is a scene of its own
+    elif form == MID and case.model.normal_law.contact_radius:  # each speed is a scene of its own
         row = _run_hertz_mid(case, lambda v_n: None, folder, repeats)
     elif form in DEFAULT_FORMS:
         row, _ = run_collision_level(case, None, folder, repeats=repeats)

@@ -1,0 +1,24 @@
+"""Contact laws assembled from sub-models, as LAMMPS's GRANULAR package assembles them.
+
+LAMMPS builds one granular model, for a wall and for a pair alike, from sub-models chosen by
+keyword (``hooke``, ``hertz``, ``hertz/material``, ...), each declaring its coefficients and
+capability flags (its ``contact_radius_flag``, for one). spinbounce does the same: each
+sub-model is one module here, registered under its LAMMPS keyword in its kind's registry
+(:data:`.normal.NORMAL`), and declares
+
+* its coefficients, once (:class:`~spinbounce.declaration.Parameter`: name, unit, default,
+  range and why): they become the flags, scene-file keys, sweep columns and API keywords;
+* its capability flags, which the rest of spinbounce asks instead of its name;
+* its part of the deck (the words after ``granular``), of the exact reference (contact
+  time, largest overlap) and of the step rule (its normal mode).
+
+The wall command's style (:data:`.styles.STYLES`) is the assembly: ``granular`` takes the
+sub-models by keyword, ``classic`` (``hooke/history``) is a fixed assembly with flags of its own.
+No code outside this package branches on a sub-model's or a style's keyword.
+"""
+
+from .normal import NORMAL, NormalLaw, normal_coefficients, normal_law, normal_parameter
+from .styles import STYLES, Style, style, style_parameter
+
+__all__ = ["NORMAL", "NormalLaw", "normal_law", "normal_parameter", "normal_coefficients", "STYLES", "Style", "style",
+           "style_parameter"]

@@ -1,0 +1,44 @@
+"""The normal sub-models, registered by LAMMPS keyword: one line each in :data:`NORMAL`."""
+
+from __future__ import annotations
+
+import importlib
+
+from ...declaration import Parameter
+from ...errors import SceneError
+from .base import NormalLaw
+
+__all__ = ["NORMAL", "NormalLaw", "normal_law", "normal_parameter", "normal_coefficients"]
+
+#: The registry: one entry per sub-model, the module (here) that defines its ``LAW``.
+MODULES = (
+    "hooke",
+    "hertz",
+)
+#: Every normal sub-model, by its LAMMPS keyword.
+NORMAL: dict[str, NormalLaw] = {law.keyword: law for law in
+                                (importlib.import_module(f".{name}", __name__).LAW for name in MODULES)}
+
+
+def normal_law(keyword: str) -> NormalLaw:
+    """The sub-model of ``keyword``, or a :class:`SceneError` listing the registered ones."""
+    try:
+        return NORMAL[keyword]
+    except (KeyError, TypeError):
+        raise SceneError("normal", keyword, f"must be one of {', '.join(NORMAL)}") from None
+
+
+def normal_coefficients() -> tuple[Parameter, ...]:
+    """Every normal sub-model's coefficients, each once, in registry order."""
+    seen: dict[str, Parameter] = {}
+    for law in NORMAL.values():
+        for parameter in law.coefficients:
+            seen.setdefault(parameter.name, parameter)
+    return tuple(seen.values())
+
+
+def normal_parameter() -> Parameter:
+    """The ``normal`` choice: one of the registered keywords."""
+    laws = "; ".join(f"{law.keyword}: {law.summary}" for law in NORMAL.values())
+    return Parameter("normal", f"normal force law ({laws})", "-", "hooke", kind="choice", choices=tuple(NORMAL),
+                     deck="wall/gran granular NORMAL ... | pair_coeff * * NORMAL ...")

@@ -1,0 +1,76 @@
+"""What a normal sub-model declares and answers: the interface every one implements.
+
+A sub-model is asked, never named: its coefficients, its flags (``contact_radius``: the
+force grows with the contact radius a = sqrt(R delta), LAMMPS's ``contact_radius_flag``;
+``damped_theory``: an exact reference exists with normal damping), the words it adds to a
+deck, and the contact's normal motion for the exact reference and the step rule.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ...declaration import Parameter
+from ...errors import SceneError
+
+__all__ = ["NormalLaw", "STIFFNESS"]
+
+#: The stiffness of ``hooke`` (F = kn delta) and ``hertz`` (F = kn a delta, LAMMPS's K).
+STIFFNESS = Parameter(
+    "kn", "normal spring constant (Hertz: LAMMPS's K, F = kn sqrt(r) delta^(3/2))", "force/length", 10.0,
+    low=0.0, low_open=True, why="a positive stiffness keeps the sphere out of the wall",
+    deck="wall/gran granular hooke|hertz KN")
+
+
+class NormalLaw:
+    """A normal sub-model. Subclasses set the class attributes and the normal motion."""
+
+    #: LAMMPS's keyword, after ``granular`` in ``fix wall/gran`` or in ``pair_coeff``.
+    keyword: str = ""
+    #: One line for the ``normal`` parameter's help.
+    summary: str = ""
+    #: The coefficients it takes, besides the spheres' (declared once each).
+    coefficients: tuple[Parameter, ...] = (STIFFNESS,)
+    #: The force grows with the contact radius a = sqrt(R delta): the contact time, and with it
+    #: Omega, depends on the impact speed (Hertzian: F = kn a delta).
+    contact_radius: bool = False
+    #: An exact reference of this normal motion exists with normal damping (gamma_n > 0).
+    damped_theory: bool = True
+
+    def settle(self, values: dict, foreign: tuple[Parameter, ...]) -> dict:
+        """The model's values this law fixes (derived coefficients), after refusing a value
+        given for another law's coefficient (``foreign``: every other sub-model's)."""
+        for parameter in foreign:
+            if parameter not in self.coefficients and values.get(parameter.name) is not None \
+                    and parameter.default is None:
+                raise SceneError(parameter.name, values[parameter.name],
+                                 f"is not a coefficient of normal = {self.keyword} (it takes "
+                                 f"{', '.join(p.name for p in self.coefficients)})")
+        return {}
+
+    def deck_terms(self, model, eta_n: float) -> tuple:
+        """Its part of a deck, as LAMMPS reads it after ``granular``: the keyword (a word from
+        the registry), then its coefficients as numbers (the deck formats them)."""
+        return (self.keyword, float(model.kn), float(eta_n))
+
+    # -- the normal motion (exact) --------------------------------------------------
+    def contact_times(self, model, v_n) -> np.ndarray:
+        """Each sphere's time until it is out of the overlap."""
+        raise NotImplementedError
+
+    def force_times(self, model, v_n) -> np.ndarray:
+        """Each sphere's time until the contact force ends (at or before it leaves the overlap)."""
+        return self.contact_times(model, v_n)
+
+    def tunnelling_speed(self, model) -> float:
+        """The |v_n| at which the largest overlap reaches the radius (the centre would cross the wall)."""
+        raise NotImplementedError
+
+    def max_overlap(self, model, speed) -> np.ndarray:
+        """The largest overlap of a contact that starts touching at |v_n| = ``speed``."""
+        raise NotImplementedError
+
+    def normal_mode(self, model, speed: float | None) -> tuple[float, float]:
+        """(w, c) of the normal motion as x'' + c x' + w^2 x = 0 (the step rule's mode); a
+        nonlinear force is represented by its stiffest point, at the fastest ``speed``."""
+        raise NotImplementedError
