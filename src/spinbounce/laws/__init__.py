@@ -21,4 +21,11 @@ from .normal import NORMAL, NormalLaw, normal_coefficients, normal_law, normal_p
 from .styles import STYLES, Style, style, style_parameter
 
 __all__ = ["NORMAL", "NormalLaw", "normal_law", "normal_parameter", "normal_coefficients", "STYLES", "Style", "style",
-           "style_parameter"]
+           "style_parameter", "settled"]
+
+
+def settled(values: dict) -> dict:
+    """A model's values with what its normal sub-model derives from its own coefficients (a
+    stiffness made from a material, say), after refusing another sub-model's coefficients."""
+    law = normal_law(values.get("normal", NormalLaw.default_keyword))
+    return {**values, **law.settle(values, normal_coefficients())}

@@ -18,7 +18,7 @@ import numpy as np
 
 from .. import exact
 from ..exact import choose
-from ..laws import NORMAL, NormalLaw, Style, normal_coefficients, normal_law, style
+from ..laws import NORMAL, NormalLaw, Style, normal_law, settled, style
 from .parameters import MODEL, SceneError, positive_number
 from .stability import stability_limit
 from .timestep import MIN_STEPS_PER_HALF_PERIOD
@@ -43,7 +43,7 @@ class ContactPhysics:
         for parameter in MODEL:
             object.__setattr__(self, parameter.name, parameter.check(getattr(self, parameter.name)))
         values = {parameter.name: getattr(self, parameter.name) for parameter in MODEL}
-        for name, value in self.normal_law.settle(values, normal_coefficients()).items():
+        for name, value in settled(values).items():
             object.__setattr__(self, name, value)
         if self.alpha > ALPHA_SHELL:
             warnings.warn(
@@ -70,8 +70,10 @@ class ContactPhysics:
             )
 
     def replace(self, **changes):
-        """A copy with some parameters changed (checked again)."""
-        return dataclasses.replace(self, **changes)
+        """A copy with some parameters changed (checked again); what the normal sub-model derives
+        is derived anew unless it is changed too."""
+        reset = {p.name: p.default for p in MODEL if p.name in self.normal_law.derived and p.name not in changes}
+        return dataclasses.replace(self, **reset, **changes)
 
     # -- the law -------------------------------------------------------------------
     @property

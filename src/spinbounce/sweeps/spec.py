@@ -43,6 +43,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..laws import settled
 from ..model import parameters
 from ..model.contact import ContactModel
 from ..model.parameters import SceneError
@@ -268,8 +269,12 @@ def _groups(model: dict) -> list[dict]:
     groups = []
     for combo in itertools.product(*axes.values()):
         params = {**defaults, **dict(zip(axes, combo, strict=True))}
-        if "kt_over_kn" in params:
-            params["kt"] = params.pop("kt_over_kn") * params["kn"]
+        if "kt_over_kn" in params:  # over the kn the normal law settles on (it may derive it)
+            try:
+                kn = settled(params)["kn"]
+            except SceneError as exc:
+                raise SweepError(f"model.{exc}") from None
+            params["kt"] = params.pop("kt_over_kn") * kn
         groups.append(params)
     return groups
 

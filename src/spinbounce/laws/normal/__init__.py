@@ -40,5 +40,6 @@ def normal_coefficients() -> tuple[Parameter, ...]:
 def normal_parameter() -> Parameter:
     """The ``normal`` choice: one of the registered keywords."""
     laws = "; ".join(f"{law.keyword}: {law.summary}" for law in NORMAL.values())
-    return Parameter("normal", f"normal force law ({laws})", "-", "hooke", kind="choice", choices=tuple(NORMAL),
+    return Parameter("normal", f"normal force law ({laws})", "-", NormalLaw.default_keyword, kind="choice",
+                     choices=tuple(NORMAL),
                      deck="wall/gran granular NORMAL ... | pair_coeff * * NORMAL ...")

@@ -27,6 +27,10 @@ class NormalLaw:
 
     #: LAMMPS's keyword, after ``granular`` in ``fix wall/gran`` or in ``pair_coeff``.
     keyword: str = ""
+    #: The sub-model a model without a ``normal`` has (the paper's).
+    default_keyword = "hooke"
+    #: The model's values it computes from its coefficients (reset when a model is copied).
+    derived: tuple[str, ...] = ()
     #: One line for the ``normal`` parameter's help.
     summary: str = ""
     #: The coefficients it takes, besides the spheres' (declared once each).
