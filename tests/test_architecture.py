@@ -192,3 +192,48 @@ def test_every_test_module_says_in_one_line_what_it_holds():
         if not lines or len(lines[0]) > 120 or (len(lines) > 1 and lines[1].strip()):
             unsaid.append(path.name)
     assert not unsaid, f"test modules without a one-line summary: {unsaid}"
+
+
+def _law_keywords() -> set[str]:
+    from spinbounce.laws import NORMAL, STYLES
+
+    return set(NORMAL) | set(STYLES)
+
+
+def _keyword_branches(text: str, keywords: set[str]) -> list[int]:
+    """Lines where a registered keyword is compared (==, !=, in a membership test), not
+    iterated over (``for wall in ("classic", "granular")`` runs a study of both)."""
+    tokens = [t for t in tokenize.generate_tokens(io.StringIO(text).readline)
+              if t.type not in (tokenize.NL, tokenize.COMMENT, tokenize.INDENT, tokenize.DEDENT)]
+    lines = []
+    for k, token in enumerate(tokens):
+        if token.type != tokenize.STRING or token.string.strip("\"'") not in keywords:
+            continue
+        before = [t.string for t in tokens[max(0, k - 2):k]]
+        after = tokens[k + 1].string if k + 1 < len(tokens) else ""
+        membership = before[-1:] == ["in"] or before == ["in", "("]
+        if membership:
+            start = max(j for j in range(k) if j == 0 or tokens[j - 1].type == tokenize.NEWLINE)
+            membership = "for" not in [t.string for t in tokens[start:k]]
+        if membership or before[-1:] in (["=="], ["!="]) or after in ("==", "!="):
+            lines.append(token.start[0])
+    return lines
+
+
+def test_no_code_outside_the_laws_branches_on_a_laws_keyword():
+    # consumers ask a sub-model's flags; comparing with a registered keyword anywhere else is a
+    # branch on a law's name
+    keywords = _law_keywords()
+    assert {"hooke", "hertz", "granular", "classic"} <= keywords
+    found = [f"{path.relative_to(PACKAGE)}:{line}" for path in PACKAGE.rglob("*.py")
+             if path.relative_to(PACKAGE).parts[0] != "laws"
+             for line in _keyword_branches(path.read_text(), keywords)]
+    assert not found, found
+
+
+def test_the_keyword_check_sees_a_branch_and_not_an_iteration():
+    snippet = ('if model.normal == "hertz" or "classic" != wall:\n    pass\n'
+               'ok = wall in ("hooke", "y")\n'
+               'for wall in ("classic", "granular"):\n    pass\n'
+               'sides = {w: 1 for w in ("classic", "granular")}\n')
+    assert _keyword_branches(snippet, _law_keywords()) == [1, 1, 3]

@@ -78,7 +78,7 @@ def test_a_classic_sweep_from_flags_records_the_wall(tmp_path, capsys):
     assert main(argv) == 0
     rows = pd.read_parquet(tmp_path / "s" / "chunks")
     assert set(rows["wall"]) == {"classic", "granular"} and (rows["status"] == "ok").all()
-    assert set(rows.loc[rows["wall"] == "classic", "theory"]) == {"classic"}
+    assert set(rows.loc[rows["wall"] == "classic", "theory"]) == {"classic_wall"}
     assert "12 ok" not in capsys.readouterr().out  # 48 rows: four groups of 12
 
 
@@ -108,7 +108,7 @@ def test_a_classic_sweep_to_a_tolerance_is_within_it_row_by_row(tmp_path):
     run_sweep(spec_from_dict(raw), tmp_path / "out", workers=1, log=lambda *_: None)
     rows = read_results(tmp_path / "out")
     true = np.abs(rows[["vn_error", "vt_error", "r_omega_error"]].to_numpy()).max(axis=1)
-    assert len(rows) == 96 and set(rows["theory"]) == {"classic"}
+    assert len(rows) == 96 and set(rows["theory"]) == {"classic_wall"}
     assert true.max() <= 1e-6 and (true <= rows["vn_estimate"].to_numpy() * (1 + 1e-12)).all()
 
 

@@ -3,17 +3,24 @@
 Every consumer (collide, frozen, theory, sweeps, fit, figures, references, claims,
 benchmarks) asks here; nothing else looks at a model's parameters to pick a theory.
 
-========  ==========================================================  ===========
-kind      when                                                        one matrix?
-========  ==========================================================  ===========
-linear    Hookean, no damping, no Coulomb cap: Eq. 18                  yes
-damped    Hookean with gamma_n or gamma_t, no cap: Eq. 18 with the     yes
-          exact damped Omega and restitution (:mod:`.linear`)
-hertz     Hertzian normal force, no cap: Eq. 18 sphere by sphere with  no (Omega(v_n))
-          the Omega of each contact time (:mod:`.hertz`)
-coulomb   a finite mu: the contact sticks and slides in turn            no
-          (:mod:`.coulomb`, exact and batched; checked against :mod:`.oracle`)
-========  ==========================================================  ===========
+============  =========================================================  ===============
+kind          when                                                       one matrix?
+============  =========================================================  ===============
+classic_wall  a tangential spring on the contact radius (this build's    no (Omega(v_n))
+              classic wall, kt sqrt(r delta)): :mod:`.classic`
+coulomb       a finite mu: the contact sticks and slides in turn         no
+              (:mod:`.coulomb`, exact and batched; checked against
+              :mod:`.oracle`)
+hertzian      a normal force on the contact radius (Hertzian), no cap:   no (Omega(v_n))
+              Eq. 18 sphere by sphere with the Omega of each contact
+              time (:mod:`.hertz`)
+damped        Hookean with gamma_n or gamma_t, no cap: Eq. 18 with the   yes
+              exact damped Omega and restitution (:mod:`.linear`)
+linear        Hookean, no damping, no Coulomb cap: Eq. 18                yes
+============  =========================================================  ===============
+
+The first that applies is the choice. The model's sub-models are asked (its normal law's
+``contact_radius``, its style's ``tangential_contact_radius``), never named.
 
 States are rows of (v_n, v_t, r omega) or, in 3-D, (v_n, v_t, r omega, v_s, r omega_s,
 r omega_n), as everywhere in spinbounce. The model is read through its fields only.
@@ -47,7 +54,7 @@ class Choice:
 def which(model) -> Choice:
     """The theory that applies to collisions of ``model``."""
     if model.style.tangential_contact_radius:
-        return Choice("classic", "the classic wall as this LAMMPS build integrates it (tangential spring "
+        return Choice("classic_wall", "the classic wall as this LAMMPS build integrates it (tangential spring "
                                  "kt sqrt(r delta); exact.classic)",
                       "the classic wall's tangential spring grows with the overlap, so Omega depends on v_n "
                       "and on the length unit: give a state (v_n, v_t, omega) for its outcome")
@@ -56,7 +63,7 @@ def which(model) -> Choice:
                       f"with mu = {model.mu!r} the contact sticks and slides in turn, so the outcome is not "
                       "linear in the initial state: give a state (v_n, v_t, omega) for its outcome")
     if model.normal_law.contact_radius:
-        return Choice("hertz", "Eq. 18 per sphere, Omega of the Hertzian contact time tau(v_n)",
+        return Choice("hertzian", "Eq. 18 per sphere, Omega of the Hertzian contact time tau(v_n)",
                       "with normal = hertz the contact time, and with it Omega, depends on v_n: "
                       "give v_n for its matrix")
     if model.gamma_n > 0.0 or model.gamma_t > 0.0:
@@ -83,7 +90,7 @@ def matrix(model, v_n: float | None = None, three_d: bool = False) -> np.ndarray
     choice = which(model)
     if choice.kind == "coulomb":
         raise NoMatrix(choice.no_matrix_reason)
-    if choice.kind == "hertz":
+    if choice.kind == "hertzian":
         if v_n is None:
             raise NoMatrix(choice.no_matrix_reason)
         m3 = _hertz_matrices(model, np.array([v_n]))[0]
@@ -96,7 +103,7 @@ def matrices(model, v_n) -> np.ndarray:
     """(n, 3, 3): each sphere's scattering matrix (one per v_n for a Hertzian model; the one
     matrix repeated otherwise); :class:`NoMatrix` with a Coulomb cap."""
     v_n = np.atleast_1d(np.asarray(v_n, dtype=float))
-    if which(model).kind == "hertz":
+    if which(model).kind == "hertzian":
         return _hertz_matrices(model, v_n)
     return np.broadcast_to(matrix(model), (v_n.size, 3, 3))
 
@@ -109,14 +116,14 @@ def omega_per_sphere(model, v_n) -> np.ndarray:
     """Each sphere's Omega (Eq. 18's, exact damped or Hertzian); NaN where none exists (Coulomb)."""
     v_n = np.atleast_1d(np.asarray(v_n, dtype=float))
     kind = which(model).kind
-    if kind == "classic" and model.mu is None:  # the sticking contact's Omega, speed by speed
+    if kind == "classic_wall" and model.mu is None:  # the sticking contact's Omega, speed by speed
         from . import classic
 
         return np.array([classic.Omega_eff(v, model.kn, model.kt, model.alpha, model.r, model.m,
                                            model.gamma_n / model.m, model.gamma_t / model.m) for v in v_n])
-    if kind in ("coulomb", "classic"):
+    if kind in ("coulomb", "classic_wall"):
         return np.full(v_n.shape, np.nan)
-    if kind == "hertz":
+    if kind == "hertzian":
         return np.atleast_1d(hertz.Omega(v_n, model.m, model.kn, model.r, model.kt, model.alpha, model.gamma_t))
     omega = linear.Omega_exact(model.m, model.kn, model.kt, model.alpha, model.gamma_t, model.gamma_n,
                                _tensile(model))
@@ -128,7 +135,7 @@ def predict(model, initial) -> np.ndarray:
     initial = np.atleast_2d(np.asarray(initial, dtype=float))
     width = initial.shape[1]
     kind = which(model).kind
-    if kind == "classic":
+    if kind == "classic_wall":
         return _classic(model, initial)
     if kind == "coulomb":  # the exact batched solver; the scipy oracle is its independent check
         from . import coulomb
@@ -138,7 +145,7 @@ def predict(model, initial) -> np.ndarray:
         if width == 6:
             return coulomb.bounce_3d(model, *columns, initial[:, 3], initial[:, 4] / r, initial[:, 5] / r)
         return coulomb.bounce_2d(model, *columns)
-    if kind == "hertz":
+    if kind == "hertzian":
         matrices = _hertz_matrices(model, initial[:, 0])
         if width == 6:
             matrices = np.array([linear.block_from(m3) for m3 in matrices])
