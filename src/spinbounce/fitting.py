@@ -32,6 +32,7 @@ from .model import parameters
 from .model.contact import ContactModel
 from .records import write_atomic_with
 from .exact import choose
+from .laws import own
 
 __all__ = ["GROUP_KEYS", "model_of_group", "fit_matrix", "fit_omega", "fit_groups", "plot_groups", "STICK_TOLERANCE",
            "omega_gains", "pair_regime", "PAIR_GEOMETRY"]
@@ -89,6 +90,12 @@ def fit_omega(initial: np.ndarray, final: np.ndarray, alpha: float,
     omega = float(x @ y) / xx
     dof = max(len(x) - 1, 1)
     return omega, math.sqrt(float(((y - omega * x) ** 2).sum()) / dof / xx)
+
+
+def group_parameters(params: dict) -> dict:
+    """A group's parameters as a fit reports them: NaN columns as None, and without the
+    coefficients of normal laws the group does not use (:func:`spinbounce.laws.own`)."""
+    return own({k: (None if isinstance(v, float) and math.isnan(v) else v) for k, v in params.items()})
 
 
 def model_of_group(params: dict) -> ContactModel:
@@ -191,7 +198,7 @@ def _fit_one(group: pd.DataFrame, params: dict) -> dict:
     else:
         matrix_theory, regime_name = regime(model, initial.shape[1] == 6, off_uncapped(model, initial, theory),
                                             float(np.abs(initial).max()), set(np.unique(initial[:, 0])[:2].tolist()))
-    out = {"parameters": {k: (None if isinstance(v, float) and math.isnan(v) else v) for k, v in params.items()},
+    out = {"parameters": group_parameters(params),
            "n": len(group), "theory": theory_kind(params), "regime": regime_name,
            "has_matrix": matrix_theory is not None, **_deviations(group, names)}
     if matrix_theory is None:

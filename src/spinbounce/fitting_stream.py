@@ -18,7 +18,7 @@ import numpy as np
 import pandas as pd
 
 from .compare import STATE, STATE_3D
-from .fitting import (GROUP_KEYS, PAIR_GEOMETRY, model_of_group, off_uncapped, omega_gains, omega_of_theory,
+from .fitting import (GROUP_KEYS, PAIR_GEOMETRY, group_parameters, model_of_group, off_uncapped, omega_gains, omega_of_theory,
                       pair_regime, regime, theory_kind)
 
 __all__ = ["fit_dataset", "BATCH_ROWS"]
@@ -163,7 +163,7 @@ def _solve(g: _Group):
 def _report(g: _Group, fit) -> dict:
     regime_name, matrix_theory = g.params.pop("_regime"), g.params.pop("_matrix_theory")
     errors, relative = np.concatenate(g.errors), np.concatenate(g.relative)
-    out = {"parameters": {k: (None if isinstance(v, float) and math.isnan(v) else v) for k, v in g.params.items()},
+    out = {"parameters": group_parameters(g.params),
            "n": g.n, "theory": theory_kind(g.params), "regime": regime_name,
            "has_matrix": fit is not None,
            "worst_deviation": float(errors.max()), "median_deviation": float(np.median(errors)),

@@ -21,7 +21,15 @@ from .normal import NORMAL, NormalLaw, normal_coefficients, normal_law, normal_p
 from .styles import STYLES, Style, style, style_parameter
 
 __all__ = ["NORMAL", "NormalLaw", "normal_law", "normal_parameter", "normal_coefficients", "STYLES", "Style", "style",
-           "style_parameter", "settled"]
+           "style_parameter", "settled", "own"]
+
+
+def own(values: dict) -> dict:
+    """``values`` without the coefficients of normal sub-models other than the chosen one: what a
+    model means (a sweep's digest, a fit's group) does not change when a sub-model is added."""
+    law = normal_law(values.get("normal", NormalLaw.default_keyword))
+    taken = {p.name for p in law.coefficients}
+    return {k: v for k, v in values.items() if k in taken or k not in {p.name for p in normal_coefficients()}}
 
 
 def settled(values: dict) -> dict:

@@ -43,7 +43,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..laws import settled
+from ..laws import own, settled
 from ..model import parameters
 from ..model.contact import ContactModel
 from ..model.parameters import SceneError
@@ -147,7 +147,7 @@ class SweepSpec:
         """What the sweep means, whatever way it was written (file or flags)."""
         sizes = self.chunk_sizes
         chunking = self.chunk_size or (DEFAULT_CHUNK if set(sizes) == {DEFAULT_CHUNK} else list(sizes))
-        return {"groups": list(self.groups), "seed": self.seed, "chunk_size": chunking, "mode": self.mode,
+        return {"groups": [own(group) for group in self.groups], "seed": self.seed, "chunk_size": chunking, "mode": self.mode,
                 "n": self.n, "states": self.states, "tolerance": self.tolerance}
 
     @property
