@@ -21,6 +21,7 @@ from spinbounce.model.contact import ContactModel
 from spinbounce.model.scenes import Collision, Frozen
 from spinbounce.exact import choose
 
+_MATERIAL = {"normal": "hertz/material", "youngs_modulus": 1.0e4, "poisson_ratio": 0.3, "kt": 200.0}
 #: One non-default setting per parameter, on a base where it matters: limit_damping cuts
 #: a tensile normal force, which needs normal damping to exist.
 CASES = {
@@ -35,6 +36,10 @@ CASES = {
     "limit_damping": ({"gamma_n": 0.5}, {"gamma_n": 0.5, "limit_damping": True}),
     "normal": ({}, {"normal": "hertz"}),
     "wall": ({}, {"wall": "classic"}),
+    # hertz/material's own coefficients, on a stiff tangential spring whose outcome follows the
+    # contact time (kt = 200: the slip turns through most of a half-period)
+    "youngs_modulus": (_MATERIAL, {**_MATERIAL, "youngs_modulus": 2.0e4}),
+    "poisson_ratio": (_MATERIAL, {**_MATERIAL, "poisson_ratio": 0.45}),
 }
 STATE = {"v_n": -0.6, "v_t": 0.8, "omega": 0.5}
 #: LAMMPS at the default step against the theory. Damped contacts converge at first order

@@ -14,6 +14,7 @@ __all__ = ["NORMAL", "NormalLaw", "normal_law", "normal_parameter", "normal_coef
 MODULES = (
     "hooke",
     "hertz",
+    "hertz_material",
 )
 #: Every normal sub-model, by its LAMMPS keyword.
 NORMAL: dict[str, NormalLaw] = {law.keyword: law for law in
