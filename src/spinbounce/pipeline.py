@@ -8,7 +8,6 @@ contact that had not finished are errors, not results.
 
 from __future__ import annotations
 
-import dataclasses
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -22,7 +21,7 @@ from .compare import collision_table, frozen_table
 from .lammps.decks import DUMP_NAME, INLINE_SPHERES, Deck, render_collision, render_frozen, wall_parameters
 from .lammps.dumps import read_dump
 from .lammps.runner import RunInfo, run_deck
-from .model.scenes import Collision, ContactModel, Frozen
+from .model.scenes import Collision, Frozen
 from .model.timestep import ACCURACY, StepChoice
 from .stepping import tune
 from .errors import ResultError
@@ -42,10 +41,6 @@ __all__ = [
 
 #: A batch's per-sphere table, beside result.json.
 RESULT_TABLE = "result.parquet"
-
-
-def _model_dict(model: ContactModel) -> dict:
-    return dataclasses.asdict(model)
 
 
 def provenance(info: RunInfo, scene_kind: str, parameters: dict) -> dict:
@@ -208,7 +203,7 @@ def run_collision(scene: Collision, out_dir: Path, atoms: str | None = None, rec
             omega = choose.omega_per_sphere(m, scene.v_n).tolist()
         else:
             tau, omega = m.tau, m.Omega
-        parameters = {"model": _model_dict(m), "dt": scene.dt, "nsteps": scene.nsteps,
+        parameters = {"model": m.as_record(), "dt": scene.dt, "nsteps": scene.nsteps,
                       "tau": tau, "Omega": omega, "wall": wall_parameters(m),
                       "integrator": "rigid" if deck.rigid else "nve/sphere",
                       "atoms": "library" if deck.atoms is not None else ("data_file" if deck.files else "inline")}
@@ -261,7 +256,7 @@ def run_frozen(scene: Frozen, out_dir: Path) -> FrozenResult:
 
 def frozen_metadata(result: FrozenResult) -> dict:
     scene = result.scene
-    parameters = {"model": _model_dict(scene.model), "z": scene.z, "v_t": scene.v_t,
+    parameters = {"model": scene.model.as_record(), "z": scene.z, "v_t": scene.v_t,
                   "omega": scene.omega, "t_end": scene.nsteps * scene.dt, "dt": scene.dt,
                   "nsteps": scene.nsteps, "every": scene.every, "wall": wall_parameters(scene.model)}
     record = provenance(result.info, "frozen", parameters)

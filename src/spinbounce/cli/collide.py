@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import dataclasses
 import json
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -68,7 +67,7 @@ def run(args) -> int:
         return _run_to_tolerance(args, state)
     scene = Collision(model_from(args), dt=args.dt, **state)
     announce_cost(expected_steps(scene), scene.n)
-    out = args.out or default_run_dir("collide", {"model": dataclasses.asdict(scene.model), **state, "dt": scene.dt})
+    out = args.out or default_run_dir("collide", {"model": scene.model.as_record(), **state, "dt": scene.dt})
     result = run_collision(scene, out)
     scene = result.scene  # at the step its accuracy needed
     row = result.table.iloc[0]
@@ -113,7 +112,7 @@ def _run_to_tolerance(args, state: dict) -> int:
     from ..records import software, to_json, write_atomic
 
     model = model_from(args)
-    out = args.out or default_run_dir("collide", {"model": dataclasses.asdict(model), **state,
+    out = args.out or default_run_dir("collide", {"model": model.as_record(), **state,
                                                   "tolerance": args.tolerance})
     out_of_plane = {k: v for k, v in state.items() if k in ("v_s", "omega_s", "omega_n") and v}
     result, scene = collide_to_tolerance(model, state["v_n"], state["v_t"], state["omega"], args.tolerance, out,

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import dataclasses
 import json
 from pathlib import Path
 
@@ -51,7 +50,7 @@ def run(args) -> int:
                    dt=args.dt, every=args.every)
     announce_cost(scene.nsteps)
     run_dir = args.run_dir or default_run_dir(
-        "frozen", {"model": dataclasses.asdict(scene.model), "z": scene.z, "vt": scene.v_t,
+        "frozen", {"model": scene.model.as_record(), "z": scene.z, "vt": scene.v_t,
                    "omega": scene.omega, "nsteps": scene.nsteps, "dt": scene.dt, "every": scene.every}
     )
     result = run_frozen(scene, run_dir)
@@ -87,7 +86,7 @@ def _run_to_tolerance(args) -> int:
     model = model_from(args)
     Frozen(model, z=args.z, v_t=args.vt, omega=args.omega, t_end=args.t_end)  # validates before any run
     run_dir = args.run_dir or default_run_dir(
-        "frozen", {"model": dataclasses.asdict(model), "z": args.z, "vt": args.vt, "omega": args.omega,
+        "frozen", {"model": model.as_record(), "z": args.z, "vt": args.vt, "omega": args.omega,
                    "t_end": args.t_end, "tolerance": args.tolerance})
     result = frozen_to_tolerance(model, args.z, args.vt, args.omega, args.t_end, args.tolerance, run_dir,
                                  log=(lambda *_: None) if args.json else print)
@@ -99,7 +98,7 @@ def _run_to_tolerance(args) -> int:
     out = Path(args.out)
     out.parent.mkdir(parents=True, exist_ok=True)
     write_atomic(out, table.to_csv(index=False, float_format="%.17g"))
-    meta = {"scene": "frozen", "model": dataclasses.asdict(model), "z": args.z, "v_t": args.vt,
+    meta = {"scene": "frozen", "model": model.as_record(), "z": args.z, "v_t": args.vt,
             "omega": args.omega, "t_end": args.t_end, "tolerance": result.tolerance,
             "estimate": result.max_estimate, "max_abs_error": error, "steps": result.steps,
             "plain_steps_for_same_estimate": result.plain_steps_for(result.max_estimate),

@@ -11,7 +11,6 @@ form gains (> 0: the wall gave the sphere energy).
 
 from __future__ import annotations
 
-import dataclasses
 import time
 from pathlib import Path
 
@@ -33,7 +32,7 @@ def compute(model: ContactModel, v_t: float, omega: float, runs: Path) -> dict:
         curve["lammps"] = effect.lammps_omegas(model, curve["kt_over_kn"], Path(runs) / f"kt_over_kn_{curve['kt_over_kn']:.6g}")
     speeds = effect.CURVE_FRACTIONS * effect.tunnelling_speed(model)
     rebound = effect.compare(model, speeds, v_t, omega)
-    return {"model": dataclasses.asdict(model), "state": {"v_t": v_t, "omega": omega}, "curves": curves,
+    return {"model": model.as_record(), "state": {"v_t": v_t, "omega": omega}, "curves": curves,
             "rebound": rebound, "fix_lines": effect.fix_lines(model)}
 
 

@@ -40,7 +40,7 @@ FIG6_ENERGY = 1.0
 
 
 def _model_record(model: ContactModel) -> dict:
-    record = dataclasses.asdict(model)
+    record = model.as_record()
     record.update(kt_over_kn=model.kt / model.kn, tau=model.tau, Omega_exact=model.Omega)
     return record
 

@@ -7,7 +7,6 @@ that reads nothing else.
 
 from __future__ import annotations
 
-import dataclasses
 from pathlib import Path
 
 import numpy as np
@@ -61,7 +60,7 @@ def _frozen_table(tuned, model: ContactModel) -> pd.DataFrame:
 
 
 def _parameters(model: ContactModel, **scene) -> dict:
-    return {"model": dataclasses.asdict(model), "z": FROZEN_Z, **scene}
+    return {"model": model.as_record(), "z": FROZEN_Z, **scene}
 
 
 # ---------------------------------------------------------------------------

@@ -18,7 +18,7 @@ import numpy as np
 
 from .. import exact
 from ..exact import choose
-from ..laws import NORMAL, NormalLaw, Style, normal_law, settled, style
+from ..laws import NORMAL, NormalLaw, Style, normal_law, own, settled, style
 from .parameters import MODEL, SceneError, positive_number
 from .stability import stability_limit
 from .timestep import MIN_STEPS_PER_HALF_PERIOD
@@ -68,6 +68,11 @@ class ContactPhysics:
                 f"must be below critical normal damping 2*sqrt(m*kn) = {critical:.6g}: "
                 "at or above it the sphere never leaves the wall",
             )
+
+    def as_record(self) -> dict:
+        """The model's parameters as every record, digest and run folder's name gives them: the
+        coefficients of sub-models it does not use left out (:func:`spinbounce.laws.own`)."""
+        return own(dataclasses.asdict(self))
 
     def replace(self, **changes):
         """A copy with some parameters changed (checked again); what the normal sub-model derives

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -92,7 +91,7 @@ class ReferenceCase:
         out = {
             "kind": self.kind,
             "description": self.description,
-            "model": dataclasses.asdict(scene.model),
+            "model": scene.model.as_record(),
             "states": [list(s) for s in self.states],
             "dt": scene.dt,
             "nsteps": scene.nsteps,

@@ -11,6 +11,7 @@ import json
 import tempfile
 from pathlib import Path
 
+from ...laws import own
 from ...model import parameters
 from ...records import json_ready, software, to_json, write_atomic
 from .cases import CASES, DEFAULT_DIR
@@ -106,7 +107,7 @@ def _with_declared_defaults(case: dict) -> dict:
     """A stored case's model as this code declares it: a parameter declared since the
     references were made takes its default, which is what those runs had."""
     model = {p.name: p.default for p in parameters.MODEL}
-    return {**case, "model": {**model, **case.get("model", {})}} if "model" in case else case
+    return {**case, "model": own({**model, **case.get("model", {})})} if "model" in case else case
 
 
 def compare_manifest(stored: dict) -> list[Violation]:
