@@ -56,7 +56,7 @@ def meaning(column: str) -> str:
     declared = {p.column: p for p in parameters.MODEL}
     if column in declared:
         p = declared[column]
-        return f"model parameter: {p.meaning}" + (" (NaN: none)" if p.optional else "")
+        return f"model parameter: {p.meaning}" + (f" ({p.none_value:g}: none)" if p.optional else "")
     for suffix in sorted(WHEN, key=len, reverse=True):
         state = column.removesuffix(f"_{suffix}")
         if state != column and state in STATES:

@@ -142,3 +142,18 @@ def test_runs_out_of_reach_are_refused_with_their_cost_before_lammps(argv, words
     assert _exit(argv) == 2
     err = capsys.readouterr().err
     assert words in err and "Traceback" not in err and not (tmp_path / "spinbounce-runs").exists()
+
+
+@pytest.mark.lammps
+def test_no_cap_is_a_value_that_grouping_and_filtering_keep(tmp_path, capsys):
+    # mu none is stored as inf (infinite friction): groupby("mu") has both groups, a fit's
+    # table holds the same, and inf given anywhere means none
+    import spinbounce
+
+    rows = spinbounce.sweep(n=6, out=str(tmp_path / "s"), mu=[None, 0.3])
+    sizes = rows.groupby("mu").size()
+    assert sizes.to_dict() == {0.3: 6, float("inf"): 6}
+    assert spinbounce.fit(rows).groupby("mu").size().to_dict() == {0.3: 1, float("inf"): 1}
+    assert ContactModel(mu=float("inf")).mu is None
+    assert main(["fit", str(tmp_path / "s"), "--mu", "inf"]) == 0 and "mu=None" in capsys.readouterr().out
+    assert _exit(["theory", "--gamma-t", "inf"]) == 2 and "must be finite" in capsys.readouterr().err

@@ -213,4 +213,12 @@ def fit(results: str | Path | pd.DataFrame) -> pd.DataFrame:
 
     rows = results if isinstance(results, pd.DataFrame) else read_results(results)
     groups = fit_groups(rows)
-    return pd.DataFrame([{**g["parameters"], **{k: v for k, v in g.items() if k != "parameters"}} for g in groups])
+    return pd.DataFrame([{**_as_columns(g["parameters"]), **{k: v for k, v in g.items() if k != "parameters"}}
+                         for g in groups])
+
+
+def _as_columns(values: dict) -> dict:
+    """A group's parameters as the sweep's table holds them (mu none: inf), so that the fit's
+    rows group and filter like the sweep's."""
+    declared = {p.name: p for p in parameters.MODEL}
+    return {k: declared[k].to_column(v) if k in declared else v for k, v in values.items()}

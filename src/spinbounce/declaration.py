@@ -63,6 +63,10 @@ class Parameter:
     default_step_why: str = ""
     #: Command-line flags besides the name with dashes (``gamma_n`` -> ``--gamma-n``); the first is shown.
     aliases: tuple[str, ...] = ()
+    #: What a table holds for none: NaN (no value), or a number that means the same (mu: inf,
+    #: since no cap is infinite friction), which grouping and filtering keep. Given as a value,
+    #: that number is read as none.
+    none_value: float = math.nan
 
     @property
     def flags(self) -> tuple[str, ...]:
@@ -77,6 +81,16 @@ class Parameter:
     def column(self) -> str:
         """The sweep table's column: the scene-file key itself."""
         return self.name
+
+    def to_column(self, value):
+        """The value as a table holds it (none: :attr:`none_value`)."""
+        return self.none_value if value is None else value
+
+    def from_column(self, value):
+        """A table's value as the model takes it (NaN, or :attr:`none_value`, is none)."""
+        if isinstance(value, float) and (math.isnan(value) or value == self.none_value):
+            return None
+        return value
 
     def range_text(self) -> str:
         """The accepted values, as the README, ``--help`` and error messages say them."""
@@ -112,7 +126,7 @@ class Parameter:
             if value not in self.choices:
                 raise SceneError(name, value, f"must be one of {', '.join(self.choices)}")
             return value
-        if value is None and self.optional:
+        if self.optional and (value is None or (isinstance(value, float) and value == self.none_value)):
             return None
         return self._check_number(name, value)
 

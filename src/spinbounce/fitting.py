@@ -92,20 +92,24 @@ def fit_omega(initial: np.ndarray, final: np.ndarray, alpha: float,
     return omega, math.sqrt(float(((y - omega * x) ** 2).sum()) / dof / xx)
 
 
+#: The declared parameters by column, to read a group's values back.
+by_column = {p.column: p for p in parameters.MODEL + parameters.SCENE}
+
+
 def group_parameters(params: dict) -> dict:
     """A group's parameters as a fit reports them: NaN columns as None, and without the
     coefficients of normal laws the group does not use (:func:`spinbounce.laws.own`)."""
-    return own({k: (None if isinstance(v, float) and math.isnan(v) else v) for k, v in params.items()})
+    return own({k: (by_column[k].from_column(v) if k in by_column else
+                     None if isinstance(v, float) and math.isnan(v) else v) for k, v in params.items()})
 
 
 def model_of_group(params: dict) -> ContactModel:
-    """The group's contact model, from its columns (mu NaN: none; columns an older sweep lacks: default)."""
+    """The group's contact model, from its columns (none as the column holds it; columns an older
+    sweep lacks: default)."""
     values = {}
     for p in parameters.MODEL:
         if p.column in params:
-            value = params[p.column]
-            if isinstance(value, float) and math.isnan(value):
-                value = None
+            value = p.from_column(params[p.column])
             values[p.name] = bool(value) if p.kind == "flag" else value
     return ContactModel(**values)
 

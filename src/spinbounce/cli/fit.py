@@ -55,7 +55,8 @@ def _select(rows, args):
         if parameter.column not in rows:
             raise SweepError(f"{parameter.flag} = {value!r}: this sweep has no column {parameter.column!r}")
         column = rows[parameter.column]
-        rows = rows[column.isna()] if value is None else rows[column == value]
+        none = column.isna() | (column == parameter.none_value)  # a sweep older than inf held NaN
+        rows = rows[none] if value is None else rows[column == value]
     if rows.empty:
         raise SweepError(f"{args.results}: no group has the parameters selected")
     return rows

@@ -47,9 +47,13 @@ def number(text: str) -> float:
 
 
 def optional_number(text: str) -> float | None:
-    """A number, or 'none' for a parameter that may be absent (mu: no Coulomb cap)."""
-    if text.strip().lower() == "none":
+    """A number, or 'none' for a parameter that may be absent (mu: no Coulomb cap); 'inf' too,
+    which the declaration reads as none where that is what it means (mu) and refuses elsewhere."""
+    word = text.strip().lower()
+    if word == "none":
         return None
+    if word in ("inf", "+inf", "infinity"):
+        return math.inf
     return number(text)
 
 

@@ -12,6 +12,8 @@ Units are LAMMPS's ``lj`` units: mass, length and time are whatever the user's a
 
 from __future__ import annotations
 
+import math
+
 from ..declaration import Parameter, finite_number, positive_number
 from ..errors import SceneError
 from ..laws import normal_coefficients, normal_parameter, style_parameter
@@ -37,8 +39,9 @@ MODEL: tuple[Parameter, ...] = (
               why="negative damping would create energy", deck="granular ... ETA_N damping velocity"),
     Parameter("gamma_t", "tangential viscous damping on the slip rate", "mass/time", 0.0, low=0.0,
               why="negative damping would create energy", deck="tangential linear_history KT X_T (X_T ETA_N = gamma_t)"),
-    Parameter("mu", "Coulomb friction coefficient, |F_t| <= mu |F_n|; none: the paper's model (no cap)", "1", None,
-              low=0.0, optional=True, why="a friction coefficient is not negative", default_step_high=100.0,
+    Parameter("mu", "Coulomb friction coefficient, |F_t| <= mu |F_n|; none (or inf; tables hold inf): the paper's "
+              "model (no cap)", "1", None, low=0.0, optional=True, none_value=math.inf,
+              why="a friction coefficient is not negative", default_step_high=100.0,
               default_step_why="above 100 the cap acts only where F_n vanishes, at the contact's ends, and "
                                "LAMMPS's step converges there too slowly for the default accuracy: give none for "
                                "no cap, or a dt of your own (each row then reports its error)",

@@ -111,14 +111,15 @@ def _probe_states(spec: SweepSpec, group: int) -> Collision:
 
 
 def _model_columns(columns: dict, model, n: int) -> dict[str, str]:
-    """Every declared model parameter as a column (mu: NaN for none); text ones as labels."""
+    """Every declared model parameter as a column (none as the parameter's none_value: mu inf,
+    others NaN); text ones as labels."""
     labels = {}
     for p in parameters.MODEL:
         value = getattr(model, p.name)
         if p.kind == "choice":
             labels[p.column] = value
         else:
-            columns[p.column] = np.full(n, np.nan if value is None else value)
+            columns[p.column] = np.full(n, p.to_column(value))
     return labels
 
 
