@@ -37,6 +37,8 @@ INLINE_SPHERES = 64
 ATOM_ROUTES = ("inline", "data_file", "library")
 #: The line of a library-route deck at which the runner creates the atoms.
 LIBRARY_MARKER = "# >>> atoms are created here through the LAMMPS library interface <<<"
+#: fix nve/sphere's own moment of inertia (I = 2/5 m r^2); any other alpha makes the sphere a
+#: rigid body with a point mass at its centre. Declared here only.
 ALPHA_NVE_SPHERE = 0.4
 #: The every-step dump of a padded collision deck (:class:`Padding`).
 PADDING_DUMP_NAME = "every.dump"

@@ -20,9 +20,9 @@ import pandas as pd
 
 from ..lammps.dumps import read_dump
 from ..lammps.runner import RunInfo, run_deck
-from ..pipeline import ResultError, prepare_run_dir
+from ..pipeline import ResultError, prepare_run_dir, provenance
 from ..model.timestep import ACCURACY, StepChoice
-from ..records import software, to_json, write_atomic
+from ..records import to_json, write_atomic
 from ..exact import pair as planar
 from .deck import PAIR_NO_CAP_MU, render_pairs
 from .scene import PairBatch
@@ -161,11 +161,9 @@ def run_pairs(batch: PairBatch, out_dir: Path, record: bool = True, target: floa
     result = PairResult(batch, table, info, dump, rendered.ids, step)
     if record:
         cap = batch.contact.mu if batch.contact.mu is not None else f"none ({PAIR_NO_CAP_MU:g})"
-        out = {"scene": "pairs", "parameters": {"contact": batch.contact.law(), "dt": batch.dt,
-                                                "nsteps": batch.nsteps, "mu": cap},
-               **software(), "deck": str(info.deck), "log": str(info.log), "lammps_wall_seconds": info.wall_seconds,
-               "step": step.record(), "max_lammps_error": result.max_lammps_error,
-               "max_planar_error": result.max_planar_error,
+        parameters = {"contact": batch.contact.law(), "dt": batch.dt, "nsteps": batch.nsteps, "mu": cap}
+        out = {**provenance(info, "pairs", parameters), "step": step.record(),
+               "max_lammps_error": result.max_lammps_error, "max_planar_error": result.max_planar_error,
                "pairs": table.to_dict(orient="records")}
         write_atomic(deck_path.parent / "result.json", to_json(out))
     return result

@@ -24,6 +24,7 @@ from functools import cached_property
 import numpy as np
 
 from .. import exact
+from ..lammps.decks import ALPHA_NVE_SPHERE
 from ..model.contact import ContactModel
 from ..model.parameters import SceneError, by_name
 from ..model.timestep import steps_through
@@ -44,8 +45,6 @@ __all__ = ["Sphere", "PairContact", "Pair", "PairBatch", "ALPHA_NVE_SPHERE", "PA
 PAIR_STEPS_PER_HALF_PERIOD = 8000
 #: The most time-scale classes (atom types per kind of sphere) of an aligned damped batch.
 SCALE_CLASSES = 32
-#: fix nve/sphere's own moment of inertia; any other alpha makes the sphere a rigid body.
-ALPHA_NVE_SPHERE = 0.4
 
 
 def _checked(owner, names: tuple[str, ...], prefix: str = "") -> None:

@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import __version__
-from ..lammps.decks import Deck, template_environment, wall_parameters
+from ..lammps.decks import ALPHA_NVE_SPHERE, Deck, template_environment, wall_parameters
 from ..lammps.dumps import read_dump
 from ..lammps.runner import run_deck
 from ..model.parameters import SceneError
@@ -51,7 +51,6 @@ FRAMES_PER_FLIGHT = 4
 DUMP_NAME = "walls.dump"
 #: LAMMPS allows 32 groups, "all" included: one group per distinct model, 31 at most.
 MAX_MODELS = 31
-ALPHA_NVE_SPHERE = 0.4
 
 
 def mirror(width: int = 3) -> np.ndarray:
