@@ -136,8 +136,13 @@ def wall_parameters(model: ContactModel) -> dict:
     its numbers, its ``comment``, and ``style``, the one text after ``wall/gran`` that every deck
     and printed line uses (each word from a registry, each number in full precision)."""
     wall = model.style.wall_terms(model)
-    wall["style"] = " ".join(deck_number(x) if isinstance(x, float) else x for x in wall.pop("terms"))
+    wall["style"] = deck_words(wall.pop("terms"))
     return wall
+
+
+def deck_words(terms) -> str:
+    """A law's terms as deck text: each word as it is (a registry's), each number in full precision."""
+    return " ".join(deck_number(x) if isinstance(x, float) else x for x in terms)
 
 
 def fix_line(model: ContactModel, group: str = "all") -> str:

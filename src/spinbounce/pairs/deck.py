@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import __version__
-from ..lammps.decks import Deck, template_environment, deck_number, wall_parameters
+from ..lammps.decks import Deck, deck_number, deck_words, template_environment, wall_parameters
 from .scene import PairBatch
 
 __all__ = ["PairDeck", "render_pairs", "DECK_NAME", "DUMP_NAME", "DATA_FILE", "BODIES_FILE"]
@@ -119,13 +119,18 @@ def render_pairs(batch: PairBatch) -> PairDeck:
     records, cell, grid = _spheres(batch)
     rigid, free = _number_atoms(records)
     smallest = min(min(p.a.r, p.b.r) for p in batch.pairs)
-    wall = wall_parameters(batch.pairs[0].equivalent_wall(batch.contact))
+    model = batch.pairs[0].equivalent_wall(batch.contact)  # the law's words are the wall's, after the types
+    wall = wall_parameters(model)
     if batch.contact.mu is None:
         wall.update(mu=PAIR_NO_CAP_MU, comment=f"no Coulomb cap: mu = {PAIR_NO_CAP_MU:g} (spinbounce.pairs.deck)")
     else:
         wall.update(mu=batch.contact.mu, comment=f"Coulomb cap mu = {batch.contact.mu:g}")
+    wall["coefficients"] = deck_words(model.style.coefficient_terms(model, wall["eta_n"], wall["x_t"], wall["damping"],
+                                                                    wall["mu"]))
     scales = batch.scale_classes[1]
-    classes = [{"types": f"{atom_type('free', c)}*{atom_type('point', c)}", "eta_n": wall["eta_n"] * scale}
+    classes = [{"types": f"{atom_type('free', c)}*{atom_type('point', c)}",
+                "coefficients": deck_words(model.style.coefficient_terms(model, wall["eta_n"] * scale, wall["x_t"],
+                                                                         True, wall["mu"]))}
                for c, scale in enumerate(scales)]
     files = {DATA_FILE: _data_file(rigid, free, grid * cell, 3 * len(scales))}
     if rigid:

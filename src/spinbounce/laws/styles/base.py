@@ -25,6 +25,10 @@ class Style:
     def check(self, model) -> None:
         """Refuse what this style cannot express, or its theory does not cover."""
 
+    def coefficient_terms(self, model, eta_n: float, x_t: float, damping: bool, mu: float) -> tuple:
+        """The coefficients ``pair_coeff`` takes for this law (a style without pairs has none)."""
+        raise NotImplementedError(f"the {self.keyword} style has no pair coefficients here")
+
     def wall_terms(self, model) -> dict:
         """The deck's view of the wall: ``terms``, the words and numbers after ``wall/gran``
         (a word from a registry, or a number the deck formats), ``comment``, and the numbers

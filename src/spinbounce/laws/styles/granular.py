@@ -37,6 +37,13 @@ class Granular(Style):
             f"gamma_n = 0, gamma_t = {model.gamma_t!r}: ETA_N = {eta_n!r} is a vanishing normal damping so that "
             f"X_T * ETA_N = gamma_t"]
 
+    def coefficient_terms(self, model, eta_n: float, x_t: float, damping: bool, mu: float) -> tuple:
+        """The words after ``granular`` (``fix wall/gran``) or after the types (``pair_coeff``):
+        the normal sub-model's, the damping, the tangential spring and its cap."""
+        return (*model.normal_law.deck_terms(model, eta_n), *(("damping", "velocity") if damping else ()),
+                "tangential", "linear_history", float(model.kt), float(x_t), float(mu),
+                *(("limit_damping",) if model.limit_damping else ()))
+
     def wall_terms(self, model) -> dict:
         eta_n, x_t, damping, notes = self.dashpots(model)
         if model.mu is None:
@@ -45,9 +52,7 @@ class Granular(Style):
         else:
             mu = model.mu
             notes.append(f"Coulomb limit |F_t| <= {mu!r} F_n: not the paper's model")
-        terms = ("granular", *model.normal_law.deck_terms(model, eta_n), *(("damping", "velocity") if damping else ()),
-                 "tangential", "linear_history", float(model.kt), float(x_t), float(mu),
-                 *(("limit_damping",) if model.limit_damping else ()))
+        terms = ("granular", *self.coefficient_terms(model, eta_n, x_t, damping, mu))
         return {"eta_n": eta_n, "x_t": x_t, "damping": damping, "mu": mu, "terms": terms,
                 "comment": "; ".join(notes)}
 
