@@ -68,9 +68,9 @@ def _vector(name: str, value) -> tuple[float, float, float]:
 class Sphere:
     """One sphere: mass, radius and alpha = I/(m r^2), as declared for the wall's sphere."""
 
-    m: float = 1.0
-    r: float = 0.5
-    alpha: float = 0.4
+    m: float = by_name("m").default
+    r: float = by_name("r").default
+    alpha: float = by_name("alpha").default
 
     def __post_init__(self):
         _checked(self, ("m", "r", "alpha"))
@@ -90,11 +90,11 @@ class PairContact:
     paper's uncapped model); a capped pair's reference (:mod:`spinbounce.exact.pair_capped`)
     has no tangential damping and needs planar motion (checked per pair by :class:`PairBatch`)."""
 
-    kn: float = 10.0
-    kt: float = 1.0
-    gamma_n: float = 0.0
-    gamma_t: float = 0.0
-    mu: float | None = None
+    kn: float = by_name("kn").default  # the declared defaults (spinbounce.model.parameters), not copies
+    kt: float = by_name("kt").default
+    gamma_n: float = by_name("gamma_n").default
+    gamma_t: float = by_name("gamma_t").default
+    mu: float | None = by_name("mu").default
 
     def __post_init__(self):
         _checked(self, ("kn", "kt", "gamma_n", "gamma_t", "mu"))
