@@ -16,7 +16,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import __version__
-from ..lammps.decks import Deck, deck_number, deck_words, template_environment, wall_parameters
+from ..lammps.data import Atoms, bodies_file, data_file
+from ..lammps.decks import Deck, deck_words, template_environment, wall_parameters
 from .scene import PairBatch
 
 __all__ = ["PairDeck", "render_pairs", "DECK_NAME", "DUMP_NAME", "DATA_FILE", "BODIES_FILE"]
@@ -81,37 +82,24 @@ def _number_atoms(records: list[dict]) -> tuple[list[dict], list[dict]]:
     return rigid, free
 
 
-def _row(*values) -> str:
-    return " ".join(str(v) if isinstance(v, int) else deck_number(v) for v in values)
-
-
 def _data_file(rigid: list[dict], free: list[dict], box: float, ntypes: int) -> str:
-    atoms, velocities = [], []
-    for record in rigid + free:
-        s = record["sphere"]
-        mass = s.m / 2 if s.rigid else s.m  # a rigid sphere shares its mass with its point
-        density = mass / (math.pi * (2 * s.r) ** 3 / 6.0)
-        atoms.append(_row(record["id"], record["type"], 2 * s.r, density, *record["x"]))
-        velocities.append(_row(record["id"], *record["v"], *record["w"]))
-    for record in rigid:  # centre points: diameter 0, whose 'density' is the mass
-        point = record["id"] + len(rigid)
-        atoms.append(_row(point, atom_type("point", record["class"]), 0.0, record["sphere"].m / 2, *record["x"]))
-        velocities.append(_row(point, *record["v"], 0.0, 0.0, 0.0))
-    natoms = len(atoms)
-    return (f"spinbounce {__version__}: sphere pairs for {DECK_NAME}\n\n{natoms} atoms\n{ntypes} atom types\n\n"
-            + "".join(f"0.0 {deck_number(box)} {axis}lo {axis}hi\n" for axis in "xyz")
-            + "\nAtoms # sphere\n\n" + "\n".join(sorted(atoms, key=lambda r: int(r.split()[0])))
-            + "\n\nVelocities\n\n" + "\n".join(sorted(velocities, key=lambda r: int(r.split()[0]))) + "\n")
+    """The batch's data file: every sphere (a rigid one holding half its mass, its centre point
+    the other half; :mod:`spinbounce.lammps.data`)."""
+    spheres = rigid + free
+    points = [dict(r, id=r["id"] + len(rigid), type=atom_type("point", r["class"])) for r in rigid]
+    atoms = Atoms(np.array([r["id"] for r in spheres + points]), np.array([r["type"] for r in spheres + points]),
+                  np.array([2 * r["sphere"].r for r in spheres] + [0.0] * len(points)),
+                  np.array([r["sphere"].m / 2 if r["sphere"].rigid else r["sphere"].m for r in spheres]
+                           + [r["sphere"].m / 2 for r in points]),
+                  np.array([r["x"] for r in spheres + points]), np.array([r["v"] for r in spheres + points]),
+                  np.array([r["w"] for r in spheres] + [np.zeros(3)] * len(points)))
+    return data_file(f"sphere pairs for {DECK_NAME}", atoms, ntypes, ((0.0, box),) * 3)
 
 
 def _bodies_file(rigid: list[dict]) -> str:
-    """fix rigid infile: id mass xcm ycm zcm ixx iyy izz ixy ixz iyz vxcm vycm vzcm lx ly lz ix iy iz."""
-    rows = []
-    for record in rigid:
-        s, i = record["sphere"], record["sphere"].inertia
-        rows.append(_row(record["id"], s.m, *record["x"], i, i, i, 0.0, 0.0, 0.0, *record["v"],
-                         *(i * record["w"]), 0, 0, 0))
-    return f"{len(rigid)}\n" + "\n".join(rows) + "\n"
+    return bodies_file(np.array([r["id"] for r in rigid]), np.array([r["sphere"].m for r in rigid]),
+                       np.array([r["x"] for r in rigid]), np.array([r["sphere"].inertia for r in rigid]),
+                       np.array([r["v"] for r in rigid]), np.array([r["w"] for r in rigid]))
 
 
 def render_pairs(batch: PairBatch) -> PairDeck:
