@@ -16,7 +16,15 @@ import numpy as np
 
 from .. import __version__
 
-__all__ = ["Atoms", "data_file", "bodies_file", "table"]
+__all__ = ["Atoms", "data_file", "bodies_file", "table", "deck_number"]
+
+
+def deck_number(x) -> str:
+    """A float in full precision (repr round-trips exactly)."""
+    v = float(x)
+    if not math.isfinite(v):
+        raise ValueError(f"non-finite number {v!r} in a deck")
+    return repr(v + 0.0)  # + 0.0 turns -0.0 into 0.0
 
 
 def table(columns: list[np.ndarray]) -> str:
@@ -57,8 +65,6 @@ class Atoms:
 def data_file(title: str, atoms: Atoms, ntypes: int, box: tuple) -> str:
     """A data file (atom_style sphere): ``box`` is ((xlo, xhi), (ylo, yhi), (zlo, zhi)); atoms in
     id order."""
-    from .decks import deck_number
-
     order = np.argsort(atoms.ids, kind="stable")
     x, v, w = (np.asarray(a, dtype=float)[order] for a in (atoms.x, atoms.v, atoms.w))
     ids = np.asarray(atoms.ids)[order]

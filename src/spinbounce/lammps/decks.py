@@ -20,7 +20,7 @@ import numpy as np
 
 from .. import __version__
 from ..model.scenes import Collision, ContactModel, Frozen
-from .data import Atoms, bodies_file, data_file
+from .data import Atoms, bodies_file, data_file, deck_number
 
 __all__ = ["Deck", "LibraryAtoms", "Padding", "render_collision", "render_frozen", "wall_parameters", "template_dir",
            "LIBRARY_MARKER", "ATOM_ROUTES"]
@@ -52,14 +52,6 @@ def template_dir() -> Path:
         if candidate.is_dir():
             return candidate
     raise FileNotFoundError(f"lammps_inputs/ not found next to {package}")
-
-
-def deck_number(x) -> str:
-    """A float in full precision (repr round-trips exactly)."""
-    v = float(x)
-    if not math.isfinite(v):
-        raise ValueError(f"non-finite number {v!r} in a deck")
-    return repr(v + 0.0)  # + 0.0 turns -0.0 into 0.0
 
 
 @lru_cache(maxsize=1)

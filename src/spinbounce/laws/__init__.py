@@ -12,7 +12,9 @@ sub-model is one module here, registered under its LAMMPS keyword in its kind's 
 * its part of the deck (the words after ``granular``), of the exact reference (contact
   time, largest overlap) and of the step rule (its normal mode).
 
-The wall command's style (:data:`.styles.STYLES`) is the assembly: ``granular`` takes the
+The damping (:data:`.damping.DAMPING`) and tangential (:data:`.tangential.TANGENTIAL`)
+sub-models declare their coefficients and words the same way. The wall command's style
+(:data:`.styles.STYLES`) is the assembly: ``granular`` takes the
 sub-models by keyword, ``classic`` (``hooke/history``) is a fixed assembly with flags of its own.
 No code outside this package branches on a sub-model's or a style's keyword.
 """

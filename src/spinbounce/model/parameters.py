@@ -12,18 +12,19 @@ Units are LAMMPS's ``lj`` units: mass, length and time are whatever the user's a
 
 from __future__ import annotations
 
-import math
-
 from ..declaration import Parameter, finite_number, positive_number
 from ..errors import SceneError
 from ..laws import normal_coefficients, normal_parameter, style_parameter
+from ..laws.damping.velocity import GAMMA_N, GAMMA_T
+from ..laws.tangential.linear_history import KT, MU
 
 __all__ = ["finite_number", "positive_number", "Parameter", "MODEL", "STATE", "RUN", "SCENE", "PAIR_ONLY", "ALL",
            "by_name", "SceneError", "markdown_table"]
 
 
-#: The contact model (the fields of ContactModel, in order): the sphere, each normal sub-model's
-#: coefficients (:mod:`spinbounce.laws`), the tangential spring, damping, cap and the law's choices.
+#: The contact model (the fields of ContactModel, in order): the sphere, then the sub-models'
+#: coefficients as each declares them (:mod:`spinbounce.laws`: normal, tangential, damping, the
+#: cap), limit_damping and the law's choices.
 MODEL: tuple[Parameter, ...] = (
     Parameter("m", "sphere mass", "mass", 1.0, low=0.0, low_open=True, why="a mass is positive",
               deck="set type 1 mass", aliases=("--mass",)),
@@ -33,19 +34,10 @@ MODEL: tuple[Parameter, ...] = (
               low=0.0, low_open=True, high=1.0, why="above 1 the mass would lie beyond the radius",
               deck="fix nve/sphere (alpha = 2/5) or fix rigid with a centre point"),
     *normal_coefficients(),
-    Parameter("kt", "tangential spring constant on the slip history (Cundall-Strack)", "force/length", 1.0,
-              low=0.0, why="a negative spring would push the slip away", deck="tangential linear_history KT"),
-    Parameter("gamma_n", "normal viscous damping (below critical 2 sqrt(m kn))", "mass/time", 0.0, low=0.0,
-              why="negative damping would create energy", deck="granular ... ETA_N damping velocity"),
-    Parameter("gamma_t", "tangential viscous damping on the slip rate", "mass/time", 0.0, low=0.0,
-              why="negative damping would create energy", deck="tangential linear_history KT X_T (X_T ETA_N = gamma_t)"),
-    Parameter("mu", "Coulomb friction coefficient, |F_t| <= mu |F_n|; none (or inf; tables hold inf): the paper's "
-              "model (no cap)", "1", None, low=0.0, optional=True, none_value=math.inf,
-              why="a friction coefficient is not negative", default_step_high=100.0,
-              default_step_why="above 100 the cap acts only where F_n vanishes, at the contact's ends, and "
-                               "LAMMPS's step converges there too slowly for the default accuracy: give none for "
-                               "no cap, or a dt of your own (each row then reports its error)",
-              deck="tangential linear_history ... MU (none: 1e12)"),
+    KT,
+    GAMMA_N,
+    GAMMA_T,
+    MU,
     Parameter("limit_damping", "never let the normal force pull (LAMMPS's limit_damping)", "-", False, kind="flag",
               deck="wall/gran ... limit_damping"),
     normal_parameter(),

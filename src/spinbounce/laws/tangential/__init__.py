@@ -1,0 +1,21 @@
+"""The tangential sub-models, registered by LAMMPS keyword: one entry each in :data:`TANGENTIAL`.
+
+Today one: ``linear_history`` (:mod:`.linear_history`), the paper's Cundall-Strack spring with
+a Coulomb cap. LAMMPS's others (``mindlin`` and its variants, ...) come as modules here.
+"""
+
+from __future__ import annotations
+
+import importlib
+
+from .base import TangentialLaw
+
+__all__ = ["TANGENTIAL", "TangentialLaw"]
+
+#: The registry: one entry per sub-model, the module (here) that defines its ``LAW``.
+MODULES = (
+    "linear_history",
+)
+#: Every tangential sub-model, by its LAMMPS keyword.
+TANGENTIAL: dict[str, TangentialLaw] = {law.keyword: law for law in
+                                        (importlib.import_module(f".{name}", __name__).LAW for name in MODULES)}
