@@ -25,6 +25,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..exact import choose
+from ..exact.choose import PLANE_COLUMNS, SPACE_COLUMNS
 from . import parameters
 from .contact import NORMAL_LAWS, ContactModel, PhysicsWarning
 from .parameters import SceneError, finite_number, positive_number
@@ -58,9 +59,9 @@ FROZEN_DAMPING_ORDER_ONE = 0.5
 #: keeps the error below pi/(2N) |u'(0)| <= 1e-4 for |v_t|, |r omega| <= 2, any alpha.
 HERTZ_STEPS_PER_HALF_PERIOD = 64000
 #: State columns, in order: the paper's plane, and in 3-D the second tangential pair and
-#: the spin about the normal (each spin times r, with the sign that makes slip = v + r omega).
-STATE = ("vn", "vt", "r_omega")
-STATE_3D = STATE + ("vs", "r_omega_s", "r_omega_n")
+#: the spin about the normal (each spin times r, with the sign that makes slip = v + r omega);
+#: declared with the exact references, which read and write states too.
+STATE, STATE_3D = PLANE_COLUMNS, SPACE_COLUMNS
 #: Collision's per-sphere arguments, in the order of STATE_3D: the declared state.
 STATE_ARGS = tuple(p.name for p in parameters.STATE)
 

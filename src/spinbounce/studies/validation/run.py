@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ...model.scenes import Collision, ContactModel
+from ...model.scenes import STATE, Collision, ContactModel
 from ...model.timestep import refine_mid_step
 from ...pipeline import run_collision
 from ...exact import oracle
@@ -28,7 +28,7 @@ __all__ = ["ACCEPTANCE", "BenchmarkRun", "refined_dt", "run_benchmark"]
 #: Largest |LAMMPS - oracle| allowed, as a fraction of the impact speed (:func:`impact_speed`).
 ACCEPTANCE = 1e-4
 #: The components of a state row, as the tables name them.
-COMPONENTS = ("vn", "vt", "r_omega")
+COMPONENTS = STATE
 #: The final states tabulated per state: LAMMPS at the benchmark's refinement and at twice
 #: it, the oracle, the rigid-body law (columns named <component>_<final>).
 FINALS = ("lammps", "lammps_2f", "oracle", "rigid")
