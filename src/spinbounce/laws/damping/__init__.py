@@ -6,8 +6,7 @@ Today one: ``velocity`` (:mod:`.velocity`), the paper's viscous damping. LAMMPS'
 
 from __future__ import annotations
 
-import importlib
-
+from ..registry import registry
 from .base import DampingLaw
 
 __all__ = ["DAMPING", "DampingLaw"]
@@ -17,5 +16,4 @@ MODULES = (
     "velocity",
 )
 #: Every damping sub-model, by its LAMMPS keyword.
-DAMPING: dict[str, DampingLaw] = {law.keyword: law for law in
-                                  (importlib.import_module(f".{name}", __name__).LAW for name in MODULES)}
+DAMPING: dict[str, DampingLaw] = registry(__name__, MODULES, "LAW")

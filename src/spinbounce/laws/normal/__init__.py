@@ -2,10 +2,8 @@
 
 from __future__ import annotations
 
-import importlib
-
 from ...declaration import Parameter
-from ...errors import SceneError
+from ..registry import lookup, registry
 from .base import NormalLaw
 
 __all__ = ["NORMAL", "NormalLaw", "normal_law", "normal_parameter", "normal_coefficients"]
@@ -17,16 +15,12 @@ MODULES = (
     "hertz_material",
 )
 #: Every normal sub-model, by its LAMMPS keyword.
-NORMAL: dict[str, NormalLaw] = {law.keyword: law for law in
-                                (importlib.import_module(f".{name}", __name__).LAW for name in MODULES)}
+NORMAL: dict[str, NormalLaw] = registry(__name__, MODULES, "LAW")
 
 
 def normal_law(keyword: str) -> NormalLaw:
     """The sub-model of ``keyword``, or a :class:`SceneError` listing the registered ones."""
-    try:
-        return NORMAL[keyword]
-    except (KeyError, TypeError):
-        raise SceneError("normal", keyword, f"must be one of {', '.join(NORMAL)}") from None
+    return lookup(NORMAL, "normal", keyword)
 
 
 def normal_coefficients() -> tuple[Parameter, ...]:

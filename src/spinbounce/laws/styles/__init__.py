@@ -8,10 +8,8 @@ spinbounce asks the style's flags, never its keyword.
 
 from __future__ import annotations
 
-import importlib
-
 from ...declaration import Parameter
-from ...errors import SceneError
+from ..registry import lookup, registry
 from .base import Style
 
 __all__ = ["STYLES", "Style", "style", "style_parameter"]
@@ -22,16 +20,12 @@ MODULES = (
     "classic",
 )
 #: Every wall style, by its keyword (the ``wall`` parameter's value).
-STYLES: dict[str, Style] = {s.keyword: s for s in
-                            (importlib.import_module(f".{name}", __name__).STYLE for name in MODULES)}
+STYLES: dict[str, Style] = registry(__name__, MODULES, "STYLE")
 
 
 def style(keyword: str) -> Style:
     """The style of ``keyword``, or a :class:`SceneError` listing the registered ones."""
-    try:
-        return STYLES[keyword]
-    except (KeyError, TypeError):
-        raise SceneError("wall", keyword, f"must be one of {', '.join(STYLES)}") from None
+    return lookup(STYLES, "wall", keyword)
 
 
 def style_parameter() -> Parameter:

@@ -6,8 +6,7 @@ a Coulomb cap. LAMMPS's others (``mindlin`` and its variants, ...) come as modul
 
 from __future__ import annotations
 
-import importlib
-
+from ..registry import registry
 from .base import TangentialLaw
 
 __all__ = ["TANGENTIAL", "TangentialLaw"]
@@ -17,5 +16,4 @@ MODULES = (
     "linear_history",
 )
 #: Every tangential sub-model, by its LAMMPS keyword.
-TANGENTIAL: dict[str, TangentialLaw] = {law.keyword: law for law in
-                                        (importlib.import_module(f".{name}", __name__).LAW for name in MODULES)}
+TANGENTIAL: dict[str, TangentialLaw] = registry(__name__, MODULES, "LAW")
