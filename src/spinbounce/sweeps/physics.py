@@ -5,20 +5,17 @@ fastest head-on impact, built as the runs will build them."""
 from __future__ import annotations
 
 import warnings
-from typing import TYPE_CHECKING
 
 from ..model.parameters import SceneError
 from ..model.scenes import Collision
 from .errors import SweepError, fail as _fail
 
-if TYPE_CHECKING:
-    from .spec import SweepSpec
-
 __all__ = ["check_physics"]
 
 
-def check_physics(spec: SweepSpec) -> None:
-    """Build every group's model and its most demanding collision now, before any run."""
+def check_physics(spec) -> None:
+    """Build every group's model and its most demanding collision now, before any run (``spec``:
+    the :class:`.spec.SweepSpec` being validated, which calls this; it is not imported here)."""
     if spec.scene == "pair":
         _check_pairs(spec)
         return
@@ -39,7 +36,7 @@ def check_physics(spec: SweepSpec) -> None:
             raise SweepError(f"{key}: {exc}") from None
 
 
-def _check_pairs(spec: SweepSpec) -> None:
+def _check_pairs(spec) -> None:
     """A pair sweep: what the pair deck can run, and its fastest impact's overlap and step."""
     from ..pairs.kind import pair_contact, pairs_from_states
     from ..pairs.scene import PairBatch
