@@ -220,5 +220,6 @@ def fit(results: str | Path | pd.DataFrame) -> pd.DataFrame:
 def _as_columns(values: dict) -> dict:
     """A group's parameters as the sweep's table holds them (mu none: inf), so that the fit's
     rows group and filter like the sweep's."""
-    declared = {p.name: p for p in parameters.MODEL}
-    return {k: declared[k].to_column(v) if k in declared else v for k, v in values.items()}
+    from .fitting import by_column
+
+    return {k: by_column[k].to_column(v) if k in by_column else v for k, v in values.items()}

@@ -25,20 +25,18 @@ class Granular(Style):
         """(ETA_N, X_T, whether to write the damping, notes) from the damping sub-model."""
         return self.damping.dashpots(model)
 
-    def coefficient_terms(self, model, eta_n: float, x_t: float, damping: bool, mu: float | None = None) -> tuple:
+    def coefficient_terms(self, model, eta_n: float, x_t: float, damping: bool, mu: float) -> tuple:
         """The words after ``granular`` (``fix wall/gran``) or after the types (``pair_coeff``):
         the normal sub-model's, the damping's, the tangential one's with its cap, limit_damping."""
-        tangential, _ = self.tangential.deck_terms(model, x_t, mu)
-        return (*model.normal_law.deck_terms(model, eta_n), *self.damping.deck_terms(damping), *tangential,
-                *(("limit_damping",) if model.limit_damping else ()))
+        return (*model.normal_law.deck_terms(model, eta_n), *self.damping.deck_terms(damping),
+                *self.tangential.deck_terms(model, x_t, mu), *(("limit_damping",) if model.limit_damping else ()))
 
     def wall_terms(self, model) -> dict:
         eta_n, x_t, damping, notes = self.dashpots(model)
-        tangential, tangential_notes = self.tangential.deck_terms(model, x_t)
-        mu = tangential[-1]
+        mu, cap_note = self.tangential.cap(model)
         terms = ("granular", *self.coefficient_terms(model, eta_n, x_t, damping, mu))
         return {"eta_n": eta_n, "x_t": x_t, "damping": damping, "mu": mu, "terms": terms,
-                "comment": "; ".join(notes + tangential_notes)}
+                "comment": "; ".join([*notes, cap_note])}
 
 
 STYLE = Granular()

@@ -14,6 +14,10 @@ class TangentialLaw:
     keyword: str = ""
     coefficients: tuple[Parameter, ...] = ()
 
-    def deck_terms(self, model, x_t: float) -> tuple[tuple, list[str]]:
-        """(its words, notes for the deck's comment)."""
+    def cap(self, model) -> tuple[float, str]:
+        """The Coulomb cap a wall deck writes for the model, and a note saying why."""
+        raise NotImplementedError
+
+    def deck_terms(self, model, x_t: float, mu: float) -> tuple:
+        """Its words, given the damping's tangential coefficient and the cap to write."""
         raise NotImplementedError

@@ -31,15 +31,14 @@ class LinearHistory(TangentialLaw):
     keyword = "linear_history"
     coefficients = (KT, MU)
 
-    def deck_terms(self, model, x_t: float, mu: float | None = None) -> tuple[tuple, list[str]]:
-        """Its words; ``mu`` overrides the model's cap (a pair deck's own no-cap value)."""
-        if mu is None and model.mu is None:
-            mu, note = NO_CAP_MU, f"the paper's model has no Coulomb limit; LAMMPS always applies one, so mu = {NO_CAP_MU:g}"
-        elif mu is None:
-            mu, note = model.mu, f"Coulomb limit |F_t| <= {model.mu!r} F_n: not the paper's model"
-        else:
-            note = ""
-        return ("tangential", self.keyword, float(model.kt), float(x_t), float(mu)), [note] if note else []
+    def cap(self, model) -> tuple[float, str]:
+        """The MU a wall deck writes, and why: the model's, or :data:`NO_CAP_MU` for none."""
+        if model.mu is None:
+            return NO_CAP_MU, f"the paper's model has no Coulomb limit; LAMMPS always applies one, so mu = {NO_CAP_MU:g}"
+        return model.mu, f"Coulomb limit |F_t| <= {model.mu!r} F_n: not the paper's model"
+
+    def deck_terms(self, model, x_t: float, mu: float) -> tuple:
+        return ("tangential", self.keyword, float(model.kt), float(x_t), float(mu))
 
 
 LAW = LinearHistory()
