@@ -35,7 +35,8 @@ from spinbounce.studies.accuracy import (
 )
 from spinbounce.cli import accuracy as accuracy_cli
 from spinbounce.model.timestep import ACCURACY
-from spinbounce.model.scenes import HERTZ_STEPS_PER_HALF_PERIOD, STATE_3D, Collision, ContactModel
+from spinbounce.scenes.collision import Collision, HERTZ_STEPS_PER_HALF_PERIOD, STATE_3D
+from spinbounce.model.contact import ContactModel
 from spinbounce.extrapolation import raw_orders
 from spinbounce.exact import coulomb, oracle
 

@@ -18,9 +18,9 @@ import pytest
 
 from spinbounce.model.contact import ContactModel
 from spinbounce.model.parameters import SceneError
-from spinbounce.model.scenes import Collision
+from spinbounce.scenes.collision import Collision
 from spinbounce.model.timestep import ACCURACY
-from spinbounce.pipeline import run_collision
+from spinbounce.pipeline import run_scene
 
 pytestmark = pytest.mark.lammps
 
@@ -106,7 +106,7 @@ def _run(tmp_path, params: dict, three_d: bool):
         warnings.simplefilter("error")  # a warning at the default settings is a failure
         if model.alpha > 2 / 3 - 1e-12:
             warnings.simplefilter("ignore")  # alpha = 2/3 exactly is the thin shell: allowed, no phantom mass
-        result = run_collision(Collision(model, **_states(rows, three_d)), tmp_path, atoms="library", record=False)
+        result = run_scene(Collision(model, **_states(rows, three_d)), tmp_path, atoms="library", record=False)
     return result
 
 

@@ -30,19 +30,19 @@ def _modules() -> dict[str, Path]:
 #: The layers, bottom first: a module imports only from its own layer or below, wherever the
 #: import stands (module level or inside a function: a lazy import is still a dependency).
 #: The errors a user sees and the unit of declaration import nothing; the exact references know
-#: nothing else; the contact laws' sub-models declare their coefficients and answer from the references; the model (parameters, contact law, scenes) only
-#: them; the engine (decks, runner, dumps, records, row checks, the step rule) runs a scene;
-#: the pipeline runs one collision; pairs run batches of two spheres on it; extrapolation is
-#: a run mode over either; sweeps and fits use all of that; studies and figures are made from
+#: nothing else; the contact laws' sub-models declare their coefficients and answer from the
+#: references; the model (parameters, contact law, step rule) only them; the engine (what
+#: decks share, runner, dumps, records, row checks, the step probe) knows no scene; each scene
+#: is a folder on the engine; the pipeline runs any scene; extrapolation is a run mode; sweeps and fits use all of that; studies and figures are made from
 #: sweeps and runs; the API and the catalogue of products call them; the CLI calls the API.
 LAYERS = (
     ("errors", "declaration"),
     ("exact",),
     ("laws",),
     ("model",),
-    ("lammps", "records", "compare", "checks", "stepping"),
+    ("lammps", "records", "checks", "stepping"),
+    ("scenes",),
     ("pipeline",),
-    ("pairs",),
     ("extrapolation",),
     ("sweeps", "fitting", "fitting_stream"),
     ("studies", "figures"),
@@ -170,7 +170,7 @@ def test_one_timestep_rule():
     # the mid-step form t/(N + 1/2) is computed in model/timestep.py only; a pair batch computes
     # the converse, the lead that puts each pair's end mid-step at a given dt
     assert _files_matching(r"/ \( .* \+ 0\.5 \)") == {"model/timestep.py"}
-    assert _files_matching(r"\( steps \+ 0\.5 \)") <= {"model/timestep.py", "pairs/scene.py"}
+    assert _files_matching(r"\( steps \+ 0\.5 \)") <= {"model/timestep.py", "scenes/pair/scene.py"}
 
 
 def test_one_place_decides_which_theory_applies():
@@ -237,3 +237,14 @@ def test_the_keyword_check_sees_a_branch_and_not_an_iteration():
                'for wall in ("classic", "granular"):\n    pass\n'
                'sides = {w: 1 for w in ("classic", "granular")}\n')
     assert _keyword_branches(snippet, _law_keywords()) == [1, 1, 3]
+
+
+def test_every_scene_is_one_folder_with_its_template_and_its_theory():
+    """A scene's class, template and the note of what it is checked against live together."""
+    folders = [p for p in (PACKAGE / "scenes").iterdir() if p.is_dir() and not p.name.startswith("__")]
+    assert {p.name for p in folders} >= {"collision", "frozen", "pair", "two_walls"}
+    for folder in folders:
+        assert list(folder.glob("*.lmp.j2")), f"{folder.name}: no template"
+        assert (folder / "theory.md").read_text().startswith("# "), f"{folder.name}: no theory.md"
+    templates = {p.relative_to(PACKAGE).parts[0] for p in PACKAGE.rglob("*.lmp.j2")}
+    assert templates <= {"scenes", "studies"}, f"templates outside a scene or study folder: {templates}"

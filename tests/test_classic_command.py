@@ -8,9 +8,9 @@ import numpy as np
 import pytest
 
 from spinbounce.figures.classic import largest_lammps_error
-from spinbounce.lammps.decks import render_collision
+from spinbounce.scenes.collision.deck import render_collision
 from spinbounce.model.contact import ContactModel
-from spinbounce.model.scenes import Collision
+from spinbounce.scenes.collision import Collision
 from spinbounce.studies import classic_effect
 from spinbounce.exact import linear
 
@@ -66,9 +66,9 @@ def test_lammps_classic_wall_gains_the_energy_the_table_says(tmp_path):
     speed, v_t, omega = 4.743, 1.0, 0.5
     row = classic_effect.compare(model, [speed], v_t, omega)[0]
     assert row["energy_gain_classic"] > 1.0 and row["energy_gain_meant"] < 0.0
-    from spinbounce.pipeline import run_collision
+    from spinbounce.pipeline import run_scene
 
-    table = run_collision(Collision(model, v_n=-speed, v_t=v_t, omega=omega), tmp_path, record=False).table
+    table = run_scene(Collision(model, v_n=-speed, v_t=v_t, omega=omega), tmp_path, record=False).table
     initial = np.array([-speed, v_t, model.r * omega])
     final = table[["vn_final", "vt_final", "r_omega_final"]].to_numpy()[0]
     gained = linear.energy(final, model.m, model.alpha) / linear.energy(initial, model.m, model.alpha) - 1.0

@@ -17,9 +17,10 @@ import pytest
 from spinbounce.cli import main
 from spinbounce.model.contact import ContactModel
 from spinbounce.model.parameters import SceneError
-from spinbounce.model.scenes import Collision, Frozen
+from spinbounce.scenes.collision import Collision
+from spinbounce.scenes.frozen import Frozen
 from spinbounce.model.timestep import ACCURACY
-from spinbounce.pipeline import run_collision, run_frozen
+from spinbounce.pipeline import run_scene, run_series
 
 pytestmark = pytest.mark.lammps
 
@@ -32,7 +33,7 @@ MODELS = [dict(kt=kt, mu=mu) for kt in (1.0, 10 * 2 / 7, 5.0) for mu in (None, 0
 def test_classic_collisions_match_their_theory_at_the_defaults(params, tmp_path):
     model = ContactModel(wall="classic", **params)
     states = dict(zip(("v_n", "v_t", "omega"), (list(c) for c in zip(*STATES, strict=True)), strict=True))
-    result = run_collision(Collision(model, **states), tmp_path, atoms="library", record=False)
+    result = run_scene(Collision(model, **states), tmp_path, atoms="library", record=False)
     assert result.table["error"].max() <= ACCURACY, result.table[["error", "status"]]
     assert (result.table["status"] == "ok").all() and not result.warnings
 
@@ -42,7 +43,7 @@ def test_a_larger_sphere_and_a_faster_impact_change_the_classic_outcome(tmp_path
     finals = []
     for r, v_n in ((0.5, -1.0), (2.0, -1.0), (0.5, -0.2)):
         model = ContactModel(wall="classic", r=r)
-        result = run_collision(Collision(model, v_n=v_n, v_t=1.0, omega=0.0), tmp_path / f"{r}-{v_n}",
+        result = run_scene(Collision(model, v_n=v_n, v_t=1.0, omega=0.0), tmp_path / f"{r}-{v_n}",
                                atoms="library", record=False)
         assert result.table["error"].max() <= ACCURACY
         row = result.table.iloc[0]
@@ -53,7 +54,7 @@ def test_a_larger_sphere_and_a_faster_impact_change_the_classic_outcome(tmp_path
 @pytest.mark.parametrize("z", [0.45, 0.4, 0.3])
 def test_the_classic_frozen_contact_oscillates_at_its_own_frequency(z, tmp_path):
     scene = Frozen(ContactModel(wall="classic"), z=z, v_t=1.0, omega=0.0, t_end=5.0)
-    result = run_frozen(scene, tmp_path)
+    result = run_series(scene, tmp_path)
     assert result.max_abs_error <= ACCURACY
     uncapped = Frozen(ContactModel(), z=z, v_t=1.0, omega=0.0, t_end=5.0).predicted(result.table["t"].to_numpy())
     assert np.abs(result.table["vt"] - uncapped[0]).max() > 0.1  # not the granular wall's Eq. 10

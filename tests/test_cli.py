@@ -20,7 +20,7 @@ def run_cli(capsys, *args):
 
 def test_import_does_not_load_lammps():
     code = (
-        "import sys, spinbounce, spinbounce.exact.linear, spinbounce.model.scenes, spinbounce.lammps.decks, "
+        "import sys, spinbounce, spinbounce.exact.linear, spinbounce.scenes.collision, spinbounce.lammps.decks, "
         "spinbounce.pipeline, spinbounce.cli; print('lammps' in sys.modules)"
     )
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)

@@ -20,8 +20,9 @@ import pytest
 
 from spinbounce import exact
 from spinbounce.exact import oracle, rigid_body
-from spinbounce.pipeline import run_collision
-from spinbounce.model.scenes import Collision, ContactModel
+from spinbounce.pipeline import run_scene
+from spinbounce.scenes.collision import Collision
+from spinbounce.model.contact import ContactModel
 
 MUS = (0.01, 0.03, 0.1, 0.3, 1.0, 3.0, 10.0)
 ANGLES = np.radians([5.0, 20.0, 35.0, 50.0, 65.0, 80.0, 85.0])
@@ -46,7 +47,7 @@ def _final(result):
 def _run(model, v_n, v_t, omega, refine, tmp_path):
     coarse = Collision(model, v_n=v_n, v_t=v_t, omega=omega)
     scene = Collision(model, v_n=v_n, v_t=v_t, omega=omega, dt=coarse.dt / refine)
-    return run_collision(scene, tmp_path, atoms="library", record=False)
+    return run_scene(scene, tmp_path, atoms="library", record=False)
 
 
 # -- the oracle against closed forms ----------------------------------------------------

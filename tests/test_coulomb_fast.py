@@ -25,7 +25,8 @@ import numpy as np
 import pytest
 
 from spinbounce import exact
-from spinbounce.model.scenes import ContactModel, PhysicsWarning
+from spinbounce.model.contact import ContactModel
+from spinbounce.errors import PhysicsWarning
 from spinbounce.studies.solver_speed import agreement
 from spinbounce.exact import coulomb, oracle, rigid_body
 

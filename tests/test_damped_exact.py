@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from spinbounce.exact import linear
-from spinbounce.model.scenes import ContactModel
+from spinbounce.model.contact import ContactModel
 from spinbounce.extrapolation import collide_to_tolerance, collision_frame, frozen_to_tolerance
 
 TOL = 1e-6

@@ -18,7 +18,8 @@ import pytest
 from spinbounce.cli import build_parser, main
 from spinbounce.model import parameters
 from spinbounce.model.contact import ContactModel
-from spinbounce.model.scenes import Collision, Frozen
+from spinbounce.scenes.collision import Collision
+from spinbounce.scenes.frozen import Frozen
 from spinbounce.exact import choose
 
 _MATERIAL = {"normal": "hertz/material", "youngs_modulus": 1.0e4, "poisson_ratio": 0.3, "kt": 200.0}

@@ -39,7 +39,7 @@ FENCE = re.compile(r"(?P<marker><!-- example: slow -->\n)?^```(?P<info>[^\n]*)\n
 RUN_SLOW = os.environ.get("SPINBOUNCE_SLOW") == "1"
 #: Folders of the repository that examples read (workflows/, tests/reference/), linked into
 #: each page's working folder as if it were the repository's top folder.
-LINKED = ("workflows", "tests", "lammps_inputs")
+LINKED = ("workflows", "tests")
 
 
 def _mkdocs_available() -> bool:

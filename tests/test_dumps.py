@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from spinbounce.compare import paper_variables
+from spinbounce.scenes.frozen.table import paper_variables
 from spinbounce.lammps.dumps import DumpError, read_dump
 
 DATA = Path(__file__).parent / "data"

@@ -12,7 +12,9 @@ import warnings
 import numpy as np
 import pytest
 
-from spinbounce.model.scenes import Collision, ContactModel, PhysicsWarning, SceneError
+from spinbounce.scenes.collision import Collision
+from spinbounce.model.contact import ContactModel
+from spinbounce.errors import PhysicsWarning, SceneError
 from spinbounce.extrapolation import collide_to_tolerance, collision_frame
 
 TOL = 1e-6

@@ -20,15 +20,12 @@ from spinbounce.model.timestep import MIN_STEPS_PER_HALF_PERIOD
 
 from spinbounce import exact
 from spinbounce.exact import hertz
-from spinbounce.lammps.decks import render_collision, render_frozen
-from spinbounce.model.scenes import (
-    HERTZ_STEPS_PER_HALF_PERIOD,
-    NORMAL_LAWS,
-    Collision,
-    ContactModel,
-    Frozen,
-    SceneError,
-)
+from spinbounce.scenes.collision.deck import render_collision
+from spinbounce.scenes.frozen.deck import render_frozen
+from spinbounce.scenes.collision import Collision, HERTZ_STEPS_PER_HALF_PERIOD
+from spinbounce.model.contact import ContactModel, NORMAL_LAWS
+from spinbounce.scenes.frozen import Frozen
+from spinbounce.errors import SceneError
 
 M, R, ALPHA = 1.0, 0.5, 0.4
 #: the measurement's stiffness: at |v_n| = 1.5 the overlap is 0.22 r (kn = 10 would tunnel at |v_n| = 1)
@@ -235,14 +232,14 @@ HERTZ_CASES = {
 @pytest.mark.lammps
 @pytest.mark.parametrize("name", list(HERTZ_CASES))
 def test_lammps_matches_hertz_theory_within_its_first_order_bound(tmp_path, name):
-    from spinbounce.pipeline import run_collision
+    from spinbounce.pipeline import run_scene
 
     model, v_max = HERTZ_CASES[name]
     v_n, v_t, omega = _states(np.random.default_rng(17), 48, v_max)
     rate = model.fastest_rate(frozen=False, speed=v_max)
     for steps in (4000, 8000):  # dt and dt/2
         scene = Collision(model, v_n=v_n, v_t=v_t, omega=omega, dt=math.pi / rate / steps)
-        result = run_collision(scene, tmp_path / str(steps), atoms="library")
+        result = run_scene(scene, tmp_path / str(steps), atoms="library")
         fraction = _bound_fraction(result)
         assert fraction.max() <= 1.05  # the bound; 0.998 of it measured (module docstring)
         assert fraction.max() > 0.4  # ... and tight: the error is first order at both steps
@@ -254,11 +251,11 @@ def test_lammps_matches_hertz_theory_within_its_first_order_bound(tmp_path, name
 @pytest.mark.lammps
 def test_the_default_step_meets_1e_4(tmp_path):
     """HERTZ_STEPS_PER_HALF_PERIOD bounds the error by pi/(2N) |u'(0)| <= 9.8e-5 here."""
-    from spinbounce.pipeline import run_collision
+    from spinbounce.pipeline import run_scene
 
     v_n, v_t, omega = _states(np.random.default_rng(3), 24, 0.95)
     scene = Collision(ContactModel(normal="hertz"), v_n=v_n, v_t=v_t, omega=omega)
-    result = run_collision(scene, tmp_path)
+    result = run_scene(scene, tmp_path)
     errors = np.abs(result.table[["vn_error", "vt_error", "r_omega_error"]].to_numpy())
     assert errors.max() < 1e-4
     assert _bound_fraction(result).max() <= 1.05
@@ -274,9 +271,9 @@ def test_the_default_step_meets_1e_4(tmp_path):
 def test_frozen_hertz_contact_is_eq10(tmp_path):
     """Held at a fixed overlap the normal law only sets a constant force: Eq. 10 holds.
     Same budget as the Hookean frozen contact (5e-6 after 10 time units; 2 here)."""
-    from spinbounce.pipeline import run_frozen
+    from spinbounce.pipeline import run_series
 
-    result = run_frozen(Frozen(ContactModel(normal="hertz", kn=KN, kt=20.0), z=0.45, v_t=1.0, t_end=2.0), tmp_path)
+    result = run_series(Frozen(ContactModel(normal="hertz", kn=KN, kt=20.0), z=0.45, v_t=1.0, t_end=2.0), tmp_path)
     assert result.max_abs_error < 1e-5
     assert result.table["vt"].min() < 0.5  # it oscillates
 

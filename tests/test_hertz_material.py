@@ -19,8 +19,8 @@ from spinbounce.exact import hertz
 from spinbounce.lammps.decks import wall_parameters
 from spinbounce.model.contact import ContactModel
 from spinbounce.model.parameters import SceneError
-from spinbounce.model.scenes import Collision
-from spinbounce.pipeline import run_collision
+from spinbounce.scenes.collision import Collision
+from spinbounce.pipeline import run_scene
 
 E, NU = 1.0e4, 0.3
 
@@ -77,7 +77,7 @@ def test_lammps_converges_to_the_hertz_reference_at_second_order(tmp_path):
     errors = []
     for n in (400, 800):
         scene = Collision(model, v_n=-1.0, v_t=1.0, omega=0.0, dt=t_c / (n + 0.5))
-        errors.append(float(run_collision(scene, tmp_path / str(n), record=False).table["error"].max()))
+        errors.append(float(run_scene(scene, tmp_path / str(n), record=False).table["error"].max()))
     assert errors[1] < 3e-5
     assert 3.5 < errors[0] / errors[1] < 4.5, errors
 

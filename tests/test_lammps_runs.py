@@ -15,9 +15,11 @@ import pytest
 
 from spinbounce import exact
 from spinbounce.lammps.dumps import read_dump
-from spinbounce.pipeline import ResultError, run_collision, run_frozen
+from spinbounce.pipeline import ResultError, run_scene, run_series
 from spinbounce.lammps.runner import LammpsError, lmp_executable, run_deck
-from spinbounce.model.scenes import Collision, ContactModel, Frozen
+from spinbounce.scenes.collision import Collision
+from spinbounce.model.contact import ContactModel
+from spinbounce.scenes.frozen import Frozen
 
 pytestmark = pytest.mark.lammps
 
@@ -31,7 +33,7 @@ def _errors(result):
 
 def test_default_collision_matches_eq18(run_dir):
     scene = Collision(ContactModel(), v_n=-1.0, v_t=1.0, omega=0.0)
-    result = run_collision(scene, run_dir)
+    result = run_scene(scene, run_dir)
     assert _errors(result).max() < COLLISION_TOL
     # and the theory it is compared with is the paper's Eq. 18 at Omega = -1.2838
     assert result.table["vt_theory"].iloc[0] == pytest.approx(1 + 0.4 / 1.4 * exact.Omega(10, 1, 0.4), abs=1e-15)
@@ -50,7 +52,7 @@ def test_default_collision_matches_eq18(run_dir):
 def test_alpha_is_honoured_by_lammps(run_dir, model):
     """alpha != 2/5 cannot come from fix nve/sphere; the rigid-body route must give Eq. 18."""
     scene = Collision(model, v_n=[-1.0, -0.3], v_t=[1.0, -0.7], omega=[0.0, 2.5])
-    result = run_collision(scene, run_dir)
+    result = run_scene(scene, run_dir)
     assert _errors(result).max() < COLLISION_TOL
     # alpha = 2/5 would give a different answer: the test can tell them apart
     wrong = scene.initial @ exact.scattering_matrix(0.4, exact.Omega(model.kn, model.kt, 0.4)).T
@@ -61,7 +63,7 @@ def test_magic_ratio_conserves_energy_in_lammps(run_dir):
     alpha = 2 / 3
     model = ContactModel(alpha=alpha, kt=10.0 * exact.magic_kt_over_kn(alpha))
     scene = Collision(model, v_n=[-1.0, -0.5, -0.2], v_t=[1.0, -1.5, 0.3], omega=[0.0, 1.0, -4.0])
-    result = run_collision(scene, run_dir)
+    result = run_scene(scene, run_dir)
     # energy is conserved up to the integration error (the same budget as the states)
     assert np.abs(result.table["energy_gain"]).max() < COLLISION_TOL
     assert model.Omega == pytest.approx(-2.0, abs=1e-12)
@@ -74,7 +76,7 @@ def test_spin_and_many_spheres_pair_by_id(run_dir):
         ContactModel(),
         v_n=rng.uniform(-1.5, -0.1, n), v_t=rng.uniform(-2, 2, n), omega=rng.uniform(-4, 4, n),
     )
-    result = run_collision(scene, run_dir)
+    result = run_scene(scene, run_dir)
     assert _errors(result).max() < COLLISION_TOL
     # LAMMPS saw the requested initial state (full-precision deck and dump)
     t = result.table
@@ -84,7 +86,7 @@ def test_spin_and_many_spheres_pair_by_id(run_dir):
 
 def test_rigid_route_dumps_initial_spin(run_dir):
     scene = Collision(ContactModel(alpha=0.1), v_n=-0.5, v_t=0.0, omega=3.0)
-    result = run_collision(scene, run_dir)
+    result = run_scene(scene, run_dir)
     t = result.table
     assert t["omega_lammps_0"].iloc[0] == pytest.approx(3.0, abs=1e-12)  # set by the body, exact
     assert _errors(result).max() < COLLISION_TOL
@@ -97,7 +99,7 @@ def test_frozen_contact_matches_eq10(run_dir):
     about 5e-6 after 10 time units; 1e-5 is the acceptance bound.
     """
     scene = Frozen(ContactModel(), z=0.1, v_t=1.0, omega=0.0, t_end=10.0)
-    result = run_frozen(scene, run_dir)
+    result = run_series(scene, run_dir)
     assert result.table["t"].iloc[-1] >= 10.0
     assert result.max_abs_error < 1e-5
     # the trajectory really oscillates (not a trivially constant series)
@@ -118,7 +120,7 @@ def test_damped_frozen_contact_converges_to_exact_solution(tmp_path, gamma_t):
     errors = []
     for dt in (2e-4, 1e-4):
         scene = Frozen(model, z=0.1, v_t=1.0, omega=1.0, t_end=10.0, dt=dt, every=int(round(4e-3 / dt)))
-        result = run_frozen(scene, tmp_path / f"dt{dt}")
+        result = run_series(scene, tmp_path / f"dt{dt}")
         errors.append(result.max_abs_error)
     assert errors[0] / errors[1] == pytest.approx(2.0, rel=0.05)  # first order, 5%: rounding-free ratio
     assert errors[1] < 4e-4  # 3.5e-4 measured for the largest gamma_t
@@ -130,7 +132,7 @@ def test_damped_frozen_contact_converges_to_exact_solution(tmp_path, gamma_t):
 
 def test_deck_alone_reproduces_the_run_with_lmp(run_dir, tmp_path):
     scene = Collision(ContactModel(alpha=0.1), v_n=-0.8, v_t=0.6, omega=-1.2)
-    result = run_collision(scene, run_dir)
+    result = run_scene(scene, run_dir)
     rerun = tmp_path / "rerun"
     rerun.mkdir()
     (rerun / "in.lammps").write_text((run_dir / "in.lammps").read_text())
@@ -160,12 +162,10 @@ def test_nan_from_classic_wall_is_caught(run_dir, monkeypatch, atoms):
     fail, whether the state comes back through a dump or from LAMMPS's memory."""
     import dataclasses
 
-    import spinbounce.pipeline as pipeline
+    real = Collision.render
 
-    real = pipeline.render_collision
-
-    def classic(scene, atoms=None):
-        deck = real(scene, atoms)
+    def classic(scene, atoms=None, padding=None):
+        deck = real(scene, atoms, padding)
         lines = [
             "fix             wall contact wall/gran hooke/history 10.0 1.0 0.0 0.0 1000.0 1 zplane 0.0 NULL"
             if line.startswith("fix             wall ") else line
@@ -173,16 +173,16 @@ def test_nan_from_classic_wall_is_caught(run_dir, monkeypatch, atoms):
         ]
         return dataclasses.replace(deck, text="\n".join(lines) + "\n")
 
-    monkeypatch.setattr(pipeline, "render_collision", classic)
+    monkeypatch.setattr(Collision, "render", classic)
     with pytest.raises(ResultError, match="non-finite"):
-        run_collision(Collision(ContactModel(), v_n=-1.0, v_t=1.0, omega=0.0), run_dir, atoms=atoms)
+        run_scene(Collision(ContactModel(), v_n=-1.0, v_t=1.0, omega=0.0), run_dir, atoms=atoms)
 
 
 def test_unfinished_contact_is_caught(run_dir, monkeypatch):
     """A run that stops before the sphere has left the wall is an error, not a result."""
     monkeypatch.setattr(Collision, "nsteps", property(lambda self: math.floor(0.5 * self.model.tau / self.dt)))
     with pytest.raises(ResultError, match="still touch"):
-        run_collision(Collision(ContactModel(), v_n=-1.0, v_t=1.0, omega=0.0), run_dir)
+        run_scene(Collision(ContactModel(), v_n=-1.0, v_t=1.0, omega=0.0), run_dir)
 
 
 def test_half_step_contact_end_beats_integer_alignment(tmp_path):
@@ -196,7 +196,7 @@ def test_half_step_contact_end_beats_integer_alignment(tmp_path):
     errors = {}
     for label, steps in (("boundary", 1000.0), ("mid-step", 1000.5)):
         scene = Collision(model, v_n=-1.0, v_t=1.0, omega=0.0, dt=model.tau / steps)
-        errors[label] = _errors(run_collision(scene, tmp_path / label)).max()
+        errors[label] = _errors(run_scene(scene, tmp_path / label)).max()
     assert errors["boundary"] > 100 * errors["mid-step"]
 
 
@@ -209,7 +209,7 @@ def test_batch_from_data_file_pairs_by_id(run_dir, alpha):
     n = 3 * INLINE_SPHERES
     scene = Collision(ContactModel(alpha=alpha), v_n=rng.uniform(-1.5, -0.1, n),
                       v_t=rng.uniform(-2, 2, n), omega=rng.uniform(-4, 4, n))
-    result = run_collision(scene, run_dir)
+    result = run_scene(scene, run_dir)
     assert (run_dir / DATA_FILE).is_file()
     assert _errors(result).max() < COLLISION_TOL
     t = result.table
@@ -229,8 +229,8 @@ def test_library_route_equals_the_data_file_route(tmp_path, alpha):
     n = 2 * INLINE_SPHERES
     scene = Collision(ContactModel(alpha=alpha), v_n=rng.uniform(-1.5, -0.1, n),
                       v_t=rng.uniform(-2, 2, n), omega=rng.uniform(-4, 4, n))
-    by_file = run_collision(scene, tmp_path / "file", atoms="data_file")
-    in_memory = run_collision(scene, tmp_path / "memory", atoms="library")
+    by_file = run_scene(scene, tmp_path / "file", atoms="data_file")
+    in_memory = run_scene(scene, tmp_path / "memory", atoms="library")
     assert in_memory.dump is None and not (tmp_path / "memory" / "state.dump").exists()
     final = [f"{s}_final" for s in ("vn", "vt", "r_omega", "z")]
     np.testing.assert_array_equal(in_memory.table[final].to_numpy(), by_file.table[final].to_numpy())
@@ -247,8 +247,8 @@ def test_lmp_process_runner_gives_the_in_process_answer(tmp_path):
     from spinbounce.lammps.runner import run_deck_lmp
 
     scene = Collision(ContactModel(), v_n=-0.7, v_t=0.4, omega=1.1)
-    a = run_collision(scene, tmp_path / "lmp", runner=run_deck_lmp)
-    b = run_collision(scene, tmp_path / "module")
+    a = run_scene(scene, tmp_path / "lmp", runner=run_deck_lmp)
+    b = run_scene(scene, tmp_path / "module")
     cols = ["vn_final", "vt_final", "r_omega_final"]
     np.testing.assert_array_equal(a.table[cols].to_numpy(), b.table[cols].to_numpy())
     assert a.info.loop_seconds > 0

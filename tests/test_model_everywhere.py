@@ -15,7 +15,7 @@ import pytest
 
 from spinbounce.cli import main
 from spinbounce.model.contact import ContactModel
-from spinbounce.model.scenes import Collision
+from spinbounce.scenes.collision import Collision
 from spinbounce.exact import choose
 
 SCENE = """seed = 3

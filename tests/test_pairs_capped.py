@@ -17,7 +17,8 @@ import pytest
 
 from spinbounce.cli import main
 from spinbounce.model.parameters import SceneError
-from spinbounce.pairs import Pair, PairBatch, PairContact, Sphere, run_pairs
+from spinbounce.scenes.pair import Pair, PairBatch, PairContact, Sphere
+from spinbounce.pipeline import run_scene
 from spinbounce.exact import choose, pair_capped, pair_exact
 
 SOLVER_AGREEMENT = 1e-9
@@ -107,10 +108,10 @@ def _capped_cases() -> list[Pair]:
 @pytest.mark.parametrize("contact", [PairContact(mu=0.3), PairContact(kt=2.0, gamma_n=0.8, mu=0.1)],
                          ids=["undamped", "damped"])
 def test_lammps_capped_pairs_are_within_the_default_accuracy(tmp_path, contact):
-    result = run_pairs(PairBatch(_capped_cases(), contact), tmp_path, record=False)
-    assert result.max_lammps_error < 1e-4
+    result = run_scene(PairBatch(_capped_cases(), contact), tmp_path, record=False)
+    assert result.max_error < 1e-4
     assert result.table["eps"].max() > 0.5  # the line of centres turns: the planar model would not do
-    assert result.max_planar_error > 10 * result.max_lammps_error
+    assert result.table["planar_error"].max() > 10 * result.max_error
 
 
 @pytest.mark.lammps
@@ -122,8 +123,8 @@ def test_lammps_converges_to_the_capped_reference(tmp_path):
     pair = Pair(v_a=(2.0, 0.0, -1.0), w_a=(0.0, -3.0, 0.0))
     contact = PairContact(mu=0.3)
     time = PairBatch([pair], contact).exact[0].contact_time
-    errors = [run_pairs(PairBatch([pair], contact, time / (steps + 0.5), aligned=True), tmp_path / str(steps),
-                        record=False).max_lammps_error for steps in (200, 400)]
+    errors = [run_scene(PairBatch([pair], contact, time / (steps + 0.5), aligned=True), tmp_path / str(steps),
+                        record=False).max_error for steps in (200, 400)]
     assert errors[0] / errors[1] > 3.5 and errors[1] < 1e-7
 
 

@@ -19,8 +19,8 @@ from spinbounce.model import parameters
 from spinbounce.model.contact import ContactModel
 from spinbounce.model.parameters import SceneError
 from spinbounce.model.timestep import ACCURACY
-from spinbounce.pairs import QUANTITIES
-from spinbounce.pairs.kind import pair_contact, planar_matrix, sphere_b
+from spinbounce.scenes.pair import QUANTITIES
+from spinbounce.scenes.pair.kind import pair_contact, planar_matrix, sphere_b
 from spinbounce.sweeps import SweepError, load_spec, read_results, run_sweep, spec_from_dict
 
 #: Radii of 5e3 make the line of centres turn by ~1e-4 of what it does at r ~ 1 (eps ~ 1e-4):
@@ -186,6 +186,6 @@ def test_collide_runs_the_pair_scene(tmp_path, capsys):
     import json
 
     row = json.loads(capsys.readouterr().out)
-    assert row["m_b"] == 2.0 and row["alpha_b"] == 0.3 and row["lammps_error"] < ACCURACY
+    assert row["m_b"] == 2.0 and row["alpha_b"] == 0.3 and row["error"] < ACCURACY
     report = spinbounce.collide(scene="pair", m_b=2.0, r_b=0.7, alpha_b=0.3, v_t=0.3, out=tmp_path / "api")
-    assert report.error == pytest.approx(row["lammps_error"], rel=1e-9)
+    assert report.error == pytest.approx(row["error"], rel=1e-9)

@@ -25,7 +25,7 @@ import numpy as np
 import pytest
 
 from spinbounce import __version__
-from spinbounce.model.scenes import ContactModel
+from spinbounce.model.contact import ContactModel
 from spinbounce.studies import references as refs
 from spinbounce.cli import references as references_command
 from spinbounce.lammps.decks import ATOM_ROUTES

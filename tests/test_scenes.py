@@ -3,18 +3,18 @@
 import math
 import warnings
 
+from pathlib import Path
+
 import pytest
 
 from spinbounce import exact
-from spinbounce.lammps.decks import render_collision, render_frozen
+from spinbounce.scenes.collision.deck import render_collision
+from spinbounce.scenes.frozen.deck import render_frozen
 from spinbounce.model.timestep import ACCURACY, SAFETY, SECOND_ORDER
-from spinbounce.model.scenes import (
-    Collision,
-    ContactModel,
-    Frozen,
-    PhysicsWarning,
-    SceneError,
-)
+from spinbounce.scenes.collision import Collision
+from spinbounce.model.contact import ContactModel
+from spinbounce.scenes.frozen import Frozen
+from spinbounce.errors import PhysicsWarning, SceneError
 from spinbounce.model.stability import stability_limit
 
 
@@ -191,7 +191,8 @@ def test_decks_hold_only_what_the_scene_needs():
 def test_missing_template_value_is_an_error():
     import jinja2
 
-    from spinbounce.lammps.decks import template_environment
+    import spinbounce.scenes.collision as collision
+    from spinbounce.lammps.decks import render_template
 
     with pytest.raises(jinja2.UndefinedError):
-        template_environment().get_template("collision.lmp.j2").render(version="x")
+        render_template(Path(collision.__file__).parent, "collision.lmp.j2")

@@ -23,7 +23,7 @@ import pytest
 
 from spinbounce.cli import main
 from spinbounce.model.parameters import SceneError
-from spinbounce.model.scenes import ContactModel
+from spinbounce.model.contact import ContactModel
 from spinbounce.studies import tangential_limits as limits
 from spinbounce.studies.tangential import SETS, run_set, solver_curve
 

@@ -13,8 +13,9 @@ from spinbounce import exact
 from spinbounce.exact import oracle
 from spinbounce.studies.validation import refined_dt
 from spinbounce.fitting import fit_matrix
-from spinbounce.pipeline import run_collision
-from spinbounce.model.scenes import STATE_3D, Collision, ContactModel
+from spinbounce.pipeline import run_scene
+from spinbounce.scenes.collision import Collision, STATE_3D
+from spinbounce.model.contact import ContactModel
 
 RNG = np.random.default_rng(7)
 N = 300
@@ -43,7 +44,7 @@ def test_lammps_3d_matches_the_block_matrix_and_keeps_normal_spin(tmp_path, mode
     # with the contact's end kept mid-step (refined_dt); ending on a step would leave a
     # first-order tangential error of 3e-4 at this dt, in the plane as in 3-D
     dt = refined_dt(model, 32) if model.gamma_n else None
-    result = run_collision(Collision(model, **STATES, dt=dt), tmp_path, atoms="library", record=False)
+    result = run_scene(Collision(model, **STATES, dt=dt), tmp_path, atoms="library", record=False)
     t = result.table
     assert result.max_abs_error < 2e-4
     # the spin about the normal passes through: to rounding (fix rigid recomputes omega
@@ -63,7 +64,7 @@ def test_lammps_3d_sliding_matches_the_oracle(tmp_path):
     model = ContactModel(mu=0.3)
     states = {k: v[:8] for k, v in STATES.items()}
     coarse = Collision(model, **states)
-    result = run_collision(Collision(model, **states, dt=coarse.dt / 8), tmp_path, atoms="library", record=False)
+    result = run_scene(Collision(model, **states, dt=coarse.dt / 8), tmp_path, atoms="library", record=False)
     assert result.max_abs_error < 1e-4
     # the coupling is real: treating each direction as its own 2-D problem misses by far more
     apart = [np.concatenate([oracle.bounce(model, states["v_n"][i], states["v_t"][i], states["omega"][i]).final[:3],

@@ -12,7 +12,9 @@ import pytest
 
 from spinbounce.exact import linear
 from spinbounce.cli import main
-from spinbounce.model.scenes import STATE_ARGS, Collision, ContactModel, SceneError
+from spinbounce.scenes.collision import Collision, STATE_ARGS
+from spinbounce.model.contact import ContactModel
+from spinbounce.errors import SceneError
 from spinbounce.studies.accuracy import FROZEN_T_END, FROZEN_Z, collision_scene
 from spinbounce.studies.accuracy import cases as accuracy_cases
 from spinbounce.extrapolation import (

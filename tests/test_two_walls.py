@@ -17,8 +17,8 @@ import pytest
 
 from spinbounce import exact
 from spinbounce.model.parameters import SceneError
-from spinbounce.model.scenes import ContactModel
-from spinbounce.studies.two_walls import TwoWalls, matrix_product, mirror, run_two_walls, theory_path
+from spinbounce.model.contact import ContactModel
+from spinbounce.scenes.two_walls import TwoWalls, matrix_product, mirror, run_two_walls, theory_path
 
 STATES = np.array([[-1.0, 1.0, 0.0], [-1.0, -0.5, 0.8], [-1.0, 0.3, -1.2]])
 STATES_3D = np.array([[-1.0, 1.0, 0.0, 0.4, -0.7, 0.9], [-1.0, -0.5, 0.8, -1.1, 0.2, -1.5]])

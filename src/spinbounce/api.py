@@ -30,7 +30,7 @@ import pandas as pd
 
 from .model import parameters
 from .model.contact import ContactModel
-from .model.scenes import Collision
+from .scenes.collision import Collision
 from .exact import choose
 
 __all__ = ["collide", "theory", "sweep", "fit", "CollisionReport", "PairReport", "model"]
@@ -42,7 +42,7 @@ _SCENE_NAMES = {p.name for p in parameters.SCENE}
 
 def _split_scene(keywords: dict):
     """(model keywords, sphere b or None for the wall), b's keywords refused without scene="pair"."""
-    from .pairs.kind import scene_of, sphere_b
+    from .scenes.pair.kind import scene_of, sphere_b
 
     scene = {k: keywords.pop(k) for k in list(keywords) if k in _SCENE_NAMES}
     if scene_of(scene) == "wall":
@@ -96,8 +96,8 @@ class PairReport:
 
 
 def _pair_batch(b, model_parameters: dict, state: dict, dt=None):
-    from .pairs.kind import pair_contact, pairs_from_states
-    from .pairs.scene import PairBatch
+    from .scenes.pair.kind import pair_contact, pairs_from_states
+    from .scenes.pair.scene import PairBatch
 
     contact = model(**model_parameters)
     row = [state[k] for k in ("v_n", "v_t", "omega", "v_s", "omega_s", "omega_n")]
@@ -105,15 +105,16 @@ def _pair_batch(b, model_parameters: dict, state: dict, dt=None):
 
 
 def _collide_pair(b, model_parameters: dict, state: dict, dt, out) -> PairReport:
-    from .pairs import QUANTITIES, run_pairs
+    from .scenes.pair import QUANTITIES
+    from .pipeline import run_scene
 
     batch = _pair_batch(b, model_parameters, state, dt)
     out = Path(out) if out is not None else _run_folder("collide-pair", {"pairs": repr(batch.pairs), "dt": batch.dt})
-    result = run_pairs(batch, out)  # its batch carries the step the probe chose
+    result = run_scene(batch, out)  # its batch carries the step the probe chose
     row = result.table.iloc[0]
     table = pd.DataFrame({label: [float(row[q + suffix]) for q in QUANTITIES] for label, suffix in
                           (("LAMMPS", ""), ("exact", "_exact"), ("planar", "_planar"))}, index=list(QUANTITIES))
-    return PairReport(table, result.batch.dt, result.batch.nsteps, float(row["lammps_error"]), float(row["planar_error"]),
+    return PairReport(table, result.scene.dt, result.scene.nsteps, float(row["error"]), float(row["planar_error"]),
                       float(row["eps"]), out)
 
 
@@ -127,7 +128,7 @@ def collide(v_n: float = -1.0, v_t: float = 1.0, omega: float = 0.0, v_s: float 
             **model_parameters) -> CollisionReport | PairReport:
     """Bounce one sphere off the wall in LAMMPS and compare it with the theory that applies; with
     ``scene="pair"`` (and ``m_b``, ``r_b``, ``alpha_b``) against a free sphere b at rest instead."""
-    from .pipeline import run_collision
+    from .pipeline import run_scene
 
     model_parameters, b = _split_scene(model_parameters)
     if b is not None:
@@ -137,7 +138,7 @@ def collide(v_n: float = -1.0, v_t: float = 1.0, omega: float = 0.0, v_s: float 
     scene = Collision(model(**model_parameters), v_n=v_n, v_t=v_t, omega=omega, v_s=v_s, omega_s=omega_s,
                       omega_n=omega_n, dt=dt)
     out = Path(out) if out is not None else _run_folder("collide", {"scene": repr(scene)})
-    result = run_collision(scene, out)
+    result = run_scene(scene, out)
     row = result.table.iloc[0]
     names = result.scene.state_names
     table = pd.DataFrame({when: [float(row[f"{s}_{suffix}"]) for s in names]
@@ -170,8 +171,8 @@ def theory(v_n: float | None = None, v_t: float = 0.0, omega: float = 0.0, v_s: 
 
 
 def _pair_theory(b, model_parameters: dict, v_n, state: dict) -> dict:
-    from .pairs.kind import CAPPED_NO_MATRIX, planar_matrix, planar_Omega
-    from .pairs.run import pair_table
+    from .scenes.pair.kind import CAPPED_NO_MATRIX, planar_Omega, planar_matrix
+    from .scenes.pair.table import pair_table
 
     contact = model(**model_parameters)
     out = {"theory": "pair", "name": "planar pair theory (exact only as eps -> 0) and the exact reference"}

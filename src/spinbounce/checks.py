@@ -1,68 +1,90 @@
-"""Every collision row's own accuracy and status, measured against the exact theory.
+"""Every row's own accuracy and status, measured against the exact reference, for any scene.
 
-Each theory spinbounce checks against is exact to far better than the default accuracy
-(closed forms to 1e-15, the oracle and the classic-wall solver to about 1e-9), so a row's
-deviation from it *is* its error. Columns added to a collision table:
+Each reference spinbounce checks against is exact to far better than the default accuracy
+(closed forms to 1e-15, the oracle, the classic-wall solver and the pair references to
+about 1e-9), so a row's deviation from it *is* its error. A scene states its rows as
+:class:`RowStates` (velocities and r times spins, whichever spheres it reports); the
+columns added to its table are the same for every scene:
 
 * ``energy_gain``: (E(final) - E(0)) / E(0), as LAMMPS ran it;
-* ``error``: the largest |LAMMPS - theory| over the state columns, divided by the size of
-  the initial state |(v_n, v_t, r omega, ...)|;
-* ``energy_excess``: kinetic energy LAMMPS ended with beyond the theory's, over E(0);
+* ``error``: the largest |LAMMPS - reference| over the state's components, divided by the
+  row's ``scale`` (the wall: the size of the initial state |(v_n, v_t, r omega, ...)|; a
+  pair: the larger of the impact speed and the initial slip speed);
+* ``energy_excess``: kinetic energy LAMMPS ended with beyond the reference's, over E(0);
 * ``status``, the first that applies: ``grazing`` (the largest overlap is too small for
   double precision to resolve against the radius), ``energy_gained`` (more energy than the
-  theory allows, beyond what the row's error can explain), ``inaccurate`` (error above the
-  target), ``ok``.
+  reference allows, beyond what the row's error can explain), ``inaccurate`` (error above
+  the target), ``ok``.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from . import exact
+from dataclasses import dataclass
+
 from .model.timestep import ACCURACY
 
-__all__ = ["STATUSES", "RESOLVABLE_OVERLAP_ULPS", "add_row_checks", "summary", "notes"]
+__all__ = ["STATUSES", "RESOLVABLE_OVERLAP_ULPS", "RowStates", "add_row_checks", "summary", "notes"]
 
 #: Row statuses, worst first.
 STATUSES = ("grazing", "energy_gained", "inaccurate", "ok")
-#: The largest overlap must span this many units in the last place of r: positions are
-#: doubles near r, so an overlap of N ulps is resolved to 1/N (measured: v_n = -1e-11 at the
-#: paper's defaults, an overlap of 3e4 ulps, errs by 2e-3; 1e-6, 3e9 ulps, by 2e-5).
+#: The largest overlap must span this many units in the last place of the length it is
+#: measured against (the radius; a pair's sum of radii): positions are doubles near it, so an
+#: overlap of N ulps is resolved to 1/N (measured: v_n = -1e-11 at the paper's defaults, an
+#: overlap of 3e4 ulps, errs by 2e-3; 1e-6, 3e9 ulps, by 2e-5).
 RESOLVABLE_OVERLAP_ULPS = 1e7
 
 
-def _largest_overlap(model, v_n: np.ndarray) -> np.ndarray:
-    return model.max_overlap(np.abs(v_n))
+@dataclass(frozen=True)
+class RowStates:
+    """A scene's rows as the checks read them: (n, k) states of velocities and r times spins.
+
+    ``weights``: each component's share of the kinetic energy, E = sum(weights x^2)/2 (a mass,
+    or alpha times a mass for r omega), one row or one per row; ``scale``: what each row's
+    error is measured in; ``overlap``: each row's largest overlap; ``length``: the length an
+    overlap is resolved against.
+    """
+
+    initial: np.ndarray
+    final: np.ndarray
+    reference: np.ndarray
+    weights: np.ndarray
+    scale: np.ndarray
+    overlap: np.ndarray
+    length: float | np.ndarray
 
 
-def _energy_allowance(initial: np.ndarray, error: np.ndarray, alpha: float) -> np.ndarray:
-    """The most E(final) can move, over E(0), when each state column errs by error * |initial|."""
-    # E = m/2 sum w_i s_i^2 over (v_n, v_t, r omega, v_s, r omega_s, r omega_n): spins weigh alpha
-    weights = np.array([1.0, 1.0, alpha, 1.0, alpha, alpha])[: initial.shape[1]]
-    twice_energy = (weights * initial**2).sum(axis=1)
-    delta = error * np.linalg.norm(initial, axis=1)
-    total = weights.sum()
+def _energy(weights: np.ndarray, states: np.ndarray) -> np.ndarray:
+    return 0.5 * (weights * states**2).sum(axis=1)
+
+
+def _energy_allowance(rows: RowStates, delta: np.ndarray) -> np.ndarray:
+    """The most E(final) can move, over E(0), when each component errs by ``delta``: by
+    Cauchy-Schwarz, sum w (x d + d^2/2) <= delta sqrt(W sum w x^2) + W delta^2/2, W = sum w."""
+    weights = np.broadcast_to(rows.weights, rows.initial.shape)
+    twice_energy = (weights * rows.initial**2).sum(axis=1)
+    total = weights.sum(axis=1)
     return (2.0 * np.sqrt(twice_energy * total) * delta + total * delta**2) / twice_energy
 
 
-def add_row_checks(columns: dict, names, model, target: float = ACCURACY) -> None:
-    """Add ``error``, ``energy_excess`` and ``status`` to a collision table's columns."""
-    initial = np.column_stack([columns[f"{s}_0"] for s in names])
-    final = np.column_stack([columns[f"{s}_final"] for s in names])
-    predicted = np.column_stack([columns[f"{s}_theory"] for s in names])
-    size = np.linalg.norm(initial, axis=1)
-    error = np.abs(final - predicted).max(axis=1) / size
-    e0, e1 = exact.energy(initial, model.m, model.alpha), exact.energy(final, model.m, model.alpha)
-    columns["energy_gain"] = (e1 - e0) / e0
-    excess = (e1 - exact.energy(predicted, model.m, model.alpha)) / e0
-    status = np.full(len(size), "ok", dtype=object)
+def add_row_checks(columns: dict, rows: RowStates, target: float = ACCURACY) -> float:
+    """Add ``error``, ``energy_gain``, ``energy_excess`` and ``status`` to a table's columns;
+    return the largest absolute deviation of any component (the run's, in the state's units)."""
+    deviation = np.abs(rows.final - rows.reference)
+    error = deviation.max(axis=1) / rows.scale
+    e0, e1 = _energy(rows.weights, rows.initial), _energy(rows.weights, rows.final)
+    excess = (e1 - _energy(rows.weights, rows.reference)) / e0
+    status = np.full(len(error), "ok", dtype=object)
     status[error > target] = "inaccurate"
-    status[excess > _energy_allowance(initial, np.maximum(error, target), model.alpha)] = "energy_gained"
-    resolvable = RESOLVABLE_OVERLAP_ULPS * np.spacing(model.r)
-    status[_largest_overlap(model, initial[:, 0]) < resolvable] = "grazing"
+    allowance = _energy_allowance(rows, np.maximum(error, target) * rows.scale)
+    status[excess > allowance] = "energy_gained"
+    status[rows.overlap < RESOLVABLE_OVERLAP_ULPS * np.spacing(rows.length)] = "grazing"
+    columns["energy_gain"] = (e1 - e0) / e0
     columns["error"] = error
     columns["energy_excess"] = excess
     columns["status"] = status
+    return float(deviation.max())
 
 
 def summary(status) -> dict[str, int]:

@@ -51,7 +51,10 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .model.scenes import STATE_ARGS, Collision, ContactModel, Frozen, SceneError
+from .scenes.collision import Collision, STATE_ARGS
+from .model.contact import ContactModel
+from .scenes.frozen import Frozen
+from .errors import SceneError
 from .model.timestep import mid_step_dt, refine_mid_step
 
 __all__ = ["Extrapolated", "collide_to_tolerance", "frozen_to_tolerance", "collision_frame", "check_tolerance",
@@ -278,7 +281,7 @@ def collide_to_tolerance(model: ContactModel, v_n, v_t, omega, tolerance: float,
     level's run lives in ``out_dir/level-K``. Returns the extrapolated final states with
     their estimates, and the finest level's scene (for its initial states and theory).
     """
-    from .pipeline import run_collision
+    from .pipeline import run_scene
 
     tol = check_tolerance(tolerance)
     _refuse_unsmooth(model)
@@ -299,7 +302,7 @@ def collide_to_tolerance(model: ContactModel, v_n, v_t, omega, tolerance: float,
 
     def run_level(k: int):
         scene = scene_at(first + k)
-        result = run_collision(scene, out_dir / f"level-{k}", atoms="library")
+        result = run_scene(scene, out_dir / f"level-{k}", atoms="library")
         scenes.append(scene)
         final = result.table[[f"{s}_final" for s in names]].to_numpy()
         return final, scene.dt, {"level": k, "dt": scene.dt, "nsteps": scene.nsteps,
@@ -316,7 +319,7 @@ def measured_to_tolerance(model: ContactModel, v_n, v_t, omega, tolerance: float
     """Collisions to ``tolerance`` where extrapolation cannot serve: one run at the step a probe
     against the exact theory chooses for the tolerance; each row's estimate is its measured
     |LAMMPS - theory| (the largest over its columns), and every row must be within it."""
-    from .pipeline import ResultError, run_collision
+    from .pipeline import ResultError, run_scene
 
     if tolerance < MIN_MEASURED_TOLERANCE:
         raise SceneError("tolerance", tolerance, f"must be >= {MIN_MEASURED_TOLERANCE:g} for this model: its error is "
@@ -324,7 +327,7 @@ def measured_to_tolerance(model: ContactModel, v_n, v_t, omega, tolerance: float
     scene = Collision(model, v_n=v_n, v_t=v_t, omega=omega, **out_of_plane)
     folder, levels = Path(out_dir) / "measured", []
     for refinement in range(MAX_LEVELS):
-        result = run_collision(scene, folder / f"run-{refinement}", atoms="library", target=tolerance)
+        result = run_scene(scene, folder / f"run-{refinement}", atoms="library", target=tolerance)
         final = result.table[[f"{s}_final" for s in result.scene.state_names]].to_numpy()
         distance = np.abs(final - result.scene.predicted()).max(axis=1, keepdims=True)
         log(f"  run at {result.scene.nsteps} steps: largest |LAMMPS - theory| {distance.max():.2e}")
@@ -350,7 +353,7 @@ def frozen_to_tolerance(model: ContactModel, z: float, v_t: float, omega: float,
     Level k halves dt and doubles the dump interval, so every level samples the same times
     exactly (dt is divided by a power of two).
     """
-    from .pipeline import run_frozen
+    from .pipeline import run_series
 
     tol = check_tolerance(tolerance)
     out_dir = Path(out_dir)
@@ -361,7 +364,7 @@ def frozen_to_tolerance(model: ContactModel, z: float, v_t: float, omega: float,
 
     def run_level(k: int):
         scene = Frozen(model, z=z, v_t=v_t, omega=omega, t_end=t_end, dt=dt0 / 2**k, every=every0 * 2**k)
-        result = run_frozen(scene, out_dir / f"level-{k}")
+        result = run_series(scene, out_dir / f"level-{k}")
         table = result.table
         if times and not np.array_equal(table["t"].to_numpy(), times[0]):
             raise RuntimeError("frozen levels do not share their output times")

@@ -11,7 +11,7 @@ first asks whether one matrix describes the group at all:
   (they must equal the frictionless matrix's outcome within :data:`STICK_TOLERANCE`);
 * otherwise (sliding collisions, or a Hertzian group with several v_n) no matrix is claimed:
   the group reports its per-collision deviation from the theory (worst and median);
-* a pair scene's group (sphere b at rest instead of the wall; :mod:`spinbounce.pairs.kind`)
+* a pair scene's group (sphere b at rest instead of the wall; :mod:`spinbounce.scenes.pair.kind`)
   is checked against the exact reference; the planar theory's matrix of a's state is claimed
   only where its model error (the rows' ``planar_error``, the quantity of the validity map
   over eps and the centrifugal ratio, figures/pair_validity) stays within the accuracy
@@ -27,7 +27,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .compare import STATE, STATE_3D
+from .scenes.collision import STATE, STATE_3D
 from .model import parameters
 from .model.contact import ContactModel
 from .records import write_atomic_with
@@ -152,7 +152,7 @@ def pair_regime(params: dict, three_d: bool, geometry: dict) -> tuple[np.ndarray
     """A pair group's planar matrix of a's state, or None where the planar theory's model error
     (``geometry``: the group's largest planar_error, eps and centrifugal ratio) exceeds the accuracy."""
     from .model.timestep import ACCURACY
-    from .pairs.kind import CAPPED_NO_MATRIX, planar_matrix, sphere_b
+    from .scenes.pair.kind import CAPPED_NO_MATRIX, planar_matrix, sphere_b
 
     where = f"eps up to {geometry['eps']:.2g}, centrifugal ratio up to {geometry['centrifugal']:.2g}"
     if model_of_group(params).mu is not None:
@@ -176,7 +176,7 @@ def theory_kind(params: dict) -> str:
 def omega_of_theory(params: dict, matrix_theory: np.ndarray) -> float:
     """The theory's Omega: Eq. 18's r omega row (the wall), the planar theory's (a pair)."""
     if params.get("scene") == "pair":
-        from .pairs.kind import planar_Omega, sphere_b
+        from .scenes.pair.kind import planar_Omega, sphere_b
 
         return planar_Omega(model_of_group(params), sphere_b(*(params[name] for name in parameters.PAIR_ONLY)))
     return float((matrix_theory[2, 2] - 1.0) * (1.0 + params["alpha"]))

@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .compare import STATE, STATE_3D
+from .scenes.collision import STATE, STATE_3D
 from .fitting import (GROUP_KEYS, PAIR_GEOMETRY, group_parameters, model_of_group, off_uncapped, omega_gains, omega_of_theory,
                       pair_regime, regime, theory_kind)
 

@@ -1,29 +1,34 @@
-"""The step a collision needs for the default accuracy, measured where no rule can say.
+"""The step a scene needs for the default accuracy, measured where no rule can say: one probe
+for every scene.
 
 Without damping, cap or Hertz force the paper's contact converges at second order with a
 known constant, and :mod:`spinbounce.model.timestep` sets its step a priori. Every other
-model (damped: first order; a Coulomb cap: rough; a Hertzian wall at one speed; the
-classic wall) is probed: a few of the scene's own states run at the rule's step and at
-half of it, against the exact theory that applies (:mod:`spinbounce.exact.choose`); the
-observed order and constant give the step for :data:`SAFETY` times the target, kept
-mid-step. A probe costs two short runs of at most :data:`PROBE_SPHERES` spheres, and its
-result goes into the run's record. Every row's own error is measured afterwards anyway
-(``error`` and ``status`` columns): the probe only chooses the step.
+wall model (damped: first order; a Coulomb cap: rough; a Hertzian wall at one speed; the
+classic wall) and every pair batch is probed: a few of the scene's own rows run at a
+coarse step and at half of it, against the exact reference that applies; the observed
+order and constant give the step for :data:`SAFETY` times the target, kept mid-step. A
+probe costs two or three short runs of at most :data:`PROBE_SPHERES` rows, and its result
+goes into the run's record. Every row's own error is measured afterwards anyway (``error``
+and ``status`` columns): the probe only chooses the step.
+
+A scene tells the probe what differs (:mod:`spinbounce.scenes`): whether it needs one, the
+contact time the steps are counted over, the coarse probe's steps, a limit above which it
+keeps a fine rule instead (a pair's: :data:`FALLBACK`), a scene of some of its rows, and
+itself at a given step.
 """
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
 
-from .model.scenes import STATE_ARGS, Collision
-from .model.timestep import ACCURACY, SAFETY, StepChoice, mid_step_dt, steps_per_contact
-from .exact import choose
+from .model.timestep import ACCURACY, SAFETY, StepChoice, mid_step_dt
 
-__all__ = ["StepChoice", "needs_probe", "tune", "converge", "extrapolate", "expected_steps", "PROBE_SPHERES", "SAFETY"]
+__all__ = ["StepChoice", "tune", "converge", "extrapolate", "expected_steps", "PROBE_SPHERES", "SAFETY", "FALLBACK"]
 
 #: States a probe runs: the scene's own, every k-th of them beyond this many.
 PROBE_SPHERES = 32
@@ -40,60 +45,50 @@ ORDER_FLOOR = 0.5
 MAX_GROWTH = 64
 
 
-def needs_probe(scene: Collision) -> bool:
-    """Whether the scene's step must be measured: not the paper's linear contact, and not a
-    Hertzian batch of several speeds (its end cannot be aligned; it keeps its fixed rule)."""
-    if choose.which(scene.model).kind == "linear":
-        return False
-    return not np.ptp(scene.model.contact_times(scene.v_n)) > 0.0
+#: The method recorded when a probe could not do better than the scene's fine rule.
+FALLBACK = "fine rule (probe could not reach the target coarser)"
 
 
-def _contact_time(scene: Collision) -> float:
-    return float(np.max(scene.model.normal_law.force_times(scene.model, scene.v_n)))
-
-
-def _probe_scene(scene: Collision, dt: float, probe_states: Collision | None) -> Collision:
-    source = probe_states or scene
-    rows = np.arange(source.n)[:: max(1, math.ceil(source.n / PROBE_SPHERES))]
-    states = {name: np.asarray(getattr(source, name))[rows] for name in STATE_ARGS}
-    return Collision(scene.model, dt=dt, **states)
-
-
-def tune(scene: Collision, out: Path, run: Callable, probe_states: Collision | None = None,
-         target: float = ACCURACY) -> tuple[Collision, StepChoice]:
-    """The scene at the step its accuracy needs (unchanged where the a priori rule holds).
+def tune(scene, out: Path, run: Callable, probe_states=None, target: float = ACCURACY):
+    """The scene at the step its accuracy needs (unchanged where the a priori rule holds),
+    and how that step was chosen (:class:`StepChoice`).
 
     ``run(scene, folder)`` runs a probe scene and returns its rows' relative errors (inf
-    where the run was too coarse to finish the contact);
-    ``probe_states``: the states to probe with (a sweep's group: the same for every chunk,
-    so every chunk of a group gets the same step), by default the scene's own.
+    where the run was too coarse to finish the contact); ``probe_states``: a scene of the
+    same kind whose rows to probe with (a sweep's group: the same for every chunk, so every
+    chunk of a group gets the same step), by default the scene's own.
     """
-    if not scene.default_step or not needs_probe(scene):
+    if not scene.default_step or not scene.needs_probe():
         method = "given" if not scene.default_step else "second-order rule"
         return scene, StepChoice(scene.dt, method, target)
-    t_contact = _contact_time(scene)
-    coarse_steps = steps_per_contact(t_contact, scene.dt)
+    source = probe_states or scene
+    sample = source.rows(np.arange(source.n)[:: max(1, math.ceil(source.n / PROBE_SPHERES))])
+    t_contact = scene.probe_time(sample)
+    coarse_steps = scene.first_probe_steps(t_contact)
+    limit = scene.step_limit(t_contact)
+    errors: list[float] = []
+    folders = itertools.count()
 
-    def probe(steps: int, k: int) -> float:
-        return float(np.max(run(_probe_scene(scene, mid_step_dt(t_contact, steps), probe_states),
-                                Path(out) / f"probe-{k}")))
+    def probe(steps: int) -> float:
+        folder = Path(out) / f"probe-{next(folders)}"
+        errors.append(float(np.max(run(sample.at_step(mid_step_dt(t_contact, steps)), folder))))
+        return errors[-1]
 
     # a step too coarse to see the contact end (a slow exit: strong normal damping) counts as
     # an infinite error: refine until both probes finish
-    for k in range(MAX_REFINEMENTS):
-        errors = [probe(coarse_steps, 2 * k), probe(2 * coarse_steps, 2 * k + 1)]
-        if all(math.isfinite(e) for e in errors):
+    for _ in range(MAX_REFINEMENTS):
+        errors.clear()
+        pair = [(coarse_steps, probe(coarse_steps)), (2 * coarse_steps, probe(2 * coarse_steps))]
+        if all(math.isfinite(e) for _, e in pair):
             break
         coarse_steps *= 2
     else:
         raise RuntimeError(f"no probe of {scene.model} finished its contact within {coarse_steps} steps")
-
-    def check(steps: int) -> float:
-        errors.append(probe(steps, len(errors) + 2 * MAX_REFINEMENTS - 2))
-        return errors[-1]
-
-    steps, order, predicted = converge((coarse_steps, errors[0]), (2 * coarse_steps, errors[1]), target, check)
-    tuned = Collision(scene.model, dt=mid_step_dt(t_contact, steps), **{n: getattr(scene, n) for n in STATE_ARGS})
+    steps, order, predicted = converge(*pair, target, probe, limit=limit)
+    fine = scene.fallback()
+    if fine is not None and (steps >= limit or predicted > target * SAFETY * CHECK_SLACK):
+        return fine, StepChoice(fine.dt, FALLBACK, target, order, tuple(errors), None)
+    tuned = scene.at_step(mid_step_dt(t_contact, steps))
     return tuned, StepChoice(tuned.dt, "probe", target, order, tuple(errors), predicted)
 
 
@@ -144,12 +139,12 @@ CAPPED_FIRST_TOUCH = 4.0
 ROUGH = 1.5
 
 
-def expected_steps(scene: Collision, target: float = ACCURACY) -> int:
-    """About how many steps a run of ``scene`` takes once probed (an upper estimate)."""
-    if not scene.default_step or not needs_probe(scene):
+def expected_steps(scene, target: float = ACCURACY) -> int:
+    """About how many steps a wall collision ``scene`` takes once probed (an upper estimate)."""
+    if not scene.default_step or not scene.needs_probe():
         return scene.nsteps
     m = scene.model
-    t_contact = _contact_time(scene)
+    t_contact = scene.probe_time(scene)
     rate = max(m.gamma_n / m.m, 2.0 * m.zeta)
     if m.mu is not None and m.gamma_n == 0.0:
         rate = max(rate, CAPPED_FIRST_TOUCH / DAMPED * m.mu * m.gamma_t / m.m)

@@ -74,7 +74,7 @@ def run(args) -> int:
 def _print_models(n: int, seed: int) -> dict:
     """Per model: a sweep's cost beside the frictionless one's, the solvers, the cores, the
     cluster jobs' estimates, the default step's accuracy and the pair-to-wall ratio."""
-    from ..pairs.studies import cost_lines, pair_to_wall_cost
+    from ..studies.pairs import cost_lines, pair_to_wall_cost
     from ..studies.accuracy import default_step_table
     from ..studies.solver_speed import measure_throughput
     from ..studies.speed_models import chunk_jobs, measure_models, parallel_efficiency

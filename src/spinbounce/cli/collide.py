@@ -10,7 +10,7 @@ from .options import (announce_cost, check_run_folder, default_run_dir, force_fl
                       number, scene_from, scene_parser, state_from, state_parser)
 
 if TYPE_CHECKING:
-    from ..model.scenes import Collision
+    from ..scenes.collision import Collision
 
 HELP = "bounce one sphere off the wall in LAMMPS and compare it with the theory that applies"
 SUFFIXES = {"initial": "0", "final": "final", "theory": "theory", "error": "error"}
@@ -52,8 +52,8 @@ def _contact_time(scene: Collision) -> float:
 def run(args) -> int:
     import numpy as np
     from ..exact import choose
-    from ..model.scenes import Collision
-    from ..pipeline import run_collision
+    from ..scenes.collision import Collision
+    from ..pipeline import run_scene
     from ..stepping import expected_steps
 
     check_run_folder(args.out, args.force)
@@ -68,7 +68,7 @@ def run(args) -> int:
     scene = Collision(model_from(args), dt=args.dt, **state)
     announce_cost(expected_steps(scene), scene.n)
     out = args.out or default_run_dir("collide", {"model": scene.model.as_record(), **state, "dt": scene.dt})
-    result = run_collision(scene, out)
+    result = run_scene(scene, out)
     scene = result.scene  # at the step its accuracy needed
     row = result.table.iloc[0]
     names = scene.state_names

@@ -37,8 +37,8 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    from ..model.scenes import Frozen
-    from ..pipeline import frozen_metadata, run_frozen
+    from ..scenes.frozen import Frozen
+    from ..pipeline import run_series, series_record
     from ..records import to_json, write_atomic
 
     check_run_folder(args.run_dir, args.force)
@@ -53,11 +53,11 @@ def run(args) -> int:
         "frozen", {"model": scene.model.as_record(), "z": scene.z, "vt": scene.v_t,
                    "omega": scene.omega, "nsteps": scene.nsteps, "dt": scene.dt, "every": scene.every}
     )
-    result = run_frozen(scene, run_dir)
+    result = run_series(scene, run_dir)
     out = Path(args.out)
     out.parent.mkdir(parents=True, exist_ok=True)
     write_atomic(out, result.table[COLUMNS].to_csv(index=False, float_format="%.17g"))
-    meta = frozen_metadata(result)
+    meta = series_record(result)
     meta["csv"] = str(out)
     meta_path = out.with_suffix(".meta.json")
     write_atomic(meta_path, to_json(meta))
@@ -80,7 +80,7 @@ def _run_to_tolerance(args) -> int:
     import pandas as pd
     from ..exact import choose
     from ..extrapolation import frozen_to_tolerance
-    from ..model.scenes import Frozen
+    from ..scenes.frozen import Frozen
     from ..records import software, to_json, write_atomic
 
     model = model_from(args)

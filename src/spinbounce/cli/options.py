@@ -147,7 +147,7 @@ def model_from(args: argparse.Namespace) -> ContactModel:
 
 
 def state_from(args: argparse.Namespace) -> dict:
-    """The state keywords of :class:`~spinbounce.model.scenes.Collision` that were given."""
+    """The state keywords of :class:`~spinbounce.scenes.collision.Collision` that were given."""
     return {p.name: getattr(args, p.name) for p in parameters.STATE if hasattr(args, p.name)}
 
 
@@ -293,7 +293,7 @@ def scene_parser() -> argparse.ArgumentParser:
 
 def scene_from(args: argparse.Namespace):
     """``None`` for the wall; sphere b for a pair (b's options without --scene pair are refused)."""
-    from ..pairs.kind import scene_of, sphere_b
+    from ..scenes.pair.kind import scene_of, sphere_b
 
     values = {p.name: getattr(args, p.name) for p in parameters.SCENE}
     if scene_of(values) == "wall":

@@ -55,7 +55,7 @@ def register(sub) -> None:
         p.add_argument(declared.flag, dest=name, type=optional_number if declared.optional else number,
                        default=declared.default,
                        help=f"{declared.meaning}; {declared.range_text()} (default %(default)s)")
-    p.add_argument("--dt", type=number, default=None, help="timestep (default: pairs.scene.PAIR_STEPS_PER_HALF_PERIOD)")
+    p.add_argument("--dt", type=number, default=None, help="timestep (default: scenes.pair.scene.PAIR_STEPS_PER_HALF_PERIOD)")
     p.add_argument("--out", type=Path, default=None, metavar="DIR", help="run folder (default: spinbounce-runs/pair-*)")
     force_flag(p)
     p.add_argument("--figure", type=Path, default=None, metavar="DIR",
@@ -72,7 +72,7 @@ def register(sub) -> None:
 
 def _print_table(row, lammps: bool) -> None:
     """Both spheres' final velocities and spins: LAMMPS (if run), the exact reference, the planar theory."""
-    from ..pairs import QUANTITIES
+    from ..scenes.pair import QUANTITIES
 
     print(f"{'':8}" + (f"{'LAMMPS':>14}" if lammps else "") + f"{'exact':>14}{'planar':>14}")
     for name in QUANTITIES:
@@ -93,7 +93,7 @@ def _report(batch, row, out: Path | None, as_json: bool) -> int:
           f"(eps = {row.eps:.4g}, centrifugal ratio {row.centrifugal:.4g})"
           + (f"; dt = {batch.dt:.6g}, {batch.nsteps} steps" if lammps else ""))
     _print_table(row, lammps)
-    print((f"LAMMPS vs exact: {row.lammps_error:.2e}; " if lammps else "")
+    print((f"LAMMPS vs exact: {row.error:.2e}; " if lammps else "")
           + f"planar theory vs exact (model error): {row.planar_error:.2e}")
     if lammps:
         print(f"run: {out}")
@@ -101,7 +101,8 @@ def _report(batch, row, out: Path | None, as_json: bool) -> int:
 
 
 def _one_pair(args) -> int:
-    from ..pairs import Pair, PairBatch, PairContact, Sphere, run_pairs
+    from ..scenes.pair import Pair, PairBatch, PairContact, Sphere
+    from ..pipeline import run_scene
 
     check_run_folder(args.out, args.force)
     spheres = {side: Sphere(*(by_name(name).check(getattr(args, f"{stem}_{side}"), f"--{stem}-{side}")
@@ -109,14 +110,14 @@ def _one_pair(args) -> int:
     pair = Pair(a=spheres["a"], b=spheres["b"], normal=args.normal, v_a=args.v_a, v_b=args.v_b, w_a=args.w_a, w_b=args.w_b)
     batch = PairBatch([pair], PairContact(*(getattr(args, name) for name in LAW)), args.dt)
     out = args.out or default_run_dir("pair", vars(args) | {"handler": None})
-    result = run_pairs(batch, out)
-    return _report(result.batch, result.table.iloc[0], out, args.json)
+    result = run_scene(batch, out)
+    return _report(result.scene, result.table.iloc[0], out, args.json)
 
 
 def _scene_pair(model, b, state: dict, dt=None):
     """The wall scene's state as a pair batch: sphere a (the model's) against b at rest."""
-    from ..pairs.kind import pair_contact, pairs_from_states
-    from ..pairs.scene import PairBatch
+    from ..scenes.pair.kind import pair_contact, pairs_from_states
+    from ..scenes.pair.scene import PairBatch
 
     row = [state.get(k, 0.0) for k in ("v_n", "v_t", "omega", "v_s", "omega_s", "omega_n")]
     return PairBatch(pairs_from_states(model, b, [row]), pair_contact(model), dt)
@@ -124,8 +125,8 @@ def _scene_pair(model, b, state: dict, dt=None):
 
 def pair_theory(args, model, b, state: dict | None) -> int:
     """``theory --scene pair``: the planar matrix of a's state (b at rest), or one state's references."""
-    from ..pairs.kind import CAPPED_NO_MATRIX, pair_contact, planar_matrix, planar_Omega
-    from ..pairs.run import pair_table
+    from ..scenes.pair.kind import CAPPED_NO_MATRIX, pair_contact, planar_Omega, planar_matrix
+    from ..scenes.pair.table import pair_table
     from ..exact import pair as planar
 
     if state is not None:
@@ -155,15 +156,15 @@ def pair_theory(args, model, b, state: dict | None) -> int:
 
 def pair_collide(args, model, b, state: dict) -> int:
     """``collide --scene pair``: sphere a against b at rest in LAMMPS, beside both references."""
-    from ..pairs import run_pairs
+    from ..pipeline import run_scene
 
     if args.tolerance is not None:
         raise SceneError("--tolerance", args.tolerance, "is for the wall only: a pair runs at --dt or its default "
                                                        "step, and reports its error against the exact reference")
     batch = _scene_pair(model, b, state, args.dt)
     out = args.out or default_run_dir("collide-pair", {"model": repr(model), "b": repr(b), **state, "dt": batch.dt})
-    result = run_pairs(batch, out)
-    return _report(result.batch, result.table.iloc[0], out, args.json)
+    result = run_scene(batch, out)
+    return _report(result.scene, result.table.iloc[0], out, args.json)
 
 
 def _published(out: Path, as_json: bool) -> int:
@@ -197,7 +198,7 @@ def run(args) -> int:
         print(f"wrote {record.png}, {record.pdf}, {record.json}")
         return 0
     if args.cost is not None:
-        from ..pairs.studies import cost_lines, pair_to_wall_cost
+        from ..studies.pairs import cost_lines, pair_to_wall_cost
 
         report = pair_to_wall_cost(args.cost)
         print(json.dumps(report, indent=2) if args.json else "\n".join(cost_lines(report)))

@@ -23,7 +23,7 @@ def register(sub) -> None:
 
 def run(args) -> int:
     from ..records import json_ready
-    from ..studies.two_walls import make_figure
+    from ..figures.two_walls import make_figure
 
     meta = make_with_runs(make_figure, args.out, args.runs, "spinbounce-two-walls-")
     summary = [{"case": c["label"], "theory": c["theory"], "max_abs_deviation": c["max_abs_deviation"],

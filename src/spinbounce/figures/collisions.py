@@ -15,7 +15,7 @@ import pandas as pd
 
 from .. import exact
 from ..pipeline import ResultError
-from ..model.scenes import ContactModel
+from ..model.contact import ContactModel
 from .core import (FigureData, FigureRecord, base_metadata, collision_run, default_runs, dissipation_columns,
                    finish_metadata, make, new_figure)
 

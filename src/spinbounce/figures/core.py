@@ -23,17 +23,12 @@ import pandas as pd
 
 from .. import __version__
 from ..exact import linear
-from ..pipeline import (
-    CollisionResult,
-    FrozenResult,
-    ResultError,
-    frozen_metadata,
-    run_collision,
-    run_frozen,
-)
+from ..pipeline import ResultError, RunResult, SeriesResult, run_scene, run_series, series_record
 from ..records import software, to_json, write_atomic, write_atomic_with
 from ..model.parameters import SceneError
-from ..model.scenes import Collision, ContactModel, Frozen
+from ..scenes.collision import Collision
+from ..model.contact import ContactModel
+from ..scenes.frozen import Frozen
 from ..model.timestep import align_mid_step
 
 __all__ = [
@@ -341,9 +336,9 @@ def frozen_run(model: ContactModel, v_t: float, omega: float, t_end: float, seri
     def run(dt):
         scene = Frozen(model, z=FROZEN_Z, v_t=v_t, omega=omega, t_end=t_end, dt=dt)
         folder = _dt_folder(series_dir, scene.dt)
-        result: FrozenResult = run_frozen(scene, folder)
+        result: SeriesResult = run_series(scene, folder)
         deviations = frozen_deviations(result.table, model.r)
-        record = frozen_metadata(result)
+        record = series_record(result)
         record["deviations_exact"] = deviations
         write_atomic(folder / "result.json", to_json(record))
         return result, deviations, folder
@@ -372,7 +367,7 @@ def collision_run(model: ContactModel, states: np.ndarray, series_dir: Path, wha
     def run(dt):
         scene = scene_at(dt)
         folder = _dt_folder(series_dir, scene.dt)
-        result: CollisionResult = run_collision(scene, folder, atoms="library")
+        result: RunResult = run_scene(scene, folder, atoms="library")
         deviations = collision_deviations(result.table)
         if energy:
             f = dissipation_columns(result.table, model)

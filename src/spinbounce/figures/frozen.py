@@ -13,7 +13,7 @@ import numpy as np
 import pandas as pd
 
 from .. import exact
-from ..model.scenes import ContactModel
+from ..model.contact import ContactModel
 from .core import (
     FROZEN_Z,
     FigureData,

@@ -26,9 +26,9 @@ import pandas as pd
 
 from ..exact import hertz
 from ..exact import linear
-from ..pipeline import ResultError, run_collision
+from ..pipeline import ResultError, run_scene
 from ..records import write_atomic
-from ..model.scenes import Collision
+from ..scenes.collision import Collision
 from .hertz_parameters import OMEGA, V_T, HertzParameters
 from .core import STYLE, FigureData, FigureRecord, _relative, base_metadata, default_runs, new_figure, save
 
@@ -74,14 +74,14 @@ def hertz_data(p: HertzParameters, runs: Path, log=print) -> FigureData:
         kt_star = float(p.kt_star(v))
         tau = float(hertz.contact_time(v, p.m, p.kn, p.r))
         folder = runs / f"v{k:02d}" / "probe"
-        row = run_collision(probe, folder).table.iloc[0]
+        row = run_scene(probe, folder).table.iloc[0]
         s0, s1 = _slip(row)
         ratio = s1 / s0
         tau_lammps = float(hertz.contact_time_from_slip_ratio(ratio, probe.model.kt, p.m, p.alpha))
         kt_lammps = float(hertz.kt_from_contact_time(tau_lammps, p.m, p.alpha))
         check = Collision(p.model(kt_lammps), v_n=-v, v_t=V_T, omega=OMEGA, dt=dt)
         check_folder = runs / f"v{k:02d}" / "at_kt_star"
-        check_row = run_collision(check, check_folder).table.iloc[0]
+        check_row = run_scene(check, check_folder).table.iloc[0]
         rows.append({
             "v_n": v, "tau": tau, "tau_lammps": tau_lammps,
             "kt_star_over_kn": kt_star / p.kn, "kt_star_over_kn_lammps": kt_lammps / p.kn,
@@ -96,7 +96,7 @@ def hertz_data(p: HertzParameters, runs: Path, log=print) -> FigureData:
         log(f"|v_n| = {v:.4g}: kt*/kn closed form {kt_star / p.kn:.8g}, LAMMPS {kt_lammps / p.kn:.8g} "
             f"({kt_lammps / kt_star - 1.0:+.2e}); energy lost at kt*_L {rows[-1]['f_at_kt_star_lammps']:+.1e}")
     folder = runs / "fixed_kt"
-    batch = run_collision(fixed, folder, atoms="library").table
+    batch = run_scene(fixed, folder, atoms="library").table
     initial = batch[["vn_0", "vt_0", "r_omega_0"]].to_numpy()
     final = batch[["vn_final", "vt_final", "r_omega_final"]].to_numpy()
     exact = batch[["vn_theory", "vt_theory", "r_omega_theory"]].to_numpy()

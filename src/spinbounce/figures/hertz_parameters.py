@@ -59,7 +59,7 @@ class HertzParameters:
                 raise SceneError(name, value, "must be a speed > 0")
         if self.v_min >= self.v_max:
             raise SceneError("v_min", self.v_min, f"must be below v_max = {self.v_max!r}")
-        from ..model.scenes import Collision
+        from ..scenes.collision import Collision
 
         # the fastest sphere overlaps deepest: refused here, by name, if it would tunnel
         Collision(self.model(float(self.kt_star(self.v_max))), v_n=-self.v_max, v_t=V_T, omega=OMEGA)

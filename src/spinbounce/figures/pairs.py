@@ -16,9 +16,9 @@ import numpy as np
 
 from .core import STYLE, new_figure, save
 from ..records import software
-from ..pairs.run import run_pairs
-from ..pairs.scene import PairBatch
-from ..pairs.studies import cases, validity_map
+from ..pipeline import run_scene
+from ..scenes.pair.scene import PairBatch
+from ..studies.pairs import cases, validity_map
 
 __all__ = ["make_pair_validity", "EPS", "CENTRIFUGAL"]
 
@@ -58,10 +58,10 @@ def make_pair_validity(out: Path, runs: Path | None = None):
     started = time.perf_counter()
     grid = validity_map(EPS, CENTRIFUGAL)
     with tempfile.TemporaryDirectory() as scratch:
-        result = run_pairs(PairBatch(cases()), Path(runs or scratch))
+        result = run_scene(PairBatch(cases()), Path(runs or scratch))
     table = result.table
-    checked = {k: table[k].tolist() for k in ("eps", "centrifugal", "turn", "lammps_error", "planar_error")}
+    checked = {k: table[k].tolist() for k in ("eps", "centrifugal", "turn", "error", "planar_error")}
     meta = {"figure": "pair_validity", "title": "Where the planar pair theory can be trusted",
-            **software(), "map": grid, "lammps_cases": checked, "dt": result.batch.dt,
-            "max_lammps_error": result.max_lammps_error, "max_planar_error_of_cases": result.max_planar_error}
+            **software(), "map": grid, "lammps_cases": checked, "dt": result.scene.dt,
+            "max_lammps_error": result.max_error, "max_planar_error_of_cases": float(result.table["planar_error"].max())}
     return save(_draw(grid, checked), Path(out), "pair_validity", meta, started)

@@ -1,7 +1,8 @@
-"""Render LAMMPS input decks from scenes.
+"""What every deck shares: the Deck itself, templates, the wall's words, the sphere's inertia.
 
-One Jinja2 template per scene lives in ``lammps_inputs/``. The templates use ``<< >>``
-and ``<% %>`` delimiters, which cannot collide with LAMMPS's own ``${...}`` and
+Each scene renders its own deck from its own template, in its folder
+(:mod:`spinbounce.scenes`); this module gives them one way to do it. Templates use
+``<< >>`` and ``<% %>`` delimiters, which cannot collide with LAMMPS's own ``${...}`` and
 ``$(...)``, and an undefined name is an error, never an empty string.
 
 Geometry: the wall is the plane z = 0 with normal +z, the tangential direction is +x,
@@ -10,20 +11,24 @@ and the paper's anticlockwise omega is -omega_y (so slip = v_x - r*omega_y).
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from functools import lru_cache
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-import jinja2
 import numpy as np
 
 from .. import __version__
-from ..model.scenes import Collision, ContactModel, Frozen
-from .data import Atoms, bodies_file, data_file, deck_number
+from ..records import write_atomic
+from .data import deck_number
+from .runner import LIBRARY_MARKER
 
-__all__ = ["Deck", "LibraryAtoms", "Padding", "render_collision", "render_frozen", "wall_parameters", "template_dir",
-           "LIBRARY_MARKER", "ATOM_ROUTES"]
+if TYPE_CHECKING:
+    from ..model.contact import ContactModel
+
+__all__ = ["Deck", "LibraryAtoms", "wall_parameters", "render_template", "deck_words", "fix_line", "common_context",
+           "prepare_run_dir",
+           "LIBRARY_MARKER", "ATOM_ROUTES", "ALPHA_NVE_SPHERE", "RESULT_TABLE"]
 
 DECK_NAME = "in.lammps"
 DUMP_NAME = "state.dump"
@@ -36,28 +41,19 @@ INLINE_SPHERES = 64
 #: beside it, or handed to LAMMPS in memory through the library interface (sweeps: no
 #: text to format or parse, so the run loop is nearly all of a batch's time).
 ATOM_ROUTES = ("inline", "data_file", "library")
-#: The line of a library-route deck at which the runner creates the atoms.
-LIBRARY_MARKER = "# >>> atoms are created here through the LAMMPS library interface <<<"
 #: fix nve/sphere's own moment of inertia (I = 2/5 m r^2); any other alpha makes the sphere a
 #: rigid body with a point mass at its centre. Declared here only.
 ALPHA_NVE_SPHERE = 0.4
-#: The every-step dump of a padded collision deck (:class:`Padding`).
-PADDING_DUMP_NAME = "every.dump"
+#: A batch's per-row table, beside result.json, when it has more rows than a record holds inline.
+RESULT_TABLE = "result.parquet"
 
 
-def template_dir() -> Path:
-    """``lammps_inputs/``: inside the installed package, or at the source tree's top."""
-    package = Path(__file__).resolve().parent.parent  # spinbounce/
-    for candidate in (package / "lammps_inputs", package.parent.parent / "lammps_inputs"):
-        if candidate.is_dir():
-            return candidate
-    raise FileNotFoundError(f"lammps_inputs/ not found next to {package}")
+@lru_cache(maxsize=None)
+def _environment(folder: str):
+    import jinja2  # when a deck is rendered, not when a scene is built
 
-
-@lru_cache(maxsize=1)
-def template_environment() -> jinja2.Environment:
     env = jinja2.Environment(
-        loader=jinja2.FileSystemLoader(str(template_dir())),
+        loader=jinja2.FileSystemLoader(folder),
         undefined=jinja2.StrictUndefined,
         block_start_string="<%",
         block_end_string="%>",
@@ -72,6 +68,11 @@ def template_environment() -> jinja2.Environment:
     )
     env.filters["num"] = deck_number
     return env
+
+
+def render_template(folder: Path, name: str, **context) -> str:
+    """The template ``name`` of a scene's ``folder``, rendered with ``context`` (and the version)."""
+    return _environment(str(Path(folder).resolve())).get_template(name).render(version=__version__, **context)
 
 
 @dataclass(frozen=True)
@@ -102,26 +103,8 @@ class Deck:
     rigid: bool = False
     files: dict = field(default_factory=dict)  # other inputs it reads: name -> text
     atoms: LibraryAtoms | None = None
-
-
-@dataclass(frozen=True)
-class Padding:
-    """Work a collision run can do beyond the contact, to measure what it costs (``spinbounce
-    bench``): ``before`` time units of free flight to the wall (each sphere starts |v_n|
-    ``before`` higher), ``after`` more time once the contact run would have ended, and a dump
-    of every sphere each ``dump_every`` steps into :data:`PADDING_DUMP_NAME`. The physics is
-    the same; the default pads nothing."""
-
-    before: float = 0.0
-    after: float = 0.0
-    dump_every: int | None = None
-
-    def lift(self, v_n) -> np.ndarray:
-        """Each sphere's start above touching the wall."""
-        return np.abs(np.asarray(v_n, dtype=float)) * self.before
-
-    def extra_steps(self, dt: float) -> int:
-        return math.ceil((self.before + self.after) / dt)
+    #: Per row of the scene, the atom ids of its spheres (an (n, k) array; None: ids 1..n).
+    ids: np.ndarray | None = None
 
 
 def wall_parameters(model: ContactModel) -> dict:
@@ -143,11 +126,11 @@ def fix_line(model: ContactModel, group: str = "all") -> str:
     return f"fix wall {group} wall/gran {wall_parameters(model)['style']} zplane 0.0 NULL"
 
 
-def _common(model: ContactModel, zhi: float) -> dict:
+def common_context(model: ContactModel, zhi: float) -> dict:
+    """What every wall deck's template reads: the model, the wall's words, the sphere and the box."""
     rigid = model.alpha != ALPHA_NVE_SPHERE
     span = 10.0 * model.r
     return {
-        "version": __version__,
         "model": model,
         "wall": wall_parameters(model),
         "rigid": rigid,
@@ -162,97 +145,15 @@ def _common(model: ContactModel, zhi: float) -> dict:
     }
 
 
-def _collision_state(scene: Collision, padding: Padding) -> dict[str, np.ndarray]:
-    """Per-sphere LAMMPS vectors: position, velocity, angular velocity (omega_y = -omega,
-    omega_x = omega_s, omega_z = omega_n)."""
-    n = scene.n
-    zeros = np.zeros(n)
-    return {
-        "x": zeros, "y": zeros, "z": scene.model.r + padding.lift(scene.v_n),
-        "vx": np.asarray(scene.v_t), "vy": np.asarray(scene.v_s), "vz": np.asarray(scene.v_n),
-        "wx": np.asarray(scene.omega_s), "wy": -np.asarray(scene.omega) + 0.0, "wz": np.asarray(scene.omega_n),
-    }
-
-
-def _data_file(scene: Collision, state: dict, rigid: bool, box: dict) -> str:
-    """The collision's data file: its spheres (and, for rigid bodies, their centre points)."""
-    model, n = scene.model, scene.n
-    ids = np.arange(1, n + 1)
-    x = np.column_stack([state["x"], state["y"], state["z"]])
-    v = np.column_stack([state["vx"], state["vy"], state["vz"]])
-    w = np.column_stack([state["wx"], state["wy"], state["wz"]])
-    spheres = Atoms(ids, np.ones(n, dtype=int), np.full(n, 2.0 * model.r), np.full(n, model.m / 2 if rigid else model.m),
-                    x, v, w)  # the deck sets each mass exactly afterwards
-    if rigid:
-        spheres = Atoms(np.concatenate([ids, ids + n]), np.concatenate([spheres.types, np.full(n, 2)]),
-                        np.concatenate([spheres.diameter, np.zeros(n)]), np.full(2 * n, model.m / 2),
-                        np.vstack([x, x]), np.vstack([v, v]), np.vstack([w, np.zeros_like(w)]))
-    sides = ((box["xlo"], box["xhi"]), (box["ylo"], box["yhi"]), (0.0, box["zhi"]))
-    return data_file(f"{n} spheres for {DECK_NAME}", spheres, 2 if rigid else 1, sides)
-
-
-def _bodies_file(scene: Collision, state: dict) -> str:
-    model, n = scene.model, scene.n
-    return bodies_file(np.arange(1, n + 1), np.full(n, model.m), np.column_stack([state["x"], state["y"], state["z"]]),
-                       np.full(n, model.inertia), np.column_stack([state["vx"], state["vy"], state["vz"]]),
-                       np.column_stack([state["wx"], state["wy"], state["wz"]]))
-
-
-def _library_atoms(scene: Collision, state: dict, rigid: bool) -> LibraryAtoms:
-    n = scene.n
-    x = np.column_stack([state["x"], state["y"], state["z"]])
-    v = np.column_stack([state["vx"], state["vy"], state["vz"]])
-    omega = np.column_stack([state["wx"], state["wy"], state["wz"]])
-    types = np.ones(n, dtype=np.int32)
-    if rigid:  # the centre points: same position and velocity, no spin of their own
-        x, v = np.vstack([x, x]), np.vstack([v, v])
-        omega = np.vstack([omega, np.zeros_like(omega)])
-        types = np.concatenate([types, np.full(n, 2, dtype=np.int32)])
-    return LibraryAtoms(types=types, x=x, v=v, omega=omega)
-
-
-def render_collision(scene: Collision, atoms: str | None = None, padding: Padding | None = None) -> Deck:
-    """The collision deck. ``atoms``: one of :data:`ATOM_ROUTES`; by default inline up to
-    :data:`INLINE_SPHERES` spheres and a data file beyond (either way ``lmp -in`` reruns it).
-    ``padding``: work beyond the contact, for measuring its cost (:class:`Padding`)."""
-    model = scene.model
-    padding = Padding() if padding is None else padding
-    if atoms is None:
-        atoms = "inline" if scene.n <= INLINE_SPHERES else "data_file"
-    if atoms not in ATOM_ROUTES:
-        raise ValueError(f"atoms = {atoms!r}: must be one of {ATOM_ROUTES}")
-    state = _collision_state(scene, padding)
-    # room for the lifted start and for the flight away from the wall in the extra time
-    fastest = float(np.max(np.abs(scene.v_n)))
-    headroom = float(np.max(padding.lift(scene.v_n))) + fastest * (padding.before + padding.after)
-    ctx = _common(model, zhi=4.0 * model.r + headroom)
-    rigid = ctx["rigid"]
-    files = {}
-    spheres = []
-    if atoms == "data_file":
-        files[DATA_FILE] = _data_file(scene, state, rigid, ctx["box"])
-    elif atoms == "inline":
-        spheres = [
-            {"id": i + 1, **{k: float(v[i]) for k, v in state.items()}} for i in range(scene.n)
-        ]
-    if rigid and atoms != "inline":
-        files[BODIES_FILE] = _bodies_file(scene, state)
-    library = atoms == "library"
-    # the header's run length: Hertzian contacts end at different times, the slowest last
-    tau = float(np.max(model.normal_law.force_times(model, scene.v_n)))
-    ctx.update(n=scene.n, spheres=spheres, tau=tau, dt=scene.dt, nsteps=scene.nsteps,
-               run_steps=scene.nsteps + padding.extra_steps(scene.dt), padding=padding,
-               padding_dump=PADDING_DUMP_NAME, atoms=atoms, library_marker=LIBRARY_MARKER, data_file=DATA_FILE)
-    text = template_environment().get_template("collision.lmp.j2").render(**ctx)
-    return Deck(text=text, rigid=rigid, files=files, dump=None if library else DUMP_NAME,
-                atoms=_library_atoms(scene, state, rigid) if library else None)
-
-
-def render_frozen(scene: Frozen) -> Deck:
-    model = scene.model
-    ctx = _common(model, zhi=4.0 * model.r)
-    ctx.update(
-        z=scene.z, vx=scene.v_t, wy=-scene.omega, dt=scene.dt, nsteps=scene.nsteps, every=scene.every
-    )
-    text = template_environment().get_template("frozen.lmp.j2").render(**ctx)
-    return Deck(text=text, rigid=ctx["rigid"])
+def prepare_run_dir(out_dir: Path, deck: Deck) -> Path:
+    """``out_dir`` made ready to run ``deck`` (created, earlier outputs removed, the deck and the
+    files it reads written); the deck's path. Every scene's run goes through it."""
+    out_dir = Path(out_dir).resolve()
+    out_dir.mkdir(parents=True, exist_ok=True)
+    for stale in (DUMP_NAME, "log.lammps", "result.json", RESULT_TABLE):
+        (out_dir / stale).unlink(missing_ok=True)
+    for name, text in deck.files.items():
+        write_atomic(out_dir / name, text)
+    deck_path = out_dir / deck.name
+    write_atomic(deck_path, deck.text)
+    return deck_path

@@ -22,7 +22,10 @@ from pathlib import Path
 import numpy as np
 from ..errors import LammpsError
 
-__all__ = ["LammpsError", "RunInfo", "run_deck", "run_deck_lmp", "lammps_version", "lmp_executable", "loop_seconds"]
+#: The line of a library-route deck at which the runner creates the atoms.
+LIBRARY_MARKER = "# >>> atoms are created here through the LAMMPS library interface <<<"
+
+__all__ = ["LIBRARY_MARKER", "LammpsError", "RunInfo", "run_deck", "run_deck_lmp", "lammps_version", "lmp_executable", "loop_seconds"]
 
 LOG_NAME = "log.lammps"
 
@@ -189,7 +192,6 @@ def run_deck(deck: Path, atoms=None) -> RunInfo:
     the atoms are created in memory at the deck's marker line, and the atoms' initial
     and final states are returned in the :class:`RunInfo`.
     """
-    from .decks import LIBRARY_MARKER
 
     deck = Path(deck).resolve()
     lammps = _lammps_class()

@@ -71,13 +71,13 @@ RUN: tuple[Parameter, ...] = (
 )
 
 #: The scene: sphere a (the model's m, r, alpha) against the wall, or against a second free
-#: sphere b with its own m_b, r_b and alpha_b (:mod:`spinbounce.pairs`; b starts at rest,
+#: sphere b with its own m_b, r_b and alpha_b (:mod:`spinbounce.scenes.pair`; b starts at rest,
 #: the line of centres along LAMMPS's z, so a's state is the wall's). Not fields of
 #: ContactModel: a wall scene has none of b's columns, and its rows and groups are unchanged.
 SCENE: tuple[Parameter, ...] = (
     Parameter("scene", "what sphere a hits: the wall, or a second free sphere b at rest (pair granular)", "-",
               "wall", kind="choice", choices=("wall", "pair"), sweepable=False,
-              deck="fix wall/gran | pair_style granular (spinbounce.pairs.deck)"),
+              deck="fix wall/gran | pair_style granular (spinbounce.scenes.pair.deck)"),
     Parameter("m_b", "pair: sphere b's mass", "mass", 1.0, low=0.0, low_open=True, why="a mass is positive",
               deck="pairs.data: b's density"),
     Parameter("r_b", "pair: sphere b's radius", "length", 0.5, low=0.0, low_open=True, why="a radius is positive",

@@ -206,7 +206,7 @@ def measure(calibrations, out_dir, steps_per_half_period: int = 2000) -> list[di
     u'(0) = |v_n|, or 1e-3 mu |v_n| with a cap, small enough to stick (docs/theory.md: a capped contact slides briefly where F_n vanishes, which moves
     beta by an amount proportional to u'(0)/(mu |v_n|)).
     """
-    from .two_walls import MAX_MODELS
+    from ..scenes.two_walls import MAX_MODELS
 
     calibrations = list(calibrations)
     out = []
@@ -217,7 +217,7 @@ def measure(calibrations, out_dir, steps_per_half_period: int = 2000) -> list[di
 
 
 def _measure_run(calibrations, out_dir: Path, steps_per_half_period: int) -> list[dict]:
-    from .two_walls import TwoWalls, run_two_walls
+    from ..scenes.two_walls import TwoWalls, run_two_walls
 
     models = tuple(c.model for c in calibrations)
     # each sphere at the speed whose largest overlap is r/2: far from tunnelling through the wall

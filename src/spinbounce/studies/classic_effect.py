@@ -104,12 +104,12 @@ def omega_curves(model: ContactModel) -> list[dict]:
 def lammps_omegas(model: ContactModel, ratio: float, folder: Path) -> dict:
     """LAMMPS's classic wall at :data:`LAMMPS_FRACTIONS` of the tunnelling speed, at its default
     step (probed to the default accuracy): Omega and each row's error against the classic theory."""
-    from ..model.scenes import Collision
-    from ..pipeline import run_collision
+    from ..scenes.collision import Collision
+    from ..pipeline import run_scene
 
     classic = _as(model.replace(kt=ratio * model.kn, mu=None), "classic")
     speeds = np.asarray(LAMMPS_FRACTIONS) * tunnelling_speed(model)
-    result = run_collision(Collision(classic, v_n=-speeds, v_t=1.0, omega=0.0), Path(folder), record=False)
+    result = run_scene(Collision(classic, v_n=-speeds, v_t=1.0, omega=0.0), Path(folder), record=False)
     table = result.table
     return {"v_n": speeds.tolist(), "omega": (table["vt_final"] + table["r_omega_final"] - 1.0).tolist(),
             "error": table["error"].tolist(), "dt": result.scene.dt}

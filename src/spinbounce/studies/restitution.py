@@ -4,7 +4,7 @@ For spheres of speed |v| = 1 hitting the wall at incidence theta (from the norma
 initial spin): the normal restitution e_n = -v_n'/v_n, the tangential restitution
 e_t = v_t'/v_t (Kharaz's), the centre's rebound angle atan(v_t'/v_n') and the rebound spin
 r omega'/|v|, for a Hookean and a Hertzian wall, each without and with a Coulomb cap. Each
-curve is one batched LAMMPS run (:func:`~spinbounce.pipeline.run_collision`, library route)
+curve is one batched LAMMPS run (:func:`~spinbounce.pipeline.run_scene`, library route)
 and the theory that applies (:func:`~spinbounce.exact.choose.predict`). Kharaz, Gorham &
 Salman's (2001) alumina sphere on an aluminium-alloy plate, as digitised in other DEM codes
 (:data:`~spinbounce.studies.validation.digitised.KHARAZ_2001`), is drawn with its source,
@@ -23,8 +23,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..model.scenes import Collision, ContactModel
-from ..pipeline import run_collision
+from ..scenes.collision import Collision
+from ..model.contact import ContactModel
+from ..pipeline import run_scene
 from ..exact import choose
 from .validation.digitised import KHARAZ_2001
 from .validation.materials import gamma_n_for_restitution_cut
@@ -81,7 +82,7 @@ def run_curve(curve: Curve, theta_deg: np.ndarray, run_dir: Path) -> dict:
     """One batched LAMMPS run over the angles and the theory beside it."""
     initial = _states(theta_deg)
     scene = Collision(curve.model, v_n=initial[:, 0], v_t=initial[:, 1], omega=0.0)
-    result = run_collision(scene, run_dir, atoms="library")
+    result = run_scene(scene, run_dir, atoms="library")
     final = result.table[["vn_final", "vt_final", "r_omega_final"]].to_numpy()
     predicted = choose.predict(curve.model, initial)
     return {"label": curve.label, "theta": theta_deg, "lammps": quantities(initial, final),

@@ -17,7 +17,8 @@ import warnings
 import numpy as np
 
 from ..laws import normal_law
-from ..model.scenes import ContactModel, PhysicsWarning
+from ..model.contact import ContactModel
+from ..errors import PhysicsWarning
 from ..exact import coulomb, oracle
 
 __all__ = ["random_case", "random_cases", "random_cases_3d", "worst_deviation", "agreement",

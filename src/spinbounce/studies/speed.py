@@ -46,8 +46,8 @@ def _one_at_a_time(spec, count: int, folder: Path, runner, atoms: str) -> dict:
     The per-collision path is the batched one with a batch of one (no result.json), so
     the comparison isolates what batching saves.
     """
-    from ..pipeline import run_collision
-    from ..model.scenes import Collision
+    from ..pipeline import run_scene
+    from ..scenes.collision import Collision
 
     model, dt = spec.model(0)
     states = spec.initial_states(0)[:count]
@@ -55,7 +55,7 @@ def _one_at_a_time(spec, count: int, folder: Path, runner, atoms: str) -> dict:
     started = time.perf_counter()
     for i, (vn, vt, omega) in enumerate(states):
         scene = Collision(model, v_n=vn, v_t=vt, omega=omega, dt=dt)
-        result = run_collision(scene, folder / f"{i:06d}", atoms=atoms, record=False, runner=runner)
+        result = run_scene(scene, folder / f"{i:06d}", atoms=atoms, record=False, runner=runner)
         errors.append(result.max_abs_error)
         loop += result.info.loop_seconds
     wall = time.perf_counter() - started
@@ -65,7 +65,7 @@ def _one_at_a_time(spec, count: int, folder: Path, runner, atoms: str) -> dict:
 
 def _batched(spec, folder: Path, workers: int) -> dict:
     import numpy as np
-    from ..compare import STATE
+    from ..scenes.collision import STATE
     from ..lammps.runner import loop_seconds
     from ..sweeps import read_results, run_sweep
 
@@ -88,10 +88,10 @@ def scene_needs(spec, count: int, folder: Path) -> dict:
     after, dumping every step: the physics is the same, only the work around it differs.
     """
     import numpy as np
-    from ..lammps.decks import Padding, render_collision
+    from ..scenes.collision.deck import Padding, render_collision
     from ..lammps.runner import run_deck
-    from ..model.scenes import Collision
-    from ..pipeline import prepare_run_dir
+    from ..scenes.collision import Collision
+    from ..lammps.decks import prepare_run_dir
 
     model, dt = spec.model(0)
     states = spec.initial_states(0, 0, count)
@@ -152,7 +152,7 @@ def measure_speed(n_lmp: int = SPEED_DEFAULTS["n_lmp"], n_inprocess: int = SPEED
                   chunk_size: int | None = None, model: dict | None = None, keep: Path | None = None,
                   n_needs: int = 1000, log=print) -> dict:
     """Measure (a), (b) and (c); return rates, errors, shares and the ratios c/a and c/b."""
-    from ..model.scenes import Collision
+    from ..scenes.collision import Collision
     from ..records import software
     from ..sweeps import DEFAULT_CHUNK, spec_from_dict
 

@@ -19,7 +19,8 @@ from pathlib import Path
 from .. import checks
 from ..fitting import model_of_group
 from ..model import parameters
-from ..model.scenes import STATE_3D
+from ..scenes.collision import STATE_3D
+from ..scenes.collision.scene import row_states
 from ..exact import choose
 
 __all__ = ["MODELS", "measure_models", "parallel_efficiency", "chunk_jobs"]
@@ -57,7 +58,7 @@ def _theory_and_checks_seconds(rows) -> tuple[float, float]:
     initial = rows[[f"{s}_0" for s in names]].to_numpy()
     columns = {c: rows[c].to_numpy() for c in rows.columns}
     return (_timed(lambda: choose.predict(model, initial)),
-            _timed(lambda: checks.add_row_checks(columns, names, model)))
+            _timed(lambda: checks.add_row_checks(columns, row_states(model, names, columns))))
 
 
 def _one(name: str, n: int, seed: int, root: Path) -> dict:

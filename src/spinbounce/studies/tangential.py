@@ -11,7 +11,7 @@ are chosen in their spirit: the linear dashpot with a constant e_n, kt/kn at the
 damping. Sign convention, closed forms and their derivations: :mod:`.tangential_limits`.
 
 For each set, beta = -g_t'/g_t against psi = |g_t|/|v_n| (speed 1, no spin) comes from
-(a) one batched LAMMPS run at the default accuracy (:func:`~spinbounce.pipeline.run_collision`,
+(a) one batched LAMMPS run at the default accuracy (:func:`~spinbounce.pipeline.run_scene`,
 library route), (b) the exact Coulomb solver through :func:`~spinbounce.exact.choose.predict`
 and (c) Walton's gross-slip line and the sticking plateau. Hookean contacts scale with |v_n|,
 so beta depends on psi alone.
@@ -25,8 +25,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..model.scenes import Collision, ContactModel
-from ..pipeline import run_collision
+from ..scenes.collision import Collision
+from ..model.contact import ContactModel
+from ..pipeline import run_scene
 from ..exact import choose
 from . import tangential_limits as limits
 from .validation.materials import gamma_n_for_restitution_cut
@@ -78,7 +79,7 @@ def run_set(curve: CurveSet, run_dir: Path, points: int = LAMMPS_POINTS) -> dict
     psi = ratios(curve.model, points)
     initial = limits.states_at(psi)
     scene = Collision(curve.model, v_n=initial[:, 0], v_t=initial[:, 1], omega=0.0)
-    result = run_collision(scene, run_dir, atoms="library")
+    result = run_scene(scene, run_dir, atoms="library")
     final = result.table[["vn_final", "vt_final", "r_omega_final"]].to_numpy()
     predicted = choose.predict(curve.model, initial)
     beta_lammps, beta_solver = limits.beta(initial, final), limits.beta(initial, predicted)

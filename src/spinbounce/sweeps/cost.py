@@ -27,9 +27,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from ..model.scenes import Collision
+from ..scenes.collision import Collision
 from ..model.timestep import SPHERE_STEP_SECONDS
-from ..stepping import expected_steps, needs_probe
+from ..stepping import expected_steps
 
 __all__ = ["CostError", "ChunkCost", "JobRequest", "chunk_cost", "job_request", "chunk_requests",
            "check_fits", "largest_chunk_size", "collisions_within"]
@@ -45,12 +45,12 @@ CAPPED_THEORY_SECONDS = 1e-5
 #: A chunk whose step is probed (stepping.tune) runs two small LAMMPS runs first (measured
 #: 0.2 s for a finite-mu chunk, `spinbounce bench`).
 PROBE_SECONDS = 0.3
-#: A pair's references per collision on one core (pairs.run.pair_table: the exact reference
+#: A pair's references per collision on one core (scenes.pair.table.pair_table: the exact reference
 #: and the planar theory; the capped reference solves both by events), measured on 100
 #: pairs each: 13 ms uncapped, 76 to 89 ms capped; with room.
 PAIR_THEORY_SECONDS = 0.02
 CAPPED_PAIR_THEORY_SECONDS = 0.12
-#: A pair chunk's probe (pairs.stepping.tune_pairs): up to five LAMMPS runs of at most
+#: A pair chunk's probe (stepping.tune): up to five LAMMPS runs of at most
 #: PROBE_SPHERES pairs, each at up to the fine rule's steps.
 PAIR_PROBE_SECONDS = 5.0
 BASE_MB = 160
@@ -109,8 +109,8 @@ def _steps_per_collision(spec, group: int) -> int:
 def _pair_cost(spec, group: int, collisions: int) -> ChunkCost:
     """A pair chunk: two spheres a collision for at most the fine rule's steps (what a batch
     whose probe fails runs), and the pair references, which outweigh LAMMPS here."""
-    from ..pairs.kind import pair_contact, pairs_from_states
-    from ..pairs.scene import PairBatch
+    from ..scenes.pair.kind import pair_contact, pairs_from_states
+    from ..scenes.pair.scene import PairBatch
 
     model, dt = spec.model(group)
     fast, _ = spec.normal_speeds()
@@ -144,7 +144,7 @@ def collisions_within(spec, group: int, seconds: float) -> int:
 def _probed(spec, group: int) -> bool:
     model, dt = spec.model(group)
     fast, slow = spec.normal_speeds()
-    return spec.tolerance is None and needs_probe(Collision(model, v_n=[-fast, -slow], dt=dt))
+    return spec.tolerance is None and Collision(model, v_n=[-fast, -slow], dt=dt).needs_probe()
 
 
 def job_request(cost: ChunkCost) -> JobRequest:

@@ -7,7 +7,7 @@ from __future__ import annotations
 import warnings
 
 from ..model.parameters import SceneError
-from ..model.scenes import Collision
+from ..scenes.collision import Collision
 from .errors import SweepError, fail as _fail
 
 __all__ = ["check_physics"]
@@ -38,8 +38,8 @@ def check_physics(spec) -> None:
 
 def _check_pairs(spec) -> None:
     """A pair sweep: what the pair deck can run, and its fastest impact's overlap and step."""
-    from ..pairs.kind import pair_contact, pairs_from_states
-    from ..pairs.scene import PairBatch
+    from ..scenes.pair.kind import pair_contact, pairs_from_states
+    from ..scenes.pair.scene import PairBatch
 
     if spec.tolerance is not None:
         _fail("tolerance", spec.tolerance, "is for the wall only: a pair sweep takes model.dt or the default step")

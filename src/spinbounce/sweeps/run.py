@@ -24,7 +24,7 @@ import pandas as pd
 
 from .. import __version__, checks
 from ..model import parameters
-from ..model.scenes import Collision
+from ..scenes.collision import Collision
 from ..stepping import PROBE_SPHERES
 from ..exact import choose
 from .spec import SweepError, SweepSpec, spec_from_dict
@@ -41,7 +41,7 @@ def run_chunk(raw: dict, out: str, group: int, chunk: int, start: int, stop: int
 
     Returns (collisions, seconds in this call, seconds in LAMMPS's run loop). The wall's
     spheres reach LAMMPS in memory (the library route): no data file to write, no dump to
-    parse; a pair scene's chunk is one pair batch (:func:`spinbounce.pairs.sweep.pair_chunk`).
+    parse; a pair scene's chunk is one pair batch (:func:`spinbounce.sweeps.pairs.pair_chunk`).
     """
     from ..records import write_parquet_atomic
 
@@ -56,7 +56,7 @@ def run_chunk(raw: dict, out: str, group: int, chunk: int, start: int, stop: int
     n = stop - start
     columns = {"group": np.full(n, group), "chunk": np.full(n, chunk), "index": np.arange(start, stop)}
     if spec.scene == "pair":  # sphere b instead of the wall: the wall's columns and both spheres'
-        from ..pairs.sweep import pair_chunk
+        from .pairs import pair_chunk
 
         probe = spec.initial_states(group, 0, min(spec.n, PROBE_SPHERES))  # one step per group, as the wall's
         pair_columns, dt, nsteps, loop = pair_chunk(model, spec.sphere_b(group), states, dt, run_dir, probe)
@@ -82,11 +82,11 @@ def run_chunk(raw: dict, out: str, group: int, chunk: int, start: int, stop: int
 
 def _wall_columns(columns: dict, spec: SweepSpec, group: int, scene: Collision, run_dir: Path):
     """Run a wall chunk, its rows into ``columns``; (dt, steps, LAMMPS loop seconds)."""
-    from ..pipeline import run_collision  # keeps a parent process free of LAMMPS
+    from ..pipeline import run_scene
 
     n = scene.n
     if spec.tolerance is None:
-        result = run_collision(scene, run_dir, atoms="library", record=False, probe_states=_probe_states(spec, group))
+        result = run_scene(scene, run_dir, atoms="library", record=False, probe_states=_probe_states(spec, group))
         columns.update({name: values.to_numpy() for name, values in result.table.drop(columns=["id"]).items()})
         return result.scene.dt, result.scene.nsteps, result.info.loop_seconds
     # a ladder of runs per chunk, extrapolated; each row carries its error estimate
@@ -98,7 +98,7 @@ def _wall_columns(columns: dict, spec: SweepSpec, group: int, scene: Collision, 
     columns["omega_0"] = np.asarray(scene.omega)
     columns["tolerance"] = np.full(n, spec.tolerance)
     if "status" not in columns:  # its extrapolated rows, checked the same way
-        checks.add_row_checks(columns, scene.state_names, scene.model)
+        checks.add_row_checks(columns, scene.row_states(columns))
     return finest.dt, extrapolated.steps, sum(level["loop_seconds"] for level in extrapolated.levels)
 
 
@@ -125,7 +125,7 @@ def _model_columns(columns: dict, model, n: int) -> dict[str, str]:
 
 def _pair_columns(columns: dict, spec: SweepSpec, group: int, model, n: int) -> dict[str, str]:
     """A pair group's scene columns (sphere b's, and the pair's Omega); its labels."""
-    from ..pairs.kind import planar_Omega
+    from ..scenes.pair.kind import planar_Omega
 
     b = spec.sphere_b(group)
     for name in parameters.PAIR_ONLY:

@@ -13,7 +13,7 @@
     normal = "hooke"            # or "hertz"; limit_damping = true/false
     # kt_over_kn = [...] instead of kt; dt = ... (or tolerance = ... at the top level)
     # scene = "pair" (one per sweep): sphere a (m, r, alpha) hits a free sphere b at rest
-    # instead of the wall; m_b, r_b, alpha_b = b's (one value or a list each; pairs.kind)
+    # instead of the wall; m_b, r_b, alpha_b = b's (one value or a list each; scenes.pair.kind)
 
     [states]                    # seeded uniform samples over [low, high] ...
     n = 100000
@@ -47,7 +47,7 @@ from ..laws import own, settled
 from ..model import parameters
 from ..model.contact import ContactModel
 from ..model.parameters import SceneError
-from ..pairs.kind import scene_of
+from ..scenes.pair.kind import scene_of
 from .errors import SweepError, fail as _fail
 from .physics import check_physics
 
@@ -169,8 +169,8 @@ class SweepSpec:
         return ContactModel(**params), dt
 
     def sphere_b(self, group: int):
-        """A pair group's sphere b (:func:`spinbounce.pairs.kind.sphere_b`)."""
-        from ..pairs.kind import sphere_b
+        """A pair group's sphere b (:func:`spinbounce.scenes.pair.kind.sphere_b`)."""
+        from ..scenes.pair.kind import sphere_b
 
         return sphere_b(*(self.groups[group][name] for name in parameters.PAIR_ONLY))
 

@@ -17,7 +17,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...model.scenes import STATE_3D, ContactModel
+from ...scenes.collision import STATE_3D
+from ...model.contact import ContactModel
 
 __all__ = ["Case", "cases", "corners", "box_sample", "model_record", "MECHANISMS", "BOX",
            "MID", "EDGE", "ANY", "FROZEN", "FROZEN_T_END", "FROZEN_Z"]

@@ -16,10 +16,12 @@ from pathlib import Path
 
 import numpy as np
 
-from ...model.scenes import STATE_ARGS, Collision, ContactModel, Frozen
+from ...scenes.collision import Collision, STATE_ARGS
+from ...model.contact import ContactModel
+from ...scenes.frozen import Frozen
 from ...checks import STATUSES
 from ...model.timestep import ACCURACY, FROZEN_ACCURACY, mid_step_dt, steps_through
-from ...pipeline import run_collision, run_frozen
+from ...pipeline import run_scene, run_series
 from ...extrapolation import collision_rung_dt, contact_steps, frozen_rung_dt
 from .cases import ANY, EDGE, FROZEN, FROZEN_T_END, FROZEN_Z, MID, Case
 
@@ -121,7 +123,7 @@ def run_collision_level(case: Case, dt: float | None, folder: Path, states=None,
     largest error of each state column against the case's theory, the largest error relative
     to the state's size (the default step's measure, checks.add_row_checks), how the step was
     chosen, the step LAMMPS ran at, its steps and the seconds."""
-    result, wall = _timed(lambda: run_collision(collision_scene(case, dt, states), folder, atoms="library",
+    result, wall = _timed(lambda: run_scene(collision_scene(case, dt, states), folder, atoms="library",
                                                 record=False), repeats)
     ran, t = result.scene, result.table
     row = {"dt": ran.dt, "lammps_steps": ran.nsteps, "resolution": ran.steps_per_half_period, "spheres": ran.n,
@@ -159,7 +161,7 @@ def run_frozen_level(case: Case, dt: float | None, folder: Path, repeats: int = 
     """The frozen contact at ``dt`` (None: the scene's default): its row, as a collision's."""
     ((_, v_t, r_omega),) = case.states
     scene = Frozen(case.model, z=FROZEN_Z, v_t=v_t, omega=r_omega / case.model.r, t_end=FROZEN_T_END, dt=dt)
-    result, wall = _timed(lambda: run_frozen(scene, folder), repeats)
+    result, wall = _timed(lambda: run_series(scene, folder), repeats)
     t = result.table
     errors = {"error_vn": 0.0,  # held: v_n = 0 exactly
               "error_vt": float(np.max(np.abs(t["vt"] - t["vt_theory"]))),
@@ -194,7 +196,7 @@ def default_target(case: Case) -> float:
 
 def run_default(case: Case, form: str, folder: Path, repeats: int = 1) -> dict:
     """``case`` in ``form`` at the step the scenes choose by default: the a priori rule, the
-    probe (pipeline.run_collision tunes a default step), a Hertzian batch's fixed resolution,
+    probe (pipeline.run_scene tunes a default step), a Hertzian batch's fixed resolution,
     or the frozen rule. Its row, with the target that step aims at."""
     if form == FROZEN:
         row = run_frozen_level(case, None, folder, repeats)

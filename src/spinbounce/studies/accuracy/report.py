@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ...model.scenes import ContactModel
+from ...model.contact import ContactModel
 from ...records import json_ready, write_atomic
 from .cases import ANY, EDGE, FROZEN_T_END, MECHANISMS, MID
 from .orders import ERROR_FLOOR, FIT_LEVELS, TARGETS

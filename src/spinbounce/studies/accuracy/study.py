@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ...model.scenes import PhysicsWarning
+from ...errors import PhysicsWarning
 from ...model.timestep import ACCURACY, FROZEN_ACCURACY, SAFETY, mid_step_dt
 from ...records import software
 from .cases import ANY, BOX, EDGE, FROZEN, FROZEN_T_END, FROZEN_Z, MID, Case, box_sample, cases

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from ... import exact
-from ...model.scenes import ContactModel
+from ...model.contact import ContactModel
 from ...exact import classic
 from .ledger import COLLISION_TOL, Claim, Runs, checked, final, g
 

@@ -6,7 +6,7 @@ import numpy as np
 
 from ...exact import linear
 from ...fitting import fit_omega
-from ...model.scenes import ContactModel
+from ...model.contact import ContactModel
 from .ledger import COLLISION_TOL, Claim, Runs, checked, final, g, initial, maximise, random_states, verdict
 
 ALPHA = 0.4

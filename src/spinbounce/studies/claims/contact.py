@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from ...model.scenes import ContactModel
+from ...model.contact import ContactModel
 from ...exact import hertz
 from .ledger import Claim, Runs, checked, contact_time, damped_dt, g
 

@@ -6,7 +6,7 @@ import numpy as np
 
 from ...exact import linear
 from ...fitting import fit_matrix, fit_omega
-from ...model.scenes import ContactModel
+from ...model.contact import ContactModel
 from .ledger import COLLISION_TOL, Claim, Runs, checked, damped_dt, final, initial, maximise, random_states, verdict
 
 ALPHA = 0.4

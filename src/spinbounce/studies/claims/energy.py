@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from ... import exact
-from ...model.scenes import ContactModel
+from ...model.contact import ContactModel
 from .damping import ALPHA, ROLLING_GAMMA_T, printed_eq23
 from .ledger import COLLISION_TOL, Claim, Runs, checked, damped_dt, final, initial, maximise, random_states, verdict
 

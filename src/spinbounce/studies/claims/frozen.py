@@ -7,7 +7,7 @@ import math
 import numpy as np
 
 from ...exact import linear
-from ...model.scenes import ContactModel
+from ...model.contact import ContactModel
 from .ledger import FROZEN_TOL, Claim, Runs, verdict
 
 

@@ -17,7 +17,9 @@ from pathlib import Path
 import numpy as np
 from scipy import optimize
 
-from ...model.scenes import Collision, ContactModel, Frozen
+from ...scenes.collision import Collision
+from ...model.contact import ContactModel
+from ...scenes.frozen import Frozen
 from ...model.timestep import refine_mid_step
 
 __all__ = ["VERDICTS", "COLLISION_TOL", "FROZEN_TOL", "DAMPED_REFINE", "Claim", "Runs", "verdict", "checked",
@@ -104,19 +106,19 @@ class Runs:
     def collide(self, name: str, model: ContactModel, vn, vt, omega, dt=None):
         """(scene, result table) of a batch of collisions."""
         if name not in self._done:
-            from ...pipeline import run_collision
+            from ...pipeline import run_scene
 
             scene = Collision(model, v_n=vn, v_t=vt, omega=omega, dt=dt)
-            self._done[name] = scene, run_collision(scene, self.root / name, atoms="library").table
+            self._done[name] = scene, run_scene(scene, self.root / name, atoms="library").table
         return self._done[name]
 
     def frozen(self, name: str, model: ContactModel, **kwargs):
         """(scene, result table) of one frozen contact."""
         if name not in self._done:
-            from ...pipeline import run_frozen
+            from ...pipeline import run_series
 
             scene = Frozen(model, **kwargs)
-            self._done[name] = scene, run_frozen(scene, self.root / name).table
+            self._done[name] = scene, run_series(scene, self.root / name).table
         return self._done[name]
 
 

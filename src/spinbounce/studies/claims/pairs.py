@@ -31,7 +31,7 @@ PLANAR_PRECISION = 1e-5
 
 
 def _pairs():
-    from ...pairs import Pair, Sphere
+    from ...scenes.pair import Pair, Sphere
 
     return [Pair(a=Sphere(m_a, r_a, alpha), b=Sphere(m_b, r_b, alpha), v_a=(0.0, 0.0, -1.0),
                  w_a=(0.0, 1.0 / r_a, 0.0), w_b=(0.0, 0.5 / r_b, 0.0))
@@ -53,10 +53,11 @@ def _slip_ratio(table, pairs, suffix: str) -> np.ndarray:
 
 
 def equal_alpha(runs: Runs) -> Claim:
-    from ...pairs import PairBatch, run_pairs
+    from ...scenes.pair import PairBatch
+    from ...pipeline import run_scene
 
     pairs = _pairs()
-    table = run_pairs(PairBatch(pairs), runs.root / "pair-equal-alpha", record=False).table
+    table = run_scene(PairBatch(pairs), runs.root / "pair-equal-alpha", record=False).table
     lammps, exact = _slip_ratio(table, pairs, ""), _slip_ratio(table, pairs, "_exact")
     wall = np.array([linear.Omega(10.0, 1.0, p.a.alpha) for p in pairs])
     solid = slice(0, len(RATIOS))  # the alpha = 2/5 pairs: the table's numbers

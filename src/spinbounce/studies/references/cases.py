@@ -8,7 +8,9 @@ from pathlib import Path
 
 from ... import exact
 from ...model.timestep import mid_step_dt
-from ...model.scenes import Collision, ContactModel, Frozen
+from ...scenes.collision import Collision
+from ...model.contact import ContactModel
+from ...scenes.frozen import Frozen
 from ...records import json_ready
 from .tolerances import COLLISION_MU_TOLERANCES, COLLISION_TOLERANCES, FROZEN_TOLERANCES, Tolerance
 

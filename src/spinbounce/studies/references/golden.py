@@ -8,8 +8,10 @@ import re
 from dataclasses import dataclass
 from pathlib import Path
 
-from ...lammps.decks import ATOM_ROUTES, render_collision, render_frozen
-from ...model.scenes import Frozen
+from ...lammps.decks import ATOM_ROUTES
+from ...scenes.collision.deck import render_collision
+from ...scenes.frozen.deck import render_frozen
+from ...scenes.frozen import Frozen
 from .cases import CASES, case_by_name
 from .deviations import Violation
 

@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ...pipeline import run_collision, run_frozen
+from ...pipeline import run_scene, run_series
 from ...records import write_atomic
 from .cases import ReferenceCase, tolerances_for
 
@@ -28,11 +28,11 @@ def run_case(case: ReferenceCase, out_dir: Path, atoms: str | None = None) -> pd
     """
     scene = case.scene()
     if case.kind == "collision":
-        result = run_collision(scene, out_dir, atoms=atoms, record=False)
+        result = run_scene(scene, out_dir, atoms=atoms, record=False)
     elif atoms is not None:
         raise ValueError(f"case {case.name!r}: a frozen contact has no atom routes")
     else:
-        result = run_frozen(scene, out_dir)
+        result = run_series(scene, out_dir)
     return reference_table(case, result)
 
 

@@ -21,7 +21,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from ...model.scenes import ContactModel
+from ...model.contact import ContactModel
 from .digitised import KHARAZ_2001, THORNTON_PSI2_LINEAR, THORNTON_SPIN, Measured
 from .materials import (AL_ALLOY, AL_WALL_T4, ALUMINA, SOLID, STEEL, gamma_n_for_restitution_cut,
                         hookean_matching_hertz, mindlin_ratio)

@@ -15,7 +15,7 @@ Chung & Ooi (2011), Granular Matter 13:643, number their two-sphere tests 1, 7 a
   (:mod:`spinbounce.exact.choose`), which it reaches within the planar theory's model
   error: b is heavy but still curved, and the line of centres' turn moves a's outcome.
 
-Each scene's pairs run in one LAMMPS batch (:func:`spinbounce.pairs.run_pairs`) and every
+Each scene's pairs run in one LAMMPS batch (:func:`spinbounce.pipeline.run_scene`) and every
 pair is also checked against the exact reference of what LAMMPS integrates (within the
 default accuracy, 1e-4 of the pair's speed; with tests 7 and 8's Coulomb cap, mu = 0.4, the
 capped reference :mod:`spinbounce.exact.pair_capped`) and set beside the planar theory.
@@ -86,7 +86,7 @@ def matched_pair_contact(material: Material, r_a: float, r_b: float, m_a: float,
 
 
 def _test_1(material: Material):
-    from ...pairs import Pair, PairBatch, PairContact, Sphere
+    from ...scenes.pair import Pair, PairBatch, PairContact, Sphere
 
     r, v = 0.010, 10.0
     sphere = Sphere(material.mass(r), r, SOLID)
@@ -101,7 +101,7 @@ def _elastic_rebound(batch, table):
 
 
 def _test_7():
-    from ...pairs import Pair, PairBatch, PairContact, Sphere
+    from ...scenes.pair import Pair, PairBatch, PairContact, Sphere
 
     r, v_n = 0.1, 0.2
     sphere = Sphere(AL_ALLOY.mass(r), r, SOLID)
@@ -139,7 +139,7 @@ def _gamma_n_for(e: float, m_a: float, m_b: float, kn: float) -> float:
 
 
 def _test_8_parts():
-    from ...pairs import Sphere
+    from ...scenes.pair import Sphere
 
     r, v_n = 0.1, 0.2
     a = Sphere(AL_ALLOY.mass(r), r, SOLID)
@@ -150,7 +150,7 @@ def _test_8_parts():
 
 
 def _test_8():
-    from ...pairs import Pair, PairBatch, PairContact
+    from ...scenes.pair import Pair, PairBatch, PairContact
 
     a, b, kn, kt, gamma_n, v_n = _test_8_parts()
     spins = v_n * np.tan(_angles()) / a.r
@@ -162,7 +162,7 @@ def _test_8():
 
 def _wall_limit(batch, table):
     """a's (v_n, v_t, r omega) against the wall's exact theory for the same sphere and contact (and cap)."""
-    from ...pairs.kind import wall_frame
+    from ...scenes.pair.kind import wall_frame
     from ...exact import choose
 
     a, law = batch.pairs[0].a, batch.contact.law()
@@ -226,14 +226,14 @@ PAIR_BENCHMARKS: dict[str, PairBenchmark] = _all()
 
 def run_pair_benchmark(bench: PairBenchmark, out: Path) -> dict:
     """Run a benchmark's pairs in one LAMMPS batch; its record (JSON-ready) with every check's numbers."""
-    from ...pairs import run_pairs
+    from ...pipeline import run_scene
 
-    result = run_pairs(bench.make(), Path(out) / bench.name, record=False)
-    quantity, lammps, published, tolerance = bench.published(result.batch, result.table)
+    result = run_scene(bench.make(), Path(out) / bench.name, record=False)
+    quantity, lammps, published, tolerance = bench.published(result.scene, result.table)
     off = float(np.abs(lammps - published).max())
     return {"name": bench.name, "title": bench.title, "citation": bench.citation,
             "sources": [list(s) for s in bench.sources], "stiffness": bench.stiffness,
-            "pairs": result.batch.n, "dt": result.batch.dt, "steps": result.batch.nsteps,
-            "lammps_vs_exact": result.max_lammps_error, "planar_vs_exact": result.max_planar_error,
+            "pairs": result.scene.n, "dt": result.scene.dt, "steps": result.scene.nsteps,
+            "lammps_vs_exact": result.max_error, "planar_vs_exact": result.table["planar_error"].max(),
             "published": bench.expectation, "quantity": quantity, "lammps_vs_published": off,
-            "tolerance": tolerance, "agrees": bool(off <= tolerance and result.max_lammps_error <= ACCURACY)}
+            "tolerance": tolerance, "agrees": bool(off <= tolerance and result.max_error <= ACCURACY)}

@@ -6,7 +6,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from ...model.scenes import ContactModel
+from ...model.contact import ContactModel
 
 __all__ = ["QUANTITIES", "quantity"]
 

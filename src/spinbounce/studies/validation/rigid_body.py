@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...model.scenes import ContactModel
+from ...model.contact import ContactModel
 from ...exact.rigid_body import walton
 
 __all__ = ["first_touch_stick", "impact_speed", "walton"]

@@ -15,9 +15,10 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ...model.scenes import STATE, Collision, ContactModel
+from ...scenes.collision import Collision, STATE
+from ...model.contact import ContactModel
 from ...model.timestep import refine_mid_step
-from ...pipeline import run_collision
+from ...pipeline import run_scene
 from ...exact import oracle
 from .cases import Benchmark, Series
 from .quantities import QUANTITIES, quantity
@@ -113,7 +114,7 @@ def _run_lammps(model, states, oracle_final, refine: int, folder: Path) -> tuple
     s = np.asarray(states, dtype=float)
     scene = _OracleBatch(model, v_n=s[:, 0], v_t=s[:, 1], omega=s[:, 2], dt=refined_dt(model, refine),
                          oracle_final=tuple(np.asarray(oracle_final).ravel()))
-    result = run_collision(scene, folder, atoms="library", record=True)
+    result = run_scene(scene, folder, atoms="library", record=True)
     t = result.table
     final = np.column_stack([t.vn_final, t.vt_final, t.r_omega_final])
     run = {"refine": refine, "dt": scene.dt, "nsteps": scene.nsteps, "tau": model.tau, "run_dir": str(folder),

@@ -23,26 +23,30 @@ from functools import cached_property
 
 import numpy as np
 
-from .. import exact
-from ..lammps.decks import ALPHA_NVE_SPHERE
-from ..model.contact import ContactModel
-from ..model.parameters import SceneError, by_name
-from ..model.timestep import steps_through
-from ..exact import pair as planar
-from ..exact import pair_capped, pair_exact
+from ... import checks, exact
+from ...lammps.decks import ALPHA_NVE_SPHERE
+from ...exact import linear
+from ...exact import pair as planar
+from ...exact import pair_capped, pair_exact
+from ...model.contact import ContactModel
+from ...model.parameters import SceneError, by_name
+from ...model.timestep import steps_per_contact, steps_through
+from .deck import PAIR_NO_CAP_MU, QUANTITIES, render_pairs
 
 __all__ = ["Sphere", "PairContact", "Pair", "PairBatch", "ALPHA_NVE_SPHERE", "PAIR_STEPS_PER_HALF_PERIOD",
            "time_scaled"]
 
 #: The finest default resolution: steps per half-period of the fastest mode of any pair, what
 #: a batch falls back to when a probe of its own pairs cannot reach the accuracy coarser
-#: (:mod:`.stepping`). Two errors are first order in dt for pairs, unlike the wall: LAMMPS's
+#: (:func:`spinbounce.stepping.tune`). Two errors are first order in dt for pairs, unlike the wall: LAMMPS's
 #: pair granular (this build) projects the half-step relative velocity on the full-step line
 #: of centres, which turns; and one step shared by pairs of different contact times cannot
 #: put every contact in its best place within the steps (:attr:`PairBatch.lead`).
 #: Largest error against the exact reference over the 24 cases of studies.cases(), with
 #: the placement of :attr:`PairBatch.lead`: 5.8e-5 of the speed at this resolution.
 PAIR_STEPS_PER_HALF_PERIOD = 8000
+#: The probe's coarser run: steps per contact (the wall's rule takes 174 at its defaults).
+START_STEPS = 100
 #: The most time-scale classes (atom types per kind of sphere) of an aligned damped batch.
 SCALE_CLASSES = 32
 
@@ -205,7 +209,7 @@ def _check_overlap(pair: Pair, model: ContactModel, dt: float, where: str) -> No
 class PairBatch:
     """Pairs run together, each in its own cell. ``dt = None``: PAIR_STEPS_PER_HALF_PERIOD steps
     per half-period of the fastest mode of any pair (``default_step``: a run probes for a
-    coarser one, :func:`.stepping.tune_pairs`); a given dt must keep every pair stable.
+    coarser one, :func:`spinbounce.stepping.tune`); a given dt must keep every pair stable.
     ``aligned``: each pair runs at its own time scale (:attr:`time_scales`; a damped batch's
     from a few classes), what the probed step assumes; off, every pair runs at ``dt``."""
 
@@ -319,3 +323,63 @@ class PairBatch:
     def nsteps(self) -> int:
         """Steps that carry every pair past the end of its contact (and one more)."""
         return steps_through(float(np.max(self.lead + self.deck_contact_times)), self.dt)
+
+    # --- what the pipeline and the step probe ask of every scene (spinbounce.scenes) ---
+
+    kind = "pair"
+
+    def render(self, atoms: str | None = None):
+        """The deck (:func:`.deck.render_pairs`); its atoms always come from a data file."""
+        return render_pairs(self)
+
+    def read(self, info, deck, folder) -> dict:
+        from .table import read_pairs
+
+        return read_pairs(self, deck, folder)
+
+    def row_states(self, columns: dict) -> checks.RowStates:
+        """Both spheres' velocities and r times spins (LAMMPS's frame): LAMMPS's, the exact
+        reference's and the initial ones; errors in units of each pair's speed."""
+        radii = {side: np.array([getattr(p, side).r for p in self.pairs])[:, None] for side in "ab"}
+
+        def states(suffix: str) -> np.ndarray:
+            return np.column_stack([np.column_stack([columns[f"{side}_{q}{x}{suffix}"] for x in "xyz"])
+                                    * (radii[side] if q == "w" else 1.0) for side in "ab" for q in "vw"])
+
+        initial = np.column_stack([np.array([getattr(p, f"{q}_{side}") for p in self.pairs])
+                                   * (radii[side] if q == "w" else 1.0) for side in "ab" for q in "vw"])
+        weights = np.column_stack([np.repeat([[getattr(p, side).m * (getattr(p, side).alpha if q == "w" else 1.0)]
+                                              for p in self.pairs], 3, axis=1) for side in "ab" for q in "vw"])
+        m_star = planar.reduced_mass(columns["m_a"], columns["m_b"])
+        overlap = np.array([float(linear.max_overlap(v_n, m, self.contact.kn, self.contact.gamma_n))
+                            for v_n, m in zip(columns["v_n"], m_star, strict=True)])
+        return checks.RowStates(initial, states(""), states("_exact"), weights, columns["speed"], overlap,
+                                columns["r_a"] + columns["r_b"])
+
+    def record(self, deck) -> dict:
+        cap = self.contact.mu if self.contact.mu is not None else f"none ({PAIR_NO_CAP_MU:g})"
+        return {"contact": self.contact.law(), "dt": self.dt, "nsteps": self.nsteps, "mu": cap}
+
+    def needs_probe(self) -> bool:
+        return True
+
+    def probe_time(self, sample: "PairBatch") -> float:
+        """The probe's contact time: the median of its pairs'."""
+        return float(np.median(sample.contact_times))
+
+    def first_probe_steps(self, t_contact: float) -> int:
+        return START_STEPS
+
+    def step_limit(self, t_contact: float) -> int:
+        """The fine rule's steps per contact: a probe that needs as many keeps the fine rule."""
+        return steps_per_contact(t_contact, self.dt)
+
+    def fallback(self) -> "PairBatch":
+        """The batch at its fine rule's step, aligned."""
+        return PairBatch(self.pairs, self.contact, self.dt, aligned=True)
+
+    def rows(self, index) -> "PairBatch":
+        return PairBatch(tuple(self.pairs[i] for i in index), self.contact)
+
+    def at_step(self, dt: float) -> "PairBatch":
+        return PairBatch(self.pairs, self.contact, dt, aligned=True)

@@ -13,9 +13,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..model.contact import ContactModel
-from ..model.parameters import PAIR_ONLY, SceneError, by_name
-from ..exact import pair as planar
+from ...model.contact import ContactModel
+from ...model.parameters import PAIR_ONLY, SceneError, by_name
+from ...exact import pair as planar
 from .scene import Pair, PairContact, Sphere
 
 __all__ = ["pair_contact", "sphere_b", "pairs_from_states", "wall_frame", "planar_matrix", "planar_Omega",
@@ -55,7 +55,7 @@ def sphere_b(m_b=1.0, r_b=0.5, alpha_b=0.4) -> Sphere:
 def pairs_from_states(model: ContactModel, b: Sphere, states: np.ndarray) -> list[Pair]:
     """One pair per row of (v_n, v_t, omega[, v_s, omega_s, omega_n]): a as the wall's sphere, b at rest.
 
-    LAMMPS's frame as the wall's (:mod:`spinbounce.compare`): v = (v_t, v_s, v_n) and
+    LAMMPS's frame as the wall's (:mod:`spinbounce.scenes.collision.table`): v = (v_t, v_s, v_n) and
     angular velocity (omega_s, -omega, omega_n).
     """
     a = Sphere(model.m, model.r, model.alpha)

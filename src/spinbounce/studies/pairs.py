@@ -18,12 +18,11 @@ from pathlib import Path
 import numpy as np
 
 from ..model.contact import ContactModel
-from ..model.scenes import Collision
-from ..pipeline import run_collision
+from ..scenes.collision import Collision
+from ..pipeline import run_scene
 from ..exact import pair as planar
 from ..exact import pair_exact
-from .run import run_pairs
-from .scene import Pair, PairBatch, PairContact, Sphere
+from ..scenes.pair import Pair, PairBatch, PairContact, Sphere
 
 __all__ = ["cases", "validity_map", "pair_to_wall_cost", "cost_lines", "COST_BATCHES"]
 
@@ -118,21 +117,21 @@ def pair_to_wall_cost(n: int = 200, seed: int = 3, out_dir: Path | None = None) 
                "default radii, damped": (default, DAMPED_GAMMA_N), "hard cases": ([cases()[k % 24] for k in range(n)], 0.0)}
     with tempfile.TemporaryDirectory() as scratch:
         where = Path(out_dir or scratch)
-        walls = {gamma_n: run_collision(Collision(ContactModel(gamma_n=gamma_n), **wall_states), where / f"wall-{gamma_n:g}",
+        walls = {gamma_n: run_scene(Collision(ContactModel(gamma_n=gamma_n), **wall_states), where / f"wall-{gamma_n:g}",
                                         record=False) for gamma_n in (0.0, DAMPED_GAMMA_N)}
         wall = walls[0.0]
         out = {"collisions": n, "wall_seconds_per_collision": wall.info.loop_seconds / n,
                "wall_steps": wall.scene.nsteps, "wall_max_error": wall.max_abs_error, "batches": {}}
         for name, (pairs, gamma_n) in batches.items():
-            pair = run_pairs(PairBatch(pairs, PairContact(gamma_n=gamma_n)), where / name.replace(" ", "-").replace(",", ""),
+            pair = run_scene(PairBatch(pairs, PairContact(gamma_n=gamma_n)), where / name.replace(" ", "-").replace(",", ""),
                              record=False)
             per_pair, per_wall = pair.info.loop_seconds / n, walls[gamma_n].info.loop_seconds / n
             out["batches"][name] = {
                 "pair_seconds_per_collision": per_pair, "pair_to_wall": per_pair / per_wall,
-                "pair_to_wall_per_step": (per_pair / pair.batch.nsteps) / (per_wall / walls[gamma_n].scene.nsteps),
-                "pair_steps": pair.batch.nsteps, "wall_steps": walls[gamma_n].scene.nsteps,
+                "pair_to_wall_per_step": (per_pair / pair.scene.nsteps) / (per_wall / walls[gamma_n].scene.nsteps),
+                "pair_steps": pair.scene.nsteps, "wall_steps": walls[gamma_n].scene.nsteps,
                 "wall_max_error": walls[gamma_n].max_abs_error, "step": pair.step.record(),
-                "max_eps": float(pair.table["eps"].max()), "pair_max_error": pair.max_lammps_error}
+                "max_eps": float(pair.table["eps"].max()), "pair_max_error": pair.max_error}
     return out
 
 

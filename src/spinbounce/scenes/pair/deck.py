@@ -1,31 +1,36 @@
-"""Render a pair batch's deck (``lammps_inputs/pair.lmp.j2``), its data file and bodies file.
+"""Render a pair batch's deck (``pair.lmp.j2`` beside this module), its data file and bodies file.
 
 Layout: pair k sits in cell k of a cubic grid, its contact point at the cell's centre, its
 spheres backed off along their velocities by the pair's lead time (free flight, which the
 step integrates exactly) so that they touch that much later; each pair at its time scale
 (:attr:`.scene.PairBatch.time_scales`: heavier and slower by it, in an aligned batch). Atom ids: the spheres that
 are rigid bodies (alpha other than 2/5) first, then their centre points in the same order,
-then the free spheres; :attr:`PairDeck.ids` maps each pair's a and b to its sphere's id.
+then the free spheres; the deck's ``ids`` map each pair's a and b to its sphere's id.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
-from .. import __version__
-from ..lammps.data import Atoms, bodies_file, data_file
-from ..lammps.decks import Deck, deck_words, template_environment, wall_parameters
-from .scene import PairBatch
+from pathlib import Path
+from typing import TYPE_CHECKING
 
-__all__ = ["PairDeck", "render_pairs", "DECK_NAME", "DUMP_NAME", "DATA_FILE", "BODIES_FILE"]
+from ...lammps.data import Atoms, bodies_file, data_file
+from ...lammps.decks import Deck, deck_words, render_template, wall_parameters
+
+if TYPE_CHECKING:
+    from .scene import PairBatch
+
+__all__ = ["render_pairs", "DECK_NAME", "DUMP_NAME", "DATA_FILE", "BODIES_FILE"]
 
 DECK_NAME = "in.lammps"
 DUMP_NAME = "state.dump"
 DATA_FILE = "pairs.data"
 BODIES_FILE = "bodies.txt"
+#: The final quantities of each sphere the deck reports, in table order (LAMMPS's frame).
+QUANTITIES = tuple(f"{side}_{q}{axis}" for side in "ab" for q in "vw" for axis in "xyz")
 #: LAMMPS caps |F_t| <= mu |F_n| and turns the history back into the tangent plane when
 #: |xi.n| kt > 1e-10 mu |F_n|. With the wall's no-cap mu = 1e12 that rule does fire in the
 #: last steps of a pair's contact (|F_n| -> 0 while xi.n, from the turning line of centres,
@@ -34,14 +39,6 @@ BODIES_FILE = "bodies.txt"
 #: rule and the cap can only fire at |F_n| < 1e-90 |F_t|: the paper's model, with a history
 #: that is never rotated (what :mod:`spinbounce.exact.pair_exact` integrates).
 PAIR_NO_CAP_MU = 1.0e100
-
-
-@dataclass(frozen=True)
-class PairDeck:
-    """The deck and, per pair, the atom ids of its spheres a and b (an (n, 2) array)."""
-
-    deck: Deck
-    ids: np.ndarray
 
 
 def _spheres(batch: PairBatch) -> tuple[list[dict], float, int]:
@@ -102,7 +99,7 @@ def _bodies_file(rigid: list[dict]) -> str:
                        np.array([r["v"] for r in rigid]), np.array([r["w"] for r in rigid]))
 
 
-def render_pairs(batch: PairBatch) -> PairDeck:
+def render_pairs(batch: PairBatch) -> Deck:
     """The batch's deck, with its data file (and bodies file, if any sphere is a rigid body)."""
     records, cell, grid = _spheres(batch)
     rigid, free = _number_atoms(records)
@@ -110,7 +107,7 @@ def render_pairs(batch: PairBatch) -> PairDeck:
     model = batch.pairs[0].equivalent_wall(batch.contact)  # the law's words are the wall's, after the types
     wall = wall_parameters(model)
     if batch.contact.mu is None:
-        wall.update(mu=PAIR_NO_CAP_MU, comment=f"no Coulomb cap: mu = {PAIR_NO_CAP_MU:g} (spinbounce.pairs.deck)")
+        wall.update(mu=PAIR_NO_CAP_MU, comment=f"no Coulomb cap: mu = {PAIR_NO_CAP_MU:g} (spinbounce.scenes.pair.deck)")
     else:
         wall.update(mu=batch.contact.mu, comment=f"Coulomb cap mu = {batch.contact.mu:g}")
     wall["coefficients"] = deck_words(model.style.coefficient_terms(model, wall["eta_n"], wall["x_t"], wall["damping"],
@@ -123,8 +120,8 @@ def render_pairs(batch: PairBatch) -> PairDeck:
     files = {DATA_FILE: _data_file(rigid, free, grid * cell, 3 * len(scales))}
     if rigid:
         files[BODIES_FILE] = _bodies_file(rigid)
-    text = template_environment().get_template("pair.lmp.j2").render(
-        version=__version__, deck_name=DECK_NAME, npairs=batch.n, grid=grid, cell=cell,
+    text = render_template(
+        Path(__file__).parent, "pair.lmp.j2", deck_name=DECK_NAME, npairs=batch.n, grid=grid, cell=cell,
         nsteps=batch.nsteps, dt=batch.dt, skin=0.2 * smallest, binsize=cell / 2, data_file=DATA_FILE,
         contact=batch.contact, wall=wall, nfree=len(free), nrigid=len(rigid), classes=classes,
         types={kind: " ".join(str(atom_type(kind, c)) for c in range(len(scales))) for kind in ("free", "rigid", "point")},
@@ -132,4 +129,4 @@ def render_pairs(batch: PairBatch) -> PairDeck:
     ids = np.zeros((batch.n, 2), dtype=np.int64)
     for record in records:
         ids[record["pair"], 0 if record["side"] == "a" else 1] = record["id"]
-    return PairDeck(Deck(text=text, name=DECK_NAME, dump=DUMP_NAME, rigid=bool(rigid), files=files), ids)
+    return Deck(text=text, name=DECK_NAME, dump=DUMP_NAME, rigid=bool(rigid), files=files, ids=ids)

@@ -17,12 +17,11 @@ from pathlib import Path
 
 import numpy as np
 
-from .. import __version__
-from ..lammps.decks import LIBRARY_MARKER, LibraryAtoms, template_environment
-from ..lammps.runner import run_deck
-from ..model.timestep import mid_step_dt
-from ..records import write_atomic
-from ..exact import classic, linear
+from ...exact import classic, linear
+from ...lammps.decks import LIBRARY_MARKER, LibraryAtoms, render_template
+from ...lammps.runner import run_deck
+from ...model.timestep import mid_step_dt
+from ...records import write_atomic
 
 __all__ = ["Form", "FORMS", "Check", "classify", "verdict", "run_form", "run_wall", "pair_omega", "diagnose", "EXIT", "UPSTREAM",
            "TOLERANCE"]
@@ -146,8 +145,8 @@ def pair_omega(final: dict) -> float:
 
 
 def _render_pair(form: Form, dt: float, nsteps: int) -> str:
-    return template_environment().get_template("doctor_pair.lmp.j2").render(
-        version=__version__, title=form.title, r=R, m=M, dt=dt, nsteps=nsteps, library_marker=LIBRARY_MARKER,
+    return render_template(
+        Path(__file__).parent, "doctor_pair.lmp.j2", title=form.title, r=R, m=M, dt=dt, nsteps=nsteps, library_marker=LIBRARY_MARKER,
         pair_style=form.style, pair_coeff=f"* * {form.coeff}".rstrip(), skin=0.3 * R,
         box={"lo": -8 * R, "hi": 8 * R})
 
@@ -166,8 +165,8 @@ def run_wall(style: str, states, out_dir: Path, dt: float, nsteps: int, r: float
     x = np.column_stack([4.0 * r * np.arange(n), np.zeros(n), z])
     v = np.column_stack([states[:, 1], np.zeros(n), states[:, 0]])
     omega = np.column_stack([np.zeros(n), -states[:, 2] / r, np.zeros(n)])  # paper's omega = -omega_y
-    text = template_environment().get_template("doctor_wall.lmp.j2").render(
-        version=__version__, title=f"fix wall/gran {style}", n=n, r=r, m=m, wall_style=style, dt=dt,
+    text = render_template(
+        Path(__file__).parent, "doctor_wall.lmp.j2", title=f"fix wall/gran {style}", n=n, r=r, m=m, wall_style=style, dt=dt,
         nsteps=nsteps, hold=heights is not None, library_marker=LIBRARY_MARKER,
         box={"lo": -4.0 * r, "hi": 4.0 * r * n, "zhi": 4.0 * r})
     deck = Path(out_dir) / "in.lammps"

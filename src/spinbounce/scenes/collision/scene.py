@@ -1,16 +1,8 @@
-"""Validated descriptions of what to simulate: the contact model and the scenes.
+"""The wall collision: spheres that start touching the wall (centre at z = r) with given
+(v_n, v_t, omega) and run until they have left it; checked against Eq. 18 (theory.md).
 
-A scene is pure data: it knows nothing of files or LAMMPS. Every check happens when a
-scene is built, so bad input is refused before any LAMMPS run, with a message that
-names the parameter, its value and the limit it broke.
-
-Two scenes:
-
-* :class:`Collision`: spheres start touching the wall (centre at z = r) with given
-  (v_n, v_t, omega) and run until they have left it; checked against Eq. 18.
-* :class:`Frozen`: one sphere held at a fixed height z < r, so v_n = 0 and only the
-  slip evolves; checked against Eq. 10 (or its exact damped form).
-
+A scene is pure data: every check happens when it is built, so bad input is refused before
+any LAMMPS run, with a message that names the parameter, its value and the limit it broke.
 The normal force is the model's normal sub-model (:mod:`spinbounce.laws.normal`): the paper's
 Hookean spring, or a force that grows with the contact radius (Hertz), whose contact time
 depends on v_n; the scene asks the sub-model for the contact's times, overlap and mode.
@@ -24,33 +16,20 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..exact import choose
-from ..exact.choose import PLANE_COLUMNS, SPACE_COLUMNS
-from . import parameters
-from .contact import NORMAL_LAWS, ContactModel, PhysicsWarning
-from .parameters import SceneError, finite_number, positive_number
-from .timestep import MIN_STEPS_PER_HALF_PERIOD, ACCURACY, FROZEN_ACCURACY, SAFETY, align_mid_step, check_steps, second_order_dt, steps_through
+from ... import checks
+from ...exact import choose
+from ...exact.choose import PLANE_COLUMNS, SPACE_COLUMNS
+from ...model import parameters
+from ...model.contact import ContactModel
+from ...model.parameters import SceneError
+from ...model.timestep import align_mid_step, check_steps, second_order_dt, steps_through, steps_per_contact
+from ...lammps.decks import wall_parameters
 
-__all__ = [
-    "SceneError",
-    "PhysicsWarning",
-    "ContactModel",
-    "NORMAL_LAWS",
-    "Collision",
-    "Frozen",
-    "HERTZ_STEPS_PER_HALF_PERIOD",
-    "MIN_STEPS_PER_HALF_PERIOD",
-    "STATE",
-    "STATE_3D",
-    "STATE_ARGS",
-]
+__all__ = ["Collision", "row_states", "HERTZ_STEPS_PER_HALF_PERIOD", "STATE", "STATE_3D", "STATE_ARGS"]
 
 #: How many steps late, per unit of gamma_n/m t_exit/e, LAMMPS's damped sphere may leave the
 #: wall (an upper bound on the measured 0.1 to 0.3).
 EXIT_DELAY = 0.5
-#: Frozen contact with tangential damping: first order, error about this times 2 zeta dt
-#: (LAMMPS_FACTS section 5: 2e-5 to 8e-5 at dt = 1e-4 for gamma_t from 0.1 to 2).
-FROZEN_DAMPING_ORDER_ONE = 0.5
 #: Default resolution of a Hertzian collision: steps per half-period of the fastest mode.
 #: Each sphere's contact ends at its own time, so no one dt puts every end mid-step and the
 #: error is first order: cutting the tangential force off somewhere inside the last step
@@ -78,6 +57,16 @@ def _as_vector(name: str, value) -> tuple[float, ...]:
         i = int(bad[0])
         raise SceneError(f"{name}[{i}]" if arr.size > 1 else name, float(arr[i]), "must be finite")
     return tuple((arr + 0.0).tolist())
+
+
+def row_states(m: ContactModel, names, columns: dict) -> checks.RowStates:
+    """A wall table's rows as the checks read them: its ``{s}_0``, ``{s}_final`` and ``{s}_theory``
+    state columns; errors relative to the initial state's size."""
+    initial, final, reference = (np.column_stack([columns[f"{s}_{when}"] for s in names])
+                                 for when in ("0", "final", "theory"))
+    weights = m.m * np.array([1.0, 1.0, m.alpha, 1.0, m.alpha, m.alpha])[: len(names)]
+    return checks.RowStates(initial, final, reference, weights, np.linalg.norm(initial, axis=1),
+                            m.max_overlap(np.abs(initial[:, 0])), m.r)
 
 
 @dataclass(frozen=True)
@@ -228,84 +217,61 @@ class Collision:
         (:mod:`oracle`), sphere by sphere."""
         return choose.predict(self.model, self.initial)
 
+    # --- what the pipeline and the step probe ask of every scene (spinbounce.scenes) ---
 
-@dataclass(frozen=True)
-class Frozen:
-    """One sphere held at height z (0 < z < r) with v_n = 0: the frozen contact of Section 3.
+    kind = "collision"
 
-    ``dt = None`` takes the step of the default accuracy (:meth:`default_dt`), shortened so
-    that ``t_end`` is a whole number of dump intervals; ``every`` is the dump cadence in steps
-    (default: about 2000 frames). With a given dt the run goes on to the first dump at or
-    after t_end (:attr:`t_final`).
-    """
+    def render(self, atoms: str | None = None, padding=None):
+        """The deck (:func:`.deck.render_collision`)."""
+        from .deck import render_collision
 
-    model: ContactModel = field(default_factory=ContactModel)
-    z: float = 0.1
-    v_t: float = 1.0
-    omega: float = 0.0
-    t_end: float = 10.0
-    dt: float | None = None
-    every: int | None = None
-    nsteps: int = field(init=False, default=0)
+        return render_collision(self, atoms, padding)
 
-    def __post_init__(self):
-        set_ = object.__setattr__
+    def read(self, info, deck, folder) -> dict:
+        """The run's checked table columns (:func:`.table.read_collision`)."""
+        from .table import read_collision
+
+        return read_collision(self, info, deck, folder)
+
+    def row_states(self, columns: dict) -> checks.RowStates:
+        """The sphere's initial, LAMMPS and theory states, in the paper's columns."""
+        return row_states(self.model, self.state_names, columns)
+
+    def record(self, deck) -> dict:
+        """The run's parameters, for its provenance record."""
         m = self.model
-        if m.mu is not None:
-            raise SceneError("mu", m.mu, "a frozen contact is checked against Eq. 10, which has no Coulomb cap: "
-                                         "leave mu out (held at a fixed height the cap is constant, so a cap "
-                                         "only adds sliding that no theory here predicts)")
-        z = finite_number("z", self.z)
-        if not 0.0 < z < m.r:
-            raise SceneError("z", self.z, f"must lie in (0, r) = (0, {m.r:g}) to hold the sphere in contact")
-        set_(self, "z", z)
-        set_(self, "v_t", finite_number("v_t", self.v_t))
-        set_(self, "omega", finite_number("omega", self.omega))
-        set_(self, "t_end", positive_number("t_end", self.t_end))
-        given = self.dt is not None
-        set_(self, "dt", m.check_dt(self.dt if given else self.default_dt(), frozen=True))
-        ratio = self.t_end / self.dt
-        why = f"t_end = {self.t_end:g} at dt = {self.dt:.3g}" + ("" if given else ", the default accuracy's step")
-        steps = check_steps(math.ceil(ratio - 1e-9) if math.isfinite(ratio) else ratio,
-                            *(("dt", self.dt) if given else ("t_end", self.t_end)), why)
-        if self.every is None:
-            set_(self, "every", max(1, steps // 2000))
+        if m.normal_law.contact_radius:  # per sphere: the contact time and Omega depend on v_n
+            tau, omega = m.contact_times(self.v_n).tolist(), choose.omega_per_sphere(m, self.v_n).tolist()
         else:
-            every = finite_number("every", self.every)
-            if every < 1 or every != int(every):
-                raise SceneError("every", self.every, "must be a whole number of steps >= 1")
-            set_(self, "every", int(every))
-        if steps % self.every:
-            # LAMMPS dumps on multiples of `every`: a default step is shortened so that t_end is a
-            # whole number of intervals; a given one runs on to the next dump (t_final says when)
-            steps = math.ceil(steps / self.every) * self.every
-            if not given:
-                set_(self, "dt", self.t_end / steps)
-        set_(self, "nsteps", steps)
+            tau, omega = m.tau, m.Omega
+        return {"model": m.as_record(), "dt": self.dt, "nsteps": self.nsteps, "tau": tau, "Omega": omega,
+                "wall": wall_parameters(m), "integrator": "rigid" if deck.rigid else "nve/sphere",
+                "atoms": "library" if deck.atoms is not None else ("data_file" if deck.files else "inline")}
 
-    @property
-    def steps_per_half_period(self) -> float:
-        """How finely dt resolves the slip mode (its half-period over dt; inf if nothing moves)."""
-        rate = self.model.fastest_rate(frozen=True)
-        return math.pi / rate / self.dt if rate > 0.0 else math.inf
+    def needs_probe(self) -> bool:
+        """Whether the step must be measured: not the paper's linear contact, and not a
+        Hertzian batch of several speeds (its end cannot be aligned; it keeps its fixed rule)."""
+        if choose.which(self.model).kind == "linear":
+            return False
+        return not np.ptp(self.model.contact_times(self.v_n)) > 0.0
 
-    @property
-    def t_final(self) -> float:
-        """When the run ends: t_end, or with a given dt the first dump at or after it."""
-        return self.nsteps * self.dt
+    def probe_time(self, sample: "Collision") -> float:
+        """The contact's length the probe's steps are counted over: the force's, the longest."""
+        return float(np.max(self.model.normal_law.force_times(self.model, self.v_n)))
 
-    def default_dt(self) -> float:
-        """The step for the frozen contact's accuracy (FROZEN_ACCURACY, second order on the slip
-        mode over t_end) and, with gamma_t, the first-order damping bound for the default one."""
-        m = self.model
-        w, c = m.modes(frozen=True)["slip"]
-        if w == 0.0 and c == 0.0:  # kt = gamma_t = 0: nothing evolves; any dt is exact
-            return self.t_end / 1000
-        dt = second_order_dt([(w, c)], self.t_end, FROZEN_ACCURACY)
-        if c > 0.0:
-            dt = min(dt, SAFETY * ACCURACY / (FROZEN_DAMPING_ORDER_ONE * c))  # first order: the default target
-        return self.t_end / math.ceil(self.t_end / dt - 1e-9)
+    def first_probe_steps(self, t_contact: float) -> int:
+        return steps_per_contact(t_contact, self.dt)
 
-    def predicted(self, t) -> tuple[np.ndarray, np.ndarray]:
-        """(v_t(t), r omega(t)): Eq. 10, or its exact damped form when gamma_t > 0."""
-        return choose.frozen(self.model, t, self.v_t, self.omega * self.model.r, self.z)
+    def step_limit(self, t_contact: float) -> float:
+        return math.inf
+
+    def fallback(self):
+        """The scene at the step a probe falls back to: none, the wall's probe always answers."""
+        return None
+
+    def rows(self, index) -> "Collision":
+        """The scene of the spheres ``index`` only."""
+        return Collision(self.model, dt=self.dt, **{n: np.asarray(getattr(self, n))[index] for n in STATE_ARGS})
+
+    def at_step(self, dt: float) -> "Collision":
+        return Collision(self.model, dt=dt, **{n: getattr(self, n) for n in STATE_ARGS})

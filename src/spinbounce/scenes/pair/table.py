@@ -1,57 +1,35 @@
-"""Run a pair batch through LAMMPS and set each pair beside its references.
+"""A pair batch's table: each pair's final states beside its references.
 
-Table: one row per pair, with the pair's geometry (eps, the centrifugal ratio, how far the
-line of centres turned), and for every final quantity q of sphere a and b (``a_vx`` ...
-``b_wz``, LAMMPS's frame, omega as LAMMPS's angular velocity) LAMMPS's value ``q``, the
-exact reference ``q_exact`` (:mod:`spinbounce.exact.pair_exact`) and the planar theory's
-``q_planar`` (:mod:`spinbounce.exact.pair`). The errors are the largest differences over
-the velocities and r times the spins, in units of the pair's ``speed``
-(:meth:`Pair.speed`): ``lammps_error`` (LAMMPS against the exact reference: the run's
-accuracy) and ``planar_error`` (the planar theory against the exact reference: a model error).
+One row per pair, with the pair's geometry (eps, the centrifugal ratio, how far the line of
+centres turned), and for every final quantity q of sphere a and b (``a_vx`` ... ``b_wz``,
+LAMMPS's frame, omega as LAMMPS's angular velocity) LAMMPS's value ``q``, the exact
+reference ``q_exact`` (:mod:`spinbounce.exact.pair_exact`) and the planar theory's
+``q_planar`` (:mod:`spinbounce.exact.pair`). ``planar_error`` is the planar theory's
+largest difference from the exact reference over the velocities and r times the spins, in
+units of the pair's ``speed`` (:meth:`Pair.speed`): a model error. LAMMPS's own error
+against the exact reference is the row checks' ``error`` (:mod:`spinbounce.checks`), in
+the same units.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 import pandas as pd
 
-from ..lammps.dumps import read_dump
-from ..lammps.runner import RunInfo, run_deck
-from ..pipeline import ResultError, prepare_run_dir, provenance
-from ..model.timestep import ACCURACY, StepChoice
-from ..records import to_json, write_atomic
-from ..exact import pair as planar
-from .deck import PAIR_NO_CAP_MU, render_pairs
-from .scene import PairBatch
-from .stepping import tune_pairs
+from ...errors import ResultError
+from ...exact import pair as planar
+from ...lammps.dumps import read_dump
+from .deck import QUANTITIES
 
-__all__ = ["PairResult", "run_pairs", "pair_table", "pair_states", "QUANTITIES"]
+if TYPE_CHECKING:
+    from ...lammps.decks import Deck
+    from .scene import PairBatch
 
-#: The final quantities of each sphere, in table order.
-QUANTITIES = tuple(f"{side}_{q}{axis}" for side in "ab" for q in "vw" for axis in "xyz")
+__all__ = ["pair_table", "pair_states", "read_pairs", "QUANTITIES"]
 
-
-@dataclass(frozen=True)
-class PairResult:
-    batch: PairBatch
-    table: pd.DataFrame
-    info: RunInfo
-    dump: Path
-    #: Per pair, the atom ids of a and b in the dump (an (n, 2) array).
-    ids: np.ndarray | None = None
-    #: How dt was chosen (:func:`.stepping.tune_pairs`).
-    step: StepChoice | None = None
-
-    @property
-    def max_lammps_error(self) -> float:
-        return float(self.table["lammps_error"].max())
-
-    @property
-    def max_planar_error(self) -> float:
-        return float(self.table["planar_error"].max())
 
 
 def pair_states(batch: PairBatch, ids: np.ndarray, frames: pd.DataFrame, step: int) -> dict[str, np.ndarray]:
@@ -72,7 +50,7 @@ def _final_states(batch: PairBatch, ids: np.ndarray, dump: Path) -> dict[str, np
     frames = read_dump(dump)
     if sorted(frames["step"].unique()) != [0, batch.nsteps]:
         raise ResultError(f"{dump}: expected frames at steps 0 and {batch.nsteps}")
-    if int((frames["step"] == batch.nsteps).sum()) != 2 * batch.n:
+    if int((frames["step"] == batch.nsteps).sum()) != 2 * batch.n:  # lost atoms
         raise ResultError(f"{dump}: {int((frames['step'] == batch.nsteps).sum())} of {2 * batch.n} spheres "
                           "at the end (lost atoms)")
     states = pair_states(batch, ids, frames, batch.nsteps)
@@ -128,42 +106,16 @@ def pair_table(batch: PairBatch, lammps: dict[str, np.ndarray] | None) -> pd.Dat
     columns.update(_columns(theory, "_planar"))
     table = pd.DataFrame(columns)
     radii = {"a": table["r_a"].to_numpy(), "b": table["r_b"].to_numpy()}
-    if lammps is not None:
-        table["lammps_error"] = _error(table, "", "_exact", radii)
     table["planar_error"] = _error(table, "_planar", "_exact", radii)
     return table
 
 
-def _probe_error(batch: PairBatch, out_dir: Path) -> float:
-    """The step probe's measurement: a batch at a given step, its largest error against the reference."""
-    return run_pairs(batch, out_dir, record=False).max_lammps_error
-
-
-def run_pairs(batch: PairBatch, out_dir: Path, record: bool = True, target: float = ACCURACY,
-              probe_pairs: tuple | None = None) -> PairResult:
-    """Run every pair of ``batch`` in one LAMMPS run in ``out_dir``; compare with both references.
-
-    A batch at the default step first gets the step ``target`` needs, probed on its own pairs
-    (:func:`.stepping.tune_pairs`, in ``out_dir/probe``; ``probe_pairs``: what to probe with,
-    if not its own). With ``record``, ``result.json``
-    beside the deck holds the table, the step's choice and the provenance.
-    """
-    batch, step = tune_pairs(batch, Path(out_dir) / "probe", _probe_error, target, probe_pairs)
-    rendered = render_pairs(batch)
-    deck_path = prepare_run_dir(out_dir, rendered.deck)
-    info = run_deck(deck_path)
-    dump = deck_path.parent / rendered.deck.dump
-    lammps = _final_states(batch, rendered.ids, dump)
+def read_pairs(batch: PairBatch, deck: Deck, folder: Path) -> dict:
+    """The run's checked table columns: every pair's spheres there, finite, and apart at the end."""
+    dump = Path(folder) / deck.dump
+    lammps = _final_states(batch, deck.ids, dump)
     gap = np.linalg.norm(lammps["a_x"] - lammps["b_x"], axis=1) - np.array([p.radsum for p in batch.pairs])
     if np.any(gap <= 0.0):
-        raise ResultError(f"{dump}: pair {int(np.argmin(gap))} still in contact after {batch.nsteps} steps")
-    table = pair_table(batch, lammps)
-    result = PairResult(batch, table, info, dump, rendered.ids, step)
-    if record:
-        cap = batch.contact.mu if batch.contact.mu is not None else f"none ({PAIR_NO_CAP_MU:g})"
-        parameters = {"contact": batch.contact.law(), "dt": batch.dt, "nsteps": batch.nsteps, "mu": cap}
-        out = {**provenance(info, "pairs", parameters), "step": step.record(),
-               "max_lammps_error": result.max_lammps_error, "max_planar_error": result.max_planar_error,
-               "pairs": table.to_dict(orient="records")}
-        write_atomic(deck_path.parent / "result.json", to_json(out))
-    return result
+        raise ResultError(f"{dump}: pair {int(np.argmin(gap))} still touches after {batch.nsteps} steps: the contact "
+                          "had not finished")
+    return {k: v.to_numpy() for k, v in pair_table(batch, lammps).items()}

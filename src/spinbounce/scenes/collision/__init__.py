@@ -1,0 +1,5 @@
+"""The wall collision (theory.md): spheres that start touching the wall and bounce off it."""
+
+from .scene import HERTZ_STEPS_PER_HALF_PERIOD, STATE, STATE_3D, STATE_ARGS, Collision
+
+__all__ = ["Collision", "STATE", "STATE_3D", "STATE_ARGS", "HERTZ_STEPS_PER_HALF_PERIOD"]

@@ -1,0 +1,146 @@
+"""A collision run's table: LAMMPS's first and last frames beside the theory, one row per sphere.
+
+LAMMPS frame -> paper: v_n = v_z, v_t = v_x, omega = -omega_y (anticlockwise positive),
+r_omega = r * omega; in 3-D v_s = v_y, omega_s = omega_x, omega_n = omega_z. Frames come
+from the dump, or from LAMMPS's memory for a library-route deck; both are checked (lost
+spheres, non-finite values, a contact that had not finished) before the table is made.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import numpy as np
+import pandas as pd
+
+from ...errors import ResultError
+from ...lammps.dumps import read_dump
+
+if TYPE_CHECKING:
+    from ...lammps.decks import Deck
+    from ...lammps.runner import RunInfo
+    from .scene import Collision
+
+__all__ = ["collision_table", "read_collision", "FRAME_COLUMNS"]
+
+#: Each state column from LAMMPS's columns: (column, sign), then times r for the spins.
+#: The paper's omega is -omega_y; the second pair's spin is +omega_x (slip v_y + r omega_x).
+_FROM_LAMMPS = {"vn": ("vz", 1.0), "vt": ("vx", 1.0), "r_omega": ("omegay", -1.0),
+                "vs": ("vy", 1.0), "r_omega_s": ("omegax", 1.0), "r_omega_n": ("omegaz", 1.0)}
+#: The spin columns and the angular velocity each one carries.
+SPINS = {"r_omega": "omega", "r_omega_s": "omega_s", "r_omega_n": "omega_n"}
+
+
+def collision_table(scene: Collision, initial, final, as_frame: bool = True):
+    """One row per sphere: requested, initial (as LAMMPS saw it), final, theory and error.
+
+    ``initial`` and ``final`` map LAMMPS's column names (z, vx, vz, omegay, ...) to one
+    value per sphere in id order (ids 1..n): a dump frame or a dict of arrays. The theory
+    acts on the *requested* initial state, so a mangled input would show as an error.
+    A 3-D scene adds the columns of :data:`STATE_3D` beyond the paper's three.
+    ``as_frame=False`` returns the columns as a dict of arrays.
+    """
+    r = scene.model.r
+    names = scene.state_names
+    spins = [SPINS[s] for s in names if s in SPINS]
+    requested = scene.initial
+    theory = scene.predicted()
+    columns = {"id": np.arange(1, scene.n + 1)}
+    for k, name in enumerate(names):
+        columns[f"{name}_0"] = requested[:, k]
+    for spin in spins:
+        columns[f"{spin}_0"] = np.asarray(getattr(scene, spin))
+    for when, frame in (("lammps_0", initial), ("final", final)):
+        values = {"z": np.asarray(frame["z"])}
+        for name in names:
+            column, sign = _FROM_LAMMPS[name]
+            value = sign * np.asarray(frame[column]) + 0.0  # + 0.0: no "-0" in tables
+            if name in SPINS:
+                values[SPINS[name]] = value
+                value = r * value
+            values[name] = value
+        for name in names + tuple(spins) + ("z",):
+            columns[f"{name}_{when}"] = values[name]
+    for k, name in enumerate(names):
+        columns[f"{name}_theory"] = theory[:, k]
+    for name, spin in SPINS.items():
+        if name in names:
+            columns[f"{spin}_theory"] = columns[f"{name}_theory"] / r
+    for name in names + tuple(spins):
+        columns[f"{name}_error"] = columns[f"{name}_final"] - columns[f"{name}_theory"]
+    return pd.DataFrame(columns) if as_frame else columns
+
+
+#: Per-sphere columns of a collision frame, as LAMMPS names them (the dump's columns).
+FRAME_COLUMNS = ("x", "y", "z", "vx", "vy", "vz", "omegax", "omegay", "omegaz")
+
+
+def _memory_frames(info: RunInfo, nsteps: int) -> dict[int, dict[str, np.ndarray]]:
+    """A library-route run's sphere states (type-1 atoms) at steps 0 and nsteps, in id order."""
+    frames = {}
+    for step, state in ((0, info.initial), (nsteps, info.final)):
+        keep = state["type"] == 1
+        frame = {"id": state["id"][keep].astype(np.int64)}
+        for k, axis in enumerate("xyz"):
+            frame[axis] = state["x"][keep, k]
+            frame[f"v{axis}"] = state["v"][keep, k]
+            frame[f"omega{axis}"] = state["omega"][keep, k]
+        frames[step] = frame
+    return frames
+
+
+def _dump_frames(frames: pd.DataFrame) -> dict[int, dict[str, np.ndarray]]:
+    """A dump's rows, split into frames by step."""
+    step = frames["step"].to_numpy()
+    out = {}
+    for value in np.unique(step):
+        rows = frames[step == value]
+        out[int(value)] = {name: rows[name].to_numpy() for name in ("id", *FRAME_COLUMNS)}
+    return out
+
+
+def _collision_frames(scene: Collision, frames: dict, where: Path) -> tuple[dict, dict]:
+    """Checked initial and final frames (one entry per sphere, id order) of a collision run."""
+    steps = sorted(frames)
+    if steps != [0, scene.nsteps]:
+        raise ResultError(f"{where}: expected frames at steps 0 and {scene.nsteps}, found {steps}")
+    ids = np.arange(1, scene.n + 1)
+    for step in steps:
+        frame = frames[step]
+        if len(frame["id"]) != scene.n:
+            raise ResultError(f"{where}: {len(frame['id'])} of {scene.n} spheres at step {step} (lost atoms)")
+        if not np.array_equal(frame["id"], ids):
+            raise ResultError(f"{where}: sphere ids at step {step} are not 1..{scene.n} in order")
+        finite = np.logical_and.reduce([np.isfinite(frame[c]) for c in FRAME_COLUMNS])
+        if not finite.all():
+            raise ResultError(
+                f"{where}: non-finite positions or velocities (first at step {step}, "
+                f"atom {int(frame['id'][~finite][0])}): the integration blew up"
+            )
+    return frames[0], frames[scene.nsteps]
+
+
+def _check_finished(scene: Collision, columns: dict, source: Path) -> None:
+    touching = np.flatnonzero(columns["z_final"] <= scene.model.r)
+    if touching.size:
+        first = touching[0]
+        raise ResultError(
+            f"{source}: {touching.size} sphere(s) still touch the wall after {scene.nsteps} steps "
+            f"(first: id {int(columns['id'][first])}, z = {float(columns['z_final'][first])!r}): "
+            "the contact had not finished"
+        )
+
+
+def read_collision(scene: Collision, info: RunInfo, deck: Deck, folder: Path) -> dict:
+    """The run's checked table columns (from its dump, or from memory for a library-route deck)."""
+    if deck.dump is None:
+        source = info.log
+        frames = _memory_frames(info, scene.nsteps)
+    else:
+        source = folder / deck.dump
+        frames = _dump_frames(read_dump(source))
+    initial, final = _collision_frames(scene, frames, source)
+    columns = collision_table(scene, initial, final, as_frame=False)
+    _check_finished(scene, columns, source)
+    return columns

@@ -1,0 +1,93 @@
+"""A pair scene's collisions as a sweep chunk: the wall's columns, and both spheres' final states.
+
+Sphere a's columns are the wall sweep's (:func:`spinbounce.scenes.collision.table.collision_table`):
+``{s}_0`` (requested), ``{s}_lammps_0`` (LAMMPS's first frame), ``{s}_final`` (LAMMPS),
+``{s}_theory`` (the exact reference, :mod:`spinbounce.exact.pair_exact`: what LAMMPS
+integrates, to 1e-9), ``{s}_error`` (final - theory), the spins as angular velocities
+beside them, and ``z_*`` (a's centre above b's). Added for the pair: both spheres' final
+states in LAMMPS's frame (``a_vx`` ... ``b_wz``, :data:`.run.QUANTITIES`) with their exact
+(``*_exact``) and planar (``*_planar``) values; a's state by the planar theory
+(``{s}_planar``); the geometry (``eps``, ``centrifugal``, ``turn``, ``contact_time``) and
+``planar_error``, the planar theory's model error (never mixed into ``error``); and
+``step_method``, how the chunk's step was chosen (:func:`spinbounce.stepping.tune`: a probe
+of the group's pairs, the fine rule, or a given dt).
+
+Row checks are the pipeline's (:mod:`spinbounce.checks`), over both spheres: ``error`` is
+the largest |LAMMPS - exact| over both spheres' velocities and r times spins, over the
+pair's speed (:meth:`~spinbounce.scenes.pair.Pair.speed`); ``energy_gain`` and
+``energy_excess`` are the two spheres' kinetic energy; ``status`` as the wall's.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from ..exact.choose import PLANE_COLUMNS, SPACE_COLUMNS
+from ..lammps.dumps import read_dump
+from ..model.contact import ContactModel
+from ..pipeline import run_scene
+from ..scenes.pair.kind import pair_contact, pairs_from_states, wall_frame
+from ..scenes.pair.scene import PairBatch, Sphere
+from ..scenes.collision.table import SPINS
+from ..scenes.pair.table import QUANTITIES, pair_states
+
+__all__ = ["pair_chunk"]
+
+
+
+
+def _a_columns(names, when: str, v: np.ndarray, w: np.ndarray, r: float, height: np.ndarray) -> dict:
+    """a's state columns ``{s}_{when}`` (and its spins as angular velocities) from (n, 3) v and w."""
+    state = wall_frame(v, w, r)
+    out = {}
+    for k, name in enumerate(names):
+        out[f"{name}_{when}"] = state[:, k]
+        if name in SPINS:
+            out[f"{SPINS[name]}_{when}"] = state[:, k] / r
+    out[f"z_{when}"] = height
+    return out
+
+
+def _frame(batch: PairBatch, frames, ids: np.ndarray, step: int) -> dict:
+    """a's v and w, and a's height above b, at ``step`` of the dump."""
+    state = pair_states(batch, ids, frames, step)
+    return {"v": state["a_v"], "w": state["a_w"], "height": state["a_x"][:, 2] - state["b_x"][:, 2]}
+
+
+def pair_chunk(model: ContactModel, b: Sphere, states: np.ndarray, dt: float | None, run_dir: Path,
+               probe_states: np.ndarray | None = None) -> tuple[dict, float, int, float]:
+    """Run a chunk's pairs in one LAMMPS run; (columns, dt, steps, LAMMPS loop seconds).
+
+    ``states``: (n, 3) or (n, 6) rows of (v_n, v_t, omega[, v_s, omega_s, omega_n]), as a
+    wall sweep's chunk gets them (angular velocities); ``probe_states``: the group's states
+    a default step is probed with (the same for every chunk: one step per group), by
+    default the chunk's own.
+    """
+    names = SPACE_COLUMNS if states.shape[1] == 6 else PLANE_COLUMNS
+    pairs = pairs_from_states(model, b, states)
+    a = pairs[0].a
+    contact = pair_contact(model)
+    probe = None if probe_states is None else PairBatch(tuple(pairs_from_states(model, b, probe_states)), contact)
+    result = run_scene(PairBatch(pairs, contact, dt), run_dir, record=False, probe_states=probe)
+    table, batch = result.table, result.scene
+    requested = wall_frame(np.array([p.v_a for p in pairs]), np.array([p.w_a for p in pairs]), a.r)
+    columns = {f"{name}_0": requested[:, k] for k, name in enumerate(names)}
+    columns.update({f"{SPINS[name]}_0": columns[f"{name}_0"] / a.r for name in names if name in SPINS})
+    frames = read_dump(result.dump)
+    for when, step in (("lammps_0", 0), ("final", batch.nsteps)):
+        state = _frame(batch, frames, result.deck.ids, step)
+        columns.update(_a_columns(names, when, state["v"], state["w"], a.r, state["height"]))
+    for suffix, when in (("_exact", "theory"), ("_planar", "planar")):
+        v, w = (table[[f"a_{q}{x}{suffix}" for x in "xyz"]].to_numpy() for q in "vw")
+        reference = _a_columns(names, when, v, w, a.r, columns["z_final"])
+        columns.update({k: value for k, value in reference.items() if not k.startswith("z_")})
+    for name in names + tuple(SPINS[n] for n in names if n in SPINS):
+        columns[f"{name}_error"] = columns[f"{name}_final"] - columns[f"{name}_theory"]
+    for key in ("eps", "centrifugal", "turn", "contact_time", "planar_error", "error", "energy_gain", "energy_excess",
+                "status"):
+        columns[key] = table[key].to_numpy()
+    columns.update({q + suffix: table[q + suffix].to_numpy() for q in QUANTITIES for suffix in ("", "_exact", "_planar")})
+    columns["step_method"] = np.full(len(pairs), result.step.method, dtype=object)
+    return columns, batch.dt, batch.nsteps, result.info.loop_seconds
