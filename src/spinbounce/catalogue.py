@@ -82,7 +82,7 @@ PRODUCTS: tuple[Product, ...] = (
     Product("classic", "spinbounce classic --figure", "this build's classic wall against the paper's model",
             _figure("figures.classic", "make_classic"), ("classic",)),
     Product("two_walls", "spinbounce two-walls", "many bounces between two walls against the matrices",
-            _figure("studies.two_walls", "make_figure"), ("two_walls",)),
+            _figure("figures.two_walls", "make_figure"), ("two_walls",)),
     Product("restitution", "spinbounce restitution", "restitution maps against incidence, Kharaz's data",
             _figure("studies.restitution", "make_figure"), ("restitution",)),
     Product("tangential", "spinbounce tangential", "tangential restitution against the velocity ratio (Becker et al.)",

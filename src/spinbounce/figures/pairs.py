@@ -60,7 +60,8 @@ def make_pair_validity(out: Path, runs: Path | None = None):
     with tempfile.TemporaryDirectory() as scratch:
         result = run_scene(PairBatch(cases()), Path(runs or scratch))
     table = result.table
-    checked = {k: table[k].tolist() for k in ("eps", "centrifugal", "turn", "error", "planar_error")}
+    checked = {k: table[k].tolist() for k in ("eps", "centrifugal", "turn", "planar_error")}
+    checked["lammps_error"] = table["error"].tolist()  # the record names whose error it is
     meta = {"figure": "pair_validity", "title": "Where the planar pair theory can be trusted",
             **software(), "map": grid, "lammps_cases": checked, "dt": result.scene.dt,
             "max_lammps_error": result.max_error, "max_planar_error_of_cases": float(result.table["planar_error"].max())}
