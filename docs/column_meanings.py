@@ -10,11 +10,11 @@ from spinbounce.model import parameters
 
 #: The state's names in the table (the paper's symbols in brackets).
 STATES = {
-    "vn": "v_n, normal velocity (> 0: away from the wall)",
-    "vt": "v_t, tangential velocity",
+    "v_n": "v_n, normal velocity (> 0: away from the wall)",
+    "v_t": "v_t, tangential velocity",
     "r_omega": "r omega, the spin in the paper's plane times r",
     "omega": "omega, the spin in the paper's plane (LAMMPS's -omega_y)",
-    "vs": "v_s, second tangential velocity (3-D)",
+    "v_s": "v_s, second tangential velocity (3-D)",
     "r_omega_s": "r omega_s (3-D, LAMMPS's r omega_x)",
     "omega_s": "omega_s (3-D, LAMMPS's omega_x)",
     "r_omega_n": "r omega_n, spin about the normal times r (3-D)",
@@ -23,9 +23,9 @@ STATES = {
 }
 #: Suffix -> what the value is.
 WHEN = {
-    "0": "requested initial",
-    "lammps_0": "initial, as LAMMPS holds it after setting it up",
-    "final": "final (LAMMPS, after the contact)",
+    "initial": "requested initial",
+    "lammps_initial": "initial, as LAMMPS holds it after setting it up",
+    "lammps": "final, as LAMMPS ran it (after the contact)",
     "theory": "final, from the theory that applies",
     "error": "final LAMMPS minus theory",
     "estimate": "estimated error of the extrapolated final (sweeps with a tolerance)",

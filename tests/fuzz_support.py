@@ -118,9 +118,9 @@ THEORY_TOLERANCE = 1e-12
 def reversed_normal(v_n: float, tolerance: float = THEORY_TOLERANCE):
     """v_n' = -v_n, nothing tangential (an undamped Hookean bounce with no slip)."""
     def check(stdout, folder):
-        final = json.loads(stdout)["final"]
-        assert abs(final["vn"] + v_n) <= tolerance * max(1.0, abs(v_n)), final
-        assert abs(final["vt"]) <= tolerance and abs(final["r_omega"]) <= tolerance, final
+        final = json.loads(stdout)["theory"]
+        assert abs(final["v_n"] + v_n) <= tolerance * max(1.0, abs(v_n)), final
+        assert abs(final["v_t"]) <= tolerance and abs(final["r_omega"]) <= tolerance, final
     return check
 
 
@@ -128,9 +128,9 @@ def gross_slip(v_n: float, v_t: float, mu: float, alpha: float = 0.4, tolerance:
     size = math.hypot(v_n, v_t)
 
     def check(stdout, folder):
-        final = json.loads(stdout)["final"]
-        assert abs(final["vn"] + v_n) <= tolerance * size, final
-        assert abs(final["vt"] - (v_t - 2 * mu * abs(v_n))) <= tolerance * size, final
+        final = json.loads(stdout)["theory"]
+        assert abs(final["v_n"] + v_n) <= tolerance * size, final
+        assert abs(final["v_t"] - (v_t - 2 * mu * abs(v_n))) <= tolerance * size, final
         assert abs(final["r_omega"] + 2 * mu * abs(v_n) / alpha) <= tolerance * size, final
     return check
 
@@ -138,9 +138,9 @@ def gross_slip(v_n: float, v_t: float, mu: float, alpha: float = 0.4, tolerance:
 def unchanged_tangential(v_n: float, v_t: float, r_omega: float, tolerance: float = THEORY_TOLERANCE):
     """kt = 0 or mu = 0: the wall exerts no tangential force."""
     def check(stdout, folder):
-        final = json.loads(stdout)["final"]
-        assert abs(final["vn"] + v_n) <= tolerance, final
-        assert abs(final["vt"] - v_t) <= tolerance and abs(final["r_omega"] - r_omega) <= tolerance, final
+        final = json.loads(stdout)["theory"]
+        assert abs(final["v_n"] + v_n) <= tolerance, final
+        assert abs(final["v_t"] - v_t) <= tolerance and abs(final["r_omega"] - r_omega) <= tolerance, final
     return check
 
 
@@ -201,6 +201,6 @@ def frozen_series(v_t: float):
     """The CSV holds LAMMPS beside Eq. 10; at t = 0 both are the given state."""
     def check(stdout, folder):
         table = pd.read_csv(folder / "f.csv")
-        assert table["vt"].iloc[0] == v_t and table["vt_theory"].iloc[0] == v_t
-        assert (table["vt"] - table["vt_theory"]).abs().max() < 1e-5  # the frozen contact's default accuracy
+        assert table["v_t"].iloc[0] == v_t and table["v_t_theory"].iloc[0] == v_t
+        assert (table["v_t"] - table["v_t_theory"]).abs().max() < 1e-5  # the frozen contact's default accuracy
     return check

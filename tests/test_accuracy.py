@@ -237,8 +237,8 @@ def test_tolerance_assumes_no_higher_order_than_measured(quick):
         row = _summary(record, c["name"], FROZEN if frozen else MID)
         columns = 2 if frozen else len(c["states"][0])  # frozen: v_t and r omega
         assumed = raw_orders(model, columns, frozen=frozen)
-        if not frozen and row["order_vn"] is not None:
-            assert row["order_vn"] >= assumed[0] - 0.2, c["name"]
+        if not frozen and row["order_v_n"] is not None:
+            assert row["order_v_n"] >= assumed[0] - 0.2, c["name"]
         if row["order_tangential"] is not None:
             assert row["order_tangential"] >= assumed[-1] - 0.2, c["name"]
         checked += 1
@@ -274,7 +274,7 @@ def test_the_coulomb_case_is_measured_against_the_oracle(tmp_path):
     v_n, v_t, omega = states[:, 0], states[:, 1], states[:, 2] / case.model.r
     exact = coulomb.bounce_2d(case.model, v_n, v_t, omega)
     assert np.abs(oracle.bounce_many(case.model, v_n, v_t, omega)[:, :3] - exact).max() < 1e-9
-    for k, s in enumerate(("vn", "vt", "r_omega")):
+    for k, s in enumerate(("v_n", "v_t", "r_omega")):
         assert row[f"error_{s}"] == pytest.approx(np.abs(final[:, k] - exact[:, k]).max(), rel=1e-12, abs=1e-15)
 
 
@@ -390,7 +390,7 @@ def test_corners_bound_the_error_over_the_box(tmp_path):
         corners, _ = accuracy.run_collision_level(case, dt, tmp_path / form.replace(" ", "-") / "corners")
         inside, _ = accuracy.run_collision_level(case, dt, tmp_path / form.replace(" ", "-") / "inside",
                                                  states=accuracy.box_sample(200, seed=7))
-        for s in ("vn", "vt", "r_omega"):
+        for s in ("v_n", "v_t", "r_omega"):
             assert inside[f"error_{s}"] <= corners[f"error_{s}"] * (1 + 1e-9), (form, s)
 
 

@@ -115,7 +115,7 @@ def test_default_accuracy_holds_in_the_plane(name, tmp_path):
     result = _run(tmp_path, ACCEPTED[name], three_d=False)
     table = result.table
     assert result.step.target == ACCURACY
-    assert table["error"].max() <= ACCURACY, table[["vn_0", "vt_0", "r_omega_0", "error"]]
+    assert table["error"].max() <= ACCURACY, table[["v_n_initial", "v_t_initial", "r_omega_initial", "error"]]
     assert (table["status"] == "ok").all() and not result.warnings
 
 

@@ -70,7 +70,7 @@ def test_lammps_classic_wall_gains_the_energy_the_table_says(tmp_path):
 
     table = run_scene(Collision(model, v_n=-speed, v_t=v_t, omega=omega), tmp_path, record=False).table
     initial = np.array([-speed, v_t, model.r * omega])
-    final = table[["vn_final", "vt_final", "r_omega_final"]].to_numpy()[0]
+    final = table[["v_n_lammps", "v_t_lammps", "r_omega_lammps"]].to_numpy()[0]
     gained = linear.energy(final, model.m, model.alpha) / linear.energy(initial, model.m, model.alpha) - 1.0
     assert gained == pytest.approx(row["energy_gain_classic"], abs=2 * ACCURACY * (1 + row["energy_gain_classic"]))
 

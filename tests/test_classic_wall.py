@@ -47,7 +47,7 @@ def test_a_larger_sphere_and_a_faster_impact_change_the_classic_outcome(tmp_path
                                atoms="library", record=False)
         assert result.table["error"].max() <= ACCURACY
         row = result.table.iloc[0]
-        finals.append((row["vt_final"] - 1.0) / (1.0 * 0.4 / 1.4))  # Omega as Eq. 19 defines it
+        finals.append((row["v_t_lammps"] - 1.0) / (1.0 * 0.4 / 1.4))  # Omega as Eq. 19 defines it
     assert np.ptp(finals) > 0.1
 
 
@@ -57,7 +57,7 @@ def test_the_classic_frozen_contact_oscillates_at_its_own_frequency(z, tmp_path)
     result = run_series(scene, tmp_path)
     assert result.max_abs_error <= ACCURACY
     uncapped = Frozen(ContactModel(), z=z, v_t=1.0, omega=0.0, t_end=5.0).predicted(result.table["t"].to_numpy())
-    assert np.abs(result.table["vt"] - uncapped[0]).max() > 0.1  # not the granular wall's Eq. 10
+    assert np.abs(result.table["v_t"] - uncapped[0]).max() > 0.1  # not the granular wall's Eq. 10
 
 
 @pytest.mark.parametrize("z", [0.45, 0.4, 0.3])
@@ -108,7 +108,7 @@ def test_a_classic_sweep_to_a_tolerance_is_within_it_row_by_row(tmp_path):
            "states": {"n": 24, "v_n": [-1.5, -0.1], "v_t": [-2.0, 2.0], "r_omega": [-2.0, 2.0]}}
     run_sweep(spec_from_dict(raw), tmp_path / "out", workers=1, log=lambda *_: None)
     rows = read_results(tmp_path / "out")
-    true = np.abs(rows[["vn_error", "vt_error", "r_omega_error"]].to_numpy()).max(axis=1)
+    true = np.abs(rows[["v_n_error", "v_t_error", "r_omega_error"]].to_numpy()).max(axis=1)
     assert len(rows) == 96 and set(rows["theory"]) == {"classic_wall"}
     assert true.max() <= 1e-6 and (true <= rows["vn_estimate"].to_numpy() * (1 + 1e-12)).all()
 

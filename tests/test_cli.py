@@ -73,10 +73,10 @@ def test_collide_json(capsys, tmp_path):
                            "--out", str(tmp_path / "c"))
     assert code == 0
     report = json.loads(out)
-    for key in ("initial", "final", "theory", "error"):
-        assert set(report[key]) == {"vn", "vt", "omega", "r_omega"}
+    for key in ("initial", "lammps", "theory", "error"):
+        assert set(report[key]) == {"v_n", "v_t", "omega", "r_omega"}
     assert max(abs(v) for v in report["error"].values()) < 2e-4  # acceptance bound
-    assert report["final"]["vt"] - report["theory"]["vt"] == pytest.approx(report["error"]["vt"], abs=1e-15)
+    assert report["lammps"]["v_t"] - report["theory"]["v_t"] == pytest.approx(report["error"]["v_t"], abs=1e-15)
     assert report["deck"].endswith("in.lammps") and report["dump"].endswith("state.dump")
     assert report["lammps_version"].startswith("2025.7.22.4.0")
     saved = json.loads((tmp_path / "c" / "result.json").read_text())
@@ -90,9 +90,9 @@ def test_frozen_writes_csv_with_theory_and_provenance(capsys, tmp_path):
                            "--out", str(csv), "--run-dir", str(tmp_path / "run"))
     assert code == 0
     table = pd.read_csv(csv)
-    assert list(table.columns) == ["t", "vt", "omega", "r_omega", "vt_theory", "r_omega_theory"]
+    assert list(table.columns) == ["t", "v_t", "omega", "r_omega", "v_t_theory", "r_omega_theory"]
     assert table["t"].iloc[0] == 0.0 and table["t"].iloc[-1] >= 2.0
-    assert (table["vt"] - table["vt_theory"]).abs().max() < 1e-5  # the frozen contact's default accuracy
+    assert (table["v_t"] - table["v_t_theory"]).abs().max() < 1e-5  # the frozen contact's default accuracy
     meta = json.loads(csv.with_suffix(".meta.json").read_text())
     assert meta["parameters"]["z"] == 0.1 and meta["lammps_version"].startswith("2025")
 

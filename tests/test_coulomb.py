@@ -41,7 +41,7 @@ VARIANTS = {
 
 def _final(result):
     t = result.table
-    return np.column_stack([t.vn_final, t.vt_final, t.r_omega_final])
+    return np.column_stack([t.v_n_lammps, t.v_t_lammps, t.r_omega_lammps])
 
 
 def _run(model, v_n, v_t, omega, refine, tmp_path):

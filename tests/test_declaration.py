@@ -84,7 +84,7 @@ def test_theory_honours(name, capsys):
         assert main(["theory", "--json", *state_flags, *_flags(values)]) == 0
         report = json.loads(capsys.readouterr().out)
         expected = Collision(ContactModel(**values), **STATE).predicted()[0]
-        got = np.array(list(report["final"].values()))
+        got = np.array(list(report["theory"].values()))
         assert np.abs(got - expected).max() < 1e-12  # the same function: only rounding differs
         outputs.append((got, expected, report["contact_time"]))
     (got0, exp0, t0), (got1, exp1, t1) = outputs
@@ -111,7 +111,7 @@ def test_collide_honours(name, capsys, tmp_path):
         for key, value in values.items():
             assert record["parameters"]["model"][key] == value  # the value reached the run
         expected = Collision(ContactModel(**values), **STATE).predicted()[0]
-        lammps = np.array([report["final"][s] for s in ("vn", "vt", "r_omega")])
+        lammps = np.array([report["lammps"][s] for s in ("v_n", "v_t", "r_omega")])
         assert np.abs(lammps - expected).max() < LAMMPS_TOLERANCE
         finals.append((lammps, expected))
     if np.abs(finals[1][1] - finals[0][1]).max() > MOVES:
@@ -140,7 +140,7 @@ def test_frozen_honours_or_refuses(name, capsys, tmp_path):
             assert meta["parameters"]["model"][key] == value
         frozen = Frozen(ContactModel(**values), **scene)
         vt, rw = frozen.predicted(table["t"].to_numpy())
-        assert np.abs(table["vt"] - vt).max() < LAMMPS_TOLERANCE and np.abs(table["r_omega"] - rw).max() < LAMMPS_TOLERANCE
+        assert np.abs(table["v_t"] - vt).max() < LAMMPS_TOLERANCE and np.abs(table["r_omega"] - rw).max() < LAMMPS_TOLERANCE
         ends.append((table["r_omega"].iloc[-1], rw[-1]))
     # held at a fixed height, kn, gamma_n, limit_damping and the normal law leave the slip alone
     if abs(ends[1][1] - ends[0][1]) > MOVES:
@@ -166,10 +166,10 @@ def test_sweep_and_fit_honour(name, capsys, tmp_path):
     model = ContactModel(**changed)
     for key, value in changed.items():
         assert (rows[key] == value).all()  # the Parquet column holds the value
-    initial = rows[["vn_0", "vt_0", "r_omega_0"]].to_numpy()
-    theory = rows[["vn_theory", "vt_theory", "r_omega_theory"]].to_numpy()
+    initial = rows[["v_n_initial", "v_t_initial", "r_omega_initial"]].to_numpy()
+    theory = rows[["v_n_theory", "v_t_theory", "r_omega_theory"]].to_numpy()
     assert np.abs(theory - choose.predict(model, initial)).max() < 1e-12
-    lammps = rows[["vn_final", "vt_final", "r_omega_final"]].to_numpy()
+    lammps = rows[["v_n_lammps", "v_t_lammps", "r_omega_lammps"]].to_numpy()
     assert np.abs(lammps - theory).max() < LAMMPS_TOLERANCE
     assert (rows["theory"] == choose.which(model).kind).all()
     value = changed[name]

@@ -27,8 +27,8 @@ def _check(model, v_n, tmp_path, **state):
         warnings.simplefilter("ignore", PhysicsWarning)  # flagged, and still checked below
         result, scene = collide_to_tolerance(model, v_n, state["v_t"], state["omega"], TOL, tmp_path)
     frame = collision_frame(result, scene)
-    true = np.abs(frame[["vn_error", "vt_error", "r_omega_error"]].to_numpy()).max(axis=1)
-    assert (true <= frame["vn_estimate"].to_numpy()).all(), (true, frame["vn_estimate"].to_numpy())
+    true = np.abs(frame[["v_n_error", "v_t_error", "r_omega_error"]].to_numpy()).max(axis=1)
+    assert (true <= frame["v_n_estimate"].to_numpy()).all(), (true, frame["v_n_estimate"].to_numpy())
     assert result.max_estimate <= TOL
 
 
@@ -84,5 +84,5 @@ def test_100000_spheres_in_one_batch(tmp_path):
     result, scene = collide_to_tolerance(ContactModel(), rng.uniform(-1.5, -0.1, n), rng.uniform(-2, 2, n),
                                          rng.uniform(-4, 4, n), 1e-5, tmp_path)
     frame = collision_frame(result, scene)
-    true = np.abs(frame[["vn_error", "vt_error", "r_omega_error"]].to_numpy()).max(axis=1)
-    assert len(frame) == n and (true <= frame["vn_estimate"].to_numpy()).all()
+    true = np.abs(frame[["v_n_error", "v_t_error", "r_omega_error"]].to_numpy()).max(axis=1)
+    assert len(frame) == n and (true <= frame["v_n_estimate"].to_numpy()).all()

@@ -107,7 +107,7 @@ def test_fig4_states_fill_their_box_without_repeats():
 def _fake_first_order(constant, calls):
     def run(dt):
         calls.append(dt)
-        return None, {"vt": constant * dt}, Path(f"dt_{dt}")
+        return None, {"v_t": constant * dt}, Path(f"dt_{dt}")
     return run
 
 
@@ -127,7 +127,7 @@ def test_tune_dt_keeps_a_default_that_is_good_enough():
 
 def test_tune_dt_refuses_an_error_that_does_not_shrink():
     def run(dt):
-        return None, {"vt": 2 * ACCEPTANCE}, Path("x")
+        return None, {"v_t": 2 * ACCEPTANCE}, Path("x")
 
     with pytest.raises(ResultError, match="not below|limit"):
         tune_dt(run, 1e-3, lambda dt: dt, "stuck")
@@ -138,7 +138,7 @@ def test_tune_dt_refines_a_run_with_problems():
 
     def run(dt):
         calls.append(dt)
-        return dt, {"vt": 1e-6}, Path("x")
+        return dt, {"v_t": 1e-6}, Path("x")
 
     tuned = tune_dt(run, 1e-3, lambda dt: dt, "fake", problems=lambda dt: ["energy grew"] if dt > 6e-4 else [])
     assert tuned.dt == pytest.approx(5e-4) and len(calls) == 2
@@ -214,8 +214,8 @@ def test_fig4_deviation_recomputed_from_the_batch_table(made):
     record = records["fig4"]
     (run,) = record["runs"]
     table = pd.read_parquet(out / run["run_dir"] / "result.parquet")
-    initial = table[["vn_0", "vt_0", "r_omega_0"]].to_numpy()
-    final = table[["vn_final", "vt_final", "r_omega_final"]].to_numpy()
+    initial = table[["v_n_initial", "v_t_initial", "r_omega_initial"]].to_numpy()
+    final = table[["v_n_lammps", "v_t_lammps", "r_omega_lammps"]].to_numpy()
     matrix = exact.scattering_matrix(0.4, exact.Omega(10.0, 1.0, 0.4))
     error = final - initial @ matrix.T
     dev = max(np.abs(error).max(), np.abs(error[:, 2]).max() / 0.5)  # omega = r omega / r

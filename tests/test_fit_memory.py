@@ -39,8 +39,8 @@ def _write_dataset(folder: Path) -> None:
         theory = initial @ matrix.T
         final = theory + rng.normal(0.0, 1e-5, theory.shape)
         columns = {"group": np.zeros(n, dtype=np.int64), "chunk": np.full(n, k), "index": np.arange(k * n, (k + 1) * n)}
-        for j, s in enumerate(("vn", "vt", "r_omega")):
-            columns.update({f"{s}_0": initial[:, j], f"{s}_final": final[:, j], f"{s}_theory": theory[:, j],
+        for j, s in enumerate(("v_n", "v_t", "r_omega")):
+            columns.update({f"{s}_initial": initial[:, j], f"{s}_lammps": final[:, j], f"{s}_theory": theory[:, j],
                             f"{s}_error": final[:, j] - theory[:, j]})
         columns["error"] = np.abs(final - theory).max(axis=1) / np.linalg.norm(initial, axis=1)
         columns["status"] = np.full(n, "ok", dtype=object)

@@ -217,9 +217,9 @@ def _bound_fraction(result):
     sqrt(Q) dt |u'(0)|/2 times 1/(1+alpha), alpha/(1+alpha) (module docstring)."""
     t, scene = result.table, result.scene
     m = scene.model
-    bound = 0.5 * math.sqrt(m.Q) * scene.dt * np.abs(t["vt_0"] + t["r_omega_0"]).to_numpy()
+    bound = 0.5 * math.sqrt(m.Q) * scene.dt * np.abs(t["v_t_initial"] + t["r_omega_initial"]).to_numpy()
     return np.maximum(np.abs(t["r_omega_error"]).to_numpy() * (1 + m.alpha),
-                      np.abs(t["vt_error"]).to_numpy() * (1 + m.alpha) / m.alpha) / bound
+                      np.abs(t["v_t_error"]).to_numpy() * (1 + m.alpha) / m.alpha) / bound
 
 
 HERTZ_CASES = {
@@ -245,7 +245,7 @@ def test_lammps_matches_hertz_theory_within_its_first_order_bound(tmp_path, name
         assert fraction.max() > 0.4  # ... and tight: the error is first order at both steps
         # e = 1: the normal force vanishes smoothly (delta^1.5) at the contact's end, so v_n's
         # error is second order: 6.4e-10 measured at 4000 steps per half-period
-        assert np.abs(result.table["vn_error"]).max() < 1e-8
+        assert np.abs(result.table["v_n_error"]).max() < 1e-8
 
 
 @pytest.mark.lammps
@@ -256,7 +256,7 @@ def test_the_default_step_meets_1e_4(tmp_path):
     v_n, v_t, omega = _states(np.random.default_rng(3), 24, 0.95)
     scene = Collision(ContactModel(normal="hertz"), v_n=v_n, v_t=v_t, omega=omega)
     result = run_scene(scene, tmp_path)
-    errors = np.abs(result.table[["vn_error", "vt_error", "r_omega_error"]].to_numpy())
+    errors = np.abs(result.table[["v_n_error", "v_t_error", "r_omega_error"]].to_numpy())
     assert errors.max() < 1e-4
     assert _bound_fraction(result).max() <= 1.05
     # the record names the force law and each sphere's contact time
@@ -275,7 +275,7 @@ def test_frozen_hertz_contact_is_eq10(tmp_path):
 
     result = run_series(Frozen(ContactModel(normal="hertz", kn=KN, kt=20.0), z=0.45, v_t=1.0, t_end=2.0), tmp_path)
     assert result.max_abs_error < 1e-5
-    assert result.table["vt"].min() < 0.5  # it oscillates
+    assert result.table["v_t"].min() < 0.5  # it oscillates
 
 
 # ---------------------------------------------------------------------------

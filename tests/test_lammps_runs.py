@@ -28,7 +28,7 @@ COLLISION_TOL = 2e-4  # see module docstring
 
 def _errors(result):
     t = result.table
-    return np.abs(t[["vn_error", "vt_error", "r_omega_error"]].to_numpy())
+    return np.abs(t[["v_n_error", "v_t_error", "r_omega_error"]].to_numpy())
 
 
 def test_default_collision_matches_eq18(run_dir):
@@ -36,7 +36,7 @@ def test_default_collision_matches_eq18(run_dir):
     result = run_scene(scene, run_dir)
     assert _errors(result).max() < COLLISION_TOL
     # and the theory it is compared with is the paper's Eq. 18 at Omega = -1.2838
-    assert result.table["vt_theory"].iloc[0] == pytest.approx(1 + 0.4 / 1.4 * exact.Omega(10, 1, 0.4), abs=1e-15)
+    assert result.table["v_t_theory"].iloc[0] == pytest.approx(1 + 0.4 / 1.4 * exact.Omega(10, 1, 0.4), abs=1e-15)
     assert (run_dir / "in.lammps").is_file() and (run_dir / "result.json").is_file()
 
 
@@ -56,7 +56,7 @@ def test_alpha_is_honoured_by_lammps(run_dir, model):
     assert _errors(result).max() < COLLISION_TOL
     # alpha = 2/5 would give a different answer: the test can tell them apart
     wrong = scene.initial @ exact.scattering_matrix(0.4, exact.Omega(model.kn, model.kt, 0.4)).T
-    assert np.abs(result.table[["vn_final", "vt_final", "r_omega_final"]].to_numpy() - wrong).max() > 1e-2
+    assert np.abs(result.table[["v_n_lammps", "v_t_lammps", "r_omega_lammps"]].to_numpy() - wrong).max() > 1e-2
 
 
 def test_magic_ratio_conserves_energy_in_lammps(run_dir):
@@ -80,15 +80,15 @@ def test_spin_and_many_spheres_pair_by_id(run_dir):
     assert _errors(result).max() < COLLISION_TOL
     # LAMMPS saw the requested initial state (full-precision deck and dump)
     t = result.table
-    np.testing.assert_allclose(t["vt_lammps_0"], t["vt_0"], rtol=0, atol=1e-15)
-    np.testing.assert_allclose(t["r_omega_lammps_0"], t["r_omega_0"], rtol=0, atol=1e-15)
+    np.testing.assert_allclose(t["v_t_lammps_initial"], t["v_t_initial"], rtol=0, atol=1e-15)
+    np.testing.assert_allclose(t["r_omega_lammps_initial"], t["r_omega_initial"], rtol=0, atol=1e-15)
 
 
 def test_rigid_route_dumps_initial_spin(run_dir):
     scene = Collision(ContactModel(alpha=0.1), v_n=-0.5, v_t=0.0, omega=3.0)
     result = run_scene(scene, run_dir)
     t = result.table
-    assert t["omega_lammps_0"].iloc[0] == pytest.approx(3.0, abs=1e-12)  # set by the body, exact
+    assert t["omega_lammps_initial"].iloc[0] == pytest.approx(3.0, abs=1e-12)  # set by the body, exact
     assert _errors(result).max() < COLLISION_TOL
 
 
@@ -103,7 +103,7 @@ def test_frozen_contact_matches_eq10(run_dir):
     assert result.table["t"].iloc[-1] >= 10.0
     assert result.max_abs_error < 1e-5
     # the trajectory really oscillates (not a trivially constant series)
-    assert result.table["vt"].min() < 0.5
+    assert result.table["v_t"].min() < 0.5
 
 
 @pytest.mark.parametrize("gamma_t", [0.1, 0.5, 2.0, 5.0])
@@ -127,7 +127,7 @@ def test_damped_frozen_contact_converges_to_exact_solution(tmp_path, gamma_t):
     t = result.table
     vt_paper, _ = exact.frozen_velocities_paper_damped(t["t"], 1.0, 0.5, model.kt, model.m, model.alpha, gamma_t)
     if gamma_t <= 2.0:
-        assert np.abs(t["vt"] - vt_paper).max() > 0.05
+        assert np.abs(t["v_t"] - vt_paper).max() > 0.05
 
 
 def test_deck_alone_reproduces_the_run_with_lmp(run_dir, tmp_path):
@@ -213,7 +213,7 @@ def test_batch_from_data_file_pairs_by_id(run_dir, alpha):
     assert (run_dir / DATA_FILE).is_file()
     assert _errors(result).max() < COLLISION_TOL
     t = result.table
-    np.testing.assert_allclose(t["r_omega_lammps_0"], t["r_omega_0"], rtol=0, atol=1e-14)
+    np.testing.assert_allclose(t["r_omega_lammps_initial"], t["r_omega_initial"], rtol=0, atol=1e-14)
 
 
 @pytest.mark.parametrize("alpha", [0.4, 0.1])
@@ -232,11 +232,11 @@ def test_library_route_equals_the_data_file_route(tmp_path, alpha):
     by_file = run_scene(scene, tmp_path / "file", atoms="data_file")
     in_memory = run_scene(scene, tmp_path / "memory", atoms="library")
     assert in_memory.dump is None and not (tmp_path / "memory" / "state.dump").exists()
-    final = [f"{s}_final" for s in ("vn", "vt", "r_omega", "z")]
+    final = [f"{s}_lammps" for s in ("v_n", "v_t", "r_omega", "z")]
     np.testing.assert_array_equal(in_memory.table[final].to_numpy(), by_file.table[final].to_numpy())
     # The library route reads the initial state just after creating the atoms; the dump's
     # step-0 frame comes after fix rigid's setup, whose omega = (I omega)/I may move 1 ulp.
-    start = [f"{s}_lammps_0" for s in ("vn", "vt", "r_omega", "z")]
+    start = [f"{s}_lammps_initial" for s in ("v_n", "v_t", "r_omega", "z")]
     np.testing.assert_allclose(in_memory.table[start].to_numpy(), by_file.table[start].to_numpy(), rtol=1e-15, atol=0)
     assert _errors(in_memory).max() < COLLISION_TOL
     assert in_memory.info.loop_seconds > 0  # the log's "Loop time" was found
@@ -249,6 +249,6 @@ def test_lmp_process_runner_gives_the_in_process_answer(tmp_path):
     scene = Collision(ContactModel(), v_n=-0.7, v_t=0.4, omega=1.1)
     a = run_scene(scene, tmp_path / "lmp", runner=run_deck_lmp)
     b = run_scene(scene, tmp_path / "module")
-    cols = ["vn_final", "vt_final", "r_omega_final"]
+    cols = ["v_n_lammps", "v_t_lammps", "r_omega_lammps"]
     np.testing.assert_array_equal(a.table[cols].to_numpy(), b.table[cols].to_numpy())
     assert a.info.loop_seconds > 0

@@ -66,10 +66,10 @@ def test_collide_runs_a_3d_collision_from_flags(tmp_path, capsys):
             "--vs", "-0.5", "--omega-s", "2", "--omega-n", "3", "--mu", "0.4"]
     assert main(argv) == 0
     report = json.loads(capsys.readouterr().out)
-    assert set(report["final"]) >= {"vn", "vt", "r_omega", "vs", "r_omega_s", "r_omega_n"}
+    assert set(report["lammps"]) >= {"v_n", "v_t", "r_omega", "v_s", "r_omega_s", "r_omega_n"}
     scene = Collision(ContactModel(mu=0.4), v_n=-0.8, v_t=0.3, omega=1.0, v_s=-0.5, omega_s=2.0, omega_n=3.0)
     expected = scene.predicted()[0]
-    theory = np.array([report["theory"][k] for k in ("vn", "vt", "r_omega", "vs", "r_omega_s", "r_omega_n")])
+    theory = np.array([report["theory"][k] for k in ("v_n", "v_t", "r_omega", "v_s", "r_omega_s", "r_omega_n")])
     assert np.abs(theory - expected).max() < 1e-12  # the same theory, asked through the command
     assert report["theory_kind"] == "coulomb" and report["error_estimate"] <= 1e-4 and report["status"] == "ok"
 
@@ -81,11 +81,11 @@ def test_theory_of_a_capped_contact_gives_an_outcome_or_says_why_there_is_no_mat
     assert main(["theory", "--mu", "0.1", "--vn", "-1", "--vt", "1.8", "--romega", "0.2", "--json"]) == 0
     report = json.loads(capsys.readouterr().out)
     expected = choose.predict(ContactModel(mu=0.1), np.array([[-1.0, 1.8, 0.2]]))[0]
-    assert np.array(list(report["final"].values())) == pytest.approx(expected, abs=1e-15)
+    assert np.array(list(report["theory"].values())) == pytest.approx(expected, abs=1e-15)
     # gross slip: the spring's rate kt u'(0) = 2 beats the cap's mu kn |v_n| = 1 from first touch,
     # and the slip (2, falling by (1 + 1/alpha) 0.2 = 0.7) never stops: the tangential impulse is
     # mu (1 + e) m |v_n| = 0.2 exactly, not the uncapped matrix's
-    assert report["final"]["vt"] == pytest.approx(1.6, abs=1e-12)
+    assert report["theory"]["v_t"] == pytest.approx(1.6, abs=1e-12)
 
 
 def _json_tail(capsys) -> list[dict]:

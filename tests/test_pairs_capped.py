@@ -53,7 +53,7 @@ def test_the_capped_reference_with_n_held_is_the_walls_exact_stick_slip_solution
         wall = pair.equivalent_wall(PairContact(10.0, kt, gamma_n)).replace(mu=mu)
         v_n, v_t, slip = _in_plane(pair, pair.v_a, pair.v_b, pair.w_a, pair.w_b)
         _, final = choose.outcome(wall, v_n, v_t, (slip - v_t) / wall.r)
-        want = np.array([final["vn"], final["vt"], final["vt"] + final["r_omega"]])
+        want = np.array([final["v_n"], final["v_t"], final["v_t"] + final["r_omega"]])
         got = _in_plane(pair, held.v_a, held.v_b, held.w_a, held.w_b)
         assert np.abs(got - want).max() < SOLVER_AGREEMENT * pair.speed()
 

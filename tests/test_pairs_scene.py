@@ -115,7 +115,7 @@ def test_pair_sweep_from_flags_equals_the_scene_file_and_has_the_walls_columns(t
     assert rows["error"].max() < ACCURACY and (rows["status"] == "ok").all()
     # momentum: b's final velocity is what a lost, as LAMMPS ran it (rounding of 8000 steps)
     for axis in "xyz":
-        a0 = {"x": rows["vt_0"], "y": 0.0, "z": rows["vn_0"]}[axis]
+        a0 = {"x": rows["v_t_initial"], "y": 0.0, "z": rows["v_n_initial"]}[axis]
         assert np.abs(rows[f"a_v{axis}"] - a0 + 3.0 * rows[f"b_v{axis}"]).max() < 1e-12
 
 
@@ -153,8 +153,8 @@ def test_a_dense_second_sphere_in_a_sweep_is_the_wall(tmp_path):
     path = _scene(tmp_path, m_b=1e8, r_b=LARGE)
     run_sweep(load_spec(path), tmp_path / "dense", workers=1, log=lambda *_: None)
     rows = read_results(tmp_path / "dense")
-    names = ["vn", "vt", "r_omega"]
-    initial, final = rows[[f"{s}_0" for s in names]].to_numpy(), rows[[f"{s}_final" for s in names]].to_numpy()
+    names = ["v_n", "v_t", "r_omega"]
+    initial, final = rows[[f"{s}_initial" for s in names]].to_numpy(), rows[[f"{s}_lammps" for s in names]].to_numpy()
     wall = ContactModel(r=LARGE).matrix()
     speed = np.linalg.norm(initial, axis=1)
     assert (np.abs(final - initial @ wall.T).max(axis=1) / speed).max() < 1e-4

@@ -111,7 +111,7 @@ def test_a_changed_case_or_tolerance_is_noticed_in_the_manifest(stored_manifest)
     changed["cases"]["defaults"]["dt"] *= 1.0 + 1e-12
     del changed["cases"]["grazing"]
     changed["cases"]["retired"] = changed["cases"]["mu_0.1"]
-    changed["tolerances"]["collision"]["vt_final"]["atol"] = 1e-6
+    changed["tolerances"]["collision"]["v_t_lammps"]["atol"] = 1e-6
     found = {(v.case, v.column) for v in refs.compare_manifest(changed)}
     assert found == {("defaults", "*"), ("grazing", "*"), ("retired", "*"), ("*", "tolerances")}
 
@@ -126,13 +126,13 @@ def test_stored_table_matches_its_case_without_lammps(name):
     assert len(stored) == case.rows()
     scene = case.scene()
     if case.kind == "collision":
-        expected = {"id": np.arange(1, scene.n + 1), "vn_0": scene.v_n, "vt_0": scene.v_t, "omega_0": scene.omega}
+        expected = {"id": np.arange(1, scene.n + 1), "v_n_initial": scene.v_n, "v_t_initial": scene.v_t, "omega_initial": scene.omega}
         theory = scene.predicted()
-        expected.update(vn_theory=theory[:, 0], vt_theory=theory[:, 1], omega_theory=theory[:, 2] / scene.model.r)
+        expected.update(v_n_theory=theory[:, 0], v_t_theory=theory[:, 1], omega_theory=theory[:, 2] / scene.model.r)
     else:
         t = np.arange(len(stored)) * scene.every * scene.dt
         vt, r_omega = scene.predicted(t)
-        expected = {"t": t, "vt_theory": vt, "r_omega_theory": r_omega}
+        expected = {"t": t, "v_t_theory": vt, "r_omega_theory": r_omega}
     for column, values in expected.items():
         deviation = np.max(np.abs(stored[column].to_numpy() - np.asarray(values, dtype=float)))
         assert deviation <= tolerances[column].atol, (column, deviation)
@@ -226,15 +226,15 @@ def test_structural_differences_are_violations():
     stored = refs.read_table(REFERENCE_DIR / "defaults.csv")
     tol = refs.COLLISION_TOLERANCES
     assert refs.compare_tables(stored, stored, tol, case="defaults") == []
-    missing = refs.compare_tables(stored.drop(columns=["vt_final"]), stored, tol, case="defaults")
-    assert [(v.column, v.message) for v in missing] == [("vt_final", "missing from the fresh table")]
+    missing = refs.compare_tables(stored.drop(columns=["v_t_lammps"]), stored, tol, case="defaults")
+    assert [(v.column, v.message) for v in missing] == [("v_t_lammps", "missing from the fresh table")]
     short = refs.compare_tables(stored.iloc[:-1], stored, tol, case="defaults")
     assert [v.column for v in short] == ["*"]
     extra = stored.assign(energy=0.0)
     assert [v.column for v in refs.compare_tables(extra, extra, tol)] == ["energy"]  # no tolerance, no pass
     nan = stored.copy()
-    nan.loc[2, "omega_final"] = math.nan
-    assert [(v.column, v.row) for v in refs.compare_tables(nan, stored, tol)] == [("omega_final", 2)]
+    nan.loc[2, "omega_lammps"] = math.nan
+    assert [(v.column, v.row) for v in refs.compare_tables(nan, stored, tol)] == [("omega_lammps", 2)]
 
 
 def test_reference_module_does_not_load_lammps():

@@ -74,7 +74,7 @@ def test_sweep_rows_fit_and_determinism(tmp_path):
     run_sweep(spec, tmp_path / "a", workers=2, log=lambda *_: None)
     rows = read_results(tmp_path / "a")
     assert len(rows) == 1800 and not rows.duplicated(["group", "index"]).any()
-    for col in ("scene_hash", "lammps_version", "spinbounce_version", "chunk", "dt", "vt_theory", "vt_error"):
+    for col in ("scene_hash", "lammps_version", "spinbounce_version", "chunk", "dt", "v_t_theory", "v_t_error"):
         assert col in rows
     fits = fit_groups(rows)
     assert len(fits) == 2
@@ -84,7 +84,7 @@ def test_sweep_rows_fit_and_determinism(tmp_path):
     # same file, same seed: the same rows (LAMMPS is deterministic on one core)
     run_sweep(load_spec(write(tmp_path, GOOD)), tmp_path / "b", workers=1, log=lambda *_: None)
     again = read_results(tmp_path / "b")
-    cols = ["vn_0", "vt_0", "r_omega_0", "vn_final", "vt_final", "r_omega_final"]
+    cols = ["v_n_initial", "v_t_initial", "r_omega_initial", "v_n_lammps", "v_t_lammps", "r_omega_lammps"]
     pd.testing.assert_frame_equal(rows.sort_values(["group", "index"])[cols].reset_index(drop=True),
                                   again.sort_values(["group", "index"])[cols].reset_index(drop=True))
 
@@ -185,7 +185,7 @@ def test_chunk_jobs_fill_the_same_dataset_as_a_whole_sweep(tmp_path):
         run_one_chunk(spec, out, row["k"], log=lambda *_: None)
     assert all(row["done"] for row in chunk_table(spec, out))
     run_sweep(spec, tmp_path / "whole", workers=1, log=lambda *_: None)
-    cols = ["group", "index", "vn_final", "vt_final", "r_omega_final"]
+    cols = ["group", "index", "v_n_lammps", "v_t_lammps", "r_omega_lammps"]
     a = read_results(out).sort_values(["group", "index"])[cols].reset_index(drop=True)
     b = read_results(tmp_path / "whole").sort_values(["group", "index"])[cols].reset_index(drop=True)
     pd.testing.assert_frame_equal(a, b)

@@ -49,10 +49,10 @@ def test_lammps_3d_matches_the_block_matrix_and_keeps_normal_spin(tmp_path, mode
     assert result.max_abs_error < 2e-4
     # the spin about the normal passes through: to rounding (fix rigid recomputes omega
     # from the angular momentum, a relative 1e-15), exactly with fix nve/sphere
-    assert np.abs(t.r_omega_n_final - t.r_omega_n_0).max() <= 1e-14 * np.abs(t.r_omega_n_0).max()
+    assert np.abs(t.r_omega_n_lammps - t.r_omega_n_initial).max() <= 1e-14 * np.abs(t.r_omega_n_initial).max()
     # a least-squares fit of the 6x6 map recovers the block matrix
-    initial = t[[f"{s}_0" for s in STATE_3D]].to_numpy()
-    final = t[[f"{s}_final" for s in STATE_3D]].to_numpy()
+    initial = t[[f"{s}_initial" for s in STATE_3D]].to_numpy()
+    final = t[[f"{s}_lammps" for s in STATE_3D]].to_numpy()
     fitted, _, _ = fit_matrix(initial, final)
     assert np.abs(fitted - model.block_matrix()).max() < 2e-4
 
@@ -71,7 +71,7 @@ def test_lammps_3d_sliding_matches_the_oracle(tmp_path):
                              oracle.bounce(model, states["v_n"][i], states["v_s"][i], states["omega_s"][i]).final[1:3]])
              for i in range(8)]
     t = result.table
-    final = t[["vn_final", "vt_final", "r_omega_final", "vs_final", "r_omega_s_final"]].to_numpy()
+    final = t[["v_n_lammps", "v_t_lammps", "r_omega_lammps", "v_s_lammps", "r_omega_s_lammps"]].to_numpy()
     assert np.abs(final - np.array(apart)).max() > 1e-2
 
 
@@ -103,4 +103,4 @@ def test_a_3d_sweep_and_its_fit_recover_the_block_matrix(tmp_path):
     (fitted,) = fit_groups(rows)
     assert np.array(fitted["matrix"]).shape == (6, 6)
     assert fitted["max_element_diff"] < 2e-4  # the acceptance line
-    assert np.array_equal(rows["r_omega_n_final"], rows["r_omega_n_0"])
+    assert np.array_equal(rows["r_omega_n_lammps"], rows["r_omega_n_initial"])

@@ -46,8 +46,8 @@ COLLISION_CASES = {
 def test_collision_to_tolerance(tmp_path, name):
     result, scene = collide_to_tolerance(COLLISION_CASES[name], *STATES, TOL, tmp_path)
     frame = collision_frame(result, scene)
-    true = np.abs(frame[["vn_error", "vt_error", "r_omega_error"]].to_numpy()).max(axis=1)
-    estimate = frame["vn_estimate"].to_numpy()  # one estimate per sphere (the same in each column)
+    true = np.abs(frame[["v_n_error", "v_t_error", "r_omega_error"]].to_numpy()).max(axis=1)
+    estimate = frame["v_n_estimate"].to_numpy()  # one estimate per sphere (the same in each column)
     assert true.max() <= TOL
     assert (true <= estimate).all(), (true - estimate).max()
     assert result.plain_steps_for(true.max()) >= 5 * result.steps
@@ -105,8 +105,8 @@ def test_sweep_with_a_tolerance(tmp_path):
            "states": {"n": 300, "v_n": [-1.5, -0.1], "v_t": [-2.0, 2.0], "r_omega": [-2.0, 2.0]}}
     run_sweep(spec_from_dict(raw), tmp_path / "out", workers=1, log=lambda *_: None)
     rows = read_results(tmp_path / "out")
-    true = np.abs(rows[["vn_error", "vt_error", "r_omega_error"]].to_numpy()).max(axis=1)
-    assert len(rows) == 300 and true.max() <= TOL and (true <= rows["vn_estimate"].to_numpy()).all()
+    true = np.abs(rows[["v_n_error", "v_t_error", "r_omega_error"]].to_numpy()).max(axis=1)
+    assert len(rows) == 300 and true.max() <= TOL and (true <= rows["v_n_estimate"].to_numpy()).all()
     with pytest.raises(SweepError, match="^tolerance"):
         spec_from_dict({**raw, "model": {"dt": 0.001}})
     with pytest.raises(SweepError, match="^tolerance"):

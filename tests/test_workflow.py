@@ -184,10 +184,10 @@ def synthetic_rows(n: int = 50) -> pd.DataFrame:
     alpha, big_omega = 0.4, -1.28384
     rows = pd.DataFrame({k: 1.0 for k in GROUP_KEYS}, index=range(n))
     rows["alpha"], rows["kn"], rows["Omega_theory"] = alpha, 10.0, big_omega
-    rows["vt_0"], rows["r_omega_0"] = rng.uniform(-2, 2, n), rng.uniform(-2, 2, n)
-    slip = rows["vt_0"] + rows["r_omega_0"]
-    rows["vt_final"] = rows["vt_0"] + alpha * big_omega / (1 + alpha) * slip
-    rows["r_omega_final"] = rows["r_omega_0"] + big_omega / (1 + alpha) * slip
+    rows["v_t_initial"], rows["r_omega_initial"] = rng.uniform(-2, 2, n), rng.uniform(-2, 2, n)
+    slip = rows["v_t_initial"] + rows["r_omega_initial"]
+    rows["v_t_lammps"] = rows["v_t_initial"] + alpha * big_omega / (1 + alpha) * slip
+    rows["r_omega_lammps"] = rows["r_omega_initial"] + big_omega / (1 + alpha) * slip
     return rows
 
 

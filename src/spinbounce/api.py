@@ -142,7 +142,7 @@ def collide(v_n: float = -1.0, v_t: float = 1.0, omega: float = 0.0, v_s: float 
     row = result.table.iloc[0]
     names = result.scene.state_names
     table = pd.DataFrame({when: [float(row[f"{s}_{suffix}"]) for s in names]
-                          for when, suffix in (("initial", "0"), ("LAMMPS", "final"), ("theory", "theory"),
+                          for when, suffix in (("initial", "initial"), ("LAMMPS", "lammps"), ("theory", "theory"),
                                                ("error", "error"))}, index=list(names))
     return CollisionReport(table, choose.which(scene.model).name, result.scene.dt, result.scene.nsteps,
                            float(row["error"]), str(row["status"]), out)
@@ -161,7 +161,7 @@ def theory(v_n: float | None = None, v_t: float = 0.0, omega: float = 0.0, v_s: 
     choice = choose.which(contact)
     out = {"theory": choice.kind, "name": choice.name}
     if v_n is not None:
-        out["initial"], out["final"] = choose.outcome(contact, v_n, v_t, omega, v_s, omega_s, omega_n)
+        out["initial"], out["theory"] = choose.outcome(contact, v_n, v_t, omega, v_s, omega_s, omega_n)
     elif choice.has_matrix:
         out["matrix"] = np.asarray(contact.matrix())
         out["Omega"] = contact.Omega

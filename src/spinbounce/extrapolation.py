@@ -304,7 +304,7 @@ def collide_to_tolerance(model: ContactModel, v_n, v_t, omega, tolerance: float,
         scene = scene_at(first + k)
         result = run_scene(scene, out_dir / f"level-{k}", atoms="library")
         scenes.append(scene)
-        final = result.table[[f"{s}_final" for s in names]].to_numpy()
+        final = result.table[[f"{s}_lammps" for s in names]].to_numpy()
         return final, scene.dt, {"level": k, "dt": scene.dt, "nsteps": scene.nsteps,
                                  "run": str(out_dir / f"level-{k}"),
                                  "loop_seconds": result.info.loop_seconds}
@@ -328,7 +328,7 @@ def measured_to_tolerance(model: ContactModel, v_n, v_t, omega, tolerance: float
     folder, levels = Path(out_dir) / "measured", []
     for refinement in range(MAX_LEVELS):
         result = run_scene(scene, folder / f"run-{refinement}", atoms="library", target=tolerance)
-        final = result.table[[f"{s}_final" for s in result.scene.state_names]].to_numpy()
+        final = result.table[[f"{s}_lammps" for s in result.scene.state_names]].to_numpy()
         distance = np.abs(final - result.scene.predicted()).max(axis=1, keepdims=True)
         log(f"  run at {result.scene.nsteps} steps: largest |LAMMPS - theory| {distance.max():.2e}")
         levels.append({"level": refinement, "dt": result.scene.dt, "nsteps": result.scene.nsteps,
@@ -369,7 +369,7 @@ def frozen_to_tolerance(model: ContactModel, z: float, v_t: float, omega: float,
         if times and not np.array_equal(table["t"].to_numpy(), times[0]):
             raise RuntimeError("frozen levels do not share their output times")
         times.append(table["t"].to_numpy())
-        return (table[["vt", "r_omega"]].to_numpy(), scene.dt,
+        return (table[["v_t", "r_omega"]].to_numpy(), scene.dt,
                 {"level": k, "dt": scene.dt, "nsteps": scene.nsteps, "run": str(out_dir / f"level-{k}"),
                  "loop_seconds": result.info.loop_seconds})
 
@@ -380,9 +380,9 @@ def frozen_to_tolerance(model: ContactModel, z: float, v_t: float, omega: float,
 def collision_frame(result: Extrapolated, scene: Collision) -> pd.DataFrame:
     """The extrapolated final states beside the theory, one row per sphere."""
     theory = scene.predicted()
-    out = {f"{s}_0": scene.initial[:, k] for k, s in enumerate(scene.state_names)}
+    out = {f"{s}_initial": scene.initial[:, k] for k, s in enumerate(scene.state_names)}
     for k, s in enumerate(scene.state_names):
-        out[f"{s}_final"] = result.values[:, k]
+        out[f"{s}_lammps"] = result.values[:, k]
         out[f"{s}_estimate"] = result.estimate[:, k]
         out[f"{s}_theory"] = theory[:, k]
         out[f"{s}_error"] = result.values[:, k] - theory[:, k]

@@ -118,7 +118,7 @@ def _deviations(group: pd.DataFrame, names) -> dict:
     """Per-collision |LAMMPS - theory|: worst and median, absolute and over the size of the
     initial state (the rows' ``error`` column; :mod:`spinbounce.checks`)."""
     error = np.abs(group[[f"{s}_error" for s in names]].to_numpy()).max(axis=1)
-    initial = group[[f"{s}_0" for s in names]].to_numpy()
+    initial = group[[f"{s}_initial" for s in names]].to_numpy()
     relative = group["error"].to_numpy() if "error" in group else error / np.linalg.norm(initial, axis=1)
     out = {"worst_deviation": float(error.max()), "median_deviation": float(np.median(error)),
            "worst_relative_deviation": float(relative.max()), "median_relative_deviation": float(np.median(relative))}
@@ -191,9 +191,9 @@ def off_uncapped(model: ContactModel, initial: np.ndarray, theory: np.ndarray) -
 
 
 def _fit_one(group: pd.DataFrame, params: dict) -> dict:
-    names = STATE_3D if f"{STATE_3D[-1]}_0" in group else STATE  # a 3-D sweep fits the 6x6 map
-    initial = group[[f"{s}_0" for s in names]].to_numpy()
-    final = group[[f"{s}_final" for s in names]].to_numpy()
+    names = STATE_3D if f"{STATE_3D[-1]}_initial" in group else STATE  # a 3-D sweep fits the 6x6 map
+    initial = group[[f"{s}_initial" for s in names]].to_numpy()
+    final = group[[f"{s}_lammps" for s in names]].to_numpy()
     theory = group[[f"{s}_theory" for s in names]].to_numpy()
     model = model_of_group(params)
     if params.get("scene") == "pair":
@@ -251,19 +251,19 @@ def plot_groups(rows: pd.DataFrame, path: Path) -> Path:
         one_omega = bool(np.all(omegas == omegas[0]))  # NaN (Coulomb) or several (Hertz): per sphere
         alpha, big_omega = params["alpha"], float(omegas[0]) if one_omega else math.nan
         c_t, c_r = omega_gains(params)  # Eq. 19's (the pair's with b at rest)
-        slip = (group["vt_0"] + group["r_omega_0"]).to_numpy()
+        slip = (group["v_t_initial"] + group["r_omega_initial"]).to_numpy()
         line = np.array([slip.min(), slip.max()])
         label = (f"$\\alpha$ = {alpha:g}, $k_t/k_n$ = {params['kt'] / params['kn']:g}, "
                  + (f"$\\Omega$ = {big_omega:.5f}" if one_omega else "no single $\\Omega$"))
-        d_vt = group["vt_final"] - group["vt_0"]
-        d_rw = group["r_omega_final"] - group["r_omega_0"]
+        d_vt = group["v_t_lammps"] - group["v_t_initial"]
+        d_rw = group["r_omega_lammps"] - group["r_omega_initial"]
         for ax, change, column, slope, name in (
-            (ax_vt, d_vt, "vt", c_t * big_omega, r"$\Delta v_t$"),
+            (ax_vt, d_vt, "v_t", c_t * big_omega, r"$\Delta v_t$"),
             (ax_rw, d_rw, "r_omega", c_r * big_omega, r"$r\,\Delta\omega$"),
         ):
             ax.plot(slip, change, ".", ms=2, color="tab:blue", rasterized=True, label="LAMMPS")
             if math.isnan(slope):  # no single Omega (Coulomb, Hertz): the theory sphere by sphere
-                expected = group[f"{column}_theory"] - group[f"{column}_0"]
+                expected = group[f"{column}_theory"] - group[f"{column}_initial"]
                 ax.plot(slip, expected, "x", ms=2, color="tab:red", rasterized=True, label="theory")
             else:
                 ax.plot(line, slope * line, "-", lw=1, color="tab:red", label="Eq. 19")

@@ -66,7 +66,7 @@ def _batches(files, columns):
 
 
 def _arrays(frame: pd.DataFrame, names) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    return tuple(frame[[f"{s}_{suffix}" for s in names]].to_numpy() for suffix in ("0", "final", "theory"))
+    return tuple(frame[[f"{s}_{suffix}" for s in names]].to_numpy() for suffix in ("initial", "lammps", "theory"))
 
 
 def _slip_sums(initial, final, gains) -> tuple[np.ndarray, np.ndarray]:
@@ -124,9 +124,9 @@ def fit_dataset(files, names=None) -> list[dict]:
     import pyarrow.parquet as pq
 
     schema = pq.read_schema(str(files[0])).names
-    names = names or (STATE_3D if f"{STATE_3D[-1]}_0" in schema else STATE)
+    names = names or (STATE_3D if f"{STATE_3D[-1]}_initial" in schema else STATE)
     keys = [k for k in GROUP_KEYS if k in schema]
-    columns = (keys + [f"{s}_{x}" for s in names for x in ("0", "final", "theory", "error")]
+    columns = (keys + [f"{s}_{x}" for s in names for x in ("initial", "lammps", "theory", "error")]
                + ["error", "status", *PAIR_GEOMETRY])
     groups: dict[str, _Group] = {}
     for frame in _batches(files, columns):

@@ -13,8 +13,8 @@ if TYPE_CHECKING:
     from ..scenes.collision import Collision
 
 HELP = "bounce one sphere off the wall in LAMMPS and compare it with the theory that applies"
-SUFFIXES = {"initial": "0", "final": "final", "theory": "theory", "error": "error"}
-LABELS = {"vn": "v_n", "vt": "v_t", "r_omega": "r*omega", "vs": "v_s", "r_omega_s": "r*omega_s",
+SUFFIXES = {"initial": "initial", "lammps": "lammps", "theory": "theory", "error": "error"}
+LABELS = {"v_n": "v_n", "v_t": "v_t", "r_omega": "r*omega", "v_s": "v_s", "r_omega_s": "r*omega_s",
           "r_omega_n": "r*omega_n"}
 
 
@@ -101,7 +101,7 @@ def run(args) -> int:
 def _print_states(report: dict, names, label_width: int) -> None:
     """The initial, LAMMPS, theory and error rows of a collision report."""
     print(f"{'':{label_width}}" + "".join(f"{LABELS[n]:>16}" for n in names))
-    for label, key in (("initial", "initial"), ("LAMMPS", "final"), ("theory", "theory"), ("error", "error")):
+    for label, key in (("initial", "initial"), ("LAMMPS", "lammps"), ("theory", "theory"), ("error", "error")):
         fmt = "{:>16.3e}" if key == "error" else "{:>16.10f}"
         print(f"{label:{label_width}}" + "".join(fmt.format(report[key][n]) for n in names))
 

@@ -10,14 +10,14 @@ from .options import (announce_cost, check_run_folder, count, default_run_dir, f
                       model_parser, number, out_file, out_folder)
 
 HELP = "hold a sphere in contact at height z (v_n = 0) and compare v_t(t), omega(t) with Eq. 10"
-COLUMNS = ["t", "vt", "omega", "r_omega", "vt_theory", "r_omega_theory"]
+COLUMNS = ["t", "v_t", "omega", "r_omega", "v_t_theory", "r_omega_theory"]
 
 
 def register(sub) -> None:
     p = sub.add_parser("frozen", parents=[model_parser()], help=HELP, description=HELP + ".")
     g = p.add_argument_group("scene")
     g.add_argument("--z", type=number, required=True, help="height of the centre, 0 < z < r")
-    g.add_argument("--vt", "--v-t", dest="vt", type=number, required=True, help="tangential velocity v_t(0)")
+    g.add_argument("--vt", "--v-t", dest="v_t", type=number, required=True, help="tangential velocity v_t(0)")
     g.add_argument("--omega", type=number, required=True, help="angular velocity omega(0), anticlockwise positive")
     g.add_argument("--t-end", type=number, required=True, help="duration")
     step = p.add_mutually_exclusive_group()
@@ -46,11 +46,11 @@ def run(args) -> int:
         raise SceneError("--out", str(args.out), "exists: give another file, or --force to replace it")
     if args.tolerance is not None:
         return _run_to_tolerance(args)
-    scene = Frozen(model_from(args), z=args.z, v_t=args.vt, omega=args.omega, t_end=args.t_end,
+    scene = Frozen(model_from(args), z=args.z, v_t=args.v_t, omega=args.omega, t_end=args.t_end,
                    dt=args.dt, every=args.every)
     announce_cost(scene.nsteps)
     run_dir = args.run_dir or default_run_dir(
-        "frozen", {"model": scene.model.as_record(), "z": scene.z, "vt": scene.v_t,
+        "frozen", {"model": scene.model.as_record(), "z": scene.z, "v_t": scene.v_t,
                    "omega": scene.omega, "nsteps": scene.nsteps, "dt": scene.dt, "every": scene.every}
     )
     result = run_series(scene, run_dir)
@@ -84,21 +84,21 @@ def _run_to_tolerance(args) -> int:
     from ..records import software, to_json, write_atomic
 
     model = model_from(args)
-    Frozen(model, z=args.z, v_t=args.vt, omega=args.omega, t_end=args.t_end)  # validates before any run
+    Frozen(model, z=args.z, v_t=args.v_t, omega=args.omega, t_end=args.t_end)  # validates before any run
     run_dir = args.run_dir or default_run_dir(
-        "frozen", {"model": model.as_record(), "z": args.z, "vt": args.vt, "omega": args.omega,
+        "frozen", {"model": model.as_record(), "z": args.z, "v_t": args.v_t, "omega": args.omega,
                    "t_end": args.t_end, "tolerance": args.tolerance})
-    result = frozen_to_tolerance(model, args.z, args.vt, args.omega, args.t_end, args.tolerance, run_dir,
+    result = frozen_to_tolerance(model, args.z, args.v_t, args.omega, args.t_end, args.tolerance, run_dir,
                                  log=(lambda *_: None) if args.json else print)
-    vt_theory, rw_theory = choose.frozen(model, result.t, args.vt, args.omega * model.r, args.z)
-    table = pd.DataFrame({"t": result.t, "vt": result.values[:, 0], "omega": result.values[:, 1] / model.r,
-                          "r_omega": result.values[:, 1], "vt_theory": vt_theory, "r_omega_theory": rw_theory,
+    v_t_theory, rw_theory = choose.frozen(model, result.t, args.v_t, args.omega * model.r, args.z)
+    table = pd.DataFrame({"t": result.t, "v_t": result.values[:, 0], "omega": result.values[:, 1] / model.r,
+                          "r_omega": result.values[:, 1], "v_t_theory": v_t_theory, "r_omega_theory": rw_theory,
                           "estimate": result.estimate[:, 0]})
-    error = float(max(np.abs(table["vt"] - vt_theory).max(), np.abs(table["r_omega"] - rw_theory).max()))
+    error = float(max(np.abs(table["v_t"] - v_t_theory).max(), np.abs(table["r_omega"] - rw_theory).max()))
     out = Path(args.out)
     out.parent.mkdir(parents=True, exist_ok=True)
     write_atomic(out, table.to_csv(index=False, float_format="%.17g"))
-    meta = {"scene": "frozen", "model": model.as_record(), "z": args.z, "v_t": args.vt,
+    meta = {"scene": "frozen", "model": model.as_record(), "z": args.z, "v_t": args.v_t,
             "omega": args.omega, "t_end": args.t_end, "tolerance": result.tolerance,
             "estimate": result.max_estimate, "max_abs_error": error, "steps": result.steps,
             "plain_steps_for_same_estimate": result.plain_steps_for(result.max_estimate),

@@ -101,13 +101,13 @@ def _outcome(args, model, state: dict) -> int:
     initial, final = choose.outcome(model, **state)
     names = list(initial)
     choice = choose.which(model)
-    report = {"theory_kind": choice.kind, "theory_name": choice.name, "initial": initial, "final": final,
+    report = {"theory_kind": choice.kind, "theory_name": choice.name, "initial": initial, "theory": final,
               "contact_time": float(model.contact_times(state["v_n"])[0])}
     if args.json:
         print(json.dumps(report, indent=2))
         return 0
     print(f"theory: {choice.name}")
     print(f"{'':8}" + "".join(f"{n:>16}" for n in names))
-    for label in ("initial", "final"):
+    for label in ("initial", "theory"):
         print(f"{label:8}" + "".join(f"{report[label][n]:>16.10f}" for n in names))
     return 0

@@ -154,8 +154,8 @@ def predict(model, initial) -> np.ndarray:
 
 
 #: The columns of a state, in the plane and in 3-D (each spin times r).
-PLANE_COLUMNS = ("vn", "vt", "r_omega")
-SPACE_COLUMNS = PLANE_COLUMNS + ("vs", "r_omega_s", "r_omega_n")
+PLANE_COLUMNS = ("v_n", "v_t", "r_omega")
+SPACE_COLUMNS = PLANE_COLUMNS + ("v_s", "r_omega_s", "r_omega_n")
 
 
 def outcome(model, v_n: float, v_t: float = 0.0, omega: float = 0.0, v_s: float = 0.0, omega_s: float = 0.0,

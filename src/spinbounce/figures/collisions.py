@@ -74,11 +74,11 @@ def fig4_data(out: Path, runs: Path | None = None) -> FigureData:
     tuned = collision_run(model, states, runs / "paper_defaults", "fig4")
     t = tuned.result.table
     table = pd.DataFrame({
-        "slip": t["vt_0"] + t["r_omega_0"],
-        "d_vt": t["vt_final"] - t["vt_0"],
-        "r_d_omega": t["r_omega_final"] - t["r_omega_0"],
-        "d_vt_theory": t["vt_theory"] - t["vt_0"],
-        "r_d_omega_theory": t["r_omega_theory"] - t["r_omega_0"],
+        "slip": t["v_t_initial"] + t["r_omega_initial"],
+        "d_vt": t["v_t_lammps"] - t["v_t_initial"],
+        "r_d_omega": t["r_omega_lammps"] - t["r_omega_initial"],
+        "d_vt_theory": t["v_t_theory"] - t["v_t_initial"],
+        "r_d_omega_theory": t["r_omega_theory"] - t["r_omega_initial"],
     })
     a, b = model.alpha / (1.0 + model.alpha), 1.0 / (1.0 + model.alpha)
     meta = base_metadata("fig4", "Delta v_t and r Delta omega against the initial slip, LAMMPS against Eq. 19",
@@ -154,18 +154,18 @@ def fig5_data(out: Path, runs: Path | None = None) -> FigureData:
             x, z = _path(state, final, r, FIG5_FLIGHT)
             paths.append(pd.DataFrame({"panel": panel, "curve": model_name, "source": "theory", "x": x, "z": z}))
             finals.append({"panel": panel, "curve": model_name, "source": "theory",
-                           "vn": final[0], "vt": final[1], "r_omega": final[2]})
+                           "v_n": final[0], "v_t": final[1], "r_omega": final[2]})
         for model_name, tuned in (("rough", tuned_rough), ("rolling", tuned_rolling)):
             row = tuned.result.table.iloc[k]
-            start = row[["vn_lammps_0", "vt_lammps_0", "r_omega_lammps_0"]].to_numpy(dtype=float)
-            final = row[["vn_final", "vt_final", "r_omega_final"]].to_numpy(dtype=float)
+            start = row[["v_n_lammps_initial", "v_t_lammps_initial", "r_omega_lammps_initial"]].to_numpy(dtype=float)
+            final = row[["v_n_lammps", "v_t_lammps", "r_omega_lammps"]].to_numpy(dtype=float)
             x, z = _path(start, final, r, FIG5_FLIGHT, n=7)
             paths.append(pd.DataFrame({"panel": panel, "curve": model_name, "source": "lammps", "x": x, "z": z}))
             finals.append({"panel": panel, "curve": model_name, "source": "lammps",
-                           "vn": final[0], "vt": final[1], "r_omega": final[2]})
-    panels = pd.DataFrame([{"panel": p, "label": lab, "vn_0": s[0], "vt_0": s[1], "r_omega_0": s[2]}
+                           "v_n": final[0], "v_t": final[1], "r_omega": final[2]})
+    panels = pd.DataFrame([{"panel": p, "label": lab, "v_n_initial": s[0], "v_t_initial": s[1], "r_omega_initial": s[2]}
                            for p, (lab, s) in FIG5_STATES.items()])
-    rolling_final = tuned_rolling.result.table[["vn_final", "vt_final", "r_omega_final"]].to_numpy()
+    rolling_final = tuned_rolling.result.table[["v_n_lammps", "v_t_lammps", "r_omega_lammps"]].to_numpy()
     dev23 = float(np.max(np.abs(rolling_final - states @ matrices["rolling"].T)))
     meta = base_metadata("fig5", "Bounce trajectories: rough sphere, rolling collision, frictionless wall",
                          "Fig. 5; Eqs. 18, 20, 22, 23")
@@ -249,8 +249,8 @@ def draw_fig5(data: FigureData):
         _draw_bounce(ax, paths[paths["panel"] == panel["panel"]], style, marks)
         f = finals[(finals["panel"] == panel["panel"]) & (finals["source"] == "theory")].set_index("curve")
         ax.set_title(
-            f"{panel['panel']}) {panel['label']}: " + rf"$v_t(0) = {panel['vt_0']:g}$, "
-            rf"$r\omega(0) = {panel['r_omega_0']:g}$" + "\n" + r"$r\omega(\infty)$: "
+            f"{panel['panel']}) {panel['label']}: " + rf"$v_t(0) = {panel['v_t_initial']:g}$, "
+            rf"$r\omega(0) = {panel['r_omega_initial']:g}$" + "\n" + r"$r\omega(\infty)$: "
             + rf"rough ${f.loc['rough', 'r_omega']:.3g}$, rolling ${f.loc['rolling', 'r_omega']:.3g}$",
             fontsize=8.5)
         ax.set_aspect("equal")

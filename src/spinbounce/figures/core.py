@@ -236,22 +236,22 @@ def frozen_deviations(table: pd.DataFrame, r: float) -> dict[str, float]:
 
     omega is drawn in Figs. 2 and 7, and with r < 1 its deviation is the largest of the three.
     """
-    dv = np.abs(table["vt"] - table["vt_theory"]).max()
+    dv = np.abs(table["v_t"] - table["v_t_theory"]).max()
     dw = np.abs(table["r_omega"] - table["r_omega_theory"]).max()
     dom = np.abs(table["omega"] - table["r_omega_theory"] / r).max()
-    return {"vt": float(dv), "r_omega": float(dw), "omega": float(dom)}
+    return {"v_t": float(dv), "r_omega": float(dw), "omega": float(dom)}
 
 
 def collision_deviations(table: pd.DataFrame) -> dict[str, float]:
     """Largest |LAMMPS - exact Eq. 18| over a batch, per final-state component."""
-    return {name: float(np.abs(table[f"{name}_error"]).max()) for name in ("vn", "vt", "r_omega", "omega")}
+    return {name: float(np.abs(table[f"{name}_error"]).max()) for name in ("v_n", "v_t", "r_omega", "omega")}
 
 
 def dissipation_columns(table: pd.DataFrame, model: ContactModel) -> dict[str, np.ndarray]:
     """f = -Delta E/E(0) (Eq. 21) of a collision batch: LAMMPS's and the exact theory's."""
-    initial = table[["vn_0", "vt_0", "r_omega_0"]].to_numpy()
-    final = table[["vn_final", "vt_final", "r_omega_final"]].to_numpy()
-    exact = table[["vn_theory", "vt_theory", "r_omega_theory"]].to_numpy()
+    initial = table[["v_n_initial", "v_t_initial", "r_omega_initial"]].to_numpy()
+    final = table[["v_n_lammps", "v_t_lammps", "r_omega_lammps"]].to_numpy()
+    exact = table[["v_n_theory", "v_t_theory", "r_omega_theory"]].to_numpy()
     return {
         "f": linear.dissipation(initial, final, model.m, model.alpha),
         "f_theory": linear.dissipation(initial, exact, model.m, model.alpha),

@@ -54,7 +54,7 @@ FIG2_T_END = 10.0
 
 
 def _frozen_table(tuned, model: ContactModel) -> pd.DataFrame:
-    t = tuned.result.table[["t", "vt", "omega", "r_omega", "vt_theory", "r_omega_theory"]].copy()
+    t = tuned.result.table[["t", "v_t", "omega", "r_omega", "v_t_theory", "r_omega_theory"]].copy()
     t["omega_theory"] = t["r_omega_theory"] / model.r
     return t
 
@@ -79,7 +79,7 @@ def fig2_data(out: Path, runs: Path | None = None) -> FigureData:
     meta["parameters"] = _parameters(model, v_t0=1.0, omega0=0.0, t_end=float(table["t"].iloc[-1]))
     meta["means_eq11"] = {"v_t": vbar, "omega": rwbar / model.r}
     finish_metadata(meta, [{"series": "v_t(0)=1, omega(0)=0", "tuned": tuned}], out)
-    return FigureData({"series": table, "means": pd.DataFrame({"vt": [vbar], "omega": [rwbar / model.r]})}, meta)
+    return FigureData({"series": table, "means": pd.DataFrame({"v_t": [vbar], "omega": [rwbar / model.r]})}, meta)
 
 
 def draw_fig2(data: FigureData):
@@ -87,7 +87,7 @@ def draw_fig2(data: FigureData):
     means = data.tables["means"].iloc[0]
     fig, axes = new_figure()
     ax = axes[0, 0]
-    for col, colour, label in (("vt", "C0", r"$v_t$"), ("omega", "C1", r"$\omega$")):
+    for col, colour, label in (("v_t", "C0", r"$v_t$"), ("omega", "C1", r"$\omega$")):
         ax.plot(t["t"], t[f"{col}_theory"], color=colour, lw=2.6, alpha=0.45, label=f"{label}, Eq. 10")
         ax.plot(t["t"], t[col], color=colour, ls="--", lw=1.2, label=f"{label}, LAMMPS")
         ax.axhline(means[col], color=colour, ls=":", lw=0.8)
@@ -125,11 +125,11 @@ def fig3_data(out: Path, runs: Path | None = None) -> FigureData:
         slip = vt0 + FIG3_R_OMEGA0
         if slip != 0.0:
             # the slope d v_t / d(r omega) that LAMMPS's points lie on (Eq. 13 says alpha)
-            slope = float(np.polyfit(t["r_omega"], t["vt"], 1)[0])
+            slope = float(np.polyfit(t["r_omega"], t["v_t"], 1)[0])
             # LAMMPS's far end: the point farthest from the start, against Eq. 12
-            d = np.hypot(t["vt"] - vt0, t["r_omega"] - FIG3_R_OMEGA0)
+            d = np.hypot(t["v_t"] - vt0, t["r_omega"] - FIG3_R_OMEGA0)
             far = int(np.argmax(d))
-            end_dev = float(max(abs(t["vt"].iloc[far] - vt_m), abs(t["r_omega"].iloc[far] - rw_m)))
+            end_dev = float(max(abs(t["v_t"].iloc[far] - vt_m), abs(t["r_omega"].iloc[far] - rw_m)))
         else:
             slope, end_dev = float("nan"), 0.0
         ends.append({"vt0": vt0, "r_omega0": FIG3_R_OMEGA0, "vt_m": vt_m, "r_omega_m": rw_m,
@@ -168,7 +168,7 @@ def draw_fig3(data: FigureData):
         p = paths[paths["vt0"] == e["vt0"]]
         ax.plot([e["r_omega0"], e["r_omega_m"]], [e["vt0"], e["vt_m"]], color=colour, lw=3.0, alpha=0.35)
         step = max(1, len(p) // 60)  # dots, not a dashed line: the trajectory runs back over itself
-        ax.plot(p["r_omega"].iloc[::step], p["vt"].iloc[::step], ".", color=colour, ms=3.5,
+        ax.plot(p["r_omega"].iloc[::step], p["v_t"].iloc[::step], ".", color=colour, ms=3.5,
                 label=rf"$v_t(0) = {e['vt0']:g}$")
         ax.plot(e["r_omega0"], e["vt0"], "o", color=colour)
         ax.plot(e["r_omega_m"], e["vt_m"], "s", mfc="none", mec=colour, ms=7)
@@ -210,7 +210,7 @@ def fig7_data(out: Path, runs: Path | None = None) -> FigureData:
         t["vt_eq22"], t["omega_eq22"] = vt22, rw22 / model.r
         t.insert(0, "gamma_t", gamma_t)
         tables.append(t)
-        dev22 = {"vt": float(np.abs(t["vt"] - t["vt_eq22"]).max()),
+        dev22 = {"v_t": float(np.abs(t["v_t"] - t["vt_eq22"]).max()),
                  "omega": float(np.abs(t["omega"] - t["omega_eq22"]).max()),
                  "r_omega": float(np.abs(t["r_omega"] - rw22).max())}
         records.append({"series": f"gamma_t={gamma_t:g}", "tuned": tuned, "gamma_t": gamma_t,
@@ -233,7 +233,7 @@ def fig7_data(out: Path, runs: Path | None = None) -> FigureData:
     worst22 = max(records, key=lambda r: r["max_deviation_eq22"])
     meta["max_deviation_eq22"] = worst22["max_deviation_eq22"]
     meta["max_deviation_eq22_series"] = worst22["series"]
-    means = pd.DataFrame({"vt": [vbar], "omega": [rwbar / model.r]})
+    means = pd.DataFrame({"v_t": [vbar], "omega": [rwbar / model.r]})
     return FigureData({"series": pd.concat(tables, ignore_index=True), "means": means}, meta)
 
 
@@ -241,7 +241,7 @@ def draw_fig7(data: FigureData):
     t, means = data.tables["series"], data.tables["means"].iloc[0]
     fig, axes = new_figure(2, 1, figsize=(6.4, 6.6), sharex=True)
     colours = ("C0", "C1", "C3")
-    for ax, col, label, tag in ((axes[0, 0], "vt", r"$v_t$", "a"), (axes[1, 0], "omega", r"$\omega$", "b")):
+    for ax, col, label, tag in ((axes[0, 0], "v_t", r"$v_t$", "a"), (axes[1, 0], "omega", r"$\omega$", "b")):
         for colour, gamma_t in zip(colours, FIG7_GAMMA_T, strict=True):
             s = t[t["gamma_t"] == gamma_t]
             ax.plot(s["t"], s[f"{col}_theory"], color=colour, lw=2.6, alpha=0.45)

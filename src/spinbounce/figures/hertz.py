@@ -60,7 +60,7 @@ def _scenes(p: HertzParameters, dt: float | None = None) -> tuple[list[Collision
 
 
 def _slip(row) -> tuple[float, float]:
-    return row["vt_0"] + row["r_omega_0"], row["vt_final"] + row["r_omega_final"]
+    return row["v_t_initial"] + row["r_omega_initial"], row["v_t_lammps"] + row["r_omega_lammps"]
 
 
 def hertz_data(p: HertzParameters, runs: Path, log=print) -> FigureData:
@@ -97,11 +97,11 @@ def hertz_data(p: HertzParameters, runs: Path, log=print) -> FigureData:
             f"({kt_lammps / kt_star - 1.0:+.2e}); energy lost at kt*_L {rows[-1]['f_at_kt_star_lammps']:+.1e}")
     folder = runs / "fixed_kt"
     batch = run_scene(fixed, folder, atoms="library").table
-    initial = batch[["vn_0", "vt_0", "r_omega_0"]].to_numpy()
-    final = batch[["vn_final", "vt_final", "r_omega_final"]].to_numpy()
-    exact = batch[["vn_theory", "vt_theory", "r_omega_theory"]].to_numpy()
+    initial = batch[["v_n_initial", "v_t_initial", "r_omega_initial"]].to_numpy()
+    final = batch[["v_n_lammps", "v_t_lammps", "r_omega_lammps"]].to_numpy()
+    exact = batch[["v_n_theory", "v_t_theory", "r_omega_theory"]].to_numpy()
     fixed_table = pd.DataFrame({
-        "v_n": -batch["vn_0"].to_numpy(),
+        "v_n": -batch["v_n_initial"].to_numpy(),
         "f_lammps": linear.dissipation(initial, final, p.m, p.alpha),
         "f_theory": linear.dissipation(initial, exact, p.m, p.alpha),
     })

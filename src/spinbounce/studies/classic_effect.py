@@ -111,7 +111,7 @@ def lammps_omegas(model: ContactModel, ratio: float, folder: Path) -> dict:
     speeds = np.asarray(LAMMPS_FRACTIONS) * tunnelling_speed(model)
     result = run_scene(Collision(classic, v_n=-speeds, v_t=1.0, omega=0.0), Path(folder), record=False)
     table = result.table
-    return {"v_n": speeds.tolist(), "omega": (table["vt_final"] + table["r_omega_final"] - 1.0).tolist(),
+    return {"v_n": speeds.tolist(), "omega": (table["v_t_lammps"] + table["r_omega_lammps"] - 1.0).tolist(),
             "error": table["error"].tolist(), "dt": result.scene.dt}
 
 

@@ -83,7 +83,7 @@ def run_curve(curve: Curve, theta_deg: np.ndarray, run_dir: Path) -> dict:
     initial = _states(theta_deg)
     scene = Collision(curve.model, v_n=initial[:, 0], v_t=initial[:, 1], omega=0.0)
     result = run_scene(scene, run_dir, atoms="library")
-    final = result.table[["vn_final", "vt_final", "r_omega_final"]].to_numpy()
+    final = result.table[["v_n_lammps", "v_t_lammps", "r_omega_lammps"]].to_numpy()
     predicted = choose.predict(curve.model, initial)
     return {"label": curve.label, "theta": theta_deg, "lammps": quantities(initial, final),
             "theory": quantities(initial, predicted), "theory_kind": choose.which(curve.model).kind,

@@ -53,9 +53,9 @@ def _timed(action) -> float:
 
 def _theory_and_checks_seconds(rows) -> tuple[float, float]:
     """The sweep's theory columns and its row checks, timed again on its own rows."""
-    names = [s for s in STATE_3D if f"{s}_0" in rows]
+    names = [s for s in STATE_3D if f"{s}_initial" in rows]
     model = model_of_group({p.column: rows[p.column].iloc[0] for p in parameters.MODEL})
-    initial = rows[[f"{s}_0" for s in names]].to_numpy()
+    initial = rows[[f"{s}_initial" for s in names]].to_numpy()
     columns = {c: rows[c].to_numpy() for c in rows.columns}
     return (_timed(lambda: choose.predict(model, initial)),
             _timed(lambda: checks.add_row_checks(columns, row_states(model, names, columns))))

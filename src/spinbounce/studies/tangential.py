@@ -80,7 +80,7 @@ def run_set(curve: CurveSet, run_dir: Path, points: int = LAMMPS_POINTS) -> dict
     initial = limits.states_at(psi)
     scene = Collision(curve.model, v_n=initial[:, 0], v_t=initial[:, 1], omega=0.0)
     result = run_scene(scene, run_dir, atoms="library")
-    final = result.table[["vn_final", "vt_final", "r_omega_final"]].to_numpy()
+    final = result.table[["v_n_lammps", "v_t_lammps", "r_omega_lammps"]].to_numpy()
     predicted = choose.predict(curve.model, initial)
     beta_lammps, beta_solver = limits.beta(initial, final), limits.beta(initial, predicted)
     return {"label": curve.label, "model": curve.model, "psi": psi, "beta_lammps": beta_lammps,

@@ -1,7 +1,7 @@
 """A pair scene's collisions as a sweep chunk: the wall's columns, and both spheres' final states.
 
 Sphere a's columns are the wall sweep's (:func:`spinbounce.scenes.collision.table.collision_table`):
-``{s}_0`` (requested), ``{s}_lammps_0`` (LAMMPS's first frame), ``{s}_final`` (LAMMPS),
+``{s}_initial`` (requested), ``{s}_lammps_initial`` (LAMMPS's first frame), ``{s}_lammps`` (LAMMPS),
 ``{s}_theory`` (the exact reference, :mod:`spinbounce.exact.pair_exact`: what LAMMPS
 integrates, to 1e-9), ``{s}_error`` (final - theory), the spins as angular velocities
 beside them, and ``z_*`` (a's centre above b's). Added for the pair: both spheres' final
@@ -73,18 +73,18 @@ def pair_chunk(model: ContactModel, b: Sphere, states: np.ndarray, dt: float | N
     result = run_scene(PairBatch(pairs, contact, dt), run_dir, record=False, probe_states=probe)
     table, batch = result.table, result.scene
     requested = wall_frame(np.array([p.v_a for p in pairs]), np.array([p.w_a for p in pairs]), a.r)
-    columns = {f"{name}_0": requested[:, k] for k, name in enumerate(names)}
-    columns.update({f"{SPINS[name]}_0": columns[f"{name}_0"] / a.r for name in names if name in SPINS})
+    columns = {f"{name}_initial": requested[:, k] for k, name in enumerate(names)}
+    columns.update({f"{SPINS[name]}_initial": columns[f"{name}_initial"] / a.r for name in names if name in SPINS})
     frames = read_dump(result.dump)
-    for when, step in (("lammps_0", 0), ("final", batch.nsteps)):
+    for when, step in (("lammps_initial", 0), ("lammps", batch.nsteps)):
         state = _frame(batch, frames, result.deck.ids, step)
         columns.update(_a_columns(names, when, state["v"], state["w"], a.r, state["height"]))
     for suffix, when in (("_exact", "theory"), ("_planar", "planar")):
         v, w = (table[[f"a_{q}{x}{suffix}" for x in "xyz"]].to_numpy() for q in "vw")
-        reference = _a_columns(names, when, v, w, a.r, columns["z_final"])
+        reference = _a_columns(names, when, v, w, a.r, columns["z_lammps"])
         columns.update({k: value for k, value in reference.items() if not k.startswith("z_")})
     for name in names + tuple(SPINS[n] for n in names if n in SPINS):
-        columns[f"{name}_error"] = columns[f"{name}_final"] - columns[f"{name}_theory"]
+        columns[f"{name}_error"] = columns[f"{name}_lammps"] - columns[f"{name}_theory"]
     for key in ("eps", "centrifugal", "turn", "contact_time", "planar_error", "error", "energy_gain", "energy_excess",
                 "status"):
         columns[key] = table[key].to_numpy()

@@ -95,7 +95,7 @@ def _wall_columns(columns: dict, spec: SweepSpec, group: int, scene: Collision, 
     extrapolated, finest = collide_to_tolerance(scene.model, scene.v_n, scene.v_t, scene.omega, spec.tolerance,
                                                 run_dir)
     columns.update({name: values.to_numpy() for name, values in collision_frame(extrapolated, finest).items()})
-    columns["omega_0"] = np.asarray(scene.omega)
+    columns["omega_initial"] = np.asarray(scene.omega)
     columns["tolerance"] = np.full(n, spec.tolerance)
     if "status" not in columns:  # its extrapolated rows, checked the same way
         checks.add_row_checks(columns, scene.row_states(columns))
@@ -321,8 +321,8 @@ def chunk_files(path: Path) -> list[Path]:
             names = pq.read_schema(str(f)).names
         except (OSError, ValueError) as exc:  # pyarrow's errors for a corrupt or foreign file
             raise SweepError(f"{f}: not a readable sweep chunk ({exc})") from None
-        if "vn_0" not in names:
-            raise SweepError(f"{f}: a Parquet file, but not a spinbounce sweep's (no vn_0 column)")
+        if "v_n_initial" not in names:
+            raise SweepError(f"{f}: a Parquet file, but not a spinbounce sweep's (no v_n_initial column)")
     return files
 
 

@@ -60,10 +60,10 @@ def _as_vector(name: str, value) -> tuple[float, ...]:
 
 
 def row_states(m: ContactModel, names, columns: dict) -> checks.RowStates:
-    """A wall table's rows as the checks read them: its ``{s}_0``, ``{s}_final`` and ``{s}_theory``
+    """A wall table's rows as the checks read them: its ``{s}_initial``, ``{s}_lammps`` and ``{s}_theory``
     state columns; errors relative to the initial state's size."""
     initial, final, reference = (np.column_stack([columns[f"{s}_{when}"] for s in names])
-                                 for when in ("0", "final", "theory"))
+                                 for when in ("initial", "lammps", "theory"))
     weights = m.m * np.array([1.0, 1.0, m.alpha, 1.0, m.alpha, m.alpha])[: len(names)]
     return checks.RowStates(initial, final, reference, weights, np.linalg.norm(initial, axis=1),
                             m.max_overlap(np.abs(initial[:, 0])), m.r)

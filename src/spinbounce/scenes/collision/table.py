@@ -26,8 +26,8 @@ __all__ = ["collision_table", "read_collision", "FRAME_COLUMNS"]
 
 #: Each state column from LAMMPS's columns: (column, sign), then times r for the spins.
 #: The paper's omega is -omega_y; the second pair's spin is +omega_x (slip v_y + r omega_x).
-_FROM_LAMMPS = {"vn": ("vz", 1.0), "vt": ("vx", 1.0), "r_omega": ("omegay", -1.0),
-                "vs": ("vy", 1.0), "r_omega_s": ("omegax", 1.0), "r_omega_n": ("omegaz", 1.0)}
+_FROM_LAMMPS = {"v_n": ("vz", 1.0), "v_t": ("vx", 1.0), "r_omega": ("omegay", -1.0),
+                "v_s": ("vy", 1.0), "r_omega_s": ("omegax", 1.0), "r_omega_n": ("omegaz", 1.0)}
 #: The spin columns and the angular velocity each one carries.
 SPINS = {"r_omega": "omega", "r_omega_s": "omega_s", "r_omega_n": "omega_n"}
 
@@ -48,10 +48,10 @@ def collision_table(scene: Collision, initial, final, as_frame: bool = True):
     theory = scene.predicted()
     columns = {"id": np.arange(1, scene.n + 1)}
     for k, name in enumerate(names):
-        columns[f"{name}_0"] = requested[:, k]
+        columns[f"{name}_initial"] = requested[:, k]
     for spin in spins:
-        columns[f"{spin}_0"] = np.asarray(getattr(scene, spin))
-    for when, frame in (("lammps_0", initial), ("final", final)):
+        columns[f"{spin}_initial"] = np.asarray(getattr(scene, spin))
+    for when, frame in (("lammps_initial", initial), ("lammps", final)):
         values = {"z": np.asarray(frame["z"])}
         for name in names:
             column, sign = _FROM_LAMMPS[name]
@@ -68,7 +68,7 @@ def collision_table(scene: Collision, initial, final, as_frame: bool = True):
         if name in names:
             columns[f"{spin}_theory"] = columns[f"{name}_theory"] / r
     for name in names + tuple(spins):
-        columns[f"{name}_error"] = columns[f"{name}_final"] - columns[f"{name}_theory"]
+        columns[f"{name}_error"] = columns[f"{name}_lammps"] - columns[f"{name}_theory"]
     return pd.DataFrame(columns) if as_frame else columns
 
 
@@ -122,12 +122,12 @@ def _collision_frames(scene: Collision, frames: dict, where: Path) -> tuple[dict
 
 
 def _check_finished(scene: Collision, columns: dict, source: Path) -> None:
-    touching = np.flatnonzero(columns["z_final"] <= scene.model.r)
+    touching = np.flatnonzero(columns["z_lammps"] <= scene.model.r)
     if touching.size:
         first = touching[0]
         raise ResultError(
             f"{source}: {touching.size} sphere(s) still touch the wall after {scene.nsteps} steps "
-            f"(first: id {int(columns['id'][first])}, z = {float(columns['z_final'][first])!r}): "
+            f"(first: id {int(columns['id'][first])}, z = {float(columns['z_lammps'][first])!r}): "
             "the contact had not finished"
         )
 

@@ -143,5 +143,5 @@ class Frozen:
     @staticmethod
     def max_abs_error(table) -> float:
         """The largest deviation of v_t or r omega from Eq. 10 over the run."""
-        return float(max(np.max(np.abs(table["vt"] - table["vt_theory"])),
+        return float(max(np.max(np.abs(table["v_t"] - table["v_t_theory"])),
                          np.max(np.abs(table["r_omega"] - table["r_omega_theory"]))))

@@ -15,11 +15,11 @@ __all__ = ["paper_variables", "frozen_table"]
 def paper_variables(frames: pd.DataFrame, r: float) -> pd.DataFrame:
     """Add the paper's variables (vn, vt, omega, r_omega, and the slip) to dump rows."""
     out = frames.copy()
-    out["vn"] = frames["vz"]
-    out["vt"] = frames["vx"]
+    out["v_n"] = frames["vz"]
+    out["v_t"] = frames["vx"]
     out["omega"] = -frames["omegay"] + 0.0  # + 0.0: no "-0" in tables
     out["r_omega"] = r * out["omega"]
-    out["slip"] = out["vt"] + out["r_omega"]
+    out["slip"] = out["v_t"] + out["r_omega"]
     return out
 
 
@@ -27,16 +27,16 @@ def frozen_table(scene: Frozen, frames: pd.DataFrame) -> pd.DataFrame:
     """The frozen time series: t, vt, omega, r_omega and the theory's vt and r_omega."""
     paper = paper_variables(frames, scene.model.r)
     t = paper["step"].to_numpy() * scene.dt
-    vt_theory, r_omega_theory = scene.predicted(t)
+    v_t_theory, r_omega_theory = scene.predicted(t)
     return pd.DataFrame(
         {
             "t": t,
-            "vt": paper["vt"].to_numpy(),
+            "v_t": paper["v_t"].to_numpy(),
             "omega": paper["omega"].to_numpy(),
             "r_omega": paper["r_omega"].to_numpy(),
-            "vt_theory": vt_theory,
+            "v_t_theory": v_t_theory,
             "r_omega_theory": r_omega_theory,
             "z": paper["z"].to_numpy(),
-            "vn": paper["vn"].to_numpy(),
+            "v_n": paper["v_n"].to_numpy(),
         }
     )

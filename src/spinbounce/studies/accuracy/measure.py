@@ -132,7 +132,7 @@ def run_collision_level(case: Case, dt: float | None, folder: Path, states=None,
            "lammps_seconds": result.info.wall_seconds, "wall_seconds": wall}
     for s in ran.state_names:
         row[f"error_{s}"] = float(np.max(np.abs(t[f"{s}_error"])))
-    return row, t[[f"{s}_final" for s in ran.state_names]].to_numpy()
+    return row, t[[f"{s}_lammps" for s in ran.state_names]].to_numpy()
 
 
 def _run_hertz_mid(case: Case, dt_of_speed, folder: Path, repeats: int) -> dict:
@@ -163,8 +163,8 @@ def run_frozen_level(case: Case, dt: float | None, folder: Path, repeats: int = 
     scene = Frozen(case.model, z=FROZEN_Z, v_t=v_t, omega=r_omega / case.model.r, t_end=FROZEN_T_END, dt=dt)
     result, wall = _timed(lambda: run_series(scene, folder), repeats)
     t = result.table
-    errors = {"error_vn": 0.0,  # held: v_n = 0 exactly
-              "error_vt": float(np.max(np.abs(t["vt"] - t["vt_theory"]))),
+    errors = {"error_v_n": 0.0,  # held: v_n = 0 exactly
+              "error_v_t": float(np.max(np.abs(t["v_t"] - t["v_t_theory"]))),
               "error_r_omega": float(np.max(np.abs(t["r_omega"] - t["r_omega_theory"])))}
     return {"dt": scene.dt, "lammps_steps": scene.nsteps, "resolution": scene.steps_per_half_period,
             "spheres": 1, "step_method": "frozen rule" if dt is None else "given",

@@ -103,7 +103,7 @@ def _summary_row(case: Case, form: str, group: pd.DataFrame) -> dict:
     row = {"case": case.name, "label": case.label, "kind": case.kind, "form": form,
            "observed_order": fit["order"], "prefactor": fit["prefactor"],
            "expected_order": case.expected[form],
-           "order_vn": _order_of(ladder_rows, ["error_vn"]),
+           "order_v_n": _order_of(ladder_rows, ["error_v_n"]),
            "order_tangential": _order_of(ladder_rows, tangential),
            "local_orders": fit["local_orders"], "fit_dt": fit["fit_dt"], **_default_columns(group),
            "finest_error": float(ladder_rows["error"].iloc[-1]), "theory": case.theory}

@@ -111,8 +111,8 @@ def _rough_run(runs: Runs, name: str, vt, r_omega):
 def rough_no_spin(runs: Runs) -> Claim:
     vt = np.array([0.5, 1.0, 2.0])
     t = _rough_run(runs, "rough-no-spin", vt, 0.0)
-    ratio_w = t["r_omega_final"].to_numpy() / vt
-    ratio_v = t["vt_final"].to_numpy() / vt
+    ratio_w = t["r_omega_lammps"].to_numpy() / vt
+    ratio_v = t["v_t_lammps"].to_numpy() / vt
     exact = float(linear.rough_matrix(ALPHA)[2, 1])
     c = Claim("rough-spin", "rough sphere, omega(0) = 0: r omega(inf) = -10/7 v_t(0) (and v_t(inf) = 3/7 v_t(0))",
               "Sec. 4 text, Eq. 20", -10 / 7, float(ratio_w[np.argmax(np.abs(ratio_w - exact))]), exact,
@@ -127,7 +127,7 @@ def rough_no_spin(runs: Runs) -> Claim:
 def rough_no_slide(runs: Runs) -> Claim:
     rw = np.array([-2.0, -1.0, 1.0, 2.0])
     t = _rough_run(runs, "rough-spin-only", 0.0, rw)
-    ratio = t["vt_final"].to_numpy() / rw
+    ratio = t["v_t_lammps"].to_numpy() / rw
     exact = float(linear.rough_matrix(ALPHA)[1, 2])
     c = Claim("rough-vt", "rough sphere, v_t(0) = 0: v_t(inf) = -1/7 r omega(0)", "Sec. 4 text",
               -1 / 7, float(ratio[np.argmax(np.abs(ratio - exact))]), exact, runs=["rough-spin-only"])
@@ -147,7 +147,7 @@ def reflection_angle(runs: Runs) -> Claim:
     vt = np.array([0.3, 1.0, 2.0])
     t = _rough_run(runs, "rough-angles", vt, 0.0)
     rough = linear.rough_matrix(ALPHA)
-    measured = _angles(-1.0, vt, t["vn_final"].to_numpy(), t["vt_final"].to_numpy())
+    measured = _angles(-1.0, vt, t["v_n_lammps"].to_numpy(), t["v_t_lammps"].to_numpy())
     exact = _angles(-1.0, vt, rough[0, 0] * -1.0, rough[1, 1] * vt)
 
     def shown(angles):

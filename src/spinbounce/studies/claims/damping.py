@@ -67,7 +67,7 @@ def rolling_run(runs: Runs):
 def rapid_damping_rolls(runs: Runs) -> Claim:
     model, t = rolling_run(runs)
     fitted = fit_omega(initial(t), final(t), model.alpha)[0]
-    slip_left = float(np.abs((t["vt_final"] + t["r_omega_final"]) / (t["vt_0"] + t["r_omega_0"])).max())
+    slip_left = float(np.abs((t["v_t_lammps"] + t["r_omega_lammps"]) / (t["v_t_initial"] + t["r_omega_initial"])).max())
     c = Claim("rapid-damping", "for gamma_t/m >> 1/tau, Omega -> -1: the sphere leaves rolling (Eq. 23)",
               "Sec. 5, Eq. 23; Conclusions", -1.0, fitted, model.Omega, runs=["rapid-damping"])
     c.verdict = verdict(-1.0, fitted, model.Omega, 0.05, COLLISION_TOL)

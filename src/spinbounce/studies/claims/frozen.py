@@ -16,7 +16,7 @@ def frozen_mean_rolling(runs: Runs) -> Claim:
     w = math.sqrt(model.Q)
     _, t = runs.frozen("frozen-mean", model, z=0.1, v_t=1.0, omega=0.0, t_end=10.0)
     time = t["t"].to_numpy()
-    slip = (t["vt"] + t["r_omega"]).to_numpy()
+    slip = (t["v_t"] + t["r_omega"]).to_numpy()
     # slip = mean + a cos(w t) + b sin(w t): the mean without cutting the series at a period
     basis = np.column_stack([np.ones_like(time), np.cos(w * time), np.sin(w * time)])
     mean = float(np.linalg.lstsq(basis, slip, rcond=None)[0][0])
@@ -41,7 +41,7 @@ def frozen_slope(runs: Runs) -> Claim:
     starts = (-1.0, 0.0, 1.0, 1.5)  # not 0.5: with r omega(0) = -0.5 that one rolls and never moves
     for vt0 in starts:
         _, t = runs.frozen(f"frozen-slope-{vt0:g}", model, z=0.1, v_t=vt0, omega=-0.5 / model.r, t_end=8.0)
-        vt, rw = t["vt"].to_numpy(), t["r_omega"].to_numpy()
+        vt, rw = t["v_t"].to_numpy(), t["r_omega"].to_numpy()
         slopes.append(np.polyfit(rw, vt, 1)[0])
         misses.append(_far_end_miss(vt, rw, vt0, -0.5, model.alpha))
     slopes = np.array(slopes)
@@ -70,7 +70,7 @@ def decay_rate(runs: Runs) -> Claim:
     dt = 2e-4  # first order in dt with damping: the fitted rate is good to ~1e-5 here
     _, t = runs.frozen("decay-rate", model, z=0.1, v_t=1.0, omega=1.0 / model.r, t_end=12.0, dt=dt, every=5)
     means = linear.frozen_means(1.0, 1.0, model.alpha)
-    excursion = (t["vt"] - means[0]).to_numpy()
+    excursion = (t["v_t"] - means[0]).to_numpy()
     peaks = _peaks(t["t"].to_numpy(), np.abs(excursion))
     rate = -np.polyfit(peaks[:, 0], np.log(peaks[:, 1]), 1)[0]
     exact = linear.damping_rate(gamma_t, model.m, model.alpha)

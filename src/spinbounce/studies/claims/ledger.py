@@ -130,18 +130,18 @@ def random_states(n: int, seed: int, r: float = 0.5):
 
 def initial(t) -> np.ndarray:
     """(n, 3) initial states (v_n, v_t, r omega) of a result table."""
-    return t[["vn_0", "vt_0", "r_omega_0"]].to_numpy()
+    return t[["v_n_initial", "v_t_initial", "r_omega_initial"]].to_numpy()
 
 
 def final(t) -> np.ndarray:
     """(n, 3) final states (v_n, v_t, r omega) of a result table."""
-    return t[["vn_final", "vt_final", "r_omega_final"]].to_numpy()
+    return t[["v_n_lammps", "v_t_lammps", "r_omega_lammps"]].to_numpy()
 
 
 def contact_time(scene: Collision, t) -> np.ndarray:
     """When each sphere left the wall: the run's end minus its free flight from z = r."""
     end = scene.nsteps * scene.dt
-    return end - (t["z_final"].to_numpy() - scene.model.r) / t["vn_final"].to_numpy()
+    return end - (t["z_lammps"].to_numpy() - scene.model.r) / t["v_n_lammps"].to_numpy()
 
 
 def maximise(fn, lo: float, hi: float, seeds: int = 200) -> tuple[float, float]:

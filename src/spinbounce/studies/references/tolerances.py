@@ -62,19 +62,19 @@ _TIME = Tolerance(
     "step * dt, with dt from arithmetic and sqrt only (correctly rounded): reproduced exactly; 1e-12 is "
     "far below one step")
 
-#: Collision reference columns -> tolerance. ``omega_final`` carries the spin in the
+#: Collision reference columns -> tolerance. ``omega_lammps`` carries the spin in the
 #: paper's units; r*omega is r times it and adds nothing.
 COLLISION_TOLERANCES: dict[str, Tolerance] = {
     "id": _EXACT,
-    "vn_0": _EXACT,
-    "vt_0": _EXACT,
-    "omega_0": _EXACT,
-    "vn_final": _LAMMPS_FINAL,
-    "vt_final": _LAMMPS_FINAL,
-    "omega_final": _LAMMPS_FINAL,
-    "z_final": _LAMMPS_FINAL,
-    "vn_theory": _THEORY,
-    "vt_theory": _THEORY,
+    "v_n_initial": _EXACT,
+    "v_t_initial": _EXACT,
+    "omega_initial": _EXACT,
+    "v_n_lammps": _LAMMPS_FINAL,
+    "v_t_lammps": _LAMMPS_FINAL,
+    "omega_lammps": _LAMMPS_FINAL,
+    "z_lammps": _LAMMPS_FINAL,
+    "v_n_theory": _THEORY,
+    "v_t_theory": _THEORY,
     "omega_theory": _THEORY,
 }
 
@@ -84,11 +84,11 @@ COLLISION_MU_TOLERANCES = {k: (_ORACLE if v is _THEORY else v) for k, v in COLLI
 #: Frozen-contact reference columns -> tolerance.
 FROZEN_TOLERANCES: dict[str, Tolerance] = {
     "t": _TIME,
-    "vt": _LAMMPS_SERIES,
+    "v_t": _LAMMPS_SERIES,
     "omega": _LAMMPS_SERIES,
     "z": _HELD,
-    "vn": _HELD,
-    "vt_theory": _THEORY,
+    "v_n": _HELD,
+    "v_t_theory": _THEORY,
     "r_omega_theory": _THEORY,
 }
 

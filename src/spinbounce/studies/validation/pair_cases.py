@@ -173,7 +173,7 @@ def _wall_limit(batch, table):
     published = []
     for p in batch.pairs:
         _, final = choose.outcome(model, p.v_a[2], p.v_a[0], -p.w_a[1])
-        published.append([final["vn"], final["vt"], final["r_omega"]])
+        published.append([final["v_n"], final["v_t"], final["r_omega"]])
     # The heavy b is still curved: the line of centres turns (table's turn) and a's outcome leaves the
     # wall's by the planar theory's model error (b's recoil, O(m_a/m_b) = 8e-6, is far smaller); the
     # wall must be reached within that error plus the run's accuracy.

@@ -116,7 +116,7 @@ def _run_lammps(model, states, oracle_final, refine: int, folder: Path) -> tuple
                          oracle_final=tuple(np.asarray(oracle_final).ravel()))
     result = run_scene(scene, folder, atoms="library", record=True)
     t = result.table
-    final = np.column_stack([t.vn_final, t.vt_final, t.r_omega_final])
+    final = np.column_stack([t.v_n_lammps, t.v_t_lammps, t.r_omega_lammps])
     run = {"refine": refine, "dt": scene.dt, "nsteps": scene.nsteps, "tau": model.tau, "run_dir": str(folder),
            "lammps_wall_seconds": result.info.wall_seconds, "warnings": list(result.warnings)}
     return final, run
