@@ -46,7 +46,7 @@ def pipe(id_: str, line: str) -> Case:
     return Case(id_, tuple(shlex.split(line)), "pipe")
 
 STATE = "--vn -1 --vt 0 --omega 0"
-FROZEN = "frozen --z 0.45 --vt 1 --omega 0 --t-end 1 --out f.csv"
+FROZEN = "frozen --z 0.45 --vt 1 --omega 0 --t-end 1 --out f"
 CALIBRATE = "calibrate --e 0.9 --contact-time 1 --beta 0.5 --no-run"
 
 NUMBERS = [
@@ -59,9 +59,9 @@ NUMBERS = [
     ok("tiny-vn", "theory --json --vn -1e-300 --vt 0 --omega 0", reversed_normal(-1e-300)),
     ok("huge-vn", "theory --json --vn -1e300 --vt 0 --omega 0", reversed_normal(-1e300)),
     ok("spaces-around", "theory --json --vn ' -1 ' --vt 0 --omega 0", reversed_normal(-1.0)),
-    ok("arabic-indic-digit", "theory --json --vn -1 --vt ١ --omega 0", initial_is(vt=1.0)),
-    ok("fullwidth-digit", "theory --json --vn -1 --vt ２ --omega 0", initial_is(vt=2.0)),
-    ok("underscore-digits", "theory --json --vn -1 --vt 1_000 --omega 0", initial_is(vt=1000.0)),
+    ok("arabic-indic-digit", "theory --json --vn -1 --vt ١ --omega 0", initial_is(v_t=1.0)),
+    ok("fullwidth-digit", "theory --json --vn -1 --vt ２ --omega 0", initial_is(v_t=2.0)),
+    ok("underscore-digits", "theory --json --vn -1 --vt 1_000 --omega 0", initial_is(v_t=1000.0)),
     refused("nan", "theory --vn nan --vt 0 --omega 0", "--vn", "nan"),
     refused("nan-upper", "theory --vn -1 --vt NaN --omega 0", "--vt", "NaN"),
     refused("inf", "theory --vn -1 --vt inf --omega 0", "--vt", "inf"),
@@ -142,7 +142,7 @@ FLAGS = [
     refused("references-no-mode", "references", "--check", "--regenerate"),
     refused("references-unknown-case", "references --check --case nope", "--case", "nope"),
     refused("frozen-mu", f"{FROZEN} --mu 0.3", "mu", "0.3"),
-    refused("frozen-missing-z", "frozen --vt 1 --omega 0 --t-end 1 --out f.csv", "--z"),
+    refused("frozen-missing-z", "frozen --vt 1 --omega 0 --t-end 1 --out f", "--z"),
     refused("calibrate-missing-e", "calibrate --contact-time 1 --beta 0.5 --no-run", "--e"),
     refused("figures-unknown", "figures --only fig9", "--only", "fig9"),
     refused("figures-empty-only", "figures --only ,", "--only", "','"),
@@ -202,13 +202,13 @@ TIME = [
     refused("tolerance-negative", f"collide {STATE} --tolerance -1e-4 --out c", "tolerance", "-0.0001"),
     refused("tolerance-above-one", f"collide {STATE} --tolerance 2 --out c", "tolerance", "2"),
     refused("tolerance-unreachable", f"collide {STATE} --tolerance 1e-300 --out c", "tolerance", "1e-300"),
-    refused("frozen-t-end-huge", "frozen --z 0.1 --vt 1 --omega 0 --t-end 1e9 --out f.csv", "t_end", "1000000000.0"),
-    refused("frozen-t-end-zero", "frozen --z 0.1 --vt 1 --omega 0 --t-end 0 --out f.csv", "t_end", "0.0"),
-    refused("frozen-t-end-negative", "frozen --z 0.1 --vt 1 --omega 0 --t-end -1 --out f.csv", "t_end", "-1.0"),
+    refused("frozen-t-end-huge", "frozen --z 0.1 --vt 1 --omega 0 --t-end 1e9 --out f", "t_end", "1000000000.0"),
+    refused("frozen-t-end-zero", "frozen --z 0.1 --vt 1 --omega 0 --t-end 0 --out f", "t_end", "0.0"),
+    refused("frozen-t-end-negative", "frozen --z 0.1 --vt 1 --omega 0 --t-end -1 --out f", "t_end", "-1.0"),
     refused("frozen-dt-too-small", f"{FROZEN} --dt 1e-12", "dt", "1e-12"),
-    refused("frozen-z-zero", "frozen --z 0 --vt 1 --omega 0 --t-end 1 --out f.csv", "z", "0.0"),
-    refused("frozen-z-radius", "frozen --z 0.5 --vt 1 --omega 0 --t-end 1 --out f.csv", "z", "0.5"),
-    refused("frozen-z-above", "frozen --z 2 --vt 1 --omega 0 --t-end 1 --out f.csv", "z", "2.0"),
+    refused("frozen-z-zero", "frozen --z 0 --vt 1 --omega 0 --t-end 1 --out f", "z", "0.0"),
+    refused("frozen-z-radius", "frozen --z 0.5 --vt 1 --omega 0 --t-end 1 --out f", "z", "0.5"),
+    refused("frozen-z-above", "frozen --z 2 --vt 1 --omega 0 --t-end 1 --out f", "z", "2.0"),
     refused("sweep-dt-too-large", "sweep --n 10 --dt 1 --out s", "dt", "1"),
     refused("sweep-dt-too-small", "sweep --n 10 --dt 1e-12 --out s", "dt", "1e-12"),
     refused("calibrate-e-zero", f"{CALIBRATE.replace('--e 0.9', '--e 0')}", "e", "0"),
@@ -242,11 +242,12 @@ FILES = [
     refused("bench-out-unwritable", "bench --out /proc/bench.json", "--out", "/proc/bench.json"),
     refused("bench-keep-runs-is-a-file", "bench --keep-runs notes.txt", "--keep-runs", "notes.txt",
             files=("notes.txt",)),
-    refused("frozen-out-is-a-folder", f"{FROZEN.replace('f.csv', 'folder')}", "--out", "folder", files=("folder",)),
-    refused("frozen-out-exists", f"{FROZEN.replace('f.csv', 'series.csv')}", "--out", "series.csv",
+    refused("frozen-out-earlier-run", FROZEN.replace("--out f", "--out run"), "--out", "run", "--force",
+            files=("run",)),
+    refused("frozen-out-is-a-file", FROZEN.replace("--out f", "--out series.csv"), "--out", "series.csv",
             files=("series.csv",)),
-    refused("frozen-out-unwritable", f"{FROZEN.replace('f.csv', '/proc/f.csv')}", "--out", "/proc/f.csv"),
-    refused("frozen-out-under-a-file", f"{FROZEN.replace('f.csv', 'notes.txt/f.csv')}", "--out", "notes.txt/f.csv",
+    refused("frozen-out-unwritable", FROZEN.replace("--out f", "--out /proc/f"), "--out", "/proc/f"),
+    refused("frozen-out-under-a-file", FROZEN.replace("--out f", "--out notes.txt/f"), "--out", "notes.txt/f",
             files=("notes.txt",)),
     refused("frozen-run-dir-is-a-file", f"{FROZEN} --run-dir notes.txt", "--run-dir", "notes.txt", files=("notes.txt",)),
     refused("frozen-run-dir-earlier-run", f"{FROZEN} --run-dir run", "--out", "run", files=("run",)),
@@ -283,7 +284,7 @@ RUNS = [
        files=("figout",)),
     ok("figures-out-beside-user-file", "figures --only fig2 --out figout", figure_beside_user_file("fig2", "figout"),
        files=("figout",)),
-    ok("frozen-e-notation", "frozen --z 4.5e-1 --vt 1e0 --omega 0 --t-end 1e0 --out f.csv", frozen_series(1.0)),
+    ok("frozen-e-notation", "frozen --z 4.5e-1 --vt 1e0 --omega 0 --t-end 1e0 --out f", frozen_series(1.0)),
 ]
 
 PIPES = [
@@ -323,9 +324,10 @@ FOUND_LATER = [
     refused("sweep-vn-positive-flags", "sweep --n 10 --vn 0.1 1.5 --out s", "v_n", "0.1", "< 0"),
     refused("sweep-workers-above-cores", "sweep --n 10 --workers 4096 --out s", "--workers", "4096", "core"),
     refused("pair-earlier-run", "pair --out run", "--out", "run", "--force", files=("run",)),
-    refused("pair-cost-huge", "pair --cost 1e12", "--cost", "1e12", "100000"),
-    refused("pair-cost-zero", "pair --cost 0", "--cost", "0", ">= 1"),
-    refused("pair-cost-fraction", "pair --cost 2.5", "--cost", "2.5"),
+    refused("bench-pairs-huge", "bench --n-pairs 1e12", "--n-pairs", "1e12", "100000"),
+    refused("bench-pairs-zero", "bench --n-pairs 0", "--n-pairs", "0", ">= 1"),
+    refused("bench-pairs-fraction", "bench --n-pairs 2.5", "--n-pairs", "2.5"),
+    refused("pair-b-state-on-the-wall", "collide --v-n-b 1 --out c", "v_n_b", "scene = pair"),
     refused("figures-runs-holds-user-file", "figures --only fig2 --runs figout", "--runs", "figout/fig2",
             files=("figout-fig2",)),
     ok("python-m-spinbounce", "--version", printed("spinbounce "), module="spinbounce"),

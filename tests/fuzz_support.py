@@ -200,7 +200,7 @@ def figure_beside_user_file(name: str, out: str = "spinbounce-figures"):
 def frozen_series(v_t: float):
     """The CSV holds LAMMPS beside Eq. 10; at t = 0 both are the given state."""
     def check(stdout, folder):
-        table = pd.read_csv(folder / "f.csv")
+        table = pd.read_csv(folder / "f" / "frozen.csv")
         assert table["v_t"].iloc[0] == v_t and table["v_t_theory"].iloc[0] == v_t
         assert (table["v_t"] - table["v_t_theory"]).abs().max() < 1e-5  # the frozen contact's default accuracy
     return check

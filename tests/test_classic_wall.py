@@ -110,7 +110,7 @@ def test_a_classic_sweep_to_a_tolerance_is_within_it_row_by_row(tmp_path):
     rows = read_results(tmp_path / "out")
     true = np.abs(rows[["v_n_error", "v_t_error", "r_omega_error"]].to_numpy()).max(axis=1)
     assert len(rows) == 96 and set(rows["theory"]) == {"classic_wall"}
-    assert true.max() <= 1e-6 and (true <= rows["vn_estimate"].to_numpy() * (1 + 1e-12)).all()
+    assert true.max() <= 1e-6 and (true <= rows["v_n_estimate"].to_numpy() * (1 + 1e-12)).all()
 
 
 def test_a_tolerance_below_the_theory_s_own_accuracy_is_refused_before_any_run(tmp_path, capsys):

@@ -85,15 +85,15 @@ def test_collide_json(capsys, tmp_path):
 
 @pytest.mark.lammps
 def test_frozen_writes_csv_with_theory_and_provenance(capsys, tmp_path):
-    csv = tmp_path / "series.csv"
+    run = tmp_path / "run"
     code, out, _ = run_cli(capsys, "frozen", "--z", "0.1", "--vt", "1", "--omega", "0", "--t-end", "2",
-                           "--out", str(csv), "--run-dir", str(tmp_path / "run"))
+                           "--out", str(run))
     assert code == 0
-    table = pd.read_csv(csv)
+    table = pd.read_csv(run / "frozen.csv")
     assert list(table.columns) == ["t", "v_t", "omega", "r_omega", "v_t_theory", "r_omega_theory"]
     assert table["t"].iloc[0] == 0.0 and table["t"].iloc[-1] >= 2.0
     assert (table["v_t"] - table["v_t_theory"]).abs().max() < 1e-5  # the frozen contact's default accuracy
-    meta = json.loads(csv.with_suffix(".meta.json").read_text())
+    meta = json.loads((run / "result.json").read_text())
     assert meta["parameters"]["z"] == 0.1 and meta["lammps_version"].startswith("2025")
 
 

@@ -125,17 +125,16 @@ def test_frozen_honours_or_refuses(name, capsys, tmp_path):
     scene = {"z": 0.3, "v_t": 1.0, "omega": 0.5, "t_end": 1.0}
     scene_flags = ["--z", "0.3", "--vt", "1", "--omega", "0.5", "--t-end", "1"]
     if name == "mu":  # Eq. 10 has no Coulomb cap: refused before LAMMPS starts, with the reason
-        assert _exit_code(["frozen", "--out", str(tmp_path / "f.csv"), *scene_flags, *_flags(changed)]) == 2
+        assert _exit_code(["frozen", "--out", str(tmp_path / "f"), *scene_flags, *_flags(changed)]) == 2
         assert "no Coulomb cap" in capsys.readouterr().err
         return
     ends = []
     for k, values in enumerate((base, changed)):
-        csv = tmp_path / f"f{k}.csv"
-        assert main(["frozen", "--out", str(csv), "--run-dir", str(tmp_path / f"r{k}"), *scene_flags,
-                     *_flags(values)]) == 0
+        run = tmp_path / f"r{k}"
+        assert main(["frozen", "--out", str(run), *scene_flags, *_flags(values)]) == 0
         capsys.readouterr()
-        table = pd.read_csv(csv)
-        meta = json.loads(csv.with_suffix(".meta.json").read_text())
+        table = pd.read_csv(run / "frozen.csv")
+        meta = json.loads((run / "result.json").read_text())
         for key, value in values.items():
             assert meta["parameters"]["model"][key] == value
         frozen = Frozen(ContactModel(**values), **scene)

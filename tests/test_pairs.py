@@ -259,15 +259,11 @@ def test_lammps_dense_second_sphere_is_the_wall(tmp_path):
 
 @pytest.mark.lammps
 def test_pair_command_prints_lammps_beside_both_references(tmp_path, capsys):
-    # cli/__init__.py's COMMANDS does not list `pair` yet: build the parser from the module alone.
-    import argparse
+    # `pair` is `collide --scene pair`: sphere a's state in the paper's frame and sign (LAMMPS's
+    # angular velocity (0, 2, 1) is omega = -2, omega_n = 1)
+    from spinbounce.cli import main
 
-    from spinbounce.cli import pair as command
-
-    parser = argparse.ArgumentParser()
-    command.register(parser.add_subparsers())
-    args = parser.parse_args(["pair", "--alpha-a", "0.25", "--w-a", "0", "2", "1", "--out", str(tmp_path), "--json"])
-    assert args.handler(args) == 0
+    assert main(["pair", "--alpha", "0.25", "--omega", "-2", "--omega-n", "1", "--out", str(tmp_path), "--json"]) == 0
     row = json.loads(capsys.readouterr().out)
     assert row["error"] < 1e-4 and row["alpha_a"] == 0.25
     assert row["planar_error"] > 100 * row["error"]  # eps = 0.66: the planar theory is far off

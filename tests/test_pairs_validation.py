@@ -54,8 +54,8 @@ def test_pair_benchmark_agrees_with_its_reference_and_its_source(name, tmp_path)
 
 @pytest.mark.slow
 @pytest.mark.lammps
-def test_pair_command_runs_the_published_benchmarks(tmp_path, capsys):
-    assert main(["pair", "--published", str(tmp_path)]) == 0
+def test_benchmarks_command_runs_the_published_pair_benchmarks(tmp_path, capsys):
+    assert main(["benchmarks", "--pairs", "--out", str(tmp_path)]) == 0
     printed = capsys.readouterr().out
     assert printed.count(" agrees: ") == len(PAIR_BENCHMARKS)
     record = json.loads((tmp_path / "pair_benchmarks.json").read_text())

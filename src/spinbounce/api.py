@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import hashlib
 import json
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -30,24 +30,35 @@ import pandas as pd
 
 from .model import parameters
 from .model.contact import ContactModel
-from .scenes.collision import Collision
 from .exact import choose
 
 __all__ = ["collide", "theory", "sweep", "fit", "CollisionReport", "PairReport", "model"]
 
 _MODEL_NAMES = {p.name for p in parameters.MODEL}
-#: The scene's keywords (wall or pair, sphere b's m_b, r_b, alpha_b): :data:`parameters.SCENE`.
-_SCENE_NAMES = {p.name for p in parameters.SCENE}
+#: The scene's keywords (wall or pair, sphere b's m_b, r_b, alpha_b and its state): a pair's only.
+_SCENE_NAMES = {p.name for p in parameters.SCENE} | {p.name for p in parameters.STATE_B}
+#: The state's keywords, in order (spins as angular velocities).
+_STATE_NAMES = tuple(p.name for p in parameters.STATE)
+
+
+@dataclass(frozen=True)
+class _Pair:
+    """A pair scene's sphere b and its state at first touch (a's frame and sign)."""
+
+    b: object
+    state: np.ndarray
 
 
 def _split_scene(keywords: dict):
-    """(model keywords, sphere b or None for the wall), b's keywords refused without scene="pair"."""
-    from .scenes.pair.kind import scene_of, sphere_b
+    """(model keywords, None for the wall or the pair's sphere b and its state); b's keywords are
+    refused without scene="pair"."""
+    from .scenes.pair.kind import scene_of, sphere_b, state_b
 
     scene = {k: keywords.pop(k) for k in list(keywords) if k in _SCENE_NAMES}
     if scene_of(scene) == "wall":
         return keywords, None
-    return keywords, sphere_b(**{k: v for k, v in scene.items() if k != "scene"})
+    sphere = sphere_b(**{k: v for k, v in scene.items() if k in parameters.PAIR_SPHERE and v is not None})
+    return keywords, _Pair(sphere, state_b(scene))
 
 
 def model(**parameters_) -> ContactModel:
@@ -58,17 +69,51 @@ def model(**parameters_) -> ContactModel:
     return ContactModel(**parameters_)
 
 
+def _run_folder(kind: str, record: dict) -> Path:
+    """``spinbounce-runs/<kind>-<hash of what the run is>``: the same run, the same folder."""
+    digest = hashlib.sha256(json.dumps(record, sort_keys=True, default=str).encode()).hexdigest()[:10]
+    return Path("spinbounce-runs") / f"{kind}-{digest}"
+
+
+def _spins(names, values: dict, r: float) -> dict:
+    """A state by column name, each spin also as an angular velocity (r_omega -> omega)."""
+    out = dict(values)
+    out.update({name[2:]: values[name] / r for name in names if name.startswith("r_")})
+    return out
+
+
 @dataclass(frozen=True)
 class CollisionReport:
-    """One LAMMPS collision beside its theory. ``table`` has one row per state column."""
+    """One wall collision in LAMMPS beside its theory. ``table``: one row per state column
+    (initial, LAMMPS, theory, error); the rest says how it ran and how far from the truth it is."""
 
     table: pd.DataFrame
     theory: str
+    theory_kind: str
     dt: float
     nsteps: int
     error: float
     status: str
     run_dir: Path
+    contact_time: float = float("nan")
+    Omega: float | None = None
+    step: dict = field(default_factory=dict)
+    warnings: tuple[str, ...] = ()
+    deck: str = ""
+    dump: str | None = None
+    lammps_version: str = ""
+
+    def record(self) -> dict:
+        """The report as JSON-ready data (``spinbounce collide --json``)."""
+        names = list(self.table.index)
+        r = self.table.attrs.get("r", 1.0)
+        states = {key: _spins(names, {n: float(self.table.loc[n, column]) for n in names}, r)
+                  for key, column in (("initial", "initial"), ("lammps", "LAMMPS"), ("theory", "theory"),
+                                      ("error", "error"))}
+        return {**states, "theory_kind": self.theory_kind, "theory_name": self.theory, "dt": self.dt,
+                "nsteps": self.nsteps, "contact_time": self.contact_time, "step": self.step,
+                "error_estimate": self.error, "status": self.status, "Omega": self.Omega, "deck": self.deck,
+                "dump": self.dump, "lammps_version": self.lammps_version, "warnings": list(self.warnings)}
 
     def __str__(self) -> str:
         head = (f"collision: theory {self.theory}; dt = {self.dt:.6g} ({self.nsteps} steps); "
@@ -78,8 +123,11 @@ class CollisionReport:
 
 @dataclass(frozen=True)
 class PairReport:
-    """One pair scene in LAMMPS: both spheres' final states (``table``: LAMMPS, exact reference,
-    planar theory), LAMMPS's error against the exact reference and the planar theory's model error."""
+    """One pair scene: both spheres' states in the paper's names and signs (sphere b's with ``_b``;
+    the frame is the wall's, the line of centres from b to a its normal) initially, as LAMMPS ended
+    them (if it ran), by the exact reference and by the planar theory (``table``); LAMMPS's error
+    against the exact reference (the wall's measure: ``error``, in units of the pair's speed) and
+    the planar theory's model error."""
 
     table: pd.DataFrame
     dt: float
@@ -87,7 +135,17 @@ class PairReport:
     error: float
     planar_error: float
     eps: float
-    run_dir: Path
+    run_dir: Path | None
+    status: str = ""
+    step: dict = field(default_factory=dict)
+    geometry: dict = field(default_factory=dict)
+
+    def record(self) -> dict:
+        """The report as JSON-ready data (``spinbounce collide --scene pair --json``)."""
+        states = {column.lower(): {k: float(v) for k, v in self.table[column].items()} for column in self.table}
+        return {**states, "error": self.error, "planar_error": self.planar_error, "status": self.status,
+                **self.geometry, "dt": self.dt, "nsteps": self.nsteps, "step": self.step,
+                "run_dir": None if self.run_dir is None else str(self.run_dir)}
 
     def __str__(self) -> str:
         head = (f"pair: dt = {self.dt:.6g} ({self.nsteps} steps); LAMMPS vs exact {self.error:.2e}; planar theory's "
@@ -95,93 +153,192 @@ class PairReport:
         return head + self.table.to_string(float_format=lambda x: f"{x:.10f}")
 
 
-def _pair_batch(b, model_parameters: dict, state: dict, dt=None):
+def _pair_batch(pair: _Pair, contact: ContactModel, state: dict, dt=None):
     from .scenes.pair.kind import pair_contact, pairs_from_states
     from .scenes.pair.scene import PairBatch
 
-    contact = model(**model_parameters)
-    row = [state[k] for k in ("v_n", "v_t", "omega", "v_s", "omega_s", "omega_n")]
-    return PairBatch(pairs_from_states(contact, b, [row]), pair_contact(contact), dt)
+    row = [state[k] for k in _STATE_NAMES]
+    return PairBatch(pairs_from_states(contact, pair.b, [row], pair.state), pair_contact(contact), dt)
 
 
-def _collide_pair(b, model_parameters: dict, state: dict, dt, out) -> PairReport:
-    from .scenes.pair import QUANTITIES
+#: A pair row's geometry and spheres, reported beside the states.
+_PAIR_GEOMETRY = ("m_a", "r_a", "alpha_a", "m_b", "r_b", "alpha_b", "v_n_relative", "v_t_relative", "speed", "tau",
+                  "contact_time", "eps", "centrifugal", "turn")
+
+
+def _pair_report(row: dict, batch, run_dir, step=None) -> PairReport:
+    """A pair's row in the paper's names and signs: LAMMPS's frame (the line of centres along z)
+    is the wall's, so each sphere's velocity and spin map as the wall's sphere's do."""
+    from .exact.choose import SPACE_COLUMNS
+    from .scenes.pair.kind import wall_frame
+
+    pair = batch.pairs[0]
+
+    def states(suffix: str) -> list[float]:
+        out = []
+        for side, sphere in (("a", pair.a), ("b", pair.b)):
+            v, w = (np.array([row[f"{side}_{q}{x}{suffix}"] for x in "xyz"]) for q in "vw")
+            out += wall_frame(v, w, sphere.r)[0].tolist()
+        return out
+
+    initial = wall_frame(np.array(pair.v_a), np.array(pair.w_a), pair.a.r)[0].tolist() + \
+        wall_frame(np.array(pair.v_b), np.array(pair.w_b), pair.b.r)[0].tolist()
+    columns = {"initial": initial, **({"LAMMPS": states("")} if run_dir is not None else {}),
+               "exact": states("_exact"), "planar": states("_planar")}
+    table = pd.DataFrame(columns, index=list(SPACE_COLUMNS) + [f"{s}_b" for s in SPACE_COLUMNS])
+    geometry = {k: float(row[k]) for k in _PAIR_GEOMETRY}
+    return PairReport(table, batch.dt, batch.nsteps, float(row.get("error", float("nan"))), float(row["planar_error"]),
+                      float(row["eps"]), run_dir, str(row.get("status", "")), step or {}, geometry)
+
+
+def _collide_pair(pair: _Pair, contact: ContactModel, state: dict, dt, tolerance, out) -> PairReport:
+    from .errors import SceneError
     from .pipeline import run_scene
 
-    batch = _pair_batch(b, model_parameters, state, dt)
+    if tolerance is not None:
+        raise SceneError("tolerance", tolerance, "is for the wall only: a pair runs at dt or its default step, and "
+                                                 "reports its error against the exact reference")
+    batch = _pair_batch(pair, contact, state, dt)
     out = Path(out) if out is not None else _run_folder("collide-pair", {"pairs": repr(batch.pairs), "dt": batch.dt})
     result = run_scene(batch, out)  # its batch carries the step the probe chose
+    return _pair_report(result.table.iloc[0].to_dict(), result.scene, out, result.step.record())
+
+
+def _wall_report(result, out: Path) -> CollisionReport:
+    scene = result.scene  # at the step its accuracy needed
     row = result.table.iloc[0]
-    table = pd.DataFrame({label: [float(row[q + suffix]) for q in QUANTITIES] for label, suffix in
-                          (("LAMMPS", ""), ("exact", "_exact"), ("planar", "_planar"))}, index=list(QUANTITIES))
-    return PairReport(table, result.scene.dt, result.scene.nsteps, float(row["error"]), float(row["planar_error"]),
-                      float(row["eps"]), out)
-
-
-def _run_folder(kind: str, record: dict) -> Path:
-    digest = hashlib.sha256(json.dumps(record, sort_keys=True, default=str).encode()).hexdigest()[:10]
-    return Path("spinbounce-runs") / f"{kind}-{digest}"
+    names = scene.state_names
+    table = pd.DataFrame({label: [float(row[f"{s}_{suffix}"]) for s in names]
+                          for label, suffix in (("initial", "initial"), ("LAMMPS", "lammps"), ("theory", "theory"),
+                                                ("error", "error"))}, index=list(names))
+    table.attrs["r"] = scene.model.r
+    choice = choose.which(scene.model)
+    omega = float(choose.omega_per_sphere(scene.model, scene.v_n)[0])
+    return CollisionReport(table, choice.name, choice.kind, scene.dt, scene.nsteps, float(row["error"]),
+                           str(row["status"]), out, float(np.max(scene.model.contact_times(scene.v_n))),
+                           None if np.isnan(omega) else omega, result.step.record(), result.warnings,
+                           str(result.info.deck), None if result.dump is None else str(result.dump),
+                           result.info.lammps_version)
 
 
 def collide(v_n: float = -1.0, v_t: float = 1.0, omega: float = 0.0, v_s: float = 0.0, omega_s: float = 0.0,
-            omega_n: float = 0.0, *, dt: float | None = None, out: str | Path | None = None,
-            **model_parameters) -> CollisionReport | PairReport:
+            omega_n: float = 0.0, *, dt: float | None = None, tolerance: float | None = None,
+            out: str | Path | None = None, log=None, **model_parameters) -> CollisionReport | PairReport:
     """Bounce one sphere off the wall in LAMMPS and compare it with the theory that applies; with
-    ``scene="pair"`` (and ``m_b``, ``r_b``, ``alpha_b``) against a free sphere b at rest instead."""
+    ``scene="pair"`` (and ``m_b``, ``r_b``, ``alpha_b``, b's state ``v_n_b`` ... ``omega_n_b``: at rest by
+    default) against a free sphere b instead. ``tolerance``: ask for an accuracy instead of a step
+    (:mod:`spinbounce.extrapolation`). ``log(line)``: told, before a long run starts, how long it will
+    take, and how a run to a tolerance proceeds."""
     from .pipeline import run_scene
+    from .scenes.collision import Collision
+    from .model.timestep import cost_notice
+    from .stepping import expected_steps
 
-    model_parameters, b = _split_scene(model_parameters)
-    if b is not None:
-        state = {"v_n": v_n, "v_t": v_t, "omega": omega, "v_s": v_s, "omega_s": omega_s, "omega_n": omega_n}
-        return _collide_pair(b, model_parameters, state, dt, out)
+    state = dict(zip(_STATE_NAMES, (v_n, v_t, omega, v_s, omega_s, omega_n), strict=True))
+    model_parameters, pair = _split_scene(model_parameters)
+    contact = model(**model_parameters)
+    if pair is not None:
+        return _collide_pair(pair, contact, state, dt, tolerance, out)
+    if tolerance is not None:
+        return _collide_to_tolerance(contact, state, tolerance, out, log)
+    scene = Collision(contact, dt=dt, **state)
+    notice = cost_notice(expected_steps(scene), scene.n)
+    if log is not None and notice:
+        log(notice)
+    out = Path(out) if out is not None else _run_folder("collide", {"model": contact.as_record(), **state,
+                                                                    "dt": scene.dt})
+    return _wall_report(run_scene(scene, out), out)
 
-    scene = Collision(model(**model_parameters), v_n=v_n, v_t=v_t, omega=omega, v_s=v_s, omega_s=omega_s,
-                      omega_n=omega_n, dt=dt)
-    out = Path(out) if out is not None else _run_folder("collide", {"scene": repr(scene)})
-    result = run_scene(scene, out)
-    row = result.table.iloc[0]
-    names = result.scene.state_names
-    table = pd.DataFrame({when: [float(row[f"{s}_{suffix}"]) for s in names]
-                          for when, suffix in (("initial", "initial"), ("LAMMPS", "lammps"), ("theory", "theory"),
-                                               ("error", "error"))}, index=list(names))
-    return CollisionReport(table, choose.which(scene.model).name, result.scene.dt, result.scene.nsteps,
-                           float(row["error"]), str(row["status"]), out)
+
+@dataclass(frozen=True)
+class ToleranceReport:
+    """A collision run to a requested accuracy: the extrapolated state beside the theory
+    (``table`` as :class:`CollisionReport`'s) and ``record`` (written to ``tolerance.json``)."""
+
+    table: pd.DataFrame
+    record: dict
+    how: str
+    path: Path
+
+
+def _collide_to_tolerance(contact: ContactModel, state: dict, tolerance: float, out, log) -> ToleranceReport:
+    from .extrapolation import collide_to_tolerance, collision_frame
+    from .records import software, to_json, write_atomic
+
+    out = Path(out) if out is not None else _run_folder("collide", {"model": contact.as_record(), **state,
+                                                                    "tolerance": tolerance})
+    out_of_plane = {k: v for k, v in state.items() if k in ("v_s", "omega_s", "omega_n") and v}
+    result, scene = collide_to_tolerance(contact, state["v_n"], state["v_t"], state["omega"], tolerance, out,
+                                         log=log or (lambda *_: None), **out_of_plane)
+    row = collision_frame(result, scene).iloc[0]
+    names = scene.state_names
+    table = pd.DataFrame({label: [float(row[f"{s}_{suffix}"]) for s in names]
+                          for label, suffix in (("initial", "initial"), ("LAMMPS", "lammps"), ("theory", "theory"),
+                                                ("error", "error"))}, index=list(names))
+    states = {key: _spins(names, {n: float(table.loc[n, column]) for n in names}, contact.r)
+              for key, column in (("initial", "initial"), ("lammps", "LAMMPS"), ("theory", "theory"),
+                                  ("error", "error"))}
+    record = {**states, "estimate": result.max_estimate, "theory_kind": choose.which(contact).kind,
+              "tolerance": result.tolerance, "steps": result.steps,
+              "plain_steps_for_same_estimate": result.plain_steps_for(result.max_estimate),
+              "levels": result.levels, "Omega": contact.Omega, **software()}
+    path = Path(out) / "tolerance.json"
+    write_atomic(path, to_json(record))
+    return ToleranceReport(table, record, result.how, path)
 
 
 def theory(v_n: float | None = None, v_t: float = 0.0, omega: float = 0.0, v_s: float = 0.0, omega_s: float = 0.0,
            omega_n: float = 0.0, **model_parameters) -> dict:
-    """The theory that applies: with ``v_n`` the final state of that collision, else the
-    scattering matrix (or, where none exists, why not). With ``scene="pair"``: the planar
-    pair theory's matrix of sphere a (b at rest), or one state's exact and planar outcomes."""
-    model_parameters, b = _split_scene(model_parameters)
-    if b is not None:
-        return _pair_theory(b, model_parameters, v_n, {"v_t": v_t, "omega": omega, "v_s": v_s, "omega_s": omega_s,
-                                                       "omega_n": omega_n})
+    """The theory that applies: with ``v_n`` the final state of that collision (``theory``), else
+    the scattering matrix and what it rests on (or, where none exists, why not). With
+    ``scene="pair"``: the planar pair theory's matrix of sphere a (b at rest), or one state's exact
+    and planar outcomes."""
+    model_parameters, pair = _split_scene(model_parameters)
     contact = model(**model_parameters)
+    state = dict(zip(_STATE_NAMES, (v_n, v_t, omega, v_s, omega_s, omega_n), strict=True))
+    if pair is not None:
+        return _pair_theory(pair, contact, state)
     choice = choose.which(contact)
-    out = {"theory": choice.kind, "name": choice.name}
+    out = {"theory_kind": choice.kind, "theory_name": choice.name}
     if v_n is not None:
-        out["initial"], out["theory"] = choose.outcome(contact, v_n, v_t, omega, v_s, omega_s, omega_n)
+        out["initial"], out["theory"] = choose.outcome(contact, **state)
+        out["contact_time"] = float(contact.contact_times(v_n)[0])
     elif choice.has_matrix:
-        out["matrix"] = np.asarray(contact.matrix())
-        out["Omega"] = contact.Omega
+        from . import exact
+
+        out.update(tau=contact.tau, Q=contact.Q, Omega=contact.Omega, restitution=contact.restitution,
+                   matrix=np.asarray(contact.matrix()), order=["v_n", "v_t", "r_omega"],
+                   Omega_paper=exact.Omega(contact.kn, contact.kt, contact.alpha),
+                   Omega_paper_damped=exact.Omega_paper_damped(contact.m, contact.kn, contact.kt, contact.alpha,
+                                                               contact.gamma_t),
+                   magic_kt_over_kn=exact.magic_kt_over_kn(contact.alpha))
     else:
-        out["why_no_matrix"] = choice.no_matrix_reason
+        out.update(matrix=None, why_no_matrix=choice.no_matrix_reason)
     return out
 
 
-def _pair_theory(b, model_parameters: dict, v_n, state: dict) -> dict:
-    from .scenes.pair.kind import CAPPED_NO_MATRIX, planar_Omega, planar_matrix
+def _pair_theory(pair: _Pair, contact: ContactModel, state: dict) -> dict:
+    from .exact import pair as planar
+    from .scenes.pair.kind import CAPPED_NO_MATRIX, pair_contact, planar_matrix, planar_Omega
     from .scenes.pair.table import pair_table
 
-    contact = model(**model_parameters)
-    out = {"theory": "pair", "name": "planar pair theory (exact only as eps -> 0) and the exact reference"}
-    if contact.mu is None:
-        out.update(matrix=planar_matrix(contact, b), Omega=planar_Omega(contact, b))
+    law = pair_contact(contact).law()
+    out = {"theory_kind": "pair planar", "theory_name": "planar pair theory (exact only as eps -> 0) and the exact "
+                                                        "reference",
+           "alpha_equivalent": planar.equivalent_alpha(contact.m, contact.alpha, pair.b.m, pair.b.alpha),
+           "tau": float(planar.contact_time(contact.m, pair.b.m, law["kn"], law["gamma_n"])),
+           "model_error": "the planar theory holds the line of centres fixed: it is exact only as "
+                          "eps = v_t tau/(r + r_b) -> 0 (figures/pair_validity); give a state for the exact reference"}
+    if state["v_n"] is not None:
+        batch = _pair_batch(pair, contact, state)
+        out["outcome"] = _pair_report(pair_table(batch, None).iloc[0].to_dict(), batch, None).record()
+    elif contact.mu is not None:
+        out.update(matrix=None, why_no_matrix=f"mu = {contact.mu!r}: {CAPPED_NO_MATRIX}")
+    elif np.any(pair.state):
+        out.update(matrix=None, why_no_matrix="sphere b moves: the planar matrix maps a's state with b at rest")
     else:
-        out["why_no_matrix"] = f"mu = {contact.mu!r}: {CAPPED_NO_MATRIX}"
-    if v_n is not None:
-        out["outcome"] = pair_table(_pair_batch(b, model_parameters, {"v_n": v_n, **state}), None).iloc[0].to_dict()
+        out.update(matrix=planar_matrix(contact, pair.b), order=["v_n", "v_t", "r_omega"],
+                   Omega=planar_Omega(contact, pair.b))
     return out
 
 

@@ -87,7 +87,7 @@ PRODUCTS: tuple[Product, ...] = (
             _figure("studies.restitution", "make_figure"), ("restitution",)),
     Product("tangential", "spinbounce tangential", "tangential restitution against the velocity ratio (Becker et al.)",
             _figure("studies.tangential", "make_figure"), ("tangential",)),
-    Product("pair_validity", "spinbounce pair --figure", "where the planar two-sphere theory holds",
+    Product("pair_validity", "spinbounce reproduce --only pair_validity", "where the planar two-sphere theory holds",
             _figure("figures.pairs", "make_pair_validity"), ("pair_validity",)),
 )
 

@@ -161,7 +161,7 @@ def pair_regime(params: dict, three_d: bool, geometry: dict) -> tuple[np.ndarray
         return None, (f"pair, planar theory not exact here: its model error {geometry['planar_error']:.1e} exceeds "
                       f"the accuracy {ACCURACY:g} ({where}); no matrix is claimed, the rows' theory is the exact "
                       "reference")
-    b = sphere_b(*(params[name] for name in parameters.PAIR_ONLY))
+    b = sphere_b(*(params[name] for name in parameters.PAIR_SPHERE))
     return planar_matrix(model_of_group(params), b, three_d), \
         f"pair, planar matrix valid: its model error {geometry['planar_error']:.1e} <= the accuracy {ACCURACY:g} ({where})"
 
@@ -178,7 +178,7 @@ def omega_of_theory(params: dict, matrix_theory: np.ndarray) -> float:
     if params.get("scene") == "pair":
         from .scenes.pair.kind import planar_Omega, sphere_b
 
-        return planar_Omega(model_of_group(params), sphere_b(*(params[name] for name in parameters.PAIR_ONLY)))
+        return planar_Omega(model_of_group(params), sphere_b(*(params[name] for name in parameters.PAIR_SPHERE)))
     return float((matrix_theory[2, 2] - 1.0) * (1.0 + params["alpha"]))
 
 

@@ -10,10 +10,10 @@ from .. import __version__
 from ..errors import DumpError, LammpsError, NoMatrix, PhysicsWarning, ResultError, SceneError, SweepError
 from .options import allow_negative_numbers
 from . import (accuracy, bench, benchmarks, calibrate, claims, classic, collide, doctor, figures, fit, frozen, hertz,
-               pair, references, reproduce, restitution, sweep, tangential, theory, two_walls)
+               references, reproduce, restitution, sweep, tangential, theory, two_walls)
 
 COMMANDS = (theory, collide, frozen, sweep, fit, bench, accuracy, benchmarks, figures, hertz, claims, reproduce,
-            references, doctor, classic, pair, two_walls, restitution, tangential, calibrate)
+            references, doctor, classic, two_walls, restitution, tangential, calibrate)
 
 
 class OneLineParser(argparse.ArgumentParser):

@@ -3,6 +3,8 @@ what each model, the exact solver, the cores, the cluster jobs and two spheres c
 
 from __future__ import annotations
 
+import argparse
+
 import os
 from pathlib import Path
 
@@ -37,7 +39,24 @@ def register(sub) -> None:
     p.add_argument("--n-models", type=positive_count, default=100_000, metavar="N",
                    help="collisions per model sweep (frictionless, mu 2-D and 3-D; Hertz takes N/100) "
                         "(default %(default)s)")
+    p.add_argument("--n-pairs", type=pair_count, default=200, metavar="N",
+                   help=f"impacts LAMMPS's pair-to-wall cost is measured over (1 to {MAX_PAIR_IMPACTS}; "
+                        "default %(default)s)")
     p.set_defaults(handler=run)
+
+
+#: The most impacts --n-pairs measures over: the cost per collision is steady to a few percent
+#: from a few hundred, and each impact is a Python object before LAMMPS starts.
+MAX_PAIR_IMPACTS = 100_000
+
+
+def pair_count(text: str) -> int:
+    """argparse type of --n-pairs: a whole number of impacts in [1, MAX_PAIR_IMPACTS]."""
+    value = positive_count(text)
+    if value > MAX_PAIR_IMPACTS:
+        raise argparse.ArgumentTypeError(f"{text!r}: must be at most {MAX_PAIR_IMPACTS} (the cost per "
+                                         "collision is steady to a few percent from a few hundred impacts)")
+    return value
 
 
 def run(args) -> int:
@@ -65,13 +84,13 @@ def run(args) -> int:
     print(f"contact only vs free flight before/after and a dump every step ({d['collisions']} spheres): "
           f"{d['contact_only']['wall_seconds']:.2f} s vs {d['free_flight_and_dump_every_step']['wall_seconds']:.2f} s, "
           f"{d['ratio']:.1f}x")
-    report["models"] = _print_models(args.n_models, args.seed)
+    report["models"] = _print_models(args.n_models, args.seed, args.n_pairs)
     write_atomic(args.out, to_json(report))
     print(f"report: {args.out}")
     return 0
 
 
-def _print_models(n: int, seed: int) -> dict:
+def _print_models(n: int, seed: int, n_pairs: int) -> dict:
     """Per model: a sweep's cost beside the frictionless one's, the solvers, the cores, the
     cluster jobs' estimates, the default step's accuracy and the pair-to-wall ratio."""
     from ..studies.pairs import cost_lines, pair_to_wall_cost
@@ -100,7 +119,7 @@ def _print_models(n: int, seed: int) -> dict:
     for row in steps[steps["kind"] != "frozen"].itertuples():
         print(f"  {row.case:<28}{row.step_method:<22}{row.steps_per_collision:>9}{row.error_reached:>11.2e} "
               f"({row.target:g})")
-    pairs = pair_to_wall_cost(200)
+    pairs = pair_to_wall_cost(n_pairs)
     print("\n".join(cost_lines(pairs)))
     return {"sweeps": models, "solver_collisions_per_second": solvers, "cores": cores, "chunk_jobs": jobs,
             "default_steps": steps.to_dict(orient="records"), "pairs": pairs}

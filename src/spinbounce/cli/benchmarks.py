@@ -6,7 +6,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from .options import out_folder, out_option
+from .options import json_flag, out_folder, out_option
 
 HELP = "run the published sphere-wall benchmarks (Chung & Ooi Tests 4-6, Thornton's linear law) and report"
 
@@ -35,11 +35,43 @@ def register(sub) -> None:
                         "thornton-linear")
     p.add_argument("--runs", type=out_folder, default=None, metavar="DIR",
                    help="keep every LAMMPS run's folder here (default: a temporary folder, removed)")
+    p.add_argument("--pairs", action="store_true",
+                   help="run the published sphere-sphere benchmarks instead (Chung & Ooi tests 1, 7, 8; "
+                        "studies/validation/pair_cases.py): pair_benchmarks.json")
+    json_flag(p)
     p.set_defaults(handler=run)
+
+
+def _pairs(out, as_json: bool) -> int:
+    """The sphere-sphere benchmarks: each in one LAMMPS batch, beside the published value, the
+    exact reference and the planar theory."""
+    import json
+    import tempfile
+    from pathlib import Path
+
+    from ..records import software, to_json, write_atomic
+    from ..studies.validation.pair_cases import PAIR_BENCHMARKS, run_pair_benchmark
+
+    with tempfile.TemporaryDirectory() as scratch:
+        records = [run_pair_benchmark(bench, Path(scratch)) for bench in PAIR_BENCHMARKS.values()]
+    Path(out).mkdir(parents=True, exist_ok=True)
+    path = write_atomic(Path(out) / "pair_benchmarks.json", to_json({"benchmarks": records, **software()}))
+    if as_json:
+        print(json.dumps(records, indent=2, default=float))
+        return 0
+    for r in records:
+        print(f"{r['name']:<22} {'agrees' if r['agrees'] else 'DISAGREES'}: {r['published']}; {r['quantity']} "
+              f"within {r['lammps_vs_published']:.1e} (bound {r['tolerance']:.1e}); LAMMPS vs exact "
+              f"{r['lammps_vs_exact']:.1e}, planar vs exact {r['planar_vs_exact']:.1e}")
+    print(f"wrote {path}")
+    return 0 if all(r["agrees"] for r in records) else 1
 
 
 def run(args) -> int:
     from ..studies.validation.report import make_benchmarks
+
+    if args.pairs:
+        return _pairs(args.out, args.json)
 
     results, files = make_benchmarks(args.out, only=args.only, runs=args.runs, log=lambda s: print(s, file=sys.stderr))
     print(f"{'benchmark':<17}{'states':>7}{'refine':>7}{'LAMMPS-oracle':>15}{'at 2x':>10}{'<1e-4':>7}"

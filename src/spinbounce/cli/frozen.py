@@ -5,12 +5,13 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from ..model.parameters import SceneError
 from .options import (announce_cost, check_run_folder, count, default_run_dir, force_flag, json_flag, model_from,
-                      model_parser, number, out_file, out_folder)
+                      model_parser, number, out_folder)
 
 HELP = "hold a sphere in contact at height z (v_n = 0) and compare v_t(t), omega(t) with Eq. 10"
 COLUMNS = ["t", "v_t", "omega", "r_omega", "v_t_theory", "r_omega_theory"]
+#: The time series a run writes into its folder.
+SERIES = "frozen.csv"
 
 
 def register(sub) -> None:
@@ -27,10 +28,9 @@ def register(sub) -> None:
                       help="ask for an accuracy instead: runs at halving dt, extrapolated to dt = 0 until the "
                            "estimated error is below TOL (the CSV gets an 'estimate' column)")
     p.add_argument("--every", type=count, default=None, help="output every this many steps (default: ~2000 rows)")
-    p.add_argument("--out", type=out_file, required=True, metavar="FILE.csv",
-                   help="time series to write; its provenance goes to FILE.meta.json beside it")
-    p.add_argument("--run-dir", type=out_folder, default=None, metavar="DIR",
-                   help="folder for the deck, dump and log (default: spinbounce-runs/frozen-<hash>)")
+    p.add_argument("--out", type=out_folder, default=None, metavar="DIR",
+                   help=f"run folder: the deck, dump and log, the time series {SERIES} and its record "
+                        "result.json (default: spinbounce-runs/frozen-<hash>)")
     force_flag(p)
     json_flag(p)
     p.set_defaults(handler=run)
@@ -41,28 +41,24 @@ def run(args) -> int:
     from ..pipeline import run_series, series_record
     from ..records import to_json, write_atomic
 
-    check_run_folder(args.run_dir, args.force)
-    if Path(args.out).exists() and not args.force:
-        raise SceneError("--out", str(args.out), "exists: give another file, or --force to replace it")
+    check_run_folder(args.out, args.force)
     if args.tolerance is not None:
         return _run_to_tolerance(args)
     scene = Frozen(model_from(args), z=args.z, v_t=args.v_t, omega=args.omega, t_end=args.t_end,
                    dt=args.dt, every=args.every)
     announce_cost(scene.nsteps)
-    run_dir = args.run_dir or default_run_dir(
+    run_dir = Path(args.out or default_run_dir(
         "frozen", {"model": scene.model.as_record(), "z": scene.z, "v_t": scene.v_t,
-                   "omega": scene.omega, "nsteps": scene.nsteps, "dt": scene.dt, "every": scene.every}
-    )
+                   "omega": scene.omega, "nsteps": scene.nsteps, "dt": scene.dt, "every": scene.every}))
     result = run_series(scene, run_dir)
-    out = Path(args.out)
-    out.parent.mkdir(parents=True, exist_ok=True)
+    out = run_dir / SERIES
     write_atomic(out, result.table[COLUMNS].to_csv(index=False, float_format="%.17g"))
     meta = series_record(result)
     meta["csv"] = str(out)
-    meta_path = out.with_suffix(".meta.json")
+    meta_path = run_dir / "result.json"
     write_atomic(meta_path, to_json(meta))
     if args.json:
-        print(json.dumps({"csv": str(out), "meta": str(meta_path), "rows": len(result.table),
+        print(json.dumps({"csv": str(out), "record": str(meta_path), "rows": len(result.table),
                           "max_abs_error": result.max_abs_error, "dt": scene.dt,
                           "deck": str(result.info.deck), "lammps_version": result.info.lammps_version},
                          indent=2))
@@ -85,9 +81,9 @@ def _run_to_tolerance(args) -> int:
 
     model = model_from(args)
     Frozen(model, z=args.z, v_t=args.v_t, omega=args.omega, t_end=args.t_end)  # validates before any run
-    run_dir = args.run_dir or default_run_dir(
+    run_dir = Path(args.out or default_run_dir(
         "frozen", {"model": model.as_record(), "z": args.z, "v_t": args.v_t, "omega": args.omega,
-                   "t_end": args.t_end, "tolerance": args.tolerance})
+                   "t_end": args.t_end, "tolerance": args.tolerance}))
     result = frozen_to_tolerance(model, args.z, args.v_t, args.omega, args.t_end, args.tolerance, run_dir,
                                  log=(lambda *_: None) if args.json else print)
     v_t_theory, rw_theory = choose.frozen(model, result.t, args.v_t, args.omega * model.r, args.z)
@@ -95,15 +91,14 @@ def _run_to_tolerance(args) -> int:
                           "r_omega": result.values[:, 1], "v_t_theory": v_t_theory, "r_omega_theory": rw_theory,
                           "estimate": result.estimate[:, 0]})
     error = float(max(np.abs(table["v_t"] - v_t_theory).max(), np.abs(table["r_omega"] - rw_theory).max()))
-    out = Path(args.out)
-    out.parent.mkdir(parents=True, exist_ok=True)
+    out = run_dir / SERIES
     write_atomic(out, table.to_csv(index=False, float_format="%.17g"))
     meta = {"scene": "frozen", "model": model.as_record(), "z": args.z, "v_t": args.v_t,
             "omega": args.omega, "t_end": args.t_end, "tolerance": result.tolerance,
             "estimate": result.max_estimate, "max_abs_error": error, "steps": result.steps,
             "plain_steps_for_same_estimate": result.plain_steps_for(result.max_estimate),
             "levels": result.levels, **software(), "csv": str(out)}
-    meta_path = out.with_suffix(".meta.json")
+    meta_path = run_dir / "tolerance.json"
     write_atomic(meta_path, to_json(meta))
     if args.json:
         print(json.dumps(meta, indent=2))

@@ -131,13 +131,35 @@ def model_parser() -> argparse.ArgumentParser:
     return p
 
 
-def state_parser(three_d: bool = True) -> argparse.ArgumentParser:
-    """The initial state's options (the paper's plane, and the 3-D ones where honoured)."""
+def state_parser(three_d: bool = True, optional: bool = False) -> argparse.ArgumentParser:
+    """The initial state's options (the paper's plane, and the 3-D ones where honoured);
+    ``optional``: none has a default (a state that may be left out altogether)."""
     p = argparse.ArgumentParser(add_help=False)
-    group = p.add_argument_group("initial state" + (" (3-D: v_s, omega_s, omega_n)" if three_d else ""))
+    group = p.add_argument_group("initial state" + (" (3-D: v_s, omega_s, omega_n)" if three_d else "")
+                                 + (" (optional)" if optional else ""))
     for parameter in parameters.STATE if three_d else parameters.STATE[:3]:
-        _add(group, parameter)
+        _add(group, parameter, **({"default": None} if optional else {}))
     return p
+
+
+def state_b_parser() -> argparse.ArgumentParser:
+    """Sphere b's state at first touch (:data:`spinbounce.model.parameters.STATE_B`), as a parent parser."""
+    p = argparse.ArgumentParser(add_help=False)
+    group = p.add_argument_group("sphere b's state (--scene pair; default: at rest), in a's frame and sign")
+    for parameter in parameters.STATE_B:
+        _add(group, parameter, default=None)
+    return p
+
+
+def values_of(args: argparse.Namespace) -> dict:
+    """Every declared parameter the command parsed, by name, as the API takes them (the scene's
+    and b's only where given)."""
+    values = {}
+    for parameter in parameters.MODEL + parameters.STATE + parameters.SCENE + parameters.STATE_B:
+        value = getattr(args, parameter.name, None)
+        if value is not None or parameter in parameters.MODEL:
+            values[parameter.name] = value
+    return values
 
 
 def model_from(args: argparse.Namespace) -> ContactModel:
@@ -168,7 +190,7 @@ def sweep_model_flags(p: argparse.ArgumentParser) -> None:
 
 
 #: What an earlier run leaves in its folder.
-RUN_OUTPUTS = ("result.json", "log.lammps", "state.dump", "tolerance.json")
+RUN_OUTPUTS = ("result.json", "log.lammps", "state.dump", "tolerance.json", "frozen.csv")
 
 
 def force_flag(p: argparse.ArgumentParser) -> None:
@@ -187,18 +209,18 @@ def check_run_folder(out: Path | None, force: bool) -> None:
                                             "or --force to replace it")
 
 
-#: A run expected to take longer than this says so before it starts.
-ANNOUNCE_SECONDS = 60.0
-
-
 def announce_cost(steps: int, spheres: int = 1) -> None:
     """Print, before a long run starts, how long it is expected to take (on stderr)."""
-    from ..model.timestep import duration_text, estimate_seconds
+    from ..model.timestep import cost_notice
 
-    seconds = estimate_seconds(steps, spheres)
-    if seconds > ANNOUNCE_SECONDS:
-        print(f"estimated {duration_text(seconds)} on one core ({steps:.3g} steps of {spheres} sphere(s)); "
-              "Ctrl-C stops it", file=sys.stderr, flush=True)
+    notice = cost_notice(steps, spheres)
+    if notice:
+        note(notice)
+
+
+def note(line: str) -> None:
+    """A line for the user beside a command's output: on stderr, at once."""
+    print(line, file=sys.stderr, flush=True)
 
 
 #: Where a study writes its figures and records unless told otherwise: a folder of its own, so that
@@ -299,4 +321,4 @@ def scene_from(args: argparse.Namespace):
     if scene_of(values) == "wall":
         return None
     return sphere_b(*(values[name] if values[name] is not None else parameters.by_name(name).default
-                      for name in parameters.PAIR_ONLY))
+                      for name in parameters.PAIR_SPHERE))

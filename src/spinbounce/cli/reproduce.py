@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import argparse
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -41,22 +42,36 @@ def register(sub) -> None:
                         "repository keeps its own in figures/)")
     p.add_argument("--run-dir", type=Path, default=Path("spinbounce-runs") / "reproduce", metavar="DIR",
                    help="LAMMPS run folders, one per product (default %(default)s)")
+    p.add_argument("--only", type=_products, default=None, metavar="NAME[,NAME...]",
+                   help=f"make only these products (from {', '.join(product_names())}); the claims are judged only "
+                        "when 'claims' is among them")
     p.set_defaults(handler=run)
 
 
-def reproduce(out: Path, run_dir: Path, log=print) -> Reproduction:
-    """Every product of :data:`spinbounce.catalogue.PRODUCTS` into ``out``, runs under ``run_dir``."""
+def _products(text: str) -> tuple[str, ...]:
+    """argparse type of --only: product names, comma-separated."""
+    names = tuple(n.strip() for n in text.split(",") if n.strip())
+    unknown = [n for n in names if n not in product_names()]
+    if not names or unknown:
+        raise argparse.ArgumentTypeError(f"unknown product {', '.join(unknown) or repr(text)}; choose from: "
+                                         f"{', '.join(product_names())}")
+    return names
+
+
+def reproduce(out: Path, run_dir: Path, log=print, only=None) -> Reproduction:
+    """Every product of :data:`spinbounce.catalogue.PRODUCTS` (``only``: those named) into ``out``,
+    runs under ``run_dir``."""
     from ..studies.claims import Claim
 
     started = time.perf_counter()
     records: dict[str, dict] = {}
-    for product in PRODUCTS:
+    for product in (p for p in PRODUCTS if only is None or p.name in only):
         log(f"{product.name}: {product.what} -> {out}/")
         began = time.perf_counter()
         made = make(product, out, run_dir, log=log)
         records.update(made)
         log(f"{product.name}: {', '.join(sorted(made))} ({time.perf_counter() - began:.0f} s)")
-    claims = [Claim(**claim) for claim in records["claims"]["claims"]]
+    claims = [Claim(**claim) for claim in records["claims"]["claims"]] if "claims" in records else []
     return Reproduction(Path(out), records, claims, Path(out) / "CLAIMS.md", time.perf_counter() - started)
 
 
@@ -77,7 +92,10 @@ def summary(made: Reproduction) -> list[str]:
 def run(args) -> int:
     from ..studies.claims import counts
 
-    made = reproduce(args.out, args.run_dir)
+    made = reproduce(args.out, args.run_dir, only=args.only)
+    if args.only is not None:
+        print(f"done in {made.seconds:.0f} s: {', '.join(sorted(made.records))} in {made.out}/")
+        return 1 if counts(made.claims)["unresolved"] else 0
     for line in summary(made):
         print(line)
     return 1 if counts(made.claims)["unresolved"] else 0

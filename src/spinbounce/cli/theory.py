@@ -1,113 +1,94 @@
-"""spinbounce theory: what the theory that applies predicts, without running LAMMPS."""
+"""spinbounce theory: what the theory that applies predicts, without running LAMMPS.
+
+Parsing and printing only: the work is :func:`spinbounce.api.theory`.
+"""
 
 from __future__ import annotations
 
 import json
 import math
 
-from ..model.parameters import SceneError
-from .options import json_flag, model_from, model_parser, number, scene_from, scene_parser
+from ..errors import SceneError
+from .options import json_flag, model_parser, number, scene_parser, state_b_parser, state_parser, values_of
 
 HELP = ("print the theory that applies to a contact model: its scattering matrix (Eq. 18) and Omega, "
         "or, for a given state, the outcome")
-STATE_FLAGS = (("--vn", "v_n", "normal velocity v_n(0) (< 0)"), ("--vt", "v_t", "tangential velocity v_t(0)"),
-               ("--omega", "omega", "angular velocity omega(0), anticlockwise positive"),
-               ("--vs", "v_s", "3-D: second tangential velocity"), ("--omega-s", "omega_s", "3-D: spin along v_s"),
-               ("--omega-n", "omega_n", "3-D: spin about the normal"))
 
 
 def register(sub) -> None:
-    p = sub.add_parser("theory", parents=[model_parser(), scene_parser()], help=HELP, description=HELP + ".")
-    g = p.add_argument_group("a state (optional): print its outcome instead of the matrix")
-    for flag, dest, text in STATE_FLAGS:
-        g.add_argument(flag, dest=dest, type=number, default=None, help=text)
+    p = sub.add_parser("theory", parents=[model_parser(), state_parser(optional=True), scene_parser(),
+                                          state_b_parser()], help=HELP,
+                       description=HELP + ". A state (--v-n, and --v-t, --omega, ...: they default to 0) asks for "
+                                          "its outcome instead of the matrix.")
     p.add_argument("--romega", "--r-omega", dest="r_omega", type=number, default=None,
                    help="instead of --omega: r*omega(0)")
     json_flag(p)
     p.set_defaults(handler=run)
 
 
-def _state(args, r: float) -> dict | None:
-    given = {dest: getattr(args, dest) for _, dest, _ in STATE_FLAGS if getattr(args, dest) is not None}
+def _keywords(args) -> dict:
+    """The API's keywords: the model, the scene and, if given, the state (--r-omega as omega)."""
+    values = values_of(args)
+    state = {name: values.pop(name) for name in ("v_n", "v_t", "omega", "v_s", "omega_s", "omega_n")
+             if name in values}
     if args.r_omega is not None:
-        if "omega" in given:
+        if "omega" in state:
             raise SceneError("r_omega", args.r_omega, "give --omega or --r-omega, not both")
-        given["omega"] = args.r_omega / r
-    if not given:
-        return None
-    if "v_n" not in given:
+        state["omega"] = args.r_omega / values["r"]
+    if state and "v_n" not in state:
         raise SceneError("v_n", None, "a state needs --vn (and --vt, --omega; they default to 0)")
-    return given
+    return values | state
 
 
 def run(args) -> int:
-    from ..exact import choose
+    from .. import api
 
-    model = model_from(args)
-    state = _state(args, model.r)
-    b = scene_from(args)
-    if b is not None:
-        from .pair import pair_theory
-
-        return pair_theory(args, model, b, state)
-    if state is not None:
-        return _outcome(args, model, state)
-    choice = choose.which(model)
-    if not choice.has_matrix:
-        report = {"theory_kind": choice.kind, "theory_name": choice.name, "matrix": None,
-                  "why_no_matrix": choice.no_matrix_reason}
-        if args.json:
-            print(json.dumps(report, indent=2))
-        else:
-            print(f"theory: {choice.name}\nno single scattering matrix: {choice.no_matrix_reason}")
-        return 0
-    return _matrix(args, model, choice)
-
-
-def _matrix(args, model, choice) -> int:
-    import numpy as np
-    from .. import exact
-
-    report = {
-        "theory_kind": choice.kind, "theory_name": choice.name,
-        "tau": model.tau, "Q": model.Q, "Omega": model.Omega, "restitution": model.restitution,
-        "matrix": model.matrix().tolist(), "order": ["v_n", "v_t", "r_omega"],
-        "Omega_paper": exact.Omega(model.kn, model.kt, model.alpha),
-        "Omega_paper_damped": exact.Omega_paper_damped(model.m, model.kn, model.kt, model.alpha, model.gamma_t),
-        "magic_kt_over_kn": exact.magic_kt_over_kn(model.alpha),
-    }
+    report = api.theory(**_keywords(args))
     if args.json:
-        print(json.dumps(report, indent=2))
+        print(json.dumps(report, indent=2, default=lambda x: x.tolist()))
         return 0
-    damped = choice.kind == "damped"
-    print(f"theory: {choice.name}")
-    print(f"tau   = {model.tau:.10g}   (contact time, Eq. 16; pi*sqrt(m/kn) = {math.pi * math.sqrt(model.m / model.kn):.10g})")
-    print(f"Q     = {model.Q:.10g}   (Eq. 8)")
-    print(f"Omega = {model.Omega:.10g}   ({'exact damped' if damped else 'Eq. 18'})")
+    if "outcome" in report:
+        from .collide import print_pair_record
+
+        print_pair_record(report["outcome"])
+        return 0
+    print(f"theory: {report['theory_name']}")
+    if "theory" in report:
+        names = list(report["initial"])
+        print(f"{'':8}" + "".join(f"{n:>16}" for n in names))
+        for label in ("initial", "theory"):
+            print(f"{label:8}" + "".join(f"{report[label][n]:>16.10f}" for n in names))
+    elif report["matrix"] is None:
+        print(f"no single scattering matrix: {report['why_no_matrix']}")
+    elif report["theory_kind"] == "pair planar":
+        _print_pair_matrix(report)
+    else:
+        _print_matrix(report, args)
+    return 0
+
+
+def _print_matrix(report: dict, args) -> None:
+    import numpy as np
+
+    damped = report["theory_kind"] == "damped"
+    print(f"tau   = {report['tau']:.10g}   (contact time, Eq. 16; pi*sqrt(m/kn) = "
+          f"{math.pi * math.sqrt(args.m / args.kn):.10g})")
+    print(f"Q     = {report['Q']:.10g}   (Eq. 8)")
+    print(f"Omega = {report['Omega']:.10g}   ({'exact damped' if damped else 'Eq. 18'})")
     if damped:
-        print(f"        Eq. 18 undamped: {report['Omega_paper']:.10g}; paper's Eq. 22: {report['Omega_paper_damped']:.10g}")
+        print(f"        Eq. 18 undamped: {report['Omega_paper']:.10g}; paper's Eq. 22: "
+              f"{report['Omega_paper_damped']:.10g}")
     print("scattering matrix, (v_n, v_t, r*omega) before -> after:")
     with np.printoptions(precision=8, suppress=True, floatmode="fixed"):
-        for row in model.matrix():
+        for row in report["matrix"]:
             print("   ", row)
     print(f"energy-conserving ratio kt/kn = alpha/(1+alpha) = {report['magic_kt_over_kn']:.10g} (Omega = -2)")
-    return 0
 
 
-def _outcome(args, model, state: dict) -> int:
-    """The final state of one collision from the theory that applies (no LAMMPS run)."""
-    from ..exact import choose
-
-    initial, final = choose.outcome(model, **state)
-    names = list(initial)
-    choice = choose.which(model)
-    report = {"theory_kind": choice.kind, "theory_name": choice.name, "initial": initial, "theory": final,
-              "contact_time": float(model.contact_times(state["v_n"])[0])}
-    if args.json:
-        print(json.dumps(report, indent=2))
-        return 0
-    print(f"theory: {choice.name}")
-    print(f"{'':8}" + "".join(f"{n:>16}" for n in names))
-    for label in ("initial", "theory"):
-        print(f"{label:8}" + "".join(f"{report[label][n]:>16.10f}" for n in names))
-    return 0
+def _print_pair_matrix(report: dict) -> None:
+    print(f"tau   = {report['tau']:.10g}   (pi sqrt(m*/kn), m* the reduced mass)")
+    print(f"Omega = {report['Omega']:.10g}   (the wall's at alpha_eq = {report['alpha_equivalent']:.10g})")
+    print("scattering matrix of sphere a, (v_n, v_t, r*omega) before -> after:")
+    for row in report["matrix"]:
+        print("   ", "  ".join(f"{x:11.8f}" for x in row))
+    print(f"model error: {report['model_error']}")

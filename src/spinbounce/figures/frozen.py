@@ -207,10 +207,10 @@ def fig7_data(out: Path, runs: Path | None = None) -> FigureData:
         t = _frozen_table(tuned, model)
         vt22, rw22 = exact.frozen_velocities_paper_damped(
             t["t"].to_numpy(), 1.0, model.r * 1.0, model.kt, model.m, model.alpha, gamma_t)
-        t["vt_eq22"], t["omega_eq22"] = vt22, rw22 / model.r
+        t["v_t_eq22"], t["omega_eq22"] = vt22, rw22 / model.r
         t.insert(0, "gamma_t", gamma_t)
         tables.append(t)
-        dev22 = {"v_t": float(np.abs(t["v_t"] - t["vt_eq22"]).max()),
+        dev22 = {"v_t": float(np.abs(t["v_t"] - t["v_t_eq22"]).max()),
                  "omega": float(np.abs(t["omega"] - t["omega_eq22"]).max()),
                  "r_omega": float(np.abs(t["r_omega"] - rw22).max())}
         records.append({"series": f"gamma_t={gamma_t:g}", "tuned": tuned, "gamma_t": gamma_t,

@@ -18,7 +18,7 @@ from ..laws import normal_coefficients, normal_parameter, style_parameter
 from ..laws.damping.velocity import GAMMA_N, GAMMA_T
 from ..laws.tangential.linear_history import KT, MU
 
-__all__ = ["finite_number", "positive_number", "Parameter", "MODEL", "STATE", "RUN", "SCENE", "PAIR_ONLY", "ALL",
+__all__ = ["finite_number", "positive_number", "Parameter", "MODEL", "STATE", "RUN", "SCENE", "STATE_B", "PAIR_SPHERE", "PAIR_ONLY", "ALL",
            "by_name", "SceneError", "markdown_table"]
 
 
@@ -61,6 +61,15 @@ STATE: tuple[Parameter, ...] = (
               changes_outcome=False),
 )
 
+#: Sphere b's state at first touch in a pair (default: at rest), in sphere a's frame and sign: the
+#: normal runs along the line of centres from b to a (the wall's normal), the spins are signed as
+#: a's. One collision's (collide, theory, the API); a sweep samples a's state with b at rest.
+STATE_B: tuple[Parameter, ...] = tuple(
+    Parameter(f"{p.name}_b", f"pair: sphere b's {p.meaning.split(' (')[0]} at first touch, in a's frame and sign",
+              p.unit, 0.0, changes_outcome=False, sweepable=False,
+              deck="pairs.data: b's velocity and angular velocity")
+    for p in STATE)
+
 #: How a run is resolved: a step, or an accuracy to reach.
 RUN: tuple[Parameter, ...] = (
     Parameter("dt", "timestep (default: from the timestep rule, model/timestep.py)", "time", None,
@@ -86,10 +95,11 @@ SCENE: tuple[Parameter, ...] = (
               why="above 1 the mass would lie beyond the radius",
               deck="fix nve/sphere (alpha_b = 2/5) or fix rigid with a centre point"),
 )
-#: The scene parameters that only a pair has.
-PAIR_ONLY = tuple(p.name for p in SCENE[1:])
+#: Sphere b's own parameters, and with its state every parameter that only a pair has.
+PAIR_SPHERE = tuple(p.name for p in SCENE[1:])
+PAIR_ONLY = PAIR_SPHERE + tuple(p.name for p in STATE_B)
 
-ALL = MODEL + STATE + RUN + SCENE
+ALL = MODEL + STATE + STATE_B + RUN + SCENE
 
 
 def by_name(name: str) -> Parameter:

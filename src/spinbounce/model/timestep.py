@@ -27,7 +27,7 @@ from dataclasses import asdict, dataclass
 
 __all__ = ["mid_step_dt", "align_mid_step", "refine_mid_step", "steps_through", "steps_per_contact",
            "ACCURACY", "SECOND_ORDER", "SAFETY", "FROZEN_ACCURACY", "MAX_STEPS", "second_order_dt", "check_steps", "estimate_seconds",
-           "duration_text", "StepChoice"]
+           "duration_text", "StepChoice", "cost_notice", "ANNOUNCE_SECONDS"]
 
 #: Guards the rounding of t_end/dt so that an exact multiple is not pushed one step further.
 _ROUNDING = 1e-9
@@ -141,3 +141,16 @@ def steps_through(t_end: float, dt: float) -> int:
     (infinite when t_end/dt overflows a float: :func:`check_steps` refuses it)."""
     ratio = t_end / dt
     return math.floor(ratio) + 2 if math.isfinite(ratio) else math.inf
+
+
+#: A run expected to take longer than this says so before it starts.
+ANNOUNCE_SECONDS = 60.0
+
+
+def cost_notice(steps: int, spheres: int = 1) -> str | None:
+    """What to tell the user before a run of ``steps`` steps of ``spheres`` spheres starts, if it
+    is expected to take longer than :data:`ANNOUNCE_SECONDS`."""
+    seconds = estimate_seconds(steps, spheres)
+    if seconds <= ANNOUNCE_SECONDS:
+        return None
+    return f"estimated {duration_text(seconds)} on one core ({steps:.3g} steps of {spheres} sphere(s)); Ctrl-C stops it"

@@ -128,7 +128,7 @@ def _pair_columns(columns: dict, spec: SweepSpec, group: int, model, n: int) -> 
     from ..scenes.pair.kind import planar_Omega
 
     b = spec.sphere_b(group)
-    for name in parameters.PAIR_ONLY:
+    for name in parameters.PAIR_SPHERE:
         columns[parameters.by_name(name).column] = np.full(n, spec.groups[group][name])
     columns["Omega_theory"] = np.full(n, planar_Omega(model, b))  # the planar theory's (the wall's at equal alpha)
     return {"scene": "pair", "theory": "pair_exact"}

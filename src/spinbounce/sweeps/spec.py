@@ -172,7 +172,7 @@ class SweepSpec:
         """A pair group's sphere b (:func:`spinbounce.scenes.pair.kind.sphere_b`)."""
         from ..scenes.pair.kind import sphere_b
 
-        return sphere_b(*(self.groups[group][name] for name in parameters.PAIR_ONLY))
+        return sphere_b(*(self.groups[group][name] for name in parameters.PAIR_SPHERE))
 
     def initial_states(self, group: int, start: int = 0, stop: int | None = None) -> np.ndarray:
         """States (v_n, v_t, omega) of rows [start, stop), then (v_s, omega_s, omega_n) for a

@@ -5,6 +5,7 @@
 (a pair as the wall's scene with sphere b in place of the wall), :mod:`.sweep` (a sweep's chunk).
 """
 
-from .scene import QUANTITIES, Pair, PairBatch, PairContact, Sphere
+from .deck import QUANTITIES
+from .scene import Pair, PairBatch, PairContact, Sphere
 
 __all__ = ["Sphere", "PairContact", "Pair", "PairBatch", "QUANTITIES"]

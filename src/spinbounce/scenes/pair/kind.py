@@ -4,7 +4,8 @@ A pair scene is the wall's scene with the wall replaced by sphere b (``scene = "
 with b's ``m_b``, ``r_b`` and ``alpha_b``; :data:`spinbounce.model.parameters.SCENE`).
 Sphere a keeps the model's m, r and alpha and the wall scene's initial state, in the same
 frame: the line of centres is LAMMPS's z (b below a), so a's (v_n, v_t, r omega, v_s,
-r omega_s, r omega_n) are the wall's columns, and b starts at rest without spin. The
+r omega_s, r omega_n) are the wall's columns; b starts at rest without spin, or in its own
+state of the same six columns (one collision's: :data:`~spinbounce.model.parameters.STATE_B`). The
 contact law is the model's kn, kt, gamma_n, gamma_t and mu; what the pair deck cannot express
 is refused here with the reason (:func:`pair_contact`).
 """
@@ -14,11 +15,11 @@ from __future__ import annotations
 import numpy as np
 
 from ...model.contact import ContactModel
-from ...model.parameters import PAIR_ONLY, SceneError, by_name
+from ...model.parameters import PAIR_ONLY, PAIR_SPHERE, STATE_B, SceneError, by_name
 from ...exact import pair as planar
 from .scene import Pair, PairContact, Sphere
 
-__all__ = ["pair_contact", "sphere_b", "pairs_from_states", "wall_frame", "planar_matrix", "planar_Omega",
+__all__ = ["pair_contact", "sphere_b", "state_b", "pairs_from_states", "wall_frame", "planar_matrix", "planar_Omega",
            "scene_of", "CAPPED_NO_MATRIX"]
 
 #: Why a pair with a Coulomb cap has no scattering matrix (theory, the API and fit say it).
@@ -49,20 +50,35 @@ def pair_contact(model: ContactModel) -> PairContact:
 
 def sphere_b(m_b=1.0, r_b=0.5, alpha_b=0.4) -> Sphere:
     """Sphere b from its declared parameters (each checked against its declaration, named)."""
-    return Sphere(*(by_name(name).check(value) for name, value in zip(PAIR_ONLY, (m_b, r_b, alpha_b), strict=True)))
+    return Sphere(*(by_name(name).check(value) for name, value in zip(PAIR_SPHERE, (m_b, r_b, alpha_b), strict=True)))
 
 
-def pairs_from_states(model: ContactModel, b: Sphere, states: np.ndarray) -> list[Pair]:
-    """One pair per row of (v_n, v_t, omega[, v_s, omega_s, omega_n]): a as the wall's sphere, b at rest.
+def state_b(values: dict) -> np.ndarray:
+    """Sphere b's state (v_n_b, v_t_b, omega_b, v_s_b, omega_s_b, omega_n_b) from declared values
+    (each checked; missing or None: at rest)."""
+    return np.array([by_name(p.name).check(values[p.name]) if values.get(p.name) is not None else 0.0
+                     for p in STATE_B])
 
-    LAMMPS's frame as the wall's (:mod:`spinbounce.scenes.collision.table`): v = (v_t, v_s, v_n) and
-    angular velocity (omega_s, -omega, omega_n).
+
+def _lammps_vectors(state: np.ndarray) -> tuple[tuple, tuple]:
+    """A state (v_n, v_t, omega, v_s, omega_s, omega_n) as LAMMPS's velocity and angular velocity:
+    v = (v_t, v_s, v_n), omega = (omega_s, -omega, omega_n) (the wall's frame and sign)."""
+    return (state[1], state[3], state[0]), (state[4], -state[2] + 0.0, state[5])
+
+
+def pairs_from_states(model: ContactModel, b: Sphere, states: np.ndarray, b_state=None) -> list[Pair]:
+    """One pair per row of (v_n, v_t, omega[, v_s, omega_s, omega_n]): a as the wall's sphere, b
+    below it along the line of centres, at rest or in ``b_state`` (the same six, a's frame and sign).
+
+    LAMMPS's frame as the wall's (:mod:`spinbounce.scenes.collision.table`): v = (v_t, v_s, v_n)
+    and angular velocity (omega_s, -omega, omega_n).
     """
     a = Sphere(model.m, model.r, model.alpha)
     states = np.atleast_2d(np.asarray(states, dtype=float))
     full = np.zeros((len(states), 6))
     full[:, : states.shape[1]] = states
-    return [Pair(a=a, b=b, v_a=(s[1], s[3], s[0]), w_a=(s[4], -s[2], s[5])) for s in full]
+    v_b, w_b = _lammps_vectors(np.zeros(6) if b_state is None else np.asarray(b_state, dtype=float))
+    return [Pair(a=a, b=b, v_a=v_a, w_a=w_a, v_b=v_b, w_b=w_b) for v_a, w_a in map(_lammps_vectors, full)]
 
 
 def wall_frame(v: np.ndarray, w: np.ndarray, r: float) -> np.ndarray:

@@ -31,7 +31,7 @@ from ...exact import pair_capped, pair_exact
 from ...model.contact import ContactModel
 from ...model.parameters import SceneError, by_name
 from ...model.timestep import steps_per_contact, steps_through
-from .deck import PAIR_NO_CAP_MU, QUANTITIES, render_pairs
+from .deck import PAIR_NO_CAP_MU, render_pairs
 
 __all__ = ["Sphere", "PairContact", "Pair", "PairBatch", "ALPHA_NVE_SPHERE", "PAIR_STEPS_PER_HALF_PERIOD",
            "time_scaled"]
@@ -352,7 +352,7 @@ class PairBatch:
                                               for p in self.pairs], 3, axis=1) for side in "ab" for q in "vw"])
         m_star = planar.reduced_mass(columns["m_a"], columns["m_b"])
         overlap = np.array([float(linear.max_overlap(v_n, m, self.contact.kn, self.contact.gamma_n))
-                            for v_n, m in zip(columns["v_n"], m_star, strict=True)])
+                            for v_n, m in zip(columns["v_n_relative"], m_star, strict=True)])
         return checks.RowStates(initial, states(""), states("_exact"), weights, columns["speed"], overlap,
                                 columns["r_a"] + columns["r_b"])
 

@@ -1,7 +1,8 @@
 """A pair batch's table: each pair's final states beside its references.
 
-One row per pair, with the pair's geometry (eps, the centrifugal ratio, how far the line of
-centres turned), and for every final quantity q of sphere a and b (``a_vx`` ... ``b_wz``,
+One row per pair, with the pair's geometry (the relative normal velocity ``v_n_relative`` and
+tangential speed ``v_t_relative`` at first touch, eps, the centrifugal ratio, how far the line
+of centres turned), and for every final quantity q of sphere a and b (``a_vx`` ... ``b_wz``,
 LAMMPS's frame, omega as LAMMPS's angular velocity) LAMMPS's value ``q``, the exact
 reference ``q_exact`` (:mod:`spinbounce.exact.pair_exact`) and the planar theory's
 ``q_planar`` (:mod:`spinbounce.exact.pair`). ``planar_error`` is the planar theory's
@@ -93,7 +94,7 @@ def pair_table(batch: PairBatch, lammps: dict[str, np.ndarray] | None) -> pd.Dat
     props = {k: np.array([p.properties()[k] for p in pairs]) for k in pairs[0].properties()}
     tau = planar.contact_time(props["m_a"], props["m_b"], batch.contact.kn, batch.contact.gamma_n)
     v_t, v_n = np.array([p.v_t for p in pairs]), np.array([p.v_n for p in pairs])
-    columns = {"pair": np.arange(batch.n), **props, "v_n": v_n, "v_t": v_t,
+    columns = {"pair": np.arange(batch.n), **props, "v_n_relative": v_n, "v_t_relative": v_t,
                "speed": np.array([p.speed() for p in pairs]), "tau": tau,
                "contact_time": np.array([o.contact_time for o in batch.exact]),
                "eps": planar.line_turn(v_t, tau, props["r_a"], props["r_b"]),
