@@ -154,7 +154,7 @@ FLAGS = [
     refused("pair-two-components", "pair --v-a 1 2", "--v-a"),
     refused("pair-zero-normal", "pair --normal 0 0 0", "normal"),
     refused("pair-kn-negative", "pair --kn -1", "kn", "-1.0"),
-    refused("pair-mu-3d", "pair --mu 0.3 --w-a 1 0 0", "one plane"),
+    refused("pair-mu-3d", "pair --mu 0.3 --omega-s 1", "one plane"),
     refused("pair-mu-gamma-t", "pair --mu 0.3 --gamma-t 0.5", "gamma_t", "0.5"),
     refused("limit-damping-as-value", "theory --limit-damping=true", "--limit-damping"),
 ]
@@ -249,8 +249,6 @@ FILES = [
     refused("frozen-out-unwritable", FROZEN.replace("--out f", "--out /proc/f"), "--out", "/proc/f"),
     refused("frozen-out-under-a-file", FROZEN.replace("--out f", "--out notes.txt/f"), "--out", "notes.txt/f",
             files=("notes.txt",)),
-    refused("frozen-run-dir-is-a-file", f"{FROZEN} --run-dir notes.txt", "--run-dir", "notes.txt", files=("notes.txt",)),
-    refused("frozen-run-dir-earlier-run", f"{FROZEN} --run-dir run", "--out", "run", files=("run",)),
     refused("collide-earlier-run", f"collide {STATE} --out run", "--out", "run", files=("run",)),
     refused("fit-missing", "fit nothere", "nothere"),
     refused("fit-empty-folder", "fit emptydir", "emptydir", files=("emptydir",)),
