@@ -326,6 +326,7 @@ FOUND_LATER = [
     refused("bench-pairs-zero", "bench --n-pairs 0", "--n-pairs", "0", ">= 1"),
     refused("bench-pairs-fraction", "bench --n-pairs 2.5", "--n-pairs", "2.5"),
     refused("pair-b-state-on-the-wall", "collide --v-n-b 1 --out c", "v_n_b", "scene = pair"),
+    refused("pair-b-runs-away", "pair --v-n-b -2 --out p", "v_n - v_n_b", "1.0", "< 0"),
     refused("figures-runs-holds-user-file", "figures --only fig2 --runs figout", "--runs", "figout/fig2",
             files=("figout-fig2",)),
     ok("python-m-spinbounce", "--version", printed("spinbounce "), module="spinbounce"),

@@ -188,3 +188,26 @@ def test_collide_runs_the_pair_scene(tmp_path, capsys):
     assert row["m_b"] == 2.0 and row["alpha_b"] == 0.3 and row["error"] < ACCURACY
     report = spinbounce.collide(scene="pair", m_b=2.0, r_b=0.7, alpha_b=0.3, v_t=0.3, out=tmp_path / "api")
     assert report.error == pytest.approx(row["error"], rel=1e-9)
+
+
+@pytest.mark.lammps
+def test_a_wall_and_a_pair_collision_run_through_one_pipeline_and_one_record(tmp_path, monkeypatch):
+    """The same probe, row checks and record writer serve both scenes: each call is counted."""
+    import json
+
+    from spinbounce import checks, pipeline, stepping
+
+    calls = []
+    for module, name in ((stepping, "tune"), (checks, "add_row_checks"), (pipeline, "write_record")):
+        real = getattr(module, name)
+        monkeypatch.setattr(module, name, lambda *a, _real=real, _name=name, **k: calls.append(_name) or _real(*a, **k))
+    monkeypatch.setattr(pipeline, "tune", stepping.tune)  # the pipeline's own name for the probe
+    wall = spinbounce.collide(v_n=-1.0, v_t=0.5, gamma_n=0.5, out=tmp_path / "wall")
+    pair = spinbounce.collide(v_n=-1.0, v_t=0.5, gamma_n=0.5, scene="pair", out=tmp_path / "pair")
+    # a damped contact is probed in both scenes: the outer run and its probes each check their rows
+    assert calls.count("tune") >= 2 and calls.count("write_record") == 2
+    assert calls.count("add_row_checks") >= 2 * 3  # two probes and the run, per scene
+    records = [json.loads((tmp_path / kind / "result.json").read_text()) for kind in ("wall", "pair")]
+    assert set(records[0]) == set(records[1])  # one writer: the same fields, whichever scene
+    assert records[0]["scene"] == "collision" and records[1]["scene"] == "pair"
+    assert wall.status == pair.status == "ok" and wall.step["method"] == pair.step["method"] == "probe"

@@ -24,7 +24,7 @@ from ..model.parameters import Parameter, SceneError
 if TYPE_CHECKING:
     from ..model.contact import ContactModel
 
-__all__ = ["number", "count", "model_parser", "state_parser", "model_from", "state_from", "json_flag",
+__all__ = ["number", "count", "model_parser", "state_parser", "model_from", "json_flag",
            "default_run_dir", "optional_number", "force_flag", "check_run_folder", "announce_cost", "figure_options", "make_with_runs", "allow_negative_numbers", "sweep_model_flags", "parameter_help",
            "FIGURES_OUT", "out_folder", "out_file", "out_option",
            "positive_count", "worker_count"]
@@ -168,11 +168,6 @@ def model_from(args: argparse.Namespace) -> ContactModel:
     return ContactModel(**{p.name: getattr(args, p.name) for p in parameters.MODEL})
 
 
-def state_from(args: argparse.Namespace) -> dict:
-    """The state keywords of :class:`~spinbounce.scenes.collision.Collision` that were given."""
-    return {p.name: getattr(args, p.name) for p in parameters.STATE if hasattr(args, p.name)}
-
-
 def sweep_model_flags(p: argparse.ArgumentParser) -> None:
     """A sweep's model options: every sweepable parameter takes one value or several (a grid)."""
     group = p.add_argument_group("model, from flags (one value or several: every combination is a group)")
@@ -311,14 +306,3 @@ def scene_parser() -> argparse.ArgumentParser:
     for parameter in parameters.SCENE:
         _add(group, parameter, default=None)
     return p
-
-
-def scene_from(args: argparse.Namespace):
-    """``None`` for the wall; sphere b for a pair (b's options without --scene pair are refused)."""
-    from ..scenes.pair.kind import scene_of, sphere_b
-
-    values = {p.name: getattr(args, p.name) for p in parameters.SCENE}
-    if scene_of(values) == "wall":
-        return None
-    return sphere_b(*(values[name] if values[name] is not None else parameters.by_name(name).default
-                      for name in parameters.PAIR_SPHERE))

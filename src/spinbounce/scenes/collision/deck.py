@@ -1,12 +1,15 @@
 """The collision deck (``collision.lmp.j2`` beside this module): its spheres inline, in a data
-file or handed over in memory (:data:`ATOM_ROUTES`), and optional padding for ``bench``."""
+file or handed over in memory (:data:`ATOM_ROUTES`), and optional padding for ``bench``.
+
+``scene`` is this folder's :class:`.scene.Collision`, which calls this module
+(never the other way round).
+"""
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -14,8 +17,6 @@ from ...lammps.data import Atoms, bodies_file, data_file
 from ...lammps.decks import (ATOM_ROUTES, BODIES_FILE, DATA_FILE, DECK_NAME, DUMP_NAME, INLINE_SPHERES, LIBRARY_MARKER,
                              Deck, LibraryAtoms, common_context, render_template)
 
-if TYPE_CHECKING:
-    from .scene import Collision
 
 __all__ = ["Padding", "render_collision", "PADDING_DUMP_NAME"]
 
@@ -44,7 +45,7 @@ class Padding:
 
 
 
-def _collision_state(scene: Collision, padding: Padding) -> dict[str, np.ndarray]:
+def _collision_state(scene, padding: Padding) -> dict[str, np.ndarray]:
     """Per-sphere LAMMPS vectors: position, velocity, angular velocity (omega_y = -omega,
     omega_x = omega_s, omega_z = omega_n)."""
     n = scene.n
@@ -56,7 +57,7 @@ def _collision_state(scene: Collision, padding: Padding) -> dict[str, np.ndarray
     }
 
 
-def _data_file(scene: Collision, state: dict, rigid: bool, box: dict) -> str:
+def _data_file(scene, state: dict, rigid: bool, box: dict) -> str:
     """The collision's data file: its spheres (and, for rigid bodies, their centre points)."""
     model, n = scene.model, scene.n
     ids = np.arange(1, n + 1)
@@ -73,14 +74,14 @@ def _data_file(scene: Collision, state: dict, rigid: bool, box: dict) -> str:
     return data_file(f"{n} spheres for {DECK_NAME}", spheres, 2 if rigid else 1, sides)
 
 
-def _bodies_file(scene: Collision, state: dict) -> str:
+def _bodies_file(scene, state: dict) -> str:
     model, n = scene.model, scene.n
     return bodies_file(np.arange(1, n + 1), np.full(n, model.m), np.column_stack([state["x"], state["y"], state["z"]]),
                        np.full(n, model.inertia), np.column_stack([state["vx"], state["vy"], state["vz"]]),
                        np.column_stack([state["wx"], state["wy"], state["wz"]]))
 
 
-def _library_atoms(scene: Collision, state: dict, rigid: bool) -> LibraryAtoms:
+def _library_atoms(scene, state: dict, rigid: bool) -> LibraryAtoms:
     n = scene.n
     x = np.column_stack([state["x"], state["y"], state["z"]])
     v = np.column_stack([state["vx"], state["vy"], state["vz"]])
@@ -93,7 +94,7 @@ def _library_atoms(scene: Collision, state: dict, rigid: bool) -> LibraryAtoms:
     return LibraryAtoms(types=types, x=x, v=v, omega=omega)
 
 
-def render_collision(scene: Collision, atoms: str | None = None, padding: Padding | None = None) -> Deck:
+def render_collision(scene, atoms: str | None = None, padding: Padding | None = None) -> Deck:
     """The collision deck. ``atoms``: one of :data:`ATOM_ROUTES`; by default inline up to
     :data:`INLINE_SPHERES` spheres and a data file beyond (either way ``lmp -in`` reruns it).
     ``padding``: work beyond the contact, for measuring its cost (:class:`Padding`)."""

@@ -4,6 +4,9 @@ LAMMPS frame -> paper: v_n = v_z, v_t = v_x, omega = -omega_y (anticlockwise pos
 r_omega = r * omega; in 3-D v_s = v_y, omega_s = omega_x, omega_n = omega_z. Frames come
 from the dump, or from LAMMPS's memory for a library-route deck; both are checked (lost
 spheres, non-finite values, a contact that had not finished) before the table is made.
+
+``scene`` is this folder's :class:`.scene.Collision`, which calls this module
+(never the other way round).
 """
 
 from __future__ import annotations
@@ -20,7 +23,6 @@ from ...lammps.dumps import read_dump
 if TYPE_CHECKING:
     from ...lammps.decks import Deck
     from ...lammps.runner import RunInfo
-    from .scene import Collision
 
 __all__ = ["collision_table", "read_collision", "FRAME_COLUMNS"]
 
@@ -32,7 +34,7 @@ _FROM_LAMMPS = {"v_n": ("vz", 1.0), "v_t": ("vx", 1.0), "r_omega": ("omegay", -1
 SPINS = {"r_omega": "omega", "r_omega_s": "omega_s", "r_omega_n": "omega_n"}
 
 
-def collision_table(scene: Collision, initial, final, as_frame: bool = True):
+def collision_table(scene, initial, final, as_frame: bool = True):
     """One row per sphere: requested, initial (as LAMMPS saw it), final, theory and error.
 
     ``initial`` and ``final`` map LAMMPS's column names (z, vx, vz, omegay, ...) to one
@@ -100,7 +102,7 @@ def _dump_frames(frames: pd.DataFrame) -> dict[int, dict[str, np.ndarray]]:
     return out
 
 
-def _collision_frames(scene: Collision, frames: dict, where: Path) -> tuple[dict, dict]:
+def _collision_frames(scene, frames: dict, where: Path) -> tuple[dict, dict]:
     """Checked initial and final frames (one entry per sphere, id order) of a collision run."""
     steps = sorted(frames)
     if steps != [0, scene.nsteps]:
@@ -121,7 +123,7 @@ def _collision_frames(scene: Collision, frames: dict, where: Path) -> tuple[dict
     return frames[0], frames[scene.nsteps]
 
 
-def _check_finished(scene: Collision, columns: dict, source: Path) -> None:
+def _check_finished(scene, columns: dict, source: Path) -> None:
     touching = np.flatnonzero(columns["z_lammps"] <= scene.model.r)
     if touching.size:
         first = touching[0]
@@ -132,7 +134,7 @@ def _check_finished(scene: Collision, columns: dict, source: Path) -> None:
         )
 
 
-def read_collision(scene: Collision, info: RunInfo, deck: Deck, folder: Path) -> dict:
+def read_collision(scene, info: RunInfo, deck: Deck, folder: Path) -> dict:
     """The run's checked table columns (from its dump, or from memory for a library-route deck)."""
     if deck.dump is None:
         source = info.log

@@ -1,19 +1,20 @@
-"""The frozen contact's deck (``frozen.lmp.j2`` beside this module): one sphere held at z."""
+"""The frozen contact's deck (``frozen.lmp.j2`` beside this module): one sphere held at z.
+
+``scene`` is this folder's :class:`.scene.Frozen`, which calls this module
+(never the other way round).
+"""
 
 from __future__ import annotations
 
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 from ...lammps.decks import Deck, common_context, render_template
 
-if TYPE_CHECKING:
-    from .scene import Frozen
 
 __all__ = ["render_frozen"]
 
 
-def render_frozen(scene: Frozen) -> Deck:
+def render_frozen(scene) -> Deck:
     model = scene.model
     ctx = common_context(model, zhi=4.0 * model.r)
     ctx.update(

@@ -1,19 +1,20 @@
-"""The frozen contact's time series beside Eq. 10: LAMMPS's dump in the paper's variables."""
+"""The frozen contact's time series beside Eq. 10: LAMMPS's dump in the paper's variables.
+
+``scene`` is this folder's :class:`.scene.Frozen`, which calls this module
+(never the other way round).
+"""
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
 
 import pandas as pd
 
-if TYPE_CHECKING:
-    from .scene import Frozen
 
 __all__ = ["paper_variables", "frozen_table"]
 
 
 def paper_variables(frames: pd.DataFrame, r: float) -> pd.DataFrame:
-    """Add the paper's variables (vn, vt, omega, r_omega, and the slip) to dump rows."""
+    """Add the paper's variables (v_n, v_t, omega, r_omega, and the slip) to dump rows."""
     out = frames.copy()
     out["v_n"] = frames["vz"]
     out["v_t"] = frames["vx"]
@@ -23,8 +24,8 @@ def paper_variables(frames: pd.DataFrame, r: float) -> pd.DataFrame:
     return out
 
 
-def frozen_table(scene: Frozen, frames: pd.DataFrame) -> pd.DataFrame:
-    """The frozen time series: t, vt, omega, r_omega and the theory's vt and r_omega."""
+def frozen_table(scene, frames: pd.DataFrame) -> pd.DataFrame:
+    """The frozen time series: t, v_t, omega, r_omega (LAMMPS's) and the theory's v_t and r_omega."""
     paper = paper_variables(frames, scene.model.r)
     t = paper["step"].to_numpy() * scene.dt
     v_t_theory, r_omega_theory = scene.predicted(t)

@@ -6,6 +6,9 @@ step integrates exactly) so that they touch that much later; each pair at its ti
 (:attr:`.scene.PairBatch.time_scales`: heavier and slower by it, in an aligned batch). Atom ids: the spheres that
 are rigid bodies (alpha other than 2/5) first, then their centre points in the same order,
 then the free spheres; the deck's ``ids`` map each pair's a and b to its sphere's id.
+
+``batch`` is this folder's :class:`.scene.PairBatch`, which calls this module
+(never the other way round).
 """
 
 from __future__ import annotations
@@ -15,13 +18,10 @@ import math
 import numpy as np
 
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 from ...lammps.data import Atoms, bodies_file, data_file
 from ...lammps.decks import Deck, deck_words, render_template, wall_parameters
 
-if TYPE_CHECKING:
-    from .scene import PairBatch
 
 __all__ = ["render_pairs", "DECK_NAME", "DUMP_NAME", "DATA_FILE", "BODIES_FILE"]
 
@@ -41,7 +41,7 @@ QUANTITIES = tuple(f"{side}_{q}{axis}" for side in "ab" for q in "vw" for axis i
 PAIR_NO_CAP_MU = 1.0e100
 
 
-def _spheres(batch: PairBatch) -> tuple[list[dict], float, int]:
+def _spheres(batch) -> tuple[list[dict], float, int]:
     """One record per sphere (pair by pair, a then b): its sphere, start position and
     velocities; and the cell size and the grid's cells per side."""
     reach = max(max(abs(x) for x in (*p.v_a, *p.v_b)) for p in batch.pairs)
@@ -99,7 +99,7 @@ def _bodies_file(rigid: list[dict]) -> str:
                        np.array([r["v"] for r in rigid]), np.array([r["w"] for r in rigid]))
 
 
-def render_pairs(batch: PairBatch) -> Deck:
+def render_pairs(batch) -> Deck:
     """The batch's deck, with its data file (and bodies file, if any sphere is a rigid body)."""
     records, cell, grid = _spheres(batch)
     rigid, free = _number_atoms(records)

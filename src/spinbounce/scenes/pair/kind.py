@@ -77,7 +77,13 @@ def pairs_from_states(model: ContactModel, b: Sphere, states: np.ndarray, b_stat
     states = np.atleast_2d(np.asarray(states, dtype=float))
     full = np.zeros((len(states), 6))
     full[:, : states.shape[1]] = states
-    v_b, w_b = _lammps_vectors(np.zeros(6) if b_state is None else np.asarray(b_state, dtype=float))
+    b_state = np.zeros(6) if b_state is None else np.asarray(b_state, dtype=float)
+    leaving = np.flatnonzero(full[:, 0] - b_state[0] >= 0.0)
+    if leaving.size:
+        k = int(leaving[0])
+        raise SceneError("v_n - v_n_b", float(full[k, 0] - b_state[0]), "must be < 0: the spheres approach at first "
+                                                                       "touch" + (f" (row {k})" if len(full) > 1 else ""))
+    v_b, w_b = _lammps_vectors(b_state)
     return [Pair(a=a, b=b, v_a=v_a, w_a=w_a, v_b=v_b, w_b=w_b) for v_a, w_a in map(_lammps_vectors, full)]
 
 

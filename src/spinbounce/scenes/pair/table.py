@@ -10,6 +10,9 @@ largest difference from the exact reference over the velocities and r times the 
 units of the pair's ``speed`` (:meth:`Pair.speed`): a model error. LAMMPS's own error
 against the exact reference is the row checks' ``error`` (:mod:`spinbounce.checks`), in
 the same units.
+
+``batch`` is this folder's :class:`.scene.PairBatch`, which calls this module
+(never the other way round).
 """
 
 from __future__ import annotations
@@ -27,13 +30,12 @@ from .deck import QUANTITIES
 
 if TYPE_CHECKING:
     from ...lammps.decks import Deck
-    from .scene import PairBatch
 
 __all__ = ["pair_table", "pair_states", "read_pairs", "QUANTITIES"]
 
 
 
-def pair_states(batch: PairBatch, ids: np.ndarray, frames: pd.DataFrame, step: int) -> dict[str, np.ndarray]:
+def pair_states(batch, ids: np.ndarray, frames: pd.DataFrame, step: int) -> dict[str, np.ndarray]:
     """Both spheres' (n, 3) velocities ``a_v``, spins ``a_w`` (each pair's time scale undone:
     :attr:`PairBatch.time_scales`) and positions ``a_x`` ... ``b_x`` at ``step`` of the dump."""
     rows = frames[frames["step"] == step].set_index("id")
@@ -47,7 +49,7 @@ def pair_states(batch: PairBatch, ids: np.ndarray, frames: pd.DataFrame, step: i
     return out
 
 
-def _final_states(batch: PairBatch, ids: np.ndarray, dump: Path) -> dict[str, np.ndarray]:
+def _final_states(batch, ids: np.ndarray, dump: Path) -> dict[str, np.ndarray]:
     frames = read_dump(dump)
     if sorted(frames["step"].unique()) != [0, batch.nsteps]:
         raise ResultError(f"{dump}: expected frames at steps 0 and {batch.nsteps}")
@@ -66,7 +68,7 @@ def _columns(values: dict[str, np.ndarray], suffix: str) -> dict[str, np.ndarray
             for i, axis in enumerate("xyz")}
 
 
-def _references(batch: PairBatch) -> tuple[dict, dict]:
+def _references(batch) -> tuple[dict, dict]:
     exact = {"a_v": np.array([o.v_a for o in batch.exact]), "b_v": np.array([o.v_b for o in batch.exact]),
              "a_w": np.array([o.w_a for o in batch.exact]), "b_w": np.array([o.w_b for o in batch.exact])}
     if batch.contact.mu is not None:  # the capped planar problem has no closed form: n held fixed, solved
@@ -88,7 +90,7 @@ def _error(table: pd.DataFrame, suffix: str, other: str, radii: dict) -> np.ndar
     return worst / table["speed"].to_numpy()
 
 
-def pair_table(batch: PairBatch, lammps: dict[str, np.ndarray] | None) -> pd.DataFrame:
+def pair_table(batch, lammps: dict[str, np.ndarray] | None) -> pd.DataFrame:
     """The batch's table; without LAMMPS's final states, the references alone."""
     pairs = batch.pairs
     props = {k: np.array([p.properties()[k] for p in pairs]) for k in pairs[0].properties()}
@@ -111,7 +113,7 @@ def pair_table(batch: PairBatch, lammps: dict[str, np.ndarray] | None) -> pd.Dat
     return table
 
 
-def read_pairs(batch: PairBatch, deck: Deck, folder: Path) -> dict:
+def read_pairs(batch, deck: Deck, folder: Path) -> dict:
     """The run's checked table columns: every pair's spheres there, finite, and apart at the end."""
     dump = Path(folder) / deck.dump
     lammps = _final_states(batch, deck.ids, dump)
