@@ -20,8 +20,6 @@ and spawns them (which does need the guard) once it is.
 
 from __future__ import annotations
 
-import hashlib
-import json
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -31,6 +29,7 @@ import pandas as pd
 from .model import parameters
 from .model.contact import ContactModel
 from .exact import choose
+from .records import run_folder
 
 __all__ = ["collide", "theory", "sweep", "fit", "CollisionReport", "PairReport", "model"]
 
@@ -69,16 +68,27 @@ def model(**parameters_) -> ContactModel:
     return ContactModel(**parameters_)
 
 
-def _run_folder(kind: str, record: dict) -> Path:
-    """``spinbounce-runs/<kind>-<hash of what the run is>``: the same run, the same folder."""
-    digest = hashlib.sha256(json.dumps(record, sort_keys=True, default=str).encode()).hexdigest()[:10]
-    return Path("spinbounce-runs") / f"{kind}-{digest}"
+#: A wall collision report's columns: (the table's label, the run's column suffix, the JSON key).
+_REPORT_COLUMNS = (("initial", "initial", "initial"), ("LAMMPS", "lammps", "lammps"), ("theory", "theory", "theory"),
+                   ("error", "error", "error"))
 
 
-def _spins(names, values: dict, r: float) -> dict:
-    """A state by column name, each spin also as an angular velocity (r_omega -> omega)."""
-    out = dict(values)
-    out.update({name[2:]: values[name] / r for name in names if name.startswith("r_")})
+def _state_table(row, names, r: float) -> pd.DataFrame:
+    """One row per state column of a run's row: initial, LAMMPS, theory and error (``attrs["r"]``: r)."""
+    table = pd.DataFrame({label: [float(row[f"{s}_{suffix}"]) for s in names] for label, suffix, _ in _REPORT_COLUMNS},
+                         index=list(names))
+    table.attrs["r"] = r
+    return table
+
+
+def _state_record(table: pd.DataFrame) -> dict:
+    """A state table as JSON-ready data: per column a state by name, each spin also as an
+    angular velocity (r_omega -> omega)."""
+    out = {}
+    for label, _, key in _REPORT_COLUMNS:
+        state = {name: float(table.loc[name, label]) for name in table.index}
+        state.update({name[2:]: value / table.attrs["r"] for name, value in list(state.items()) if name.startswith("r_")})
+        out[key] = state
     return out
 
 
@@ -105,12 +115,7 @@ class CollisionReport:
 
     def record(self) -> dict:
         """The report as JSON-ready data (``spinbounce collide --json``)."""
-        names = list(self.table.index)
-        r = self.table.attrs.get("r", 1.0)
-        states = {key: _spins(names, {n: float(self.table.loc[n, column]) for n in names}, r)
-                  for key, column in (("initial", "initial"), ("lammps", "LAMMPS"), ("theory", "theory"),
-                                      ("error", "error"))}
-        return {**states, "theory_kind": self.theory_kind, "theory_name": self.theory, "dt": self.dt,
+        return {**_state_record(self.table), "theory_kind": self.theory_kind, "theory_name": self.theory, "dt": self.dt,
                 "nsteps": self.nsteps, "contact_time": self.contact_time, "step": self.step,
                 "error_estimate": self.error, "status": self.status, "Omega": self.Omega, "deck": self.deck,
                 "dump": self.dump, "lammps_version": self.lammps_version, "warnings": list(self.warnings)}
@@ -199,7 +204,7 @@ def _collide_pair(pair: _Pair, contact: ContactModel, state: dict, dt, tolerance
         raise SceneError("tolerance", tolerance, "is for the wall only: a pair runs at dt or its default step, and "
                                                  "reports its error against the exact reference")
     batch = _pair_batch(pair, contact, state, dt)
-    out = Path(out) if out is not None else _run_folder("collide-pair", {"pairs": repr(batch.pairs), "dt": batch.dt})
+    out = Path(out) if out is not None else run_folder("collide-pair", {"pairs": repr(batch.pairs), "dt": batch.dt})
     result = run_scene(batch, out)  # its batch carries the step the probe chose
     return _pair_report(result.table.iloc[0].to_dict(), result.scene, out, result.step.record())
 
@@ -207,11 +212,7 @@ def _collide_pair(pair: _Pair, contact: ContactModel, state: dict, dt, tolerance
 def _wall_report(result, out: Path) -> CollisionReport:
     scene = result.scene  # at the step its accuracy needed
     row = result.table.iloc[0]
-    names = scene.state_names
-    table = pd.DataFrame({label: [float(row[f"{s}_{suffix}"]) for s in names]
-                          for label, suffix in (("initial", "initial"), ("LAMMPS", "lammps"), ("theory", "theory"),
-                                                ("error", "error"))}, index=list(names))
-    table.attrs["r"] = scene.model.r
+    table = _state_table(row, scene.state_names, scene.model.r)
     choice = choose.which(scene.model)
     omega = float(choose.omega_per_sphere(scene.model, scene.v_n)[0])
     return CollisionReport(table, choice.name, choice.kind, scene.dt, scene.nsteps, float(row["error"]),
@@ -245,7 +246,7 @@ def collide(v_n: float = -1.0, v_t: float = 1.0, omega: float = 0.0, v_s: float 
     notice = cost_notice(expected_steps(scene), scene.n)
     if log is not None and notice:
         log(notice)
-    out = Path(out) if out is not None else _run_folder("collide", {"model": contact.as_record(), **state,
+    out = Path(out) if out is not None else run_folder("collide", {"model": contact.as_record(), **state,
                                                                     "dt": scene.dt})
     return _wall_report(run_scene(scene, out), out)
 
@@ -265,20 +266,14 @@ def _collide_to_tolerance(contact: ContactModel, state: dict, tolerance: float, 
     from .extrapolation import collide_to_tolerance, collision_frame
     from .records import software, to_json, write_atomic
 
-    out = Path(out) if out is not None else _run_folder("collide", {"model": contact.as_record(), **state,
+    out = Path(out) if out is not None else run_folder("collide", {"model": contact.as_record(), **state,
                                                                     "tolerance": tolerance})
     out_of_plane = {k: v for k, v in state.items() if k in ("v_s", "omega_s", "omega_n") and v}
     result, scene = collide_to_tolerance(contact, state["v_n"], state["v_t"], state["omega"], tolerance, out,
                                          log=log or (lambda *_: None), **out_of_plane)
     row = collision_frame(result, scene).iloc[0]
-    names = scene.state_names
-    table = pd.DataFrame({label: [float(row[f"{s}_{suffix}"]) for s in names]
-                          for label, suffix in (("initial", "initial"), ("LAMMPS", "lammps"), ("theory", "theory"),
-                                                ("error", "error"))}, index=list(names))
-    states = {key: _spins(names, {n: float(table.loc[n, column]) for n in names}, contact.r)
-              for key, column in (("initial", "initial"), ("lammps", "LAMMPS"), ("theory", "theory"),
-                                  ("error", "error"))}
-    record = {**states, "estimate": result.max_estimate, "theory_kind": choose.which(contact).kind,
+    table = _state_table(row, scene.state_names, contact.r)
+    record = {**_state_record(table), "estimate": result.max_estimate, "theory_kind": choose.which(contact).kind,
               "tolerance": result.tolerance, "steps": result.steps,
               "plain_steps_for_same_estimate": result.plain_steps_for(result.max_estimate),
               "levels": result.levels, "Omega": contact.Omega, **software()}

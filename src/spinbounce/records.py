@@ -23,7 +23,7 @@ import numpy as np
 from . import __version__
 
 __all__ = ["write_atomic", "write_atomic_with", "write_parquet_atomic", "to_json", "json_ready", "software",
-           "lammps_version", "TEMP_SUFFIX"]
+           "lammps_version", "TEMP_SUFFIX", "run_folder"]
 
 #: Every half-written file ends in this (and starts with a dot): a rerun or a reader skips it.
 TEMP_SUFFIX = ".tmp"
@@ -127,3 +127,12 @@ def software(with_lammps: bool = True) -> dict:
             record[f"{name}_version"] = None
     record["created"] = datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds")
     return record
+
+
+def run_folder(kind: str, parameters: dict) -> Path:
+    """``spinbounce-runs/<kind>-<hash of the parameters>`` under the current folder: the same run,
+    the same folder (a run a user did not name replaces its own earlier self only)."""
+    import hashlib
+
+    digest = hashlib.sha256(json.dumps(parameters, sort_keys=True, default=str).encode()).hexdigest()[:10]
+    return Path("spinbounce-runs") / f"{kind}-{digest}"

@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from .options import (announce_cost, check_run_folder, count, default_run_dir, force_flag, json_flag, model_from,
+from .options import (announce_cost, check_run_folder, count, force_flag, json_flag, model_from,
                       model_parser, number, out_folder)
 
 HELP = "hold a sphere in contact at height z (v_n = 0) and compare v_t(t), omega(t) with Eq. 10"
@@ -39,6 +39,7 @@ def register(sub) -> None:
 def run(args) -> int:
     from ..scenes.frozen import Frozen
     from ..pipeline import run_series, series_record
+    from ..records import run_folder
     from ..records import to_json, write_atomic
 
     check_run_folder(args.out, args.force)
@@ -47,7 +48,7 @@ def run(args) -> int:
     scene = Frozen(model_from(args), z=args.z, v_t=args.v_t, omega=args.omega, t_end=args.t_end,
                    dt=args.dt, every=args.every)
     announce_cost(scene.nsteps)
-    run_dir = Path(args.out or default_run_dir(
+    run_dir = Path(args.out or run_folder(
         "frozen", {"model": scene.model.as_record(), "z": scene.z, "v_t": scene.v_t,
                    "omega": scene.omega, "nsteps": scene.nsteps, "dt": scene.dt, "every": scene.every}))
     result = run_series(scene, run_dir)
@@ -76,12 +77,13 @@ def _run_to_tolerance(args) -> int:
     import pandas as pd
     from ..exact import choose
     from ..extrapolation import frozen_to_tolerance
+    from ..records import run_folder
     from ..scenes.frozen import Frozen
     from ..records import software, to_json, write_atomic
 
     model = model_from(args)
     Frozen(model, z=args.z, v_t=args.v_t, omega=args.omega, t_end=args.t_end)  # validates before any run
-    run_dir = Path(args.out or default_run_dir(
+    run_dir = Path(args.out or run_folder(
         "frozen", {"model": model.as_record(), "z": args.z, "v_t": args.v_t, "omega": args.omega,
                    "t_end": args.t_end, "tolerance": args.tolerance}))
     result = frozen_to_tolerance(model, args.z, args.v_t, args.omega, args.t_end, args.tolerance, run_dir,

@@ -9,8 +9,6 @@ cannot honour is not offered there, or is refused with the reason.
 from __future__ import annotations
 
 import argparse
-import hashlib
-import json
 import math
 import os
 import re
@@ -25,7 +23,7 @@ if TYPE_CHECKING:
     from ..model.contact import ContactModel
 
 __all__ = ["number", "count", "model_parser", "state_parser", "model_from", "json_flag",
-           "default_run_dir", "optional_number", "force_flag", "check_run_folder", "announce_cost", "figure_options", "make_with_runs", "allow_negative_numbers", "sweep_model_flags", "parameter_help",
+           "optional_number", "force_flag", "check_run_folder", "announce_cost", "figure_options", "make_with_runs", "allow_negative_numbers", "sweep_model_flags", "parameter_help",
            "FIGURES_OUT", "out_folder", "out_file", "out_option",
            "positive_count", "worker_count"]
 
@@ -290,12 +288,6 @@ def make_with_runs(make, out: Path, runs: Path | None, prefix: str):
 
 def json_flag(p: argparse.ArgumentParser) -> None:
     p.add_argument("--json", action="store_true", help="print machine-readable JSON instead of text")
-
-
-def default_run_dir(kind: str, parameters: dict) -> Path:
-    """``spinbounce-runs/<kind>-<hash of the parameters>`` under the current folder."""
-    digest = hashlib.sha256(json.dumps(parameters, sort_keys=True, default=str).encode()).hexdigest()[:10]
-    return Path("spinbounce-runs") / f"{kind}-{digest}"
 
 
 def scene_parser() -> argparse.ArgumentParser:
