@@ -84,6 +84,22 @@ def test_collide_json(capsys, tmp_path):
 
 
 @pytest.mark.lammps
+def test_the_api_runs_the_frozen_contact_the_command_runs(capsys, tmp_path):
+    """spinbounce.frozen is the command's work: the same series, to the last digit, and its record."""
+    import spinbounce
+
+    report = spinbounce.frozen(z=0.1, v_t=1.0, omega=0.0, t_end=2.0, gamma_t=0.2, out=tmp_path / "api")
+    code, _, _ = run_cli(capsys, "frozen", "--z", "0.1", "--vt", "1", "--omega", "0", "--t-end", "2",
+                         "--gamma-t", "0.2", "--out", str(tmp_path / "cli"))
+    assert code == 0
+    assert pd.read_csv(tmp_path / "cli" / "frozen.csv").equals(pd.read_csv(report.csv))
+    t = report.table
+    worst = max((t["v_t"] - t["v_t_theory"]).abs().max(), (t["r_omega"] - t["r_omega_theory"]).abs().max())
+    assert report.record["max_abs_error"] == pytest.approx(worst, rel=1e-12)  # the record's is the table's
+    assert report.record["max_abs_error"] < 1e-4 and report.record["parameters"]["model"]["gamma_t"] == 0.2
+
+
+@pytest.mark.lammps
 def test_frozen_writes_csv_with_theory_and_provenance(capsys, tmp_path):
     run = tmp_path / "run"
     code, out, _ = run_cli(capsys, "frozen", "--z", "0.1", "--vt", "1", "--omega", "0", "--t-end", "2",

@@ -20,11 +20,11 @@ try:
 except PackageNotFoundError:  # running from a source tree that is not installed
     __version__ = "0+unknown"
 
-__all__ = ["__version__", "collide", "theory", "sweep", "fit", "parameters"]
+__all__ = ["__version__", "collide", "theory", "frozen", "sweep", "fit", "parameters"]
 
 #: The API's functions. None of them shares its name with a module of the package: importing
 #: a submodule sets the package's attribute of that name, which would hide a function.
-_API = ("collide", "theory", "sweep", "fit")
+_API = ("collide", "theory", "frozen", "sweep", "fit")
 
 
 def __getattr__(name: str):

@@ -8,7 +8,6 @@ import math
 from pathlib import Path
 
 from ..model import parameters
-from ..errors import SweepError
 from .options import optional_number
 
 #: Parameters a group can be selected by: the model's and the scene's (wall or pair, sphere b's).
@@ -46,35 +45,12 @@ def _figure_path(text: str) -> Path:
     return path
 
 
-def _select(rows, args):
-    """Only the rows of groups whose parameters equal the values given."""
-    for parameter in SELECTABLE:
-        if not hasattr(args, parameter.name):
-            continue
-        value = getattr(args, parameter.name)
-        if parameter.column not in rows:
-            raise SweepError(f"{parameter.flag} = {value!r}: this sweep has no column {parameter.column!r}")
-        column = rows[parameter.column]
-        none = column.isna() | (column == parameter.none_value)  # a sweep older than inf held NaN
-        rows = rows[none] if value is None else rows[column == value]
-    if rows.empty:
-        raise SweepError(f"{args.results}: no group has the parameters selected")
-    return rows
-
-
 def run(args) -> int:
-    from ..fitting import fit_groups, plot_groups
-    from ..fitting_stream import fit_dataset
-    from ..sweeps import read_results
+    from .. import api
 
-    selected = any(hasattr(args, p.name) for p in SELECTABLE)
-    if selected or args.plot:  # a selection or a figure needs the rows themselves
-        rows = _select(read_results(args.results), args)
-        fits = fit_groups(rows)
-    else:  # streamed: memory bounded whatever the sweep's size
-        fits = fit_dataset(args.results)
+    selection = {p.name: getattr(args, p.name) for p in SELECTABLE if hasattr(args, p.name)}
+    fits = api.fit_groups(args.results, plot=args.plot, **selection)
     if args.plot:
-        plot_groups(rows, args.plot)
         print(f"figure: {args.plot}")
     if args.json:
         print(json.dumps(fits, indent=2))

@@ -23,7 +23,7 @@ if TYPE_CHECKING:
     from ..model.contact import ContactModel
 
 __all__ = ["number", "count", "model_parser", "state_parser", "model_from", "json_flag",
-           "optional_number", "force_flag", "check_run_folder", "announce_cost", "figure_options", "make_with_runs", "allow_negative_numbers", "sweep_model_flags", "parameter_help",
+           "optional_number", "force_flag", "check_run_folder", "figure_options", "make_with_runs", "allow_negative_numbers", "sweep_model_flags", "parameter_help",
            "FIGURES_OUT", "out_folder", "out_file", "out_option",
            "positive_count", "worker_count"]
 
@@ -200,15 +200,6 @@ def check_run_folder(out: Path | None, force: bool) -> None:
     if earlier:
         raise SceneError("--out", str(out), f"holds an earlier run ({', '.join(earlier)}): give another folder, "
                                             "or --force to replace it")
-
-
-def announce_cost(steps: int, spheres: int = 1) -> None:
-    """Print, before a long run starts, how long it is expected to take (on stderr)."""
-    from ..model.timestep import cost_notice
-
-    notice = cost_notice(steps, spheres)
-    if notice:
-        note(notice)
 
 
 def note(line: str) -> None:

@@ -13,12 +13,9 @@ import sys
 from pathlib import Path
 
 from ..model import parameters
+from ..model.timestep import MAX_CORE_HOURS
 from ..errors import SweepError
 from .options import count, number, sweep_model_flags, worker_count
-
-#: The most a sweep may be estimated to take (on one core) before it must be forced: a longer
-#: one belongs on a cluster, as chunks run by the workflow (workflows/Snakefile).
-MAX_CORE_HOURS = 1.0
 
 HELP = "run many collisions in parallel chunks (resumable) into a Parquet dataset"
 #: State ranges from flags: (dest, flags, default range or None, help).
@@ -140,22 +137,9 @@ def _cores() -> int:
     return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
 
 
-def estimated_seconds(spec) -> float:
-    """The whole sweep on one core (sweeps.cost): a full chunk's cost times their number, and
-    the last, shorter chunk's, per group; without listing the chunks."""
-    from ..sweeps.cost import chunk_cost
-
-    total = 0.0
-    for group, size in enumerate(spec.chunk_sizes):
-        full, rest = divmod(spec.n, size)
-        total += full * chunk_cost(spec, group, size).seconds if full else 0.0
-        total += chunk_cost(spec, group, rest).seconds if rest else 0.0
-    return total
-
-
 def run(args) -> int:
-    from ..model.timestep import duration_text
-    from ..sweeps import chunk_table, load_spec, run_one_chunk, run_sweep, spec_from_dict, status_counts
+    from .. import api
+    from ..sweeps import chunk_table, load_spec, run_one_chunk, spec_from_dict
 
     if args.scene_file is not None:
         given = _given(args)
@@ -180,27 +164,18 @@ def run(args) -> int:
         path = run_one_chunk(spec, args.out, args.chunk)
         print(f"chunk {args.chunk}: {path}")
         return 0
-    seconds = estimated_seconds(spec)
-    if seconds > MAX_CORE_HOURS * 3600 and not args.force:
-        key = "states.n" if args.scene_file is not None else "--n"
-        raise SweepError(f"{key} = {spec.n}: {spec.n * len(spec.groups)} collisions are estimated at "
-                         f"{duration_text(seconds)} on one core, more than the limit of {MAX_CORE_HOURS:g} "
-                         "core-hour(s) for one machine: run it as chunks on a cluster (workflows/Snakefile, "
-                         "docs/how-to/cluster.md), or give --force to run it here")
-    workers = args.workers or _cores()
-    print(f"sweep {spec.digest}: {spec.n * len(spec.groups)} collisions in {len(spec.chunks())} chunks, "
-          f"{len(spec.groups)} model group(s), {workers} worker(s); estimated {duration_text(seconds)} on one core")
     try:
-        dataset = run_sweep(spec, args.out, workers=workers)
+        report = api.run_sweep(spec, args.out, workers=args.workers or _cores(), force=args.force, log=print,
+                               size_name="states.n" if args.scene_file is not None else "--n")
     except KeyboardInterrupt:
         print(f"spinbounce sweep: interrupted; the finished chunks in {args.out} are kept: rerun the same "
               "command to resume", file=sys.stderr)
         raise SystemExit(130) from None
-    counts = status_counts(dataset)
+    counts = report.counts
     bad = {name: n for name, n in counts.items() if name != "ok" and n}
-    print(f"dataset: {dataset} (pandas.read_parquet of that folder)")
+    print(f"dataset: {report.dataset} (pandas.read_parquet of that folder)")
     size = ("the pair's speed, over both spheres (theory: the exact reference; planar_error: the planar theory's "
-            "model error)" if spec.scene == "pair" else "its state's size")
+            "model error)" if report.scene == "pair" else "its state's size")
     print(f"rows: {counts['ok']} ok" + "".join(f", {n} {name}" for name, n in bad.items())
           + f" (column 'status'; 'error' holds each row's |LAMMPS - theory| over {size})")
     return 1 if bad and args.strict else 0

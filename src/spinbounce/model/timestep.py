@@ -27,7 +27,7 @@ from dataclasses import asdict, dataclass
 
 __all__ = ["mid_step_dt", "align_mid_step", "refine_mid_step", "steps_through", "steps_per_contact",
            "ACCURACY", "SECOND_ORDER", "SAFETY", "FROZEN_ACCURACY", "MAX_STEPS", "second_order_dt", "check_steps", "estimate_seconds",
-           "duration_text", "StepChoice", "cost_notice", "ANNOUNCE_SECONDS"]
+           "duration_text", "StepChoice", "cost_notice", "ANNOUNCE_SECONDS", "MAX_CORE_HOURS"]
 
 #: Guards the rounding of t_end/dt so that an exact multiple is not pushed one step further.
 _ROUNDING = 1e-9
@@ -145,6 +145,9 @@ def steps_through(t_end: float, dt: float) -> int:
 
 #: A run expected to take longer than this says so before it starts.
 ANNOUNCE_SECONDS = 60.0
+#: The most a sweep may be estimated to take on one core before it must be forced: a longer one
+#: belongs on a cluster, as chunks run by the workflow (workflows/Snakefile).
+MAX_CORE_HOURS = 1.0
 
 
 def cost_notice(steps: int, spheres: int = 1) -> str | None:

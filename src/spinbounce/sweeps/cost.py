@@ -190,3 +190,14 @@ def check_fits(spec, limit: JobRequest) -> list[JobRequest]:
                 f"{limit.mem_mb} MB and {limit.cpus_per_task} core(s): {advice}"
             )
     return requests
+
+
+def sweep_seconds(spec) -> float:
+    """The whole sweep on one core: a full chunk's cost times their number, and the last, shorter
+    chunk's, per group; without listing the chunks."""
+    total = 0.0
+    for group, size in enumerate(spec.chunk_sizes):
+        full, rest = divmod(spec.n, size)
+        total += full * chunk_cost(spec, group, size).seconds if full else 0.0
+        total += chunk_cost(spec, group, rest).seconds if rest else 0.0
+    return total

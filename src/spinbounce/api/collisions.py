@@ -1,22 +1,5 @@
-"""The Python API: the commands' work, callable from a script or a notebook.
-
-Keywords are the declared parameter names (:data:`spinbounce.model.parameters.MODEL` and
-``STATE``), with the declared defaults, as on the command line (``gamma_n`` is
-``--gamma-n`` there). Results are plain objects and pandas DataFrames::
-
-    import spinbounce
-    result = spinbounce.collide(v_n=-1.0, v_t=1.0, omega=0.0, mu=0.3)
-    print(result)                    # LAMMPS beside the theory, with the error
-    spinbounce.theory(gamma_t=0.5)   # the scattering matrix that applies
-    rows = spinbounce.sweep(n=2000, out="my-sweep", mu=[None, 0.3])
-    spinbounce.fit("my-sweep")       # one row per model group
-    spinbounce.collide(scene="pair", m_b=3.0, r_b=0.8)   # sphere a against a free sphere b at rest
-    spinbounce.sweep(n=100, out="pairs", scene="pair", m_b=[1.0, 3.0])
-
-A script needs no ``if __name__ == "__main__"`` guard: a sweep runs in this process by
-default (``workers=1``); with more workers it forks them while LAMMPS is not loaded here,
-and spawns them (which does need the guard) once it is.
-"""
+"""One collision and the theory that applies: ``collide`` and ``theory``, wall or pair, and their
+reports."""
 
 from __future__ import annotations
 
@@ -26,12 +9,12 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .model import parameters
-from .model.contact import ContactModel
-from .exact import choose
-from .records import run_folder
+from ..model import parameters
+from ..model.contact import ContactModel
+from ..exact import choose
+from ..records import run_folder
 
-__all__ = ["collide", "theory", "sweep", "fit", "CollisionReport", "PairReport", "model"]
+__all__ = ["collide", "theory", "model", "CollisionReport", "PairReport", "ToleranceReport"]
 
 _MODEL_NAMES = {p.name for p in parameters.MODEL}
 #: The scene's keywords (wall or pair, sphere b's m_b, r_b, alpha_b and its state): a pair's only.
@@ -51,7 +34,7 @@ class _Pair:
 def _split_scene(keywords: dict):
     """(model keywords, None for the wall or the pair's sphere b and its state); b's keywords are
     refused without scene="pair"."""
-    from .scenes.pair.kind import scene_of, sphere_b, state_b
+    from ..scenes.pair.kind import scene_of, sphere_b, state_b
 
     scene = {k: keywords.pop(k) for k in list(keywords) if k in _SCENE_NAMES}
     if scene_of(scene) == "wall":
@@ -159,8 +142,8 @@ class PairReport:
 
 
 def _pair_batch(pair: _Pair, contact: ContactModel, state: dict, dt=None):
-    from .scenes.pair.kind import pair_contact, pairs_from_states
-    from .scenes.pair.scene import PairBatch
+    from ..scenes.pair.kind import pair_contact, pairs_from_states
+    from ..scenes.pair.scene import PairBatch
 
     row = [state[k] for k in _STATE_NAMES]
     return PairBatch(pairs_from_states(contact, pair.b, [row], pair.state), pair_contact(contact), dt)
@@ -174,8 +157,8 @@ _PAIR_GEOMETRY = ("m_a", "r_a", "alpha_a", "m_b", "r_b", "alpha_b", "v_n_relativ
 def _pair_report(row: dict, batch, run_dir, step=None) -> PairReport:
     """A pair's row in the paper's names and signs: LAMMPS's frame (the line of centres along z)
     is the wall's, so each sphere's velocity and spin map as the wall's sphere's do."""
-    from .exact.choose import SPACE_COLUMNS
-    from .scenes.pair.kind import wall_frame
+    from ..exact.choose import SPACE_COLUMNS
+    from ..scenes.pair.kind import wall_frame
 
     pair = batch.pairs[0]
 
@@ -197,8 +180,8 @@ def _pair_report(row: dict, batch, run_dir, step=None) -> PairReport:
 
 
 def _collide_pair(pair: _Pair, contact: ContactModel, state: dict, dt, tolerance, out) -> PairReport:
-    from .errors import SceneError
-    from .pipeline import run_scene
+    from ..errors import SceneError
+    from ..pipeline import run_scene
 
     if tolerance is not None:
         raise SceneError("tolerance", tolerance, "is for the wall only: a pair runs at dt or its default step, and "
@@ -230,10 +213,10 @@ def collide(v_n: float = -1.0, v_t: float = 1.0, omega: float = 0.0, v_s: float 
     default) against a free sphere b instead. ``tolerance``: ask for an accuracy instead of a step
     (:mod:`spinbounce.extrapolation`). ``log(line)``: told, before a long run starts, how long it will
     take, and how a run to a tolerance proceeds."""
-    from .pipeline import run_scene
-    from .scenes.collision import Collision
-    from .model.timestep import cost_notice
-    from .stepping import expected_steps
+    from ..pipeline import run_scene
+    from ..scenes.collision import Collision
+    from ..model.timestep import cost_notice
+    from ..stepping import expected_steps
 
     state = dict(zip(_STATE_NAMES, (v_n, v_t, omega, v_s, omega_s, omega_n), strict=True))
     model_parameters, pair = _split_scene(model_parameters)
@@ -263,8 +246,8 @@ class ToleranceReport:
 
 
 def _collide_to_tolerance(contact: ContactModel, state: dict, tolerance: float, out, log) -> ToleranceReport:
-    from .extrapolation import collide_to_tolerance, collision_frame
-    from .records import software, to_json, write_atomic
+    from ..extrapolation import collide_to_tolerance, collision_frame
+    from ..records import software, to_json, write_atomic
 
     out = Path(out) if out is not None else run_folder("collide", {"model": contact.as_record(), **state,
                                                                     "tolerance": tolerance})
@@ -299,7 +282,7 @@ def theory(v_n: float | None = None, v_t: float = 0.0, omega: float = 0.0, v_s: 
         out["initial"], out["theory"] = choose.outcome(contact, **state)
         out["contact_time"] = float(contact.contact_times(v_n)[0])
     elif choice.has_matrix:
-        from . import exact
+        from .. import exact
 
         out.update(tau=contact.tau, Q=contact.Q, Omega=contact.Omega, restitution=contact.restitution,
                    matrix=np.asarray(contact.matrix()), order=["v_n", "v_t", "r_omega"],
@@ -313,9 +296,9 @@ def theory(v_n: float | None = None, v_t: float = 0.0, omega: float = 0.0, v_s: 
 
 
 def _pair_theory(pair: _Pair, contact: ContactModel, state: dict) -> dict:
-    from .exact import pair as planar
-    from .scenes.pair.kind import CAPPED_NO_MATRIX, pair_contact, planar_matrix, planar_Omega
-    from .scenes.pair.table import pair_table
+    from ..exact import pair as planar
+    from ..scenes.pair.kind import CAPPED_NO_MATRIX, pair_contact, planar_matrix, planar_Omega
+    from ..scenes.pair.table import pair_table
 
     law = pair_contact(contact).law()
     out = {"theory_kind": "pair planar", "theory_name": "planar pair theory (exact only as eps -> 0) and the exact "
@@ -335,44 +318,3 @@ def _pair_theory(pair: _Pair, contact: ContactModel, state: dict) -> dict:
         out.update(matrix=planar_matrix(contact, pair.b), order=["v_n", "v_t", "r_omega"],
                    Omega=planar_Omega(contact, pair.b))
     return out
-
-
-def sweep(n: int, out: str | Path, *, v_n=(-1.5, -0.1), v_t=(-2.0, 2.0), r_omega=(-2.0, 2.0), seed: int = 0,
-          workers: int = 1, dt: float | None = None, **model_grid) -> pd.DataFrame:
-    """Sample ``n`` collisions for every combination of the model values given (a number or a
-    list each; ``None`` in ``mu``'s list is the paper's uncapped model) into ``out``; return the rows.
-    ``scene="pair"`` with ``m_b``, ``r_b``, ``alpha_b``: sphere a against a free sphere b at rest."""
-    from .sweeps import read_results, run_sweep, spec_from_dict
-
-    unknown = set(model_grid) - _MODEL_NAMES - _SCENE_NAMES - {"kt_over_kn"}
-    if unknown:
-        raise TypeError(f"unknown model parameter(s) {sorted(unknown)}")
-    grid = {k: ["none" if v is None else v for v in (vals if isinstance(vals, (list, tuple)) else [vals])]
-            for k, vals in model_grid.items()}
-    if dt is not None:
-        grid["dt"] = dt
-    raw = {"seed": seed, "states": {"n": n, "v_n": list(v_n), "v_t": list(v_t), "r_omega": list(r_omega)}}
-    if grid:
-        raw["model"] = grid
-    run_sweep(spec_from_dict(raw), Path(out), workers=workers, log=lambda *_: None)
-    return read_results(out)
-
-
-def fit(results: str | Path | pd.DataFrame) -> pd.DataFrame:
-    """One row per model group: its parameters, regime, per-collision deviation and (where one
-    matrix applies) the fitted Omega beside the theory's; ``matrix`` holds the fitted matrix."""
-    from .fitting import fit_groups
-    from .sweeps import read_results
-
-    rows = results if isinstance(results, pd.DataFrame) else read_results(results)
-    groups = fit_groups(rows)
-    return pd.DataFrame([{**_as_columns(g["parameters"]), **{k: v for k, v in g.items() if k != "parameters"}}
-                         for g in groups])
-
-
-def _as_columns(values: dict) -> dict:
-    """A group's parameters as the sweep's table holds them (mu none: inf), so that the fit's
-    rows group and filter like the sweep's."""
-    from .fitting import by_column
-
-    return {k: by_column[k].to_column(v) if k in by_column else v for k, v in values.items()}

@@ -1,0 +1,96 @@
+"""The frozen contact from Python: ``frozen`` and its report."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from ..exact import choose
+from ..records import run_folder
+from .collisions import model
+
+__all__ = ["frozen", "FrozenReport", "FROZEN_COLUMNS", "FROZEN_SERIES"]
+
+#: A frozen contact's time series: LAMMPS beside Eq. 10, one row per dumped step.
+FROZEN_COLUMNS = ["t", "v_t", "omega", "r_omega", "v_t_theory", "r_omega_theory"]
+#: The time series a frozen run writes into its folder.
+FROZEN_SERIES = "frozen.csv"
+
+
+@dataclass(frozen=True)
+class FrozenReport:
+    """A frozen contact in LAMMPS (or, with a tolerance, extrapolated from several runs) beside
+    Eq. 10: ``table`` (the series, also written to ``csv``) and ``record`` (its provenance and
+    accuracy, also written to ``record_path``)."""
+
+    table: pd.DataFrame
+    record: dict
+    csv: Path
+    record_path: Path
+
+
+def frozen(z: float = 0.1, v_t: float = 1.0, omega: float = 0.0, t_end: float = 10.0, *, dt: float | None = None,
+           every: int | None = None, tolerance: float | None = None, out: str | Path | None = None, log=None,
+           **model_parameters) -> FrozenReport:
+    """Hold one sphere in contact at height ``z`` (v_n = 0) for ``t_end`` and set v_t(t) and
+    omega(t) beside Eq. 10 (its exact damped form with gamma_t). ``tolerance``: an accuracy to
+    reach instead of a step (Richardson extrapolation over halving steps). ``out``: the run folder
+    (deck, dump, log, ``frozen.csv`` and the record). ``log(line)``: told about long runs and the
+    extrapolation's progress."""
+    from ..model.timestep import cost_notice
+    from ..records import to_json, write_atomic
+    from ..scenes.frozen import Frozen
+
+    contact = model(**model_parameters)
+    scene = Frozen(contact, z=z, v_t=v_t, omega=omega, t_end=t_end, dt=dt, every=every)  # checked before any run
+    if tolerance is not None:
+        table, record, folder = _frozen_to_tolerance(scene, tolerance, out, log)
+    else:
+        notice = cost_notice(scene.nsteps)
+        if log is not None and notice:
+            log(notice)
+        table, record, folder = _frozen_run(scene, out)
+    csv = folder / FROZEN_SERIES
+    write_atomic(csv, table.to_csv(index=False, float_format="%.17g"))
+    record["csv"] = str(csv)
+    record_path = folder / ("tolerance.json" if tolerance is not None else "result.json")
+    write_atomic(record_path, to_json(record))
+    return FrozenReport(table, record, csv, record_path)
+
+
+def _frozen_run(scene, out) -> tuple[pd.DataFrame, dict, Path]:
+    from ..pipeline import run_series, series_record
+
+    folder = Path(out) if out is not None else run_folder(
+        "frozen", {"model": scene.model.as_record(), "z": scene.z, "v_t": scene.v_t, "omega": scene.omega,
+                   "nsteps": scene.nsteps, "dt": scene.dt, "every": scene.every})
+    result = run_series(scene, folder)
+    record = series_record(result)
+    record.update(rows=len(result.table), lammps_version=result.info.lammps_version)
+    return result.table[FROZEN_COLUMNS], record, folder
+
+
+def _frozen_to_tolerance(scene, tolerance: float, out, log) -> tuple[pd.DataFrame, dict, Path]:
+    from ..extrapolation import frozen_to_tolerance
+    from ..records import software
+
+    m = scene.model
+    folder = Path(out) if out is not None else run_folder(
+        "frozen", {"model": m.as_record(), "z": scene.z, "v_t": scene.v_t, "omega": scene.omega,
+                   "t_end": scene.t_end, "tolerance": tolerance})
+    result = frozen_to_tolerance(m, scene.z, scene.v_t, scene.omega, scene.t_end, tolerance, folder,
+                                 log=log or (lambda *_: None))
+    v_t_theory, rw_theory = choose.frozen(m, result.t, scene.v_t, scene.omega * m.r, scene.z)
+    table = pd.DataFrame({"t": result.t, "v_t": result.values[:, 0], "omega": result.values[:, 1] / m.r,
+                          "r_omega": result.values[:, 1], "v_t_theory": v_t_theory, "r_omega_theory": rw_theory,
+                          "estimate": result.estimate[:, 0]})
+    error = float(max(np.abs(table["v_t"] - v_t_theory).max(), np.abs(table["r_omega"] - rw_theory).max()))
+    record = {"scene": "frozen", "model": m.as_record(), "z": scene.z, "v_t": scene.v_t, "omega": scene.omega,
+              "t_end": scene.t_end, "tolerance": result.tolerance, "estimate": result.max_estimate,
+              "max_abs_error": error, "steps": result.steps, "rows": len(table),
+              "plain_steps_for_same_estimate": result.plain_steps_for(result.max_estimate),
+              "levels": result.levels, **software()}
+    return table, record, folder
