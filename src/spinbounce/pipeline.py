@@ -6,8 +6,9 @@ with the provenance. :func:`run_scene` runs any scene whose rows are collisions 
 wall's :class:`~spinbounce.scenes.collision.Collision`, the pairs'
 :class:`~spinbounce.scenes.pair.PairBatch`): the step probe (:func:`stepping.tune`), the
 scene's deck and table, the row checks (:mod:`spinbounce.checks`) and one record.
-:func:`run_series` runs a scene whose output is a time series (the frozen contact, two
-walls): its deck, its checked table and the same record. A run's output is checked before
+:func:`run_series` runs a scene whose output is a time series (the frozen contact): its
+deck, its checked table and the same provenance. (Two walls, a series of bounces, reads its
+own run through the same deck writer and runner: :mod:`spinbounce.scenes.two_walls`.) A run's output is checked before
 it is returned: non-finite values, lost spheres and a contact that had not finished are
 errors, not results.
 """
@@ -138,7 +139,7 @@ class SeriesResult:
 
 
 def run_series(scene, out_dir: Path) -> SeriesResult:
-    """Run a time-series scene (the frozen contact, two walls) in ``out_dir``: its checked table."""
+    """Run a time-series scene (the frozen contact) in ``out_dir``: its checked table."""
     deck = scene.render()
     deck_path = prepare_run_dir(out_dir, deck)
     info = run_deck(deck_path)
