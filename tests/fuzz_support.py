@@ -73,6 +73,7 @@ MAKERS = {
     "notes.txt": _text("notes.txt", "the user's notes\n"),
     "folder": _folder("folder"),
     "run": _text("run/result.json", EARLIER),
+    "mydeck": _text("mydeck/in.lammps", "# a deck of the user's, not to be lost\n"),
     "figout": _text("figout/notes.txt", "the user's notes\n"),
     "series.csv": _text("series.csv", "t,vt\n0,1\n"),
     "bad.toml": _text("bad.toml", "this is = not [ toml\n"),

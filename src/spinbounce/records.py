@@ -23,7 +23,7 @@ import numpy as np
 from . import __version__
 
 __all__ = ["write_atomic", "write_atomic_with", "write_parquet_atomic", "to_json", "json_ready", "software",
-           "lammps_version", "TEMP_SUFFIX", "run_folder"]
+           "lammps_version", "TEMP_SUFFIX", "run_folder", "check_run_folder", "RUN_OUTPUTS"]
 
 #: Every half-written file ends in this (and starts with a dot): a rerun or a reader skips it.
 TEMP_SUFFIX = ".tmp"
@@ -136,3 +136,28 @@ def run_folder(kind: str, parameters: dict) -> Path:
 
     digest = hashlib.sha256(json.dumps(parameters, sort_keys=True, default=str).encode()).hexdigest()[:10]
     return Path("spinbounce-runs") / f"{kind}-{digest}"
+
+
+#: What a run writes into its folder: a folder holding any of them holds an earlier run (or a
+#: file of the user's of that name), which is not replaced unless asked.
+RUN_OUTPUTS = ("in.lammps", "log.lammps", "state.dump", "spheres.data", "pairs.data", "bodies.txt", "result.json",
+               "result.parquet", "tolerance.json", "frozen.csv")
+
+
+def check_run_folder(out, force: bool, name: str = "out", force_name: str = "force=True") -> None:
+    """Refuse, before anything runs, a run folder that is a file, or that holds what a run
+    writes (an earlier run's outputs, or a user's files of those names) unless ``force``.
+    Folders under spinbounce-runs/ are named by their parameters: the same run, replaced."""
+    from .errors import SceneError
+
+    if out is None:
+        return
+    path = Path(out)
+    if path.exists() and not path.is_dir():
+        raise SceneError(name, str(out), "is a file, not a folder: give a folder for the run")
+    if force or not path.is_dir():
+        return
+    earlier = [item for item in RUN_OUTPUTS if (path / item).exists()]
+    if earlier:
+        raise SceneError(name, str(out), f"holds an earlier run ({', '.join(earlier)}): give another folder, "
+                                         f"or {force_name} to replace it")

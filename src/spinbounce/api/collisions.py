@@ -187,7 +187,8 @@ def _collide_pair(pair: _Pair, contact: ContactModel, state: dict, dt, tolerance
         raise SceneError("tolerance", tolerance, "is for the wall only: a pair runs at dt or its default step, and "
                                                  "reports its error against the exact reference")
     batch = _pair_batch(pair, contact, state, dt)
-    out = Path(out) if out is not None else run_folder("collide-pair", {"pairs": repr(batch.pairs), "dt": batch.dt})
+    out = Path(out) if out is not None else run_folder("collide-pair", {"model": contact.as_record(), "pairs": repr(batch.pairs),
+                                                                         "dt": batch.dt})
     result = run_scene(batch, out)  # its batch carries the step the probe chose
     return _pair_report(result.table.iloc[0].to_dict(), result.scene, out, result.step.record())
 
@@ -207,17 +208,21 @@ def _wall_report(result, out: Path) -> CollisionReport:
 
 def collide(v_n: float = -1.0, v_t: float = 1.0, omega: float = 0.0, v_s: float = 0.0, omega_s: float = 0.0,
             omega_n: float = 0.0, *, dt: float | None = None, tolerance: float | None = None,
-            out: str | Path | None = None, log=None, **model_parameters) -> CollisionReport | PairReport:
+            out: str | Path | None = None, force: bool = False, log=None,
+            **model_parameters) -> CollisionReport | PairReport:
     """Bounce one sphere off the wall in LAMMPS and compare it with the theory that applies; with
     ``scene="pair"`` (and ``m_b``, ``r_b``, ``alpha_b``, b's state ``v_n_b`` ... ``omega_n_b``: at rest by
     default) against a free sphere b instead. ``tolerance``: ask for an accuracy instead of a step
     (:mod:`spinbounce.extrapolation`). ``log(line)``: told, before a long run starts, how long it will
-    take, and how a run to a tolerance proceeds."""
+    take, and how a run to a tolerance proceeds. A named ``out`` holding an earlier run is refused
+    unless ``force``."""
     from ..pipeline import run_scene
+    from ..records import check_run_folder
     from ..scenes.collision import Collision
     from ..model.timestep import cost_notice
     from ..stepping import expected_steps
 
+    check_run_folder(out, force)
     state = dict(zip(_STATE_NAMES, (v_n, v_t, omega, v_s, omega_s, omega_n), strict=True))
     model_parameters, pair = _split_scene(model_parameters)
     contact = model(**model_parameters)

@@ -33,17 +33,18 @@ class FrozenReport:
 
 
 def frozen(z: float = 0.1, v_t: float = 1.0, omega: float = 0.0, t_end: float = 10.0, *, dt: float | None = None,
-           every: int | None = None, tolerance: float | None = None, out: str | Path | None = None, log=None,
-           **model_parameters) -> FrozenReport:
+           every: int | None = None, tolerance: float | None = None, out: str | Path | None = None,
+           force: bool = False, log=None, **model_parameters) -> FrozenReport:
     """Hold one sphere in contact at height ``z`` (v_n = 0) for ``t_end`` and set v_t(t) and
     omega(t) beside Eq. 10 (its exact damped form with gamma_t). ``tolerance``: an accuracy to
     reach instead of a step (Richardson extrapolation over halving steps). ``out``: the run folder
     (deck, dump, log, ``frozen.csv`` and the record). ``log(line)``: told about long runs and the
-    extrapolation's progress."""
+    extrapolation's progress. A named ``out`` holding an earlier run is refused unless ``force``."""
     from ..model.timestep import cost_notice
-    from ..records import to_json, write_atomic
+    from ..records import check_run_folder, to_json, write_atomic
     from ..scenes.frozen import Frozen
 
+    check_run_folder(out, force)
     contact = model(**model_parameters)
     scene = Frozen(contact, z=z, v_t=v_t, omega=omega, t_end=t_end, dt=dt, every=every)  # checked before any run
     if tolerance is not None:

@@ -88,6 +88,10 @@ def fit_groups(results: str | Path | pd.DataFrame, *, plot: str | Path | None = 
     from ..fitting_stream import fit_dataset
     from ..sweeps import read_results
 
+    selectable = {p.name for p in parameters.MODEL + parameters.SCENE}
+    unknown = sorted(set(selection) - selectable)
+    if unknown:
+        raise TypeError(f"unknown parameter(s) {unknown} to select groups by; declared: {sorted(selectable)}")
     if not selection and plot is None and not isinstance(results, pd.DataFrame):
         return fit_dataset(results)
     rows = _selected(results if isinstance(results, pd.DataFrame) else read_results(results), selection)

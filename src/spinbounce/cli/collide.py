@@ -46,9 +46,13 @@ def _parser(sub, name: str, help_: str, description: str, scene: str) -> None:
 
 def run(args) -> int:
     from .. import api
+    from ..errors import SceneError
 
+    if args.command == "pair" and args.scene != "pair":
+        raise SceneError("--scene", args.scene, "pair is collide --scene pair: for the wall, use collide")
     check_run_folder(args.out, args.force)
-    report = api.collide(**values_of(args), dt=args.dt, tolerance=args.tolerance, out=args.out,
+    # --out was checked above, naming the command's flags: the API is told to go ahead
+    report = api.collide(**values_of(args), dt=args.dt, tolerance=args.tolerance, out=args.out, force=True,
                          log=None if args.json else (print if args.tolerance is not None else note))
     if isinstance(report, api.PairReport):
         return print_pair(report, args.json)

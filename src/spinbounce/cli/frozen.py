@@ -37,8 +37,9 @@ def run(args) -> int:
 
     check_run_folder(args.out, args.force)
     quiet = (lambda *_: None) if args.json else None
+    # --out was checked above, naming the command's flags: the API is told to go ahead
     report = api.frozen(args.z, args.v_t, args.omega, args.t_end, dt=args.dt, every=args.every, tolerance=args.tolerance,
-                        out=args.out, log=quiet or (print if args.tolerance is not None else note),
+                        out=args.out, force=True, log=quiet or (print if args.tolerance is not None else note),
                         **{p.name: getattr(args, p.name) for p in parameters.MODEL})
     r = report.record
     if args.json:

@@ -17,7 +17,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ..model import parameters
-from ..model.parameters import Parameter, SceneError
+from ..model.parameters import Parameter
 
 if TYPE_CHECKING:
     from ..model.contact import ContactModel
@@ -182,25 +182,16 @@ def sweep_model_flags(p: argparse.ArgumentParser) -> None:
                        help="instead of --kt: the stiffness ratio kt/kn (kt = ratio * kn)")
 
 
-#: What an earlier run leaves in its folder.
-RUN_OUTPUTS = ("result.json", "log.lammps", "state.dump", "tolerance.json", "frozen.csv")
-
-
 def force_flag(p: argparse.ArgumentParser) -> None:
     p.add_argument("--force", action="store_true",
                    help="run into an --out folder that holds an earlier run, replacing its results")
 
 
 def check_run_folder(out: Path | None, force: bool) -> None:
-    """Refuse to replace an earlier run's results in a folder the user named, unless forced.
-    (Folders under spinbounce-runs/ are named by their parameters: the same run, replaced.)"""
-    if out is None or force or not Path(out).is_dir():
-        return
-    earlier = [name for name in RUN_OUTPUTS if (Path(out) / name).exists()]
-    if earlier:
-        raise SceneError("--out", str(out), f"holds an earlier run ({', '.join(earlier)}): give another folder, "
-                                            "or --force to replace it")
+    """A run's --out: not a file, and no earlier run in it unless --force (:func:`records.check_run_folder`)."""
+    from ..records import check_run_folder as check
 
+    check(out, force, "--out", "--force")
 
 def note(line: str) -> None:
     """A line for the user beside a command's output: on stderr, at once."""

@@ -9,6 +9,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ..catalogue import LISTED, PRODUCTS, make, product_names
+from .options import out_folder
 
 if TYPE_CHECKING:
     from ..studies.claims import Claim
@@ -37,10 +38,10 @@ def register(sub) -> None:
     listing = "; ".join(f"{p.name}: {p.what} ({p.command})" for p in PRODUCTS)
     elsewhere = "; ".join(f"{command}: {what}" for command, what, _ in LISTED)
     p = sub.add_parser("reproduce", help=HELP, description=f"{HELP}. Makes {listing}. Not run here: {elsewhere}.")
-    p.add_argument("--out", type=Path, default=Path("spinbounce-reproduced"), metavar="DIR",
+    p.add_argument("--out", type=out_folder, default=Path("spinbounce-reproduced"), metavar="DIR",
                    help="figures, their JSON records, CLAIMS.md and the studies' reports (default %(default)s; the "
                         "repository keeps its own in figures/)")
-    p.add_argument("--run-dir", type=Path, default=Path("spinbounce-runs") / "reproduce", metavar="DIR",
+    p.add_argument("--run-dir", type=out_folder, default=Path("spinbounce-runs") / "reproduce", metavar="DIR",
                    help="LAMMPS run folders, one per product (default %(default)s)")
     p.add_argument("--only", type=_products, default=None, metavar="NAME[,NAME...]",
                    help=f"make only these products (from {', '.join(product_names())}); the claims are judged only "

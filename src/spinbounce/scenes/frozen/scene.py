@@ -73,7 +73,8 @@ class Frozen:
         if steps % self.every:
             # LAMMPS dumps on multiples of `every`: a default step is shortened so that t_end is a
             # whole number of intervals; a given one runs on to the next dump (t_final says when)
-            steps = math.ceil(steps / self.every) * self.every
+            steps = check_steps(math.ceil(steps / self.every) * self.every, "every", self.every,
+                                f"t_end = {self.t_end:g} rounded up to whole dump intervals")
             if not given:
                 set_(self, "dt", self.t_end / steps)
         set_(self, "nsteps", steps)
@@ -99,7 +100,10 @@ class Frozen:
         dt = second_order_dt([(w, c)], self.t_end, FROZEN_ACCURACY)
         if c > 0.0:
             dt = min(dt, SAFETY * ACCURACY / (FROZEN_DAMPING_ORDER_ONE * c))  # first order: the default target
-        return self.t_end / math.ceil(self.t_end / dt - 1e-9)
+        ratio = self.t_end / dt
+        steps = check_steps(math.ceil(ratio - 1e-9) if math.isfinite(ratio) else ratio, "t_end", self.t_end,
+                            "at the default accuracy's step")
+        return self.t_end / max(1, steps)
 
     def predicted(self, t) -> tuple[np.ndarray, np.ndarray]:
         """(v_t(t), r omega(t)): Eq. 10, or its exact damped form when gamma_t > 0."""

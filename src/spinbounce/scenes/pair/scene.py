@@ -30,7 +30,7 @@ from ...exact import pair as planar
 from ...exact import pair_capped, pair_exact
 from ...model.contact import ContactModel
 from ...model.parameters import SceneError, by_name
-from ...model.timestep import steps_per_contact, steps_through
+from ...model.timestep import check_steps, steps_per_contact, steps_through
 from .deck import PAIR_NO_CAP_MU, render_pairs
 
 __all__ = ["Sphere", "PairContact", "Pair", "PairBatch", "ALPHA_NVE_SPHERE", "PAIR_STEPS_PER_HALF_PERIOD",
@@ -239,6 +239,9 @@ class PairBatch:
                 raise SceneError(f"pairs[{k}]", "3-D motion", "must move in one plane with a Coulomb cap (mu): the "
                                  "line of centres and both velocities in a plane, both spins along its normal")
         object.__setattr__(self, "dt", dt)
+        if self.dt is not None and not self.default_step:  # a given step: refused if no run may take it
+            check_steps(float(np.max(self.contact_times)) / dt, "dt", dt, "to end the longest contact",
+                        spheres=2 * len(pairs))
 
     @property
     def n(self) -> int:
