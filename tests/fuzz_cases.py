@@ -327,6 +327,7 @@ FOUND_LATER = [
     refused("bench-pairs-fraction", "bench --n-pairs 2.5", "--n-pairs", "2.5"),
     refused("pair-b-state-on-the-wall", "collide --v-n-b 1 --out c", "v_n_b", "scene = pair"),
     refused("pair-b-runs-away", "pair --v-n-b -2 --out p", "v_n - v_n_b", "1.0", "< 0"),
+    refused("sweep-b-state", "sweep --scene pair --n 3 --v-n-b 1 --out s", "--v-n-b", "b at rest", "collide --scene pair"),
     refused("pair-dt-too-fine", "pair --dt 1e-9 --out p", "dt", "1e-09", "limit"),
     refused("pair-on-the-wall", "pair --scene wall --out p", "--scene", "wall", "collide"),
     refused("collide-out-holds-a-users-deck", "collide --out mydeck", "--out", "mydeck", "in.lammps", "--force",

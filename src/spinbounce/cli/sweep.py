@@ -7,6 +7,7 @@ apply to either. From flags, every sweepable model parameter takes one value or 
 
 from __future__ import annotations
 
+import argparse
 import json
 import os
 import sys
@@ -81,6 +82,15 @@ def _scene_flags(p) -> None:
             group.add_argument(*parameter.flags, dest=parameter.name, type=number, nargs="+", default=None,
                                metavar=parameter.name.upper(),
                                help=f"{parameter.meaning}; {parameter.range_text()} (default {parameter.default})")
+    for parameter in parameters.STATE_B:  # declared, so refused here with the reason rather than unknown
+        group.add_argument(*parameter.flags, dest=parameter.name, type=_b_state_refused, nargs="+", default=None,
+                           metavar=parameter.name.upper(), help=argparse.SUPPRESS)
+
+
+def _b_state_refused(text: str):
+    """argparse type of sphere b's state in a sweep: refused, with the reason."""
+    raise argparse.ArgumentTypeError(f"{text!r}: a sweep samples sphere a's state with b at rest (the planar matrix "
+                                     "and the fit assume it); give b's state to one collision: collide --scene pair")
 
 
 def _given(args) -> list[str]:

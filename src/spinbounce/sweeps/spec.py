@@ -75,6 +75,8 @@ CHUNK_SECONDS = 300.0
 MAX_CHUNKS = 100_000
 #: The scene's keys (wall or pair, and sphere b's): a wall sweep's groups have none of them.
 SCENE_KEYS = tuple(p.name for p in parameters.SCENE)
+#: Sphere b's state: a collision's, not a sweep's (refused with the reason).
+B_STATE_KEYS = tuple(p.name for p in parameters.STATE_B)
 #: How "no value" is written for an optional parameter (mu) in a scene file or a flag.
 NONE = "none"
 
@@ -253,6 +255,10 @@ def _groups(model: dict) -> list[dict]:
         _fail("model", model, "must be a table")
     for key in model:
         if key not in MODEL_KEYS:
+            if key in B_STATE_KEYS:  # declared, but one collision's: refused with the reason
+                _fail(f"model.{key}", model[key], "a sweep samples sphere a's state with b at rest (the planar "
+                                                  "matrix and the fit assume it); give b's state to one collision: "
+                                                  "collide --scene pair")
             _fail(f"model.{key}", model[key], f"unknown key (allowed: {', '.join(MODEL_KEYS)})")
     if "kt" in model and "kt_over_kn" in model:
         _fail("model.kt_over_kn", model["kt_over_kn"], "give kt or kt_over_kn, not both")
