@@ -220,3 +220,18 @@ def test_a_pair_sweeps_chunks_are_sized_by_the_pair_references_cost():
         estimate = cost.chunk_cost(spec, 0, size)
         assert estimate.seconds <= CHUNK_SECONDS and size * theory <= estimate.seconds
         assert size < DEFAULT_CHUNK  # a wall sweep of these states takes DEFAULT_CHUNK
+
+
+@pytest.mark.lammps
+def test_a_zero_cap_is_no_tangential_force_and_lammps_agrees(tmp_path):
+    """mu = 0 caps |F_t| at nothing: the reference is the uncapped one without a tangential spring
+    (the capped solver divides by mu and could not answer), and LAMMPS follows it to the default
+    accuracy (1e-4 of the speed: the pair's first-order step error, as for every pair)."""
+    import spinbounce
+
+    report = spinbounce.collide(v_n=-1.0, v_t=1.0, omega=2.0, scene="pair", mu=0.0, out=tmp_path)
+    assert report.status == "ok" and report.error < 1e-4
+    pair = Pair(v_a=(1.0, 0.0, -1.0), w_a=(0.0, -2.0, 0.0))
+    free = PairContact(kt=0.0).solve(pair)
+    assert report.table.loc["v_t", "exact"] == pytest.approx(free.v_a[0], abs=1e-12)
+    assert report.table.loc["r_omega", "exact"] == pytest.approx(2.0 * 0.5, abs=1e-12)  # no torque: spin kept

@@ -118,6 +118,9 @@ class PairContact:
         """The pair's outcome as LAMMPS integrates it (``planar``: with n held fixed), capped or not."""
         if self.mu is None:
             return pair_exact.solve(**pair.vectors(), **pair.properties(), **self.law(), planar=planar)
+        if self.mu == 0.0:  # a cap of zero: no tangential force at all (the capped solver divides by mu)
+            return pair_exact.solve(**pair.vectors(), **pair.properties(), **(self.law() | {"kt": 0.0}),
+                                    planar=planar)
         return pair_capped.solve(**pair.vectors(), **pair.properties(), **self.law(), mu=self.mu, planar=planar)
 
 
