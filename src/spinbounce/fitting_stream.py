@@ -160,14 +160,27 @@ def _solve(g: _Group):
     return coef, omega
 
 
+def _worst_and_median(parts: list) -> tuple[float, float]:
+    """The largest and the median of a group's per-row values, kept batch by batch in ``parts``
+    (emptied: the rows are held once, and partitioned in place, where np.median would copy them;
+    the median is np.median's, the mean of the two middle values for an even count)."""
+    values = np.concatenate(parts)
+    parts.clear()
+    n = len(values)
+    middle = [n // 2 - 1, n // 2] if n % 2 == 0 else [n // 2]
+    values.partition(middle)
+    return float(values.max()), float(np.mean(values[middle]))
+
+
 def _report(g: _Group, fit) -> dict:
     regime_name, matrix_theory = g.params.pop("_regime"), g.params.pop("_matrix_theory")
-    errors, relative = np.concatenate(g.errors), np.concatenate(g.relative)
+    worst, median = _worst_and_median(g.errors)
+    worst_relative, median_relative = _worst_and_median(g.relative)
     out = {"parameters": group_parameters(g.params),
            "n": g.n, "theory": theory_kind(g.params), "regime": regime_name,
            "has_matrix": fit is not None,
-           "worst_deviation": float(errors.max()), "median_deviation": float(np.median(errors)),
-           "worst_relative_deviation": float(relative.max()), "median_relative_deviation": float(np.median(relative))}
+           "worst_deviation": worst, "median_deviation": median,
+           "worst_relative_deviation": worst_relative, "median_relative_deviation": median_relative}
     if g.status:
         out["status"] = g.status
     if fit is None:
