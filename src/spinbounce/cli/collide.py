@@ -12,8 +12,11 @@ from .options import (check_run_folder, force_flag, json_flag, model_parser, num
 
 HELP = "bounce one sphere off the wall (or a second free sphere: --scene pair) in LAMMPS against the theory"
 PAIR_HELP = "collide sphere a with a free sphere b in LAMMPS (pair granular): collide --scene pair"
-LABELS = {"v_n": "v_n", "v_t": "v_t", "r_omega": "r*omega", "v_s": "v_s", "r_omega_s": "r*omega_s",
-          "r_omega_n": "r*omega_n"}
+
+
+def _label(name: str) -> str:
+    """A state column as printed: r times a spin reads r*omega."""
+    return name.replace("r_omega", "r*omega")
 
 
 def register(sub) -> None:
@@ -76,7 +79,7 @@ def run(args) -> int:
 
 def _print_states(record: dict, names, label_width: int) -> None:
     """The initial, LAMMPS, theory and error rows of a collision report."""
-    print(f"{'':{label_width}}" + "".join(f"{LABELS[n]:>16}" for n in names))
+    print(f"{'':{label_width}}" + "".join(f"{_label(n):>16}" for n in names))
     for label, key in (("initial", "initial"), ("LAMMPS", "lammps"), ("theory", "theory"), ("error", "error")):
         fmt = "{:>16.3e}" if key == "error" else "{:>16.10f}"
         print(f"{label:{label_width}}" + "".join(fmt.format(record[key][n]) for n in names))
@@ -115,8 +118,7 @@ def print_pair_record(record: dict) -> None:
     columns = [c for c in ("initial", "lammps", "exact", "planar") if c in record]
     print(f"{'':12}" + "".join(f"{'LAMMPS' if c == 'lammps' else c:>14}" for c in columns))
     for name in record["exact"]:
-        label = name.replace("r_omega", "r*omega")
-        print(f"{label:12}" + "".join(f"{record[c][name]:>14.8f}" for c in columns))
+        print(f"{_label(name):12}" + "".join(f"{record[c][name]:>14.8f}" for c in columns))
     print((f"LAMMPS vs exact: {record['error']:.2e} (status {record['status']}); " if ran else "")
           + f"planar theory vs exact (model error): {record['planar_error']:.2e}")
     if ran:
