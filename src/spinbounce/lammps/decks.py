@@ -6,7 +6,9 @@ Each scene renders its own deck from its own template, in its folder
 ``$(...)``, and an undefined name is an error, never an empty string.
 
 Geometry: the wall is the plane z = 0 with normal +z, the tangential direction is +x,
-and the paper's anticlockwise omega is -omega_y (so slip = v_x - r*omega_y).
+and the paper's anticlockwise omega is -omega_y (so slip = v_x - r*omega_y); in 3-D v_s is
+v_y, omega_s is omega_x (slip v_y + r omega_x) and omega_n is omega_z (:func:`lammps_vectors`,
+:func:`wall_frame`). A pair uses the same frame, its line of centres along z.
 """
 
 from __future__ import annotations
@@ -27,8 +29,7 @@ if TYPE_CHECKING:
     from ..model.contact import ContactModel
 
 __all__ = ["Deck", "LibraryAtoms", "wall_parameters", "render_template", "deck_words", "fix_line", "common_context",
-           "prepare_run_dir",
-           "LIBRARY_MARKER", "ATOM_ROUTES", "ALPHA_NVE_SPHERE", "RESULT_TABLE"]
+           "prepare_run_dir", "lammps_vectors", "wall_frame", "LIBRARY_MARKER", "ATOM_ROUTES", "ALPHA_NVE_SPHERE", "RESULT_TABLE"]
 
 DECK_NAME = "in.lammps"
 DUMP_NAME = "state.dump"
@@ -105,6 +106,19 @@ class Deck:
     atoms: LibraryAtoms | None = None
     #: Per row of the scene, the atom ids of its spheres (an (n, k) array; None: ids 1..n).
     ids: np.ndarray | None = None
+
+
+def lammps_vectors(v_n, v_t, omega, v_s=0.0, omega_s=0.0, omega_n=0.0) -> tuple[np.ndarray, np.ndarray]:
+    """LAMMPS's velocity (v_t, v_s, v_n) and angular velocity (omega_s, -omega, omega_n) of the
+    paper's state, one row per sphere ((3,) for numbers, (n, 3) for per-sphere values)."""
+    v_n, v_t, omega, v_s, omega_s, omega_n = np.broadcast_arrays(v_n, v_t, omega, v_s, omega_s, omega_n)
+    return np.stack([v_t, v_s, v_n], axis=-1) + 0.0, np.stack([omega_s, -omega, omega_n], axis=-1) + 0.0
+
+
+def wall_frame(v: np.ndarray, w: np.ndarray, r: float) -> np.ndarray:
+    """(n, 6) states (v_n, v_t, r omega, v_s, r omega_s, r omega_n) of a sphere's (n, 3) v and w."""
+    v, w = np.atleast_2d(v), np.atleast_2d(w)
+    return np.column_stack([v[:, 2], v[:, 0], -r * w[:, 1], v[:, 1], r * w[:, 0], r * w[:, 2]]) + 0.0
 
 
 def wall_parameters(model: ContactModel) -> dict:

@@ -21,7 +21,7 @@ from functools import lru_cache
 
 import numpy as np
 
-__all__ = ["step_matrix", "spectral_radius", "stability_limit"]
+__all__ = ["step_matrix", "spectral_radius", "stability_limit", "overlap_stretch"]
 
 
 def step_matrix(dt: float, w: float, c: float) -> np.ndarray:
@@ -62,3 +62,16 @@ def stability_limit(w: float, c: float = 0.0, rtol: float = 1e-10) -> float:
         else:
             hi = mid
     return lo
+
+
+def overlap_stretch(w: float, dt: float) -> float:
+    """How far the step stretches the largest overlap of a spring of frequency w (inf past 2/w).
+
+    LAMMPS's velocity Verlet keeps v^2 + w^2 x^2 (1 - (w dt/2)^2) constant in the undamped
+    linear spring, so its largest overlap exceeds the exact one by the factor
+    1/sqrt(1 - (w dt/2)^2): a coarse step can tunnel where the exact motion would not. With w at a
+    nonlinear spring's stiffest point this bounds its stretch too (Hertz: to leading order
+    1 + (w dt)^2/36 against 1 + (w dt)^2/8; tests/test_hertz.py replays the step).
+    """
+    half_step = 0.5 * w * dt
+    return 1.0 / math.sqrt(1.0 - half_step**2) if half_step < 1.0 else math.inf

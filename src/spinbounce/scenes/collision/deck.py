@@ -1,9 +1,5 @@
 """The collision deck (``collision.lmp.j2`` beside this module): its spheres inline, in a data
-file or handed over in memory (:data:`ATOM_ROUTES`), and optional padding for ``bench``.
-
-``scene`` is this folder's :class:`.scene.Collision`, which calls this module
-(never the other way round).
-"""
+file or handed over in memory (:data:`ATOM_ROUTES`), and optional padding for ``bench``."""
 
 from __future__ import annotations
 
@@ -15,8 +11,7 @@ import numpy as np
 
 from ...lammps.data import Atoms, bodies_file, data_file
 from ...lammps.decks import (ATOM_ROUTES, BODIES_FILE, DATA_FILE, DECK_NAME, DUMP_NAME, INLINE_SPHERES, LIBRARY_MARKER,
-                             Deck, LibraryAtoms, common_context, render_template)
-
+                             Deck, LibraryAtoms, common_context, lammps_vectors, render_template)
 
 __all__ = ["Padding", "render_collision", "PADDING_DUMP_NAME"]
 
@@ -44,88 +39,47 @@ class Padding:
         return math.ceil((self.before + self.after) / dt)
 
 
-
-def _collision_state(scene, padding: Padding) -> dict[str, np.ndarray]:
-    """Per-sphere LAMMPS vectors: position, velocity, angular velocity (omega_y = -omega,
-    omega_x = omega_s, omega_z = omega_n)."""
-    n = scene.n
-    zeros = np.zeros(n)
-    return {
-        "x": zeros, "y": zeros, "z": scene.model.r + padding.lift(scene.v_n),
-        "vx": np.asarray(scene.v_t), "vy": np.asarray(scene.v_s), "vz": np.asarray(scene.v_n),
-        "wx": np.asarray(scene.omega_s), "wy": -np.asarray(scene.omega) + 0.0, "wz": np.asarray(scene.omega_n),
-    }
-
-
-def _data_file(scene, state: dict, rigid: bool, box: dict) -> str:
-    """The collision's data file: its spheres (and, for rigid bodies, their centre points)."""
-    model, n = scene.model, scene.n
-    ids = np.arange(1, n + 1)
-    x = np.column_stack([state["x"], state["y"], state["z"]])
-    v = np.column_stack([state["vx"], state["vy"], state["vz"]])
-    w = np.column_stack([state["wx"], state["wy"], state["wz"]])
-    spheres = Atoms(ids, np.ones(n, dtype=int), np.full(n, 2.0 * model.r), np.full(n, model.m / 2 if rigid else model.m),
-                    x, v, w)  # the deck sets each mass exactly afterwards
-    if rigid:
-        spheres = Atoms(np.concatenate([ids, ids + n]), np.concatenate([spheres.types, np.full(n, 2)]),
-                        np.concatenate([spheres.diameter, np.zeros(n)]), np.full(2 * n, model.m / 2),
-                        np.vstack([x, x]), np.vstack([v, v]), np.vstack([w, np.zeros_like(w)]))
-    sides = ((box["xlo"], box["xhi"]), (box["ylo"], box["yhi"]), (0.0, box["zhi"]))
-    return data_file(f"{n} spheres for {DECK_NAME}", spheres, 2 if rigid else 1, sides)
-
-
-def _bodies_file(scene, state: dict) -> str:
-    model, n = scene.model, scene.n
-    return bodies_file(np.arange(1, n + 1), np.full(n, model.m), np.column_stack([state["x"], state["y"], state["z"]]),
-                       np.full(n, model.inertia), np.column_stack([state["vx"], state["vy"], state["vz"]]),
-                       np.column_stack([state["wx"], state["wy"], state["wz"]]))
-
-
-def _library_atoms(scene, state: dict, rigid: bool) -> LibraryAtoms:
-    n = scene.n
-    x = np.column_stack([state["x"], state["y"], state["z"]])
-    v = np.column_stack([state["vx"], state["vy"], state["vz"]])
-    omega = np.column_stack([state["wx"], state["wy"], state["wz"]])
-    types = np.ones(n, dtype=np.int32)
-    if rigid:  # the centre points: same position and velocity, no spin of their own
-        x, v = np.vstack([x, x]), np.vstack([v, v])
-        omega = np.vstack([omega, np.zeros_like(omega)])
-        types = np.concatenate([types, np.full(n, 2, dtype=np.int32)])
-    return LibraryAtoms(types=types, x=x, v=v, omega=omega)
-
-
 def render_collision(scene, atoms: str | None = None, padding: Padding | None = None) -> Deck:
     """The collision deck. ``atoms``: one of :data:`ATOM_ROUTES`; by default inline up to
     :data:`INLINE_SPHERES` spheres and a data file beyond (either way ``lmp -in`` reruns it).
     ``padding``: work beyond the contact, for measuring its cost (:class:`Padding`)."""
-    model = scene.model
+    model, n = scene.model, scene.n
     padding = Padding() if padding is None else padding
     if atoms is None:
-        atoms = "inline" if scene.n <= INLINE_SPHERES else "data_file"
+        atoms = "inline" if n <= INLINE_SPHERES else "data_file"
     if atoms not in ATOM_ROUTES:
         raise ValueError(f"atoms = {atoms!r}: must be one of {ATOM_ROUTES}")
-    state = _collision_state(scene, padding)
+    x = np.column_stack([np.zeros(n), np.zeros(n), model.r + padding.lift(scene.v_n)])
+    v, w = lammps_vectors(scene.v_n, scene.v_t, scene.omega, scene.v_s, scene.omega_s, scene.omega_n)
     # room for the lifted start and for the flight away from the wall in the extra time
     fastest = float(np.max(np.abs(scene.v_n)))
     headroom = float(np.max(padding.lift(scene.v_n))) + fastest * (padding.before + padding.after)
     ctx = common_context(model, zhi=4.0 * model.r + headroom)
     rigid = ctx["rigid"]
+    # a rigid sphere (id k, type 1) holds half its mass, the point at its centre (id n + k, type 2,
+    # no spin of its own) the other half
+    k = ctx["ntypes"]
+    every_x, every_v, every_w = np.tile(x, (k, 1)), np.tile(v, (k, 1)), np.vstack([w, np.zeros_like(w)])[: k * n]
+    types = np.repeat([1, 2], n)[: k * n]
     files = {}
     spheres = []
     if atoms == "data_file":
-        files[DATA_FILE] = _data_file(scene, state, rigid, ctx["box"])
+        box = ctx["box"]
+        spheres_file = Atoms(np.arange(1, k * n + 1), types, np.repeat([2.0 * model.r, 0.0], n)[: k * n],
+                             np.full(k * n, model.m / k), every_x, every_v, every_w)  # the deck sets each mass exactly
+        sides = ((box["xlo"], box["xhi"]), (box["ylo"], box["yhi"]), (0.0, box["zhi"]))
+        files[DATA_FILE] = data_file(f"{n} spheres for {DECK_NAME}", spheres_file, k, sides)
     elif atoms == "inline":
-        spheres = [
-            {"id": i + 1, **{k: float(v[i]) for k, v in state.items()}} for i in range(scene.n)
-        ]
+        names = ("x", "y", "z", "vx", "vy", "vz", "wx", "wy", "wz")
+        spheres = [{"id": i + 1, **dict(zip(names, map(float, (*x[i], *v[i], *w[i]))))} for i in range(n)]
     if rigid and atoms != "inline":
-        files[BODIES_FILE] = _bodies_file(scene, state)
+        files[BODIES_FILE] = bodies_file(np.arange(1, n + 1), np.full(n, model.m), x, np.full(n, model.inertia), v, w)
     library = atoms == "library"
     # the header's run length: Hertzian contacts end at different times, the slowest last
     tau = float(np.max(model.normal_law.force_times(model, scene.v_n)))
-    ctx.update(n=scene.n, spheres=spheres, tau=tau, dt=scene.dt, nsteps=scene.nsteps,
+    ctx.update(n=n, spheres=spheres, tau=tau, dt=scene.dt, nsteps=scene.nsteps,
                run_steps=scene.nsteps + padding.extra_steps(scene.dt), padding=padding,
                padding_dump=PADDING_DUMP_NAME, atoms=atoms, library_marker=LIBRARY_MARKER, data_file=DATA_FILE)
     text = render_template(Path(__file__).parent, "collision.lmp.j2", **ctx)
     return Deck(text=text, rigid=rigid, files=files, dump=None if library else DUMP_NAME,
-                atoms=_library_atoms(scene, state, rigid) if library else None)
+                atoms=LibraryAtoms(types.astype(np.int32), every_x, every_v, every_w) if library else None)

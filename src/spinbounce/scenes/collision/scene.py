@@ -22,6 +22,7 @@ from ...exact.choose import PLANE_COLUMNS, SPACE_COLUMNS
 from ...model import parameters
 from ...model.contact import ContactModel
 from ...model.parameters import SceneError
+from ...model.stability import overlap_stretch
 from ...model.timestep import align_mid_step, check_steps, second_order_dt, steps_through, steps_per_contact
 from ...lammps.decks import wall_parameters
 
@@ -130,13 +131,7 @@ class Collision:
         dt = self.default_dt() if self.dt is None else self.dt
         set_(self, "dt", m.check_dt(dt, frozen=False, speed=speed))
         self._check_cost()
-        # LAMMPS's velocity Verlet keeps v^2 + w^2 x^2 (1 - (w dt/2)^2) constant in the
-        # undamped linear spring, so its largest overlap exceeds the exact one by the factor
-        # 1/sqrt(1 - (w dt/2)^2): a coarse step can tunnel where the exact motion would not. With
-        # w at a nonlinear spring's stiffest point this bounds its stretch too (Hertz: to leading
-        # order 1 + (w dt)^2/36 against 1 + (w dt)^2/8; tests/test_hertz.py replays the step).
-        half_step = 0.5 * m.normal_law.normal_mode(m, speed)[0] * self.dt
-        stretch = 1.0 / math.sqrt(1.0 - half_step**2) if half_step < 1.0 else math.inf
+        stretch = overlap_stretch(m.normal_law.normal_mode(m, speed)[0], self.dt)
         if reach * stretch >= m.r:
             raise SceneError(
                 "v_n",

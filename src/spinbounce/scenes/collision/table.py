@@ -1,12 +1,8 @@
 """A collision run's table: LAMMPS's first and last frames beside the theory, one row per sphere.
 
-LAMMPS frame -> paper: v_n = v_z, v_t = v_x, omega = -omega_y (anticlockwise positive),
-r_omega = r * omega; in 3-D v_s = v_y, omega_s = omega_x, omega_n = omega_z. Frames come
-from the dump, or from LAMMPS's memory for a library-route deck; both are checked (lost
-spheres, non-finite values, a contact that had not finished) before the table is made.
-
-``scene`` is this folder's :class:`.scene.Collision`, which calls this module
-(never the other way round).
+LAMMPS's frame -> the paper's: :func:`~spinbounce.lammps.decks.wall_frame`. Frames come from
+the dump, or from LAMMPS's memory for a library-route deck; both are checked (lost spheres,
+non-finite values, a contact that had not finished) before the table is made.
 """
 
 from __future__ import annotations
@@ -18,6 +14,7 @@ import numpy as np
 import pandas as pd
 
 from ...errors import ResultError
+from ...lammps.decks import wall_frame
 from ...lammps.dumps import read_dump
 
 if TYPE_CHECKING:
@@ -26,10 +23,6 @@ if TYPE_CHECKING:
 
 __all__ = ["collision_table", "read_collision", "FRAME_COLUMNS"]
 
-#: Each state column from LAMMPS's columns: (column, sign), then times r for the spins.
-#: The paper's omega is -omega_y; the second pair's spin is +omega_x (slip v_y + r omega_x).
-_FROM_LAMMPS = {"v_n": ("vz", 1.0), "v_t": ("vx", 1.0), "r_omega": ("omegay", -1.0),
-                "v_s": ("vy", 1.0), "r_omega_s": ("omegax", 1.0), "r_omega_n": ("omegaz", 1.0)}
 #: The spin columns and the angular velocity each one carries.
 SPINS = {"r_omega": "omega", "r_omega_s": "omega_s", "r_omega_n": "omega_n"}
 
@@ -54,14 +47,13 @@ def collision_table(scene, initial, final, as_frame: bool = True):
     for spin in spins:
         columns[f"{spin}_initial"] = np.asarray(getattr(scene, spin))
     for when, frame in (("lammps_initial", initial), ("lammps", final)):
+        # the state at r = 1: its spins are the angular velocities, in the paper's signs
+        state = wall_frame(*(np.column_stack([frame[f"{q}{axis}"] for axis in "xyz"]) for q in ("v", "omega")), 1.0)
         values = {"z": np.asarray(frame["z"])}
-        for name in names:
-            column, sign = _FROM_LAMMPS[name]
-            value = sign * np.asarray(frame[column]) + 0.0  # + 0.0: no "-0" in tables
+        for k, name in enumerate(names):
+            values[name] = r * state[:, k] if name in SPINS else state[:, k]
             if name in SPINS:
-                values[SPINS[name]] = value
-                value = r * value
-            values[name] = value
+                values[SPINS[name]] = state[:, k]
         for name in names + tuple(spins) + ("z",):
             columns[f"{name}_{when}"] = values[name]
     for k, name in enumerate(names):

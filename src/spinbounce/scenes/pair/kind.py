@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ...lammps.decks import lammps_vectors, wall_frame
 from ...model.contact import ContactModel
 from ...model.parameters import PAIR_ONLY, PAIR_SPHERE, STATE_B, SceneError, by_name
 from ...exact import pair as planar
@@ -60,19 +61,10 @@ def state_b(values: dict) -> np.ndarray:
                      for p in STATE_B])
 
 
-def _lammps_vectors(state: np.ndarray) -> tuple[tuple, tuple]:
-    """A state (v_n, v_t, omega, v_s, omega_s, omega_n) as LAMMPS's velocity and angular velocity:
-    v = (v_t, v_s, v_n), omega = (omega_s, -omega, omega_n) (the wall's frame and sign)."""
-    return (state[1], state[3], state[0]), (state[4], -state[2] + 0.0, state[5])
-
-
 def pairs_from_states(model: ContactModel, b: Sphere, states: np.ndarray, b_state=None) -> list[Pair]:
     """One pair per row of (v_n, v_t, omega[, v_s, omega_s, omega_n]): a as the wall's sphere, b
-    below it along the line of centres, at rest or in ``b_state`` (the same six, a's frame and sign).
-
-    LAMMPS's frame as the wall's (:mod:`spinbounce.scenes.collision.table`): v = (v_t, v_s, v_n)
-    and angular velocity (omega_s, -omega, omega_n).
-    """
+    below it along the line of centres, at rest or in ``b_state`` (the same six, a's frame and
+    sign), in LAMMPS's frame as the wall's (:func:`~spinbounce.lammps.decks.lammps_vectors`)."""
     a = Sphere(model.m, model.r, model.alpha)
     states = np.atleast_2d(np.asarray(states, dtype=float))
     full = np.zeros((len(states), 6))
@@ -83,14 +75,8 @@ def pairs_from_states(model: ContactModel, b: Sphere, states: np.ndarray, b_stat
         k = int(leaving[0])
         raise SceneError("v_n - v_n_b", float(full[k, 0] - b_state[0]), "must be < 0: the spheres approach at first "
                                                                        "touch" + (f" (row {k})" if len(full) > 1 else ""))
-    v_b, w_b = _lammps_vectors(b_state)
-    return [Pair(a=a, b=b, v_a=v_a, w_a=w_a, v_b=v_b, w_b=w_b) for v_a, w_a in map(_lammps_vectors, full)]
-
-
-def wall_frame(v: np.ndarray, w: np.ndarray, r: float) -> np.ndarray:
-    """(n, 6) states (v_n, v_t, r omega, v_s, r omega_s, r omega_n) of a sphere's (n, 3) v and w."""
-    v, w = np.atleast_2d(v), np.atleast_2d(w)
-    return np.column_stack([v[:, 2], v[:, 0], -r * w[:, 1], v[:, 1], r * w[:, 0], r * w[:, 2]]) + 0.0
+    v_b, w_b = lammps_vectors(*b_state)
+    return [Pair(a=a, b=b, v_a=v_a, w_a=w_a, v_b=v_b, w_b=w_b) for v_a, w_a in zip(*lammps_vectors(*full.T))]
 
 
 def planar_matrix(model: ContactModel, b: Sphere, three_d: bool = False) -> np.ndarray:

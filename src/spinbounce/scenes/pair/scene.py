@@ -30,6 +30,7 @@ from ...exact import pair as planar
 from ...exact import pair_capped, pair_exact
 from ...model.contact import ContactModel
 from ...model.parameters import SceneError, by_name
+from ...model.stability import overlap_stretch
 from ...model.timestep import check_steps, steps_per_contact, steps_through
 from .deck import PAIR_NO_CAP_MU, render_pairs
 
@@ -201,8 +202,7 @@ def _check_overlap(pair: Pair, model: ContactModel, dt: float, where: str) -> No
     """The deepest overlap (stretched by the step, as for the wall) must stay below the
     smaller radius, or the smaller centre would enter the larger sphere."""
     reach = float(exact.max_overlap(pair.v_n, model.m, model.kn, model.gamma_n))
-    half_step = 0.5 * math.sqrt(model.kn / model.m) * dt
-    stretch = 1.0 / math.sqrt(1.0 - half_step**2) if half_step < 1.0 else math.inf
+    stretch = overlap_stretch(math.sqrt(model.kn / model.m), dt)
     if reach * stretch >= model.r:
         raise SceneError(where, pair.v_n, f"|v_n| is too large: the overlap would reach {reach * stretch:.6g} >= "
                                           f"the smaller radius {model.r:g}")

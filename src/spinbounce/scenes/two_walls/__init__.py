@@ -22,7 +22,8 @@ import numpy as np
 from ... import exact
 from ...errors import ResultError
 from ...exact import choose
-from ...lammps.decks import ALPHA_NVE_SPHERE, Deck, prepare_run_dir, render_template, wall_parameters
+from ...lammps.decks import (ALPHA_NVE_SPHERE, Deck, lammps_vectors, prepare_run_dir, render_template, wall_frame,
+                             wall_parameters)
 from ...lammps.dumps import read_dump
 from ...lammps.runner import run_deck
 from ...model.contact import ContactModel
@@ -188,10 +189,10 @@ def _aligned_dt(model: ContactModel, steps: int) -> float:
 def render_two_walls(scene: TwoWalls) -> Deck:
     """The deck: spheres at (0, 0, r) with their LAMMPS velocities, a pair of walls per model."""
     r, s = scene.r, scene.initial
-    width = s.shape[1]
-    extra = s[:, 3:] if width == 6 else np.zeros((len(s), 3))
-    spheres = [{"id": i + 1, "x": 0.0, "y": 0.0, "z": r + scene.lift[i], "vx": s[i, 1], "vy": extra[i, 0], "vz": s[i, 0],
-                "wx": extra[i, 1] / r, "wy": -s[i, 2] / r, "wz": extra[i, 2] / r} for i in range(len(s))]
+    extra = s[:, 3:] if s.shape[1] == 6 else np.zeros((len(s), 3))
+    v, w = lammps_vectors(s[:, 0], s[:, 1], s[:, 2] / r, extra[:, 0], extra[:, 1] / r, extra[:, 2] / r)
+    spheres = [{"id": i + 1, "x": 0.0, "y": 0.0, "z": r + scene.lift[i], **dict(zip(("vx", "vy", "vz"), v[i])),
+                **dict(zip(("wx", "wy", "wz"), w[i]))} for i in range(len(s))]
     distinct = list(dict.fromkeys(scene.models))
     groups = [{"name": f"model{j + 1}", "model": model, "wall": wall_parameters(model),
                "ids": " ".join(str(i + 1) for i, m in enumerate(scene.models) if m == model)}
@@ -228,13 +229,6 @@ class TwoWallsResult:
         starts = np.concatenate([first,
                                  exits[:, :-1] + (self.scene.gap - 2.0 * self.scene.r) / speeds], axis=1)
         return exits - starts
-
-
-def _lammps_state(rows, r: float, width: int) -> np.ndarray:
-    """(v_z, v_x, -r omega_y, v_y, r omega_x, r omega_z): a state in the bottom wall's frame."""
-    full = np.column_stack([rows["vz"], rows["vx"], -r * rows["omegay"], rows["vy"], r * rows["omegax"],
-                            r * rows["omegaz"]])
-    return full[:, :width]
 
 
 def _flight_frames(rows, scene: TwoWalls) -> list[int]:
@@ -275,7 +269,8 @@ def run_two_walls(scene: TwoWalls, out_dir: Path) -> TwoWallsResult:
         if len(last) < scene.bounces:
             raise ResultError(f"{deck_path}: sphere {i + 1} made {len(last)} of {scene.bounces} flights")
         picked = {c: v[last[:scene.bounces]] for c, v in rows.items()}
-        states[1:, i] = _lammps_state(picked, scene.r, width)
+        v, w = (np.column_stack([picked[f"{q}{axis}"] for axis in "xyz"]) for q in ("v", "omega"))
+        states[1:, i] = wall_frame(v, w, scene.r)[:, :width]
         wall_side = np.where(picked["vz"] > 0.0, scene.r, scene.gap - scene.r)
         exits[i] = picked["step"] * scene.dt - (picked["z"] - wall_side) / picked["vz"]
     return TwoWallsResult(scene, states, exits, deck_path)
