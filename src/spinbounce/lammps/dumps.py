@@ -11,9 +11,9 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
-from ..errors import DumpError
+from ..errors import DumpError, ResultError
 
-__all__ = ["DumpError", "read_dump"]
+__all__ = ["DumpError", "read_dump", "finite_frames"]
 
 
 def read_dump(path: Path) -> pd.DataFrame:
@@ -76,3 +76,13 @@ def read_dump(path: Path) -> pd.DataFrame:
 def _nan_text(rows: list[str]) -> bool:
     """True when LAMMPS itself wrote nan/inf (a blown-up run), as opposed to a short row."""
     return any(("nan" in row.lower()) or ("inf" in row.lower()) for row in rows)
+
+
+def finite_frames(frames: pd.DataFrame, where) -> pd.DataFrame:
+    """A dump's ``frames``, or a :class:`ResultError` at the first row LAMMPS wrote a non-finite value in."""
+    bad = ~np.isfinite(frames.drop(columns=["step", "id"]).to_numpy(dtype=float)).all(axis=1)
+    if bad.any():
+        first = frames[bad].iloc[0]
+        raise ResultError(f"{where}: non-finite positions or velocities (first at step {int(first['step'])}, "
+                          f"atom {int(first['id'])}): the integration blew up")
+    return frames

@@ -11,7 +11,6 @@ from __future__ import annotations
 import contextlib
 import ctypes
 import importlib.metadata as metadata
-import os
 import re
 import subprocess
 import time
@@ -123,16 +122,6 @@ def _as_lammps_error(exc: Exception, deck: Path) -> LammpsError:
     return LammpsError(message, deck, line.group(1).strip() if line else None)
 
 
-@contextlib.contextmanager
-def _working_directory(path: Path):
-    previous = Path.cwd()
-    os.chdir(path)
-    try:
-        yield
-    finally:
-        os.chdir(previous)
-
-
 _LOOP_RE = re.compile(r"^Loop time of ([-+0-9.eE]+)", re.MULTILINE)
 
 
@@ -198,7 +187,7 @@ def run_deck(deck: Path, atoms=None) -> RunInfo:
     version = lammps_version()
     initial = final = None
     started = time.perf_counter()
-    with _working_directory(deck.parent):
+    with contextlib.chdir(deck.parent):
         lmp = lammps(cmdargs=["-log", LOG_NAME, "-screen", "none", "-nocite"])
         try:
             if atoms is None:

@@ -25,9 +25,10 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass
 
-__all__ = ["mid_step_dt", "align_mid_step", "refine_mid_step", "steps_through", "steps_per_contact",
-           "ACCURACY", "SECOND_ORDER", "SAFETY", "FROZEN_ACCURACY", "MAX_STEPS", "second_order_dt", "check_steps", "estimate_seconds",
-           "duration_text", "StepChoice", "cost_notice", "ANNOUNCE_SECONDS", "MAX_CORE_HOURS"]
+__all__ = ["mid_step_dt", "align_mid_step", "refine_mid_step", "steps_to", "steps_through",
+           "steps_per_contact", "ACCURACY", "SECOND_ORDER", "SAFETY", "FROZEN_ACCURACY", "MAX_STEPS",
+           "second_order_dt", "check_steps", "estimate_seconds", "duration_text", "StepChoice", "cost_notice",
+           "ANNOUNCE_SECONDS", "MAX_CORE_HOURS"]
 
 #: Guards the rounding of t_end/dt so that an exact multiple is not pushed one step further.
 _ROUNDING = 1e-9
@@ -134,6 +135,13 @@ def refine_mid_step(t_end: float, dt: float, factor: int) -> float:
     if factor < 1 or factor != int(factor):
         raise ValueError(f"factor = {factor!r}: must be a whole number >= 1")
     return mid_step_dt(t_end, int(factor) * steps_per_contact(t_end, dt))
+
+
+def steps_to(t_end: float, dt: float) -> float:
+    """Whole steps that reach ``t_end`` (an exact multiple is not pushed one step further; inf when
+    t_end/dt overflows a float: :func:`check_steps` refuses it)."""
+    ratio = t_end / dt
+    return math.ceil(ratio - _ROUNDING) if math.isfinite(ratio) else math.inf
 
 
 def steps_through(t_end: float, dt: float) -> int:

@@ -9,13 +9,12 @@ from pathlib import Path
 
 import numpy as np
 
-
 from ...errors import ResultError
 from ...exact import choose
 from ...lammps.decks import wall_parameters
 from ...model.contact import ContactModel
 from ...model.parameters import SceneError, finite_number, positive_number
-from ...model.timestep import ACCURACY, FROZEN_ACCURACY, SAFETY, check_steps, second_order_dt
+from ...model.timestep import ACCURACY, FROZEN_ACCURACY, SAFETY, check_steps, second_order_dt, steps_to
 
 __all__ = ["Frozen", "FROZEN_DAMPING_ORDER_ONE"]
 
@@ -59,10 +58,9 @@ class Frozen:
         set_(self, "t_end", positive_number("t_end", self.t_end))
         given = self.dt is not None
         set_(self, "dt", m.check_dt(self.dt if given else self.default_dt(), frozen=True))
-        ratio = self.t_end / self.dt
         why = f"t_end = {self.t_end:g} at dt = {self.dt:.3g}" + ("" if given else ", the default accuracy's step")
-        steps = check_steps(math.ceil(ratio - 1e-9) if math.isfinite(ratio) else ratio,
-                            *(("dt", self.dt) if given else ("t_end", self.t_end)), why)
+        named = ("dt", self.dt) if given else ("t_end", self.t_end)
+        steps = check_steps(steps_to(self.t_end, self.dt), *named, why)
         if self.every is None:
             set_(self, "every", max(1, steps // 2000))
         else:
@@ -100,9 +98,7 @@ class Frozen:
         dt = second_order_dt([(w, c)], self.t_end, FROZEN_ACCURACY)
         if c > 0.0:
             dt = min(dt, SAFETY * ACCURACY / (FROZEN_DAMPING_ORDER_ONE * c))  # first order: the default target
-        ratio = self.t_end / dt
-        steps = check_steps(math.ceil(ratio - 1e-9) if math.isfinite(ratio) else ratio, "t_end", self.t_end,
-                            "at the default accuracy's step")
+        steps = check_steps(steps_to(self.t_end, dt), "t_end", self.t_end, "at the default accuracy's step")
         return self.t_end / max(1, steps)
 
     def predicted(self, t) -> tuple[np.ndarray, np.ndarray]:
@@ -121,16 +117,11 @@ class Frozen:
     def read(self, info, deck, folder: Path):
         """The dump's time series beside Eq. 10, checked: every frame finite, all of them there,
         the sphere at its held height."""
-        from ...lammps.dumps import read_dump
+        from ...lammps.dumps import finite_frames, read_dump
         from .table import frozen_table
 
         dump = Path(folder) / deck.dump
-        frames = read_dump(dump)
-        values = frames.drop(columns=["step", "id"]).to_numpy(dtype=float)
-        if not np.all(np.isfinite(values)):
-            bad = frames[~np.isfinite(values).all(axis=1)]
-            raise ResultError(f"{dump}: non-finite positions or velocities (first at step {int(bad['step'].iloc[0])}, "
-                              f"atom {int(bad['id'].iloc[0])}): the integration blew up")
+        frames = finite_frames(read_dump(dump), dump)
         expected = self.nsteps // self.every + 1
         if frames["step"].nunique() != expected or frames["step"].max() != self.nsteps:
             raise ResultError(f"{dump}: expected {expected} frames ending at step {self.nsteps}")

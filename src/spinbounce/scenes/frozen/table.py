@@ -1,14 +1,8 @@
-"""The frozen contact's time series beside Eq. 10: LAMMPS's dump in the paper's variables.
-
-``scene`` is this folder's :class:`.scene.Frozen`, which calls this module
-(never the other way round).
-"""
+"""The frozen contact's time series beside Eq. 10: LAMMPS's dump in the paper's variables."""
 
 from __future__ import annotations
 
-
 import pandas as pd
-
 
 __all__ = ["paper_variables", "frozen_table"]
 
@@ -28,16 +22,6 @@ def frozen_table(scene, frames: pd.DataFrame) -> pd.DataFrame:
     """The frozen time series: t, v_t, omega, r_omega (LAMMPS's) and the theory's v_t and r_omega."""
     paper = paper_variables(frames, scene.model.r)
     t = paper["step"].to_numpy() * scene.dt
-    v_t_theory, r_omega_theory = scene.predicted(t)
-    return pd.DataFrame(
-        {
-            "t": t,
-            "v_t": paper["v_t"].to_numpy(),
-            "omega": paper["omega"].to_numpy(),
-            "r_omega": paper["r_omega"].to_numpy(),
-            "v_t_theory": v_t_theory,
-            "r_omega_theory": r_omega_theory,
-            "z": paper["z"].to_numpy(),
-            "v_n": paper["v_n"].to_numpy(),
-        }
-    )
+    table = pd.DataFrame({"t": t, **{c: paper[c].to_numpy() for c in ("v_t", "omega", "r_omega")}})
+    table["v_t_theory"], table["r_omega_theory"] = scene.predicted(t)
+    return table.assign(z=paper["z"].to_numpy(), v_n=paper["v_n"].to_numpy())

@@ -10,9 +10,6 @@ largest difference from the exact reference over the velocities and r times the 
 units of the pair's ``speed`` (:meth:`Pair.speed`): a model error. LAMMPS's own error
 against the exact reference is the row checks' ``error`` (:mod:`spinbounce.checks`), in
 the same units.
-
-``batch`` is this folder's :class:`.scene.PairBatch`, which calls this module
-(never the other way round).
 """
 
 from __future__ import annotations
@@ -25,14 +22,13 @@ import pandas as pd
 
 from ...errors import ResultError
 from ...exact import pair as planar
-from ...lammps.dumps import read_dump
+from ...lammps.dumps import finite_frames, read_dump
 from .deck import QUANTITIES
 
 if TYPE_CHECKING:
     from ...lammps.decks import Deck
 
 __all__ = ["pair_table", "pair_states", "read_pairs", "QUANTITIES"]
-
 
 
 def pair_states(batch, ids: np.ndarray, frames: pd.DataFrame, step: int) -> dict[str, np.ndarray]:
@@ -47,19 +43,6 @@ def pair_states(batch, ids: np.ndarray, frames: pd.DataFrame, step: int) -> dict
             out[f"{side}_{q}"] = sphere[[f"{lammps}{axis}" for axis in "xyz"]].to_numpy() * scales
         out[f"{side}_x"] = sphere[["x", "y", "z"]].to_numpy()
     return out
-
-
-def _final_states(batch, ids: np.ndarray, dump: Path) -> dict[str, np.ndarray]:
-    frames = read_dump(dump)
-    if sorted(frames["step"].unique()) != [0, batch.nsteps]:
-        raise ResultError(f"{dump}: expected frames at steps 0 and {batch.nsteps}")
-    if int((frames["step"] == batch.nsteps).sum()) != 2 * batch.n:  # lost atoms
-        raise ResultError(f"{dump}: {int((frames['step'] == batch.nsteps).sum())} of {2 * batch.n} spheres "
-                          "at the end (lost atoms)")
-    states = pair_states(batch, ids, frames, batch.nsteps)
-    if not all(np.all(np.isfinite(v)) for v in states.values()):
-        raise ResultError(f"{dump}: non-finite final states: the integration blew up")
-    return _columns(states, "") | {"a_x": states["a_x"], "b_x": states["b_x"]}
 
 
 def _columns(values: dict[str, np.ndarray], suffix: str) -> dict[str, np.ndarray]:
@@ -116,9 +99,15 @@ def pair_table(batch, lammps: dict[str, np.ndarray] | None) -> pd.DataFrame:
 def read_pairs(batch, deck: Deck, folder: Path) -> dict:
     """The run's checked table columns: every pair's spheres there, finite, and apart at the end."""
     dump = Path(folder) / deck.dump
-    lammps = _final_states(batch, deck.ids, dump)
-    gap = np.linalg.norm(lammps["a_x"] - lammps["b_x"], axis=1) - np.array([p.radsum for p in batch.pairs])
+    frames = finite_frames(read_dump(dump), dump)
+    if sorted(frames["step"].unique()) != [0, batch.nsteps]:
+        raise ResultError(f"{dump}: expected frames at steps 0 and {batch.nsteps}")
+    at_end = int((frames["step"] == batch.nsteps).sum())
+    if at_end != 2 * batch.n:
+        raise ResultError(f"{dump}: {at_end} of {2 * batch.n} spheres at the end (lost atoms)")
+    states = pair_states(batch, deck.ids, frames, batch.nsteps)
+    gap = np.linalg.norm(states["a_x"] - states["b_x"], axis=1) - np.array([p.radsum for p in batch.pairs])
     if np.any(gap <= 0.0):
         raise ResultError(f"{dump}: pair {int(np.argmin(gap))} still touches after {batch.nsteps} steps: the contact "
                           "had not finished")
-    return {k: v.to_numpy() for k, v in pair_table(batch, lammps).items()}
+    return {k: v.to_numpy() for k, v in pair_table(batch, _columns(states, "")).items()}

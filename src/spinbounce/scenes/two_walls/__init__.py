@@ -24,7 +24,7 @@ from ...errors import ResultError
 from ...exact import choose
 from ...lammps.decks import (ALPHA_NVE_SPHERE, Deck, lammps_vectors, prepare_run_dir, render_template, wall_frame,
                              wall_parameters)
-from ...lammps.dumps import read_dump
+from ...lammps.dumps import finite_frames, read_dump
 from ...lammps.runner import run_deck
 from ...model.contact import ContactModel
 from ...model.parameters import SceneError
@@ -254,10 +254,7 @@ def run_two_walls(scene: TwoWalls, out_dir: Path) -> TwoWallsResult:
     deck = render_two_walls(scene)
     deck_path = prepare_run_dir(out_dir, deck)
     run_deck(deck_path)
-    frames = read_dump(deck_path.parent / DUMP_NAME)
-    values = frames.drop(columns=["step", "id"]).to_numpy(dtype=float)
-    if not np.all(np.isfinite(values)):
-        raise ResultError(f"{deck_path}: non-finite states: the integration blew up")
+    frames = finite_frames(read_dump(deck_path.parent / DUMP_NAME), deck_path)
     n, width = scene.initial.shape
     states = np.empty((scene.bounces + 1, n, width))
     states[0] = scene.initial
