@@ -21,7 +21,7 @@ from ..exact import choose
 from ..laws import NORMAL, NormalLaw, Style, normal_law, own, settled, style
 from .parameters import MODEL, SceneError, positive_number
 from .stability import stability_limit
-from .timestep import MIN_STEPS_PER_HALF_PERIOD
+from .timestep import MIN_STEPS_PER_HALF_PERIOD, mode_rate
 from ..errors import PhysicsWarning
 
 __all__ = ["ContactModel", "ContactPhysics", "PhysicsWarning", "NORMAL_LAWS", "ALPHA_SHELL",
@@ -141,10 +141,6 @@ class ContactPhysics:
         """The 6x6 map of 3-D states (:data:`STATE_3D`)."""
         return choose.matrix(self, three_d=True)
 
-    def matrices(self, v_n) -> np.ndarray:
-        """(n, 3, 3): each sphere's scattering matrix (:func:`spinbounce.exact.choose.matrices`)."""
-        return choose.matrices(self, v_n)
-
     def check_default_step(self) -> None:
         """Refuse what a run at the default step cannot resolve: each declared parameter's own
         limit, and a sphere that leaves the wall too slowly for a run to see it go."""
@@ -179,11 +175,7 @@ class ContactPhysics:
 
     def fastest_rate(self, frozen: bool, speed: float | None = None) -> float:
         """Largest rate (1/time) among the integrated modes: frequency or fast decay rate."""
-        rates = []
-        for w, c in self.modes(frozen, speed).values():
-            half = 0.5 * c
-            rates.append(w if half < w else half + math.sqrt(half * half - w * w))
-        return max(rates)
+        return max(mode_rate(w, c) for w, c in self.modes(frozen, speed).values())
 
     def dt_limit(self, frozen: bool, speed: float | None = None) -> tuple[float, str]:
         """Stability limit of LAMMPS's step and the mode that sets it."""

@@ -27,8 +27,8 @@ from dataclasses import asdict, dataclass
 
 __all__ = ["mid_step_dt", "align_mid_step", "refine_mid_step", "steps_to", "steps_through",
            "steps_per_contact", "ACCURACY", "SECOND_ORDER", "SAFETY", "FROZEN_ACCURACY", "MAX_STEPS",
-           "second_order_dt", "check_steps", "estimate_seconds", "duration_text", "StepChoice", "cost_notice",
-           "ANNOUNCE_SECONDS", "MAX_CORE_HOURS"]
+           "second_order_dt", "mode_rate", "check_steps", "estimate_seconds", "duration_text", "StepChoice",
+           "cost_notice", "ANNOUNCE_SECONDS", "MAX_CORE_HOURS"]
 
 #: Guards the rounding of t_end/dt so that an exact multiple is not pushed one step further.
 _ROUNDING = 1e-9
@@ -64,6 +64,12 @@ class StepChoice:
         return asdict(self)
 
 
+def mode_rate(w: float, c: float) -> float:
+    """The fastest rate (1/time) of x'' + c x' + w^2 x = 0: w, or an overdamped mode's fast decay."""
+    half = 0.5 * c
+    return w if half < w else half + math.sqrt(half * half - w * w)
+
+
 def second_order_dt(modes, t_contact: float, target: float = ACCURACY) -> float:
     """The largest dt whose second-order error estimate stays within ``target``.
 
@@ -72,8 +78,7 @@ def second_order_dt(modes, t_contact: float, target: float = ACCURACY) -> float:
     """
     dts = []
     for w, c in modes:
-        half = 0.5 * c
-        rate = w if half < w else half + math.sqrt(half * half - w * w)
+        rate = mode_rate(w, c)
         if rate <= 0.0:
             continue
         periods = max(1.0, rate * t_contact / math.pi)

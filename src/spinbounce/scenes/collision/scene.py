@@ -11,7 +11,6 @@ depends on v_n; the scene asks the sub-model for the contact's times, overlap an
 from __future__ import annotations
 
 import math
-
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -110,8 +109,7 @@ class Collision:
         n = max(sizes)
         for name, values in zip(STATE_ARGS, columns, strict=True):
             set_(self, name, values * n if len(values) == 1 else values)
-        vn = self.v_n
-        m = self.model
+        vn, m, speed = self.v_n, self.model, self.speed
         if m.style.planar_only and self.is_3d:
             raise SceneError("wall", m.wall, f"the {m.wall} wall's theory is in the paper's plane: give no v_s, "
                                              f"omega_s or omega_n with wall = {m.wall}")
@@ -119,7 +117,6 @@ class Collision:
         if away.size:
             i = int(away[0])
             raise SceneError(f"v_n[{i}]" if n > 1 else "v_n", vn[i], "must be < 0 (towards the wall)")
-        speed = max(abs(v) for v in vn)
         reach = float(np.max(m.max_overlap(np.abs(vn))))
         if reach >= m.r:
             raise SceneError(
@@ -144,8 +141,7 @@ class Collision:
     def _check_cost(self) -> None:
         """Refuse, before anything runs, a collision that needs more steps than one run may take."""
         m = self.model
-        speed = max(abs(v) for v in self.v_n)
-        modes = m.modes(frozen=False, speed=speed)
+        modes = m.modes(frozen=False, speed=self.speed)
         mode = max(modes, key=lambda name: math.hypot(*modes[name]))
         causes = {"slip": "kt, alpha and gamma_t", "normal": "kn and gamma_n"}
         why = (f"dt = {self.dt:.3g}: the {mode} mode ({causes[mode]}) is fast against the contact time "
@@ -158,19 +154,22 @@ class Collision:
         spheres end at different times cannot be aligned and runs at first order
         (:data:`HERTZ_STEPS_PER_HALF_PERIOD`); a single speed is aligned like a Hookean contact."""
         m = self.model
-        speed = max(abs(v) for v in self.v_n)
         times = m.contact_times(self.v_n)
         if np.ptp(times) > 0.0:
-            return math.pi / m.fastest_rate(frozen=False, speed=speed) / HERTZ_STEPS_PER_HALF_PERIOD
+            return math.pi / m.fastest_rate(frozen=False, speed=self.speed) / HERTZ_STEPS_PER_HALF_PERIOD
         t_force = float(m.normal_law.force_times(m, self.v_n)[0])
-        modes = m.modes(frozen=False, speed=speed).values()
+        modes = m.modes(frozen=False, speed=self.speed).values()
         return align_mid_step(t_force, second_order_dt(modes, float(times[0])))
 
     @property
     def steps_per_half_period(self) -> float:
         """How finely dt resolves the fastest contact mode (its half-period over dt)."""
-        m = self.model
-        return math.pi / m.fastest_rate(frozen=False, speed=max(abs(v) for v in self.v_n)) / self.dt
+        return math.pi / self.model.fastest_rate(frozen=False, speed=self.speed) / self.dt
+
+    @property
+    def speed(self) -> float:
+        """The fastest |v_n|: where a force that grows with the overlap is stiffest."""
+        return max(abs(v) for v in self.v_n)
 
     @property
     def n(self) -> int:

@@ -52,9 +52,9 @@ START_STEPS = 100
 SCALE_CLASSES = 32
 
 
-def _checked(owner, names: tuple[str, ...], prefix: str = "") -> None:
+def _checked(owner, names: tuple[str, ...]) -> None:
     for name in names:
-        object.__setattr__(owner, name, by_name(name).check(getattr(owner, name), prefix + name))
+        object.__setattr__(owner, name, by_name(name).check(getattr(owner, name)))
 
 
 def _vector(name: str, value) -> tuple[float, float, float]:
@@ -117,11 +117,9 @@ class PairContact:
 
     def solve(self, pair: "Pair", planar: bool = False):
         """The pair's outcome as LAMMPS integrates it (``planar``: with n held fixed), capped or not."""
-        if self.mu is None:
-            return pair_exact.solve(**pair.vectors(), **pair.properties(), **self.law(), planar=planar)
-        if self.mu == 0.0:  # a cap of zero: no tangential force at all (the capped solver divides by mu)
-            return pair_exact.solve(**pair.vectors(), **pair.properties(), **(self.law() | {"kt": 0.0}),
-                                    planar=planar)
+        if not self.mu:  # no cap, or a cap of zero: no tangential force (the capped solver divides by mu)
+            law = self.law() | ({} if self.mu is None else {"kt": 0.0})
+            return pair_exact.solve(**pair.vectors(), **pair.properties(), **law, planar=planar)
         return pair_capped.solve(**pair.vectors(), **pair.properties(), **self.law(), mu=self.mu, planar=planar)
 
 
@@ -190,12 +188,9 @@ def time_scaled(pair: Pair, scale: float) -> Pair:
     overlap and spring force is the same at the same fraction of the contact, which lasts
     ``scale`` times longer; the final velocities and spins are the original's over ``scale``.
     Exact for an undamped contact only (a damping force -eta v would need eta times scale)."""
-    def heavier(sphere: Sphere) -> Sphere:
-        return Sphere(sphere.m * scale**2, sphere.r, sphere.alpha)
-
-    return replace(pair, a=heavier(pair.a), b=heavier(pair.b), v_a=tuple(np.divide(pair.v_a, scale)),
-                   v_b=tuple(np.divide(pair.v_b, scale)), w_a=tuple(np.divide(pair.w_a, scale)),
-                   w_b=tuple(np.divide(pair.w_b, scale)))
+    heavier = {side: Sphere(s.m * scale**2, s.r, s.alpha) for side, s in (("a", pair.a), ("b", pair.b))}
+    slower = {k: tuple(np.divide(getattr(pair, k), scale)) for k in ("v_a", "v_b", "w_a", "w_b")}
+    return replace(pair, **heavier, **slower)
 
 
 def _check_overlap(pair: Pair, model: ContactModel, dt: float, where: str) -> None:
