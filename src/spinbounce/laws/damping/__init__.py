@@ -6,8 +6,7 @@ Today one: ``velocity`` (:mod:`.velocity`), the paper's viscous damping. LAMMPS'
 
 from __future__ import annotations
 
-from ..registry import registry
-from .base import DampingLaw
+from ..base import DampingLaw, registry
 
 __all__ = ["DAMPING", "DampingLaw"]
 

@@ -8,7 +8,7 @@ from __future__ import annotations
 import math
 
 from ...declaration import Parameter
-from .base import DampingLaw
+from ..base import DampingLaw
 
 __all__ = ["Velocity", "LAW", "GAMMA_N", "GAMMA_T", "VANISHING_ETA_N"]
 

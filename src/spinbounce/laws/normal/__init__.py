@@ -3,8 +3,7 @@
 from __future__ import annotations
 
 from ...declaration import Parameter
-from ..registry import lookup, registry
-from .base import NormalLaw
+from ..base import NormalLaw, lookup, registry
 
 __all__ = ["NORMAL", "NormalLaw", "normal_law", "normal_parameter", "normal_coefficients"]
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...exact import hertz
-from .base import NormalLaw
+from ..base import NormalLaw
 
 __all__ = ["Hertz", "LAW"]
 

@@ -15,7 +15,7 @@ import math
 
 from ...declaration import Parameter
 from ...errors import SceneError
-from .base import STIFFNESS
+from ..base import STIFFNESS
 from .hertz import Hertz
 
 __all__ = ["HertzMaterial", "LAW", "YOUNGS_MODULUS", "POISSON_RATIO", "stiffness"]

@@ -11,7 +11,7 @@ import math
 import numpy as np
 
 from ...exact import linear
-from .base import NormalLaw
+from ..base import NormalLaw
 
 __all__ = ["Hooke", "LAW"]
 

@@ -9,8 +9,7 @@ spinbounce asks the style's flags, never its keyword.
 from __future__ import annotations
 
 from ...declaration import Parameter
-from ..registry import lookup, registry
-from .base import Style
+from ..base import Style, lookup, registry
 
 __all__ = ["STYLES", "Style", "style", "style_parameter"]
 

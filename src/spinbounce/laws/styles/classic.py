@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from ...errors import SceneError
 from ..normal import NORMAL
-from .base import Style
+from ..base import Style
 
 __all__ = ["Classic", "STYLE", "MU_MAX", "VANISHING_GAMMA_N"]
 

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from ..damping import DAMPING
 from ..tangential import TANGENTIAL
-from .base import Style
+from ..base import Style
 
 __all__ = ["Granular", "STYLE"]
 

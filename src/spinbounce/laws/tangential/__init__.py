@@ -6,8 +6,7 @@ a Coulomb cap. LAMMPS's others (``mindlin`` and its variants, ...) come as modul
 
 from __future__ import annotations
 
-from ..registry import registry
-from .base import TangentialLaw
+from ..base import TangentialLaw, registry
 
 __all__ = ["TANGENTIAL", "TangentialLaw"]
 

@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 
 from ...declaration import Parameter
-from .base import TangentialLaw
+from ..base import TangentialLaw
 
 __all__ = ["LinearHistory", "LAW", "KT", "MU", "NO_CAP_MU"]
 
