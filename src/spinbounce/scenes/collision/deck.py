@@ -9,9 +9,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ...lammps.data import Atoms, bodies_file, data_file
 from ...lammps.decks import (ATOM_ROUTES, BODIES_FILE, DATA_FILE, DECK_NAME, DUMP_NAME, INLINE_SPHERES, LIBRARY_MARKER,
-                             Deck, LibraryAtoms, common_context, lammps_vectors, render_template)
+                             Atoms, Deck, LibraryAtoms, bodies_file, common_context, data_file,
+                             lammps_vectors, render_template)
 
 __all__ = ["Padding", "render_collision", "PADDING_DUMP_NAME"]
 

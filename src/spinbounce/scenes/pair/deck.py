@@ -16,9 +16,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ...lammps.data import Atoms, bodies_file, data_file
-from ...lammps.decks import (BODIES_FILE, DECK_NAME, DUMP_NAME, Deck, deck_words, render_template,
-                             wall_parameters)
+from ...lammps.decks import (BODIES_FILE, DECK_NAME, DUMP_NAME, Atoms, Deck, bodies_file, data_file,
+                             deck_words, render_template, wall_parameters)
 
 __all__ = ["render_pairs", "DECK_NAME", "DUMP_NAME", "DATA_FILE", "BODIES_FILE"]
 
