@@ -59,15 +59,6 @@ def _energy(weights: np.ndarray, states: np.ndarray) -> np.ndarray:
     return 0.5 * (weights * states**2).sum(axis=1)
 
 
-def _energy_allowance(rows: RowStates, delta: np.ndarray) -> np.ndarray:
-    """The most E(final) can move, over E(0), when each component errs by ``delta``: by
-    Cauchy-Schwarz, sum w (x d + d^2/2) <= delta sqrt(W sum w x^2) + W delta^2/2, W = sum w."""
-    weights = np.broadcast_to(rows.weights, rows.initial.shape)
-    twice_energy = (weights * rows.initial**2).sum(axis=1)
-    total = weights.sum(axis=1)
-    return (2.0 * np.sqrt(twice_energy * total) * delta + total * delta**2) / twice_energy
-
-
 def add_row_checks(columns: dict, rows: RowStates, target: float = ACCURACY) -> float:
     """Add ``error``, ``energy_gain``, ``energy_excess`` and ``status`` to a table's columns;
     return the largest absolute deviation of any component (the run's, in the state's units)."""
@@ -77,7 +68,11 @@ def add_row_checks(columns: dict, rows: RowStates, target: float = ACCURACY) -> 
     excess = (e1 - _energy(rows.weights, rows.reference)) / e0
     status = np.full(len(error), "ok", dtype=object)
     status[error > target] = "inaccurate"
-    allowance = _energy_allowance(rows, np.maximum(error, target) * rows.scale)
+    # the most E(final) can move, over E(0), when each component errs by delta: by Cauchy-Schwarz,
+    # sum w (x d + d^2/2) <= delta sqrt(W sum w x^2) + W delta^2/2, W = sum w
+    delta = np.maximum(error, target) * rows.scale
+    total = np.broadcast_to(rows.weights, rows.initial.shape).sum(axis=1)
+    allowance = (2.0 * np.sqrt(2.0 * e0 * total) * delta + total * delta**2) / (2.0 * e0)
     status[excess > allowance] = "energy_gained"
     status[rows.overlap < RESOLVABLE_OVERLAP_ULPS * np.spacing(rows.length)] = "grazing"
     columns["energy_gain"] = (e1 - e0) / e0

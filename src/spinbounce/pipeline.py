@@ -1,16 +1,10 @@
-"""scene -> deck -> run -> table -> checks -> record: one pipeline for every scene.
+"""scene -> deck -> run -> table -> checks -> record: one pipeline for every scene
+(:mod:`spinbounce.scenes` says what a scene answers).
 
 Each run lives in its own folder: the deck (which alone reproduces the run with
 ``lmp -in in.lammps``), the files it reads, LAMMPS's log and dump, and ``result.json``
-with the provenance. :func:`run_scene` runs any scene whose rows are collisions (the
-wall's :class:`~spinbounce.scenes.collision.Collision`, the pairs'
-:class:`~spinbounce.scenes.pair.PairBatch`): the step probe (:func:`stepping.tune`), the
-scene's deck and table, the row checks (:mod:`spinbounce.checks`) and one record.
-:func:`run_series` runs a scene whose output is a time series (the frozen contact): its
-deck, its checked table and the same provenance. (Two walls, a series of bounces, reads its
-own run through the same deck writer and runner: :mod:`spinbounce.scenes.two_walls`.) A run's output is checked before
-it is returned: non-finite values, lost spheres and a contact that had not finished are
-errors, not results.
+with the provenance. A run's output is checked before it is returned: non-finite values,
+lost spheres and a contact that had not finished are errors, not results.
 """
 
 from __future__ import annotations
@@ -97,7 +91,8 @@ def _probe_errors(scene, folder: Path) -> np.ndarray:
 
 def run_scene(scene, out_dir: Path, atoms: str | None = None, record: bool = True, runner=run_deck,
               probe_states=None, target: float = ACCURACY) -> RunResult:
-    """Run a collision scene in ``out_dir`` and check every row against its reference.
+    """Run a collision scene (the wall's, the pairs') in ``out_dir`` and check every row against
+    its reference (:mod:`spinbounce.checks`).
 
     A scene whose dt is the default first gets the step ``target`` needs
     (:func:`stepping.tune`; ``probe_states``: a scene whose rows to probe with, if not its own).
@@ -149,7 +144,5 @@ def run_series(scene, out_dir: Path) -> SeriesResult:
 
 def series_record(result: SeriesResult) -> dict:
     """A time-series run's record: :func:`provenance` with its scene's parameters and accuracy."""
-    record = provenance(result.info, result.scene.kind, result.scene.record())
-    record["dump"] = str(result.dump)
-    record["max_abs_error"] = result.max_abs_error
-    return record
+    return {**provenance(result.info, result.scene.kind, result.scene.record()), "dump": str(result.dump),
+            "max_abs_error": result.max_abs_error}

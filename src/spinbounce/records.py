@@ -31,10 +31,6 @@ TEMP_SUFFIX = ".tmp"
 RECORDED_PACKAGES = ("numpy", "scipy", "pandas", "pyarrow", "matplotlib")
 
 
-def _temporary(path: Path) -> Path:
-    return path.with_name(f".{path.name}.{os.getpid()}{TEMP_SUFFIX}")
-
-
 def write_atomic_with(path: Path, write: Callable[[Path], None]) -> Path:
     """Let ``write`` fill a temporary file beside ``path``, then make it ``path`` at once.
 
@@ -42,7 +38,7 @@ def write_atomic_with(path: Path, write: Callable[[Path], None]) -> Path:
     the temporary file is removed and ``path`` keeps what it held before.
     """
     path = Path(path)
-    tmp = _temporary(path)
+    tmp = path.with_name(f".{path.name}.{os.getpid()}{TEMP_SUFFIX}")
     try:
         write(tmp)
         with open(tmp, "rb") as handle:
@@ -56,9 +52,8 @@ def write_atomic_with(path: Path, write: Callable[[Path], None]) -> Path:
 
 def write_atomic(path: Path, data: str | bytes) -> Path:
     """Write text or bytes to ``path`` atomically (:func:`write_atomic_with`)."""
-    if isinstance(data, str):
-        return write_atomic_with(path, lambda tmp: tmp.write_text(data))
-    return write_atomic_with(path, lambda tmp: tmp.write_bytes(data))
+    write = Path.write_text if isinstance(data, str) else Path.write_bytes
+    return write_atomic_with(path, lambda tmp: write(tmp, data))
 
 
 def write_parquet_atomic(path: Path, table) -> Path:

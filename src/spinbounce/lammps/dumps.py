@@ -64,18 +64,15 @@ def read_dump(path: Path) -> pd.DataFrame:
         out = pd.read_csv(io.StringIO("\n".join(body)), sep=r"\s+", header=None, names=columns)
     else:
         out = pd.DataFrame({c: pd.Series(dtype=float) for c in columns})
-    if out.shape[1] != len(columns) or (out.isna().to_numpy().any() and not _nan_text(body)):
+    # NaN where LAMMPS itself wrote nan/inf (a blown-up run) is data; from a short row it is not
+    written_nan = any(("nan" in row.lower()) or ("inf" in row.lower()) for row in body)
+    if out.shape[1] != len(columns) or (out.isna().to_numpy().any() and not written_nan):
         raise DumpError(f"{path}: rows do not have the {len(columns)} columns {columns}")
     out.insert(0, "step", np.repeat(np.asarray(steps, dtype=np.int64), counts))
     if "id" in out:
         out["id"] = out["id"].astype(np.int64)
         out = out.sort_values(["step", "id"], kind="stable", ignore_index=True)
     return out
-
-
-def _nan_text(rows: list[str]) -> bool:
-    """True when LAMMPS itself wrote nan/inf (a blown-up run), as opposed to a short row."""
-    return any(("nan" in row.lower()) or ("inf" in row.lower()) for row in rows)
 
 
 def finite_frames(frames: pd.DataFrame, where) -> pd.DataFrame:

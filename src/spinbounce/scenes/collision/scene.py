@@ -127,7 +127,13 @@ class Collision:
             )
         dt = self.default_dt() if self.dt is None else self.dt
         set_(self, "dt", m.check_dt(dt, frozen=False, speed=speed))
-        self._check_cost()
+        # refused before anything runs: a collision that needs more steps than one run may take
+        modes = m.modes(frozen=False, speed=speed)
+        mode = max(modes, key=lambda name: math.hypot(*modes[name]))
+        causes = {"slip": "kt, alpha and gamma_t", "normal": "kn and gamma_n"}
+        why = (f"dt = {self.dt:.3g}: the {mode} mode ({causes[mode]}) is fast against the contact time "
+               f"{float(np.max(m.contact_times(self.v_n))):.3g}")
+        check_steps(self.nsteps, "dt", self.dt, why, spheres=self.n)
         stretch = overlap_stretch(m.normal_law.normal_mode(m, speed)[0], self.dt)
         if reach * stretch >= m.r:
             raise SceneError(
@@ -137,16 +143,6 @@ class Collision:
                 f"{reach * stretch:.6g} >= r = {m.r:g} (exact: {reach:.6g}): the sphere would tunnel "
                 "through the wall; use a smaller dt or a slower |v_n|",
             )
-
-    def _check_cost(self) -> None:
-        """Refuse, before anything runs, a collision that needs more steps than one run may take."""
-        m = self.model
-        modes = m.modes(frozen=False, speed=self.speed)
-        mode = max(modes, key=lambda name: math.hypot(*modes[name]))
-        causes = {"slip": "kt, alpha and gamma_t", "normal": "kn and gamma_n"}
-        why = (f"dt = {self.dt:.3g}: the {mode} mode ({causes[mode]}) is fast against the contact time "
-               f"{float(np.max(m.contact_times(self.v_n))):.3g}")
-        check_steps(self.nsteps, "dt", self.dt, why, spheres=self.n)
 
     def default_dt(self) -> float:
         """The step of the default accuracy (:mod:`.timestep`): second order on every contact

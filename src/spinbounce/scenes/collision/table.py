@@ -115,17 +115,6 @@ def _collision_frames(scene, frames: dict, where: Path) -> tuple[dict, dict]:
     return frames[0], frames[scene.nsteps]
 
 
-def _check_finished(scene, columns: dict, source: Path) -> None:
-    touching = np.flatnonzero(columns["z_lammps"] <= scene.model.r)
-    if touching.size:
-        first = touching[0]
-        raise ResultError(
-            f"{source}: {touching.size} sphere(s) still touch the wall after {scene.nsteps} steps "
-            f"(first: id {int(columns['id'][first])}, z = {float(columns['z_lammps'][first])!r}): "
-            "the contact had not finished"
-        )
-
-
 def read_collision(scene, info: RunInfo, deck: Deck, folder: Path) -> dict:
     """The run's checked table columns (from its dump, or from memory for a library-route deck)."""
     if deck.dump is None:
@@ -136,5 +125,12 @@ def read_collision(scene, info: RunInfo, deck: Deck, folder: Path) -> dict:
         frames = _dump_frames(read_dump(source))
     initial, final = _collision_frames(scene, frames, source)
     columns = collision_table(scene, initial, final, as_frame=False)
-    _check_finished(scene, columns, source)
+    touching = np.flatnonzero(columns["z_lammps"] <= scene.model.r)
+    if touching.size:
+        first = touching[0]
+        raise ResultError(
+            f"{source}: {touching.size} sphere(s) still touch the wall after {scene.nsteps} steps "
+            f"(first: id {int(columns['id'][first])}, z = {float(columns['z_lammps'][first])!r}): "
+            "the contact had not finished"
+        )
     return columns

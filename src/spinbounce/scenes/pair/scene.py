@@ -193,16 +193,6 @@ def time_scaled(pair: Pair, scale: float) -> Pair:
     return replace(pair, **heavier, **slower)
 
 
-def _check_overlap(pair: Pair, model: ContactModel, dt: float, where: str) -> None:
-    """The deepest overlap (stretched by the step, as for the wall) must stay below the
-    smaller radius, or the smaller centre would enter the larger sphere."""
-    reach = float(exact.max_overlap(pair.v_n, model.m, model.kn, model.gamma_n))
-    stretch = overlap_stretch(math.sqrt(model.kn / model.m), dt)
-    if reach * stretch >= model.r:
-        raise SceneError(where, pair.v_n, f"|v_n| is too large: the overlap would reach {reach * stretch:.6g} >= "
-                                          f"the smaller radius {model.r:g}")
-
-
 @dataclass(frozen=True)
 class PairBatch:
     """Pairs run together, each in its own cell. ``dt = None``: PAIR_STEPS_PER_HALF_PERIOD steps
@@ -232,7 +222,13 @@ class PairBatch:
             dt = self.dt
         for k, (pair, model) in enumerate(zip(pairs, models, strict=True)):
             dt = model.check_dt(dt, frozen=False)
-            _check_overlap(pair, model, dt, f"pairs[{k}].v_n")
+            # the deepest overlap, stretched by the step as for the wall, must stay below the smaller
+            # radius, or the smaller centre would enter the larger sphere
+            reach = float(exact.max_overlap(pair.v_n, model.m, model.kn, model.gamma_n))
+            reach *= overlap_stretch(math.sqrt(model.kn / model.m), dt)
+            if reach >= model.r:
+                raise SceneError(f"pairs[{k}].v_n", pair.v_n, "|v_n| is too large: the overlap would reach "
+                                 f"{reach:.6g} >= the smaller radius {model.r:g}")
             if self.contact.mu is not None and pair_capped.plane_normal(**pair.vectors()) is None:
                 raise SceneError(f"pairs[{k}]", "3-D motion", "must move in one plane with a Coulomb cap (mu): the "
                                  "line of centres and both velocities in a plane, both spins along its normal")

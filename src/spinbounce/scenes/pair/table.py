@@ -51,26 +51,10 @@ def _columns(values: dict[str, np.ndarray], suffix: str) -> dict[str, np.ndarray
             for i, axis in enumerate("xyz")}
 
 
-def _references(batch) -> tuple[dict, dict]:
-    exact = {"a_v": np.array([o.v_a for o in batch.exact]), "b_v": np.array([o.v_b for o in batch.exact]),
-             "a_w": np.array([o.w_a for o in batch.exact]), "b_w": np.array([o.w_b for o in batch.exact])}
-    if batch.contact.mu is not None:  # the capped planar problem has no closed form: n held fixed, solved
-        held = [batch.contact.solve(p, planar=True) for p in batch.pairs]
-        return exact, {f"{side}_{q}": np.array([getattr(o, f"{q}_{side}") for o in held])
-                       for side in "ab" for q in "vw"}
-    vectors = {k: np.array([p.vectors()[k] for p in batch.pairs]) for k in ("n", "v_a", "v_b", "w_a", "w_b")}
-    props = {k: np.array([p.properties()[k] for p in batch.pairs]) for k in batch.pairs[0].properties()}
-    v_a, v_b, w_a, w_b = planar.predict(**vectors, **props, **batch.contact.law())
-    return exact, {"a_v": v_a, "b_v": v_b, "a_w": w_a, "b_w": w_b}
-
-
-def _error(table: pd.DataFrame, suffix: str, other: str, radii: dict) -> np.ndarray:
-    """Largest |difference| over velocities and r * spins, in units of each pair's speed."""
-    worst = np.zeros(len(table))
-    for q in QUANTITIES:
-        scale = radii[q[0]] if q[2] == "w" else 1.0
-        worst = np.maximum(worst, np.abs(table[q + suffix] - table[q + other]).to_numpy() * scale)
-    return worst / table["speed"].to_numpy()
+def _outcomes(outcomes) -> dict[str, np.ndarray]:
+    """(n, 3) arrays a_v, a_w, b_v, b_w of the pairs' outcomes."""
+    return {f"{side}_{q}": np.array([getattr(o, f"{q}_{side}") for o in outcomes])
+            for side in "ab" for q in "vw"}
 
 
 def pair_table(batch, lammps: dict[str, np.ndarray] | None) -> pd.DataFrame:
@@ -85,14 +69,24 @@ def pair_table(batch, lammps: dict[str, np.ndarray] | None) -> pd.DataFrame:
                "eps": planar.line_turn(v_t, tau, props["r_a"], props["r_b"]),
                "centrifugal": planar.centrifugal_ratio(v_t, v_n, tau, props["r_a"], props["r_b"]),
                "turn": np.array([o.turn for o in batch.exact]), "time_scale": batch.time_scales}
-    exact, theory = _references(batch)
+    if batch.contact.mu is not None:  # the capped planar problem has no closed form: n held fixed, solved
+        theory = _outcomes([batch.contact.solve(p, planar=True) for p in pairs])
+    else:
+        vectors = {k: np.array([p.vectors()[k] for p in pairs]) for k in ("n", "v_a", "v_b", "w_a", "w_b")}
+        predicted = planar.predict(**vectors, **props, **batch.contact.law())
+        theory = dict(zip(("a_v", "b_v", "a_w", "b_w"), predicted))
     if lammps is not None:
         columns.update({q: lammps[q] for q in QUANTITIES})
-    columns.update(_columns(exact, "_exact"))
+    columns.update(_columns(_outcomes(batch.exact), "_exact"))
     columns.update(_columns(theory, "_planar"))
     table = pd.DataFrame(columns)
-    radii = {"a": table["r_a"].to_numpy(), "b": table["r_b"].to_numpy()}
-    table["planar_error"] = _error(table, "_planar", "_exact", radii)
+    # the planar theory's largest |difference| from the exact reference over velocities and r * spins,
+    # in units of each pair's speed
+    worst = np.zeros(len(table))
+    for q in QUANTITIES:
+        scale = props[f"r_{q[0]}"] if q[2] == "w" else 1.0
+        worst = np.maximum(worst, np.abs(table[q + "_planar"] - table[q + "_exact"]).to_numpy() * scale)
+    table["planar_error"] = worst / table["speed"].to_numpy()
     return table
 
 

@@ -85,15 +85,6 @@ def theory_path(model: ContactModel, initial, bounces: int) -> np.ndarray:
     return np.array(path)
 
 
-def _states(initial) -> np.ndarray:
-    states = np.atleast_2d(np.asarray(initial, dtype=float))
-    if states.shape[1] not in (3, 6) or not np.all(np.isfinite(states)):
-        raise SceneError("initial", states.shape, "must be finite rows of 3 or 6 numbers (v_n, v_t, r omega, ...)")
-    if np.any(states[:, 0] >= 0.0):
-        raise SceneError("v_n", float(states[:, 0].max()), "must be < 0 (towards the bottom wall)")
-    return states
-
-
 #: Two walls' default resolution: every bounce's error adds up, and each later contact starts
 #: only near a step's middle. Measured over 20 bounces of the paper's model: 3.4e-4 at 250
 #: steps per half-period, 2.0e-5 at 1000 (the 1e-4 target needs this).
@@ -120,7 +111,13 @@ class TwoWalls:
 
     def __post_init__(self):
         set_ = object.__setattr__
-        set_(self, "initial", _states(self.initial))
+        states = np.atleast_2d(np.asarray(self.initial, dtype=float))
+        if states.shape[1] not in (3, 6) or not np.all(np.isfinite(states)):
+            raise SceneError("initial", states.shape,
+                             "must be finite rows of 3 or 6 numbers (v_n, v_t, r omega, ...)")
+        if np.any(states[:, 0] >= 0.0):
+            raise SceneError("v_n", float(states[:, 0].max()), "must be < 0 (towards the bottom wall)")
+        set_(self, "initial", states)
         models = tuple(self.models)
         if len(models) != len(self.initial):
             raise SceneError("models", len(models), f"must give one model per sphere ({len(self.initial)})")
@@ -134,7 +131,10 @@ class TwoWalls:
         set_(self, "models", models)
         if int(self.bounces) != self.bounces or self.bounces < 1:
             raise SceneError("bounces", self.bounces, "must be a whole number >= 1")
-        set_(self, "dt", min(_aligned_dt(m, self.steps_per_half_period) for m in models))
+        # each model's exit mid-step, at steps_per_half_period of its fastest mode or finer
+        per_tau = [self.steps_per_half_period * m.fastest_rate(frozen=False) * m.t_exit / math.pi
+                   for m in models]
+        set_(self, "dt", min(mid_step_dt(m.t_exit, math.ceil(n - 1e-9)) for m, n in zip(models, per_tau)))
         r = models[0].r
         if any(m.r != r or m.m != models[0].m for m in models):
             raise SceneError("r", r, "every sphere of a two-wall scene has the same m and r (one atom type)")
@@ -179,11 +179,6 @@ class TwoWalls:
                            for m, v in zip(self.models, self.initial[:, 0], strict=True)])
         flight = (self.gap - 2.0 * self.r) / speeds
         return float(np.max(exits[:, -1] + 0.5 * flight[:, -1])), float(flight.min())
-
-
-def _aligned_dt(model: ContactModel, steps: int) -> float:
-    per_tau = steps * model.fastest_rate(frozen=False) * model.t_exit / math.pi
-    return mid_step_dt(model.t_exit, math.ceil(per_tau - 1e-9))
 
 
 def render_two_walls(scene: TwoWalls) -> Deck:
