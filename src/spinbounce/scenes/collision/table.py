@@ -84,16 +84,6 @@ def _memory_frames(info: RunInfo, nsteps: int) -> dict[int, dict[str, np.ndarray
     return frames
 
 
-def _dump_frames(frames: pd.DataFrame) -> dict[int, dict[str, np.ndarray]]:
-    """A dump's rows, split into frames by step."""
-    step = frames["step"].to_numpy()
-    out = {}
-    for value in np.unique(step):
-        rows = frames[step == value]
-        out[int(value)] = {name: rows[name].to_numpy() for name in ("id", *FRAME_COLUMNS)}
-    return out
-
-
 def _collision_frames(scene, frames: dict, where: Path) -> tuple[dict, dict]:
     """Checked initial and final frames (one entry per sphere, id order) of a collision run."""
     steps = sorted(frames)
@@ -122,7 +112,8 @@ def read_collision(scene, info: RunInfo, deck: Deck, folder: Path) -> dict:
         frames = _memory_frames(info, scene.nsteps)
     else:
         source = folder / deck.dump
-        frames = _dump_frames(read_dump(source))
+        frames = {int(step): {name: rows[name].to_numpy() for name in ("id", *FRAME_COLUMNS)}
+                  for step, rows in read_dump(source).groupby("step")}
     initial, final = _collision_frames(scene, frames, source)
     columns = collision_table(scene, initial, final, as_frame=False)
     touching = np.flatnonzero(columns["z_lammps"] <= scene.model.r)
