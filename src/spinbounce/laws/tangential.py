@@ -1,18 +1,17 @@
-"""``tangential linear_history KT X_T MU``: the paper's Cundall-Strack spring kt on the slip
-history, capped at |F_t| <= mu |F_n|.
+"""The tangential sub-models, registered by LAMMPS keyword: one entry each in :data:`TANGENTIAL`.
 
-LAMMPS always applies the cap; the paper's model has none, so no cap is written as
-:data:`NO_CAP_MU` (measured on this build: mu = 1e4 leaves a 1e-4 error floor, 1e12 does not).
+Today one, ``linear_history`` (:class:`LinearHistory`), the paper's Cundall-Strack spring with
+a Coulomb cap. LAMMPS's others (``mindlin`` and its variants, ...) come as classes here.
 """
 
 from __future__ import annotations
 
 import math
 
-from ...declaration import Parameter
-from ..base import TangentialLaw
+from ..declaration import Parameter
+from .base import TangentialLaw
 
-__all__ = ["LinearHistory", "LAW", "KT", "MU", "NO_CAP_MU"]
+__all__ = ["TANGENTIAL", "TangentialLaw", "LinearHistory", "KT", "MU", "NO_CAP_MU"]
 
 KT = Parameter("kt", "tangential spring constant on the slip history (Cundall-Strack)", "force/length", 1.0,
                low=0.0, why="a negative spring would push the slip away", deck="tangential linear_history KT")
@@ -28,6 +27,11 @@ NO_CAP_MU = 1.0e12
 
 
 class LinearHistory(TangentialLaw):
+    """``tangential linear_history KT X_T MU``: the paper's Cundall-Strack spring kt on the slip
+    history, capped at |F_t| <= mu |F_n|. LAMMPS always applies the cap; the paper's model has
+    none, so no cap is written as :data:`NO_CAP_MU` (measured on this build: mu = 1e4 leaves a
+    1e-4 error floor, 1e12 does not)."""
+
     keyword = "linear_history"
     coefficients = (KT, MU)
 
@@ -41,4 +45,5 @@ class LinearHistory(TangentialLaw):
         return ("tangential", self.keyword, float(model.kt), float(x_t), float(mu))
 
 
-LAW = LinearHistory()
+#: Every tangential sub-model, by its LAMMPS keyword.
+TANGENTIAL: dict[str, TangentialLaw] = {law.keyword: law for law in (LinearHistory(),)}

@@ -1,16 +1,17 @@
-"""``damping velocity``: viscous dashpots, the normal force -ETA_N v_n and the tangential one
--(X_T ETA_N) u' on the slip rate (LAMMPS's granular form, measured on this build). The paper's
-gamma_n and gamma_t are those two: ETA_N = gamma_n, X_T = gamma_t/gamma_n.
+"""The damping sub-models, registered by LAMMPS keyword: one entry each in :data:`DAMPING`.
+
+Today one, ``damping velocity`` (:class:`Velocity`), the paper's viscous damping. LAMMPS's
+others (``mass_velocity``, ``viscoelastic``, ``tsuji``, ``coeff_restitution``) come as classes here.
 """
 
 from __future__ import annotations
 
 import math
 
-from ...declaration import Parameter
-from ..base import DampingLaw
+from ..declaration import Parameter
+from .base import DampingLaw
 
-__all__ = ["Velocity", "LAW", "GAMMA_N", "GAMMA_T", "VANISHING_ETA_N"]
+__all__ = ["DAMPING", "DampingLaw", "Velocity", "GAMMA_N", "GAMMA_T", "VANISHING_ETA_N"]
 
 GAMMA_N = Parameter("gamma_n", "normal viscous damping (below critical 2 sqrt(m kn))", "mass/time", 0.0, low=0.0,
                     why="negative damping would create energy", deck="granular ... ETA_N damping velocity")
@@ -24,6 +25,10 @@ VANISHING_ETA_N = 1.0e-12
 
 
 class Velocity(DampingLaw):
+    """``damping velocity``: viscous dashpots, the normal force -ETA_N v_n and the tangential one
+    -(X_T ETA_N) u' on the slip rate (LAMMPS's granular form, measured on this build). The
+    paper's gamma_n and gamma_t are those two: ETA_N = gamma_n, X_T = gamma_t/gamma_n."""
+
     keyword = "velocity"
     coefficients = (GAMMA_N, GAMMA_T)
 
@@ -38,4 +43,5 @@ class Velocity(DampingLaw):
             f"X_T * ETA_N = gamma_t"]
 
 
-LAW = Velocity()
+#: Every damping sub-model, by its LAMMPS keyword.
+DAMPING: dict[str, DampingLaw] = {law.keyword: law for law in (Velocity(),)}
