@@ -21,10 +21,6 @@ class Granular(Style):
     damping = DAMPING["velocity"]
     tangential = TANGENTIAL["linear_history"]
 
-    def dashpots(self, model) -> tuple[float, float, bool, list[str]]:
-        """(ETA_N, X_T, whether to write the damping, notes) from the damping sub-model."""
-        return self.damping.dashpots(model)
-
     def coefficient_terms(self, model, eta_n: float, x_t: float, damping: bool, mu: float) -> tuple:
         """The words after ``granular`` (``fix wall/gran``) or after the types (``pair_coeff``):
         the normal sub-model's, the damping's, the tangential one's with its cap, limit_damping."""
@@ -32,7 +28,7 @@ class Granular(Style):
                 *self.tangential.deck_terms(model, x_t, mu), *(("limit_damping",) if model.limit_damping else ()))
 
     def wall_terms(self, model) -> dict:
-        eta_n, x_t, damping, notes = self.dashpots(model)
+        eta_n, x_t, damping, notes = self.damping.dashpots(model)
         mu, cap_note = self.tangential.cap(model)
         terms = ("granular", *self.coefficient_terms(model, eta_n, x_t, damping, mu))
         return {"eta_n": eta_n, "x_t": x_t, "damping": damping, "mu": mu, "terms": terms,

@@ -36,32 +36,22 @@ def collision_table(scene, initial, final, as_frame: bool = True):
     A 3-D scene adds the columns of :data:`STATE_3D` beyond the paper's three.
     ``as_frame=False`` returns the columns as a dict of arrays.
     """
-    r = scene.model.r
-    names = scene.state_names
-    spins = [SPINS[s] for s in names if s in SPINS]
-    requested = scene.initial
-    theory = scene.predicted()
+    r, names = scene.model.r, scene.state_names
+    spins = tuple(SPINS[s] for s in names if s in SPINS)
     columns = {"id": np.arange(1, scene.n + 1)}
-    for k, name in enumerate(names):
-        columns[f"{name}_initial"] = requested[:, k]
-    for spin in spins:
-        columns[f"{spin}_initial"] = np.asarray(getattr(scene, spin))
+    columns.update({f"{name}_initial": value for name, value in zip(names, scene.initial.T)})
+    columns.update({f"{spin}_initial": np.asarray(getattr(scene, spin)) for spin in spins})
     for when, frame in (("lammps_initial", initial), ("lammps", final)):
         # the state at r = 1: its spins are the angular velocities, in the paper's signs
         state = wall_frame(*(np.column_stack([frame[f"{q}{axis}"] for axis in "xyz"]) for q in ("v", "omega")), 1.0)
-        values = {"z": np.asarray(frame["z"])}
-        for k, name in enumerate(names):
-            values[name] = r * state[:, k] if name in SPINS else state[:, k]
-            if name in SPINS:
-                values[SPINS[name]] = state[:, k]
-        for name in names + tuple(spins) + ("z",):
-            columns[f"{name}_{when}"] = values[name]
-    for k, name in enumerate(names):
-        columns[f"{name}_theory"] = theory[:, k]
-    for name, spin in SPINS.items():
-        if name in names:
-            columns[f"{spin}_theory"] = columns[f"{name}_theory"] / r
-    for name in names + tuple(spins):
+        values = {name: r * state[:, k] if name in SPINS else state[:, k] for k, name in enumerate(names)}
+        values.update({SPINS[name]: state[:, k] for k, name in enumerate(names) if name in SPINS})
+        values["z"] = np.asarray(frame["z"])
+        columns.update({f"{name}_{when}": values[name] for name in names + spins + ("z",)})
+    theory = scene.predicted()
+    columns.update({f"{name}_theory": theory[:, k] for k, name in enumerate(names)})
+    columns.update({f"{SPINS[n]}_theory": columns[f"{n}_theory"] / r for n in names if n in SPINS})
+    for name in names + spins:
         columns[f"{name}_error"] = columns[f"{name}_lammps"] - columns[f"{name}_theory"]
     return pd.DataFrame(columns) if as_frame else columns
 
