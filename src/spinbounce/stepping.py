@@ -9,12 +9,8 @@ coarse step and at half of it, against the exact reference that applies; the obs
 order and constant give the step for :data:`SAFETY` times the target, kept mid-step. A
 probe costs two or three short runs of at most :data:`PROBE_SPHERES` rows, and its result
 goes into the run's record. Every row's own error is measured afterwards anyway (``error``
-and ``status`` columns): the probe only chooses the step.
-
-A scene tells the probe what differs (:mod:`spinbounce.scenes`): whether it needs one, the
-contact time the steps are counted over, the coarse probe's steps, a limit above which it
-keeps a fine rule instead (a pair's: :data:`FALLBACK`), a scene of some of its rows, and
-itself at a given step.
+and ``status`` columns): the probe only chooses the step. Each scene tells the probe what
+differs (:mod:`spinbounce.scenes`); a pair may fall back to its fine rule (:data:`FALLBACK`).
 """
 
 from __future__ import annotations
@@ -43,8 +39,6 @@ MAX_CHECKS = 4
 CHECK_SLACK = 1.5
 ORDER_FLOOR = 0.5
 MAX_GROWTH = 64
-
-
 #: The method recorded when a probe could not do better than the scene's fine rule.
 FALLBACK = "fine rule (probe could not reach the target coarser)"
 

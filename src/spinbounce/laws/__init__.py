@@ -2,9 +2,9 @@
 
 LAMMPS builds one granular model, for a wall and for a pair alike, from sub-models chosen by
 keyword (``hooke``, ``hertz``, ``hertz/material``, ...), each declaring its coefficients and
-capability flags (its ``contact_radius_flag``, for one). spinbounce does the same: each
-sub-model is one module here, registered under its LAMMPS keyword in its kind's registry
-(:data:`.normal.NORMAL`), and declares
+capability flags (its ``contact_radius_flag``, for one). spinbounce does the same
+(docs/explanation/contact-laws.md): each sub-model is registered under its LAMMPS keyword in
+its kind's registry (:data:`.normal.NORMAL`: one module each), and declares
 
 * its coefficients, once (:class:`~spinbounce.declaration.Parameter`: name, unit, default,
   range and why): they become the flags, scene-file keys, sweep columns and API keywords;
@@ -14,9 +14,9 @@ sub-model is one module here, registered under its LAMMPS keyword in its kind's 
 
 The damping (:data:`.damping.DAMPING`) and tangential (:data:`.tangential.TANGENTIAL`)
 sub-models declare their coefficients and words the same way. The wall command's style
-(:data:`.styles.STYLES`) is the assembly: ``granular`` takes the
-sub-models by keyword, ``classic`` (``hooke/history``) is a fixed assembly with flags of its own.
-No code outside this package branches on a sub-model's or a style's keyword.
+(:data:`.styles.STYLES`) is the assembly: ``granular`` takes the sub-models by keyword,
+``classic`` (``hooke/history``) is a fixed assembly with flags of its own. No code outside
+this package branches on a sub-model's or a style's keyword.
 """
 
 from .normal import NORMAL, NormalLaw, normal_coefficients, normal_law, normal_parameter

@@ -11,13 +11,10 @@ adds up). The constant was measured at the paper's defaults (1.16e-4 at N = 100,
 and the classic wall make the error first order or rough; their step is measured per scene
 by a probe (:mod:`spinbounce.stepping`), which starts from this rule's step.
 
-LAMMPS's velocity-Verlet step cuts the contact force off somewhere inside the step in
-which the overlap closes. With ``dt = t_end/(N + 1/2)`` the end falls in the middle of a
-step, where the error of that cut cancels to first order and the collision's error is
-second order in dt (LAMMPS_FACTS section 10: on a step boundary it is first order and
-about ten times larger at the default resolution). Every run of a collision that has one
-contact time (Hookean normal force) takes its step from here; a Hertzian wall, whose
-spheres each end at their own time, cannot be aligned and converges at first order.
+**Where the end falls.** With ``dt = t_end/(N + 1/2)`` the contact ends mid-step, where the
+error of LAMMPS's cutting the force off within the step cancels to first order (LAMMPS_FACTS
+section 10; docs/explanation/numerics.md). Every collision with one contact time (Hookean)
+takes its step from here; a Hertzian wall's spheres end at their own times: first order.
 """
 
 from __future__ import annotations

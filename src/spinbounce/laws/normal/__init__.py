@@ -24,11 +24,7 @@ def normal_law(keyword: str) -> NormalLaw:
 
 def normal_coefficients() -> tuple[Parameter, ...]:
     """Every normal sub-model's coefficients, each once, in registry order."""
-    seen: dict[str, Parameter] = {}
-    for law in NORMAL.values():
-        for parameter in law.coefficients:
-            seen.setdefault(parameter.name, parameter)
-    return tuple(seen.values())
+    return tuple(dict.fromkeys(p for law in NORMAL.values() for p in law.coefficients))
 
 
 def normal_parameter() -> Parameter:
