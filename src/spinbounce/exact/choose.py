@@ -176,7 +176,7 @@ def outcome(model, v_n: float, v_t: float = 0.0, omega: float = 0.0, v_s: float 
 
 def classic_wall(model):
     """The classic wall's own parameters, as its style gives them to the deck (its dashpots are
-    rates gamma/m, its cap at most 1e4: :mod:`spinbounce.laws.styles.classic`)."""
+    rates gamma/m, its cap at most 1e4: :class:`spinbounce.laws.styles.Classic`)."""
     from . import classic
 
     return classic.ClassicWall(**model.style.coefficients(model), alpha=model.alpha, r=model.r, m=model.m)
