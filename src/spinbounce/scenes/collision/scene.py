@@ -1,11 +1,10 @@
 """The wall collision: spheres that start touching the wall (centre at z = r) with given
 (v_n, v_t, omega) and run until they have left it; checked against Eq. 18 (theory.md).
 
-A scene is pure data: every check happens when it is built, so bad input is refused before
-any LAMMPS run, with a message that names the parameter, its value and the limit it broke.
-The normal force is the model's normal sub-model (:mod:`spinbounce.laws.normal`): the paper's
-Hookean spring, or a force that grows with the contact radius (Hertz), whose contact time
-depends on v_n; the scene asks the sub-model for the contact's times, overlap and mode.
+A scene is pure data, checked when it is built (:mod:`spinbounce.scenes`). The normal force is
+the model's normal sub-model (:mod:`spinbounce.laws.normal`): the paper's Hookean spring, or a
+force that grows with the contact radius (Hertz), whose contact time depends on v_n; the scene
+asks the sub-model for the contact's times, overlap and mode.
 """
 
 from __future__ import annotations
@@ -80,10 +79,8 @@ class Collision:
     that rolls the sphere along it (LAMMPS's omega_x: that slip is v_s + r omega_s, the same
     form as the paper's) and ``omega_n`` the spin about the wall's normal (omega_z). A scene
     with any of them non-zero is 3-D: its states have six columns (:data:`STATE_3D`).
-    ``dt = None`` takes the step of the default accuracy (:meth:`default_dt`, and a run may
-    refine it by a probe: :mod:`spinbounce.stepping`), as ``tau/(N + 1/2)``: the half step
-    puts the end of the contact in the middle of a step, where the error made by cutting
-    the tangential force off cancels to first order (:mod:`.timestep`).
+    ``dt = None`` takes the step of the default accuracy (:meth:`default_dt`, the contact's
+    end mid-step; a run may refine it by a probe: :mod:`spinbounce.stepping`).
     """
 
     model: ContactModel = field(default_factory=ContactModel)

@@ -2,7 +2,7 @@
 
 :mod:`.scene` (Sphere, PairContact, Pair, PairBatch), :mod:`.deck` (``pair.lmp.j2``),
 :mod:`.table` (each pair beside the exact reference and the planar theory), :mod:`.kind`
-(a pair as the wall's scene with sphere b in place of the wall), :mod:`.sweep` (a sweep's chunk).
+(a pair as the wall's scene with sphere b in place of the wall).
 """
 
 from .deck import QUANTITIES
