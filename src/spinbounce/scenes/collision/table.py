@@ -11,7 +11,6 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
-import pandas as pd
 
 from ...errors import ResultError
 from ...lammps.decks import wall_frame
@@ -27,14 +26,13 @@ __all__ = ["collision_table", "read_collision", "FRAME_COLUMNS"]
 SPINS = {"r_omega": "omega", "r_omega_s": "omega_s", "r_omega_n": "omega_n"}
 
 
-def collision_table(scene, initial, final, as_frame: bool = True):
+def collision_table(scene, initial, final) -> dict[str, np.ndarray]:
     """One row per sphere: requested, initial (as LAMMPS saw it), final, theory and error.
 
     ``initial`` and ``final`` map LAMMPS's column names (z, vx, vz, omegay, ...) to one
     value per sphere in id order (ids 1..n): a dump frame or a dict of arrays. The theory
     acts on the *requested* initial state, so a mangled input would show as an error.
     A 3-D scene adds the columns of :data:`STATE_3D` beyond the paper's three.
-    ``as_frame=False`` returns the columns as a dict of arrays.
     """
     r, names = scene.model.r, scene.state_names
     spins = tuple(SPINS[s] for s in names if s in SPINS)
@@ -53,7 +51,7 @@ def collision_table(scene, initial, final, as_frame: bool = True):
     columns.update({f"{SPINS[n]}_theory": columns[f"{n}_theory"] / r for n in names if n in SPINS})
     for name in names + spins:
         columns[f"{name}_error"] = columns[f"{name}_lammps"] - columns[f"{name}_theory"]
-    return pd.DataFrame(columns) if as_frame else columns
+    return columns
 
 
 #: Per-sphere columns of a collision frame, as LAMMPS names them (the dump's columns).
@@ -105,7 +103,7 @@ def read_collision(scene, info: RunInfo, deck: Deck, folder: Path) -> dict:
         frames = {int(step): {name: rows[name].to_numpy() for name in ("id", *FRAME_COLUMNS)}
                   for step, rows in read_dump(source).groupby("step")}
     initial, final = _collision_frames(scene, frames, source)
-    columns = collision_table(scene, initial, final, as_frame=False)
+    columns = collision_table(scene, initial, final)
     touching = np.flatnonzero(columns["z_lammps"] <= scene.model.r)
     if touching.size:
         first = touching[0]
