@@ -1,6 +1,5 @@
 """What each kind of sub-model declares and answers (normal, damping, tangential, the wall's
-style), and the registry every kind keeps: its ``__init__`` names its modules, each module
-defines its entry, and a keyword finds it (or is refused with the registered ones).
+style), and how a keyword finds it in its kind's registry (or is refused with the registered ones).
 
 A sub-model is asked, never named: its coefficients, its flags (``contact_radius``: the
 force grows with the contact radius a = sqrt(R delta), LAMMPS's ``contact_radius_flag``;
@@ -10,26 +9,18 @@ deck, and the contact's normal motion for the exact reference and the step rule.
 
 from __future__ import annotations
 
-import importlib
-
 import numpy as np
 
 from ..declaration import Parameter
 from ..errors import SceneError
 
-__all__ = ["NormalLaw", "DampingLaw", "TangentialLaw", "Style", "STIFFNESS", "registry", "lookup"]
+__all__ = ["NormalLaw", "DampingLaw", "TangentialLaw", "Style", "STIFFNESS", "lookup"]
 
 #: The stiffness of ``hooke`` (F = kn delta) and ``hertz`` (F = kn a delta, LAMMPS's K).
 STIFFNESS = Parameter(
     "kn", "normal spring constant (Hertz: LAMMPS's K, F = kn sqrt(r) delta^(3/2))", "force/length", 10.0,
     low=0.0, low_open=True, why="a positive stiffness keeps the sphere out of the wall",
     deck="wall/gran granular hooke|hertz KN")
-
-
-def registry(package: str, modules: tuple[str, ...], entry: str) -> dict:
-    """``{keyword: entry}`` of every module of ``package`` named in ``modules``, in their order."""
-    found = (getattr(importlib.import_module(f".{name}", package), entry) for name in modules)
-    return {item.keyword: item for item in found}
 
 
 def lookup(entries: dict, parameter: str, keyword):
