@@ -177,6 +177,12 @@ class ContactPhysics:
         """Largest rate (1/time) among the integrated modes: frequency or fast decay rate."""
         return max(mode_rate(w, c) for w, c in self.modes(frozen, speed).values())
 
+    def steps_per_half_period(self, dt: float, frozen: bool, speed: float | None = None) -> float:
+        """How finely ``dt`` resolves the fastest integrated mode: its half-period over dt (inf if
+        nothing moves)."""
+        rate = self.fastest_rate(frozen, speed)
+        return math.pi / rate / dt if rate > 0.0 else math.inf
+
     def dt_limit(self, frozen: bool, speed: float | None = None) -> tuple[float, str]:
         """Stability limit of LAMMPS's step and the mode that sets it."""
         limits = {name: stability_limit(w, c) for name, (w, c) in self.modes(frozen, speed).items()}
@@ -193,14 +199,14 @@ class ContactPhysics:
                 f"must be below the stability limit {limit:.6g} of the {mode} mode "
                 "(LAMMPS's velocity-Verlet step diverges above it)",
             )
-        rate = self.fastest_rate(frozen, speed)
-        steps = math.pi / rate / dt if rate > 0.0 else math.inf
+        steps = self.steps_per_half_period(dt, frozen, speed)
         if steps < MIN_STEPS_PER_HALF_PERIOD * (1.0 - 1e-9):  # a rung of exactly that many steps is accepted
             raise SceneError(
                 "dt",
                 dt,
                 f"resolves the fastest contact mode with only {steps:.3g} steps per half-period: must be at most "
-                f"{math.pi / rate / MIN_STEPS_PER_HALF_PERIOD:.6g} ({MIN_STEPS_PER_HALF_PERIOD} steps; fewer "
+                f"{math.pi / self.fastest_rate(frozen, speed) / MIN_STEPS_PER_HALF_PERIOD:.6g} "
+                f"({MIN_STEPS_PER_HALF_PERIOD} steps; fewer "
                 "give a caricature of the contact, whatever the target)",
             )
         return dt

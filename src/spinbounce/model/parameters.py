@@ -103,10 +103,7 @@ ALL = MODEL + STATE + STATE_B + RUN + SCENE
 
 
 def by_name(name: str) -> Parameter:
-    for parameter in ALL:
-        if parameter.name == name:
-            return parameter
-    raise KeyError(name)
+    return {p.name: p for p in ALL}[name]
 
 
 def markdown_table(parameters=MODEL) -> str:

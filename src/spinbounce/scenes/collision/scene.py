@@ -157,7 +157,7 @@ class Collision:
     @property
     def steps_per_half_period(self) -> float:
         """How finely dt resolves the fastest contact mode (its half-period over dt)."""
-        return math.pi / self.model.fastest_rate(frozen=False, speed=self.speed) / self.dt
+        return self.model.steps_per_half_period(self.dt, frozen=False, speed=self.speed)
 
     @property
     def speed(self) -> float:

@@ -58,51 +58,38 @@ def collision_table(scene, initial, final) -> dict[str, np.ndarray]:
 FRAME_COLUMNS = ("x", "y", "z", "vx", "vy", "vz", "omegax", "omegay", "omegaz")
 
 
-def _memory_frames(info: RunInfo, nsteps: int) -> dict[int, dict[str, np.ndarray]]:
-    """A library-route run's sphere states (type-1 atoms) at steps 0 and nsteps, in id order."""
-    frames = {}
-    for step, state in ((0, info.initial), (nsteps, info.final)):
-        keep = state["type"] == 1
-        frame = {"id": state["id"][keep].astype(np.int64)}
-        for k, axis in enumerate("xyz"):
-            frame[axis] = state["x"][keep, k]
-            frame[f"v{axis}"] = state["v"][keep, k]
-            frame[f"omega{axis}"] = state["omega"][keep, k]
-        frames[step] = frame
-    return frames
-
-
-def _collision_frames(scene, frames: dict, where: Path) -> tuple[dict, dict]:
-    """Checked initial and final frames (one entry per sphere, id order) of a collision run."""
-    steps = sorted(frames)
-    if steps != [0, scene.nsteps]:
-        raise ResultError(f"{where}: expected frames at steps 0 and {scene.nsteps}, found {steps}")
-    ids = np.arange(1, scene.n + 1)
-    for step in steps:
-        frame = frames[step]
-        if len(frame["id"]) != scene.n:
-            raise ResultError(f"{where}: {len(frame['id'])} of {scene.n} spheres at step {step} (lost atoms)")
-        if not np.array_equal(frame["id"], ids):
-            raise ResultError(f"{where}: sphere ids at step {step} are not 1..{scene.n} in order")
-        finite = np.logical_and.reduce([np.isfinite(frame[c]) for c in FRAME_COLUMNS])
-        if not finite.all():
-            raise ResultError(
-                f"{where}: non-finite positions or velocities (first at step {step}, "
-                f"atom {int(frame['id'][~finite][0])}): the integration blew up"
-            )
-    return frames[0], frames[scene.nsteps]
-
-
 def read_collision(scene, info: RunInfo, deck: Deck, folder: Path) -> dict:
     """The run's checked table columns (from its dump, or from memory for a library-route deck)."""
-    if deck.dump is None:
-        source = info.log
-        frames = _memory_frames(info, scene.nsteps)
+    if deck.dump is None:  # a library-route run: the spheres (type-1 atoms) LAMMPS held at steps 0 and nsteps
+        source, frames = info.log, {}
+        for step, state in ((0, info.initial), (scene.nsteps, info.final)):
+            keep = state["type"] == 1
+            frames[step] = {"id": state["id"][keep].astype(np.int64),
+                            **{f"{name}{axis}": state[key][keep, k] for key, name in (("x", ""), ("v", "v"),
+                                                                                     ("omega", "omega"))
+                               for k, axis in enumerate("xyz")}}
     else:
         source = folder / deck.dump
         frames = {int(step): {name: rows[name].to_numpy() for name in ("id", *FRAME_COLUMNS)}
                   for step, rows in read_dump(source).groupby("step")}
-    initial, final = _collision_frames(scene, frames, source)
+    # checked: frames at the first and last step, every sphere there in id order, finite
+    steps = sorted(frames)
+    if steps != [0, scene.nsteps]:
+        raise ResultError(f"{source}: expected frames at steps 0 and {scene.nsteps}, found {steps}")
+    for step in steps:
+        frame = frames[step]
+        if len(frame["id"]) != scene.n:
+            raise ResultError(f"{source}: {len(frame['id'])} of {scene.n} spheres at step {step} "
+                              "(lost atoms)")
+        if not np.array_equal(frame["id"], np.arange(1, scene.n + 1)):
+            raise ResultError(f"{source}: sphere ids at step {step} are not 1..{scene.n} in order")
+        finite = np.logical_and.reduce([np.isfinite(frame[c]) for c in FRAME_COLUMNS])
+        if not finite.all():
+            raise ResultError(
+                f"{source}: non-finite positions or velocities (first at step {step}, "
+                f"atom {int(frame['id'][~finite][0])}): the integration blew up"
+            )
+    initial, final = frames[0], frames[scene.nsteps]
     columns = collision_table(scene, initial, final)
     touching = np.flatnonzero(columns["z_lammps"] <= scene.model.r)
     if touching.size:

@@ -80,8 +80,7 @@ class Frozen:
     @property
     def steps_per_half_period(self) -> float:
         """How finely dt resolves the slip mode (its half-period over dt; inf if nothing moves)."""
-        rate = self.model.fastest_rate(frozen=True)
-        return math.pi / rate / self.dt if rate > 0.0 else math.inf
+        return self.model.steps_per_half_period(self.dt, frozen=True)
 
     @property
     def t_final(self) -> float:
