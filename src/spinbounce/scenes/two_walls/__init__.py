@@ -1,14 +1,10 @@
 """A sphere between two parallel walls: many successive collisions against the product of
-scattering matrices (docs/theory.md, "Two parallel walls").
+scattering matrices (theory.md; docs/theory.md, "Two parallel walls").
 
 The bottom wall is z = 0 with normal +z (the single-wall scene's), the top wall z = H with
-normal -z. A state is (v_n, v_t, r omega) in the bottom wall's frame, LAMMPS's
-(v_z, v_x, -r omega_y), and in 3-D (v_s, r omega_s, r omega_n) = (v_y, r omega_x, r omega_z).
-The mirror z -> -z turns the top wall into a bottom wall: velocities are polar vectors
-(v_z changes sign), angular velocities axial ones (omega_x, omega_y change sign), so in
-the bottom frame the top wall's map is R M R with R = diag(-1, 1, -1) (3-D:
-diag(-1, 1, -1, 1, -1, 1)). Rolling on the bottom wall is v_t + r omega = 0, on the top
-wall v_t - r omega = 0: both hold only at v_t = r omega = 0 (the paper's Conclusions).
+normal -z; a state is the bottom wall's (:func:`~spinbounce.lammps.decks.wall_frame`). The
+mirror z -> -z changes the sign of v_z, omega_x and omega_y, so the top wall's map is R M R
+with R = diag(-1, 1, -1) (3-D: diag(-1, 1, -1, 1, -1, 1)).
 """
 
 from __future__ import annotations
