@@ -9,13 +9,8 @@ __all__ = ["paper_variables", "frozen_table"]
 
 def paper_variables(frames: pd.DataFrame, r: float) -> pd.DataFrame:
     """Add the paper's variables (v_n, v_t, omega, r_omega, and the slip) to dump rows."""
-    out = frames.copy()
-    out["v_n"] = frames["vz"]
-    out["v_t"] = frames["vx"]
-    out["omega"] = -frames["omegay"] + 0.0  # + 0.0: no "-0" in tables
-    out["r_omega"] = r * out["omega"]
-    out["slip"] = out["v_t"] + out["r_omega"]
-    return out
+    return frames.assign(v_n=frames["vz"], v_t=frames["vx"], omega=-frames["omegay"] + 0.0,  # + 0.0: no "-0"
+                         r_omega=lambda d: r * d["omega"], slip=lambda d: d["v_t"] + d["r_omega"])
 
 
 def frozen_table(scene, frames: pd.DataFrame) -> pd.DataFrame:
