@@ -141,6 +141,10 @@ class ContactPhysics:
         """The 6x6 map of 3-D states (:data:`STATE_3D`)."""
         return choose.matrix(self, three_d=True)
 
+    def matrices(self, v_n) -> np.ndarray:
+        """(n, 3, 3): each sphere's scattering matrix (:func:`spinbounce.exact.choose.matrices`)."""
+        return choose.matrices(self, v_n)
+
     def check_default_step(self) -> None:
         """Refuse what a run at the default step cannot resolve: each declared parameter's own
         limit, and a sphere that leaves the wall too slowly for a run to see it go."""
