@@ -129,12 +129,9 @@ def loop_seconds(log: Path) -> float:
     return sum(float(x) for x in found) if found else float("nan")
 
 
-_STATE = ("id", "type", "x", "v", "omega")
-
-
 def _read_state(lmp) -> dict:
     """Copies of every atom's id, type, x, v, omega, in id order (one MPI rank)."""
-    got = {name: lmp.numpy.extract_atom(name).copy() for name in _STATE}
+    got = {name: lmp.numpy.extract_atom(name).copy() for name in ("id", "type", "x", "v", "omega")}
     order = np.argsort(got["id"], kind="stable")
     return {name: value[order] for name, value in got.items()}
 
@@ -142,8 +139,6 @@ def _read_state(lmp) -> dict:
 def _create_atoms(lmp, atoms, deck: Path) -> None:
     """Create the atoms through ``lammps_create_atoms`` with pointers into numpy arrays
     (the module's wrapper copies element by element, 10x slower for 10^4 atoms)."""
-    import ctypes
-
     n = len(atoms.types)
     tagint = np.int64 if ctypes.sizeof(lmp.c_tagint) == 8 else np.int32
     ids = np.arange(1, n + 1, dtype=tagint)
