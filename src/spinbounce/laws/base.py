@@ -1,5 +1,6 @@
-"""What each kind of sub-model declares and answers (normal, damping, tangential, the wall's
-style), and how a keyword finds it in its kind's registry (or is refused with the registered ones).
+"""What a normal sub-model and a wall's style declare and answer (the damping's and tangential
+sub-models: :mod:`.damping`, :mod:`.tangential`), and how a keyword finds an entry in its kind's
+registry (or is refused with the registered ones).
 
 A sub-model is asked, never named: its coefficients, its flags (``contact_radius``: the
 force grows with the contact radius a = sqrt(R delta), LAMMPS's ``contact_radius_flag``;
@@ -14,7 +15,7 @@ import numpy as np
 from ..declaration import Parameter
 from ..errors import SceneError
 
-__all__ = ["NormalLaw", "DampingLaw", "TangentialLaw", "Style", "STIFFNESS", "lookup"]
+__all__ = ["NormalLaw", "Style", "STIFFNESS", "lookup"]
 
 #: The stiffness of ``hooke`` (F = kn delta) and ``hertz`` (F = kn a delta, LAMMPS's K).
 STIFFNESS = Parameter(
@@ -86,37 +87,6 @@ class NormalLaw:
     def normal_mode(self, model, speed: float | None) -> tuple[float, float]:
         """(w, c) of the normal motion as x'' + c x' + w^2 x = 0 (the step rule's mode); a
         nonlinear force is represented by its stiffest point, at the fastest ``speed``."""
-        raise NotImplementedError
-
-
-class DampingLaw:
-    """A damping sub-model: LAMMPS's keyword after ``damping``, its coefficients, and the
-    dashpots it gives LAMMPS (the normal sub-model's damping coefficient, the tangential one's)."""
-
-    keyword: str = ""
-    coefficients: tuple[Parameter, ...] = ()
-
-    def dashpots(self, model) -> tuple[float, float, bool, list[str]]:
-        """(the normal coefficient, the tangential one, whether to write ``damping KEYWORD``, notes)."""
-        raise NotImplementedError
-
-    def deck_terms(self, written: bool) -> tuple:
-        return ("damping", self.keyword) if written else ()
-
-
-class TangentialLaw:
-    """A tangential sub-model: LAMMPS's keyword after ``tangential``, its coefficients, and its
-    words given the damping's tangential coefficient."""
-
-    keyword: str = ""
-    coefficients: tuple[Parameter, ...] = ()
-
-    def cap(self, model) -> tuple[float, str]:
-        """The Coulomb cap a wall deck writes for the model, and a note saying why."""
-        raise NotImplementedError
-
-    def deck_terms(self, model, x_t: float, mu: float) -> tuple:
-        """Its words, given the damping's tangential coefficient and the cap to write."""
         raise NotImplementedError
 
 

@@ -9,9 +9,8 @@ from __future__ import annotations
 import math
 
 from ..declaration import Parameter
-from .base import DampingLaw
 
-__all__ = ["DAMPING", "DampingLaw", "Velocity", "GAMMA_N", "GAMMA_T", "VANISHING_ETA_N"]
+__all__ = ["DAMPING", "Velocity", "GAMMA_N", "GAMMA_T", "VANISHING_ETA_N"]
 
 GAMMA_N = Parameter("gamma_n", "normal viscous damping (below critical 2 sqrt(m kn))", "mass/time", 0.0, low=0.0,
                     why="negative damping would create energy", deck="granular ... ETA_N damping velocity")
@@ -24,15 +23,19 @@ GAMMA_T = Parameter("gamma_t", "tangential viscous damping on the slip rate", "m
 VANISHING_ETA_N = 1.0e-12
 
 
-class Velocity(DampingLaw):
+class Velocity:
     """``damping velocity``: viscous dashpots, the normal force -ETA_N v_n and the tangential one
     -(X_T ETA_N) u' on the slip rate (LAMMPS's granular form, measured on this build). The
-    paper's gamma_n and gamma_t are those two: ETA_N = gamma_n, X_T = gamma_t/gamma_n."""
+    paper's gamma_n and gamma_t are those two: ETA_N = gamma_n, X_T = gamma_t/gamma_n.
+
+    A damping sub-model declares its LAMMPS keyword (after ``damping``) and coefficients, and
+    answers the dashpots it gives LAMMPS and its words in a deck."""
 
     keyword = "velocity"
     coefficients = (GAMMA_N, GAMMA_T)
 
     def dashpots(self, model) -> tuple[float, float, bool, list[str]]:
+        """(the normal coefficient ETA_N, the tangential one X_T, whether to write the damping, notes)."""
         if model.gamma_t == 0.0 and model.gamma_n == 0.0:
             return 0.0, 0.0, False, []
         if model.gamma_n > 0.0:
@@ -42,6 +45,9 @@ class Velocity(DampingLaw):
             f"gamma_n = 0, gamma_t = {model.gamma_t!r}: ETA_N = {eta_n!r} is a vanishing normal damping so that "
             f"X_T * ETA_N = gamma_t"]
 
+    def deck_terms(self, written: bool) -> tuple:
+        return ("damping", self.keyword) if written else ()
+
 
 #: Every damping sub-model, by its LAMMPS keyword.
-DAMPING: dict[str, DampingLaw] = {law.keyword: law for law in (Velocity(),)}
+DAMPING: dict[str, Velocity] = {law.keyword: law for law in (Velocity(),)}

@@ -9,9 +9,8 @@ from __future__ import annotations
 import math
 
 from ..declaration import Parameter
-from .base import TangentialLaw
 
-__all__ = ["TANGENTIAL", "TangentialLaw", "LinearHistory", "KT", "MU", "NO_CAP_MU"]
+__all__ = ["TANGENTIAL", "LinearHistory", "KT", "MU", "NO_CAP_MU"]
 
 KT = Parameter("kt", "tangential spring constant on the slip history (Cundall-Strack)", "force/length", 1.0,
                low=0.0, why="a negative spring would push the slip away", deck="tangential linear_history KT")
@@ -26,11 +25,14 @@ MU = Parameter("mu", "Coulomb friction coefficient, |F_t| <= mu |F_n|; none (or 
 NO_CAP_MU = 1.0e12
 
 
-class LinearHistory(TangentialLaw):
+class LinearHistory:
     """``tangential linear_history KT X_T MU``: the paper's Cundall-Strack spring kt on the slip
     history, capped at |F_t| <= mu |F_n|. LAMMPS always applies the cap; the paper's model has
     none, so no cap is written as :data:`NO_CAP_MU` (measured on this build: mu = 1e4 leaves a
-    1e-4 error floor, 1e12 does not)."""
+    1e-4 error floor, 1e12 does not).
+
+    A tangential sub-model declares its LAMMPS keyword (after ``tangential``) and coefficients,
+    and answers the cap a wall deck writes and its words given the damping's coefficient."""
 
     keyword = "linear_history"
     coefficients = (KT, MU)
@@ -42,8 +44,9 @@ class LinearHistory(TangentialLaw):
         return model.mu, f"Coulomb limit |F_t| <= {model.mu!r} F_n: not the paper's model"
 
     def deck_terms(self, model, x_t: float, mu: float) -> tuple:
+        """Its words, given the damping's tangential coefficient and the cap to write."""
         return ("tangential", self.keyword, float(model.kt), float(x_t), float(mu))
 
 
 #: Every tangential sub-model, by its LAMMPS keyword.
-TANGENTIAL: dict[str, TangentialLaw] = {law.keyword: law for law in (LinearHistory(),)}
+TANGENTIAL: dict[str, LinearHistory] = {law.keyword: law for law in (LinearHistory(),)}
