@@ -1,7 +1,7 @@
 """hertz/material: Young's modulus and Poisson's ratio make LAMMPS's Hertzian stiffness, and LAMMPS converges to it.
 
 LAMMPS's hertz/material against a wall (and between two spheres of one material) is its hertz
-force with k = 4/3 E/(2 (1 - nu^2)); the sub-model (spinbounce.laws.normal.HertzMaterial)
+force with k = 4/3 E/(2 (1 - nu^2)); the sub-model (spinbounce.laws.normal.hertz_material)
 says so, and the runs here show LAMMPS converging at second order to the Hertz reference
 (spinbounce.exact.hertz) made with that k, which a stiffness off by a part in a thousand
 could not do.

@@ -3,8 +3,8 @@
 LAMMPS builds one granular model, for a wall and for a pair alike, from sub-models chosen by
 keyword (``hooke``, ``hertz``, ``hertz/material``, ...), each declaring its coefficients and
 capability flags (its ``contact_radius_flag``, for one). spinbounce does the same
-(docs/explanation/contact-laws.md): each sub-model is a class, registered under its LAMMPS
-keyword in its kind's registry (:data:`.normal.NORMAL`), and declares
+(docs/explanation/contact-laws.md): each sub-model is registered under its LAMMPS keyword in
+its kind's registry (:data:`.normal.NORMAL`: one module each), and declares
 
 * its coefficients, once (:class:`~spinbounce.declaration.Parameter`: name, unit, default,
   range and why): they become the flags, scene-file keys, sweep columns and API keywords;

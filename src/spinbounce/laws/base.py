@@ -1,6 +1,6 @@
-"""What a normal sub-model and a wall's style declare and answer (the damping's and tangential
-sub-models: :mod:`.damping`, :mod:`.tangential`), and how a keyword finds an entry in its kind's
-registry (or is refused with the registered ones).
+"""What each kind of sub-model declares and answers (normal, damping, tangential, the wall's
+style), and the registry every kind keeps: its ``__init__`` names its modules, each module
+defines its entry, and a keyword finds it (or is refused with the registered ones).
 
 A sub-model is asked, never named: its coefficients, its flags (``contact_radius``: the
 force grows with the contact radius a = sqrt(R delta), LAMMPS's ``contact_radius_flag``;
@@ -10,18 +10,26 @@ deck, and the contact's normal motion for the exact reference and the step rule.
 
 from __future__ import annotations
 
+import importlib
+
 import numpy as np
 
 from ..declaration import Parameter
 from ..errors import SceneError
 
-__all__ = ["NormalLaw", "Style", "STIFFNESS", "lookup"]
+__all__ = ["NormalLaw", "DampingLaw", "TangentialLaw", "Style", "STIFFNESS", "registry", "lookup"]
 
 #: The stiffness of ``hooke`` (F = kn delta) and ``hertz`` (F = kn a delta, LAMMPS's K).
 STIFFNESS = Parameter(
     "kn", "normal spring constant (Hertz: LAMMPS's K, F = kn sqrt(r) delta^(3/2))", "force/length", 10.0,
     low=0.0, low_open=True, why="a positive stiffness keeps the sphere out of the wall",
     deck="wall/gran granular hooke|hertz KN")
+
+
+def registry(package: str, modules: tuple[str, ...], entry: str) -> dict:
+    """``{keyword: entry}`` of every module of ``package`` named in ``modules``, in their order."""
+    found = (getattr(importlib.import_module(f".{name}", package), entry) for name in modules)
+    return {item.keyword: item for item in found}
 
 
 def lookup(entries: dict, parameter: str, keyword):
@@ -87,6 +95,37 @@ class NormalLaw:
     def normal_mode(self, model, speed: float | None) -> tuple[float, float]:
         """(w, c) of the normal motion as x'' + c x' + w^2 x = 0 (the step rule's mode); a
         nonlinear force is represented by its stiffest point, at the fastest ``speed``."""
+        raise NotImplementedError
+
+
+class DampingLaw:
+    """A damping sub-model: LAMMPS's keyword after ``damping``, its coefficients, and the
+    dashpots it gives LAMMPS (the normal sub-model's damping coefficient, the tangential one's)."""
+
+    keyword: str = ""
+    coefficients: tuple[Parameter, ...] = ()
+
+    def dashpots(self, model) -> tuple[float, float, bool, list[str]]:
+        """(the normal coefficient, the tangential one, whether to write ``damping KEYWORD``, notes)."""
+        raise NotImplementedError
+
+    def deck_terms(self, written: bool) -> tuple:
+        return ("damping", self.keyword) if written else ()
+
+
+class TangentialLaw:
+    """A tangential sub-model: LAMMPS's keyword after ``tangential``, its coefficients, and its
+    words given the damping's tangential coefficient."""
+
+    keyword: str = ""
+    coefficients: tuple[Parameter, ...] = ()
+
+    def cap(self, model) -> tuple[float, str]:
+        """The Coulomb cap a wall deck writes for the model, and a note saying why."""
+        raise NotImplementedError
+
+    def deck_terms(self, model, x_t: float, mu: float) -> tuple:
+        """Its words, given the damping's tangential coefficient and the cap to write."""
         raise NotImplementedError
 
 

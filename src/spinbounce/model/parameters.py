@@ -15,8 +15,8 @@ from __future__ import annotations
 from ..declaration import Parameter, finite_number, positive_number
 from ..errors import SceneError
 from ..laws import normal_coefficients, normal_parameter, style_parameter
-from ..laws.damping import GAMMA_N, GAMMA_T
-from ..laws.tangential import KT, MU
+from ..laws.damping.velocity import GAMMA_N, GAMMA_T
+from ..laws.tangential.linear_history import KT, MU
 
 __all__ = ["finite_number", "positive_number", "Parameter", "MODEL", "STATE", "RUN", "SCENE", "STATE_B", "PAIR_SPHERE", "PAIR_ONLY", "ALL",
            "by_name", "SceneError", "markdown_table"]

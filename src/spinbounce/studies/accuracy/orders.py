@@ -15,7 +15,7 @@ __all__ = ["FIT_LEVELS", "ERROR_FLOOR", "TARGETS", "fit_order", "steps_for", "su
 #: The order is fitted over this many of the finest levels (a factor 8 in dt).
 FIT_LEVELS = 4
 #: Errors below this are not truncation: round-off, the 1e-12 normal dashpot that carries a
-#: tangential one in LAMMPS (laws.damping.VANISHING_ETA_N), the oracle's own error. Left out of fits.
+#: tangential one in LAMMPS (laws.damping.velocity.VANISHING_ETA_N), the oracle's own error. Left out of fits.
 ERROR_FLOOR = 1e-11
 #: The accuracies whose cost the study reports.
 TARGETS = (1e-4, 1e-6, 1e-8)

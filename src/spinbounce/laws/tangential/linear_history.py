@@ -1,16 +1,18 @@
-"""The tangential sub-models, registered by LAMMPS keyword: one entry each in :data:`TANGENTIAL`.
+"""``tangential linear_history KT X_T MU``: the paper's Cundall-Strack spring kt on the slip
+history, capped at |F_t| <= mu |F_n|.
 
-Today one, ``linear_history`` (:class:`LinearHistory`), the paper's Cundall-Strack spring with
-a Coulomb cap. LAMMPS's others (``mindlin`` and its variants, ...) come as classes here.
+LAMMPS always applies the cap; the paper's model has none, so no cap is written as
+:data:`NO_CAP_MU` (measured on this build: mu = 1e4 leaves a 1e-4 error floor, 1e12 does not).
 """
 
 from __future__ import annotations
 
 import math
 
-from ..declaration import Parameter
+from ...declaration import Parameter
+from ..base import TangentialLaw
 
-__all__ = ["TANGENTIAL", "LinearHistory", "KT", "MU", "NO_CAP_MU"]
+__all__ = ["LinearHistory", "LAW", "KT", "MU", "NO_CAP_MU"]
 
 KT = Parameter("kt", "tangential spring constant on the slip history (Cundall-Strack)", "force/length", 1.0,
                low=0.0, why="a negative spring would push the slip away", deck="tangential linear_history KT")
@@ -25,15 +27,7 @@ MU = Parameter("mu", "Coulomb friction coefficient, |F_t| <= mu |F_n|; none (or 
 NO_CAP_MU = 1.0e12
 
 
-class LinearHistory:
-    """``tangential linear_history KT X_T MU``: the paper's Cundall-Strack spring kt on the slip
-    history, capped at |F_t| <= mu |F_n|. LAMMPS always applies the cap; the paper's model has
-    none, so no cap is written as :data:`NO_CAP_MU` (measured on this build: mu = 1e4 leaves a
-    1e-4 error floor, 1e12 does not).
-
-    A tangential sub-model declares its LAMMPS keyword (after ``tangential``) and coefficients,
-    and answers the cap a wall deck writes and its words given the damping's coefficient."""
-
+class LinearHistory(TangentialLaw):
     keyword = "linear_history"
     coefficients = (KT, MU)
 
@@ -44,9 +38,7 @@ class LinearHistory:
         return model.mu, f"Coulomb limit |F_t| <= {model.mu!r} F_n: not the paper's model"
 
     def deck_terms(self, model, x_t: float, mu: float) -> tuple:
-        """Its words, given the damping's tangential coefficient and the cap to write."""
         return ("tangential", self.keyword, float(model.kt), float(x_t), float(mu))
 
 
-#: Every tangential sub-model, by its LAMMPS keyword.
-TANGENTIAL: dict[str, LinearHistory] = {law.keyword: law for law in (LinearHistory(),)}
+LAW = LinearHistory()

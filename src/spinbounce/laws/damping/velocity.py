@@ -1,16 +1,16 @@
-"""The damping sub-models, registered by LAMMPS keyword: one entry each in :data:`DAMPING`.
-
-Today one, ``damping velocity`` (:class:`Velocity`), the paper's viscous damping. LAMMPS's
-others (``mass_velocity``, ``viscoelastic``, ``tsuji``, ``coeff_restitution``) come as classes here.
+"""``damping velocity``: viscous dashpots, the normal force -ETA_N v_n and the tangential one
+-(X_T ETA_N) u' on the slip rate (LAMMPS's granular form, measured on this build). The paper's
+gamma_n and gamma_t are those two: ETA_N = gamma_n, X_T = gamma_t/gamma_n.
 """
 
 from __future__ import annotations
 
 import math
 
-from ..declaration import Parameter
+from ...declaration import Parameter
+from ..base import DampingLaw
 
-__all__ = ["DAMPING", "Velocity", "GAMMA_N", "GAMMA_T", "VANISHING_ETA_N"]
+__all__ = ["Velocity", "LAW", "GAMMA_N", "GAMMA_T", "VANISHING_ETA_N"]
 
 GAMMA_N = Parameter("gamma_n", "normal viscous damping (below critical 2 sqrt(m kn))", "mass/time", 0.0, low=0.0,
                     why="negative damping would create energy", deck="granular ... ETA_N damping velocity")
@@ -23,19 +23,11 @@ GAMMA_T = Parameter("gamma_t", "tangential viscous damping on the slip rate", "m
 VANISHING_ETA_N = 1.0e-12
 
 
-class Velocity:
-    """``damping velocity``: viscous dashpots, the normal force -ETA_N v_n and the tangential one
-    -(X_T ETA_N) u' on the slip rate (LAMMPS's granular form, measured on this build). The
-    paper's gamma_n and gamma_t are those two: ETA_N = gamma_n, X_T = gamma_t/gamma_n.
-
-    A damping sub-model declares its LAMMPS keyword (after ``damping``) and coefficients, and
-    answers the dashpots it gives LAMMPS and its words in a deck."""
-
+class Velocity(DampingLaw):
     keyword = "velocity"
     coefficients = (GAMMA_N, GAMMA_T)
 
     def dashpots(self, model) -> tuple[float, float, bool, list[str]]:
-        """(the normal coefficient ETA_N, the tangential one X_T, whether to write the damping, notes)."""
         if model.gamma_t == 0.0 and model.gamma_n == 0.0:
             return 0.0, 0.0, False, []
         if model.gamma_n > 0.0:
@@ -45,9 +37,5 @@ class Velocity:
             f"gamma_n = 0, gamma_t = {model.gamma_t!r}: ETA_N = {eta_n!r} is a vanishing normal damping so that "
             f"X_T * ETA_N = gamma_t"]
 
-    def deck_terms(self, written: bool) -> tuple:
-        return ("damping", self.keyword) if written else ()
 
-
-#: Every damping sub-model, by its LAMMPS keyword.
-DAMPING: dict[str, Velocity] = {law.keyword: law for law in (Velocity(),)}
+LAW = Velocity()

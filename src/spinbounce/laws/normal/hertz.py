@@ -1,0 +1,41 @@
+"""``hertz``: LAMMPS's Hertzian force F = kn a delta, with contact radius a = sqrt(r delta).
+
+kn is LAMMPS's K (force/length^2); against a flat wall m delta'' = -kn sqrt(r) delta^(3/2).
+Exact reference: :mod:`spinbounce.exact.hertz` (the contact time grows as |v_n|^(-1/5), so
+Omega depends on the impact speed, sphere by sphere). No exact reference of the damped Hertzian
+contact is here, so normal damping is refused.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ...exact import hertz
+from ..base import NormalLaw
+
+__all__ = ["Hertz", "LAW"]
+
+
+class Hertz(NormalLaw):
+    keyword = "hertz"
+    summary = "Hertz, F = kn a delta with contact radius a = sqrt(r delta)"
+    contact_radius = True
+    damped_theory = False
+
+    def contact_times(self, model, v_n) -> np.ndarray:
+        v = np.atleast_1d(np.asarray(v_n, dtype=float))
+        return np.asarray(hertz.contact_time(v, model.m, model.kn, model.r), dtype=float)
+
+    def tunnelling_speed(self, model) -> float:
+        return hertz.tunnelling_speed(model.m, model.kn, model.r)
+
+    def max_overlap(self, model, speed) -> np.ndarray:
+        return np.asarray(hertz.max_overlap(speed, model.m, model.kn, model.r), dtype=float)
+
+    def normal_mode(self, model, speed: float | None) -> tuple[float, float]:
+        if speed is None:
+            raise ValueError("a Hertzian collision's normal mode needs the fastest |v_n| (speed)")
+        return float(hertz.normal_frequency(speed, model.m, model.kn, model.r)), 0.0
+
+
+LAW = Hertz()
