@@ -13,9 +13,7 @@ from ...scenes.collision.deck import render_collision
 from ...scenes.frozen.deck import render_frozen
 from ...scenes.frozen import Frozen
 from .cases import CASES, case_by_name
-from .deviations import Violation
-
-__all__ = ["GOLDEN_DECKS", "GoldenDeck", "compare_decks", "normalise_deck", "render_golden"]
+from .tables import Violation
 
 
 @dataclass(frozen=True)
@@ -59,10 +57,8 @@ def render_golden(golden: GoldenDeck) -> dict[str, str]:
     """Stored file name -> text for one golden deck: the deck, then any files it reads."""
     scene = case_by_name(golden.case).scene()
     deck = render_frozen(scene) if isinstance(scene, Frozen) else render_collision(scene, golden.route)
-    out = {golden.deck_file: deck.text}
-    for name, text in sorted(deck.files.items()):
-        out[golden.extra_file(name)] = text
-    return out
+    files = {golden.extra_file(name): text for name, text in sorted(deck.files.items())}
+    return {golden.deck_file: deck.text, **files}
 
 
 def compare_decks(decks_dir: Path, goldens=GOLDEN_DECKS) -> list[Violation]:

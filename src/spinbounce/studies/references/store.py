@@ -1,4 +1,5 @@
-"""The reference folder: which files it holds, its manifest, and the one writer of both.
+"""The reference folder: which files it holds, its manifest, the one writer of both, and the
+check of fresh runs (in a temporary folder) against it, column by column, which only reads it.
 
 ``MANIFEST.json`` records everything that produced the stored files: the cases'
 parameters and steps, the tolerances with their reasons and measurements, and the
@@ -7,21 +8,18 @@ LAMMPS and spinbounce versions (:func:`spinbounce.records.software`).
 
 from __future__ import annotations
 
+import io
 import json
 import tempfile
+from dataclasses import dataclass
 from pathlib import Path
 
 from ...laws import own
 from ...model import parameters
 from ...records import json_ready, software, to_json, write_atomic
-from .cases import CASES, DEFAULT_DIR
-from .deviations import Violation
-from .golden import GOLDEN_DECKS, render_golden
-from .tables import run_case, write_table
-from .tolerances import MEASUREMENTS, tolerance_record
-
-__all__ = ["DECKS_DIR", "DEFAULT_DIR", "FORMAT", "MANIFEST", "REGENERATE_COMMAND", "compare_manifest",
-           "expected_files", "manifest", "read_manifest", "regenerate"]
+from .cases import CASES, DEFAULT_DIR, MEASUREMENTS, case_by_name, tolerance_record, tolerances_for
+from .golden import GOLDEN_DECKS, compare_decks, render_golden
+from .tables import Deviation, Violation, compare_tables, deviations, read_table, run_case, write_table
 
 MANIFEST = "MANIFEST.json"
 DECKS_DIR = "decks"
@@ -30,12 +28,29 @@ REGENERATE_COMMAND = "spinbounce references --regenerate --dir tests/reference"
 FORMAT = 1
 
 
+def _golden_files() -> dict[str, str]:
+    """Every golden deck's stored files: name (in the decks folder) -> text."""
+    return {name: text for golden in GOLDEN_DECKS for name, text in render_golden(golden).items()}
+
+
 def expected_files() -> set[str]:
     """Every file name (relative to the reference folder) that regeneration writes."""
-    names = {MANIFEST} | {f"{c.name}.csv" for c in CASES}
-    for golden in GOLDEN_DECKS:
-        names |= {f"{DECKS_DIR}/{name}" for name in render_golden(golden)}
-    return names
+    return {MANIFEST, *(f"{c.name}.csv" for c in CASES), *(f"{DECKS_DIR}/{name}" for name in _golden_files())}
+
+
+def _stale_files(directory: Path) -> list[str]:
+    """Stored files (relative names) that no case in the code produces: left by earlier references."""
+    stored = [*directory.glob("*.csv"), *(directory / DECKS_DIR).glob("*")]
+    return sorted({p.relative_to(directory).as_posix() for p in stored if p.is_file()} - expected_files())
+
+
+def _scratch_runs(cases, prefix: str, progress):
+    """Each case with a fresh run folder, in a temporary folder removed afterwards."""
+    with tempfile.TemporaryDirectory(prefix=prefix) as tmp:
+        for case in cases:
+            if progress:
+                progress(case)
+            yield case, Path(tmp) / case.name
 
 
 def manifest(provenance: dict) -> dict:
@@ -51,31 +66,12 @@ def manifest(provenance: dict) -> dict:
         "measurements": MEASUREMENTS,
         "tolerances": tolerance_record(),
         "cases": {case.name: case.describe() for case in CASES},
-        "decks": sorted(name for golden in GOLDEN_DECKS for name in render_golden(golden)),
+        "decks": sorted(_golden_files()),
     }
 
 
 def read_manifest(directory: Path) -> dict:
     return json.loads((Path(directory) / MANIFEST).read_text())
-
-
-def _run_all(progress=None) -> dict:
-    """Every case's fresh reference table, run in a temporary folder."""
-    tables = {}
-    with tempfile.TemporaryDirectory(prefix="spinbounce-references-") as tmp:
-        for case in CASES:
-            if progress:
-                progress(case)
-            tables[case.name] = run_case(case, Path(tmp) / case.name)
-    return tables
-
-
-def _remove_stale(directory: Path) -> None:
-    """Files of earlier references that no case produces any more."""
-    keep = expected_files()
-    for path in [*directory.glob("*.csv"), *(directory / DECKS_DIR).iterdir()]:
-        if path.is_file() and path.relative_to(directory).as_posix() not in keep:
-            path.unlink()
 
 
 def regenerate(directory: Path = DEFAULT_DIR, progress=None) -> dict:
@@ -89,16 +85,17 @@ def regenerate(directory: Path = DEFAULT_DIR, progress=None) -> dict:
     if not directory.parent.is_dir():  # most likely run from the wrong folder: create nothing
         raise FileNotFoundError(f"{directory.parent} does not exist: run from the repository's top folder "
                                 "or give --dir")
-    tables = _run_all(progress)
+    tables = {case.name: run_case(case, run_dir)
+              for case, run_dir in _scratch_runs(CASES, "spinbounce-references-", progress)}
     decks_dir = directory / DECKS_DIR
     decks_dir.mkdir(parents=True, exist_ok=True)  # the parent of `directory` exists (checked above)
     record = manifest(software())
-    _remove_stale(directory)
+    for name in _stale_files(directory):
+        (directory / name).unlink()
     for name, table in tables.items():
         write_table(table, directory / f"{name}.csv")
-    for golden in GOLDEN_DECKS:
-        for name, text in render_golden(golden).items():
-            write_atomic(decks_dir / name, text)
+    for name, text in _golden_files().items():
+        write_atomic(decks_dir / name, text)
     write_atomic(directory / MANIFEST, to_json(record))
     return record
 
@@ -128,3 +125,67 @@ def compare_manifest(stored: dict) -> list[Violation]:
     if stored.get("tolerances") != json_ready(tolerance_record()):
         found.append(Violation("*", "tolerances", "the manifest's tolerances differ from the code's (regenerate)"))
     return found
+
+
+@dataclass
+class CheckReport:
+    """What :func:`check` found: per case, the deviation of every column; the violations."""
+
+    lammps_version: str
+    stored_lammps_version: str | None
+    deviations: dict[str, list[Deviation]]
+    violations: list[Violation]
+
+    @property
+    def ok(self) -> bool:
+        return not self.violations
+
+
+def check(directory: Path = DEFAULT_DIR, names=None, decks: bool = True, progress=None) -> CheckReport:
+    """Run the cases (all, or those in ``names``) afresh and compare them with ``directory``.
+
+    Reads ``directory`` only; runs go to a temporary folder. Also checks that the manifest
+    and the stored tables list exactly the cases in the code, with the same parameters.
+    """
+    directory = Path(directory)
+    if not (directory / MANIFEST).is_file():
+        raise FileNotFoundError(f"{directory / MANIFEST} not found: no references there "
+                                f"(create them with: {REGENERATE_COMMAND})")
+    stored_manifest = read_manifest(directory)
+    cases = CASES if names is None else tuple(case_by_name(n) for n in names)
+    violations = compare_manifest(stored_manifest) + [
+        Violation("*", name, "stored file that no case in the code produces (regenerate)")
+        for name in _stale_files(directory)]
+    found = {}
+    for case, run_dir in _scratch_runs(cases, "spinbounce-check-", progress):
+        path = directory / f"{case.name}.csv"
+        if not path.is_file():
+            violations.append(Violation(case.name, "*", f"{path} is missing"))
+            continue
+        stored, fresh, tolerances = read_table(path), run_case(case, run_dir), tolerances_for(case)
+        found[case.name] = deviations(fresh, stored, tolerances)
+        violations += compare_tables(fresh, stored, tolerances, case=case.name)
+    if decks:
+        goldens = [g for g in GOLDEN_DECKS if g.case in {c.name for c in cases}]
+        violations += compare_decks(directory / DECKS_DIR, goldens)
+    return CheckReport(software()["lammps_version"], stored_manifest.get("lammps_version"), found, violations)
+
+
+def format_report(report: CheckReport) -> str:
+    """The largest deviation per case and column, then the violations."""
+    out = io.StringIO()
+    out.write(f"LAMMPS {report.lammps_version}")
+    if report.stored_lammps_version and report.stored_lammps_version != report.lammps_version:
+        out.write(f" (references made with {report.stored_lammps_version})")
+    out.write("\n")
+    out.write(f"{'case':<22}{'column':<16}{'max |dev|':>11}{'tolerance':>11}{'row':>5}  status\n")
+    for name, devs in report.deviations.items():
+        for d in devs:
+            status = "ok" if d.ok else f"FAIL ({d.beyond} row(s))"
+            row = "-" if d.row is None or d.deviation == 0.0 else str(d.row)
+            out.write(f"{name:<22}{d.column:<16}{d.deviation:>11.2e}{d.tolerance:>11.1e}{row:>5}  {status}\n")
+    if report.violations:
+        out.write(f"\n{len(report.violations)} violation(s):\n")
+        for v in report.violations:
+            out.write(f"  {v}\n")
+    return out.getvalue()
