@@ -5,7 +5,7 @@ Each benchmark is data (:mod:`.cases`): a :class:`Benchmark` names its sources, 
 contact model(s) (:class:`Series`, stiffness and damping from :mod:`.materials`), the
 initial states and what its figure plots (:mod:`.quantities`); its published points are
 in :mod:`.digitised`. Every state gets three expectations: the rigid-body theory
-(:func:`walton`, :mod:`.rigid_body`), the Coulomb oracle (exact for the Hookean model) and,
+(:func:`walton`, :mod:`.quantities`), the Coulomb oracle (exact for the Hookean model) and,
 where they exist, measured values. :func:`run_benchmark` (:mod:`.run`) runs each series in
 one LAMMPS batch at a refined step, and once at twice that refinement for a convergence
 estimate, and tabulates everything; :mod:`.report` writes BENCHMARKS.md, the JSON record
@@ -16,12 +16,11 @@ Sign conventions are the package's: v_n < 0 towards the wall, omega anticlockwis
 contact point's tangential velocity (the slip rate) is v_t + r omega.
 """
 
-from .cases import BENCHMARKS, Benchmark, Series, names, select, with_states
+from .cases import BENCHMARKS, Benchmark, Series, select, with_states
 from .digitised import Measured
 from .materials import (AL_ALLOY, ALUMINA, SOLID, STEEL, Material, gamma_n_for_restitution_cut,
                         hertz_contact_time, hookean_matching_hertz, mindlin_ratio)
-from .quantities import QUANTITIES, quantity
-from .rigid_body import first_touch_stick, impact_speed, walton
+from .quantities import QUANTITIES, first_touch_stick, impact_speed, quantity, walton
 from .run import ACCEPTANCE, BenchmarkRun, refined_dt, run_benchmark
 
 __all__ = [
@@ -43,7 +42,6 @@ __all__ = [
     "hookean_matching_hertz",
     "impact_speed",
     "mindlin_ratio",
-    "names",
     "quantity",
     "refined_dt",
     "run_benchmark",

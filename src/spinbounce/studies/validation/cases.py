@@ -17,18 +17,18 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from ...model.contact import ContactModel
-from .digitised import KHARAZ_2001, THORNTON_PSI2_LINEAR, THORNTON_SPIN, Measured
+from .digitised import (KHARAZ_2001, KRATOS, KRATOS_BENCHMARKS, KRATOS_CHUNG_OOI, KRATOS_T10, LETHE,
+                        MFIX_DEM05, THORNTON_PSI2_LINEAR, THORNTON_SPIN, Measured)
 from .materials import (AL_ALLOY, AL_WALL_T4, ALUMINA, SOLID, STEEL, gamma_n_for_restitution_cut,
                         hookean_matching_hertz, mindlin_ratio)
 from .quantities import QUANTITIES
-from .sources import KRATOS, KRATOS_BENCHMARKS, KRATOS_CHUNG_OOI, KRATOS_T10, LETHE, MFIX_DEM05
 
-__all__ = ["BENCHMARKS", "Benchmark", "Series", "names", "select", "with_states"]
+__all__ = ["BENCHMARKS", "Benchmark", "Series", "select", "with_states"]
 
 
 @dataclass(frozen=True)
@@ -63,12 +63,11 @@ class Benchmark:
     refine: int
     refine_why: str
     beta0: float = 0.0
-    notes: tuple[str, ...] = field(default=())
+    notes: tuple[str, ...] = ()
 
 
-
-def _angles(n: int) -> np.ndarray:
-    """Kratos's sweep: theta_i = 90 i/(n + 1) deg, i = 1..n (Chung_Ooi_class.py)."""
+def kratos_angles(n: int = 17) -> np.ndarray:
+    """Kratos's sweep: theta_i = 90 i/(n + 1) deg, i = 1..n (Chung_Ooi_class.py, DEM_benchmarks_class.py)."""
     return np.radians(90.0 * np.arange(1, n + 1) / (n + 1))
 
 
@@ -99,7 +98,7 @@ def _chung_ooi_4() -> Benchmark:
     kn, kt = 1.72e7, 1.48e7  # MFIX DEM05's linear spring-dashpot run
     model = ContactModel(m=m, r=r, alpha=SOLID, kn=kn, kt=kt, gamma_n=gamma_n_for_restitution_cut(e, m, kn),
                          mu=mu, limit_damping=True)
-    theta = _angles(17)
+    theta = kratos_angles()
     states = tuple((-speed * math.cos(t), speed * math.sin(t), 0.0) for t in theta)
     _, kn_hertz, kt_hertz = hookean_matching_hertz(ALUMINA, r, speed * math.cos(math.radians(45.0)), AL_WALL_T4)
     measured = KHARAZ_2001
@@ -143,7 +142,7 @@ def _chung_ooi_5() -> Benchmark:
     # gamma_n = 0 (its cap rate is zero at first touch, so a sticking contact is started as
     # sliding and the spurious switch at delta = 0 is taken for the exit)
     model = ContactModel(m=m, r=r, alpha=SOLID, kn=kn, kt=kt, mu=mu, limit_damping=False)
-    states = tuple((-v_n, v_n * math.tan(t), 0.0) for t in _angles(17))
+    states = tuple((-v_n, v_n * math.tan(t), 0.0) for t in kratos_angles())
     return Benchmark(
         name="chung-ooi-5",
         title="Chung & Ooi Test 5: steel sphere, v_n = 5 m/s across tangential speeds, elastic",
@@ -173,7 +172,7 @@ def _chung_ooi_6() -> Benchmark:
     m, kn, kt = hookean_matching_hertz(AL_ALLOY, r, v_n)
     model = ContactModel(m=m, r=r, alpha=SOLID, kn=kn, kt=kt, gamma_n=gamma_n_for_restitution_cut(e, m, kn),
                          mu=mu, limit_damping=True)
-    states = tuple((-v_n, 0.0, v_n * math.tan(t) / r) for t in _angles(17))
+    states = tuple((-v_n, 0.0, v_n * math.tan(t) / r) for t in kratos_angles())
 
     def to_state(model, x):  # x = 3.5 mu (1 + e) v_n / V_st with V_st = r omega
         return (-v_n, 0.0, 3.5 * model.mu * (1.0 + model.restitution) * v_n / x / model.r)
@@ -247,15 +246,8 @@ def _thornton_linear() -> Benchmark:
     )
 
 
-def _all() -> dict[str, Benchmark]:
-    return {b.name: b for b in (_chung_ooi_4(), _chung_ooi_5(), _chung_ooi_6(), _thornton_linear())}
-
-
-BENCHMARKS: dict[str, Benchmark] = _all()
-
-
-def names() -> list[str]:
-    return list(BENCHMARKS)
+BENCHMARKS: dict[str, Benchmark] = {b.name: b for b in (_chung_ooi_4(), _chung_ooi_5(), _chung_ooi_6(),
+                                                          _thornton_linear())}
 
 
 def select(only: list[str] | None) -> list[Benchmark]:
@@ -266,7 +258,6 @@ def select(only: list[str] | None) -> list[Benchmark]:
     if unknown:
         raise KeyError(f"unknown benchmark(s) {', '.join(unknown)}; known: {', '.join(BENCHMARKS)}")
     return [BENCHMARKS[n] for n in dict.fromkeys(only)]
-
 
 
 def with_states(bench: Benchmark, keep: Callable[[int], bool] | list[int]) -> Benchmark:

@@ -37,9 +37,14 @@ import pandas as pd
 
 from ...model.contact import ContactModel
 from ...model.timestep import ACCURACY
+from ...exact import choose
 from ...exact import pair as planar
-from .materials import AL_ALLOY, SOLID, Material, hertz_contact_time, mindlin_ratio
-from .sources import KRATOS_BENCHMARKS, PYSPH_T8, YADE_T1
+from ...pipeline import run_scene
+from ...scenes.pair import Pair, PairBatch, PairContact, Sphere
+from ...scenes.pair.kind import wall_frame
+from .cases import kratos_angles
+from .materials import AL_ALLOY, SOLID, Material, bisect_damping, matched_pair_contact
+from .digitised import KRATOS_BENCHMARKS, PYSPH_T8, YADE_T1
 
 __all__ = ["PairBenchmark", "PAIR_BENCHMARKS", "GLASS", "LIMESTONE", "run_pair_benchmark", "matched_pair_contact"]
 
@@ -65,29 +70,7 @@ class PairBenchmark:
     expectation: str
 
 
-def _angles(n: int = 17) -> np.ndarray:
-    """theta_i = 90 i/(n + 1) deg, i = 1..n (Kratos's sweep, DEM_benchmarks_class.py)."""
-    return np.radians(90.0 * np.arange(1, n + 1) / (n + 1))
-
-
-def matched_pair_contact(material: Material, r_a: float, r_b: float, m_a: float, m_b: float, v_rel: float,
-                         b_material: Material | None = None) -> tuple[float, float]:
-    """(kn, kt): the Hookean pair contact with Hertz's contact time at relative normal speed v_rel.
-
-    Hertz between two spheres is a sphere of the reduced mass m* and radius r_a r_b/(r_a + r_b)
-    on a flat of the combined modulus (:func:`.materials.hertz_contact_time`); kn = m* (pi/t_H)^2
-    gives the Hookean pi sqrt(m*/kn) the same duration; kt = kn times Mindlin's ratio.
-    """
-    m_star = planar.reduced_mass(m_a, m_b)
-    e_star = material.effective_modulus(b_material or material)
-    t_h = hertz_contact_time(m_star, r_a * r_b / (r_a + r_b), e_star, v_rel)
-    kn = m_star * (math.pi / t_h) ** 2
-    return kn, kn * mindlin_ratio(material.nu)
-
-
 def _test_1(material: Material):
-    from ...scenes.pair import Pair, PairBatch, PairContact, Sphere
-
     r, v = 0.010, 10.0
     sphere = Sphere(material.mass(r), r, SOLID)
     kn, kt = matched_pair_contact(material, r, r, sphere.m, sphere.m, 2 * v)
@@ -101,12 +84,10 @@ def _elastic_rebound(batch, table):
 
 
 def _test_7():
-    from ...scenes.pair import Pair, PairBatch, PairContact, Sphere
-
     r, v_n = 0.1, 0.2
     sphere = Sphere(AL_ALLOY.mass(r), r, SOLID)
     kn, kt = matched_pair_contact(AL_ALLOY, r, r, sphere.m, sphere.m, 2 * v_n)
-    spins = v_n * np.tan(_angles()) / r
+    spins = v_n * np.tan(kratos_angles()) / r
     pairs = [Pair(a=sphere, b=sphere, v_a=(0.0, 0.0, -v_n), v_b=(0.0, 0.0, v_n), w_a=(0.0, w, 0.0),
                   w_b=(0.0, -w, 0.0)) for w in spins]
     return PairBatch(pairs, PairContact(kn, kt, mu=CHUNG_OOI_MU))
@@ -129,31 +110,16 @@ T8_RESTITUTION, T8_SIZE, T8_DENSITY = 0.5, 5.0, 1000.0
 T8_REFINE = 4
 
 
-def _gamma_n_for(e: float, m_a: float, m_b: float, kn: float) -> float:
-    """gamma_n giving the pair's (tensile) restitution e: bisection, restitution falls as gamma_n grows."""
-    lo, hi = 0.0, 2.0 * math.sqrt(planar.reduced_mass(m_a, m_b) * kn) * (1.0 - 1e-9)
-    for _ in range(200):
-        mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if planar.restitution(m_a, m_b, kn, mid) > e else (lo, mid)
-    return 0.5 * (lo + hi)
-
-
-def _test_8_parts():
-    from ...scenes.pair import Sphere
-
+def _test_8():
     r, v_n = 0.1, 0.2
     a = Sphere(AL_ALLOY.mass(r), r, SOLID)
     heavy = Material("aluminium alloy x1000", AL_ALLOY.E, AL_ALLOY.nu, AL_ALLOY.rho * T8_DENSITY, AL_ALLOY.source)
     b = Sphere(heavy.mass(T8_SIZE * r), T8_SIZE * r, SOLID)
     kn, kt = matched_pair_contact(AL_ALLOY, a.r, b.r, a.m, b.m, v_n)
-    return a, b, kn, kt, _gamma_n_for(T8_RESTITUTION, a.m, b.m, kn), v_n
-
-
-def _test_8():
-    from ...scenes.pair import Pair, PairBatch, PairContact
-
-    a, b, kn, kt, gamma_n, v_n = _test_8_parts()
-    spins = v_n * np.tan(_angles()) / a.r
+    # the pair's (tensile) restitution falls as gamma_n grows
+    gamma_n = bisect_damping(lambda g: planar.restitution(a.m, b.m, kn, g), T8_RESTITUTION,
+                             2.0 * math.sqrt(planar.reduced_mass(a.m, b.m) * kn) * (1.0 - 1e-9), 0.0)
+    spins = v_n * np.tan(kratos_angles()) / a.r
     pairs = [Pair(a=a, b=b, v_a=(0.0, 0.0, -v_n), w_a=(0.0, -w, 0.0)) for w in spins]
     contact = PairContact(kn, kt, gamma_n, mu=CHUNG_OOI_MU)
     # damped, so first order in dt: measured 1.8e-4 of the speed at the default step, 3.7e-5 at a quarter
@@ -162,9 +128,6 @@ def _test_8():
 
 def _wall_limit(batch, table):
     """a's (v_n, v_t, r omega) against the wall's exact theory for the same sphere and contact (and cap)."""
-    from ...scenes.pair.kind import wall_frame
-    from ...exact import choose
-
     a, law = batch.pairs[0].a, batch.contact.law()
     model = ContactModel(m=a.m, r=a.r, alpha=a.alpha, kn=law["kn"], kt=law["kt"], gamma_n=law["gamma_n"],
                          mu=batch.contact.mu)
@@ -226,8 +189,6 @@ PAIR_BENCHMARKS: dict[str, PairBenchmark] = _all()
 
 def run_pair_benchmark(bench: PairBenchmark, out: Path) -> dict:
     """Run a benchmark's pairs in one LAMMPS batch; its record (JSON-ready) with every check's numbers."""
-    from ...pipeline import run_scene
-
     result = run_scene(bench.make(), Path(out) / bench.name, record=False)
     quantity, lammps, published, tolerance = bench.published(result.scene, result.table)
     off = float(np.abs(lammps - published).max())

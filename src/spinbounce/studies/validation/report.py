@@ -16,8 +16,7 @@ import numpy as np
 
 from ...records import json_ready, software, write_atomic
 from .cases import select
-from .quantities import QUANTITIES, quantity
-from .rigid_body import walton
+from .quantities import QUANTITIES, quantity, walton
 from .run import ACCEPTANCE, BenchmarkRun, run_benchmark
 
 __all__ = ["make_benchmarks", "draw", "markdown", "record"]

@@ -4,7 +4,7 @@ twice that refinement for a convergence estimate, tabulated beside the Coulomb o
 and the measured points.
 
 Deviations are the largest over (v_n, v_t, r omega), relative to the impact speed
-(:func:`.rigid_body.impact_speed`).
+(:func:`.quantities.impact_speed`).
 """
 
 from __future__ import annotations
@@ -21,8 +21,7 @@ from ...model.timestep import refine_mid_step
 from ...pipeline import run_scene
 from ...exact import oracle
 from .cases import Benchmark, Series
-from .quantities import QUANTITIES, quantity
-from .rigid_body import first_touch_stick, impact_speed, walton
+from .quantities import QUANTITIES, first_touch_stick, impact_speed, quantity, walton
 
 __all__ = ["ACCEPTANCE", "BenchmarkRun", "refined_dt", "run_benchmark"]
 
