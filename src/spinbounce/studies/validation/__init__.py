@@ -1,19 +1,13 @@
-"""Published sphere-wall DEM benchmarks as named scenes, run in LAMMPS and set beside the
-Coulomb oracle, rigid-body theory and measured data (``spinbounce benchmarks``).
+"""Published DEM benchmarks as named scenes, run in LAMMPS and set beside the Coulomb oracle,
+rigid-body theory and measured data (``spinbounce benchmarks``; the sphere-sphere ones are in
+:mod:`.pair_cases`).
 
-Each benchmark is data (:mod:`.cases`): a :class:`Benchmark` names its sources, its
-contact model(s) (:class:`Series`, stiffness and damping from :mod:`.materials`), the
-initial states and what its figure plots (:mod:`.quantities`); its published points are
-in :mod:`.digitised`. Every state gets three expectations: the rigid-body theory
-(:func:`walton`, :mod:`.quantities`), the Coulomb oracle (exact for the Hookean model) and,
-where they exist, measured values. :func:`run_benchmark` (:mod:`.run`) runs each series in
-one LAMMPS batch at a refined step, and once at twice that refinement for a convergence
-estimate, and tabulates everything; :mod:`.report` writes BENCHMARKS.md, the JSON record
-and the figure.
-
-Units: SI (kg, m, s, N/m). LAMMPS's lj units are scale-free, so SI numbers pass through.
-Sign conventions are the package's: v_n < 0 towards the wall, omega anticlockwise, the
-contact point's tangential velocity (the slip rate) is v_t + r omega.
+Each benchmark is data (:mod:`.cases`): its sources, contact model(s) (:class:`Series`,
+stiffness and damping from :mod:`.materials`), initial states and plotted quantities
+(:mod:`.quantities`, with the rigid-body law); its published points are in :mod:`.digitised`.
+:mod:`.run` runs and tabulates it, :mod:`.report` writes BENCHMARKS.md, the JSON record and
+the figure. Units: SI (kg, m, s, N/m), passed through LAMMPS's scale-free lj units; signs are
+the package's (:mod:`.quantities`).
 """
 
 from .cases import BENCHMARKS, Benchmark, Series, select, with_states

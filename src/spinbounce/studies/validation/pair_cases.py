@@ -1,26 +1,13 @@
 """Published sphere-sphere benchmarks as named pair scenes, run in LAMMPS beside the pair's theories.
 
-Chung & Ooi (2011), Granular Matter 13:643, number their two-sphere tests 1, 7 and 8:
-
-* ``chung-ooi-1``: elastic normal impact of two identical spheres (glass and limestone,
-  r = 10 mm, 10 m/s each way). Published: an elastic rebound (each velocity reversed);
-* ``chung-ooi-7``: two identical aluminium-alloy spheres (r = 0.1 m, 0.2 m/s each way) spinning
-  with equal and opposite angular velocities, so that their contact points move together.
-  Published (Kratos's reading of it): by symmetry no tangential velocity arises and the
-  spins keep their size (a rolling contact: no slip, so no tangential force);
-* ``chung-ooi-8``: a spinning aluminium-alloy sphere (r = 0.1 m, 0.2 m/s, e = 0.5, mu = 0.4)
-  against a sphere five times larger and 1000 times denser, at rest. Published statement:
-  the bigger and denser the second sphere, the more the test resembles the sphere-wall one;
-  here a's outcome is checked against the wall's exact stick-slip theory with the same cap
-  (:mod:`spinbounce.exact.choose`), which it reaches within the planar theory's model
-  error: b is heavy but still curved, and the line of centres' turn moves a's outcome.
-
-Each scene's pairs run in one LAMMPS batch (:func:`spinbounce.pipeline.run_scene`) and every
-pair is also checked against the exact reference of what LAMMPS integrates (within the
-default accuracy, 1e-4 of the pair's speed; with tests 7 and 8's Coulomb cap, mu = 0.4, the
-capped reference :mod:`spinbounce.exact.pair_capped`) and set beside the planar theory.
-Test 8's published curves are not read here (only their statement, the wall limit).
-Thornton's oblique sphere-sphere results: no source giving their parameters was found.
+Chung & Ooi (2011), Granular Matter 13:643, number their two-sphere tests 1, 7 and 8; each
+:class:`PairBenchmark` says what its source publishes (test 7 as Kratos reads it: a rolling
+contact, no slip so no tangential force; test 8 only its statement, the wall limit, not its
+curves) and how close LAMMPS must come. Each scene's pairs run in one LAMMPS batch, every pair
+also checked against the exact reference of what LAMMPS integrates (within the default
+accuracy, 1e-4 of the pair's speed; with the Coulomb cap of tests 7 and 8, mu = 0.4,
+:mod:`spinbounce.exact.pair_capped`) and set beside the planar theory. Thornton's oblique
+sphere-sphere results: no source giving their parameters was found.
 
 Units: SI (kg, m, s, N/m), passed through LAMMPS's scale-free lj units.
 """
