@@ -10,36 +10,23 @@ the figure. Units: SI (kg, m, s, N/m), passed through LAMMPS's scale-free lj uni
 the package's (:mod:`.quantities`).
 """
 
-from .cases import BENCHMARKS, Benchmark, Series, select, with_states
-from .digitised import Measured
-from .materials import (AL_ALLOY, ALUMINA, SOLID, STEEL, Material, gamma_n_for_restitution_cut,
-                        hertz_contact_time, hookean_matching_hertz, mindlin_ratio)
-from .quantities import QUANTITIES, first_touch_stick, impact_speed, quantity, walton
-from .run import ACCEPTANCE, BenchmarkRun, refined_dt, run_benchmark
+import importlib
 
-__all__ = [
-    "ACCEPTANCE",
-    "AL_ALLOY",
-    "ALUMINA",
-    "BENCHMARKS",
-    "QUANTITIES",
-    "SOLID",
-    "STEEL",
-    "Benchmark",
-    "BenchmarkRun",
-    "Material",
-    "Measured",
-    "Series",
-    "first_touch_stick",
-    "gamma_n_for_restitution_cut",
-    "hertz_contact_time",
-    "hookean_matching_hertz",
-    "impact_speed",
-    "mindlin_ratio",
-    "quantity",
-    "refined_dt",
-    "run_benchmark",
-    "select",
-    "walton",
-    "with_states",
-]
+#: Each module and the names it exports here, loaded on a name's first use (the command line
+#: checks a benchmark's name without loading the runs).
+_EXPORTS = {
+    "cases": ("BENCHMARKS", "Benchmark", "Series", "select", "with_states"),
+    "digitised": ("Measured",),
+    "materials": ("AL_ALLOY", "ALUMINA", "SOLID", "STEEL", "Material", "gamma_n_for_restitution_cut",
+                  "hertz_contact_time", "hookean_matching_hertz", "mindlin_ratio"),
+    "quantities": ("QUANTITIES", "first_touch_stick", "impact_speed", "quantity", "walton"),
+    "run": ("ACCEPTANCE", "BenchmarkRun", "refined_dt", "run_benchmark"),
+}
+_WHERE = {name: module for module, names in _EXPORTS.items() for name in names}
+__all__ = sorted(_WHERE)
+
+
+def __getattr__(name: str):  # no name here is also a module's: importing one would hide it
+    if name in _WHERE:
+        return getattr(importlib.import_module(f".{_WHERE[name]}", __name__), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

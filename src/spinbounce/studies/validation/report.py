@@ -25,19 +25,6 @@ __all__ = ["make_benchmarks", "draw", "markdown", "record"]
 COLOURS = ("#d62728", "#1f77b4", "#2ca02c", "#9467bd")
 
 
-def _rigid_curve(run: BenchmarkRun, series, y: str):
-    """Walton's outcome on a dense grid of the benchmark's x quantity, for the dashed line."""
-    bench = run.benchmark
-    xs = run.table.loc[run.table["series"] == series.label, "x"].to_numpy()
-    lo, hi = np.nanmin(xs), np.nanmax(xs)
-    grid = np.linspace(lo, hi, 400)
-    states = np.array([bench.to_state(series.model, x) for x in grid])
-    initial = states * [1.0, 1.0, series.model.r]
-    final, _ = walton(series.model, initial, series.model.restitution, bench.beta0)
-    return quantity(bench.x, initial, initial, series.model), quantity(y, initial, final, series.model)
-
-
-
 def _draw_series(ax, run: BenchmarkRun, k: int, y: str) -> None:
     """Series ``k`` of a run on one panel: oracle line, LAMMPS circles, rigid-body dashes, data squares."""
     bench = run.benchmark
@@ -48,8 +35,12 @@ def _draw_series(ax, run: BenchmarkRun, k: int, y: str) -> None:
     ok = s[s["oracle_ok"]]
     ax.plot(ok["x"], ok[f"{y}_oracle"], "-", color=c, lw=1.0, label=series.label if many else "oracle")
     ax.plot(s["x"], s[f"{y}_lammps"], "o", ms=2.8, mfc="none", color=c, label="LAMMPS" if k == 0 else None)
-    gx, gy = _rigid_curve(run, series, y)
-    ax.plot(gx, gy, "--", color=c, lw=0.9, alpha=0.8, label="rigid body" if k == 0 else None)
+    # Walton's outcome on a dense grid of the benchmark's x quantity
+    grid = np.linspace(np.nanmin(s["x"]), np.nanmax(s["x"]), 400)
+    initial = np.array([bench.to_state(series.model, x) for x in grid]) * [1.0, 1.0, series.model.r]
+    final, _ = walton(series.model, initial, series.model.restitution, bench.beta0)
+    ax.plot(quantity(bench.x, initial, initial, series.model), quantity(y, initial, final, series.model), "--",
+            color=c, lw=0.9, alpha=0.8, label="rigid body" if k == 0 else None)
     m = run.measured
     pts = m[(m["series"] == series.label) & (m["quantity"] == y)] if len(m) else m
     if len(pts):
