@@ -66,17 +66,9 @@ _TIME = Tolerance(
 #: Collision reference columns -> tolerance. ``omega_lammps`` carries the spin in the
 #: paper's units; r*omega is r times it and adds nothing.
 COLLISION_TOLERANCES: dict[str, Tolerance] = {
-    "id": _EXACT,
-    "v_n_initial": _EXACT,
-    "v_t_initial": _EXACT,
-    "omega_initial": _EXACT,
-    "v_n_lammps": _LAMMPS_FINAL,
-    "v_t_lammps": _LAMMPS_FINAL,
-    "omega_lammps": _LAMMPS_FINAL,
-    "z_lammps": _LAMMPS_FINAL,
-    "v_n_theory": _THEORY,
-    "v_t_theory": _THEORY,
-    "omega_theory": _THEORY,
+    **dict.fromkeys(("id", "v_n_initial", "v_t_initial", "omega_initial"), _EXACT),
+    **dict.fromkeys(("v_n_lammps", "v_t_lammps", "omega_lammps", "z_lammps"), _LAMMPS_FINAL),
+    **dict.fromkeys(("v_n_theory", "v_t_theory", "omega_theory"), _THEORY),
 }
 
 #: A collision with a finite mu: the same, with the oracle's tolerance on its theory columns.
@@ -85,12 +77,9 @@ COLLISION_MU_TOLERANCES = {k: (_ORACLE if v is _THEORY else v) for k, v in COLLI
 #: Frozen-contact reference columns -> tolerance.
 FROZEN_TOLERANCES: dict[str, Tolerance] = {
     "t": _TIME,
-    "v_t": _LAMMPS_SERIES,
-    "omega": _LAMMPS_SERIES,
-    "z": _HELD,
-    "v_n": _HELD,
-    "v_t_theory": _THEORY,
-    "r_omega_theory": _THEORY,
+    **dict.fromkeys(("v_t", "omega"), _LAMMPS_SERIES),
+    **dict.fromkeys(("z", "v_n"), _HELD),
+    **dict.fromkeys(("v_t_theory", "r_omega_theory"), _THEORY),
 }
 
 #: The measurements behind the tolerances, recorded in the manifest next to them.

@@ -39,12 +39,9 @@ def write_table(table: pd.DataFrame, path: Path) -> None:
     cells = []
     for name in table.columns:
         values = table[name].to_numpy(dtype=float)
-        if name == "id":
-            if not np.array_equal(values, np.round(values)):
-                raise ValueError(f"ids {values.tolist()} are not all whole numbers")
-            cells.append([str(int(v)) for v in values])
-        else:
-            cells.append([repr(v) for v in values.tolist()])
+        if name == "id" and not np.array_equal(values, np.round(values)):
+            raise ValueError(f"ids {values.tolist()} are not all whole numbers")
+        cells.append([str(int(v)) if name == "id" else repr(v) for v in values.tolist()])
     lines = [",".join(table.columns), *(",".join(row) for row in zip(*cells, strict=True))]
     write_atomic(path, "\n".join(lines) + "\n")
 
