@@ -3,7 +3,7 @@
 A reference case (:mod:`.cases`) is a small scene (a few spheres bouncing in one run, or
 a subsampled frozen-contact series) with its final states and theory stored as plain CSV
 under ``tests/reference/`` (:mod:`.tables`), its rendered deck stored as golden text under
-``tests/reference/decks/`` (:mod:`.golden`), and everything that produced them
+``tests/reference/decks/``, and everything that produced them
 (parameters, dt, the LAMMPS and spinbounce versions, the tolerances) in
 ``tests/reference/MANIFEST.json`` (:mod:`.store`).
 
@@ -26,9 +26,9 @@ _EXPORTS = {
     "cases": ("CASES", "COLLISION_MU_TOLERANCES", "COLLISION_TOLERANCES", "DEFAULT_DIR", "FROZEN_TOLERANCES",
               "MEASUREMENTS", "ReferenceCase", "Tolerance", "case_by_name", "tolerances_for"),
     "tables": ("Deviation", "Violation", "compare_tables", "deviations", "read_table", "run_case", "write_table"),
-    "golden": ("GOLDEN_DECKS", "GoldenDeck", "compare_decks", "normalise_deck", "render_golden"),
-    "store": ("CheckReport", "DECKS_DIR", "FORMAT", "MANIFEST", "REGENERATE_COMMAND", "check", "compare_manifest",
-              "expected_files", "format_report", "manifest", "read_manifest", "regenerate"),
+    "store": ("CheckReport", "DECKS_DIR", "FORMAT", "GOLDEN_DECKS", "GoldenDeck", "MANIFEST", "REGENERATE_COMMAND",
+              "check", "compare_decks", "compare_manifest", "expected_files", "format_report", "manifest",
+              "normalise_deck", "read_manifest", "regenerate", "render_golden"),
 }
 _WHERE = {name: module for module, names in _EXPORTS.items() for name in names}
 __all__ = sorted(_WHERE)

@@ -131,47 +131,43 @@ def _wall_limit(batch, table):
     return "a's v_n', v_t', r omega' (m/s)", lammps.ravel(), np.array(published).ravel(), tolerance
 
 
-def _all() -> dict[str, PairBenchmark]:
-    chung = "Chung & Ooi (2011), Granular Matter 13:643"
-    return {b.name: b for b in (
-        PairBenchmark(
-            "chung-ooi-1", "Chung & Ooi Test 1: elastic normal impact of two identical glass spheres, 10 m/s each",
-            f"{chung}, Test 1 (paper not read; parameters from code)",
-            (("r = 10 mm, v = +-10 m/s, glass E = 48 GPa, nu = 0.20, rho = 2800 kg/m^3 (or limestone 20 GPa, "
-              "0.25, 2500)", YADE_T1),),
-            "kn gives the Hertz contact time of the two spheres at 20 m/s (reduced mass, r* = r/2, E* of two "
-            "glass spheres); kt from Mindlin's ratio (no tangential motion here)",
-            lambda: _test_1(GLASS), _elastic_rebound, "elastic: each sphere's velocity reversed"),
-        PairBenchmark(
-            "chung-ooi-1-limestone", "Chung & Ooi Test 1, limestone: elastic normal impact of two identical spheres",
-            f"{chung}, Test 1 (paper not read; parameters from code)",
-            (("r = 10 mm, v = +-10 m/s, limestone E = 20 GPa, nu = 0.25, rho = 2500 kg/m^3", YADE_T1),),
-            "as chung-ooi-1, limestone's constants", lambda: _test_1(LIMESTONE), _elastic_rebound,
-            "elastic: each sphere's velocity reversed"),
-        PairBenchmark(
-            "chung-ooi-7", "Chung & Ooi Test 7: identical spheres, 0.2 m/s each way, equal and opposite spins",
-            f"{chung}, Test 7 (paper not read; parameters from code)",
-            (("r = 0.1 m, v_n = +-0.2 m/s, omega = +-v_n tan(theta_i)/r, theta_i = 90 i/18 deg, i = 1..17",
-              f"{KRATOS_BENCHMARKS} (Benchmark7)"),
-             ("aluminium alloy E = 70 GPa, nu = 0.30, rho = 2699 kg/m^3", AL_ALLOY.source)),
-            "kn gives the Hertz contact time of the two spheres at 0.4 m/s; mu = 0.4 (no slip occurs, so the cap "
-            "is never reached)", _test_7, _rolling_contact,
-            "by symmetry the tangential velocities stay 0 and the spins unchanged"),
-        PairBenchmark(
-            "chung-ooi-8", "Chung & Ooi Test 8: a spinning sphere against one 5x larger and 1000x denser, at rest",
-            f"{chung}, Test 8 (paper not read; parameters from code)",
-            (("r = 0.1 m and 0.5 m, densities 2700 and 2.7e6 kg/m^3, v_n = 0.2 m/s, e = 0.5, mu = 0.4", PYSPH_T8),
-             ("omega = v_n tan(theta_i)/r, theta_i = 90 i/18 deg, i = 1..17; 'the bigger and/or denser the second "
-              "sphere is, the more this test resembles the sphere versus wall simulation'",
-              f"{KRATOS_BENCHMARKS} (Benchmark8) and Kratos's DEM benchmark documentation")),
-            "kn gives the Hertz contact time at 0.2 m/s; gamma_n the restitution 0.5 (tensile, no limit_damping); "
-            "mu = 0.4, so the faster spins slide",
-            _test_8, _wall_limit, "a's outcome is the wall's exact outcome for the same sphere and contact, within "
-            "the curvature's model error (the planar theory's, from the exact reference)"),
-    )}
-
-
-PAIR_BENCHMARKS: dict[str, PairBenchmark] = _all()
+_CHUNG = "Chung & Ooi (2011), Granular Matter 13:643"
+PAIR_BENCHMARKS: dict[str, PairBenchmark] = {b.name: b for b in (
+    PairBenchmark(
+        "chung-ooi-1", "Chung & Ooi Test 1: elastic normal impact of two identical glass spheres, 10 m/s each",
+        f"{_CHUNG}, Test 1 (paper not read; parameters from code)",
+        (("r = 10 mm, v = +-10 m/s, glass E = 48 GPa, nu = 0.20, rho = 2800 kg/m^3 (or limestone 20 GPa, "
+          "0.25, 2500)", YADE_T1),),
+        "kn gives the Hertz contact time of the two spheres at 20 m/s (reduced mass, r* = r/2, E* of two "
+        "glass spheres); kt from Mindlin's ratio (no tangential motion here)",
+        lambda: _test_1(GLASS), _elastic_rebound, "elastic: each sphere's velocity reversed"),
+    PairBenchmark(
+        "chung-ooi-1-limestone", "Chung & Ooi Test 1, limestone: elastic normal impact of two identical spheres",
+        f"{_CHUNG}, Test 1 (paper not read; parameters from code)",
+        (("r = 10 mm, v = +-10 m/s, limestone E = 20 GPa, nu = 0.25, rho = 2500 kg/m^3", YADE_T1),),
+        "as chung-ooi-1, limestone's constants", lambda: _test_1(LIMESTONE), _elastic_rebound,
+        "elastic: each sphere's velocity reversed"),
+    PairBenchmark(
+        "chung-ooi-7", "Chung & Ooi Test 7: identical spheres, 0.2 m/s each way, equal and opposite spins",
+        f"{_CHUNG}, Test 7 (paper not read; parameters from code)",
+        (("r = 0.1 m, v_n = +-0.2 m/s, omega = +-v_n tan(theta_i)/r, theta_i = 90 i/18 deg, i = 1..17",
+          f"{KRATOS_BENCHMARKS} (Benchmark7)"),
+         ("aluminium alloy E = 70 GPa, nu = 0.30, rho = 2699 kg/m^3", AL_ALLOY.source)),
+        "kn gives the Hertz contact time of the two spheres at 0.4 m/s; mu = 0.4 (no slip occurs, so the cap "
+        "is never reached)", _test_7, _rolling_contact,
+        "by symmetry the tangential velocities stay 0 and the spins unchanged"),
+    PairBenchmark(
+        "chung-ooi-8", "Chung & Ooi Test 8: a spinning sphere against one 5x larger and 1000x denser, at rest",
+        f"{_CHUNG}, Test 8 (paper not read; parameters from code)",
+        (("r = 0.1 m and 0.5 m, densities 2700 and 2.7e6 kg/m^3, v_n = 0.2 m/s, e = 0.5, mu = 0.4", PYSPH_T8),
+         ("omega = v_n tan(theta_i)/r, theta_i = 90 i/18 deg, i = 1..17; 'the bigger and/or denser the second "
+          "sphere is, the more this test resembles the sphere versus wall simulation'",
+          f"{KRATOS_BENCHMARKS} (Benchmark8) and Kratos's DEM benchmark documentation")),
+        "kn gives the Hertz contact time at 0.2 m/s; gamma_n the restitution 0.5 (tensile, no limit_damping); "
+        "mu = 0.4, so the faster spins slide",
+        _test_8, _wall_limit, "a's outcome is the wall's exact outcome for the same sphere and contact, within "
+        "the curvature's model error (the planar theory's, from the exact reference)"),
+)}
 
 
 def run_pair_benchmark(bench: PairBenchmark, out: Path) -> dict:
