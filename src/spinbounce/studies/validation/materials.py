@@ -12,6 +12,7 @@ import math
 from dataclasses import dataclass
 
 from ... import exact
+from ...exact import hertz
 from ...exact import pair as planar
 from .digitised import KRATOS, YADE_T2
 
@@ -48,17 +49,12 @@ def hertz_contact_time(m: float, r: float, e_star: float, v: float) -> float:
     """Duration of an elastic Hertzian impact of a sphere (mass m, radius r) on a flat wall.
 
     With F = (4/3) E* sqrt(r) delta^(3/2), energy conservation gives the largest overlap
-    delta_max = (15 m v^2 / (16 E* sqrt(r)))^(2/5), and integrating dt = d delta / delta'
-    over the approach and the (symmetric) rebound gives
-
-        t_H = 2 (delta_max / v) integral_0^1 dx / sqrt(1 - x^(5/2))
-            = (4/5) B(2/5, 1/2) delta_max / v  (about 2.943 delta_max / v),
-
-    with B the beta function (substitute u = x^(5/2)).
+    delta_max = (15 m v^2 / (16 E* sqrt(r)))^(2/5), and the approach and the (symmetric)
+    rebound last t_H = 2 I delta_max / v, I = :data:`spinbounce.exact.hertz.CONTACT_INTEGRAL`
+    (about 2.943 delta_max / v).
     """
     delta_max = (15.0 * m * v * v / (16.0 * e_star * math.sqrt(r))) ** 0.4
-    beta = math.gamma(0.4) * math.gamma(0.5) / math.gamma(0.9)
-    return 0.8 * beta * delta_max / v
+    return 2.0 * hertz.CONTACT_INTEGRAL * delta_max / v
 
 
 def mindlin_ratio(nu: float) -> float:

@@ -78,16 +78,14 @@ class BenchmarkRun:
             "max_dev_oracle_rigid_rel_sliding": (float(sliding["dev_oracle_rigid_rel"].max())
                                                  if len(sliding) else None),
             "refine": self.benchmark.refine,
-            "measured": self._measured_summary(),
+            "measured": {
+                q: {"points": int(len(g)),
+                    "max_abs_model_minus_measured": float(g["model_minus_measured"].abs().max()),
+                    "max_abs_rigid_minus_measured": float(g["rigid_minus_measured"].abs().max()),
+                    "unit": QUANTITIES[q]["unit"]}
+                for q, g in self.measured.groupby("quantity", sort=False)
+            } if len(self.measured) else {},
         }
-
-    def _measured_summary(self) -> dict:
-        return {
-            q: {"points": int(len(g)), "max_abs_model_minus_measured": float(g["model_minus_measured"].abs().max()),
-                "max_abs_rigid_minus_measured": float(g["rigid_minus_measured"].abs().max()),
-                "unit": QUANTITIES[q]["unit"]}
-            for q, g in self.measured.groupby("quantity", sort=False)
-        } if len(self.measured) else {}
 
 
 def _oracle(model: ContactModel, states) -> tuple[np.ndarray, list[str], list[str]]:
@@ -112,20 +110,6 @@ def _run_lammps(model, states, oracle_final, refine: int, folder: Path) -> tuple
     run = {"refine": refine, "dt": scene.dt, "nsteps": scene.nsteps, "tau": model.tau, "run_dir": str(folder),
            "lammps_wall_seconds": result.info.wall_seconds, "warnings": list(result.warnings)}
     return final, run
-
-
-def _series_states(bench: Benchmark, series: Series) -> tuple[list, list[str], list[tuple]]:
-    """A series' states (its grid, then one per measured point at its digitised input), their
-    labels, and the (row, Measured, point index) of each measured point's own state."""
-    states = [tuple(s) for s in series.states]
-    labels = [f"grid {i + 1}" for i in range(len(states))]
-    origin = []
-    for p in series.measured:
-        for j, x in enumerate(p.x):
-            origin.append((len(states), p, j))
-            states.append(tuple(bench.to_state(series.model, x)))
-            labels.append(f"{p.quantity} @ {x:.4g}")
-    return states, labels, origin
 
 
 def _series_table(bench: Benchmark, series: Series, labels, initial, finals: dict, notes: dict) -> pd.DataFrame:
@@ -180,7 +164,15 @@ def run_benchmark(bench: Benchmark, root: Path, refine: int | None = None, log=p
     tables, measured_rows, runs = [], [], []
     for k, series in enumerate(bench.series):
         model = series.model
-        states, labels, origin = _series_states(bench, series)
+        # origin: (row, Measured, point index) of each measured point's own state
+        states = [tuple(s) for s in series.states]
+        labels = [f"grid {i + 1}" for i in range(len(states))]
+        origin = []
+        for p in series.measured:
+            for j, x in enumerate(p.x):
+                origin.append((len(states), p, j))
+                states.append(tuple(bench.to_state(model, x)))
+                labels.append(f"{p.quantity} @ {x:.4g}")
         initial = np.array([(v_n, v_t, model.r * w) for v_n, v_t, w in states])
         oracle_final, patterns, errors = _oracle(model, states)
         rigid, regimes = walton(model, initial, model.restitution, bench.beta0)
