@@ -7,9 +7,9 @@ returns; nothing is recomputed. matplotlib is imported only when the figure is d
 from __future__ import annotations
 
 import math
-import shutil
 import tempfile
 import time
+from contextlib import nullcontext
 from pathlib import Path
 
 import numpy as np
@@ -92,7 +92,6 @@ def _fmt(x, spec=".2e") -> str:
     if x is None or (isinstance(x, float) and not math.isfinite(x)):
         return "-"
     return format(x, spec)
-
 
 
 def _introduction(meta: dict) -> list[str]:
@@ -283,12 +282,9 @@ def make_benchmarks(out: Path, only: list[str] | None = None, runs: Path | None 
 
     chosen = select(only)
     started = time.perf_counter()
-    root = Path(runs) if runs is not None else Path(tempfile.mkdtemp(prefix="spinbounce-benchmarks-"))
-    try:
-        results = [run_benchmark(b, root, log=log) for b in chosen]
-    finally:
-        if runs is None:
-            shutil.rmtree(root, ignore_errors=True)
+    with (nullcontext(runs) if runs is not None else
+          tempfile.TemporaryDirectory(prefix="spinbounce-benchmarks-", ignore_cleanup_errors=True)) as root:
+        results = [run_benchmark(b, Path(root), log=log) for b in chosen]
     meta = {
         "report": "benchmarks", **software(),
         "acceptance": ACCEPTANCE, "normalisation": "max over (v_n, v_t, r omega) of |difference| / "
