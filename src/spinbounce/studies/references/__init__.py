@@ -1,21 +1,12 @@
-"""Stored reference outputs: a fixed set of runs whose results must not drift.
+"""Stored reference outputs (docs/how-to/references.md): a fixed set of runs whose results must not drift.
 
-A reference case (:mod:`.cases`) is a small scene (a few spheres bouncing in one run, or
-a subsampled frozen-contact series) with its final states and theory stored as plain CSV
-under ``tests/reference/`` (:mod:`.tables`), its rendered deck stored as golden text under
-``tests/reference/decks/``, and everything that produced them
-(parameters, dt, the LAMMPS and spinbounce versions, the tolerances) in
-``tests/reference/MANIFEST.json`` (:mod:`.store`).
-
-A fresh run is compared with a stored table column by column (:mod:`.tables`): a
-column fails when any row differs by more than that column's absolute tolerance
-(:mod:`.cases`, each with its reason). Golden decks must match exactly, except for
-the version number in their first line, so a release does not invalidate them but any
-changed command does.
-
-References are written only by :func:`regenerate` (``spinbounce references
---regenerate``); :func:`check` and the tests run into throw-away folders
-and only read the stored files.
+A reference case (:mod:`.cases`) is a small scene (a few spheres bouncing in one run, or a
+subsampled frozen-contact series) whose final states and theory are stored as plain CSV under
+``tests/reference/`` (:mod:`.tables`: a column fails when any row differs by more than its
+absolute tolerance, each with its reason), its rendered deck as golden text under ``decks/``
+(matched exactly but for the version in its first line, so a release does not invalidate them
+but any changed command does), and what produced them in ``MANIFEST.json`` (:mod:`.store`).
+Only :func:`regenerate` writes them; :func:`check` and the tests run in throw-away folders.
 """
 
 import importlib

@@ -1,12 +1,7 @@
-"""The reference folder: which files it holds (tables, golden decks, manifest), the one writer
-of them, and the check of fresh runs (in a temporary folder) against it, which only reads it.
-
-Golden decks: each case's rendered deck (and the files it reads), stored as text that a fresh
-rendering must reproduce exactly, version number aside.
-
-``MANIFEST.json`` records everything that produced the stored files: the cases'
-parameters and steps, the tolerances with their reasons and measurements, and the
-LAMMPS and spinbounce versions (:func:`spinbounce.records.software`).
+"""The reference folder: its files (tables, golden decks: each case's rendered deck and the files
+it reads, and ``MANIFEST.json``: the cases' parameters and steps, the tolerances with their reasons
+and measurements, the LAMMPS and spinbounce versions), their one writer, and the check of fresh
+runs (in a temporary folder) against them, which only reads them.
 """
 
 from __future__ import annotations

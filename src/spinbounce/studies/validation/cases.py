@@ -140,10 +140,6 @@ def _chung_ooi_6() -> Benchmark:
     model = ContactModel(m=m, r=r, alpha=SOLID, kn=kn, kt=kt, gamma_n=gamma_n_for_restitution_cut(e, m, kn),
                          mu=mu, limit_damping=True)
     states = tuple((-v_n, 0.0, v_n * math.tan(t) / r) for t in kratos_angles())
-
-    def to_state(model, x):  # x = 3.5 mu (1 + e) v_n / V_st with V_st = r omega
-        return (-v_n, 0.0, 3.5 * model.mu * (1.0 + model.restitution) * v_n / x / model.r)
-
     return Benchmark(
         name="chung-ooi-6",
         title="Chung & Ooi Test 6: pure spin, v_n = 0.2 m/s, r = 0.1 m, mu = 0.4, e = 0.5",
@@ -163,7 +159,7 @@ def _chung_ooi_6() -> Benchmark:
         series=(Series("Al alloy, e = 0.5", model, states),),
         x="x_co6",
         panels=("beta_co6", "tan_recoil"),
-        to_state=to_state,
+        to_state=lambda model, x: (-v_n, 0.0, 3.5 * model.mu * (1.0 + model.restitution) * v_n / x / model.r),
         refine=32,
         refine_why=("measured max |LAMMPS - oracle|/U: 1.3e-3 at the default step, 3.3e-4 at refine 4, 8.2e-5 at "
                     "16, 4.1e-5 at 32, 2.0e-5 at 64 (first order: e = 0.5 is strong normal damping); refine 32 "
