@@ -113,11 +113,8 @@ def _run_lammps(model, states, oracle_final, refine: int, folder: Path) -> tuple
 
 
 def _series_table(bench: Benchmark, series: Series, labels, initial, finals: dict, notes: dict) -> pd.DataFrame:
-    """One row per state: inputs, regimes, deviations, and every final and plotted quantity.
-
-    ``finals``: "lammps", "lammps_2f" (twice the refinement), "oracle", "rigid" -> (n, 3);
-    ``notes``: per-state columns that describe the states (regime, oracle pattern and error).
-    """
+    """One row per state: inputs, ``notes`` (per-state columns: regime, oracle pattern and error),
+    deviations, and every final (:data:`FINALS` -> (n, 3)) and plotted quantity."""
     model = series.model
     lammps, lammps2, oracle_final, rigid = (finals[k] for k in FINALS)
     speed = impact_speed(initial)
