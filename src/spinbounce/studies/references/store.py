@@ -7,7 +7,6 @@ runs (in a temporary folder) against them, which only reads them.
 from __future__ import annotations
 
 import difflib
-import io
 import json
 import re
 import tempfile
@@ -240,19 +239,15 @@ def check(directory: Path = DEFAULT_DIR, names=None, decks: bool = True, progres
 
 def format_report(report: CheckReport) -> str:
     """The largest deviation per case and column, then the violations."""
-    out = io.StringIO()
-    out.write(f"LAMMPS {report.lammps_version}")
-    if report.stored_lammps_version and report.stored_lammps_version != report.lammps_version:
-        out.write(f" (references made with {report.stored_lammps_version})")
-    out.write("\n")
-    out.write(f"{'case':<22}{'column':<16}{'max |dev|':>11}{'tolerance':>11}{'row':>5}  status\n")
+    made = report.stored_lammps_version
+    note = f" (references made with {made})" if made and made != report.lammps_version else ""
+    lines = [f"LAMMPS {report.lammps_version}{note}",
+             f"{'case':<22}{'column':<16}{'max |dev|':>11}{'tolerance':>11}{'row':>5}  status"]
     for name, devs in report.deviations.items():
         for d in devs:
             status = "ok" if d.ok else f"FAIL ({d.beyond} row(s))"
             row = "-" if d.row is None or d.deviation == 0.0 else str(d.row)
-            out.write(f"{name:<22}{d.column:<16}{d.deviation:>11.2e}{d.tolerance:>11.1e}{row:>5}  {status}\n")
+            lines.append(f"{name:<22}{d.column:<16}{d.deviation:>11.2e}{d.tolerance:>11.1e}{row:>5}  {status}")
     if report.violations:
-        out.write(f"\n{len(report.violations)} violation(s):\n")
-        for v in report.violations:
-            out.write(f"  {v}\n")
-    return out.getvalue()
+        lines += ["", f"{len(report.violations)} violation(s):", *(f"  {v}" for v in report.violations)]
+    return "\n".join(lines) + "\n"
