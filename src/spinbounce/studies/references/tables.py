@@ -108,11 +108,9 @@ def deviations(fresh: pd.DataFrame, stored: pd.DataFrame, tolerances: dict) -> l
     for column, tol in tolerances.items():
         if column not in fresh.columns or column not in stored.columns or len(fresh) != len(stored):
             continue
-        a = fresh[column].to_numpy(dtype=float)
-        b = stored[column].to_numpy(dtype=float)
-        same_nan = np.isnan(a) & np.isnan(b)
-        dev = np.where(same_nan, 0.0, np.abs(a - b))
-        dev = np.where(np.isnan(dev), np.inf, dev)
+        a, b = fresh[column].to_numpy(dtype=float), stored[column].to_numpy(dtype=float)
+        dev = np.where(np.isnan(a) & np.isnan(b), 0.0, np.abs(a - b))
+        dev[np.isnan(dev)] = np.inf
         atol = tol.atol if isinstance(tol, Tolerance) else float(tol)
         worst = int(np.argmax(dev)) if dev.size else None
         out.append(Deviation(column, float(dev[worst]) if dev.size else 0.0, worst, atol, int(np.sum(dev > atol))))
@@ -127,14 +125,10 @@ def compare_tables(fresh: pd.DataFrame, stored: pd.DataFrame, tolerances: dict, 
     no tolerance, a column missing from either table and a different number of rows are
     violations too: nothing is compared loosely by default.
     """
-    found = []
-    for column in tolerances:
-        for table, which in ((stored, "stored"), (fresh, "fresh")):
-            if column not in table.columns:
-                found.append(Violation(case, column, f"missing from the {which} table"))
-    for column in stored.columns:
-        if column not in tolerances:
-            found.append(Violation(case, column, "stored column has no tolerance"))
+    found = [Violation(case, column, f"missing from the {which} table") for column in tolerances
+             for table, which in ((stored, "stored"), (fresh, "fresh")) if column not in table.columns]
+    found += [Violation(case, column, "stored column has no tolerance") for column in stored.columns
+              if column not in tolerances]
     if len(fresh) != len(stored):
         found.append(Violation(case, "*", f"{len(fresh)} fresh rows, {len(stored)} stored"))
         return found
