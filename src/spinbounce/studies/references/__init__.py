@@ -16,10 +16,11 @@ import importlib
 _EXPORTS = {
     "cases": ("CASES", "COLLISION_MU_TOLERANCES", "COLLISION_TOLERANCES", "DEFAULT_DIR", "FROZEN_TOLERANCES",
               "MEASUREMENTS", "ReferenceCase", "Tolerance", "case_by_name", "tolerances_for"),
-    "tables": ("Deviation", "Violation", "compare_tables", "deviations", "read_table", "run_case", "write_table"),
-    "store": ("CheckReport", "DECKS_DIR", "FORMAT", "GOLDEN_DECKS", "GoldenDeck", "MANIFEST", "REGENERATE_COMMAND",
-              "check", "compare_decks", "compare_manifest", "expected_files", "format_report", "manifest",
-              "normalise_deck", "read_manifest", "regenerate", "render_golden"),
+    "tables": ("Deviation", "Violation", "compare_tables", "deviations", "read_table", "run_case",
+               "write_table"),
+    "store": ("CheckReport", "DECKS_DIR", "FORMAT", "GOLDEN_DECKS", "GoldenDeck", "MANIFEST",
+              "REGENERATE_COMMAND", "check", "compare_decks", "compare_manifest", "expected_files",
+              "format_report", "manifest", "normalise_deck", "read_manifest", "regenerate", "render_golden"),
 }
 _WHERE = {name: module for module, names in _EXPORTS.items() for name in names}
 __all__ = sorted(_WHERE)

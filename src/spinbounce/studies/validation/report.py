@@ -39,8 +39,8 @@ def _draw_series(ax, run: BenchmarkRun, k: int, y: str) -> None:
     grid = np.linspace(np.nanmin(s["x"]), np.nanmax(s["x"]), 400)
     initial = np.array([bench.to_state(series.model, x) for x in grid]) * [1.0, 1.0, series.model.r]
     final, _ = walton(series.model, initial, series.model.restitution, bench.beta0)
-    ax.plot(quantity(bench.x, initial, initial, series.model), quantity(y, initial, final, series.model), "--",
-            color=c, lw=0.9, alpha=0.8, label="rigid body" if k == 0 else None)
+    ax.plot(quantity(bench.x, initial, initial, series.model), quantity(y, initial, final, series.model),
+            "--", color=c, lw=0.9, alpha=0.8, label="rigid body" if k == 0 else None)
     m = run.measured
     pts = m[(m["series"] == series.label) & (m["quantity"] == y)] if len(m) else m
     if len(pts):
