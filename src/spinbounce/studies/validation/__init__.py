@@ -1,53 +1,32 @@
-"""Published sphere-wall DEM benchmarks as named scenes, run in LAMMPS and set beside the
-Coulomb oracle, rigid-body theory and measured data (``spinbounce benchmarks``).
+"""Published DEM benchmarks as named scenes, run in LAMMPS and set beside the Coulomb oracle,
+rigid-body theory and measured data (``spinbounce benchmarks``; the sphere-sphere ones are in
+:mod:`.pair_cases`).
 
-Each benchmark is data (:mod:`.cases`): a :class:`Benchmark` names its sources, its
-contact model(s) (:class:`Series`, stiffness and damping from :mod:`.materials`), the
-initial states and what its figure plots (:mod:`.quantities`); its published points are
-in :mod:`.digitised`. Every state gets three expectations: the rigid-body theory
-(:func:`walton`, :mod:`.rigid_body`), the Coulomb oracle (exact for the Hookean model) and,
-where they exist, measured values. :func:`run_benchmark` (:mod:`.run`) runs each series in
-one LAMMPS batch at a refined step, and once at twice that refinement for a convergence
-estimate, and tabulates everything; :mod:`.report` writes BENCHMARKS.md, the JSON record
-and the figure.
-
-Units: SI (kg, m, s, N/m). LAMMPS's lj units are scale-free, so SI numbers pass through.
-Sign conventions are the package's: v_n < 0 towards the wall, omega anticlockwise, the
-contact point's tangential velocity (the slip rate) is v_t + r omega.
+Each benchmark is data (:mod:`.cases`): its sources, contact model(s) (:class:`Series`,
+stiffness and damping from :mod:`.materials`), initial states and plotted quantities
+(:mod:`.quantities`, with the rigid-body law); its published points are in :mod:`.digitised`.
+:mod:`.run` runs and tabulates it, :mod:`.report` writes BENCHMARKS.md, the JSON record and
+the figure. Units: SI (kg, m, s, N/m), passed through LAMMPS's scale-free lj units; signs are
+the package's (:mod:`.quantities`).
 """
 
-from .cases import BENCHMARKS, Benchmark, Series, names, select, with_states
-from .digitised import Measured
-from .materials import (AL_ALLOY, ALUMINA, SOLID, STEEL, Material, gamma_n_for_restitution_cut,
-                        hertz_contact_time, hookean_matching_hertz, mindlin_ratio)
-from .quantities import QUANTITIES, quantity
-from .rigid_body import first_touch_stick, impact_speed, walton
-from .run import ACCEPTANCE, BenchmarkRun, refined_dt, run_benchmark
+import importlib
 
-__all__ = [
-    "ACCEPTANCE",
-    "AL_ALLOY",
-    "ALUMINA",
-    "BENCHMARKS",
-    "QUANTITIES",
-    "SOLID",
-    "STEEL",
-    "Benchmark",
-    "BenchmarkRun",
-    "Material",
-    "Measured",
-    "Series",
-    "first_touch_stick",
-    "gamma_n_for_restitution_cut",
-    "hertz_contact_time",
-    "hookean_matching_hertz",
-    "impact_speed",
-    "mindlin_ratio",
-    "names",
-    "quantity",
-    "refined_dt",
-    "run_benchmark",
-    "select",
-    "walton",
-    "with_states",
-]
+#: Each module and the names it exports here, loaded on a name's first use (the command line
+#: checks a benchmark's name without loading the runs).
+_EXPORTS = {
+    "cases": ("BENCHMARKS", "Benchmark", "Series", "select", "with_states"),
+    "digitised": ("Measured",),
+    "materials": ("AL_ALLOY", "ALUMINA", "SOLID", "STEEL", "Material", "gamma_n_for_restitution_cut",
+                  "hertz_contact_time", "hookean_matching_hertz", "mindlin_ratio"),
+    "quantities": ("QUANTITIES", "first_touch_stick", "impact_speed", "quantity", "walton"),
+    "run": ("ACCEPTANCE", "BenchmarkRun", "refined_dt", "run_benchmark"),
+}
+_WHERE = {name: module for module, names in _EXPORTS.items() for name in names}
+__all__ = sorted(_WHERE)
+
+
+def __getattr__(name: str):  # no name here is also a module's: importing one would hide it
+    if name in _WHERE:
+        return getattr(importlib.import_module(f".{_WHERE[name]}", __name__), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -1,34 +1,23 @@
-"""The published benchmarks as data: sources, contact models, initial states, plots.
-
-Four benchmarks (:data:`BENCHMARKS`):
-
-* ``chung-ooi-4``: Chung & Ooi (2011) Test 4, an alumina sphere hitting a wall at a
-  constant speed of 3.9 m/s over incidence angles 5-85 deg, with Kharaz, Gorham & Salman's
-  (2001) measured points as digitised by Lethe and Kratos;
-* ``chung-ooi-5``: Test 5, constant normal speed 5 m/s over tangential speeds (elastic);
-* ``chung-ooi-6``: Test 6, a spinning sphere dropped at 0.2 m/s with no tangential speed;
-* ``thornton-linear``: the linear-law oblique sweep over four restitutions that Kratos
-  ships as its Benchmark 10, with its digitised data.
-
-Units: SI (kg, m, s, N/m). States are (v_n, v_t, omega) with the package's signs.
-"""
+"""The published sphere-wall benchmarks as data (:data:`BENCHMARKS`: Chung & Ooi (2011) Tests 4-6
+and Kratos's Benchmark 10, Thornton's linear law; each one's title says what it is): sources,
+contact models, initial states (v_n, v_t, omega, SI units), plots."""
 
 from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from ...model.contact import ContactModel
-from .digitised import KHARAZ_2001, THORNTON_PSI2_LINEAR, THORNTON_SPIN, Measured
+from .digitised import (KHARAZ_2001, KRATOS, KRATOS_BENCHMARKS, KRATOS_CHUNG_OOI, KRATOS_T10, LETHE,
+                        MFIX_DEM05, THORNTON_PSI2_LINEAR, THORNTON_SPIN, Measured)
 from .materials import (AL_ALLOY, AL_WALL_T4, ALUMINA, SOLID, STEEL, gamma_n_for_restitution_cut,
                         hookean_matching_hertz, mindlin_ratio)
 from .quantities import QUANTITIES
-from .sources import KRATOS, KRATOS_BENCHMARKS, KRATOS_CHUNG_OOI, KRATOS_T10, LETHE, MFIX_DEM05
 
-__all__ = ["BENCHMARKS", "Benchmark", "Series", "names", "select", "with_states"]
+__all__ = ["BENCHMARKS", "Benchmark", "Series", "select", "with_states"]
 
 
 @dataclass(frozen=True)
@@ -63,34 +52,12 @@ class Benchmark:
     refine: int
     refine_why: str
     beta0: float = 0.0
-    notes: tuple[str, ...] = field(default=())
+    notes: tuple[str, ...] = ()
 
 
-
-def _angles(n: int) -> np.ndarray:
-    """Kratos's sweep: theta_i = 90 i/(n + 1) deg, i = 1..n (Chung_Ooi_class.py)."""
+def kratos_angles(n: int = 17) -> np.ndarray:
+    """Kratos's sweep: theta_i = 90 i/(n + 1) deg, i = 1..n (Chung_Ooi_class.py, DEM_benchmarks_class.py)."""
     return np.radians(90.0 * np.arange(1, n + 1) / (n + 1))
-
-
-def _oblique(speed: float) -> Callable:
-    def to_state(model, theta_deg):
-        t = math.radians(theta_deg)
-        return (-speed * math.cos(t), speed * math.sin(t), 0.0)
-
-    return to_state
-
-
-def _normal_fixed(v_n: float, x_name: str) -> Callable:
-    """States at fixed |v_n| from a tangential x quantity (psi1 or V_st/(mu V_cn))."""
-
-    def to_state(model, x):
-        if x_name == "psi1":
-            v_t = x * model.mu * (1.0 + model.restitution) * v_n / 2.0
-        else:
-            v_t = x * model.mu * v_n
-        return (-v_n, v_t, 0.0)
-
-    return to_state
 
 
 def _chung_ooi_4() -> Benchmark:
@@ -99,10 +66,8 @@ def _chung_ooi_4() -> Benchmark:
     kn, kt = 1.72e7, 1.48e7  # MFIX DEM05's linear spring-dashpot run
     model = ContactModel(m=m, r=r, alpha=SOLID, kn=kn, kt=kt, gamma_n=gamma_n_for_restitution_cut(e, m, kn),
                          mu=mu, limit_damping=True)
-    theta = _angles(17)
-    states = tuple((-speed * math.cos(t), speed * math.sin(t), 0.0) for t in theta)
+    states = tuple((-speed * math.cos(t), speed * math.sin(t), 0.0) for t in kratos_angles())
     _, kn_hertz, kt_hertz = hookean_matching_hertz(ALUMINA, r, speed * math.cos(math.radians(45.0)), AL_WALL_T4)
-    measured = KHARAZ_2001
     return Benchmark(
         name="chung-ooi-4",
         title="Chung & Ooi Test 4: alumina sphere, |v| = 3.9 m/s, incidence 5-85 deg (Kharaz et al. 2001)",
@@ -116,7 +81,7 @@ def _chung_ooi_4() -> Benchmark:
             ("theta_i = 90 i/18 deg, i = 1..17", KRATOS_CHUNG_OOI),
             ("kn = 1.72e7 N/m, kt = 1.48e7 N/m (linear spring-dashpot)",
              f"{MFIX_DEM05}, its run script (repository path not resolved)"),
-            *((f"measured {QUANTITIES[p.quantity]['label']}", p.source) for p in measured),
+            *((f"measured {QUANTITIES[p.quantity]['label']}", p.source) for p in KHARAZ_2001),
         ),
         stiffness=(f"kn = 1.72e7 N/m and kt = 1.48e7 N/m, MFIX DEM05's published linear-spring setup for this "
                    f"impact (kt/kn = {kt / kn:.3f}, close to Mindlin's 2(1 - nu)/(2 - nu) = "
@@ -124,10 +89,11 @@ def _chung_ooi_4() -> Benchmark:
                    f"Hertz contact time of alumina on the aluminium-alloy wall at the 45-deg normal speed "
                    f"would be kn = {kn_hertz:.3g} N/m, kt = {kt_hertz:.3g} N/m. Only kt/kn shapes the normalised "
                    "outcome of a linear contact; kn sets its duration."),
-        series=(Series("e = 0.98", model, states, measured),),
+        series=(Series("e = 0.98", model, states, KHARAZ_2001),),
         x="theta",
         panels=("e_t", "omega_out", "rebound_contact", "rebound_centre"),
-        to_state=_oblique(speed),
+        to_state=lambda model, theta: (-speed * math.cos(math.radians(theta)),
+                                       speed * math.sin(math.radians(theta)), 0.0),
         refine=2,
         refine_why=("measured max |LAMMPS - oracle|/U over the 17 grid states and 38 measured inputs: 5.2e-5 at "
                     "the default step, 2.4e-5 at refine 2, 1.2e-5 at 4, 2.9e-6 at 16 (first order, from the "
@@ -143,7 +109,7 @@ def _chung_ooi_5() -> Benchmark:
     # gamma_n = 0 (its cap rate is zero at first touch, so a sticking contact is started as
     # sliding and the spurious switch at delta = 0 is taken for the exit)
     model = ContactModel(m=m, r=r, alpha=SOLID, kn=kn, kt=kt, mu=mu, limit_damping=False)
-    states = tuple((-v_n, v_n * math.tan(t), 0.0) for t in _angles(17))
+    states = tuple((-v_n, v_n * math.tan(t), 0.0) for t in kratos_angles())
     return Benchmark(
         name="chung-ooi-5",
         title="Chung & Ooi Test 5: steel sphere, v_n = 5 m/s across tangential speeds, elastic",
@@ -161,7 +127,7 @@ def _chung_ooi_5() -> Benchmark:
         series=(Series("steel, e = 1", model, states),),
         x="incident_co5",
         panels=("recoil_co5", "spin_co5"),
-        to_state=_normal_fixed(v_n, "incident_co5"),
+        to_state=lambda model, x: (-v_n, x * model.mu * v_n, 0.0),
         refine=1,
         refine_why=("undamped, so second order: measured max |LAMMPS - oracle|/U 6.8e-6 at the default step, "
                     "2.2e-6 at refine 2, 4.3e-7 at 4; the default step is already 15 times below the bar"),
@@ -173,11 +139,7 @@ def _chung_ooi_6() -> Benchmark:
     m, kn, kt = hookean_matching_hertz(AL_ALLOY, r, v_n)
     model = ContactModel(m=m, r=r, alpha=SOLID, kn=kn, kt=kt, gamma_n=gamma_n_for_restitution_cut(e, m, kn),
                          mu=mu, limit_damping=True)
-    states = tuple((-v_n, 0.0, v_n * math.tan(t) / r) for t in _angles(17))
-
-    def to_state(model, x):  # x = 3.5 mu (1 + e) v_n / V_st with V_st = r omega
-        return (-v_n, 0.0, 3.5 * model.mu * (1.0 + model.restitution) * v_n / x / model.r)
-
+    states = tuple((-v_n, 0.0, v_n * math.tan(t) / r) for t in kratos_angles())
     return Benchmark(
         name="chung-ooi-6",
         title="Chung & Ooi Test 6: pure spin, v_n = 0.2 m/s, r = 0.1 m, mu = 0.4, e = 0.5",
@@ -197,7 +159,7 @@ def _chung_ooi_6() -> Benchmark:
         series=(Series("Al alloy, e = 0.5", model, states),),
         x="x_co6",
         panels=("beta_co6", "tan_recoil"),
-        to_state=to_state,
+        to_state=lambda model, x: (-v_n, 0.0, 3.5 * model.mu * (1.0 + model.restitution) * v_n / x / model.r),
         refine=32,
         refine_why=("measured max |LAMMPS - oracle|/U: 1.3e-3 at the default step, 3.3e-4 at refine 4, 8.2e-5 at "
                     "16, 4.1e-5 at 32, 2.0e-5 at 64 (first order: e = 0.5 is strong normal damping); refine 32 "
@@ -239,7 +201,7 @@ def _thornton_linear() -> Benchmark:
         series=tuple(series),
         x="psi1",
         panels=("psi2", "spin_thornton"),
-        to_state=_normal_fixed(v_n, "psi1"),
+        to_state=lambda model, x: (-v_n, x * model.mu * (1.0 + model.restitution) * v_n / 2.0, 0.0),
         refine=16,
         refine_why=("measured max |LAMMPS - oracle|/U over all four e: 6.6e-4 at the default step, 1.7e-4 at "
                     "refine 4, 4.1e-5 at 16, 2.1e-5 at 32, 1.0e-5 at 64 (first order, worst at e = 0.25); "
@@ -247,15 +209,8 @@ def _thornton_linear() -> Benchmark:
     )
 
 
-def _all() -> dict[str, Benchmark]:
-    return {b.name: b for b in (_chung_ooi_4(), _chung_ooi_5(), _chung_ooi_6(), _thornton_linear())}
-
-
-BENCHMARKS: dict[str, Benchmark] = _all()
-
-
-def names() -> list[str]:
-    return list(BENCHMARKS)
+BENCHMARKS: dict[str, Benchmark] = {b.name: b for b in (_chung_ooi_4(), _chung_ooi_5(), _chung_ooi_6(),
+                                                          _thornton_linear())}
 
 
 def select(only: list[str] | None) -> list[Benchmark]:
@@ -266,7 +221,6 @@ def select(only: list[str] | None) -> list[Benchmark]:
     if unknown:
         raise KeyError(f"unknown benchmark(s) {', '.join(unknown)}; known: {', '.join(BENCHMARKS)}")
     return [BENCHMARKS[n] for n in dict.fromkeys(only)]
-
 
 
 def with_states(bench: Benchmark, keep: Callable[[int], bool] | list[int]) -> Benchmark:

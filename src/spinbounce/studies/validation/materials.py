@@ -12,10 +12,13 @@ import math
 from dataclasses import dataclass
 
 from ... import exact
-from .sources import KRATOS, YADE_T2
+from ...exact import hertz
+from ...exact import pair as planar
+from .digitised import KRATOS, YADE_T2
 
-__all__ = ["AL_ALLOY", "ALUMINA", "AL_WALL_T4", "SOLID", "STEEL", "Material", "gamma_n_for_restitution_cut",
-           "hertz_contact_time", "hookean_matching_hertz", "mindlin_ratio"]
+__all__ = ["AL_ALLOY", "ALUMINA", "AL_WALL_T4", "SOLID", "STEEL", "Material", "bisect_damping",
+           "gamma_n_for_restitution_cut", "hertz_contact_time", "hookean_matching_hertz",
+           "matched_pair_contact", "mindlin_ratio"]
 
 #: A solid sphere: I = (2/5) m r^2.
 SOLID = 0.4
@@ -46,17 +49,12 @@ def hertz_contact_time(m: float, r: float, e_star: float, v: float) -> float:
     """Duration of an elastic Hertzian impact of a sphere (mass m, radius r) on a flat wall.
 
     With F = (4/3) E* sqrt(r) delta^(3/2), energy conservation gives the largest overlap
-    delta_max = (15 m v^2 / (16 E* sqrt(r)))^(2/5), and integrating dt = d delta / delta'
-    over the approach and the (symmetric) rebound gives
-
-        t_H = 2 (delta_max / v) integral_0^1 dx / sqrt(1 - x^(5/2))
-            = (4/5) B(2/5, 1/2) delta_max / v  (about 2.943 delta_max / v),
-
-    with B the beta function (substitute u = x^(5/2)).
+    delta_max = (15 m v^2 / (16 E* sqrt(r)))^(2/5), and the approach and the (symmetric)
+    rebound last t_H = 2 I delta_max / v, I = :data:`spinbounce.exact.hertz.CONTACT_INTEGRAL`
+    (about 2.943 delta_max / v).
     """
     delta_max = (15.0 * m * v * v / (16.0 * e_star * math.sqrt(r))) ** 0.4
-    beta = math.gamma(0.4) * math.gamma(0.5) / math.gamma(0.9)
-    return 0.8 * beta * delta_max / v
+    return 2.0 * hertz.CONTACT_INTEGRAL * delta_max / v
 
 
 def mindlin_ratio(nu: float) -> float:
@@ -65,17 +63,41 @@ def mindlin_ratio(nu: float) -> float:
     return 2.0 * (1.0 - nu) / (2.0 - nu)
 
 
+def _hookean(m: float, r: float, e_star: float, v: float, nu: float) -> tuple[float, float]:
+    """(kn, kt): kn = m (pi / t_H)^2 makes the undamped Hookean contact time pi sqrt(m/kn) equal to
+    :func:`hertz_contact_time` at speed v; kt = kn * :func:`mindlin_ratio` (nu)."""
+    kn = m * (math.pi / hertz_contact_time(m, r, e_star, v)) ** 2
+    return kn, kn * mindlin_ratio(nu)
+
+
 def hookean_matching_hertz(material: Material, r: float, v_n: float,
                            wall: Material | None = None) -> tuple[float, float, float]:
-    """(m, kn, kt): a Hookean spring with the Hertz contact time at normal speed |v_n|.
-
-    kn = m (pi / t_H)^2 makes the undamped Hookean contact time pi sqrt(m/kn) equal to
-    :func:`hertz_contact_time`; kt = kn * :func:`mindlin_ratio` (nu).
-    """
+    """(m, kn, kt): a Hookean spring with the Hertz contact time at normal speed |v_n| (:func:`_hookean`)."""
     m = material.mass(r)
-    t_h = hertz_contact_time(m, r, material.effective_modulus(wall), abs(v_n))
-    kn = m * (math.pi / t_h) ** 2
-    return m, kn, kn * mindlin_ratio(material.nu)
+    return (m, *_hookean(m, r, material.effective_modulus(wall), abs(v_n), material.nu))
+
+
+def matched_pair_contact(material: Material, r_a: float, r_b: float, m_a: float, m_b: float, v_rel: float,
+                         b_material: Material | None = None) -> tuple[float, float]:
+    """(kn, kt): the Hookean pair contact with Hertz's contact time at relative normal speed v_rel.
+
+    Hertz between two spheres is a sphere of the reduced mass m* and radius r_a r_b/(r_a + r_b)
+    on a flat of the combined modulus (:func:`_hookean`).
+    """
+    e_star = material.effective_modulus(b_material or material)
+    return _hookean(planar.reduced_mass(m_a, m_b), r_a * r_b / (r_a + r_b), e_star, v_rel, material.nu)
+
+
+def bisect_damping(restitution, e: float, critical: float, rtol: float) -> float:
+    """The gamma_n in (0, critical) where ``restitution(gamma_n)``, falling as gamma_n grows, crosses
+    ``e``, by bisection to ``rtol`` of the bracket's top (at most 200 halvings)."""
+    lo, hi = 0.0, critical
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if restitution(mid) > e else (lo, mid)
+        if hi - lo <= rtol * hi:
+            break
+    return 0.5 * (lo + hi)
 
 
 def gamma_n_for_restitution_cut(e: float, m: float, kn: float) -> float:
@@ -88,16 +110,8 @@ def gamma_n_for_restitution_cut(e: float, m: float, kn: float) -> float:
         raise ValueError(f"e = {e!r}: must lie in (0, 1]")
     if e == 1.0:
         return 0.0
-    lo, hi = 0.0, 2.0 * math.sqrt(m * kn) * (1.0 - 1e-12)
-    for _ in range(200):
-        mid = 0.5 * (lo + hi)
-        if exact.restitution(m, kn, mid, tensile=False) > e:
-            lo = mid
-        else:
-            hi = mid
-        if hi - lo <= 1e-15 * hi:
-            break
-    return 0.5 * (lo + hi)
+    return bisect_damping(lambda gamma_n: exact.restitution(m, kn, gamma_n, tensile=False), e,
+                          2.0 * math.sqrt(m * kn) * (1.0 - 1e-12), 1e-15)
 
 
 #: Chung & Ooi Test 2's aluminium alloy, the one Test-6 material whose constants were found.

@@ -1,26 +1,13 @@
 """Published sphere-sphere benchmarks as named pair scenes, run in LAMMPS beside the pair's theories.
 
-Chung & Ooi (2011), Granular Matter 13:643, number their two-sphere tests 1, 7 and 8:
-
-* ``chung-ooi-1``: elastic normal impact of two identical spheres (glass and limestone,
-  r = 10 mm, 10 m/s each way). Published: an elastic rebound (each velocity reversed);
-* ``chung-ooi-7``: two identical aluminium-alloy spheres (r = 0.1 m, 0.2 m/s each way) spinning
-  with equal and opposite angular velocities, so that their contact points move together.
-  Published (Kratos's reading of it): by symmetry no tangential velocity arises and the
-  spins keep their size (a rolling contact: no slip, so no tangential force);
-* ``chung-ooi-8``: a spinning aluminium-alloy sphere (r = 0.1 m, 0.2 m/s, e = 0.5, mu = 0.4)
-  against a sphere five times larger and 1000 times denser, at rest. Published statement:
-  the bigger and denser the second sphere, the more the test resembles the sphere-wall one;
-  here a's outcome is checked against the wall's exact stick-slip theory with the same cap
-  (:mod:`spinbounce.exact.choose`), which it reaches within the planar theory's model
-  error: b is heavy but still curved, and the line of centres' turn moves a's outcome.
-
-Each scene's pairs run in one LAMMPS batch (:func:`spinbounce.pipeline.run_scene`) and every
-pair is also checked against the exact reference of what LAMMPS integrates (within the
-default accuracy, 1e-4 of the pair's speed; with tests 7 and 8's Coulomb cap, mu = 0.4, the
-capped reference :mod:`spinbounce.exact.pair_capped`) and set beside the planar theory.
-Test 8's published curves are not read here (only their statement, the wall limit).
-Thornton's oblique sphere-sphere results: no source giving their parameters was found.
+Chung & Ooi (2011), Granular Matter 13:643, number their two-sphere tests 1, 7 and 8; each
+:class:`PairBenchmark` says what its source publishes (test 7 as Kratos reads it: a rolling
+contact, no slip so no tangential force; test 8 only its statement, the wall limit, not its
+curves) and how close LAMMPS must come. Each scene's pairs run in one LAMMPS batch, every pair
+also checked against the exact reference of what LAMMPS integrates (within the default
+accuracy, 1e-4 of the pair's speed; with the Coulomb cap of tests 7 and 8, mu = 0.4,
+:mod:`spinbounce.exact.pair_capped`) and set beside the planar theory. Thornton's oblique
+sphere-sphere results: no source giving their parameters was found.
 
 Units: SI (kg, m, s, N/m), passed through LAMMPS's scale-free lj units.
 """
@@ -37,9 +24,14 @@ import pandas as pd
 
 from ...model.contact import ContactModel
 from ...model.timestep import ACCURACY
+from ...exact import choose
 from ...exact import pair as planar
-from .materials import AL_ALLOY, SOLID, Material, hertz_contact_time, mindlin_ratio
-from .sources import KRATOS_BENCHMARKS, PYSPH_T8, YADE_T1
+from ...pipeline import run_scene
+from ...scenes.pair import Pair, PairBatch, PairContact, Sphere
+from ...scenes.pair.kind import wall_frame
+from .cases import kratos_angles
+from .materials import AL_ALLOY, SOLID, Material, bisect_damping, matched_pair_contact
+from .digitised import KRATOS_BENCHMARKS, PYSPH_T8, YADE_T1
 
 __all__ = ["PairBenchmark", "PAIR_BENCHMARKS", "GLASS", "LIMESTONE", "run_pair_benchmark", "matched_pair_contact"]
 
@@ -65,29 +57,7 @@ class PairBenchmark:
     expectation: str
 
 
-def _angles(n: int = 17) -> np.ndarray:
-    """theta_i = 90 i/(n + 1) deg, i = 1..n (Kratos's sweep, DEM_benchmarks_class.py)."""
-    return np.radians(90.0 * np.arange(1, n + 1) / (n + 1))
-
-
-def matched_pair_contact(material: Material, r_a: float, r_b: float, m_a: float, m_b: float, v_rel: float,
-                         b_material: Material | None = None) -> tuple[float, float]:
-    """(kn, kt): the Hookean pair contact with Hertz's contact time at relative normal speed v_rel.
-
-    Hertz between two spheres is a sphere of the reduced mass m* and radius r_a r_b/(r_a + r_b)
-    on a flat of the combined modulus (:func:`.materials.hertz_contact_time`); kn = m* (pi/t_H)^2
-    gives the Hookean pi sqrt(m*/kn) the same duration; kt = kn times Mindlin's ratio.
-    """
-    m_star = planar.reduced_mass(m_a, m_b)
-    e_star = material.effective_modulus(b_material or material)
-    t_h = hertz_contact_time(m_star, r_a * r_b / (r_a + r_b), e_star, v_rel)
-    kn = m_star * (math.pi / t_h) ** 2
-    return kn, kn * mindlin_ratio(material.nu)
-
-
 def _test_1(material: Material):
-    from ...scenes.pair import Pair, PairBatch, PairContact, Sphere
-
     r, v = 0.010, 10.0
     sphere = Sphere(material.mass(r), r, SOLID)
     kn, kt = matched_pair_contact(material, r, r, sphere.m, sphere.m, 2 * v)
@@ -101,12 +71,10 @@ def _elastic_rebound(batch, table):
 
 
 def _test_7():
-    from ...scenes.pair import Pair, PairBatch, PairContact, Sphere
-
     r, v_n = 0.1, 0.2
     sphere = Sphere(AL_ALLOY.mass(r), r, SOLID)
     kn, kt = matched_pair_contact(AL_ALLOY, r, r, sphere.m, sphere.m, 2 * v_n)
-    spins = v_n * np.tan(_angles()) / r
+    spins = v_n * np.tan(kratos_angles()) / r
     pairs = [Pair(a=sphere, b=sphere, v_a=(0.0, 0.0, -v_n), v_b=(0.0, 0.0, v_n), w_a=(0.0, w, 0.0),
                   w_b=(0.0, -w, 0.0)) for w in spins]
     return PairBatch(pairs, PairContact(kn, kt, mu=CHUNG_OOI_MU))
@@ -129,31 +97,16 @@ T8_RESTITUTION, T8_SIZE, T8_DENSITY = 0.5, 5.0, 1000.0
 T8_REFINE = 4
 
 
-def _gamma_n_for(e: float, m_a: float, m_b: float, kn: float) -> float:
-    """gamma_n giving the pair's (tensile) restitution e: bisection, restitution falls as gamma_n grows."""
-    lo, hi = 0.0, 2.0 * math.sqrt(planar.reduced_mass(m_a, m_b) * kn) * (1.0 - 1e-9)
-    for _ in range(200):
-        mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if planar.restitution(m_a, m_b, kn, mid) > e else (lo, mid)
-    return 0.5 * (lo + hi)
-
-
-def _test_8_parts():
-    from ...scenes.pair import Sphere
-
+def _test_8():
     r, v_n = 0.1, 0.2
     a = Sphere(AL_ALLOY.mass(r), r, SOLID)
     heavy = Material("aluminium alloy x1000", AL_ALLOY.E, AL_ALLOY.nu, AL_ALLOY.rho * T8_DENSITY, AL_ALLOY.source)
     b = Sphere(heavy.mass(T8_SIZE * r), T8_SIZE * r, SOLID)
     kn, kt = matched_pair_contact(AL_ALLOY, a.r, b.r, a.m, b.m, v_n)
-    return a, b, kn, kt, _gamma_n_for(T8_RESTITUTION, a.m, b.m, kn), v_n
-
-
-def _test_8():
-    from ...scenes.pair import Pair, PairBatch, PairContact
-
-    a, b, kn, kt, gamma_n, v_n = _test_8_parts()
-    spins = v_n * np.tan(_angles()) / a.r
+    # the pair's (tensile) restitution falls as gamma_n grows
+    gamma_n = bisect_damping(lambda g: planar.restitution(a.m, b.m, kn, g), T8_RESTITUTION,
+                             2.0 * math.sqrt(planar.reduced_mass(a.m, b.m) * kn) * (1.0 - 1e-9), 0.0)
+    spins = v_n * np.tan(kratos_angles()) / a.r
     pairs = [Pair(a=a, b=b, v_a=(0.0, 0.0, -v_n), w_a=(0.0, -w, 0.0)) for w in spins]
     contact = PairContact(kn, kt, gamma_n, mu=CHUNG_OOI_MU)
     # damped, so first order in dt: measured 1.8e-4 of the speed at the default step, 3.7e-5 at a quarter
@@ -162,9 +115,6 @@ def _test_8():
 
 def _wall_limit(batch, table):
     """a's (v_n, v_t, r omega) against the wall's exact theory for the same sphere and contact (and cap)."""
-    from ...scenes.pair.kind import wall_frame
-    from ...exact import choose
-
     a, law = batch.pairs[0].a, batch.contact.law()
     model = ContactModel(m=a.m, r=a.r, alpha=a.alpha, kn=law["kn"], kt=law["kt"], gamma_n=law["gamma_n"],
                          mu=batch.contact.mu)
@@ -181,53 +131,47 @@ def _wall_limit(batch, table):
     return "a's v_n', v_t', r omega' (m/s)", lammps.ravel(), np.array(published).ravel(), tolerance
 
 
-def _all() -> dict[str, PairBenchmark]:
-    chung = "Chung & Ooi (2011), Granular Matter 13:643"
-    return {b.name: b for b in (
-        PairBenchmark(
-            "chung-ooi-1", "Chung & Ooi Test 1: elastic normal impact of two identical glass spheres, 10 m/s each",
-            f"{chung}, Test 1 (paper not read; parameters from code)",
-            (("r = 10 mm, v = +-10 m/s, glass E = 48 GPa, nu = 0.20, rho = 2800 kg/m^3 (or limestone 20 GPa, "
-              "0.25, 2500)", YADE_T1),),
-            "kn gives the Hertz contact time of the two spheres at 20 m/s (reduced mass, r* = r/2, E* of two "
-            "glass spheres); kt from Mindlin's ratio (no tangential motion here)",
-            lambda: _test_1(GLASS), _elastic_rebound, "elastic: each sphere's velocity reversed"),
-        PairBenchmark(
-            "chung-ooi-1-limestone", "Chung & Ooi Test 1, limestone: elastic normal impact of two identical spheres",
-            f"{chung}, Test 1 (paper not read; parameters from code)",
-            (("r = 10 mm, v = +-10 m/s, limestone E = 20 GPa, nu = 0.25, rho = 2500 kg/m^3", YADE_T1),),
-            "as chung-ooi-1, limestone's constants", lambda: _test_1(LIMESTONE), _elastic_rebound,
-            "elastic: each sphere's velocity reversed"),
-        PairBenchmark(
-            "chung-ooi-7", "Chung & Ooi Test 7: identical spheres, 0.2 m/s each way, equal and opposite spins",
-            f"{chung}, Test 7 (paper not read; parameters from code)",
-            (("r = 0.1 m, v_n = +-0.2 m/s, omega = +-v_n tan(theta_i)/r, theta_i = 90 i/18 deg, i = 1..17",
-              f"{KRATOS_BENCHMARKS} (Benchmark7)"),
-             ("aluminium alloy E = 70 GPa, nu = 0.30, rho = 2699 kg/m^3", AL_ALLOY.source)),
-            "kn gives the Hertz contact time of the two spheres at 0.4 m/s; mu = 0.4 (no slip occurs, so the cap "
-            "is never reached)", _test_7, _rolling_contact,
-            "by symmetry the tangential velocities stay 0 and the spins unchanged"),
-        PairBenchmark(
-            "chung-ooi-8", "Chung & Ooi Test 8: a spinning sphere against one 5x larger and 1000x denser, at rest",
-            f"{chung}, Test 8 (paper not read; parameters from code)",
-            (("r = 0.1 m and 0.5 m, densities 2700 and 2.7e6 kg/m^3, v_n = 0.2 m/s, e = 0.5, mu = 0.4", PYSPH_T8),
-             ("omega = v_n tan(theta_i)/r, theta_i = 90 i/18 deg, i = 1..17; 'the bigger and/or denser the second "
-              "sphere is, the more this test resembles the sphere versus wall simulation'",
-              f"{KRATOS_BENCHMARKS} (Benchmark8) and Kratos's DEM benchmark documentation")),
-            "kn gives the Hertz contact time at 0.2 m/s; gamma_n the restitution 0.5 (tensile, no limit_damping); "
-            "mu = 0.4, so the faster spins slide",
-            _test_8, _wall_limit, "a's outcome is the wall's exact outcome for the same sphere and contact, within "
-            "the curvature's model error (the planar theory's, from the exact reference)"),
-    )}
-
-
-PAIR_BENCHMARKS: dict[str, PairBenchmark] = _all()
+_CHUNG = "Chung & Ooi (2011), Granular Matter 13:643"
+PAIR_BENCHMARKS: dict[str, PairBenchmark] = {b.name: b for b in (
+    PairBenchmark(
+        "chung-ooi-1", "Chung & Ooi Test 1: elastic normal impact of two identical glass spheres, 10 m/s each",
+        f"{_CHUNG}, Test 1 (paper not read; parameters from code)",
+        (("r = 10 mm, v = +-10 m/s, glass E = 48 GPa, nu = 0.20, rho = 2800 kg/m^3 (or limestone 20 GPa, "
+          "0.25, 2500)", YADE_T1),),
+        "kn gives the Hertz contact time of the two spheres at 20 m/s (reduced mass, r* = r/2, E* of two "
+        "glass spheres); kt from Mindlin's ratio (no tangential motion here)",
+        lambda: _test_1(GLASS), _elastic_rebound, "elastic: each sphere's velocity reversed"),
+    PairBenchmark(
+        "chung-ooi-1-limestone", "Chung & Ooi Test 1, limestone: elastic normal impact of two identical spheres",
+        f"{_CHUNG}, Test 1 (paper not read; parameters from code)",
+        (("r = 10 mm, v = +-10 m/s, limestone E = 20 GPa, nu = 0.25, rho = 2500 kg/m^3", YADE_T1),),
+        "as chung-ooi-1, limestone's constants", lambda: _test_1(LIMESTONE), _elastic_rebound,
+        "elastic: each sphere's velocity reversed"),
+    PairBenchmark(
+        "chung-ooi-7", "Chung & Ooi Test 7: identical spheres, 0.2 m/s each way, equal and opposite spins",
+        f"{_CHUNG}, Test 7 (paper not read; parameters from code)",
+        (("r = 0.1 m, v_n = +-0.2 m/s, omega = +-v_n tan(theta_i)/r, theta_i = 90 i/18 deg, i = 1..17",
+          f"{KRATOS_BENCHMARKS} (Benchmark7)"),
+         ("aluminium alloy E = 70 GPa, nu = 0.30, rho = 2699 kg/m^3", AL_ALLOY.source)),
+        "kn gives the Hertz contact time of the two spheres at 0.4 m/s; mu = 0.4 (no slip occurs, so the cap "
+        "is never reached)", _test_7, _rolling_contact,
+        "by symmetry the tangential velocities stay 0 and the spins unchanged"),
+    PairBenchmark(
+        "chung-ooi-8", "Chung & Ooi Test 8: a spinning sphere against one 5x larger and 1000x denser, at rest",
+        f"{_CHUNG}, Test 8 (paper not read; parameters from code)",
+        (("r = 0.1 m and 0.5 m, densities 2700 and 2.7e6 kg/m^3, v_n = 0.2 m/s, e = 0.5, mu = 0.4", PYSPH_T8),
+         ("omega = v_n tan(theta_i)/r, theta_i = 90 i/18 deg, i = 1..17; 'the bigger and/or denser the second "
+          "sphere is, the more this test resembles the sphere versus wall simulation'",
+          f"{KRATOS_BENCHMARKS} (Benchmark8) and Kratos's DEM benchmark documentation")),
+        "kn gives the Hertz contact time at 0.2 m/s; gamma_n the restitution 0.5 (tensile, no limit_damping); "
+        "mu = 0.4, so the faster spins slide",
+        _test_8, _wall_limit, "a's outcome is the wall's exact outcome for the same sphere and contact, within "
+        "the curvature's model error (the planar theory's, from the exact reference)"),
+)}
 
 
 def run_pair_benchmark(bench: PairBenchmark, out: Path) -> dict:
     """Run a benchmark's pairs in one LAMMPS batch; its record (JSON-ready) with every check's numbers."""
-    from ...pipeline import run_scene
-
     result = run_scene(bench.make(), Path(out) / bench.name, record=False)
     quantity, lammps, published, tolerance = bench.published(result.scene, result.table)
     off = float(np.abs(lammps - published).max())

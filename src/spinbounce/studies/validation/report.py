@@ -7,36 +7,22 @@ returns; nothing is recomputed. matplotlib is imported only when the figure is d
 from __future__ import annotations
 
 import math
-import shutil
 import tempfile
 import time
+from contextlib import nullcontext
 from pathlib import Path
 
 import numpy as np
 
 from ...records import json_ready, software, write_atomic
 from .cases import select
-from .quantities import QUANTITIES, quantity
-from .rigid_body import walton
+from .quantities import QUANTITIES, quantity, walton
 from .run import ACCEPTANCE, BenchmarkRun, run_benchmark
 
 __all__ = ["make_benchmarks", "draw", "markdown", "record"]
 
 #: One colour per series of a benchmark.
 COLOURS = ("#d62728", "#1f77b4", "#2ca02c", "#9467bd")
-
-
-def _rigid_curve(run: BenchmarkRun, series, y: str):
-    """Walton's outcome on a dense grid of the benchmark's x quantity, for the dashed line."""
-    bench = run.benchmark
-    xs = run.table.loc[run.table["series"] == series.label, "x"].to_numpy()
-    lo, hi = np.nanmin(xs), np.nanmax(xs)
-    grid = np.linspace(lo, hi, 400)
-    states = np.array([bench.to_state(series.model, x) for x in grid])
-    initial = states * [1.0, 1.0, series.model.r]
-    final, _ = walton(series.model, initial, series.model.restitution, bench.beta0)
-    return quantity(bench.x, initial, initial, series.model), quantity(y, initial, final, series.model)
-
 
 
 def _draw_series(ax, run: BenchmarkRun, k: int, y: str) -> None:
@@ -49,8 +35,12 @@ def _draw_series(ax, run: BenchmarkRun, k: int, y: str) -> None:
     ok = s[s["oracle_ok"]]
     ax.plot(ok["x"], ok[f"{y}_oracle"], "-", color=c, lw=1.0, label=series.label if many else "oracle")
     ax.plot(s["x"], s[f"{y}_lammps"], "o", ms=2.8, mfc="none", color=c, label="LAMMPS" if k == 0 else None)
-    gx, gy = _rigid_curve(run, series, y)
-    ax.plot(gx, gy, "--", color=c, lw=0.9, alpha=0.8, label="rigid body" if k == 0 else None)
+    # Walton's outcome on a dense grid of the benchmark's x quantity
+    grid = np.linspace(np.nanmin(s["x"]), np.nanmax(s["x"]), 400)
+    initial = np.array([bench.to_state(series.model, x) for x in grid]) * [1.0, 1.0, series.model.r]
+    final, _ = walton(series.model, initial, series.model.restitution, bench.beta0)
+    ax.plot(quantity(bench.x, initial, initial, series.model), quantity(y, initial, final, series.model),
+            "--", color=c, lw=0.9, alpha=0.8, label="rigid body" if k == 0 else None)
     m = run.measured
     pts = m[(m["series"] == series.label) & (m["quantity"] == y)] if len(m) else m
     if len(pts):
@@ -102,7 +92,6 @@ def _fmt(x, spec=".2e") -> str:
     if x is None or (isinstance(x, float) and not math.isfinite(x)):
         return "-"
     return format(x, spec)
-
 
 
 def _introduction(meta: dict) -> list[str]:
@@ -293,12 +282,9 @@ def make_benchmarks(out: Path, only: list[str] | None = None, runs: Path | None 
 
     chosen = select(only)
     started = time.perf_counter()
-    root = Path(runs) if runs is not None else Path(tempfile.mkdtemp(prefix="spinbounce-benchmarks-"))
-    try:
-        results = [run_benchmark(b, root, log=log) for b in chosen]
-    finally:
-        if runs is None:
-            shutil.rmtree(root, ignore_errors=True)
+    with (nullcontext(runs) if runs is not None else
+          tempfile.TemporaryDirectory(prefix="spinbounce-benchmarks-", ignore_cleanup_errors=True)) as root:
+        results = [run_benchmark(b, Path(root), log=log) for b in chosen]
     meta = {
         "report": "benchmarks", **software(),
         "acceptance": ACCEPTANCE, "normalisation": "max over (v_n, v_t, r omega) of |difference| / "

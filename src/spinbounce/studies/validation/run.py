@@ -4,7 +4,7 @@ twice that refinement for a convergence estimate, tabulated beside the Coulomb o
 and the measured points.
 
 Deviations are the largest over (v_n, v_t, r omega), relative to the impact speed
-(:func:`.rigid_body.impact_speed`).
+(:func:`.quantities.impact_speed`).
 """
 
 from __future__ import annotations
@@ -21,15 +21,12 @@ from ...model.timestep import refine_mid_step
 from ...pipeline import run_scene
 from ...exact import oracle
 from .cases import Benchmark, Series
-from .quantities import QUANTITIES, quantity
-from .rigid_body import first_touch_stick, impact_speed, walton
+from .quantities import QUANTITIES, first_touch_stick, impact_speed, quantity, walton
 
 __all__ = ["ACCEPTANCE", "BenchmarkRun", "refined_dt", "run_benchmark"]
 
 #: Largest |LAMMPS - oracle| allowed, as a fraction of the impact speed (:func:`impact_speed`).
 ACCEPTANCE = 1e-4
-#: The components of a state row, as the tables name them.
-COMPONENTS = STATE
 #: The final states tabulated per state: LAMMPS at the benchmark's refinement and at twice
 #: it, the oracle, the rigid-body law (columns named <component>_<final>).
 FINALS = ("lammps", "lammps_2f", "oracle", "rigid")
@@ -81,33 +78,27 @@ class BenchmarkRun:
             "max_dev_oracle_rigid_rel_sliding": (float(sliding["dev_oracle_rigid_rel"].max())
                                                  if len(sliding) else None),
             "refine": self.benchmark.refine,
-            "measured": self._measured_summary(),
+            "measured": {
+                q: {"points": int(len(g)),
+                    "max_abs_model_minus_measured": float(g["model_minus_measured"].abs().max()),
+                    "max_abs_rigid_minus_measured": float(g["rigid_minus_measured"].abs().max()),
+                    "unit": QUANTITIES[q]["unit"]}
+                for q, g in self.measured.groupby("quantity", sort=False)
+            } if len(self.measured) else {},
         }
-
-    def _measured_summary(self) -> dict:
-        return {
-            q: {"points": int(len(g)), "max_abs_model_minus_measured": float(g["model_minus_measured"].abs().max()),
-                "max_abs_rigid_minus_measured": float(g["rigid_minus_measured"].abs().max()),
-                "unit": QUANTITIES[q]["unit"]}
-            for q, g in self.measured.groupby("quantity", sort=False)
-        } if len(self.measured) else {}
 
 
 def _oracle(model: ContactModel, states) -> tuple[np.ndarray, list[str], list[str]]:
     """Oracle finals (v_n, v_t, r omega), contact patterns and errors, state by state."""
-    finals, patterns, errors = [], [], []
+    rows = []
     for v_n, v_t, omega in states:
         try:
             got = oracle.bounce(model, v_n, v_t, omega)
         except RuntimeError as exc:  # recorded and reported, never hidden
-            finals.append([np.nan] * 3)
-            patterns.append("failed")
-            errors.append(str(exc))
+            rows.append(([np.nan] * 3, "failed", str(exc)))
         else:
-            finals.append(got.final[:3])
-            patterns.append(got.pattern)
-            errors.append("")
-    return np.array(finals), patterns, errors
+            rows.append((got.final[:3], got.pattern, ""))
+    return np.array([r[0] for r in rows]), [r[1] for r in rows], [r[2] for r in rows]
 
 
 def _run_lammps(model, states, oracle_final, refine: int, folder: Path) -> tuple[np.ndarray, dict]:
@@ -115,43 +106,15 @@ def _run_lammps(model, states, oracle_final, refine: int, folder: Path) -> tuple
     scene = _OracleBatch(model, v_n=s[:, 0], v_t=s[:, 1], omega=s[:, 2], dt=refined_dt(model, refine),
                          oracle_final=tuple(np.asarray(oracle_final).ravel()))
     result = run_scene(scene, folder, atoms="library", record=True)
-    t = result.table
-    final = np.column_stack([t.v_n_lammps, t.v_t_lammps, t.r_omega_lammps])
+    final = result.table[[f"{c}_lammps" for c in STATE]].to_numpy(dtype=float)
     run = {"refine": refine, "dt": scene.dt, "nsteps": scene.nsteps, "tau": model.tau, "run_dir": str(folder),
            "lammps_wall_seconds": result.info.wall_seconds, "warnings": list(result.warnings)}
     return final, run
 
 
-@dataclass(frozen=True)
-class _SeriesStates:
-    """A series' states: its grid, then one per measured point at its digitised input.
-
-    ``origin``: (row, Measured, point index) of each measured point's own state.
-    """
-
-    states: list[tuple[float, float, float]]
-    labels: list[str]
-    origin: list[tuple]
-
-    @classmethod
-    def of(cls, bench: Benchmark, series: Series) -> _SeriesStates:
-        states = [tuple(s) for s in series.states]
-        labels = [f"grid {i + 1}" for i in range(len(states))]
-        origin = []
-        for p in series.measured:
-            for j, x in enumerate(p.x):
-                origin.append((len(states), p, j))
-                states.append(tuple(bench.to_state(series.model, x)))
-                labels.append(f"{p.quantity} @ {x:.4g}")
-        return cls(states, labels, origin)
-
-
 def _series_table(bench: Benchmark, series: Series, labels, initial, finals: dict, notes: dict) -> pd.DataFrame:
-    """One row per state: inputs, regimes, deviations, and every final and plotted quantity.
-
-    ``finals``: "lammps", "lammps_2f" (twice the refinement), "oracle", "rigid" -> (n, 3);
-    ``notes``: per-state columns that describe the states (regime, oracle pattern and error).
-    """
+    """One row per state: inputs, ``notes`` (per-state columns: regime, oracle pattern and error),
+    deviations, and every final (:data:`FINALS` -> (n, 3)) and plotted quantity."""
     model = series.model
     lammps, lammps2, oracle_final, rigid = (finals[k] for k in FINALS)
     speed = impact_speed(initial)
@@ -167,7 +130,7 @@ def _series_table(bench: Benchmark, series: Series, labels, initial, finals: dic
         "first_touch_stick_rel": first_touch_stick(model, initial) / speed,
     }
     for name in FINALS:
-        for c, component in enumerate(COMPONENTS):
+        for c, component in enumerate(STATE):
             table[f"{component}_{name}"] = finals[name][:, c]
         for q in bench.panels:
             table[f"{q}_{name}"] = quantity(q, initial, finals[name], model)
@@ -198,20 +161,28 @@ def run_benchmark(bench: Benchmark, root: Path, refine: int | None = None, log=p
     tables, measured_rows, runs = [], [], []
     for k, series in enumerate(bench.series):
         model = series.model
-        found = _SeriesStates.of(bench, series)
-        initial = np.array([(v_n, v_t, model.r * w) for v_n, v_t, w in found.states])
-        oracle_final, patterns, errors = _oracle(model, found.states)
+        # origin: (row, Measured, point index) of each measured point's own state
+        states = [tuple(s) for s in series.states]
+        labels = [f"grid {i + 1}" for i in range(len(states))]
+        origin = []
+        for p in series.measured:
+            for j, x in enumerate(p.x):
+                origin.append((len(states), p, j))
+                states.append(tuple(bench.to_state(model, x)))
+                labels.append(f"{p.quantity} @ {x:.4g}")
+        initial = np.array([(v_n, v_t, model.r * w) for v_n, v_t, w in states])
+        oracle_final, patterns, errors = _oracle(model, states)
         rigid, regimes = walton(model, initial, model.restitution, bench.beta0)
         finals = {"oracle": oracle_final, "rigid": rigid}
         folder = Path(root) / bench.name / f"series_{k}"
         for name, factor in (("lammps", refine), ("lammps_2f", 2 * refine)):
-            finals[name], run = _run_lammps(model, found.states, oracle_final, factor, folder / f"refine_{factor}")
+            finals[name], run = _run_lammps(model, states, oracle_final, factor, folder / f"refine_{factor}")
             runs.append({"series": series.label, **run})
         notes = {"regime_rigid": regimes, "oracle_pattern": patterns, "oracle_error": errors}
-        frame = _series_table(bench, series, found.labels, initial, finals, notes)
-        log(f"{bench.name} [{series.label}]: {len(found.states)} states, refine {refine} and {2 * refine}: "
+        frame = _series_table(bench, series, labels, initial, finals, notes)
+        log(f"{bench.name} [{series.label}]: {len(states)} states, refine {refine} and {2 * refine}: "
             f"max |LAMMPS - oracle|/U = {np.nanmax(frame['dev_lammps_oracle_rel']):.3g}, "
             f"{np.nanmax(frame['dev_lammps_oracle_rel_2f']):.3g}")
         tables.append(frame)
-        measured_rows += _measured_rows(series, frame, found.origin)
+        measured_rows += _measured_rows(series, frame, origin)
     return BenchmarkRun(bench, pd.concat(tables, ignore_index=True), pd.DataFrame(measured_rows), runs)
