@@ -2,9 +2,9 @@
 
 * :mod:`.ledger`: the claim record, the verdict kinds and what every claim shares;
 * :mod:`.collisions`, :mod:`.contact`, :mod:`.frozen`, :mod:`.damping`, :mod:`.energy`: the
-  claims by topic, one function each; after the paper's, :mod:`.classic` (the LAMMPS
-  implementation it used, in this build) and :mod:`.pairs` (two spheres of equal alpha have
-  the wall's Omega);
+  claims by topic, one function each; after the paper's, the LAMMPS implementation it used,
+  in this build (:mod:`.collisions`) and :mod:`.pairs` (two spheres of equal alpha have the
+  wall's Omega);
 * :mod:`.write`: CLAIMS.md and claims.json.
 """
 
@@ -13,7 +13,7 @@ from __future__ import annotations
 import warnings
 from pathlib import Path
 
-from . import classic, collisions, contact, damping, energy, frozen, pairs
+from . import collisions, contact, damping, energy, frozen, pairs
 from .ledger import COLLISION_TOL, FROZEN_TOL, VERDICTS, Claim, Runs, verdict
 from .write import counts, write_claims
 
@@ -27,7 +27,8 @@ CLAIMS = (
     frozen.frozen_slope, collisions.rolling_unchanged, collisions.harmonic_ratios, collisions.magic_ratio,
     collisions.rough_no_spin, collisions.rough_no_slide, collisions.reflection_angle, damping.eq22,
     frozen.decay_rate, damping.rapid_damping_rolls, damping.eq23_matrix, damping.rolling_vs_rough,
-    energy.no_slip_no_loss, energy.friction_less_dissipation, classic.classic_wall_is_eq1, pairs.equal_alpha,
+    energy.no_slip_no_loss, energy.friction_less_dissipation, collisions.classic_wall_is_eq1,
+    pairs.equal_alpha,
 )
 
 

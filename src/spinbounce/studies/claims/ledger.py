@@ -1,12 +1,8 @@
 """The claims ledger: one record per claim, the verdict kinds, and what every claim shares.
 
 A claim's function runs what it needs (batched collisions or one frozen contact) through
-:class:`Runs` and returns a :class:`Claim`: the paper's value, the value LAMMPS gives, the
-exact theory's value, a verdict (one of :data:`VERDICTS`) computed from those numbers, and
-the evidence in words and numbers.
-
-LAMMPS must agree with the exact theory within the run's tolerance in every claim; if it
-does not, the claim is ``unresolved``, never quietly passed.
+:class:`Runs` and returns a :class:`Claim` whose verdict is computed from its numbers; where
+LAMMPS and the exact theory disagree, it is ``unresolved``, never quietly passed.
 """
 
 from __future__ import annotations

@@ -30,14 +30,6 @@ ALPHAS = (0.4, 0.2)
 PLANAR_PRECISION = 1e-5
 
 
-def _pairs():
-    from ...scenes.pair import Pair, Sphere
-
-    return [Pair(a=Sphere(m_a, r_a, alpha), b=Sphere(m_b, r_b, alpha), v_a=(0.0, 0.0, -1.0),
-                 w_a=(0.0, 1.0 / r_a, 0.0), w_b=(0.0, 0.5 / r_b, 0.0))
-            for alpha in ALPHAS for (m_a, m_b), (r_a, r_b) in RATIOS]
-
-
 def _slip_ratio(table, pairs, suffix: str) -> np.ndarray:
     """u'(end)/u'(0) - 1 along the slip's direction: Omega as each pair's run or reference gives it."""
     out = []
@@ -53,10 +45,12 @@ def _slip_ratio(table, pairs, suffix: str) -> np.ndarray:
 
 
 def equal_alpha(runs: Runs) -> Claim:
-    from ...scenes.pair import PairBatch
+    from ...scenes.pair import Pair, PairBatch, Sphere
     from ...pipeline import run_scene
 
-    pairs = _pairs()
+    pairs = [Pair(a=Sphere(m_a, r_a, alpha), b=Sphere(m_b, r_b, alpha), v_a=(0.0, 0.0, -1.0),
+                  w_a=(0.0, 1.0 / r_a, 0.0), w_b=(0.0, 0.5 / r_b, 0.0))
+             for alpha in ALPHAS for (m_a, m_b), (r_a, r_b) in RATIOS]
     table = run_scene(PairBatch(pairs), runs.root / "pair-equal-alpha", record=False).table
     lammps, exact = _slip_ratio(table, pairs, ""), _slip_ratio(table, pairs, "_exact")
     wall = np.array([linear.Omega(10.0, 1.0, p.a.alpha) for p in pairs])
