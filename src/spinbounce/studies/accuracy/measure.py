@@ -42,10 +42,6 @@ def ladder(quick: bool = False) -> tuple[int, ...]:
     return QUICK_LADDER if quick else FULL_LADDER
 
 
-def _speed(states) -> float:
-    return float(np.max(np.abs(np.asarray(states, dtype=float)[:, 0])))
-
-
 def collision_dt(model: ContactModel, n: float, form: str, speed: float | None = None) -> float:
     """The collision step for ``n`` steps per half-period of the fastest mode, in ``form``.
 
@@ -114,10 +110,6 @@ def collision_scene(case: Case, dt: float | None, states=None) -> Collision:
     return Collision(case.model, dt=dt, **columns)
 
 
-def _worst_status(statuses) -> str:
-    return min(statuses, key=STATUSES.index)
-
-
 def run_collision_level(case: Case, dt: float | None, folder: Path, states=None, repeats: int = 1):
     """One batch at ``dt`` (None: the default step): (row, final states). The row holds the
     largest error of each state column against the case's theory, the largest error relative
@@ -128,7 +120,7 @@ def run_collision_level(case: Case, dt: float | None, folder: Path, states=None,
     ran, t = result.scene, result.table
     row = {"dt": ran.dt, "lammps_steps": ran.nsteps, "resolution": ran.steps_per_half_period, "spheres": ran.n,
            "step_method": result.step.method, "relative_error": float(t["error"].max()),
-           "worst_status": _worst_status(t["status"]), "loop_seconds": result.info.loop_seconds,
+           "worst_status": min(t["status"], key=STATUSES.index), "loop_seconds": result.info.loop_seconds,
            "lammps_seconds": result.info.wall_seconds, "wall_seconds": wall}
     for s in ran.state_names:
         row[f"error_{s}"] = float(np.max(np.abs(t[f"{s}_error"])))
@@ -149,7 +141,7 @@ def _run_hertz_mid(case: Case, dt_of_speed, folder: Path, repeats: int) -> dict:
     out = {"dt": longest["dt"], "lammps_steps": longest["lammps_steps"],
            "resolution": min(r["resolution"] for r in rows),
            "step_method": ", ".join(sorted({r["step_method"] for r in rows})),
-           "worst_status": _worst_status([r["worst_status"] for r in rows])}
+           "worst_status": min((r["worst_status"] for r in rows), key=STATUSES.index)}
     for key in ("spheres", "loop_seconds", "lammps_seconds", "wall_seconds"):
         out[key] = sum(r[key] for r in rows)
     for key in (k for k in rows[0] if k.startswith("error_") or k == "relative_error"):
@@ -179,7 +171,7 @@ def run_level(case: Case, n: float | None, form: str, folder: Path, repeats: int
     frozen rule; pipeline.run_scene tunes a default step): its row."""
     if form == FROZEN:
         return run_frozen_level(case, None if n is None else frozen_dt(case.model, n), folder, repeats)
-    speed = _speed(case.states)
+    speed = float(np.max(np.abs(np.asarray(case.states, dtype=float)[:, 0])))  # the fastest |v_n|
     if case.model.normal_law.contact_radius and form == MID:  # each speed is a scene of its own
         def dt_of_speed(v_n):
             return None if n is None else _hertz_mid_dt(case.model, n, v_n, speed)

@@ -140,8 +140,7 @@ def _order_table(study: Study) -> list[str]:
         cells = [
             _cell(labels[r["case"]]), r["form"],
             f"{'~' if (r['case'], r['form']) in rough else ''}**{_fmt_order(r['observed_order'])}** "
-            f"({_fmt_order(r['order_v_n'])}; "
-            f"{_fmt_order(r['order_tangential'])})",
+            f"({_fmt_order(r['order_v_n'])}; {_fmt_order(r['order_tangential'])})",
             f"{r['expected_order']:g}",
             "-" if not math.isfinite(r["error_at_default_dt"]) else f"{r['error_at_default_dt']:.2e}",
             *(_fmt_steps(r[f"steps_{t:.0e}"], r[f"extrapolated_{t:.0e}"]) for t in TARGETS),
