@@ -1,11 +1,8 @@
 """The whole study: every case's ladder and default step, the summary, the costs, provenance.
 
-The default step, case by case: no fixed resolution is the default any more: a collision's
-step follows from the target accuracy (:data:`spinbounce.model.timestep.ACCURACY` of the size
-of the initial state), by the a priori second-order rule for the paper's linear contact and by
-a probe against the exact theory for damped, capped and Hertzian ones (:mod:`spinbounce.stepping`).
-:func:`policy_table` says what that costs and whether it delivers, for every case of the study;
-:func:`default_step_table` runs only the defaults (what ``spinbounce bench`` prints per model).
+The scenes' default step follows from a target accuracy (:mod:`spinbounce.model.timestep`,
+:mod:`spinbounce.stepping`): :func:`policy_table` says what it costs and whether it delivers, case
+by case; :func:`default_step_table` runs only the defaults (what ``spinbounce bench`` prints per model).
 """
 
 from __future__ import annotations
@@ -60,7 +57,7 @@ POLICY_COLUMNS = ("case", "label", "kind", "form", "step_method", "steps_per_col
 @dataclass
 class Study:
     """The measured ladder (``table``, one row per run), its ``summary`` (one row per case
-    and form), the default step of each case (``defaults``: :func:`.defaults.policy_table`),
+    and form), the default step of each case (``defaults``: :func:`policy_table`),
     the measured costs at the paper's parameters, the cases and the provenance."""
 
     table: pd.DataFrame
