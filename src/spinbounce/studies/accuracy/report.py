@@ -58,9 +58,16 @@ def fitted_seconds(rows: pd.DataFrame) -> np.ndarray:
     return start + slope * steps
 
 
-def _draw_curves(study: Study, ax_steps, ax_wall) -> None:
+def draw(study: Study):
+    """Error against LAMMPS steps and against LAMMPS's seconds: one curve per case in its first
+    form, plus the EXTRA_CURVES; the legend gives each curve's observed order. Call inside
+    ``matplotlib.style.context(STYLE)``."""
     import matplotlib
 
+    from ...figures.core import new_figure
+
+    fig, axes = new_figure(1, 2, figsize=(11.5, 6.6), sharey=True)
+    ax_steps, ax_wall = axes[0]
     colours = list(matplotlib.colormaps["tab20"].colors)
     markers = "osD^v<>phH*Xd8P"
     orders = {(r["case"], r["form"]): r["observed_order"] for r in study.summary.to_dict(orient="records")}
@@ -86,17 +93,6 @@ def _draw_curves(study: Study, ax_steps, ax_wall) -> None:
             star = t[(t["case"] == case.name) & (t["form"] == form) & t["default_dt"]]
             ax_steps.loglog(star["lammps_steps"], star["error"], linestyle="none", marker="*", markersize=10,
                             color=colour, markeredgecolor="black", markeredgewidth=0.6, zorder=5)
-
-
-def draw(study: Study):
-    """Error against LAMMPS steps and against LAMMPS's seconds: one curve per case in its first
-    form, plus the EXTRA_CURVES; the legend gives each curve's observed order. Call inside
-    ``matplotlib.style.context(STYLE)``."""
-    from ...figures.core import new_figure
-
-    fig, axes = new_figure(1, 2, figsize=(11.5, 6.6), sharey=True)
-    ax_steps, ax_wall = axes[0]
-    _draw_curves(study, ax_steps, ax_wall)
     for target in TARGETS:
         for ax in (ax_steps, ax_wall):
             ax.axhline(target, color="0.8", linewidth=0.7, zorder=0)
