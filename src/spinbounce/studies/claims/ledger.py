@@ -17,6 +17,7 @@ from ...scenes.collision import Collision
 from ...model.contact import ContactModel
 from ...scenes.frozen import Frozen
 from ...model.timestep import refine_mid_step
+from ...pipeline import run_scene, run_series
 
 __all__ = ["VERDICTS", "COLLISION_TOL", "FROZEN_TOL", "DAMPED_REFINE", "Claim", "Runs", "verdict", "checked",
            "damped_dt", "random_states", "initial", "final", "contact_time", "maximise", "g"]
@@ -102,8 +103,6 @@ class Runs:
     def collide(self, name: str, model: ContactModel, vn, vt, omega, dt=None):
         """(scene, result table) of a batch of collisions."""
         if name not in self._done:
-            from ...pipeline import run_scene
-
             scene = Collision(model, v_n=vn, v_t=vt, omega=omega, dt=dt)
             self._done[name] = scene, run_scene(scene, self.root / name, atoms="library").table
         return self._done[name]
@@ -111,8 +110,6 @@ class Runs:
     def frozen(self, name: str, model: ContactModel, **kwargs):
         """(scene, result table) of one frozen contact."""
         if name not in self._done:
-            from ...pipeline import run_series
-
             scene = Frozen(model, **kwargs)
             self._done[name] = scene, run_series(scene, self.root / name).table
         return self._done[name]

@@ -17,6 +17,8 @@ import numpy as np
 
 from ...exact import linear
 from ...exact import pair as planar
+from ...pipeline import run_scene
+from ...scenes.pair import Pair, PairBatch, Sphere
 from .ledger import COLLISION_TOL, Claim, Runs, checked, g
 
 __all__ = ["equal_alpha", "RATIOS", "PLANAR_PRECISION"]
@@ -45,9 +47,6 @@ def _slip_ratio(table, pairs, suffix: str) -> np.ndarray:
 
 
 def equal_alpha(runs: Runs) -> Claim:
-    from ...scenes.pair import Pair, PairBatch, Sphere
-    from ...pipeline import run_scene
-
     pairs = [Pair(a=Sphere(m_a, r_a, alpha), b=Sphere(m_b, r_b, alpha), v_a=(0.0, 0.0, -1.0),
                   w_a=(0.0, 1.0 / r_a, 0.0), w_b=(0.0, 0.5 / r_b, 0.0))
              for alpha in ALPHAS for (m_a, m_b), (r_a, r_b) in RATIOS]
