@@ -13,11 +13,10 @@ import numpy as np
 import pytest
 
 from spinbounce import exact
-from spinbounce.studies.claims import CLAIMS, COLLISION_TOL, VERDICTS, verdict, write_claims
+from spinbounce.studies.claims import CLAIMS, COLLISION_TOL, VERDICTS, markdown, verdict, write_claims
 from spinbounce.studies.claims.damping import EQ23_STATE, eq22_error, eq22_worst, eq23_faults, printed_eq23
 from spinbounce.studies.claims.energy import SPIN_STATE, best_reduction, loss_bracket
 from spinbounce.studies.claims.ledger import checked, maximise
-from spinbounce.studies.claims.write import markdown
 
 ALPHA = 0.4
 COMMITTED = Path(__file__).resolve().parents[1] / "figures"

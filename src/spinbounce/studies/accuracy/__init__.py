@@ -7,8 +7,8 @@ contact mode, each measured against the case's theory (:mod:`.measure`), and one
 the step the scenes choose by default. From the ladder come the observed order of
 convergence and the steps plain refinement needs for a given accuracy (:mod:`.orders`);
 from the default runs, the steps per collision the default chooses and the error it reaches
-(:mod:`.defaults`; :func:`default_step_table` runs only those). :mod:`.study` runs it all
-with its provenance, :mod:`.report` writes the figure, the JSON record and ACCURACY.md.
+(:func:`default_step_table` runs only those). :mod:`.study` runs it all with its
+provenance, :mod:`.report` writes the figure, the JSON record and ACCURACY.md.
 
 Not to be confused with :mod:`spinbounce.extrapolation`, which reaches a requested
 accuracy for one scene by Richardson extrapolation. The two climb the same rungs (the
@@ -22,7 +22,6 @@ from __future__ import annotations
 from pathlib import Path
 
 from .cases import ANY, BOX, EDGE, FROZEN, FROZEN_T_END, FROZEN_Z, MECHANISMS, MID, Case, box_sample, cases, corners
-from .defaults import POLICY_COLUMNS, default_step_table, policy_table
 from .measure import (
     DEFAULT_FORMS,
     FULL_LADDER,
@@ -38,7 +37,7 @@ from .measure import (
 )
 from .orders import ERROR_FLOOR, FIT_LEVELS, TARGETS, fit_order, steps_for, summarise
 from .report import draw, markdown, write_study
-from .study import Study, run_study
+from .study import POLICY_COLUMNS, Study, default_step_table, policy_table, run_study
 
 __all__ = [
     "ANY", "BOX", "DEFAULT_FORMS", "EDGE", "ERROR_FLOOR", "FIT_LEVELS", "FROZEN", "FROZEN_T_END", "FROZEN_Z",

@@ -20,7 +20,7 @@ import numpy as np
 from ...scenes.collision import STATE_3D
 from ...model.contact import ContactModel
 
-__all__ = ["Case", "cases", "corners", "box_sample", "model_record", "MECHANISMS", "BOX",
+__all__ = ["Case", "cases", "corners", "box_sample", "MECHANISMS", "BOX",
            "MID", "EDGE", "ANY", "FROZEN", "FROZEN_T_END", "FROZEN_Z"]
 
 #: Collision forms: the contact's end in the middle of a step (dt = tau/(M + 1/2)), on a
@@ -52,10 +52,6 @@ def box_sample(n: int, seed: int, box=BOX) -> np.ndarray:
     """``n`` states drawn uniformly from ``box``."""
     lo, hi = np.array(box).T
     return np.random.default_rng(seed).uniform(lo, hi, size=(n, len(box)))
-
-
-def model_record(model: ContactModel) -> dict:
-    return {name: getattr(model, name) for name in MODEL_KEYWORDS}
 
 
 @dataclass(frozen=True)
@@ -90,7 +86,8 @@ class Case:
         return STATE_3D[: len(self.states[0])]
 
     def record(self) -> dict:
-        return {"name": self.name, "label": self.label, "kind": self.kind, "model": model_record(self.model),
+        return {"name": self.name, "label": self.label, "kind": self.kind,
+                "model": {k: getattr(self.model, k) for k in MODEL_KEYWORDS},
                 "states": [list(s) for s in self.states], "why": self.why, "limit": self.limit,
                 "expected_order": dict(self.expected), "theory": self.theory, "rough_forms": list(self.rough)}
 
@@ -138,9 +135,14 @@ _DEFAULT_LIMIT = ("mid-step: normal over-kick (v_n) and the cancelled tangential
 _RIGID = "; fix rigid's step is velocity Verlet too, so the integrator changes nothing"
 
 
-def _hookean_cases(d: ContactModel, box_corners) -> list[Case]:
-    """The paper's Hookean wall without a cap: its parameters, ratios and inertias."""
+def cases() -> list[Case]:
+    """The study's cases, in the order of the table (the paper's defaults first)."""
+    d = ContactModel()
+    box_corners = corners()
+    damped = "Eq. 18, exact damped Omega and restitution"
+    coulomb_states = np.vstack([box_corners, box_sample(8, seed=1)])
     return [
+        # the paper's Hookean wall without a cap: its parameters, ratios and inertias
         Case("defaults", "paper defaults", "collision", d, box_corners,
              "the paper's parameters (kt/kn = 1/10, alpha = 2/5) at the 8 corners of the sweep's box, "
              "which bound its error", _DEFAULT_LIMIT, {MID: 2.0, EDGE: 1.0}),
@@ -162,32 +164,21 @@ def _hookean_cases(d: ContactModel, box_corners) -> list[Case]:
         Case("alpha_shell", "alpha = 2/3", "collision", ContactModel(alpha=2.0 / 3.0), box_corners,
              "a thin shell, the largest physical alpha, through fix rigid", _DEFAULT_LIMIT + _RIGID,
              {MID: 2.0, EDGE: 1.0}),
-    ]
-
-
-def _damped_cases(box_corners) -> list[Case]:
-    """Dashpots, measured against the exact damped Omega and restitution."""
-    theory = "Eq. 18, exact damped Omega and restitution"
-    return [
+        # dashpots, measured against the exact damped Omega and restitution
         Case("damped_t", "damped, gamma_t = 1", "collision", ContactModel(gamma_t=1.0), box_corners,
              "a tangential dashpot (exact damped Omega)",
              "dashpot lag: v_t and r omega first order in both forms; v_n keeps its undamped order "
              "(on a step, down to the 1e-12 normal dashpot that carries gamma_t in LAMMPS)",
-             {MID: 1.0, EDGE: 1.0}, theory),
+             {MID: 1.0, EDGE: 1.0}, damped),
         Case("damped_n", "damped, gamma_n = 1", "collision", ContactModel(gamma_n=1.0), box_corners,
              "a normal dashpot (restitution 0.37; the theory lets the normal force turn tensile and ends "
              "the contact at z = r, as LAMMPS does)",
              "dashpot lag: v_n first order in both forms; v_t and r omega keep their undamped orders "
-             "(2 mid-step, 1 on a step)", {MID: 1.0, EDGE: 1.0}, theory),
+             "(2 mid-step, 1 on a step)", {MID: 1.0, EDGE: 1.0}, damped),
         Case("damped", "damped, gamma_n = gamma_t = 1", "collision", ContactModel(gamma_n=1.0, gamma_t=1.0),
              box_corners, "both dashpots at once",
-             "dashpot lag in every component, first order in both forms", {MID: 1.0, EDGE: 1.0}, theory),
-    ]
-
-
-def _incidence_cases(d: ContactModel) -> list[Case]:
-    """Single columns of the linear error: grazing, head-on and spin-dominated incidence."""
-    return [
+             "dashpot lag in every component, first order in both forms", {MID: 1.0, EDGE: 1.0}, damped),
+        # single columns of the linear error: grazing, head-on and spin-dominated incidence
         Case("grazing", "grazing, |v_n| = 0.01", "collision", d,
              ((-0.01, 1.0, 0.0), (-0.01, 0.0, 1.0), (-0.01, -1.0, 2.0)),
              "nearly tangential incidence with slip 1: the overlap stays below 1e-3 r",
@@ -202,13 +193,7 @@ def _incidence_cases(d: ContactModel) -> list[Case]:
         Case("high_spin", "high spin, |r omega| = 20 |v_n|", "collision", d,
              ((-0.1, 0.0, 2.0), (-0.1, 0.0, -2.0), (-0.1, 1.0, -2.0)),
              "spin dominates: slip 20 times the normal speed", _DEFAULT_LIMIT, {MID: 2.0, EDGE: 1.0}),
-    ]
-
-
-def _beyond_the_plane_cases(d: ContactModel) -> list[Case]:
-    """3-D spin, the Hertzian wall and the Coulomb cap, each against its own theory."""
-    coulomb_states = np.vstack([np.array(corners()), box_sample(8, seed=1)])
-    return [
+        # 3-D spin, the Hertzian wall and the Coulomb cap, each against its own theory
         Case("spin_3d", "3-D spin", "collision", d, corners(BOX_3D),
              "out of the plane: v_s, omega_s (which rolls along s) and omega_n at the 64 corners of the "
              "6-D box; the contact is still linear, so the corners still bound the error",
@@ -229,11 +214,6 @@ def _beyond_the_plane_cases(d: ContactModel) -> list[Case]:
              "Coulomb cap: no cut at the end, kinks between steps; second order in both forms (v_n is the "
              "defaults': the cap acts on the tangential force only)", {MID: 2.0, EDGE: 2.0},
              "Coulomb oracle (exact.oracle.bounce_many)", rough=(MID, EDGE)),
-    ]
-
-
-def _frozen_cases(d: ContactModel) -> list[Case]:
-    return [
         Case("frozen", "frozen, defaults", "frozen", d, ((0.0, 1.0, 0.0),),
              f"sphere held at z = {FROZEN_Z:g} for t = {FROZEN_T_END:g} (Fig. 2): no contact end",
              "phase error, second order", {FROZEN: 2.0}, "Eq. 10"),
@@ -241,11 +221,3 @@ def _frozen_cases(d: ContactModel) -> list[Case]:
              f"the damped frozen contact (Fig. 7), held for t = {FROZEN_T_END:g}",
              "dashpot lag, first order, with no contact end to blame", {FROZEN: 1.0}, "Eq. 10, exact damped form"),
     ]
-
-
-def cases() -> list[Case]:
-    """The study's cases, in the order of the table (the paper's defaults first)."""
-    d = ContactModel()
-    box_corners = corners()
-    return (_hookean_cases(d, box_corners) + _damped_cases(box_corners) + _incidence_cases(d)
-            + _beyond_the_plane_cases(d) + _frozen_cases(d))

@@ -42,10 +42,6 @@ def ladder(quick: bool = False) -> tuple[int, ...]:
     return QUICK_LADDER if quick else FULL_LADDER
 
 
-def _speed(states) -> float:
-    return float(np.max(np.abs(np.asarray(states, dtype=float)[:, 0])))
-
-
 def collision_dt(model: ContactModel, n: float, form: str, speed: float | None = None) -> float:
     """The collision step for ``n`` steps per half-period of the fastest mode, in ``form``.
 
@@ -114,10 +110,6 @@ def collision_scene(case: Case, dt: float | None, states=None) -> Collision:
     return Collision(case.model, dt=dt, **columns)
 
 
-def _worst_status(statuses) -> str:
-    return min(statuses, key=STATUSES.index)
-
-
 def run_collision_level(case: Case, dt: float | None, folder: Path, states=None, repeats: int = 1):
     """One batch at ``dt`` (None: the default step): (row, final states). The row holds the
     largest error of each state column against the case's theory, the largest error relative
@@ -128,7 +120,7 @@ def run_collision_level(case: Case, dt: float | None, folder: Path, states=None,
     ran, t = result.scene, result.table
     row = {"dt": ran.dt, "lammps_steps": ran.nsteps, "resolution": ran.steps_per_half_period, "spheres": ran.n,
            "step_method": result.step.method, "relative_error": float(t["error"].max()),
-           "worst_status": _worst_status(t["status"]), "loop_seconds": result.info.loop_seconds,
+           "worst_status": min(t["status"], key=STATUSES.index), "loop_seconds": result.info.loop_seconds,
            "lammps_seconds": result.info.wall_seconds, "wall_seconds": wall}
     for s in ran.state_names:
         row[f"error_{s}"] = float(np.max(np.abs(t[f"{s}_error"])))
@@ -149,7 +141,7 @@ def _run_hertz_mid(case: Case, dt_of_speed, folder: Path, repeats: int) -> dict:
     out = {"dt": longest["dt"], "lammps_steps": longest["lammps_steps"],
            "resolution": min(r["resolution"] for r in rows),
            "step_method": ", ".join(sorted({r["step_method"] for r in rows})),
-           "worst_status": _worst_status([r["worst_status"] for r in rows])}
+           "worst_status": min((r["worst_status"] for r in rows), key=STATUSES.index)}
     for key in ("spheres", "loop_seconds", "lammps_seconds", "wall_seconds"):
         out[key] = sum(r[key] for r in rows)
     for key in (k for k in rows[0] if k.startswith("error_") or k == "relative_error"):
@@ -173,16 +165,20 @@ def run_frozen_level(case: Case, dt: float | None, folder: Path, repeats: int = 
             "wall_seconds": wall, **errors}
 
 
-def run_level(case: Case, n: float, form: str, folder: Path, repeats: int = 1) -> dict:
-    """One level of ``case`` in ``form`` at ``n`` steps per half-period: its row."""
+def run_level(case: Case, n: float | None, form: str, folder: Path, repeats: int = 1) -> dict:
+    """One level of ``case`` in ``form`` at ``n`` steps per half-period (None: the scenes'
+    default step: the a priori rule, the probe, a Hertzian batch's fixed resolution, or the
+    frozen rule; pipeline.run_scene tunes a default step): its row."""
     if form == FROZEN:
-        return run_frozen_level(case, frozen_dt(case.model, n), folder, repeats)
-    if case.model.normal_law.contact_radius and form == MID:
-        speed = _speed(case.states)
-        return _run_hertz_mid(case, lambda v_n: _hertz_mid_dt(case.model, n, v_n, speed), folder, repeats)
-    dt = collision_dt(case.model, n, form, speed=_speed(case.states))
-    row, _ = run_collision_level(case, dt, folder, repeats=repeats)
-    return row
+        return run_frozen_level(case, None if n is None else frozen_dt(case.model, n), folder, repeats)
+    speed = float(np.max(np.abs(np.asarray(case.states, dtype=float)[:, 0])))  # the fastest |v_n|
+    if case.model.normal_law.contact_radius and form == MID:  # each speed is a scene of its own
+        def dt_of_speed(v_n):
+            return None if n is None else _hertz_mid_dt(case.model, n, v_n, speed)
+
+        return _run_hertz_mid(case, dt_of_speed, folder, repeats)
+    dt = None if n is None else collision_dt(case.model, n, form, speed=speed)
+    return run_collision_level(case, dt, folder, repeats=repeats)[0]
 
 
 def default_target(case: Case) -> float:
@@ -195,19 +191,11 @@ def default_target(case: Case) -> float:
 
 
 def run_default(case: Case, form: str, folder: Path, repeats: int = 1) -> dict:
-    """``case`` in ``form`` at the step the scenes choose by default: the a priori rule, the
-    probe (pipeline.run_scene tunes a default step), a Hertzian batch's fixed resolution,
-    or the frozen rule. Its row, with the target that step aims at."""
-    if form == FROZEN:
-        row = run_frozen_level(case, None, folder, repeats)
-    elif form == MID and case.model.normal_law.contact_radius:  # each speed is a scene of its own
-        row = _run_hertz_mid(case, lambda v_n: None, folder, repeats)
-    elif form in DEFAULT_FORMS:
-        row, _ = run_collision_level(case, None, folder, repeats=repeats)
-    else:
+    """``case`` in ``form`` at the step the scenes choose by default: its row, with the target
+    that step aims at."""
+    if form not in DEFAULT_FORMS:
         raise ValueError(f"form = {form!r}: no default step takes it (only {', '.join(DEFAULT_FORMS)})")
-    row["target"] = default_target(case)
-    return row
+    return {**run_level(case, None, form, folder, repeats), "target": default_target(case)}
 
 
 def warm_up(all_cases: list[Case], root: Path) -> None:
@@ -221,10 +209,12 @@ def warm_up(all_cases: list[Case], root: Path) -> None:
             run_level(case, 32, case.forms[0], root / "warm-up" / case.name)
 
 
-def labelled_row(row: dict, case: Case, form: str, n: float, in_ladder: bool) -> dict:
-    """``row`` with its case, form and level (``n`` steps per half-period), and its largest error."""
-    row.update(case=case.name, label=case.label, kind=case.kind, form=form, steps_per_half_period=n,
-               default_dt=not in_ladder, in_ladder=in_ladder, theory=case.theory)
+def labelled_row(row: dict, case: Case, form: str, n: float | None = None) -> dict:
+    """``row`` with its case, form and level (``n`` steps per half-period of the ladder; None: a
+    run at the default step, whose level is its resolution), and its largest error."""
+    row.update(case=case.name, label=case.label, kind=case.kind, form=form,
+               steps_per_half_period=row["resolution"] if n is None else n, default_dt=n is None,
+               in_ladder=n is not None, theory=case.theory)
     row["error"] = max(row[f"error_{s}"] for s in case.state_names)
     return row
 
@@ -235,10 +225,9 @@ def run_case(case: Case, steps: tuple[int, ...], root: Path, log, repeats: int =
     for form in case.forms:
         folder = root / case.name / form.replace(" ", "-")
         for n in steps:
-            rows.append(labelled_row(run_level(case, n, form, folder / f"n{n:06d}", repeats), case, form, n, True))
+            rows.append(labelled_row(run_level(case, n, form, folder / f"n{n:06d}", repeats), case, form, n))
         if form in DEFAULT_FORMS:
-            row = run_default(case, form, folder / "default", repeats)
-            rows.append(labelled_row(row, case, form, row["resolution"], False))
+            rows.append(labelled_row(run_default(case, form, folder / "default", repeats), case, form))
     ends = [r for r in rows if r["in_ladder"] and r["steps_per_half_period"] in (steps[0], steps[-1])]
     defaults = [r for r in rows if r["default_dt"]]
     log(f"  {case.name:<14}" + "  ".join(f"{r['form']} n={r['steps_per_half_period']}: {r['error']:.2e}"

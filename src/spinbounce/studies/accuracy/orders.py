@@ -76,24 +76,21 @@ def _order_of(group: pd.DataFrame, columns) -> float:
     return fit_order(group["dt"], group[present].max(axis=1))["order"]
 
 
-#: A form that no default step takes (the end on a step boundary) has none of these.
-_NO_DEFAULT = {"default_dt": float("nan"), "default_lammps_steps": float("nan"),
-               "default_steps_per_half_period": float("nan"), "default_step_method": None,
-               "error_at_default_dt": float("nan"), "relative_error_at_default_dt": float("nan"),
-               "default_target": float("nan")}
+#: The summary's columns of the run at the scenes' default step: (column, run table's column, type).
+_DEFAULT_COLUMNS = (
+    ("default_dt", "dt", float), ("default_lammps_steps", "lammps_steps", int),
+    ("default_steps_per_half_period", "resolution", float), ("default_step_method", "step_method", str),
+    ("error_at_default_dt", "error", float), ("relative_error_at_default_dt", "relative_error", float),
+    ("default_target", "target", float))
 
 
 def _default_columns(group: pd.DataFrame) -> dict:
-    """The run at the scenes' default step, if this form has one."""
+    """The run at the scenes' default step; a form that no default step takes (the end on a
+    step boundary) has nan (no step method)."""
     rows = group[group["default_dt"]]
     if rows.empty:
-        return dict(_NO_DEFAULT)
-    default = rows.iloc[0]
-    return {"default_dt": float(default["dt"]), "default_lammps_steps": int(default["lammps_steps"]),
-            "default_steps_per_half_period": float(default["resolution"]),
-            "default_step_method": default["step_method"], "error_at_default_dt": float(default["error"]),
-            "relative_error_at_default_dt": float(default["relative_error"]),
-            "default_target": float(default["target"])}
+        return {key: None if kind is str else float("nan") for key, _, kind in _DEFAULT_COLUMNS}
+    return {key: kind(rows.iloc[0][column]) for key, column, kind in _DEFAULT_COLUMNS}
 
 
 def _summary_row(case: Case, form: str, group: pd.DataFrame) -> dict:

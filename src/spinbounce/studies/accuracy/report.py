@@ -47,13 +47,6 @@ def _under_the_first(study: Study) -> list[str]:
     return same
 
 
-def _draw_default(table: pd.DataFrame, name: str, form: str, colour, ax_steps) -> None:
-    """The case's run at the scenes' default step, a star on its curve (if the form has one)."""
-    rows = table[(table["case"] == name) & (table["form"] == form) & table["default_dt"]]
-    ax_steps.loglog(rows["lammps_steps"], rows["error"], linestyle="none", marker="*", markersize=10,
-                    color=colour, markeredgecolor="black", markeredgewidth=0.6, zorder=5)
-
-
 def fitted_seconds(rows: pd.DataFrame) -> np.ndarray:
     """A curve's LAMMPS seconds smoothed: the least-squares line start-up + steps x per-step cost
     through its measured (steps, seconds), each coefficient kept >= 0. Single timings of runs of
@@ -65,9 +58,16 @@ def fitted_seconds(rows: pd.DataFrame) -> np.ndarray:
     return start + slope * steps
 
 
-def _draw_curves(study: Study, ax_steps, ax_wall) -> None:
+def draw(study: Study):
+    """Error against LAMMPS steps and against LAMMPS's seconds: one curve per case in its first
+    form, plus the EXTRA_CURVES; the legend gives each curve's observed order. Call inside
+    ``matplotlib.style.context(STYLE)``."""
     import matplotlib
 
+    from ...figures.core import new_figure
+
+    fig, axes = new_figure(1, 2, figsize=(11.5, 6.6), sharey=True)
+    ax_steps, ax_wall = axes[0]
     colours = list(matplotlib.colormaps["tab20"].colors)
     markers = "osD^v<>phH*Xd8P"
     orders = {(r["case"], r["form"]): r["observed_order"] for r in study.summary.to_dict(orient="records")}
@@ -88,18 +88,11 @@ def _draw_curves(study: Study, ax_steps, ax_wall) -> None:
                 style.update(linewidth=5.0, alpha=0.35, zorder=1, markersize=0)
             ax_steps.loglog(rows["lammps_steps"], rows["error"], label=label, **style)
             ax_wall.loglog(fitted_seconds(rows), rows["error"], **style)
-            _draw_default(study.table, case.name, form, colour, ax_steps)
-
-
-def draw(study: Study):
-    """Error against LAMMPS steps and against LAMMPS's seconds: one curve per case in its first
-    form, plus the EXTRA_CURVES; the legend gives each curve's observed order. Call inside
-    ``matplotlib.style.context(STYLE)``."""
-    from ...figures.core import new_figure
-
-    fig, axes = new_figure(1, 2, figsize=(11.5, 6.6), sharey=True)
-    ax_steps, ax_wall = axes[0]
-    _draw_curves(study, ax_steps, ax_wall)
+            # the run at the scenes' default step: a star on its curve (if the form has one)
+            t = study.table
+            star = t[(t["case"] == case.name) & (t["form"] == form) & t["default_dt"]]
+            ax_steps.loglog(star["lammps_steps"], star["error"], linestyle="none", marker="*", markersize=10,
+                            color=colour, markeredgecolor="black", markeredgewidth=0.6, zorder=5)
     for target in TARGETS:
         for ax in (ax_steps, ax_wall):
             ax.axhline(target, color="0.8", linewidth=0.7, zorder=0)
@@ -126,10 +119,6 @@ def _fmt_order(order) -> str:
     return "-" if order is None or not math.isfinite(order) else f"{order:.2f}"
 
 
-def _fmt_error(error) -> str:
-    return "-" if not math.isfinite(error) else f"{error:.2e}"
-
-
 def _cell(text: str) -> str:
     """Text for a markdown table cell: a bare | would end the cell."""
     return text.replace("|", r"\|")
@@ -147,9 +136,9 @@ def _order_table(study: Study) -> list[str]:
         cells = [
             _cell(labels[r["case"]]), r["form"],
             f"{'~' if (r['case'], r['form']) in rough else ''}**{_fmt_order(r['observed_order'])}** "
-            f"({_fmt_order(r['order_v_n'])}; "
-            f"{_fmt_order(r['order_tangential'])})",
-            f"{r['expected_order']:g}", _fmt_error(r["error_at_default_dt"]),
+            f"({_fmt_order(r['order_v_n'])}; {_fmt_order(r['order_tangential'])})",
+            f"{r['expected_order']:g}",
+            "-" if not math.isfinite(r["error_at_default_dt"]) else f"{r['error_at_default_dt']:.2e}",
             *(_fmt_steps(r[f"steps_{t:.0e}"], r[f"extrapolated_{t:.0e}"]) for t in TARGETS),
         ]
         lines.append("| " + " | ".join(cells) + " |")
@@ -278,13 +267,10 @@ def write_study(study: Study, out: Path) -> dict[str, Path]:
 
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    record = dict(study.metadata)
-    record["cases"] = [c.record() for c in study.cases]
-    record["summary"] = _records(study.summary)
-    record["default_steps"] = _records(study.defaults)
-    record["default_costs"] = json_ready(study.costs)
-    record["runs_table"] = _records(study.table)
-    record["markdown"] = "ACCURACY.md"
+    record = {**study.metadata, "cases": [c.record() for c in study.cases],
+              "summary": _records(study.summary), "default_steps": _records(study.defaults),
+              "default_costs": json_ready(study.costs), "runs_table": _records(study.table),
+              "markdown": "ACCURACY.md"}
     with matplotlib.style.context(STYLE):
         fig = draw(study)
         saved = save(fig, out, "accuracy", json_ready(record))

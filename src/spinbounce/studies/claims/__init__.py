@@ -2,23 +2,24 @@
 
 * :mod:`.ledger`: the claim record, the verdict kinds and what every claim shares;
 * :mod:`.collisions`, :mod:`.contact`, :mod:`.frozen`, :mod:`.damping`, :mod:`.energy`: the
-  claims by topic, one function each; after the paper's, :mod:`.classic` (the LAMMPS
-  implementation it used, in this build) and :mod:`.pairs` (two spheres of equal alpha have
-  the wall's Omega);
-* :mod:`.write`: CLAIMS.md and claims.json.
+  claims by topic, one function each; after the paper's, the LAMMPS implementation it used,
+  in this build (:mod:`.collisions`) and :mod:`.pairs` (two spheres of equal alpha have the
+  wall's Omega);
+* here: the claims in order, and the ledger written as CLAIMS.md and claims.json.
 """
 
 from __future__ import annotations
 
 import warnings
+from dataclasses import asdict
 from pathlib import Path
 
-from . import classic, collisions, contact, damping, energy, frozen, pairs
-from .ledger import COLLISION_TOL, FROZEN_TOL, VERDICTS, Claim, Runs, verdict
-from .write import counts, write_claims
+from ...records import software, to_json, write_atomic
+from . import collisions, contact, damping, energy, frozen, pairs
+from .ledger import COLLISION_TOL, FROZEN_TOL, VERDICTS, Claim, Runs, g, verdict
 
-__all__ = ["CLAIMS", "COLLISION_TOL", "FROZEN_TOL", "VERDICTS", "Claim", "counts", "evaluate_claims", "verdict",
-           "write_claims"]
+__all__ = ["CLAIMS", "COLLISION_TOL", "FROZEN_TOL", "VERDICTS", "Claim", "counts", "evaluate_claims",
+           "markdown", "verdict", "write_claims"]
 
 #: The claims, in the paper's order.
 CLAIMS = (
@@ -27,7 +28,8 @@ CLAIMS = (
     frozen.frozen_slope, collisions.rolling_unchanged, collisions.harmonic_ratios, collisions.magic_ratio,
     collisions.rough_no_spin, collisions.rough_no_slide, collisions.reflection_angle, damping.eq22,
     frozen.decay_rate, damping.rapid_damping_rolls, damping.eq23_matrix, damping.rolling_vs_rough,
-    energy.no_slip_no_loss, energy.friction_less_dissipation, classic.classic_wall_is_eq1, pairs.equal_alpha,
+    energy.no_slip_no_loss, energy.friction_less_dissipation, collisions.classic_wall_is_eq1,
+    pairs.equal_alpha,
 )
 
 
@@ -42,3 +44,50 @@ def evaluate_claims(run_dir: Path, log=print) -> list[Claim]:
             log(f"  {claim.key:<22} {claim.verdict}")
             out.append(claim)
     return out
+
+
+def counts(claims: list[Claim]) -> dict[str, int]:
+    """How many claims got each verdict, in :data:`VERDICTS` order."""
+    return {kind: sum(c.verdict == kind for c in claims) for kind in VERDICTS}
+
+
+def _cell(value) -> str:
+    if isinstance(value, float):
+        return g(value, 8)
+    return str(value).replace("|", "\\|")
+
+
+def markdown(claims: list[Claim], provenance: dict) -> str:
+    """CLAIMS.md: the verdict table, what each verdict means, and each claim's evidence."""
+    tally = counts(claims)
+    lines = [
+        "# The paper's claims, checked",
+        "",
+        "Wang and Harrowell, *Translational-rotational coupling during the scattering of a frictional sphere "
+        "from a flat surface*: each quantitative claim, the paper's value, the value measured with LAMMPS "
+        f"({provenance['lammps_version']}) and the exact theory's value. Regenerate with `spinbounce claims`.",
+        "",
+        "Verdicts: " + ", ".join(f"{n} {kind}" for kind, n in tally.items()) + ".",
+        "",
+        "| # | claim | where | paper | LAMMPS | exact theory | verdict |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    for i, c in enumerate(claims, 1):
+        lines.append(f"| {i} | {_cell(c.statement)} | {_cell(c.where)} | {_cell(c.paper)} | {_cell(c.lammps)} | "
+                     f"{_cell(c.exact)} | **{c.verdict}** |")
+    lines += ["", "## Verdicts", ""]
+    lines += [f"- **{kind}**: {meaning}." for kind, meaning in VERDICTS.items()]
+    lines += ["", "## Evidence", ""]
+    lines += [f"{i}. **{c.key}** ({c.verdict}): {c.evidence}" for i, c in enumerate(claims, 1)]
+    return "\n".join(lines) + "\n"
+
+
+def write_claims(claims: list[Claim], out: Path) -> tuple[Path, Path]:
+    """``CLAIMS.md`` and ``claims.json`` in ``out`` (atomic writes, with the software's provenance)."""
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    provenance = software()
+    md = write_atomic(out / "CLAIMS.md", markdown(claims, provenance))
+    js = write_atomic(out / "claims.json", to_json({"claims": [asdict(c) for c in claims], "verdicts": counts(claims),
+                                                    "verdict_meanings": VERDICTS, **provenance}))
+    return md, js

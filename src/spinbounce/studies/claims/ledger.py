@@ -1,12 +1,8 @@
 """The claims ledger: one record per claim, the verdict kinds, and what every claim shares.
 
 A claim's function runs what it needs (batched collisions or one frozen contact) through
-:class:`Runs` and returns a :class:`Claim`: the paper's value, the value LAMMPS gives, the
-exact theory's value, a verdict (one of :data:`VERDICTS`) computed from those numbers, and
-the evidence in words and numbers.
-
-LAMMPS must agree with the exact theory within the run's tolerance in every claim; if it
-does not, the claim is ``unresolved``, never quietly passed.
+:class:`Runs` and returns a :class:`Claim` whose verdict is computed from its numbers; where
+LAMMPS and the exact theory disagree, it is ``unresolved``, never quietly passed.
 """
 
 from __future__ import annotations
@@ -21,6 +17,7 @@ from ...scenes.collision import Collision
 from ...model.contact import ContactModel
 from ...scenes.frozen import Frozen
 from ...model.timestep import refine_mid_step
+from ...pipeline import run_scene, run_series
 
 __all__ = ["VERDICTS", "COLLISION_TOL", "FROZEN_TOL", "DAMPED_REFINE", "Claim", "Runs", "verdict", "checked",
            "damped_dt", "random_states", "initial", "final", "contact_time", "maximise", "g"]
@@ -106,8 +103,6 @@ class Runs:
     def collide(self, name: str, model: ContactModel, vn, vt, omega, dt=None):
         """(scene, result table) of a batch of collisions."""
         if name not in self._done:
-            from ...pipeline import run_scene
-
             scene = Collision(model, v_n=vn, v_t=vt, omega=omega, dt=dt)
             self._done[name] = scene, run_scene(scene, self.root / name, atoms="library").table
         return self._done[name]
@@ -115,8 +110,6 @@ class Runs:
     def frozen(self, name: str, model: ContactModel, **kwargs):
         """(scene, result table) of one frozen contact."""
         if name not in self._done:
-            from ...pipeline import run_series
-
             scene = Frozen(model, **kwargs)
             self._done[name] = scene, run_series(scene, self.root / name).table
         return self._done[name]

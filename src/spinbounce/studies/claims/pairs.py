@@ -17,6 +17,8 @@ import numpy as np
 
 from ...exact import linear
 from ...exact import pair as planar
+from ...pipeline import run_scene
+from ...scenes.pair import Pair, PairBatch, Sphere
 from .ledger import COLLISION_TOL, Claim, Runs, checked, g
 
 __all__ = ["equal_alpha", "RATIOS", "PLANAR_PRECISION"]
@@ -28,14 +30,6 @@ ALPHAS = (0.4, 0.2)
 #: How far the exact reference may lie from the planar theory here: its line of centres turns
 #: by ~1e-6 rad (the claim's evidence prints the largest turn), and the model error scales with it.
 PLANAR_PRECISION = 1e-5
-
-
-def _pairs():
-    from ...scenes.pair import Pair, Sphere
-
-    return [Pair(a=Sphere(m_a, r_a, alpha), b=Sphere(m_b, r_b, alpha), v_a=(0.0, 0.0, -1.0),
-                 w_a=(0.0, 1.0 / r_a, 0.0), w_b=(0.0, 0.5 / r_b, 0.0))
-            for alpha in ALPHAS for (m_a, m_b), (r_a, r_b) in RATIOS]
 
 
 def _slip_ratio(table, pairs, suffix: str) -> np.ndarray:
@@ -53,10 +47,9 @@ def _slip_ratio(table, pairs, suffix: str) -> np.ndarray:
 
 
 def equal_alpha(runs: Runs) -> Claim:
-    from ...scenes.pair import PairBatch
-    from ...pipeline import run_scene
-
-    pairs = _pairs()
+    pairs = [Pair(a=Sphere(m_a, r_a, alpha), b=Sphere(m_b, r_b, alpha), v_a=(0.0, 0.0, -1.0),
+                  w_a=(0.0, 1.0 / r_a, 0.0), w_b=(0.0, 0.5 / r_b, 0.0))
+             for alpha in ALPHAS for (m_a, m_b), (r_a, r_b) in RATIOS]
     table = run_scene(PairBatch(pairs), runs.root / "pair-equal-alpha", record=False).table
     lammps, exact = _slip_ratio(table, pairs, ""), _slip_ratio(table, pairs, "_exact")
     wall = np.array([linear.Omega(10.0, 1.0, p.a.alpha) for p in pairs])
