@@ -198,6 +198,7 @@ def measure(calibrations, out_dir, steps_per_half_period: int = 2000) -> list[di
         scene = TwoWalls(chunk, initial, bounces=1, steps_per_half_period=steps_per_half_period)
         result = run_two_walls(scene, Path(out_dir) / f"batch{k + 1}")
         after, durations = result.states[1], result.contact_durations()[:, 0]
-        out += [{"e": float(after[i, 0] / -initial[i, 0]), "beta": float(-(after[i, 1] + after[i, 2]) / slips[i]),
+        out += [{"e": float(after[i, 0] / -initial[i, 0]),
+                 "beta": float(-(after[i, 1] + after[i, 2]) / slips[i]),
                  "contact_time": float(durations[i]), "deck": str(result.deck)} for i in range(len(chunk))]
     return out

@@ -34,8 +34,8 @@ import tempfile
 import time
 from pathlib import Path
 
-__all__ = ["measure_speed", "scene_needs", "SPEED_DEFAULTS", "MODELS", "measure_models", "parallel_efficiency",
-           "chunk_jobs"]
+__all__ = ["measure_speed", "scene_needs", "SPEED_DEFAULTS", "MODELS", "measure_models",
+           "parallel_efficiency", "chunk_jobs"]
 
 #: Collisions per method by default: enough for each to run a few seconds.
 SPEED_DEFAULTS = {"n_lmp": 30, "n_inprocess": 300, "n_batched": 200_000}

@@ -23,8 +23,8 @@ from ...lammps.runner import run_deck
 from ...model.timestep import mid_step_dt
 from ...records import write_atomic
 
-__all__ = ["Form", "FORMS", "Check", "classify", "verdict", "run_form", "run_wall", "diagnose", "EXIT", "UPSTREAM",
-           "TOLERANCE"]
+__all__ = ["Form", "FORMS", "Check", "classify", "verdict", "run_form", "run_wall", "diagnose", "EXIT",
+           "UPSTREAM", "TOLERANCE"]
 
 UPSTREAM = "LAMMPS PR #5007 (2026): linear_history_classic no longer scales kt by the contact radius"
 #: |Omega_measured - Omega_theory| below which a form is said to follow that theory. The
@@ -131,7 +131,8 @@ def _run(folder: Path, template: str, atoms: LibraryAtoms, **values) -> dict:
     """Render ``template`` into ``folder``/in.lammps and run it with ``atoms``: LAMMPS's final state."""
     deck = Path(folder) / "in.lammps"
     deck.parent.mkdir(parents=True, exist_ok=True)
-    write_atomic(deck, render_template(Path(__file__).parent, template, library_marker=LIBRARY_MARKER, **values))
+    text = render_template(Path(__file__).parent, template, library_marker=LIBRARY_MARKER, **values)
+    write_atomic(deck, text)
     return run_deck(deck, atoms=atoms).final
 
 
@@ -166,9 +167,10 @@ def run_form(form: Form, out_dir: Path) -> float:
     # two spheres touching along z, sphere 1 below, each with half the relative velocity
     x = np.array([[0.0, 0.0, 0.0], [0.0, 0.0, 2 * R]])
     v = np.array([[slip / 2, 0.0, speed / 2], [-slip / 2, 0.0, -speed / 2]])
-    final = _run(folder, "doctor_pair.lmp.j2", LibraryAtoms(np.ones(2, dtype=np.int32), x, v, np.zeros_like(x)),
-                 title=form.title, r=R, m=M, dt=dt, nsteps=STEPS + 50, pair_style=form.style,
-                 pair_coeff=f"* * {form.coeff}".rstrip(), skin=0.3 * R, box={"lo": -8 * R, "hi": 8 * R})
+    atoms = LibraryAtoms(np.ones(2, dtype=np.int32), x, v, np.zeros_like(x))
+    final = _run(folder, "doctor_pair.lmp.j2", atoms, title=form.title, r=R, m=M, dt=dt, nsteps=STEPS + 50,
+                 pair_style=form.style, pair_coeff=f"* * {form.coeff}".rstrip(), skin=0.3 * R,
+                 box={"lo": -8 * R, "hi": 8 * R})
     # sphere 1's slip against sphere 2 at their contact, v1_x - v2_x + r (omega1_y + omega2_y)
     # (the normal from 2 to 1 is -z)
     v, w = final["v"], final["omega"]
