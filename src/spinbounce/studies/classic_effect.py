@@ -67,16 +67,12 @@ def compare(model: ContactModel, speeds, v_t: float, omega: float) -> list[dict]
             for k, speed in enumerate(speeds)]
 
 
-def figure_ratios(model: ContactModel) -> list[float]:
-    """The user's kt/kn and the figure's three, in order."""
-    return sorted({*FIGURE_KT_OVER_KN, model.kt / model.kn})
-
-
 def omega_curves(model: ContactModel) -> list[dict]:
-    """Omega of the classic wall against |v_n| for each of :func:`figure_ratios`, with the paper's."""
+    """Omega of the classic wall against |v_n| for the user's kt/kn and the figure's three, in
+    order, with the paper's."""
     speeds = CURVE_FRACTIONS * tunnelling_speed(model)
     curves = []
-    for ratio in figure_ratios(model):
+    for ratio in sorted({*FIGURE_KT_OVER_KN, model.kt / model.kn}):
         at_ratio = model.replace(kt=ratio * model.kn)
         curves.append({"kt_over_kn": ratio, "v_n": speeds.tolist(),
                        "omega_classic": _omega(at_ratio.replace(wall="classic"), speeds).tolist(),

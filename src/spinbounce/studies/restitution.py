@@ -165,8 +165,7 @@ def make_figure(out: Path, runs: Path, points: int = 44) -> dict:
                 ax.plot(data[name]["theta"], data[name]["values"], "k*", ms=7,
                         label=f"{data[name]['label']}, measured")
             ax.set(xlabel=r"incidence angle $\theta$ (deg, from the normal)", ylabel=QUANTITY_LABELS[name])
-        handles, labels = axes[0, 0].get_legend_handles_labels()
-        axes[0, 0].legend(handles, labels, fontsize=6.5, loc="center right")
+        axes[0, 0].legend(fontsize=6.5, loc="center right")
         for ax in axes.ravel()[1:]:
             stars = [(h, lab) for h, lab in zip(*ax.get_legend_handles_labels(), strict=True) if "measured" in lab]
             ax.legend(*zip(*stars, strict=True), fontsize=6.5, loc="upper left")

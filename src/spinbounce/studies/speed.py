@@ -200,31 +200,26 @@ def measure_speed(n_lmp: int = SPEED_DEFAULTS["n_lmp"], n_inprocess: int = SPEED
     }
 
 
-def _theory_and_checks_seconds(rows) -> tuple[float, float]:
-    """The sweep's theory columns and its row checks, timed again on its own rows."""
+def _one(name: str, n: int, seed: int, root: Path) -> dict:
+    """One model's sweep on one core; its theory columns and row checks timed again on its own rows."""
     from .. import checks
     from ..exact import choose
     from ..fitting import model_of_group
     from ..model import parameters
     from ..scenes.collision import STATE_3D
     from ..scenes.collision.scene import row_states
-
-    names = [s for s in STATE_3D if f"{s}_initial" in rows]
-    model = model_of_group({p.column: rows[p.column].iloc[0] for p in parameters.MODEL})
-    initial = rows[[f"{s}_initial" for s in names]].to_numpy()
-    columns = {c: rows[c].to_numpy() for c in rows.columns}
-    return (_timed(lambda: choose.predict(model, initial)),
-            _timed(lambda: checks.add_row_checks(columns, row_states(model, names, columns))))
-
-
-def _one(name: str, n: int, seed: int, root: Path) -> dict:
     from ..sweeps import read_results, run_sweep
     from ..sweeps.cost import chunk_cost
 
     spec = _spec(n, *MODELS[name], seed)
     wall = _timed(lambda: run_sweep(spec, root / name.replace(" ", "_"), workers=1, log=lambda *_: None))
     rows = read_results(root / name.replace(" ", "_"))
-    theory, checking = _theory_and_checks_seconds(rows)
+    names = [s for s in STATE_3D if f"{s}_initial" in rows]
+    model = model_of_group({p.column: rows[p.column].iloc[0] for p in parameters.MODEL})
+    initial = rows[[f"{s}_initial" for s in names]].to_numpy()
+    columns = {c: rows[c].to_numpy() for c in rows.columns}
+    theory = _timed(lambda: choose.predict(model, initial))
+    checking = _timed(lambda: checks.add_row_checks(columns, row_states(model, names, columns)))
     return {"model": name, "collisions": n, "wall_seconds": wall, "theory_seconds": theory,
             "lammps_and_rest_seconds": wall - theory, "checks_seconds": checking,
             "steps_per_collision": int(rows["nsteps"].iloc[0]), "max_error": float(rows["error"].max()),
