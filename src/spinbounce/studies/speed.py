@@ -200,7 +200,7 @@ def measure_speed(n_lmp: int = SPEED_DEFAULTS["n_lmp"], n_inprocess: int = SPEED
     }
 
 
-def _one(name: str, n: int, seed: int, root: Path) -> dict:
+def _one(name: str, n: int, seed: int, root: Path, log) -> dict:
     """One model's sweep on one core; its theory columns and row checks timed again on its own rows."""
     from .. import checks
     from ..exact import choose
@@ -211,6 +211,7 @@ def _one(name: str, n: int, seed: int, root: Path) -> dict:
     from ..sweeps import read_results, run_sweep
     from ..sweeps.cost import chunk_cost
 
+    log(f"  sweep: {name}")
     spec = _spec(n, *MODELS[name], seed)
     wall = _timed(lambda: run_sweep(spec, root / name.replace(" ", "_"), workers=1, log=lambda *_: None))
     rows = read_results(root / name.replace(" ", "_"))
@@ -231,10 +232,7 @@ def measure_models(n: int = 100_000, n_hertz: int = 1_000, seed: int = 0, keep: 
     """Each model's sweep on one core; ratios of time per collision to the frictionless one."""
     root = Path(keep) if keep else Path(tempfile.mkdtemp(prefix="spinbounce-bench-models-"))
     try:
-        out = []
-        for name in MODELS:
-            log(f"  sweep: {name}")
-            out.append(_one(name, n_hertz if name == "Hertz" else n, seed, root))
+        out = [_one(name, n_hertz if name == "Hertz" else n, seed, root, log) for name in MODELS]
     finally:
         if keep is None:
             shutil.rmtree(root, ignore_errors=True)

@@ -90,7 +90,10 @@ class Check:
     measured: float
     paper: float
     contact_radius: float
-    answer: str
+
+    @property
+    def answer(self) -> str:
+        return classify(self.measured, self.paper, self.contact_radius, TOLERANCE[self.form.kind])
 
 
 def theories(pair: bool) -> tuple[float, float]:
@@ -179,10 +182,4 @@ def run_form(form: Form, out_dir: Path) -> float:
 
 def diagnose(out_dir: Path, forms=FORMS) -> list[Check]:
     """Run every form and classify it."""
-    checks = []
-    for form in forms:
-        measured = run_form(form, out_dir)
-        paper, variant = theories(form.pair)
-        answer = classify(measured, paper, variant, TOLERANCE[form.kind])
-        checks.append(Check(form, measured, paper, variant, answer))
-    return checks
+    return [Check(form, run_form(form, out_dir), *theories(form.pair)) for form in forms]
