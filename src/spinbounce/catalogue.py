@@ -10,8 +10,11 @@ are listed (:data:`LISTED`) but not run by ``reproduce``.
 
 from __future__ import annotations
 
+import inspect
+import json
 import math
 from dataclasses import dataclass
+from importlib import import_module
 from pathlib import Path
 from typing import Callable
 
@@ -37,8 +40,6 @@ def _paper_figures(out, runs, log):
 
 
 def _claims(out, runs, log):
-    import json
-
     from .studies.claims import evaluate_claims, write_claims
 
     _, record = write_claims(evaluate_claims(runs, log=log), out)
@@ -48,9 +49,6 @@ def _claims(out, runs, log):
 def _figure(module: str, function: str):
     """A study whose ``function(out, runs[, log])`` returns its record (a dict or a FigureRecord)."""
     def make_one(out, runs, log):
-        import inspect
-        from importlib import import_module
-
         maker = getattr(import_module(f"spinbounce.{module}"), function)
         logging = {"log": log} if "log" in inspect.signature(maker).parameters else {}
         made = maker(out, runs=runs, **logging)
@@ -60,8 +58,6 @@ def _figure(module: str, function: str):
 
 
 def _benchmarks(out, runs, log):
-    import json
-
     from .studies.validation.report import make_benchmarks
 
     _, files = make_benchmarks(out, runs=runs, log=log)

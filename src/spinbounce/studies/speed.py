@@ -34,6 +34,8 @@ import tempfile
 import time
 from pathlib import Path
 
+import numpy as np
+
 __all__ = ["measure_speed", "scene_needs", "SPEED_DEFAULTS", "MODELS", "measure_models",
            "parallel_efficiency", "chunk_jobs"]
 
@@ -90,7 +92,6 @@ def _one_at_a_time(spec, count: int, folder: Path, runner, atoms: str) -> dict:
 
 
 def _batched(spec, folder: Path, workers: int) -> dict:
-    import numpy as np
     from ..scenes.collision import STATE
     from ..lammps.runner import loop_seconds
     from ..sweeps import read_results, run_sweep
@@ -111,7 +112,6 @@ def scene_needs(spec, count: int, folder: Path) -> dict:
     (2) padded (:class:`decks.Padding`) with a contact time of free flight before and two
     after, dumping every step: the physics is the same, only the work around it differs.
     """
-    import numpy as np
     from ..scenes.collision.deck import Padding, render_collision
     from ..lammps.runner import run_deck
     from ..scenes.collision import Collision
