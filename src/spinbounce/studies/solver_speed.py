@@ -84,15 +84,10 @@ KINDS = {"2-D": (random_cases, 1e-9), "3-D": (random_cases_3d, 1e-8),
 
 
 def _deviation(model, state) -> float:
-    """|solver - oracle| over the final state, per unit impact speed |v|."""
-    if len(state) == 3:
-        slow = oracle.bounce(model, *state).final[:3]
-        fast = coulomb.bounce_2d(model, *state)[0]
-    else:
-        v_n, v_t, omega, v_s, omega_s, omega_n = state
-        slow = oracle.bounce(model, v_n, v_t, omega, v_s=v_s, omega_s=omega_s,
-                             omega_n=omega_n).final
-        fast = coulomb.bounce_3d(model, *state)[0]
+    """|solver - oracle| over the final state (2-D or 3-D, as the state), per unit impact speed |v|."""
+    out_of_plane = dict(zip(("v_s", "omega_s", "omega_n"), state[3:]))
+    slow = oracle.bounce(model, *state[:3], **out_of_plane).final[:len(state)]
+    fast = (coulomb.bounce_2d if len(state) == 3 else coulomb.bounce_3d)(model, *state)[0]
     speed = math.hypot(state[0], state[1], *state[3:4])  # v_s too, in 3-D
     return float(np.abs(fast - slow).max() / speed)
 
