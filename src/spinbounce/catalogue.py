@@ -4,17 +4,17 @@ ledger and the studies beyond the paper, each with the command that makes it alo
 Each :class:`Product` writes its files into one folder and returns its JSON records by name
 (``figures/<name>.json`` in the repository is the stored copy of each). The repository's
 ``figures/`` is this list made with ``spinbounce reproduce --out figures``; a test makes it
-afresh and compares every record with the stored one (:func:`compare_records`).
-
-Two studies are listed but not run by ``reproduce``: the convergence study (``spinbounce
-accuracy``, tens of minutes) and the speed measurement (``spinbounce bench``, whose numbers
-belong to the machine).
+afresh and compares every record with the stored one (:func:`compare_records`). Two studies
+are listed (:data:`LISTED`) but not run by ``reproduce``.
 """
 
 from __future__ import annotations
 
+import inspect
+import json
 import math
 from dataclasses import dataclass
+from importlib import import_module
 from pathlib import Path
 from typing import Callable
 
@@ -40,8 +40,6 @@ def _paper_figures(out, runs, log):
 
 
 def _claims(out, runs, log):
-    import json
-
     from .studies.claims import evaluate_claims, write_claims
 
     _, record = write_claims(evaluate_claims(runs, log=log), out)
@@ -51,9 +49,6 @@ def _claims(out, runs, log):
 def _figure(module: str, function: str):
     """A study whose ``function(out, runs[, log])`` returns its record (a dict or a FigureRecord)."""
     def make_one(out, runs, log):
-        import inspect
-        from importlib import import_module
-
         maker = getattr(import_module(f"spinbounce.{module}"), function)
         logging = {"log": log} if "log" in inspect.signature(maker).parameters else {}
         made = maker(out, runs=runs, **logging)
@@ -63,8 +58,6 @@ def _figure(module: str, function: str):
 
 
 def _benchmarks(out, runs, log):
-    import json
-
     from .studies.validation.report import make_benchmarks
 
     _, files = make_benchmarks(out, runs=runs, log=log)
@@ -133,18 +126,10 @@ def compare_records(stored, fresh, tolerance: float, path: str = "") -> list[str
         if len(stored) != len(fresh):
             return [f"{path}: {len(fresh)} items, stored {len(stored)}"]
         return [d for k, (a, b) in enumerate(zip(stored, fresh)) for d in compare_records(a, b, tolerance, f"{path}[{k}]")]
-    if _is_number(stored) and _is_number(fresh):
-        if _numbers_agree(float(stored), float(fresh), tolerance):
-            return []
-        return [f"{path}: {fresh!r}, stored {stored!r}"]
-    return [] if stored == fresh else [f"{path}: {fresh!r}, stored {stored!r}"]
-
-
-def _is_number(value) -> bool:
-    return isinstance(value, (int, float)) and not isinstance(value, bool)
-
-
-def _numbers_agree(stored: float, fresh: float, tolerance: float) -> bool:
-    if math.isnan(stored) or math.isnan(fresh):
-        return math.isnan(stored) and math.isnan(fresh)
-    return abs(fresh - stored) <= tolerance * max(1.0, abs(stored))
+    numbers = [float(v) for v in (stored, fresh) if isinstance(v, (int, float)) and not isinstance(v, bool)]
+    if len(numbers) == 2:
+        a, b = numbers
+        same = math.isnan(a) == math.isnan(b) and (math.isnan(a) or abs(b - a) <= tolerance * max(1.0, abs(a)))
+    else:
+        same = stored == fresh
+    return [] if same else [f"{path}: {fresh!r}, stored {stored!r}"]

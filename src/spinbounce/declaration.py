@@ -128,9 +128,6 @@ class Parameter:
             return value
         if self.optional and (value is None or (isinstance(value, float) and value == self.none_value)):
             return None
-        return self._check_number(name, value)
-
-    def _check_number(self, name: str, value) -> float:
         if isinstance(value, bool):
             raise SceneError(name, value, "must be a number")
         number = finite_number(name, value)

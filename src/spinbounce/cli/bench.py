@@ -96,7 +96,7 @@ def _print_models(n: int, seed: int, n_pairs: int) -> dict:
     from ..studies.pairs import cost_lines, pair_to_wall_cost
     from ..studies.accuracy import default_step_table
     from ..studies.solver_speed import measure_throughput
-    from ..studies.speed_models import chunk_jobs, measure_models, parallel_efficiency
+    from ..studies.speed import chunk_jobs, measure_models, parallel_efficiency
 
     models = measure_models(n=n, n_hertz=max(1, n // 100), seed=seed)["models"]
     print(f"{'sweep (one core)':<18}{'collisions':>11}{'coll/s':>10}{'time/coll vs frictionless':>27}"

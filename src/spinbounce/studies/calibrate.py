@@ -1,20 +1,9 @@
 """From what a bounce should do to the LAMMPS parameters that make it do so.
 
-Targets: the normal restitution e, the contact time t_c (how long the sphere overlaps the
-wall), the tangential restitution of the contact point beta = -u'(out)/u'(in) of a sticking
-collision (equivalently Eq. 18's Omega = -(1 + beta)), and the friction coefficient mu.
-Unknowns: kn, gamma_n, kt, gamma_t. The exact theory is inverted (docs/theory.md,
-"Calibration"):
-
-* (kn, gamma_n) from (e, t_c): in closed form when the normal force may pull (LAMMPS's
-  default); with ``limit_damping`` e fixes the damping ratio gamma_n/(2 sqrt(m kn)) alone
-  (bisection) and t_c then fixes kn, as both scale with sqrt(m/kn);
-* kt from beta with gamma_t held (closed form at gamma_t = 0), or gamma_t from beta with
-  kt/kn held: the first root along the free parameter of Omega_exact + 1 + beta, bracketed on a
-  scan (scipy's brentq), after checking beta is inside the range the scan reaches.
-
-mu is passed on: the matrices hold for sticking collisions, those with |u'(0)| small against
-mu |v_n|. Unreachable targets raise :class:`Unreachable` with the reachable range.
+Targets: the normal restitution e, the contact time t_c, the contact point's tangential
+restitution beta = -u'(out)/u'(in) of a sticking collision (Eq. 18's Omega = -(1 + beta)) and
+mu, which is passed on. Unknowns: kn, gamma_n, kt, gamma_t, from the exact theory inverted
+(docs/theory.md, section 5). Unreachable targets raise :class:`Unreachable` with the reachable range.
 """
 
 from __future__ import annotations
@@ -62,10 +51,6 @@ class Targets:
     limit_damping: bool = False
     gamma_t: float | None = 0.0
     kt_over_kn: float | None = None
-
-    @property
-    def Omega(self) -> float:
-        return -(1.0 + self.beta)
 
 
 @dataclass(frozen=True)
@@ -186,13 +171,8 @@ def calibrate(t: Targets) -> Calibration:
 
 
 def pair_lines(model: ContactModel) -> tuple[str, str]:
-    """``pair_style granular`` and ``pair_coeff`` for two equal spheres with the same e, beta and t_c.
-
-    Two equal spheres move relative to each other with the reduced mass m/2 and their contact
-    slips with twice a single sphere's inverse mass (1/m + r^2/I for each), so halving kn,
-    gamma_n, kt and gamma_t keeps every rate of the planar theory (LAMMPS_FACTS section 12:
-    the planar theory holds between spheres up to the turn of the line of centres).
-    """
+    """``pair_style granular`` and ``pair_coeff`` for two equal spheres with the same e, beta and t_c:
+    kn, gamma_n, kt and gamma_t halved (docs/theory.md, section 5)."""
     half = model.replace(kn=model.kn / 2.0, kt=model.kt / 2.0, gamma_n=model.gamma_n / 2.0,
                          gamma_t=model.gamma_t / 2.0)
     return "pair_style granular", f"pair_coeff * * {wall_parameters(half)['style'].removeprefix('granular ')}"
@@ -202,31 +182,23 @@ def measure(calibrations, out_dir, steps_per_half_period: int = 2000) -> list[di
     """What LAMMPS achieves with each calibrated model: e, beta and t_c of one bounce.
 
     MAX_MODELS models per run (a wall pair per model, :mod:`.two_walls`, the first bounce only).
-    Each sphere comes in at the |v_n| that presses it r/2 into the wall, with a slip
-    u'(0) = |v_n|, or 1e-3 mu |v_n| with a cap, small enough to stick (docs/theory.md: a capped contact slides briefly where F_n vanishes, which moves
-    beta by an amount proportional to u'(0)/(mu |v_n|)).
+    Each sphere comes in at the |v_n| that presses it r/2 into the wall (far from tunnelling),
+    with a slip u'(0) = |v_n|, or 1e-3 mu |v_n| with a cap, small enough to stick (docs/theory.md,
+    section 5).
     """
-    from ..scenes.two_walls import MAX_MODELS
+    from ..scenes.two_walls import MAX_MODELS, TwoWalls, run_two_walls
 
-    calibrations = list(calibrations)
+    models = [c.model for c in calibrations]
     out = []
-    for k, start in enumerate(range(0, len(calibrations), MAX_MODELS)):
-        chunk = calibrations[start:start + MAX_MODELS]
-        out += _measure_run(chunk, Path(out_dir) / f"batch{k + 1}", steps_per_half_period)
+    for k, start in enumerate(range(0, len(models), MAX_MODELS)):
+        chunk = tuple(models[start:start + MAX_MODELS])
+        speeds = [0.5 * m.r / float(exact.max_overlap(1.0, m.m, m.kn, m.gamma_n)) for m in chunk]
+        slips = [v if m.mu is None else 1e-3 * m.mu * v for v, m in zip(speeds, chunk, strict=True)]
+        initial = np.array([[-v, s, 0.0] for v, s in zip(speeds, slips, strict=True)])
+        scene = TwoWalls(chunk, initial, bounces=1, steps_per_half_period=steps_per_half_period)
+        result = run_two_walls(scene, Path(out_dir) / f"batch{k + 1}")
+        after, durations = result.states[1], result.contact_durations()[:, 0]
+        out += [{"e": float(after[i, 0] / -initial[i, 0]),
+                 "beta": float(-(after[i, 1] + after[i, 2]) / slips[i]),
+                 "contact_time": float(durations[i]), "deck": str(result.deck)} for i in range(len(chunk))]
     return out
-
-
-def _measure_run(calibrations, out_dir: Path, steps_per_half_period: int) -> list[dict]:
-    from ..scenes.two_walls import TwoWalls, run_two_walls
-
-    models = tuple(c.model for c in calibrations)
-    # each sphere at the speed whose largest overlap is r/2: far from tunnelling through the wall
-    speeds = [0.5 * m.r / float(exact.max_overlap(1.0, m.m, m.kn, m.gamma_n)) for m in models]
-    slips = [v if m.mu is None else 1e-3 * m.mu * v for v, m in zip(speeds, models, strict=True)]
-    initial = np.array([[-v, s, 0.0] for v, s in zip(speeds, slips, strict=True)])
-    scene = TwoWalls(models, initial, bounces=1, steps_per_half_period=steps_per_half_period)
-    result = run_two_walls(scene, out_dir)
-    after = result.states[1]
-    durations = result.contact_durations()[:, 0]
-    return [{"e": float(after[i, 0] / -initial[i, 0]), "beta": float(-(after[i, 1] + after[i, 2]) / slips[i]),
-             "contact_time": float(durations[i]), "deck": str(result.deck)} for i in range(len(models))]

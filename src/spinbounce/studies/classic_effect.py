@@ -1,17 +1,12 @@
 """What this build's classic wall does to a user's collisions, against the physics they meant.
 
-The classic form ``fix wall/gran hooke/history`` scales its tangential spring by the contact
-radius sqrt(r delta) in this LAMMPS build (:mod:`spinbounce.exact.classic`), so the same
-numbers give a different collision than the granular form's ``linear_history`` (the paper's
-model). For one contact model and state, over a ladder of impact speeds, this module sets
-the two side by side: Omega = u'(out)/u'(in) - 1 of the sticking contact (no cap, the
-paper's Eq. 18 definition), the rebound v_t and r omega, and the kinetic energy each gains
-(Eq. 21; > 0 means the wall gave the sphere energy). Both sides come from
-:func:`spinbounce.exact.choose.predict`, the one place that picks a theory: the classic
-side with ``wall = classic``, the meant side with ``wall = granular``.
-
-Speeds are given as fractions of the tunnelling speed r sqrt(kn/m), above which the
-Hookean overlap would exceed the radius (LAMMPS_FACTS section 6).
+The classic ``fix wall/gran hooke/history`` scales its tangential spring by the contact radius
+sqrt(r delta) in this LAMMPS build (:mod:`spinbounce.exact.classic`); the granular form's
+``linear_history`` is the paper's model. Over a ladder of impact speeds, both from
+:func:`spinbounce.exact.choose.predict`: Omega = u'(out)/u'(in) - 1 of the sticking contact (no
+cap, Eq. 18's definition), the rebound v_t and r omega, and the kinetic energy gained (Eq. 21;
+> 0: the wall gave the sphere energy). Speeds are fractions of the tunnelling speed r sqrt(kn/m),
+above which the Hookean overlap would exceed the radius (LAMMPS_FACTS section 6).
 """
 
 from __future__ import annotations
@@ -47,19 +42,10 @@ def table_speeds(model: ContactModel, v_n: float) -> np.ndarray:
     return np.unique(np.append(np.asarray(TABLE_FRACTIONS) * tunnelling_speed(model), abs(v_n)))
 
 
-def _as(model: ContactModel, wall: str) -> ContactModel:
-    return model.replace(wall=wall)
-
-
-def _energy(states: np.ndarray, model: ContactModel) -> np.ndarray:
-    return np.array([linear.energy(s, model.m, model.alpha) for s in states])
-
-
 def _omega(model: ContactModel, speeds) -> np.ndarray:
     """Omega of the sticking contact (no cap) at each |v_n|: one unit of slip in, u'(out) - 1."""
-    sticking = model.replace(mu=None)
     states = np.column_stack([-np.asarray(speeds, dtype=float), np.ones(len(speeds)), np.zeros(len(speeds))])
-    final = choose.predict(sticking, states)
+    final = choose.predict(model.replace(mu=None), states)
     return final[:, 1] + final[:, 2] - 1.0
 
 
@@ -68,36 +54,29 @@ def compare(model: ContactModel, speeds, v_t: float, omega: float) -> list[dict]
     form (with the model's own cap and damping), their difference and the energy gained."""
     speeds = np.asarray(speeds, dtype=float)
     initial = np.column_stack([-speeds, np.full(len(speeds), v_t), np.full(len(speeds), model.r * omega)])
-    rows = []
-    sides = {wall: choose.predict(_as(model, wall), initial) for wall in ("classic", "granular")}
-    omegas = {wall: _omega(_as(model, wall), speeds) for wall in ("classic", "granular")}
-    gains = {wall: _energy(final, model) / _energy(initial, model) - 1.0 for wall, final in sides.items()}
-    for k, speed in enumerate(speeds):
-        rows.append({
-            "v_n": float(speed),
-            "omega_classic": float(omegas["classic"][k]), "omega_meant": float(omegas["granular"][k]),
-            "final_classic": sides["classic"][k].tolist(), "final_meant": sides["granular"][k].tolist(),
-            "d_vt": float(sides["classic"][k, 1] - sides["granular"][k, 1]),
-            "d_r_omega": float(sides["classic"][k, 2] - sides["granular"][k, 2]),
-            "energy_gain_classic": float(gains["classic"][k]), "energy_gain_meant": float(gains["granular"][k]),
-        })
-    return rows
-
-
-def figure_ratios(model: ContactModel) -> list[float]:
-    """The user's kt/kn and the figure's three, in order."""
-    return sorted({*FIGURE_KT_OVER_KN, model.kt / model.kn})
+    classic, meant = (model.replace(wall=wall) for wall in ("classic", "granular"))
+    final_c, final_m = choose.predict(classic, initial), choose.predict(meant, initial)
+    omega_c, omega_m = _omega(classic, speeds), _omega(meant, speeds)
+    energy_in = np.array([linear.energy(s, model.m, model.alpha) for s in initial])
+    gain_c, gain_m = ([linear.energy(s, model.m, model.alpha) for s in final] / energy_in - 1.0
+                      for final in (final_c, final_m))
+    return [{"v_n": float(speed), "omega_classic": float(omega_c[k]), "omega_meant": float(omega_m[k]),
+             "final_classic": final_c[k].tolist(), "final_meant": final_m[k].tolist(),
+             "d_vt": float(final_c[k, 1] - final_m[k, 1]), "d_r_omega": float(final_c[k, 2] - final_m[k, 2]),
+             "energy_gain_classic": float(gain_c[k]), "energy_gain_meant": float(gain_m[k])}
+            for k, speed in enumerate(speeds)]
 
 
 def omega_curves(model: ContactModel) -> list[dict]:
-    """Omega of the classic wall against |v_n| for each of :func:`figure_ratios`, with the paper's."""
+    """Omega of the classic wall against |v_n| for the user's kt/kn and the figure's three, in
+    order, with the paper's."""
     speeds = CURVE_FRACTIONS * tunnelling_speed(model)
     curves = []
-    for ratio in figure_ratios(model):
+    for ratio in sorted({*FIGURE_KT_OVER_KN, model.kt / model.kn}):
         at_ratio = model.replace(kt=ratio * model.kn)
         curves.append({"kt_over_kn": ratio, "v_n": speeds.tolist(),
-                       "omega_classic": _omega(_as(at_ratio, "classic"), speeds).tolist(),
-                       "omega_meant": float(_omega(_as(at_ratio, "granular"), speeds[:1])[0])})
+                       "omega_classic": _omega(at_ratio.replace(wall="classic"), speeds).tolist(),
+                       "omega_meant": float(_omega(at_ratio.replace(wall="granular"), speeds[:1])[0])})
     return curves
 
 
@@ -107,7 +86,7 @@ def lammps_omegas(model: ContactModel, ratio: float, folder: Path) -> dict:
     from ..scenes.collision import Collision
     from ..pipeline import run_scene
 
-    classic = _as(model.replace(kt=ratio * model.kn, mu=None), "classic")
+    classic = model.replace(kt=ratio * model.kn, mu=None, wall="classic")
     speeds = np.asarray(LAMMPS_FRACTIONS) * tunnelling_speed(model)
     result = run_scene(Collision(classic, v_n=-speeds, v_t=1.0, omega=0.0), Path(folder), record=False)
     table = result.table
@@ -120,4 +99,4 @@ def fix_lines(model: ContactModel) -> dict:
     the granular line that gives the paper's model with the same numbers."""
     from ..lammps.decks import fix_line
 
-    return {wall: fix_line(_as(model, wall)) for wall in ("classic", "granular")}
+    return {wall: fix_line(model.replace(wall=wall)) for wall in ("classic", "granular")}

@@ -24,7 +24,7 @@ from ..exact import pair as planar
 from ..exact import pair_exact
 from ..scenes.pair import Pair, PairBatch, PairContact, Sphere
 
-__all__ = ["cases", "validity_map", "pair_to_wall_cost", "cost_lines", "COST_BATCHES"]
+__all__ = ["cases", "validity_map", "pair_to_wall_cost", "cost_lines"]
 
 #: (sphere a, sphere b): unequal radii, masses and alpha (2/5 and rigid-body ones).
 _SPHERE_PAIRS = (
@@ -82,12 +82,7 @@ def validity_map(eps_values, centrifugal_values, kn: float = 10.0, kt: float = 1
             "kn": kn, "kt": kt, "sphere": {"m": sphere.m, "r": sphere.r, "alpha": sphere.alpha}}
 
 
-#: The batches :func:`pair_to_wall_cost` measures: a sweep's states with radii 5e3 (the line
-#: of centres barely turns: where a fit may claim the planar matrix), the same states with
-#: the default radii 0.5 (eps up to 0.7), undamped and damped (gamma_n = 0.5, restitution
-#: 0.76; the wall's batch is then damped alike), and the 24 hard cases of :func:`cases`.
-COST_BATCHES = ("small eps", "default radii", "default radii, damped", "hard cases")
-#: The damped batches' normal damping.
+#: The damped batches' normal damping (restitution 0.76).
 DAMPED_GAMMA_N = 0.5
 
 
@@ -106,15 +101,18 @@ def pair_to_wall_cost(n: int = 200, seed: int = 3, out_dir: Path | None = None) 
     """LAMMPS's loop seconds per collision, pair batches against a wall batch, each at its default step.
 
     The wall: n spheres (m = 1, r = 0.5) at its default step, undamped and with
-    :data:`DAMPED_GAMMA_N`. The pairs: each batch of :data:`COST_BATCHES` with n pairs (the hard
-    cases repeated), against the wall batch of its damping, at the step its probe chose
+    :data:`DAMPED_GAMMA_N`. The pairs, n in each batch: a sweep's states with radii 5e3 (the line
+    of centres barely turns: where a fit may claim the planar matrix), the same states with the
+    default radii 0.5 (eps up to 0.7), undamped and damped, and the 24 hard cases of :func:`cases`
+    (repeated); each against the wall batch of its damping, at the step its probe chose
     (:func:`.stepping.tune_pairs`; the probe's own runs are not counted). Every batch is
     checked against its reference, so each cost is at the accuracy its rows reach.
     """
     small, wall_states = _sweep_pairs(n, 5e3, seed)
     default = _sweep_pairs(n, 0.5, seed)[0]
     batches = {"small eps": (small, 0.0), "default radii": (default, 0.0),
-               "default radii, damped": (default, DAMPED_GAMMA_N), "hard cases": ([cases()[k % 24] for k in range(n)], 0.0)}
+               "default radii, damped": (default, DAMPED_GAMMA_N),
+               "hard cases": ([cases()[k % 24] for k in range(n)], 0.0)}
     with tempfile.TemporaryDirectory() as scratch:
         where = Path(out_dir or scratch)
         walls = {gamma_n: run_scene(Collision(ContactModel(gamma_n=gamma_n), **wall_states), where / f"wall-{gamma_n:g}",

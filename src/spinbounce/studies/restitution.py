@@ -1,17 +1,12 @@
 """Restitution maps: what a bounce does against the incidence angle, from LAMMPS and theory.
 
-For spheres of speed |v| = 1 hitting the wall at incidence theta (from the normal, no
-initial spin): the normal restitution e_n = -v_n'/v_n, the tangential restitution
-e_t = v_t'/v_t (Kharaz's), the centre's rebound angle atan(v_t'/v_n') and the rebound spin
-r omega'/|v|, for a Hookean and a Hertzian wall, each without and with a Coulomb cap. Each
-curve is one batched LAMMPS run (:func:`~spinbounce.pipeline.run_scene`, library route)
-and the theory that applies (:func:`~spinbounce.exact.choose.predict`). Kharaz, Gorham &
-Salman's (2001) alumina sphere on an aluminium-alloy plate, as digitised in other DEM codes
-(:data:`~spinbounce.studies.validation.digitised.KHARAZ_2001`), is drawn with its source,
-with the Hookean model fitted to it.
-
-These quantities are dimensionless: for a linear contact they depend on kt/kn, e, mu and
-alpha only, so the model runs in the paper's units and the data keep theirs.
+For spheres of speed |v| = 1 at incidence theta, no initial spin: e_n, e_t (Kharaz's), the
+centre's rebound angle and the rebound spin r omega'/|v| (docs/theory.md, section 6), for a Hookean
+and a Hertzian wall, each without and with a Coulomb cap. Each curve is one batched LAMMPS run
+(library route) beside :func:`~spinbounce.exact.choose.predict`. Kharaz, Gorham & Salman's (2001)
+alumina sphere on an aluminium-alloy plate, as digitised in other DEM codes
+(:data:`~spinbounce.studies.validation.digitised.KHARAZ_2001`), is drawn with its source, with
+the Hookean model fitted to it; the model runs in the paper's units and the data keep theirs.
 """
 
 from __future__ import annotations
@@ -134,10 +129,8 @@ def fit_kharaz(starts=FIT_STARTS) -> dict:
     :func:`kharaz_residuals` (every digitised point weighs the same) from each start, the best kept."""
     from scipy.optimize import least_squares
 
-    def residuals(p):
-        return kharaz_residuals(*p)
-
-    fits = [least_squares(residuals, start, bounds=([0.01, 0.01], [2.0, 1.0]), x_scale=[0.1, 0.01], xtol=1e-6)
+    fits = [least_squares(lambda p: kharaz_residuals(*p), start, bounds=([0.01, 0.01], [2.0, 1.0]),
+                          x_scale=[0.1, 0.01], xtol=1e-6)
             for start in starts]
     fit = min(fits, key=lambda f: f.cost)
     return {"kt_over_kn": float(fit.x[0]), "mu": float(fit.x[1]), "e": KHARAZ_E, "limit_damping": True,
@@ -172,8 +165,7 @@ def make_figure(out: Path, runs: Path, points: int = 44) -> dict:
                 ax.plot(data[name]["theta"], data[name]["values"], "k*", ms=7,
                         label=f"{data[name]['label']}, measured")
             ax.set(xlabel=r"incidence angle $\theta$ (deg, from the normal)", ylabel=QUANTITY_LABELS[name])
-        handles, labels = axes[0, 0].get_legend_handles_labels()
-        axes[0, 0].legend(handles, labels, fontsize=6.5, loc="center right")
+        axes[0, 0].legend(fontsize=6.5, loc="center right")
         for ax in axes.ravel()[1:]:
             stars = [(h, lab) for h, lab in zip(*ax.get_legend_handles_labels(), strict=True) if "measured" in lab]
             ax.legend(*zip(*stars, strict=True), fontsize=6.5, loc="upper left")

@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import math
 import sys
-import time
 import warnings
 
 import numpy as np
@@ -21,7 +20,7 @@ from ..model.contact import ContactModel
 from ..errors import PhysicsWarning
 from ..exact import coulomb, oracle
 
-__all__ = ["random_case", "random_cases", "random_cases_3d", "worst_deviation", "agreement",
+__all__ = ["random_case", "random_cases", "random_cases_3d", "agreement",
            "KINDS", "print_agreement", "measure_throughput", "main"]
 
 #: kt/kn values sampled: soft, the magic ratio of alpha = 2/5 (2/7), stiff, stiffer than kn.
@@ -85,41 +84,29 @@ KINDS = {"2-D": (random_cases, 1e-9), "3-D": (random_cases_3d, 1e-8),
 
 
 def _deviation(model, state) -> float:
-    """|solver - oracle| over the final state, per unit impact speed |v|."""
-    if len(state) == 3:
-        slow = oracle.bounce(model, *state).final[:3]
-        fast = coulomb.bounce_2d(model, *state)[0]
-    else:
-        v_n, v_t, omega, v_s, omega_s, omega_n = state
-        slow = oracle.bounce(model, v_n, v_t, omega, v_s=v_s, omega_s=omega_s,
-                             omega_n=omega_n).final
-        fast = coulomb.bounce_3d(model, *state)[0]
+    """|solver - oracle| over the final state (2-D or 3-D, as the state), per unit impact speed |v|."""
+    out_of_plane = dict(zip(("v_s", "omega_s", "omega_n"), state[3:]))
+    slow = oracle.bounce(model, *state[:3], **out_of_plane).final[:len(state)]
+    fast = (coulomb.bounce_2d if len(state) == 3 else coulomb.bounce_3d)(model, *state)[0]
     speed = math.hypot(state[0], state[1], *state[3:4])  # v_s too, in 3-D
     return float(np.abs(fast - slow).max() / speed)
 
 
-def worst_deviation(cases) -> tuple[float, int, np.ndarray]:
-    """Largest |solver - oracle| over the cases, in units of each impact speed |v|:
-    (worst, its index, every case's deviation). A case the oracle refuses (its regimes
-    chatter beyond its switch limit) has deviation NaN and is left out of the worst."""
-    deviations = np.full(len(cases), np.nan)
-    for i, (model, state) in enumerate(cases):
+def agreement(n: int, seed: int, kind: str = "2-D") -> dict:
+    """The solver against the oracle over n random cases of a kind (``KINDS``): how many the
+    oracle refused (its regimes chatter beyond its switch limit: left out of the worst), the
+    largest and median |solver - oracle| per unit |v|, the worst case's index, and how many
+    exceed the kind's tolerance."""
+    make, tolerance = KINDS[kind]
+    deviations = np.full(n, np.nan)
+    for i, (model, state) in enumerate(make(n, seed)):
         try:
             deviations[i] = _deviation(model, state)
         except RuntimeError:
             continue
     worst = int(np.nanargmax(deviations))
-    return float(deviations[worst]), worst, deviations
-
-
-def agreement(n: int, seed: int, kind: str = "2-D") -> dict:
-    """The solver against the oracle over n random cases of a kind (``KINDS``): how many
-    the oracle refused, the largest and median deviation per unit |v|, the worst case's
-    index, and how many exceed the kind's tolerance."""
-    make, tolerance = KINDS[kind]
-    worst, where, deviations = worst_deviation(make(n, seed))
     return {"kind": kind, "cases": n, "refused": int(np.isnan(deviations).sum()),
-            "worst": worst, "worst_case": where, "median": float(np.nanmedian(deviations)),
+            "worst": float(deviations[worst]), "worst_case": worst, "median": float(np.nanmedian(deviations)),
             "tolerance": tolerance, "above": int((deviations > tolerance).sum())}
 
 
@@ -133,22 +120,16 @@ def measure_throughput(n: int = 200_000, seed: int = 0, repeats: int = 3, three_
     3-D v_s, r omega_s and r omega_n too).
     The best of ``repeats`` runs (the machine is shared).
     """
+    from .speed import _timed
+
     rng = np.random.default_rng(seed)
     contact = ContactModel(**({"mu": 0.3} | model))
-    v_n = -rng.uniform(0.1, 1.5, n)
-    v_t = rng.uniform(-2.0, 2.0, n)
-    omega = rng.uniform(-2.0, 2.0, n) / contact.r
-    states = [v_n, v_t, omega]
+    states = [-rng.uniform(0.1, 1.5, n), rng.uniform(-2.0, 2.0, n), rng.uniform(-2.0, 2.0, n) / contact.r]
     if three_d:
         states += [rng.uniform(-2.0, 2.0, n), rng.uniform(-2.0, 2.0, n) / contact.r,
                    rng.uniform(-2.0, 2.0, n) / contact.r]
     bounce = coulomb.bounce_3d if three_d else coulomb.bounce_2d
-    best = math.inf
-    for _ in range(repeats):
-        started = time.perf_counter()
-        bounce(contact, *states)
-        best = min(best, time.perf_counter() - started)
-    return n / best
+    return n / min(_timed(lambda: bounce(contact, *states)) for _ in range(repeats))
 
 
 #: Models the throughput is reported for: the paper's, damped, and Hertzian.

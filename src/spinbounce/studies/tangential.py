@@ -1,26 +1,19 @@
-"""Becker, Schwager & Poeschel's tangential restitution curves: LAMMPS, the exact solver and
-the rigid limits.
+"""Becker, Schwager & Poeschel's tangential restitution curves (Phys. Rev. E 77, 011304, 2008):
+LAMMPS, the exact solver and the rigid limits (:mod:`.tangential_limits`: convention, closed forms).
 
-Becker, Schwager & Poeschel, Phys. Rev. E 77, 011304 (2008) give the coefficient of
-tangential restitution of the linear dashpot with a Cundall-Strack spring and a Coulomb cap
-against the ratio of tangential to normal impact velocity. Their text and figures were not
-available here (only the abstract: a constant e_n, the tangential coefficient depending
-on the impact velocity), so their exact parameter sets are not reproduced; the sets below
-are chosen in their spirit: the linear dashpot with a constant e_n, kt/kn at the magic
-2/7 (Eq. 20), at the paper's 1/10 and at 1/2, mu = 0.3, one set with normal and tangential
-damping. Sign convention, closed forms and their derivations: :mod:`.tangential_limits`.
-
-For each set, beta = -g_t'/g_t against psi = |g_t|/|v_n| (speed 1, no spin) comes from
-(a) one batched LAMMPS run at the default accuracy (:func:`~spinbounce.pipeline.run_scene`,
-library route), (b) the exact Coulomb solver through :func:`~spinbounce.exact.choose.predict`
-and (c) Walton's gross-slip line and the sticking plateau. Hookean contacts scale with |v_n|,
-so beta depends on psi alone.
+Only their abstract was available here (a constant e_n, the tangential coefficient depending
+on the impact velocity), so their parameter sets are not reproduced; the sets below are chosen
+in their spirit: the linear dashpot with a constant e_n, kt/kn at the magic 2/7 (Eq. 20), at the
+paper's 1/10 and at 1/2, mu = 0.3, one set with normal and tangential damping. For each, beta
+against psi = |g_t|/|v_n| (speed 1, no spin) comes from one batched LAMMPS run at the default
+accuracy (library route), the exact Coulomb solver (:func:`~spinbounce.exact.choose.predict`)
+and Walton's gross-slip line with the sticking plateau. Hookean contacts scale with |v_n|, so
+beta depends on psi alone.
 """
 
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -30,25 +23,20 @@ from ..model.contact import ContactModel
 from ..pipeline import run_scene
 from ..exact import choose
 from . import tangential_limits as limits
+from .restitution import Curve
 from .validation.materials import gamma_n_for_restitution_cut
 
-__all__ = ["CurveSet", "SETS", "ratios", "run_set", "solver_curve", "limit_deviations", "make_figure",
+__all__ = ["SETS", "ratios", "run_set", "solver_curve", "limit_deviations", "make_figure",
            "LAMMPS_POINTS", "SOLVER_POINTS", "MAX_REDUCED"]
-
-
-@dataclass(frozen=True)
-class CurveSet:
-    label: str
-    model: ContactModel
 
 
 #: e_n = 0.8 with the normal force kept compressive (Walton's branch needs int F_n = m (1 + e)|v_n|).
 DAMPED_E = 0.8
 SETS = (
-    CurveSet("kt/kn = 2/7 (magic), e_n = 1", ContactModel(kt=20.0 / 7.0, mu=0.3)),
-    CurveSet("kt/kn = 1/10 (Wang & Harrowell), e_n = 1", ContactModel(mu=0.3)),
-    CurveSet("kt/kn = 1/2, e_n = 1", ContactModel(kt=5.0, mu=0.3)),
-    CurveSet(f"kt/kn = 2/7, e_n = {DAMPED_E}, gamma_t = 0.3", ContactModel(
+    Curve("kt/kn = 2/7 (magic), e_n = 1", ContactModel(kt=20.0 / 7.0, mu=0.3)),
+    Curve("kt/kn = 1/10 (Wang & Harrowell), e_n = 1", ContactModel(mu=0.3)),
+    Curve("kt/kn = 1/2, e_n = 1", ContactModel(kt=5.0, mu=0.3)),
+    Curve(f"kt/kn = 2/7, e_n = {DAMPED_E}, gamma_t = 0.3", ContactModel(
         kt=20.0 / 7.0, mu=0.3, gamma_n=gamma_n_for_restitution_cut(DAMPED_E, 1.0, 10.0), gamma_t=0.3,
         limit_damping=True)),
 )
@@ -56,6 +44,8 @@ SETS = (
 #: every switch (-Omega <= 2): MAX_REDUCED shows the plateaus and their approach.
 MIN_REDUCED, MAX_REDUCED = 0.05, 8.0
 LAMMPS_POINTS, SOLVER_POINTS = 40, 400
+#: The model's parameters each set's record holds.
+MODEL_FIELDS = ("kn", "kt", "gamma_n", "gamma_t", "mu", "limit_damping", "alpha", "m", "r")
 
 
 def ratios(model, points: int) -> np.ndarray:
@@ -69,7 +59,7 @@ def solver_curve(model, psi) -> np.ndarray:
     return limits.beta(initial, choose.predict(model, initial))
 
 
-def run_set(curve: CurveSet, run_dir: Path, points: int = LAMMPS_POINTS) -> dict:
+def run_set(curve: Curve, run_dir: Path, points: int = LAMMPS_POINTS) -> dict:
     """One batched LAMMPS run over psi, the solver on the same states, and their deviations.
 
     ``state_deviation``: max |LAMMPS - solver| over the state's columns per unit speed (the
@@ -180,16 +170,6 @@ def _draw_deviations(ax, sets: list[dict]) -> None:
                  fontsize=8.5)
 
 
-def _record(sets: list[dict]) -> list[dict]:
-    fields = ("kn", "kt", "gamma_n", "gamma_t", "mu", "limit_damping", "alpha", "m", "r")
-    out = []
-    for s in sets:
-        entry = {k: v for k, v in s.items() if k != "model"}
-        entry["model"] = {f: getattr(s["model"], f) for f in fields}
-        out.append(entry)
-    return out
-
-
 def make_figure(out: Path, runs: Path) -> dict:
     """figures/tangential.png, .pdf, .json: beta against the velocity ratio for every set."""
     import matplotlib.style
@@ -215,5 +195,6 @@ def make_figure(out: Path, runs: Path) -> dict:
                     "lammps_points": LAMMPS_POINTS, "solver_points": SOLVER_POINTS,
                     "largest_state_deviation": max(s["state_deviation"] for s in sets),
                     "largest_beta_deviation": max(s["beta_deviation"] for s in sets),
-                    "sets": _record(sets)}
+                    "sets": [{**{k: v for k, v in s.items() if k != "model"},
+                              "model": {f: getattr(s["model"], f) for f in MODEL_FIELDS}} for s in sets]}
         return save(fig, out, "tangential", metadata, started).metadata

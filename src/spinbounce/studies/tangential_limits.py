@@ -1,10 +1,6 @@
-"""Closed forms of the coefficient of tangential restitution in its two rigid limits.
-
-Becker, Schwager & Poeschel, Phys. Rev. E 77, 011304 (2008), solve the linear
-spring-dashpot contact with a Cundall-Strack tangential spring capped by Coulomb friction
-and give the coefficient of tangential restitution against the ratio of tangential to
-normal impact velocity. Here the sphere meets a flat wall (the paper's scene of Wang &
-Harrowell).
+"""Closed forms of the coefficient of tangential restitution in its two rigid limits, for the
+capped linear spring-dashpot of Becker, Schwager & Poeschel (:mod:`.tangential`) against a flat
+wall (the paper's scene of Wang & Harrowell).
 
 **Sign convention.** g_t = u' = v_t + r omega is the tangential velocity of the contact
 point (the slip rate, Eq. 2) and
@@ -80,7 +76,7 @@ def slip_rate(states: np.ndarray) -> np.ndarray:
 
 
 def beta(initial: np.ndarray, final: np.ndarray) -> np.ndarray:
-    """beta = -g_t'/g_t for each row (the module's sign convention)."""
+    """beta = -g_t'/g_t for each row."""
     return -slip_rate(final) / slip_rate(initial)
 
 

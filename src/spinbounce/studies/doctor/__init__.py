@@ -23,8 +23,8 @@ from ...lammps.runner import run_deck
 from ...model.timestep import mid_step_dt
 from ...records import write_atomic
 
-__all__ = ["Form", "FORMS", "Check", "classify", "verdict", "run_form", "run_wall", "pair_omega", "diagnose", "EXIT", "UPSTREAM",
-           "TOLERANCE"]
+__all__ = ["Form", "FORMS", "Check", "classify", "verdict", "run_form", "run_wall", "diagnose", "EXIT",
+           "UPSTREAM", "TOLERANCE"]
 
 UPSTREAM = "LAMMPS PR #5007 (2026): linear_history_classic no longer scales kt by the contact radius"
 #: |Omega_measured - Omega_theory| below which a form is said to follow that theory. The
@@ -54,6 +54,10 @@ class Form:
     style: str  # after ``fix ... wall/gran`` or ``pair_style``
     pair: bool = False  # two free spheres (pair style) or a sphere against the wall (fix wall/gran)
     coeff: str = ""  # after ``pair_coeff * *``
+
+    @property
+    def kind(self) -> str:
+        return "pair" if self.pair else "wall"
 
     @property
     def command(self) -> str:
@@ -86,11 +90,10 @@ class Check:
     measured: float
     paper: float
     contact_radius: float
-    answer: str
 
-
-def _kind(pair: bool) -> str:
-    return "pair" if pair else "wall"
+    @property
+    def answer(self) -> str:
+        return classify(self.measured, self.paper, self.contact_radius, TOLERANCE[self.form.kind])
 
 
 def theories(pair: bool) -> tuple[float, float]:
@@ -101,7 +104,7 @@ def theories(pair: bool) -> tuple[float, float]:
     same function of (m/2, r/2) as the wall's of (m, r).
     """
     mass, radius = (M / 2, R / 2) if pair else (M, R)
-    speed, _ = SPEEDS[_kind(pair)]
+    speed, _ = SPEEDS["pair" if pair else "wall"]
     return linear.Omega(KN, KT, ALPHA), classic.Omega_eff(-speed, KN, KT, ALPHA, radius, mass)
 
 
@@ -127,28 +130,13 @@ def verdict(answers: dict[str, str]) -> tuple[str, int]:
     return f"neither the paper's model nor the known contact-radius build (differs in: {', '.join(odd)})", EXIT["unknown"]
 
 
-def _pair_atoms() -> LibraryAtoms:
-    """Two spheres touching along z, sphere 1 below, each with half the relative velocity."""
-    speed, slip = SPEEDS["pair"]
-    x = np.array([[0.0, 0.0, 0.0], [0.0, 0.0, 2 * R]])
-    v = np.array([[slip / 2, 0.0, speed / 2], [-slip / 2, 0.0, -speed / 2]])
-    return LibraryAtoms(types=np.ones(2, dtype=np.int32), x=x, v=v, omega=np.zeros_like(x))
-
-
-def pair_omega(final: dict) -> float:
-    """u'(out)/u'(in) - 1 of the pair: slip of sphere 1 against sphere 2 at their contact,
-    v1_x - v2_x + r (omega1_y + omega2_y) (the normal from 2 to 1 is -z)."""
-    v, w = final["v"], final["omega"]
-    _, slip_in = SPEEDS["pair"]
-    slip = (v[0, 0] - v[1, 0]) + R * (w[0, 1] + w[1, 1])
-    return float(slip / slip_in - 1.0)
-
-
-def _render_pair(form: Form, dt: float, nsteps: int) -> str:
-    return render_template(
-        Path(__file__).parent, "doctor_pair.lmp.j2", title=form.title, r=R, m=M, dt=dt, nsteps=nsteps, library_marker=LIBRARY_MARKER,
-        pair_style=form.style, pair_coeff=f"* * {form.coeff}".rstrip(), skin=0.3 * R,
-        box={"lo": -8 * R, "hi": 8 * R})
+def _run(folder: Path, template: str, atoms: LibraryAtoms, **values) -> dict:
+    """Render ``template`` into ``folder``/in.lammps and run it with ``atoms``: LAMMPS's final state."""
+    deck = Path(folder) / "in.lammps"
+    deck.parent.mkdir(parents=True, exist_ok=True)
+    text = render_template(Path(__file__).parent, template, library_marker=LIBRARY_MARKER, **values)
+    write_atomic(deck, text)
+    return run_deck(deck, atoms=atoms).final
 
 
 def run_wall(style: str, states, out_dir: Path, dt: float, nsteps: int, r: float = R, m: float = M,
@@ -165,38 +153,33 @@ def run_wall(style: str, states, out_dir: Path, dt: float, nsteps: int, r: float
     x = np.column_stack([4.0 * r * np.arange(n), np.zeros(n), z])
     v = np.column_stack([states[:, 1], np.zeros(n), states[:, 0]])
     omega = np.column_stack([np.zeros(n), -states[:, 2] / r, np.zeros(n)])  # paper's omega = -omega_y
-    text = render_template(
-        Path(__file__).parent, "doctor_wall.lmp.j2", title=f"fix wall/gran {style}", n=n, r=r, m=m, wall_style=style, dt=dt,
-        nsteps=nsteps, hold=heights is not None, library_marker=LIBRARY_MARKER,
-        box={"lo": -4.0 * r, "hi": 4.0 * r * n, "zhi": 4.0 * r})
-    deck = Path(out_dir) / "in.lammps"
-    deck.parent.mkdir(parents=True, exist_ok=True)
-    write_atomic(deck, text)
-    final = run_deck(deck, atoms=LibraryAtoms(np.ones(n, dtype=np.int32), x, v, omega)).final
+    final = _run(out_dir, "doctor_wall.lmp.j2", LibraryAtoms(np.ones(n, dtype=np.int32), x, v, omega),
+                 title=f"fix wall/gran {style}", n=n, r=r, m=m, wall_style=style, dt=dt, nsteps=nsteps,
+                 hold=heights is not None, box={"lo": -4.0 * r, "hi": 4.0 * r * n, "zhi": 4.0 * r})
     return np.column_stack([final["v"][:, 2], final["v"][:, 0], -r * final["omega"][:, 1]])
 
 
 def run_form(form: Form, out_dir: Path) -> float:
     """Run ``form``'s collision in ``out_dir`` and return the measured Omega."""
-    speed, slip = SPEEDS[_kind(form.pair)]
-    mass = M / 2 if form.pair else M
-    dt = mid_step_dt(math.pi * math.sqrt(mass / KN), STEPS)
+    speed, slip = SPEEDS[form.kind]
+    dt = mid_step_dt(math.pi * math.sqrt((M / 2 if form.pair else M) / KN), STEPS)
     folder = Path(out_dir) / form.key
     if not form.pair:
         final = run_wall(form.style, [(-speed, slip, 0.0)], folder, dt, STEPS + 50)
         return float((final[0, 1] + final[0, 2]) / slip - 1.0)
-    deck = folder / "in.lammps"
-    deck.parent.mkdir(parents=True, exist_ok=True)
-    write_atomic(deck, _render_pair(form, dt, STEPS + 50))
-    return pair_omega(run_deck(deck, atoms=_pair_atoms()).final)
+    # two spheres touching along z, sphere 1 below, each with half the relative velocity
+    x = np.array([[0.0, 0.0, 0.0], [0.0, 0.0, 2 * R]])
+    v = np.array([[slip / 2, 0.0, speed / 2], [-slip / 2, 0.0, -speed / 2]])
+    atoms = LibraryAtoms(np.ones(2, dtype=np.int32), x, v, np.zeros_like(x))
+    final = _run(folder, "doctor_pair.lmp.j2", atoms, title=form.title, r=R, m=M, dt=dt, nsteps=STEPS + 50,
+                 pair_style=form.style, pair_coeff=f"* * {form.coeff}".rstrip(), skin=0.3 * R,
+                 box={"lo": -8 * R, "hi": 8 * R})
+    # sphere 1's slip against sphere 2 at their contact, v1_x - v2_x + r (omega1_y + omega2_y)
+    # (the normal from 2 to 1 is -z)
+    v, w = final["v"], final["omega"]
+    return float(((v[0, 0] - v[1, 0]) + R * (w[0, 1] + w[1, 1])) / slip - 1.0)
 
 
 def diagnose(out_dir: Path, forms=FORMS) -> list[Check]:
     """Run every form and classify it."""
-    checks = []
-    for form in forms:
-        measured = run_form(form, out_dir)
-        paper, variant = theories(form.pair)
-        answer = classify(measured, paper, variant, TOLERANCE[_kind(form.pair)])
-        checks.append(Check(form, measured, paper, variant, answer))
-    return checks
+    return [Check(form, run_form(form, out_dir), *theories(form.pair)) for form in forms]
