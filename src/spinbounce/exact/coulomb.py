@@ -32,7 +32,7 @@ Delta(r omega) = Delta u'/(1 + alpha).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from collections import namedtuple
 from functools import lru_cache
 
 import numpy as np
@@ -86,27 +86,10 @@ class _Stick:
         e11, e12, e21, e22 = self.propagator(tau)
         return e11 * force + e12 * slip_rate, e21 * force + e22 * slip_rate
 
-    def rates_of(self, force, slip_rate):
-        """(A', A'') from (A, u')."""
-        d1 = self.kt * slip_rate - self.gts * force
-        return d1, -self.kt * self.s * force - self.gts * d1
 
-
-@dataclass(frozen=True)
-class _Fields:
-    """The parts of a ContactModel the solver reads (a cache key whatever the model class)."""
-
-    m: float
-    r: float
-    alpha: float
-    kn: float
-    kt: float
-    gamma_n: float
-    gamma_t: float
-    mu: float | None
-    limit_damping: bool
-    #: The normal force grows with the contact radius (Hertzian): the model's normal sub-model says.
-    contact_radius: bool
+#: The parts of a ContactModel the solver reads (a cache key whatever the model class), the
+#: normal law's contact_radius last: the normal force grows with it (Hertzian).
+_Fields = namedtuple("_Fields", "m r alpha kn kt gamma_n gamma_t mu limit_damping contact_radius")
 
 
 def _sign(x, fallback):
@@ -183,8 +166,11 @@ class _Solver:
         sliding = ~inside & (direction * self.kt * u - self.gts * c > c_rate)
         return np.where(inside, force, direction * c), sliding, direction
 
-    def _segment_end(self, phase, rows, t_s, lo, hi, f_lo, f_hi, exact):
-        """Each sphere's switching time (where the bracket holds one), else the phase's end."""
+    def _segment_end(self, phase, rows, t_s, k0, noise, on_grid, exact):
+        """(switched, time) per sphere: its first switch after t_s, else the phase's end."""
+        f_s, d_s, _ = exact(np.arange(rows.size), t_s)
+        lo, hi, f_lo, f_hi = first_crossing(lambda sel, k: phase.times(rows[sel], k), phase.last, k0, t_s,
+                                            f_s, d_s, noise, on_grid, exact, phase.t_scale)
         event = np.isfinite(hi)
         ends = np.broadcast_to(phase.end(rows), rows.shape).copy()
         if event.any():
@@ -208,16 +194,13 @@ class _Solver:
         def exact(sel, times):
             a, v = self.stick.advance(times - t_s[sel], a_s[sel], u_s[sel])
             c, c1, c2 = phase.cap(rows[sel], times)
-            d1, d2 = self.stick.rates_of(a, v)
+            d1 = self.kt * v - self.gts * a  # A' and A'' = -kt s A - gamma_t s A'
             sg = np.sign(a)
-            return c - np.abs(a) + noise[sel], c1 - sg * d1, c2 - sg * d2
+            return c - np.abs(a) + noise[sel], c1 - sg * d1, c2 - sg * (-self.kt * self.s * a - self.gts * d1)
 
         noise = NOISE * (phase.cap_scale(rows) + np.abs(a_s)
                          + self.kt * np.abs(u_s) * phase.t_scale)
-        h_s, h1_s, _ = exact(np.arange(rows.size), t_s)
-        brackets = first_crossing(lambda sel, k: phase.times(rows[sel], k), phase.last, k0, t_s,
-                                  h_s, h1_s, noise, on_grid, exact, phase.t_scale)
-        event, ends = self._segment_end(phase, rows, t_s, *brackets, exact)
+        event, ends = self._segment_end(phase, rows, t_s, k0, noise, on_grid, exact)
         a_e, u_e = self.stick.advance(ends - t_s, a_s, u_s)
         t[rows], force[rows], u[rows] = ends, a_e, u_e
         sliding[rows] = event
@@ -238,19 +221,11 @@ class _Solver:
             return offset[sel] + push + noise[sel], push_rate, push_accel
 
         noise = NOISE * (self.kt * np.abs(u_s) + phase.push_scale(rows))
-        k0 = phase.first_index(rows, t_s)
-        g_s, g1_s, _ = exact(np.arange(rows.size), t_s)
-        brackets = first_crossing(lambda sel, k: phase.times(rows[sel], k), phase.last, k0, t_s,
-                                  g_s, g1_s, noise, on_grid, exact, phase.t_scale)
-        event, ends = self._segment_end(phase, rows, t_s, *brackets, exact)
+        event, ends = self._segment_end(phase, rows, t_s, phase.first_index(rows, t_s), noise, on_grid, exact)
         u_e = u_s - self.s * sigma * impulse * (rate_s - phase.rate(rows, ends))
         t[rows], u[rows] = ends, u_e
         force[rows] = sigma * phase.cap(rows, ends)[0]
         sliding[rows] = ~event
-
-
-#: The model's fields the solver reads, in the order _solver takes them.
-_FIELDS = ("m", "r", "alpha", "kn", "kt", "gamma_n", "gamma_t", "mu", "limit_damping")
 
 
 @lru_cache(maxsize=16)
@@ -264,7 +239,8 @@ def _slip_change(model, v_n, slip):
     if not np.all(v_n < 0.0):
         raise ValueError("every v_n must be < 0 (towards the wall)")
     speed = -v_n
-    solver = _solver(*(getattr(model, name) for name in _FIELDS), model.normal_law.contact_radius)
+    fields = (getattr(model, name) for name in _Fields._fields[:-1])
+    solver = _solver(*fields, model.normal_law.contact_radius)
     start = slip / speed
     restitution = 1.0 if solver.hertz else model.restitution  # Hertz here has gamma_n = 0
     return speed, restitution, (solver.final_slip_rate(start, speed) - start) * speed

@@ -146,11 +146,6 @@ class _Contact:
             return -self.mu * f, -self.mu * df
         return self.mu * f, self.mu * df
 
-    def normal_accel(self, y) -> float:
-        if not self.tensile and self.turned:
-            return 0.0
-        return self.normal(y)[0] / self.m
-
     def rhs(self, phase: str):
         kt, gt, m, alpha = self.kt, self.gt, self.m, self.alpha
 
@@ -159,7 +154,7 @@ class _Contact:
             dy[_D] = -y[_VN]
             if phase == "free":
                 return dy
-            dy[_VN] = self.normal_accel(y)
+            dy[_VN] = 0.0 if self.turned and not self.tensile else self.normal(y)[0] / self.m
             if phase == "coast":
                 return dy
             u_rate = y[_V] + y[_W]
@@ -279,13 +274,6 @@ class _Contact:
         return solve_ivp(self.rhs(phase), (t, horizon), y, method=METHOD, rtol=rtol, atol=atol,
                          events=events, max_step=tau / MIN_STEPS_PER_CONTACT)
 
-    @staticmethod
-    def unpack(y) -> np.ndarray:
-        """The 8-slot state from an integrated one (a 3-D slide's angle back to s)."""
-        if y.size == _TURNING:
-            return np.concatenate([y[:_THETA], [math.cos(y[_THETA]), math.sin(y[_THETA])]])
-        return y.copy()
-
     def push(self, y, s, c: float) -> float:
         """How fast sticking would carry A outwards along s, with A on a cap of radius c:
         s . (kt u' + gamma_t u''), the sticking force being -c s."""
@@ -363,7 +351,8 @@ def bounce(model: ContactModel, v_n: float, v_t: float = 0.0, omega: float = 0.0
             raise RuntimeError(f"oracle: the contact did not end by t = {horizon:g} ({sol.message})")
         hit = min((k for k, te in enumerate(sol.t_events) if te.size), key=lambda k: sol.t_events[k][0])
         t = float(sol.t_events[hit][0])
-        y = c.unpack(sol.y_events[hit][0])
+        y = sol.y_events[hit][0]
+        y = np.concatenate([y[:_THETA], c.slide_direction(y)])  # 8 slots (a 3-D slide's angle back to s)
         if hit == 0 or (y[_D] <= 0.0 and y[_VN] > 0.0):  # exit (a switch can fall on it)
             break
         phase = c.switch(events[hit].__name__, y, phase)

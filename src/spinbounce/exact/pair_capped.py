@@ -198,8 +198,8 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, m
     if e is None:
         raise ValueError("the capped pair reference needs planar motion: the line of centres and both "
                          "velocities in one plane, both spins along its normal")
-    n0, p, y, v_rel, tau, longest, atol = start(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn,
-                                                kt, planar, rtol, mu=mu, gamma_n=gamma_n)
+    n0, p, y, v_rel, tau, longest, atol = start(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b,
+                                                kn, kt, planar, rtol, mu=mu, gamma_n=gamma_n)
     contact = _Contact(p, e, n0, planar)
     contact.tau = tau
     contact.f_rounding = 16.0 * kn * np.spacing(r_a + r_b)

@@ -109,8 +109,8 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, g
 
     Vectors are 3-sequences in LAMMPS's frame; angular velocities are LAMMPS's omega.
     """
-    n0, p, state, _, tau, longest, atol = start(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn,
-                                                kt, planar, rtol, gamma_n=gamma_n, gamma_t=gamma_t)
+    n0, p, state, _, tau, longest, atol = start(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b,
+                                                kn, kt, planar, rtol, gamma_n=gamma_n, gamma_t=gamma_t)
 
     def separated(t, y, *_):
         d = y[:3]
