@@ -188,7 +188,7 @@ class _Solver:
             e11, e12, e21, e22 = phase.steps(rows[sel], offsets)
             a = e11 * a0[sel, None] + e12 * u0[sel, None]
             v = e21 * a0[sel, None] + e22 * u0[sel, None]
-            c, c1 = phase.cap_on_grid(rows[sel], k)
+            c, c1, _, _ = phase.on_grid(rows[sel], k)
             return c - np.abs(a), c1 - np.sign(a) * (self.kt * v - self.gts * a)
 
         def exact(sel, times):
@@ -213,7 +213,7 @@ class _Solver:
         offset = sigma * self.kt * u_s - self.kt * self.s * impulse * rate_s  # g = offset + H
 
         def on_grid(sel, offsets, k):
-            push, push_rate = phase.push_on_grid(rows[sel], k)
+            _, _, push, push_rate = phase.on_grid(rows[sel], k)
             return offset[sel, None] + push, push_rate
 
         def exact(sel, times):
