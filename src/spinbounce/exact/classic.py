@@ -147,19 +147,12 @@ class _Collision:
         s, co = math.sin(w.omega_d * t), math.cos(w.omega_d * t)
         return max(self.V / w.omega_d * decay * s, 0.0), self.V * decay * (co - w.beta / w.omega_d * s)
 
-    def normal(self, t: float) -> tuple[float, float]:
-        """(delta, F_n) at time t."""
-        delta, rate = self.overlap(t)
-        return delta, self.w.kn * delta + self.w.m * self.w.gamma_n * rate
-
-    def a(self, delta: float) -> float:
-        return math.sqrt(self.w.r * delta) if self.w.contact_radius else 1.0
-
     def forces(self, phi: float, y) -> tuple[float, float, float, float]:
         """(trial F_t, cap C, a, slip rate) at phase phi, state y = (v_t, r omega, xi)."""
-        delta, fn = self.normal(self.t_of(phi))
+        delta, rate = self.overlap(self.t_of(phi))
+        fn = self.w.kn * delta + self.w.m * self.w.gamma_n * rate
         slip = y[0] + y[1]
-        a = self.a(delta)
+        a = math.sqrt(self.w.r * delta) if self.w.contact_radius else 1.0
         cap = math.inf if self.w.mu is None else self.w.mu * abs(fn)
         return -self.w.kt * a * y[2] - self.c * slip, cap, a, slip
 
@@ -242,14 +235,6 @@ class _Collision:
 _REGIME = {0: "stick", 1: "slide+", -1: "slide-"}
 
 
-def _start(collision: _Collision, y) -> tuple[int, float]:
-    """The regime at first touch (delta = 0, xi = 0): the trial force is the dashpot's."""
-    force, cap, _, _ = collision.forces(0.0, y)
-    if abs(force) > cap:
-        return collision.after_cap(0.0, y, 1 if force > 0 else -1)
-    return 0, 0.0
-
-
 def bounce(wall: ClassicWall, v_n: float, v_t: float = 0.0, r_omega: float = 0.0) -> ClassicResult:
     """The final (v_n, v_t, r omega) of a sphere that touches the wall with v_n < 0.
 
@@ -264,7 +249,8 @@ def bounce(wall: ClassicWall, v_n: float, v_t: float = 0.0, r_omega: float = 0.0
     turn = wall.tensile_time()
     stops = [math.acos(1.0 - 2.0 * turn / wall.tau)] if turn < wall.tau and wall.mu is not None else []
     stops.append(math.pi)
-    phi, (sign, y[2]) = 0.0, _start(collision, y)
+    phi, (force, cap, _, _) = 0.0, collision.forces(0.0, y)  # first touch: the trial force is the dashpot's
+    sign, y[2] = collision.after_cap(phi, y, 1 if force > 0 else -1) if abs(force) > cap else (0, 0.0)
     regimes = [(0.0, _REGIME[sign])]
     for _ in range(MAX_SWITCHES):
         stop = next(s for s in stops if s > phi)

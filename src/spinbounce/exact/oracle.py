@@ -366,11 +366,7 @@ def bounce(model: ContactModel, v_n: float, v_t: float = 0.0, omega: float = 0.0
 def bounce_many(model: ContactModel, v_n, v_t, omega, v_s=None, omega_s=None, omega_n=None) -> np.ndarray:
     """(n, 6) final states for equal-length sequences of initial states."""
     v_n = np.atleast_1d(np.asarray(v_n, dtype=float))
-    n = v_n.size
-    cols = [np.zeros(n) if x is None else np.broadcast_to(np.asarray(x, dtype=float), (n,))
-            for x in (v_t, omega, v_s, omega_s, omega_n)]
-    return np.array([
-        bounce(model, float(v_n[i]), float(cols[0][i]), float(cols[1][i]), v_s=float(cols[2][i]),
-               omega_s=float(cols[3][i]), omega_n=float(cols[4][i])).final
-        for i in range(n)
-    ])
+    others = [np.zeros(v_n.size) if x is None else np.broadcast_to(np.asarray(x, dtype=float), v_n.shape)
+              for x in (v_t, omega, v_s, omega_s, omega_n)]
+    return np.array([bounce(model, *row[:3], v_s=row[3], omega_s=row[4], omega_n=row[5]).final
+                     for row in np.column_stack([v_n, *others]).tolist()])
