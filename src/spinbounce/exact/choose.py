@@ -93,7 +93,7 @@ def matrix(model, v_n: float | None = None, three_d: bool = False) -> np.ndarray
     if choice.kind == "hertzian":
         if v_n is None:
             raise NoMatrix(choice.no_matrix_reason)
-        m3 = _hertz_matrices(model, np.array([v_n]))[0]
+        m3 = matrices(model, v_n)[0]
     else:
         m3 = _matrix3(model)
     return linear.block_from(m3) if three_d else m3
@@ -104,12 +104,9 @@ def matrices(model, v_n) -> np.ndarray:
     matrix repeated otherwise); :class:`NoMatrix` with a Coulomb cap."""
     v_n = np.atleast_1d(np.asarray(v_n, dtype=float))
     if which(model).kind == "hertzian":
-        return _hertz_matrices(model, v_n)
+        return hertz.scattering_matrices(v_n, model.m, model.kn, model.r, model.kt, model.alpha,
+                                         model.gamma_t)
     return np.broadcast_to(matrix(model), (v_n.size, 3, 3))
-
-
-def _hertz_matrices(model, v_n: np.ndarray) -> np.ndarray:
-    return hertz.scattering_matrices(v_n, model.m, model.kn, model.r, model.kt, model.alpha, model.gamma_t)
 
 
 def omega_per_sphere(model, v_n) -> np.ndarray:
@@ -149,10 +146,10 @@ def predict(model, initial) -> np.ndarray:
             return coulomb.bounce_3d(model, *columns, initial[:, 3], initial[:, 4] / r, initial[:, 5] / r)
         return coulomb.bounce_2d(model, *columns)
     if kind == "hertzian":
-        matrices = _hertz_matrices(model, initial[:, 0])
+        each = matrices(model, initial[:, 0])
         if width == 6:
-            matrices = np.array([linear.block_from(m3) for m3 in matrices])
-        return np.einsum("nij,nj->ni", matrices, initial)
+            each = np.array([linear.block_from(m3) for m3 in each])
+        return np.einsum("nij,nj->ni", each, initial)
     return initial @ matrix(model, three_d=width == 6).T
 
 

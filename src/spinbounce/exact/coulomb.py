@@ -247,8 +247,7 @@ def _slip_change(model, v_n, slip):
 
 
 def _states(*columns):
-    columns = [np.atleast_1d(np.asarray(x, dtype=float)) for x in columns]
-    return np.broadcast_arrays(*columns)
+    return np.broadcast_arrays(*(np.atleast_1d(np.asarray(x, dtype=float)) for x in columns))
 
 
 def bounce_2d(model, v_n, v_t, omega) -> np.ndarray:

@@ -182,14 +182,12 @@ class _Contact:
         def exit_(t, y):
             return y[_D]
 
-        exit_.terminal, exit_.direction = True, -1.0
         out = [exit_]
         if phase == "stick":
             def to_slip(t, y):
                 c, _ = self.cap(y)
                 return c - math.hypot(*y[_A]) + self.floor
 
-            to_slip.terminal, to_slip.direction = True, -1.0
             out.append(to_slip)
         elif phase == "slip":
             def to_stick(t, y):
@@ -199,8 +197,6 @@ class _Contact:
             def cap_gone(t, y):
                 return self.cap(y)[0] - self.floor
 
-            to_stick.terminal, to_stick.direction = True, -1.0
-            cap_gone.terminal, cap_gone.direction = True, -1.0
             out += [to_stick, cap_gone]
         if phase != "free" and self.gn > 0.0 and not self.turned:
             # the normal force ends (limit_damping) or turns tensile: there the cap is zero
@@ -208,8 +204,9 @@ class _Contact:
             def force_zero(t, y):
                 return self.normal(y)[0]
 
-            force_zero.terminal, force_zero.direction = True, -1.0
             out.append(force_zero)
+        for event in out:  # each stops the integration where it falls through zero
+            event.terminal, event.direction = True, -1.0
         return out
 
     def switch(self, name: str, y, phase: str) -> str:

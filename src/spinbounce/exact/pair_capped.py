@@ -88,10 +88,6 @@ class _Contact:
         return {"n": n, "t": t, "v": v, "slip": slip, "f_n": f_n, "df_n": df_n, "dist": dist, "levers": levers,
                 "xi": y[15]}
 
-    def side(self, k: dict) -> float:
-        """The sign of F_n; at F_n = 0 (to rounding), the sign it moves to."""
-        return np.sign(k["f_n"]) if abs(k["f_n"]) > self.f_rounding else np.sign(k["df_n"])
-
     def cap(self, k: dict) -> float:
         """mu |F_n|, with |F_n| taken as F_n on the phase's side (``f_side``): a phase ends where F_n
         changes sign, and beyond the end of contact the cap keeps falling below zero instead of
@@ -129,7 +125,9 @@ class _Contact:
         one that holds at first touch or after F_n's zero (``normal_zero``: F_n is then on the
         side it moves to, whatever the sign of the residue the root leaves)."""
         k = self.kinematics(y)
-        self.f_side = np.sign(k["df_n"]) if normal_zero else self.side(k)
+        # the sign of F_n; at F_n = 0 (to rounding, or its zero's event), the sign it moves to
+        at_zero = normal_zero or not abs(k["f_n"]) > self.f_rounding
+        self.f_side = np.sign(k["df_n"]) if at_zero else np.sign(k["f_n"])
         if switched:
             self.phase = int(np.sign(k["xi"]) or np.sign(k["slip"])) if self.phase == 0 else 0
         else:
