@@ -17,16 +17,11 @@ integrated:
 
 A stick ends at the first downward zero of h = c - |A|; a slide ends at the first
 downward zero of g = sigma kt u' - gamma_t s c - c' (the rate at which sticking would push
-A outwards, less the cap's growth: the oracle's ``to_stick``). Both are located on a grid
-fine against every rate of the contact, local minima between grid points included, then
-to machine precision by safeguarded Newton. A switching function counts as crossed only
-once it is below zero by more than its rounding noise, so ties (a contact that rides the
-cap, as at the magic ratio of Eq. 20) do not chatter.
-
-With a Hookean force everything scales with |v_n|: the sphere enters only through
-u'(0)/|v_n| and the normal motion is tabulated once per model. The final velocities
-follow from the change of u' as in Eq. 10: Delta v_t = alpha/(1 + alpha) Delta u',
-Delta(r omega) = Delta u'/(1 + alpha).
+A outwards, less the cap's growth: the oracle's ``to_stick``), both located by
+:mod:`._coulomb_search`. A switching function counts as crossed only once it is below zero
+by more than its rounding noise, so ties (a contact that rides the cap, as at the magic
+ratio of Eq. 20) do not chatter. The sphere enters only through u'(0)/|v_n|; the final
+velocities follow from the change of u' as in Eq. 10.
 """
 
 from __future__ import annotations

@@ -327,13 +327,9 @@ def bounce(model: ContactModel, v_n: float, v_t: float = 0.0, omega: float = 0.0
     c.floor_rate = c.floor / tau
     c.turn_floor = TURN_FLOOR * c.floor / 1e-12
     r = model.r
-    y = np.zeros(8)
-    y[_VN] = v_n
-    y[_V] = (v_t, v_s)
-    y[_W] = (r * omega, r * omega_s)
-    u_rate = y[_V] + y[_W]
-    y[_A] = model.gamma_t * u_rate  # the history starts at zero; A = gamma_t u'
     initial = np.array([v_n, v_t, r * omega, v_s, r * omega_s, r * omega_n])
+    # (delta, v_n, v, r omega, A): the history starts at zero, so A = gamma_t u'
+    y = np.concatenate([[0.0], initial[[0, 1, 3, 2, 4]], model.gamma_t * (initial[[1, 3]] + initial[[2, 4]])])
     phase = c.start(y)
     t = 0.0
     regimes = [(0.0, phase)]
