@@ -189,9 +189,10 @@ class _Solver:
         def exact(sel, times):
             a, v = self.stick.advance(times - t_s[sel], a_s[sel], u_s[sel])
             c, c1, c2 = phase.cap(rows[sel], times)
-            d1 = self.kt * v - self.gts * a  # A' and A'' = -kt s A - gamma_t s A'
+            d1 = self.kt * v - self.gts * a  # A'
+            d2 = -self.kt * self.s * a - self.gts * d1  # A''
             sg = np.sign(a)
-            return c - np.abs(a) + noise[sel], c1 - sg * d1, c2 - sg * (-self.kt * self.s * a - self.gts * d1)
+            return c - np.abs(a) + noise[sel], c1 - sg * d1, c2 - sg * d2
 
         noise = NOISE * (phase.cap_scale(rows) + np.abs(a_s)
                          + self.kt * np.abs(u_s) * phase.t_scale)
