@@ -294,20 +294,14 @@ class _Contact:
     def on_cap(self, y, c: float, dc: float) -> str:
         """With A on the cap c (rising at dc), or just past it: slide if sticking would
         push A outwards faster than the cap grows, else stick with A on the cap."""
-        s = _direction(y[_A], y[_V] + y[_W])
+        # s: the direction of A, else of the slip, else t
+        vec = next((v for v in (y[_A], y[_V] + y[_W]) if math.hypot(*v) > 0.0), None)
+        s = np.array([1.0, 0.0]) if vec is None else vec / math.hypot(*vec)
         if self.push(y, s, c) > dc:
             y[_A] = s
             return "slip"
         y[_A] = c * s
         return "stick"
-
-
-def _direction(vec: np.ndarray, fallback: np.ndarray) -> np.ndarray:
-    n = math.hypot(*vec)
-    if n > 0.0:
-        return vec / n
-    n = math.hypot(*fallback)
-    return fallback / n if n > 0.0 else np.array([1.0, 0.0])
 
 
 def bounce(model: ContactModel, v_n: float, v_t: float = 0.0, omega: float = 0.0, *,
