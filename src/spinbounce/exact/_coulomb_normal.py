@@ -87,7 +87,7 @@ class HookePhase(_Phase):
         self.last = intervals
         self.t_scale = normal.t_exit
         c, c1, push, push_rate, _ = self.cap_and_push(None, self.grid)
-        self.cap_table, self.push_table = (c, c1), (push, push_rate)
+        self.grid_table = (c, c1, push, push_rate)
         self.cap_size = float(np.abs(c).max())
         self.push_size = float(np.abs(push).max() + np.abs(c1).max())
         self.step_table = contact.stick.propagator(self.grid - t_a)
@@ -105,11 +105,9 @@ class HookePhase(_Phase):
     def times(self, rows, k):
         return self.grid[k]
 
-    def cap_on_grid(self, rows, k):
-        return self.cap_table[0][k], self.cap_table[1][k]
-
-    def push_on_grid(self, rows, k):
-        return self.push_table[0][k], self.push_table[1][k]
+    def on_grid(self, rows, k):
+        """(cap, its rate, H, its rate) at grid indices k."""
+        return tuple(table[k] for table in self.grid_table)
 
     def steps(self, rows, offsets):
         return tuple(e[offsets] for e in self.step_table)
@@ -195,15 +193,10 @@ class HertzPhase(_Phase):
         period = self.period[rows]
         return (period[:, None] if k.ndim == 2 else period) * self.tau[k]
 
-    def _on_grid(self, rows, k):
-        return self._scaled(self.period[rows][:, None], self.cap_factor[rows][:, None],
-                            *(table[k] for table in self.shape))
-
-    def cap_on_grid(self, rows, k):
-        return self._on_grid(rows, k)[1:3]
-
-    def push_on_grid(self, rows, k):
-        return self._push(*self._on_grid(rows, k))[:2]
+    def on_grid(self, rows, k):
+        values = self._scaled(self.period[rows][:, None], self.cap_factor[rows][:, None],
+                              *(table[k] for table in self.shape))
+        return (*values[1:3], *self._push(*values)[:2])
 
     def steps(self, rows, offsets):
         return self.contact.stick.propagator(self.period[rows][:, None] * (self.tau_step * offsets))

@@ -55,18 +55,6 @@ def root(fun, lo, hi, value_lo, value_hi, scale: float):
     return x
 
 
-def _resolve_dips(exact, rows, t_left, t_right, d_left, d_right, scale):
-    """For each candidate interval: (is f below zero at its interior minimum, where)."""
-
-    def slope(which, x):  # the minimum is the root of -f' (f' < 0 at its left, > 0 at its right)
-        _, d1, d2 = exact(rows[which], x)
-        return -d1, -d2
-
-    t_min = root(slope, t_left, t_right, -d_left, -d_right, scale)
-    value = exact(rows, t_min)[0]
-    return value < 0.0, t_min, value
-
-
 def first_crossing(times, last, k0, t_s, f_s, d_s, noise, on_grid, exact, scale):
     """(lo, hi, f_lo, f_hi): brackets of each sphere's first downward zero of f + noise after
     t_s, and f + noise at their ends.
@@ -127,8 +115,15 @@ def _dips(exact, pending, allowed, t_left, t_right, f_left, f, d_left, d, scale)
     candidate &= lowest < DIP_MARGIN * step * (np.abs(d_left) + np.abs(d))
     r, c = np.nonzero(candidate)
     if r.size:
-        below, t_min, value = _resolve_dips(exact, pending[r], t_left[r, c], t_right[r, c],
-                                            d_left[r, c], d[r, c], scale)
+        rows = pending[r]
+
+        def slope(which, x):  # the minimum is the root of -f' (f' < 0 at its left, > 0 at its right)
+            _, d1, d2 = exact(rows[which], x)
+            return -d1, -d2
+
+        t_min = root(slope, t_left[r, c], t_right[r, c], -d_left[r, c], -d[r, c], scale)
+        value = exact(rows, t_min)[0]
+        below = value < 0.0
         out[r[below], c[below]] = t_min[below]
         out_value[r[below], c[below]] = value[below]
     return out, out_value

@@ -71,15 +71,15 @@ def which(model) -> Choice:
     return Choice("linear", "Eq. 18")
 
 
-def _tensile(model) -> bool:
-    return not model.limit_damping
+def _omega(model) -> float:
+    """The exact damped Omega of a Hookean model without a cap (Eq. 18's when undamped)."""
+    return linear.Omega_exact(model.m, model.kn, model.kt, model.alpha, model.gamma_t, model.gamma_n,
+                              not model.limit_damping)
 
 
 def _matrix3(model) -> np.ndarray:
-    omega = linear.Omega_exact(model.m, model.kn, model.kt, model.alpha, model.gamma_t, model.gamma_n,
-                               _tensile(model))
-    e = linear.restitution(model.m, model.kn, model.gamma_n, _tensile(model))
-    return linear.scattering_matrix(model.alpha, omega, e)
+    e = linear.restitution(model.m, model.kn, model.gamma_n, not model.limit_damping)
+    return linear.scattering_matrix(model.alpha, _omega(model), e)
 
 
 def matrix(model, v_n: float | None = None, three_d: bool = False) -> np.ndarray:
@@ -93,7 +93,7 @@ def matrix(model, v_n: float | None = None, three_d: bool = False) -> np.ndarray
     if choice.kind == "hertzian":
         if v_n is None:
             raise NoMatrix(choice.no_matrix_reason)
-        m3 = _hertz_matrices(model, np.array([v_n]))[0]
+        m3 = matrices(model, v_n)[0]
     else:
         m3 = _matrix3(model)
     return linear.block_from(m3) if three_d else m3
@@ -104,12 +104,9 @@ def matrices(model, v_n) -> np.ndarray:
     matrix repeated otherwise); :class:`NoMatrix` with a Coulomb cap."""
     v_n = np.atleast_1d(np.asarray(v_n, dtype=float))
     if which(model).kind == "hertzian":
-        return _hertz_matrices(model, v_n)
+        return hertz.scattering_matrices(v_n, model.m, model.kn, model.r, model.kt, model.alpha,
+                                         model.gamma_t)
     return np.broadcast_to(matrix(model), (v_n.size, 3, 3))
-
-
-def _hertz_matrices(model, v_n: np.ndarray) -> np.ndarray:
-    return hertz.scattering_matrices(v_n, model.m, model.kn, model.r, model.kt, model.alpha, model.gamma_t)
 
 
 def omega_per_sphere(model, v_n) -> np.ndarray:
@@ -125,9 +122,7 @@ def omega_per_sphere(model, v_n) -> np.ndarray:
         return np.full(v_n.shape, np.nan)
     if kind == "hertzian":
         return np.atleast_1d(hertz.Omega(v_n, model.m, model.kn, model.r, model.kt, model.alpha, model.gamma_t))
-    omega = linear.Omega_exact(model.m, model.kn, model.kt, model.alpha, model.gamma_t, model.gamma_n,
-                               _tensile(model))
-    return np.full(v_n.shape, omega)
+    return np.full(v_n.shape, _omega(model))
 
 
 def predict(model, initial) -> np.ndarray:
@@ -136,7 +131,12 @@ def predict(model, initial) -> np.ndarray:
     width = initial.shape[1]
     kind = which(model).kind
     if kind == "classic_wall":
-        return _classic(model, initial)
+        from . import classic
+
+        if width != 3:
+            raise NoMatrix("the classic wall's theory is in the paper's plane: give no v_s, omega_s or omega_n")
+        wall = classic_wall(model)
+        return np.array([classic.bounce(wall, *state).final for state in initial])
     if kind == "coulomb":  # the exact batched solver; the scipy oracle is its independent check
         from . import coulomb
 
@@ -146,10 +146,10 @@ def predict(model, initial) -> np.ndarray:
             return coulomb.bounce_3d(model, *columns, initial[:, 3], initial[:, 4] / r, initial[:, 5] / r)
         return coulomb.bounce_2d(model, *columns)
     if kind == "hertzian":
-        matrices = _hertz_matrices(model, initial[:, 0])
+        each = matrices(model, initial[:, 0])
         if width == 6:
-            matrices = np.array([linear.block_from(m3) for m3 in matrices])
-        return np.einsum("nij,nj->ni", matrices, initial)
+            each = np.array([linear.block_from(m3) for m3 in each])
+        return np.einsum("nij,nj->ni", each, initial)
     return initial @ matrix(model, three_d=width == 6).T
 
 
@@ -180,15 +180,6 @@ def classic_wall(model):
     from . import classic
 
     return classic.ClassicWall(**model.style.coefficients(model), alpha=model.alpha, r=model.r, m=model.m)
-
-
-def _classic(model, initial: np.ndarray) -> np.ndarray:
-    from . import classic
-
-    if initial.shape[1] != 3 or np.any(initial[:, 3:]):
-        raise NoMatrix("the classic wall's theory is in the paper's plane: give no v_s, omega_s or omega_n")
-    wall = classic_wall(model)
-    return np.array([classic.bounce(wall, *state).final for state in initial])
 
 
 def frozen(model, t, v_t0: float, r_omega0: float, z: float | None = None) -> tuple[np.ndarray, np.ndarray]:

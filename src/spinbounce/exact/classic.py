@@ -46,6 +46,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from itertools import groupby
 
 import numpy as np
 from scipy.integrate import solve_ivp
@@ -109,11 +110,6 @@ class ClassicWall:
         """Contact time pi/w_d (Eq. 16 when gamma_n = 0)."""
         return math.pi / self.omega_d
 
-    @property
-    def slip_mass(self) -> float:
-        """K in u'' = K F_t: 1/m + r^2/I = (1 + alpha)/(alpha m) (Eq. 8's Q/kt)."""
-        return (1.0 + self.alpha) / (self.alpha * self.m)
-
     def tensile_time(self) -> float:
         """When F_n = kn delta + m gamma_n delta' turns tensile (tau if it never does)."""
         if self.gamma_n == 0.0:
@@ -151,19 +147,12 @@ class _Collision:
         s, co = math.sin(w.omega_d * t), math.cos(w.omega_d * t)
         return max(self.V / w.omega_d * decay * s, 0.0), self.V * decay * (co - w.beta / w.omega_d * s)
 
-    def normal(self, t: float) -> tuple[float, float]:
-        """(delta, F_n) at time t."""
-        delta, rate = self.overlap(t)
-        return delta, self.w.kn * delta + self.w.m * self.w.gamma_n * rate
-
-    def a(self, delta: float) -> float:
-        return math.sqrt(self.w.r * delta) if self.w.contact_radius else 1.0
-
     def forces(self, phi: float, y) -> tuple[float, float, float, float]:
         """(trial F_t, cap C, a, slip rate) at phase phi, state y = (v_t, r omega, xi)."""
-        delta, fn = self.normal(self.t_of(phi))
+        delta, rate = self.overlap(self.t_of(phi))
+        fn = self.w.kn * delta + self.w.m * self.w.gamma_n * rate
         slip = y[0] + y[1]
-        a = self.a(delta)
+        a = math.sqrt(self.w.r * delta) if self.w.contact_radius else 1.0
         cap = math.inf if self.w.mu is None else self.w.mu * abs(fn)
         return -self.w.kt * a * y[2] - self.c * slip, cap, a, slip
 
@@ -242,16 +231,8 @@ class _Collision:
         return 0, xi
 
 
-def _regime_name(sign: int) -> str:
-    return {0: "stick", 1: "slide+", -1: "slide-"}[sign]
-
-
-def _start(collision: _Collision, y) -> tuple[int, float]:
-    """The regime at first touch (delta = 0, xi = 0): the trial force is the dashpot's."""
-    force, cap, _, _ = collision.forces(0.0, y)
-    if abs(force) > cap:
-        return collision.after_cap(0.0, y, 1 if force > 0 else -1)
-    return 0, 0.0
+#: A regime's name by the sign of its force: 0 sticks, +-1 slides that way.
+_REGIME = {0: "stick", 1: "slide+", -1: "slide-"}
 
 
 def bounce(wall: ClassicWall, v_n: float, v_t: float = 0.0, r_omega: float = 0.0) -> ClassicResult:
@@ -268,8 +249,9 @@ def bounce(wall: ClassicWall, v_n: float, v_t: float = 0.0, r_omega: float = 0.0
     turn = wall.tensile_time()
     stops = [math.acos(1.0 - 2.0 * turn / wall.tau)] if turn < wall.tau and wall.mu is not None else []
     stops.append(math.pi)
-    phi, (sign, y[2]) = 0.0, _start(collision, y)
-    regimes = [(0.0, _regime_name(sign))]
+    phi, (force, cap, _, _) = 0.0, collision.forces(0.0, y)  # first touch: the trial force is the dashpot's
+    sign, y[2] = collision.after_cap(phi, y, 1 if force > 0 else -1) if abs(force) > cap else (0, 0.0)
+    regimes = [(0.0, _REGIME[sign])]
     for _ in range(MAX_SWITCHES):
         stop = next(s for s in stops if s > phi)
         sol = solve_ivp(collision.rhs(sign), (phi, stop), y, method="DOP853", rtol=RTOL, atol=ATOL,
@@ -281,13 +263,15 @@ def bounce(wall: ClassicWall, v_n: float, v_t: float = 0.0, r_omega: float = 0.0
             break
         if phi >= stop:
             sign, y[2] = collision.at_zero_cap(phi, y)
-        regimes.append((collision.t_of(phi), _regime_name(sign)))
+        regimes.append((collision.t_of(phi), _REGIME[sign]))
     else:
         raise ValueError(f"more than {MAX_SWITCHES} changes of regime in one contact: not covered")
     initial = np.array([v_n, v_t, r_omega])
     final = np.array([-v_n * math.exp(-wall.beta * wall.tau), y[0], y[1]])
     gain = linear.energy(final, wall.m, wall.alpha) / linear.energy(initial, wall.m, wall.alpha) - 1.0
-    return ClassicResult(initial, final, tuple(_merge(regimes)), float(gain))
+    # consecutive entries of one regime (the sawtooth's resets) as one
+    merged = (next(same) for _, same in groupby(regimes, key=lambda entry: entry[1]))
+    return ClassicResult(initial, final, tuple(merged), float(gain))
 
 
 def _switch(collision: _Collision, sol, phi: float, y, sign: int, tiny: float, stop: float):
@@ -299,15 +283,6 @@ def _switch(collision: _Collision, sol, phi: float, y, sign: int, tiny: float, s
         return sign, y[2], stop
     capped = 1 if sol.t_events[0].size else -1
     return (*collision.after_cap(phi, y, capped), phi)
-
-
-def _merge(regimes):
-    """Consecutive entries of the same regime (the sawtooth's resets) as one."""
-    merged = []
-    for t, name in regimes:
-        if not merged or merged[-1][1] != name:
-            merged.append((t, name))
-    return merged
 
 
 def stiffness_group(v_n: float, kn: float, kt: float, alpha: float, r: float, m: float = 1.0) -> float:

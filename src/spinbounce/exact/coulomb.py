@@ -17,22 +17,17 @@ integrated:
 
 A stick ends at the first downward zero of h = c - |A|; a slide ends at the first
 downward zero of g = sigma kt u' - gamma_t s c - c' (the rate at which sticking would push
-A outwards, less the cap's growth: the oracle's ``to_stick``). Both are located on a grid
-fine against every rate of the contact, local minima between grid points included, then
-to machine precision by safeguarded Newton. A switching function counts as crossed only
-once it is below zero by more than its rounding noise, so ties (a contact that rides the
-cap, as at the magic ratio of Eq. 20) do not chatter.
-
-With a Hookean force everything scales with |v_n|: the sphere enters only through
-u'(0)/|v_n| and the normal motion is tabulated once per model. The final velocities
-follow from the change of u' as in Eq. 10: Delta v_t = alpha/(1 + alpha) Delta u',
-Delta(r omega) = Delta u'/(1 + alpha).
+A outwards, less the cap's growth: the oracle's ``to_stick``), both located by
+:mod:`._coulomb_search`. A switching function counts as crossed only once it is below zero
+by more than its rounding noise, so ties (a contact that rides the cap, as at the magic
+ratio of Eq. 20) do not chatter. The sphere enters only through u'(0)/|v_n|; the final
+velocities follow from the change of u' as in Eq. 10.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from collections import namedtuple
 from functools import lru_cache
 
 import numpy as np
@@ -86,27 +81,10 @@ class _Stick:
         e11, e12, e21, e22 = self.propagator(tau)
         return e11 * force + e12 * slip_rate, e21 * force + e22 * slip_rate
 
-    def rates_of(self, force, slip_rate):
-        """(A', A'') from (A, u')."""
-        d1 = self.kt * slip_rate - self.gts * force
-        return d1, -self.kt * self.s * force - self.gts * d1
 
-
-@dataclass(frozen=True)
-class _Fields:
-    """The parts of a ContactModel the solver reads (a cache key whatever the model class)."""
-
-    m: float
-    r: float
-    alpha: float
-    kn: float
-    kt: float
-    gamma_n: float
-    gamma_t: float
-    mu: float | None
-    limit_damping: bool
-    #: The normal force grows with the contact radius (Hertzian): the model's normal sub-model says.
-    contact_radius: bool
+#: The parts of a ContactModel the solver reads (a cache key whatever the model class), the
+#: normal law's contact_radius last: the normal force grows with it (Hertzian).
+_Fields = namedtuple("_Fields", "m r alpha kn kt gamma_n gamma_t mu limit_damping contact_radius")
 
 
 def _sign(x, fallback):
@@ -183,8 +161,11 @@ class _Solver:
         sliding = ~inside & (direction * self.kt * u - self.gts * c > c_rate)
         return np.where(inside, force, direction * c), sliding, direction
 
-    def _segment_end(self, phase, rows, t_s, lo, hi, f_lo, f_hi, exact):
-        """Each sphere's switching time (where the bracket holds one), else the phase's end."""
+    def _segment_end(self, phase, rows, t_s, k0, noise, on_grid, exact):
+        """(switched, time) per sphere: its first switch after t_s, else the phase's end."""
+        f_s, d_s, _ = exact(np.arange(rows.size), t_s)
+        lo, hi, f_lo, f_hi = first_crossing(lambda sel, k: phase.times(rows[sel], k), phase.last, k0, t_s,
+                                            f_s, d_s, noise, on_grid, exact, phase.t_scale)
         event = np.isfinite(hi)
         ends = np.broadcast_to(phase.end(rows), rows.shape).copy()
         if event.any():
@@ -202,22 +183,20 @@ class _Solver:
             e11, e12, e21, e22 = phase.steps(rows[sel], offsets)
             a = e11 * a0[sel, None] + e12 * u0[sel, None]
             v = e21 * a0[sel, None] + e22 * u0[sel, None]
-            c, c1 = phase.cap_on_grid(rows[sel], k)
+            c, c1, _, _ = phase.on_grid(rows[sel], k)
             return c - np.abs(a), c1 - np.sign(a) * (self.kt * v - self.gts * a)
 
         def exact(sel, times):
             a, v = self.stick.advance(times - t_s[sel], a_s[sel], u_s[sel])
             c, c1, c2 = phase.cap(rows[sel], times)
-            d1, d2 = self.stick.rates_of(a, v)
+            d1 = self.kt * v - self.gts * a  # A'
+            d2 = -self.kt * self.s * a - self.gts * d1  # A''
             sg = np.sign(a)
             return c - np.abs(a) + noise[sel], c1 - sg * d1, c2 - sg * d2
 
         noise = NOISE * (phase.cap_scale(rows) + np.abs(a_s)
                          + self.kt * np.abs(u_s) * phase.t_scale)
-        h_s, h1_s, _ = exact(np.arange(rows.size), t_s)
-        brackets = first_crossing(lambda sel, k: phase.times(rows[sel], k), phase.last, k0, t_s,
-                                  h_s, h1_s, noise, on_grid, exact, phase.t_scale)
-        event, ends = self._segment_end(phase, rows, t_s, *brackets, exact)
+        event, ends = self._segment_end(phase, rows, t_s, k0, noise, on_grid, exact)
         a_e, u_e = self.stick.advance(ends - t_s, a_s, u_s)
         t[rows], force[rows], u[rows] = ends, a_e, u_e
         sliding[rows] = event
@@ -230,7 +209,7 @@ class _Solver:
         offset = sigma * self.kt * u_s - self.kt * self.s * impulse * rate_s  # g = offset + H
 
         def on_grid(sel, offsets, k):
-            push, push_rate = phase.push_on_grid(rows[sel], k)
+            _, _, push, push_rate = phase.on_grid(rows[sel], k)
             return offset[sel, None] + push, push_rate
 
         def exact(sel, times):
@@ -238,19 +217,11 @@ class _Solver:
             return offset[sel] + push + noise[sel], push_rate, push_accel
 
         noise = NOISE * (self.kt * np.abs(u_s) + phase.push_scale(rows))
-        k0 = phase.first_index(rows, t_s)
-        g_s, g1_s, _ = exact(np.arange(rows.size), t_s)
-        brackets = first_crossing(lambda sel, k: phase.times(rows[sel], k), phase.last, k0, t_s,
-                                  g_s, g1_s, noise, on_grid, exact, phase.t_scale)
-        event, ends = self._segment_end(phase, rows, t_s, *brackets, exact)
+        event, ends = self._segment_end(phase, rows, t_s, phase.first_index(rows, t_s), noise, on_grid, exact)
         u_e = u_s - self.s * sigma * impulse * (rate_s - phase.rate(rows, ends))
         t[rows], u[rows] = ends, u_e
         force[rows] = sigma * phase.cap(rows, ends)[0]
         sliding[rows] = ~event
-
-
-#: The model's fields the solver reads, in the order _solver takes them.
-_FIELDS = ("m", "r", "alpha", "kn", "kt", "gamma_n", "gamma_t", "mu", "limit_damping")
 
 
 @lru_cache(maxsize=16)
@@ -264,15 +235,15 @@ def _slip_change(model, v_n, slip):
     if not np.all(v_n < 0.0):
         raise ValueError("every v_n must be < 0 (towards the wall)")
     speed = -v_n
-    solver = _solver(*(getattr(model, name) for name in _FIELDS), model.normal_law.contact_radius)
+    fields = (getattr(model, name) for name in _Fields._fields[:-1])
+    solver = _solver(*fields, model.normal_law.contact_radius)
     start = slip / speed
     restitution = 1.0 if solver.hertz else model.restitution  # Hertz here has gamma_n = 0
     return speed, restitution, (solver.final_slip_rate(start, speed) - start) * speed
 
 
 def _states(*columns):
-    columns = [np.atleast_1d(np.asarray(x, dtype=float)) for x in columns]
-    return np.broadcast_arrays(*columns)
+    return np.broadcast_arrays(*(np.atleast_1d(np.asarray(x, dtype=float)) for x in columns))
 
 
 def bounce_2d(model, v_n, v_t, omega) -> np.ndarray:

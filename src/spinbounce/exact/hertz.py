@@ -2,32 +2,20 @@
 
 The normal force is LAMMPS's ``granular hertz`` against a flat wall: F = kn a delta with
 contact radius a = sqrt(R_eff delta), and R_eff = r for a wall (infinite radius), so
-
-    m delta'' = -kn sqrt(r) delta^(3/2),    delta(0) = 0, delta'(0) = |v_n|.
-
-kn is LAMMPS's K (force/length^2). Energy conservation gives the largest overlap
-
-    delta_max = (5 m v_n^2 / (4 kn sqrt(r)))^(2/5)
-
-and, from dt = d(delta)/delta', the contact time
-
-    tau = 2 (delta_max/|v_n|) I,   I = int_0^1 dx / sqrt(1 - x^(5/2)) = (2/5) B(2/5, 1/2),
-
-(substitute y = x^(5/2)): tau grows as |v_n|^(-1/5), unlike the Hookean tau of Eq. 16.
+m delta'' = -kn sqrt(r) delta^(3/2), delta(0) = 0, delta'(0) = |v_n|; kn is LAMMPS's K
+(force/length^2). Energy conservation gives the largest overlap (:func:`max_overlap`) and
+dt = d(delta)/delta' the contact time (:func:`contact_time`, substituting y = x^(5/2) in
+I), which grows as |v_n|^(-1/5), unlike the Hookean tau of Eq. 16.
 
 The tangential spring acts on the slip history u alone and, with no Coulomb limit, never
 sees the normal force: the slip obeys the frozen equation u'' + 2 zeta u' + Q u = 0 for
 exactly the contact time, whatever the normal law. So Eq. 18 still holds sphere by
 sphere, with Omega(v_n) = u'(tau)/u'(0) - 1 = cos(sqrt(Q) tau(v_n)) - 1 undamped and
 restitution e = 1. Energy is conserved when the slip reverses (Omega = -2), i.e. when
-sqrt(Q) tau = pi:
-
-    kt*(v_n) = m alpha/(1 + alpha) (pi/tau(v_n))^2
-    kt*/kn  = alpha/(1 + alpha) (pi/(2 I))^2 (4/5)^(4/5) (m/kn)^(1/5) r^(2/5) |v_n|^(2/5),
-
-a ratio that grows as |v_n|^(2/5): with a Hertzian wall a given kt conserves energy at
-one normal speed only (the paper's conclusion). The Hookean limit of the same formula,
-tau = pi sqrt(m/kn), gives the magic kt/kn = alpha/(1 + alpha).
+sqrt(Q) tau = pi (:func:`energy_conserving_ratio`): kt*/kn grows as |v_n|^(2/5), so with a
+Hertzian wall a given kt conserves energy at one normal speed only (the paper's
+conclusion). The Hookean limit of the same formula, tau = pi sqrt(m/kn), gives the magic
+kt/kn = alpha/(1 + alpha).
 
 Pure Python and numpy; knows nothing of LAMMPS.
 """
@@ -67,7 +55,8 @@ def max_overlap(v_n, m: float, kn: float, r: float):
 
 
 def contact_time(v_n, m: float, kn: float, r: float):
-    """tau(v_n) = 2 I delta_max/|v_n|: how long the overlap (and so every force) lasts."""
+    """tau(v_n) = 2 I delta_max/|v_n|, I = int_0^1 dx / sqrt(1 - x^(5/2)): how long the overlap
+    (and so every force) lasts."""
     v = np.abs(np.asarray(v_n, dtype=float))
     return 2.0 * CONTACT_INTEGRAL * max_overlap(v, m, kn, r) / v
 

@@ -53,8 +53,10 @@ __all__ = [
 # Normal motion
 # ---------------------------------------------------------------------------
 
-def _normal_rates(m: float, kn: float, gamma_n: float) -> tuple[float, float]:
-    """Return (beta, omega_d) of m z'' = -kn z - gamma_n z': decay rate and damped frequency."""
+def _normal_rates(m: float, kn: float, gamma_n: float, tensile: bool = True) -> tuple[float, float, float]:
+    """(beta, omega_d, phi) of m z'' = -kn z - gamma_n z': decay rate, damped frequency, and the
+    omega_d t at which the normal force ends: pi (z back at r) when the force may turn tensile;
+    else where kn x + gamma_n x' = 0 on the way out (the dashpot would pull)."""
     beta = gamma_n / (2.0 * m)
     omega_d_sq = kn / m - beta * beta
     # compare gamma_n itself too: at gamma_n = 2 sqrt(m kn) rounding can leave omega_d^2 ~ 1e-16
@@ -63,17 +65,11 @@ def _normal_rates(m: float, kn: float, gamma_n: float) -> tuple[float, float]:
             f"gamma_n = {gamma_n:g} is at or above critical normal damping "
             f"2*sqrt(m*kn) = {2.0 * math.sqrt(m * kn):g}: the sphere never leaves the wall"
         )
-    return beta, math.sqrt(omega_d_sq)
-
-
-def _end_phase(m: float, kn: float, gamma_n: float, tensile: bool) -> float:
-    """omega_d t at which the normal force ends: pi (z back at r) when the force may turn
-    tensile; else where kn x + gamma_n x' = 0 on the way out (the dashpot would pull)."""
-    beta, omega_d = _normal_rates(m, kn, gamma_n)
+    omega_d = math.sqrt(omega_d_sq)
     if tensile or gamma_n == 0.0:
-        return math.pi
+        return beta, omega_d, math.pi
     # x = (v/omega_d) e^(-beta t) sin(phi): kn sin(phi) + gamma_n (omega_d cos(phi) - beta sin(phi)) = 0
-    return math.pi - math.atan2(gamma_n * omega_d, kn - gamma_n * beta)
+    return beta, omega_d, math.pi - math.atan2(gamma_n * omega_d, kn - gamma_n * beta)
 
 
 def collision_time(m: float, kn: float, gamma_n: float = 0.0, tensile: bool = True) -> float:
@@ -85,14 +81,13 @@ def collision_time(m: float, kn: float, gamma_n: float = 0.0, tensile: bool = Tr
     sphere then drifts out of the overlap with no force on it (:func:`exit_time`). Every
     one of these is independent of v_n: the linear equations scale with it.
     """
-    _, omega_d = _normal_rates(m, kn, gamma_n)
-    return _end_phase(m, kn, gamma_n, tensile) / omega_d
+    _, omega_d, phi = _normal_rates(m, kn, gamma_n, tensile)
+    return phi / omega_d
 
 
 def exit_time(m: float, kn: float, gamma_n: float = 0.0, tensile: bool = True) -> float:
     """When the centre is back at z = r: the force's end plus the force-free drift out."""
-    beta, omega_d = _normal_rates(m, kn, gamma_n)
-    phi = _end_phase(m, kn, gamma_n, tensile)
+    beta, omega_d, phi = _normal_rates(m, kn, gamma_n, tensile)
     t = phi / omega_d
     overlap = math.exp(-beta * t) * math.sin(phi) / omega_d  # per unit |v_n(0)|
     speed = math.exp(-beta * t) * (beta * math.sin(phi) - omega_d * math.cos(phi)) / omega_d
@@ -105,8 +100,7 @@ def restitution(m: float, kn: float, gamma_n: float = 0.0, tensile: bool = True)
     exp(-beta pi/omega_d) with a tensile force allowed; with ``tensile = False`` the
     speed when the force ends, which is higher (the dashpot never pulls).
     """
-    beta, omega_d = _normal_rates(m, kn, gamma_n)
-    phi = _end_phase(m, kn, gamma_n, tensile)
+    beta, omega_d, phi = _normal_rates(m, kn, gamma_n, tensile)
     return math.exp(-beta * phi / omega_d) * (beta * math.sin(phi) - omega_d * math.cos(phi)) / omega_d
 
 
@@ -125,7 +119,7 @@ def max_overlap(v_n, m: float, kn: float, gamma_n: float = 0.0):
     Undamped: |v_n| sqrt(m/kn) (from Eq. 15). Damped: the overlap
     |v_n|/omega_d exp(-beta t) sin(omega_d t) peaks where tan(omega_d t) = omega_d/beta.
     """
-    beta, omega_d = _normal_rates(m, kn, gamma_n)
+    beta, omega_d, _ = _normal_rates(m, kn, gamma_n)
     t_peak = math.atan2(omega_d, beta) / omega_d
     return np.abs(v_n) / omega_d * math.exp(-beta * t_peak) * math.sin(omega_d * t_peak)
 

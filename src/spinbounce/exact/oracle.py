@@ -146,11 +146,6 @@ class _Contact:
             return -self.mu * f, -self.mu * df
         return self.mu * f, self.mu * df
 
-    def normal_accel(self, y) -> float:
-        if not self.tensile and self.turned:
-            return 0.0
-        return self.normal(y)[0] / self.m
-
     def rhs(self, phase: str):
         kt, gt, m, alpha = self.kt, self.gt, self.m, self.alpha
 
@@ -159,7 +154,7 @@ class _Contact:
             dy[_D] = -y[_VN]
             if phase == "free":
                 return dy
-            dy[_VN] = self.normal_accel(y)
+            dy[_VN] = 0.0 if self.turned and not self.tensile else self.normal(y)[0] / self.m
             if phase == "coast":
                 return dy
             u_rate = y[_V] + y[_W]
@@ -187,14 +182,12 @@ class _Contact:
         def exit_(t, y):
             return y[_D]
 
-        exit_.terminal, exit_.direction = True, -1.0
         out = [exit_]
         if phase == "stick":
             def to_slip(t, y):
                 c, _ = self.cap(y)
                 return c - math.hypot(*y[_A]) + self.floor
 
-            to_slip.terminal, to_slip.direction = True, -1.0
             out.append(to_slip)
         elif phase == "slip":
             def to_stick(t, y):
@@ -204,8 +197,6 @@ class _Contact:
             def cap_gone(t, y):
                 return self.cap(y)[0] - self.floor
 
-            to_stick.terminal, to_stick.direction = True, -1.0
-            cap_gone.terminal, cap_gone.direction = True, -1.0
             out += [to_stick, cap_gone]
         if phase != "free" and self.gn > 0.0 and not self.turned:
             # the normal force ends (limit_damping) or turns tensile: there the cap is zero
@@ -213,8 +204,9 @@ class _Contact:
             def force_zero(t, y):
                 return self.normal(y)[0]
 
-            force_zero.terminal, force_zero.direction = True, -1.0
             out.append(force_zero)
+        for event in out:  # each stops the integration where it falls through zero
+            event.terminal, event.direction = True, -1.0
         return out
 
     def switch(self, name: str, y, phase: str) -> str:
@@ -279,13 +271,6 @@ class _Contact:
         return solve_ivp(self.rhs(phase), (t, horizon), y, method=METHOD, rtol=rtol, atol=atol,
                          events=events, max_step=tau / MIN_STEPS_PER_CONTACT)
 
-    @staticmethod
-    def unpack(y) -> np.ndarray:
-        """The 8-slot state from an integrated one (a 3-D slide's angle back to s)."""
-        if y.size == _TURNING:
-            return np.concatenate([y[:_THETA], [math.cos(y[_THETA]), math.sin(y[_THETA])]])
-        return y.copy()
-
     def push(self, y, s, c: float) -> float:
         """How fast sticking would carry A outwards along s, with A on a cap of radius c:
         s . (kt u' + gamma_t u''), the sticking force being -c s."""
@@ -309,20 +294,14 @@ class _Contact:
     def on_cap(self, y, c: float, dc: float) -> str:
         """With A on the cap c (rising at dc), or just past it: slide if sticking would
         push A outwards faster than the cap grows, else stick with A on the cap."""
-        s = _direction(y[_A], y[_V] + y[_W])
+        # s: the direction of A, else of the slip, else t
+        vec = next((v for v in (y[_A], y[_V] + y[_W]) if math.hypot(*v) > 0.0), None)
+        s = np.array([1.0, 0.0]) if vec is None else vec / math.hypot(*vec)
         if self.push(y, s, c) > dc:
             y[_A] = s
             return "slip"
         y[_A] = c * s
         return "stick"
-
-
-def _direction(vec: np.ndarray, fallback: np.ndarray) -> np.ndarray:
-    n = math.hypot(*vec)
-    if n > 0.0:
-        return vec / n
-    n = math.hypot(*fallback)
-    return fallback / n if n > 0.0 else np.array([1.0, 0.0])
 
 
 def bounce(model: ContactModel, v_n: float, v_t: float = 0.0, omega: float = 0.0, *,
@@ -342,13 +321,9 @@ def bounce(model: ContactModel, v_n: float, v_t: float = 0.0, omega: float = 0.0
     c.floor_rate = c.floor / tau
     c.turn_floor = TURN_FLOOR * c.floor / 1e-12
     r = model.r
-    y = np.zeros(8)
-    y[_VN] = v_n
-    y[_V] = (v_t, v_s)
-    y[_W] = (r * omega, r * omega_s)
-    u_rate = y[_V] + y[_W]
-    y[_A] = model.gamma_t * u_rate  # the history starts at zero; A = gamma_t u'
     initial = np.array([v_n, v_t, r * omega, v_s, r * omega_s, r * omega_n])
+    # (delta, v_n, v, r omega, A): the history starts at zero, so A = gamma_t u'
+    y = np.concatenate([[0.0], initial[[0, 1, 3, 2, 4]], model.gamma_t * (initial[[1, 3]] + initial[[2, 4]])])
     phase = c.start(y)
     t = 0.0
     regimes = [(0.0, phase)]
@@ -363,7 +338,8 @@ def bounce(model: ContactModel, v_n: float, v_t: float = 0.0, omega: float = 0.0
             raise RuntimeError(f"oracle: the contact did not end by t = {horizon:g} ({sol.message})")
         hit = min((k for k, te in enumerate(sol.t_events) if te.size), key=lambda k: sol.t_events[k][0])
         t = float(sol.t_events[hit][0])
-        y = c.unpack(sol.y_events[hit][0])
+        y = sol.y_events[hit][0]
+        y = np.concatenate([y[:_THETA], c.slide_direction(y)])  # 8 slots (a 3-D slide's angle back to s)
         if hit == 0 or (y[_D] <= 0.0 and y[_VN] > 0.0):  # exit (a switch can fall on it)
             break
         phase = c.switch(events[hit].__name__, y, phase)
@@ -377,11 +353,7 @@ def bounce(model: ContactModel, v_n: float, v_t: float = 0.0, omega: float = 0.0
 def bounce_many(model: ContactModel, v_n, v_t, omega, v_s=None, omega_s=None, omega_n=None) -> np.ndarray:
     """(n, 6) final states for equal-length sequences of initial states."""
     v_n = np.atleast_1d(np.asarray(v_n, dtype=float))
-    n = v_n.size
-    cols = [np.zeros(n) if x is None else np.broadcast_to(np.asarray(x, dtype=float), (n,))
-            for x in (v_t, omega, v_s, omega_s, omega_n)]
-    return np.array([
-        bounce(model, float(v_n[i]), float(cols[0][i]), float(cols[1][i]), v_s=float(cols[2][i]),
-               omega_s=float(cols[3][i]), omega_n=float(cols[4][i])).final
-        for i in range(n)
-    ])
+    others = [np.zeros(v_n.size) if x is None else np.broadcast_to(np.asarray(x, dtype=float), v_n.shape)
+              for x in (v_t, omega, v_s, omega_s, omega_n)]
+    return np.array([bounce(model, *row[:3], v_s=row[3], omega_s=row[4], omega_n=row[5]).final
+                     for row in np.column_stack([v_n, *others]).tolist()])

@@ -46,11 +46,8 @@ def slip_mobility(m_a, r_a, alpha_a, m_b, r_b, alpha_b):
 
 
 def equivalent_alpha(m_a, alpha_a, m_b, alpha_b):
-    """The alpha of the wall problem with the pair's slip equation: 1/(m* K - 1).
-
-    A mass-weighted harmonic mean of the two alphas (independent of the radii), so it lies
-    between them and equals them when they are equal.
-    """
+    """The alpha of the wall problem with the pair's slip equation, 1/(m* K - 1): a mass-weighted
+    harmonic mean of the two alphas (independent of the radii), so it lies between them."""
     mean = 1.0 / (m_b / (m_a + m_b) / alpha_a + m_a / (m_a + m_b) / alpha_b)
     inside = np.clip(mean, np.minimum(alpha_a, alpha_b), np.maximum(alpha_a, alpha_b))  # rounding kept inside
     return float(inside) if np.ndim(inside) == 0 else inside
@@ -67,10 +64,8 @@ def restitution(m_a, m_b, kn, gamma_n=0.0):
 
 
 def Omega(m_a, alpha_a, m_b, alpha_b, kn, kt, gamma_t=0.0, gamma_n=0.0):
-    """The pair's Omega: the wall's exact Omega (Eq. 18's when undamped) of (m*, alpha_eq).
-
-    cos(pi sqrt((kt/kn) m* K)) - 1 without damping.
-    """
+    """The pair's Omega: the wall's exact Omega of (m*, alpha_eq); cos(pi sqrt((kt/kn) m* K)) - 1
+    without damping (Eq. 18's)."""
     return np.vectorize(linear.Omega_exact)(reduced_mass(m_a, m_b), kn, kt,
                                             equivalent_alpha(m_a, alpha_a, m_b, alpha_b), gamma_t, gamma_n) + 0.0
 

@@ -30,7 +30,7 @@ from scipy.optimize import brentq
 
 from . import pair as pair_theory
 
-from .pair_exact import RTOL, PairOutcome, longest_step
+from .pair_exact import RTOL, PairOutcome, outcome, start
 
 __all__ = ["solve", "plane_normal", "MAX_PHASES"]
 
@@ -88,10 +88,6 @@ class _Contact:
         return {"n": n, "t": t, "v": v, "slip": slip, "f_n": f_n, "df_n": df_n, "dist": dist, "levers": levers,
                 "xi": y[15]}
 
-    def side(self, k: dict) -> float:
-        """The sign of F_n; at F_n = 0 (to rounding), the sign it moves to."""
-        return np.sign(k["f_n"]) if abs(k["f_n"]) > self.f_rounding else np.sign(k["df_n"])
-
     def cap(self, k: dict) -> float:
         """mu |F_n|, with |F_n| taken as F_n on the phase's side (``f_side``): a phase ends where F_n
         changes sign, and beyond the end of contact the cap keeps falling below zero instead of
@@ -129,7 +125,9 @@ class _Contact:
         one that holds at first touch or after F_n's zero (``normal_zero``: F_n is then on the
         side it moves to, whatever the sign of the residue the root leaves)."""
         k = self.kinematics(y)
-        self.f_side = np.sign(k["df_n"]) if normal_zero else self.side(k)
+        # the sign of F_n; at F_n = 0 (to rounding, or its zero's event), the sign it moves to
+        at_zero = normal_zero or not abs(k["f_n"]) > self.f_rounding
+        self.f_side = np.sign(k["df_n"]) if at_zero else np.sign(k["f_n"])
         if switched:
             self.phase = int(np.sign(k["xi"]) or np.sign(k["slip"])) if self.phase == 0 else 0
         else:
@@ -198,23 +196,14 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, m
     if e is None:
         raise ValueError("the capped pair reference needs planar motion: the line of centres and both "
                          "velocities in one plane, both spins along its normal")
-    n0 = np.asarray(n, dtype=float) / np.linalg.norm(n)
-    radsum = r_a + r_b
-    p = {"r_a": r_a, "r_b": r_b, "m_a": m_a, "m_b": m_b, "i_a": alpha_a * m_a * r_a**2, "i_b": alpha_b * m_b * r_b**2,
-         "kn": kn, "kt": kt, "mu": mu, "gamma_n": gamma_n}
-    y = np.concatenate([radsum * n0, v_a, v_b, w_a, w_b, [0.0]]).astype(float)
-    v_rel = np.asarray(v_a, dtype=float) - np.asarray(v_b, dtype=float)
-    if v_rel @ n0 >= 0.0:
-        raise ValueError("the spheres must approach at first touch: (v_a - v_b).n < 0")
+    n0, p, y, v_rel, tau, longest, atol = start(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b,
+                                                kn, kt, planar, rtol, mu=mu, gamma_n=gamma_n)
     contact = _Contact(p, e, n0, planar)
-    contact.tau = np.pi * np.sqrt(contact.m_star / kn)
-    contact.f_rounding = 16.0 * kn * np.spacing(radsum)
-    speed = max(np.linalg.norm(v_rel), radsum * (np.linalg.norm(w_a) + np.linalg.norm(w_b)))
+    contact.tau = tau
+    contact.f_rounding = 16.0 * kn * np.spacing(r_a + r_b)
     contact.force_scale = mu * abs(v_rel @ n0) * np.sqrt(contact.m_star * kn)
-    fast = np.sqrt(kn / contact.m_star) + np.sqrt(kt * (1 / m_a + 1 / m_b + r_a**2 / p["i_a"] + r_b**2 / p["i_b"]))
-    atol = np.full(16, rtol * speed * min(radsum / speed, 1.0 / fast))
-    atol[15] = rtol * contact.force_scale / kt
-    longest = contact.tau / 8.0 if planar else longest_step(contact.tau, v_rel, n0, radsum)
+    y = np.append(y, 0.0)
+    atol = np.append(np.full(15, atol), rtol * contact.force_scale / kt)
     damped_time = float(pair_theory.contact_time(m_a, m_b, kn, gamma_n))  # the window: 20 contact times
     window = 20.0 * (max(contact.tau, damped_time) if np.isfinite(damped_time) else contact.tau)
     contact.restart(y)
@@ -225,9 +214,7 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, m
                              events=events, max_step=longest, dense_output=True)
         t, which, y = _first_event(solution, events)
         if which == 0:
-            end = y[:15].reshape(5, 3)
-            turn = float(np.arccos(np.clip(end[0] @ n0 / np.linalg.norm(end[0]), -1.0, 1.0)))
-            return PairOutcome(v_a=end[1], v_b=end[2], w_a=end[3], w_b=end[4], contact_time=float(t), turn=turn)
+            return outcome(y, n0, t)
         if contact.phase != 0:  # leaving a slide (or passing F_n = 0 in one): the history sits on the cap
             y[15] = contact.phase * p["mu"] * abs(contact.kinematics(y)["f_n"]) / kt
         contact.restart(y, switched=which == 1, normal_zero=which == 2)

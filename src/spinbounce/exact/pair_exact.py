@@ -30,7 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.integrate import solve_ivp
 
-__all__ = ["PairOutcome", "solve", "RTOL", "longest_step"]
+__all__ = ["PairOutcome", "solve", "RTOL", "longest_step", "start", "outcome"]
 
 #: Relative tolerance of the integration (the absolute one is this times the speeds).
 RTOL = 1e-12
@@ -76,39 +76,50 @@ def _rates(t, state, n0, p, planar):
                            lever_b * arm / p["i_b"], slip])
 
 
-def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, gamma_n=0.0, gamma_t=0.0,
-          planar=False, rtol=RTOL) -> PairOutcome:
-    """One pair from first touch (|d| = r_a + r_b, d along the unit vector ``n``) until it separates.
-
-    Vectors are 3-sequences in LAMMPS's frame; angular velocities are LAMMPS's omega.
-    """
+def start(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, planar, rtol, **law):
+    """What both pair references start from: (unit n0, coefficients, state (d, v_a, v_b, w_a, w_b)
+    at first touch, v_a - v_b, contact time tau, longest step, absolute tolerance of that state)."""
     n0 = np.asarray(n, dtype=float)
     n0 = n0 / np.linalg.norm(n0)
     radsum = r_a + r_b
     p = {"r_a": r_a, "r_b": r_b, "m_a": m_a, "m_b": m_b, "i_a": alpha_a * m_a * r_a**2,
-         "i_b": alpha_b * m_b * r_b**2, "kn": kn, "kt": kt, "gamma_n": gamma_n, "gamma_t": gamma_t}
-    state = np.concatenate([radsum * n0, v_a, v_b, w_a, w_b, np.zeros(3)]).astype(float)
+         "i_b": alpha_b * m_b * r_b**2, "kn": kn, "kt": kt, **law}
+    state = np.concatenate([radsum * n0, v_a, v_b, w_a, w_b]).astype(float)
     v_rel = np.asarray(v_a, dtype=float) - np.asarray(v_b, dtype=float)
     if v_rel @ n0 >= 0.0:
         raise ValueError("the spheres must approach at first touch: (v_a - v_b).n < 0")
     speed = max(np.linalg.norm(v_rel), radsum * (np.linalg.norm(w_a) + np.linalg.norm(w_b)))
     m_star = m_a * m_b / (m_a + m_b)
     tau = np.pi * np.sqrt(m_star / kn)
+    fast = np.sqrt(kn / m_star) + np.sqrt(kt * (1 / m_a + 1 / m_b + r_a**2 / p["i_a"] + r_b**2 / p["i_b"]))
+    longest = tau / 8.0 if planar else longest_step(tau, v_rel, n0, radsum)
+    return n0, p, state, v_rel, tau, longest, rtol * speed * min(radsum / speed, 1.0 / fast)
+
+
+def outcome(end, n0, t) -> PairOutcome:
+    """The outcome from the state (d, v_a, v_b, w_a, w_b, ...) at separation, time t."""
+    d_end, v_a, v_b, w_a, w_b = end[:15].reshape(5, 3)
+    turn = float(np.arccos(np.clip(d_end @ n0 / np.linalg.norm(d_end), -1.0, 1.0)))
+    return PairOutcome(v_a=v_a, v_b=v_b, w_a=w_a, w_b=w_b, contact_time=float(t), turn=turn)
+
+
+def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, gamma_n=0.0, gamma_t=0.0,
+          planar=False, rtol=RTOL) -> PairOutcome:
+    """One pair from first touch (|d| = r_a + r_b, d along the unit vector ``n``) until it separates.
+
+    Vectors are 3-sequences in LAMMPS's frame; angular velocities are LAMMPS's omega.
+    """
+    n0, p, state, _, tau, longest, atol = start(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b,
+                                                kn, kt, planar, rtol, gamma_n=gamma_n, gamma_t=gamma_t)
 
     def separated(t, y, *_):
         d = y[:3]
-        return (d @ n0 if planar else np.sqrt(d @ d)) - radsum
+        return (d @ n0 if planar else np.sqrt(d @ d)) - (r_a + r_b)
 
     separated.terminal, separated.direction = True, 1.0
     # the start (gap 0, closing) is no upward crossing; the end is the first one
-    fast = np.sqrt(kn / m_star) + np.sqrt(kt * (1 / m_a + 1 / m_b + r_a**2 / p["i_a"] + r_b**2 / p["i_b"]))
-    solution = solve_ivp(_rates, (0.0, 20.0 * tau), state, method="DOP853", args=(n0, p, planar),
-                         max_step=tau / 8.0 if planar else longest_step(tau, v_rel, n0, radsum),
-                         rtol=rtol, atol=rtol * speed * min(radsum / speed, 1.0 / fast), events=separated)
+    solution = solve_ivp(_rates, (0.0, 20.0 * tau), np.concatenate([state, np.zeros(3)]), method="DOP853",
+                         args=(n0, p, planar), max_step=longest, rtol=rtol, atol=atol, events=separated)
     if solution.status != 1 or not len(solution.t_events[0]):
         raise RuntimeError(f"the pair did not separate within 20 contact times: {solution.message}")
-    end = solution.y_events[0][0].reshape(6, 3)
-    d_end = end[0]
-    turn = float(np.arccos(np.clip(d_end @ n0 / np.linalg.norm(d_end), -1.0, 1.0)))
-    return PairOutcome(v_a=end[1], v_b=end[2], w_a=end[3], w_b=end[4], contact_time=float(solution.t_events[0][0]),
-                       turn=turn)
+    return outcome(solution.y_events[0][0], n0, solution.t_events[0][0])
