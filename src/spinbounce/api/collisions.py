@@ -51,14 +51,13 @@ def model(**parameters_) -> ContactModel:
     return ContactModel(**parameters_)
 
 
-#: A wall collision report's columns: (the table's label, the run's column suffix, the JSON key).
-_REPORT_COLUMNS = (("initial", "initial", "initial"), ("LAMMPS", "lammps", "lammps"), ("theory", "theory", "theory"),
-                   ("error", "error", "error"))
+#: A wall collision report's columns, as the table labels them (lower case: the run's column suffix, the JSON key).
+_REPORT_COLUMNS = ("initial", "LAMMPS", "theory", "error")
 
 
 def _state_table(row, names, r: float) -> pd.DataFrame:
     """One row per state column of a run's row: initial, LAMMPS, theory and error (``attrs["r"]``: r)."""
-    table = pd.DataFrame({label: [float(row[f"{s}_{suffix}"]) for s in names] for label, suffix, _ in _REPORT_COLUMNS},
+    table = pd.DataFrame({label: [float(row[f"{s}_{label.lower()}"]) for s in names] for label in _REPORT_COLUMNS},
                          index=list(names))
     table.attrs["r"] = r
     return table
@@ -68,10 +67,10 @@ def _state_record(table: pd.DataFrame) -> dict:
     """A state table as JSON-ready data: per column a state by name, each spin also as an
     angular velocity (r_omega -> omega)."""
     out = {}
-    for label, _, key in _REPORT_COLUMNS:
+    for label in _REPORT_COLUMNS:
         state = {name: float(table.loc[name, label]) for name in table.index}
         state.update({name[2:]: value / table.attrs["r"] for name, value in list(state.items()) if name.startswith("r_")})
-        out[key] = state
+        out[label.lower()] = state
     return out
 
 

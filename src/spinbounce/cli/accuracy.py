@@ -2,9 +2,7 @@
 
 from __future__ import annotations
 
-import sys
-
-from .options import json_flag, out_folder, out_option
+from .options import json_flag, note, out_folder, out_option
 
 HELP = "measure how LAMMPS's error against the exact theory falls with dt, and its cost in steps and seconds"
 
@@ -54,8 +52,7 @@ def run(args) -> int:
     from ..records import json_ready, to_json
     from ..studies.accuracy import TARGETS, make_accuracy
 
-    log = (lambda line: print(line, file=sys.stderr)) if args.json else print
-    study, files = make_accuracy(args.out, quick=args.quick, runs=args.runs, log=log)
+    study, files = make_accuracy(args.out, quick=args.quick, runs=args.runs, log=note if args.json else print)
     s = study.summary
     if args.json:
         rows = s[["case", "form", "observed_order", "expected_order", "error_at_default_dt",

@@ -4,9 +4,8 @@ rigid-body theory and measured data."""
 from __future__ import annotations
 
 import argparse
-import sys
 
-from .options import json_flag, out_folder, out_option
+from .options import json_flag, note, out_folder, out_option, print_json
 
 HELP = "run the published sphere-wall benchmarks (Chung & Ooi Tests 4-6, Thornton's linear law) and report"
 
@@ -45,7 +44,6 @@ def register(sub) -> None:
 def _pairs(out, as_json: bool) -> int:
     """The sphere-sphere benchmarks: each in one LAMMPS batch, beside the published value, the
     exact reference and the planar theory."""
-    import json
     import tempfile
     from pathlib import Path
 
@@ -57,8 +55,7 @@ def _pairs(out, as_json: bool) -> int:
     Path(out).mkdir(parents=True, exist_ok=True)
     path = write_atomic(Path(out) / "pair_benchmarks.json", to_json({"benchmarks": records, **software()}))
     if as_json:
-        print(json.dumps(records, indent=2, default=float))
-        return 0
+        return print_json(records, default=float)
     for r in records:
         print(f"{r['name']:<22} {'agrees' if r['agrees'] else 'DISAGREES'}: {r['published']}; {r['quantity']} "
               f"within {r['lammps_vs_published']:.1e} (bound {r['tolerance']:.1e}); LAMMPS vs exact "
@@ -73,7 +70,7 @@ def run(args) -> int:
     if args.pairs:
         return _pairs(args.out, args.json)
 
-    results, files = make_benchmarks(args.out, only=args.only, runs=args.runs, log=lambda s: print(s, file=sys.stderr))
+    results, files = make_benchmarks(args.out, only=args.only, runs=args.runs, log=note)
     print(f"{'benchmark':<17}{'states':>7}{'refine':>7}{'LAMMPS-oracle':>15}{'at 2x':>10}{'<1e-4':>7}"
           f"{'oracle fails':>13}{'oracle-rigid (sliding)':>24}")
     for r in results:

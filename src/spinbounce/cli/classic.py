@@ -2,9 +2,7 @@
 
 from __future__ import annotations
 
-import json
-
-from .options import figure_options, make_with_runs, model_from, model_parser, number, state_parser
+from .options import figure_options, make_with_runs, model_parser, model_values, number, print_json, state_parser
 
 HELP = ("for your contact model: how this build's classic wall (fix wall/gran hooke/history) scatters "
         "against the paper's model, speed by speed, and the granular line that gives the paper's model")
@@ -36,10 +34,11 @@ def _speeds(args, model) -> list[float]:
 
 
 def run(args) -> int:
+    from ..model.contact import ContactModel
     from ..records import json_ready
     from ..studies.classic_effect import compare, fix_lines
 
-    model = model_from(args).replace(wall="classic")
+    model = ContactModel(**model_values(args)).replace(wall="classic")
     rows = compare(model, _speeds(args, model), args.v_t, args.omega)
     lines = fix_lines(model)
     record = None
@@ -49,8 +48,7 @@ def run(args) -> int:
         record = make_with_runs(lambda out, runs: make_classic(out, runs, model, args.v_t, args.omega), args.out,
                                 args.runs, "spinbounce-classic-").metadata
     if args.json:
-        print(json.dumps(json_ready({"rows": rows, "fix_lines": lines, "figure": record and record["files"]}), indent=2))
-        return 0
+        return print_json(json_ready({"rows": rows, "fix_lines": lines, "figure": record and record["files"]}))
     _print_table(rows, args)
     print(f"you run:   {lines['classic']}")
     print(f"you meant: {lines['granular']}")

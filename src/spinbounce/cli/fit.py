@@ -3,12 +3,11 @@
 from __future__ import annotations
 
 import argparse
-import json
 import math
 from pathlib import Path
 
 from ..model import parameters
-from .options import optional_number
+from .options import json_flag, optional_number, print_json
 
 #: Parameters a group can be selected by: the model's and the scene's (wall or pair, sphere b's).
 SELECTABLE = parameters.MODEL + parameters.SCENE
@@ -19,7 +18,7 @@ HELP = ("fit the 3x3 scattering matrix (6x6 for a 3-D sweep) and Omega (Eq. 19) 
 def register(sub) -> None:
     p = sub.add_parser("fit", help=HELP, description=HELP + ".")
     p.add_argument("results", type=Path, help="a sweep's output folder (or its chunks/ dataset)")
-    p.add_argument("--json", action="store_true", help="print machine-readable JSON instead of text")
+    json_flag(p)
     p.add_argument("--plot", type=_figure_path, metavar="PATH",
                    help="also draw Delta v_t and r Delta omega against the initial slip, per group "
                         "(Eq. 19), to PATH (.png or .pdf)")
@@ -53,8 +52,7 @@ def run(args) -> int:
     if args.plot:
         print(f"figure: {args.plot}")
     if args.json:
-        print(json.dumps(fits, indent=2))
-        return 0
+        return print_json(fits)
     for f in fits:
         _print_group(f)
     return 0

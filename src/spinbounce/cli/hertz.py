@@ -2,11 +2,9 @@
 
 from __future__ import annotations
 
-import json
-import sys
 from pathlib import Path
 
-from .options import json_flag, number, out_folder, out_option, positive_count
+from .options import json_flag, note, number, out_folder, out_option, positive_count, print_json
 
 HELP = "measure how the energy-conserving kt depends on v_n with a Hertzian normal force, and plot it"
 
@@ -44,14 +42,12 @@ def run(args) -> int:
 
     params = HertzParameters(v_min=args.v_min, v_max=args.v_max, points=args.points, v_ref=args.v_ref,
                              m=args.mass, r=args.radius, alpha=args.alpha, kn=args.kn)
-    log = (lambda line: print(line, file=sys.stderr)) if args.json else print
-    record = make_hertz(args.out, params, runs=args.runs, log=log)
+    record = make_hertz(args.out, params, runs=args.runs, log=note if args.json else print)
     meta = record.metadata
     summary = {key: meta[key] for key in ("max_relative_deviation", "slope_lammps", "max_abs_f_at_kt_star_lammps",
                                           "max_abs_f_fixed_deviation", "lammps_version", "runtime_seconds")}
     if args.json:
-        print(json.dumps({"out": str(args.out), "files": meta["files"], **summary}, indent=2))
-        return 0
+        return print_json({"out": str(args.out), "files": meta["files"], **summary})
     print(f"largest relative deviation of kt* from the closed form: {summary['max_relative_deviation']:.2e}; "
           f"slope {summary['slope_lammps']:.5f} (2/5); largest |f| at kt*: {summary['max_abs_f_at_kt_star_lammps']:.1e}")
     print(f"wrote {record.png}, {record.pdf}, {record.json}, {Path(args.out) / 'HERTZ.md'} "

@@ -3,9 +3,7 @@
 
 from __future__ import annotations
 
-import json
-
-from .options import figure_options, make_with_runs
+from .options import figure_options, make_with_runs, print_json
 
 HELP = ("tangential restitution beta = -g_t'/g_t against |g_t|/|v_n| with Coulomb friction (Becker et al. 2008): "
         "LAMMPS, the exact solver, Walton's gross-slip line and the sticking plateau")
@@ -36,8 +34,7 @@ def run(args) -> int:
     meta = make_with_runs(make_figure, args.out, args.runs, "spinbounce-tangential-")
     summary = [_summary(s) for s in meta["sets"]]
     if args.json:
-        print(json.dumps(json_ready({"out": str(args.out), "files": meta["files"], "sets": summary}), indent=2))
-        return 0
+        return print_json(json_ready({"out": str(args.out), "files": meta["files"], "sets": summary}))
     for s in summary:
         print(f"{s['set']}: plateau {s['plateau']:.4f}, switch psi* = {s['switch_ratio']:.4f}; "
               f"|LAMMPS - solver| {s['state_deviation']:.1e} (state), {s['beta_deviation']:.1e} (beta); "

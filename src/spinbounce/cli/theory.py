@@ -5,19 +5,18 @@ Parsing and printing only: the work is :func:`spinbounce.api.theory`.
 
 from __future__ import annotations
 
-import json
 import math
 
 from ..errors import SceneError
-from .options import json_flag, model_parser, number, scene_parser, state_b_parser, state_parser, values_of
+from .collide import print_pair_record
+from .options import json_flag, model_parser, number, pair_parsers, print_json, state_parser, values_of
 
 HELP = ("print the theory that applies to a contact model: its scattering matrix (Eq. 18) and Omega, "
         "or, for a given state, the outcome")
 
 
 def register(sub) -> None:
-    p = sub.add_parser("theory", parents=[model_parser(), state_parser(optional=True), scene_parser(),
-                                          state_b_parser()], help=HELP,
+    p = sub.add_parser("theory", parents=[model_parser(), state_parser(optional=True), *pair_parsers()], help=HELP,
                        description=HELP + ". A state (--v-n, and --v-t, --omega, ...: they default to 0) asks for "
                                           "its outcome instead of the matrix.")
     p.add_argument("--romega", "--r-omega", dest="r_omega", type=number, default=None,
@@ -45,11 +44,8 @@ def run(args) -> int:
 
     report = api.theory(**_keywords(args))
     if args.json:
-        print(json.dumps(report, indent=2, default=lambda x: x.tolist()))
-        return 0
+        return print_json(report, default=lambda x: x.tolist())
     if "outcome" in report:
-        from .collide import print_pair_record
-
         print_pair_record(report["outcome"])
         return 0
     print(f"theory: {report['theory_name']}")
