@@ -51,14 +51,15 @@ def model(**parameters_) -> ContactModel:
     return ContactModel(**parameters_)
 
 
-#: A wall collision report's columns, as the table labels them (lower case: the run's column suffix, the JSON key).
+#: A wall collision report's columns as the table labels them; lower case, the run's column
+#: suffix and the JSON key.
 _REPORT_COLUMNS = ("initial", "LAMMPS", "theory", "error")
 
 
 def _state_table(row, names, r: float) -> pd.DataFrame:
     """One row per state column of a run's row: initial, LAMMPS, theory and error (``attrs["r"]``: r)."""
-    table = pd.DataFrame({label: [float(row[f"{s}_{label.lower()}"]) for s in names] for label in _REPORT_COLUMNS},
-                         index=list(names))
+    table = pd.DataFrame({label: [float(row[f"{s}_{label.lower()}"]) for s in names]
+                          for label in _REPORT_COLUMNS}, index=list(names))
     table.attrs["r"] = r
     return table
 

@@ -83,7 +83,8 @@ def main(argv: list[str] | None = None) -> int:
     except BrokenPipeError:  # `spinbounce theory | head`: the reader has gone, and that is fine
         sys.stdout = None
         return 0
-    except (KeyboardInterrupt, SceneError, SweepError, NoMatrix, OSError, LammpsError, ResultError, DumpError) as exc:
+    except (KeyboardInterrupt, OSError, SceneError, SweepError, NoMatrix, LammpsError, ResultError,
+            DumpError) as exc:
         if args.debug:
             raise
         parser.exit(*_failure(exc, args.command))

@@ -47,9 +47,9 @@ def run(args) -> int:
 
     beta = args.beta if args.beta is not None else -(1.0 + args.Omega)
     gamma_t = None if args.kt_over_kn is not None else (args.gamma_t or 0.0)
-    calibration = calibrate(Targets(e=args.e, contact_time=args.contact_time, beta=beta, mu=args.mu, m=args.m, r=args.r,
-                                    alpha=args.alpha, limit_damping=args.limit_damping, gamma_t=gamma_t,
-                                    kt_over_kn=args.kt_over_kn))
+    calibration = calibrate(Targets(e=args.e, contact_time=args.contact_time, beta=beta, mu=args.mu, m=args.m,
+                                    r=args.r, alpha=args.alpha, limit_damping=args.limit_damping,
+                                    gamma_t=gamma_t, kt_over_kn=args.kt_over_kn))
     model = calibration.model
     report = {"targets": {"e": args.e, "beta": calibration.targets.beta, "contact_time": args.contact_time,
                           "mu": args.mu},

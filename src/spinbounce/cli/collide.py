@@ -5,8 +5,8 @@ Parsing and printing only: the work is :func:`spinbounce.api.collide`.
 
 from __future__ import annotations
 
-from .options import (check_run_folder, model_parser, note, number, pair_parsers, print_json, run_folder_flags,
-                      state_parser, values_of)
+from .options import (check_run_folder, model_parser, note, number, pair_parsers, print_json,
+                      run_folder_flags, state_parser, values_of)
 
 HELP = "bounce one sphere off the wall (or a second free sphere: --scene pair) in LAMMPS against the theory"
 PAIR_HELP = "collide sphere a with a free sphere b in LAMMPS (pair granular): collide --scene pair"
@@ -18,26 +18,29 @@ def _label(name: str) -> str:
 
 
 def register(sub) -> None:
-    for name, help_, more in (
-            ("collide", HELP, ". --scene pair: sphere b (--m-b, --r-b, --alpha-b; at rest unless its state is given, "
-                              "--v-n-b ... --omega-n-b) instead of the wall."),
-            ("pair", PAIR_HELP, ": the same options, --scene pair by default. Sphere a is the model's (--m, --r, "
-                                "--alpha), b's state is in a's frame and sign.")):
-        p = sub.add_parser(name, parents=[model_parser(), state_parser(), *pair_parsers()], help=help_,
-                           description=help_ + more)
-        if name == "pair":  # the alias: a pair unless told otherwise
-            p.set_defaults(scene="pair")
-        step = p.add_mutually_exclusive_group()
-        step.add_argument("--dt", type=number, default=None,
-                          help="timestep (default: the accuracy rule's step, model/timestep.py, with the contact's "
-                               "end mid-step; damped, Coulomb-capped, Hertzian and pair scenes measure theirs with a "
-                               "short probe, stepping.py)")
-        step.add_argument("--tolerance", type=number, default=None, metavar="TOL",
-                          help="ask for an accuracy instead: runs at doubling resolutions, extrapolated to dt = 0 "
-                               "until the estimated error is below TOL (reported with the result; the wall only)")
-        run_folder_flags(p, "run folder for the deck, dump, log and result.json (default: "
-                            "spinbounce-runs/<kind>-<hash>)")
-        p.set_defaults(handler=run)
+    _parser(sub, "collide", HELP, HELP + ". --scene pair: sphere b (--m-b, --r-b, --alpha-b; at rest unless its "
+                                        "state is given, --v-n-b ... --omega-n-b) instead of the wall.")
+    _parser(sub, "pair", PAIR_HELP,
+            PAIR_HELP + ": the same options, --scene pair by default. Sphere a is the model's (--m, --r, "
+                        "--alpha), b's state is in a's frame and sign.")
+
+
+def _parser(sub, name: str, help_: str, description: str) -> None:
+    p = sub.add_parser(name, parents=[model_parser(), state_parser(), *pair_parsers()], help=help_,
+                       description=description)
+    if name == "pair":  # the alias: a pair unless told otherwise
+        p.set_defaults(scene="pair")
+    step = p.add_mutually_exclusive_group()
+    step.add_argument("--dt", type=number, default=None,
+                      help="timestep (default: the accuracy rule's step, model/timestep.py, with the contact's "
+                           "end mid-step; damped, Coulomb-capped, Hertzian and pair scenes measure theirs with a "
+                           "short probe, stepping.py)")
+    step.add_argument("--tolerance", type=number, default=None, metavar="TOL",
+                      help="ask for an accuracy instead: runs at doubling resolutions, extrapolated to dt = 0 "
+                           "until the estimated error is below TOL (reported with the result; the wall only)")
+    run_folder_flags(p, "run folder for the deck, dump, log and result.json (default: "
+                        "spinbounce-runs/<kind>-<hash>)")
+    p.set_defaults(handler=run)
 
 
 def run(args) -> int:
@@ -56,16 +59,17 @@ def run(args) -> int:
     if isinstance(report, api.PairReport):
         print_pair_record(record)
     elif isinstance(report, api.ToleranceReport):
-        print(f"collision to tolerance {record['tolerance']:g}: {len(record['levels'])} runs, {record['steps']} "
-              f"LAMMPS steps (one plain run would need ~{record['plain_steps_for_same_estimate']:.0f} for the same "
-              "error)")
+        print(f"collision to tolerance {record['tolerance']:g}: {len(record['levels'])} runs, "
+              f"{record['steps']} LAMMPS steps (one plain run would need "
+              f"~{record['plain_steps_for_same_estimate']:.0f} for the same error)")
         _print_states(record, list(report.table.index), label_width=10)
-        print(f"estimated error {record['estimate']:.2e} ({report.how} from the runs in {report.path.parent})")
+        print(f"estimated error {record['estimate']:.2e} ({report.how} from the runs in "
+              f"{report.path.parent})")
         print(f"record: {report.path}")
     else:
         omega_text = f"Omega = {report.Omega:.8g}" if report.Omega is not None else "no single Omega"
-        print(f"collision: dt = {report.dt:.6g} ({report.nsteps} steps, contact time {report.contact_time:.6g}); "
-              f"theory: {report.theory}; {omega_text}")
+        print(f"collision: dt = {report.dt:.6g} ({report.nsteps} steps, contact time "
+              f"{report.contact_time:.6g}); theory: {report.theory}; {omega_text}")
         _print_states(record, list(report.table.index), label_width=8)
         print(f"accuracy: |LAMMPS - theory| / |initial state| = {report.error:.2e} "
               f"(target {report.step['target']:g}; step: {report.step['method']}); status {report.status}")

@@ -45,6 +45,8 @@ def _figure_path(text: str) -> Path:
 
 
 def run(args) -> int:
+    import numpy as np
+
     from .. import api
 
     selection = {p.name: getattr(args, p.name) for p in SELECTABLE if hasattr(args, p.name)}
@@ -54,29 +56,25 @@ def run(args) -> int:
     if args.json:
         return print_json(fits)
     for f in fits:
-        _print_group(f)
+        p = f["parameters"]
+        print("group: " + ", ".join(f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}"
+                                    for k, v in p.items()))
+        print(f"  collisions {f['n']}; theory: {f['theory']}; {f['regime']}")
+        size = "the pair's speed, both spheres" if p.get("scene") == "pair" else "the state's size"
+        print(f"  per collision |LAMMPS - theory|: worst {f['worst_deviation']:.2e}, median "
+              f"{f['median_deviation']:.2e} (over {size}: worst {f['worst_relative_deviation']:.2e})"
+              + ("; rows " + ", ".join(f"{n} {s}" for s, n in f["status"].items()) if "status" in f else ""))
+        if not f["has_matrix"]:
+            continue
+        print(f"  Omega = {f['Omega']:.8f} +/- {f['Omega_stderr']:.1e} "
+              f"(theory {f['Omega_theory']:.8f}, diff {f['Omega_diff']:.2e})")
+        # rounded, and + 0.0: no "-0"
+        fitted, theory = (np.round(np.array(f[key]), 7) + 0.0 for key in ("matrix", "matrix_theory"))
+        with np.printoptions(precision=7, suppress=True, floatmode="fixed"):
+            for fitted_row, theory_row in zip(fitted, theory, strict=True):
+                print(f"  fit {fitted_row}   theory {theory_row}")
+        rms = " ".join(f"{x:.1e}" for x in f["residual_rms"])
+        print(f"  largest element difference {f['max_element_diff']:.2e}; residual rms {rms}")
+        if math.isnan(f["Omega"]):
+            print("  (no tangential slip in this group: Omega cannot be fitted)")
     return 0
-
-
-def _print_group(f: dict) -> None:
-    import numpy as np
-
-    p = f["parameters"]
-    print("group: " + ", ".join(f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}" for k, v in p.items()))
-    print(f"  collisions {f['n']}; theory: {f['theory']}; {f['regime']}")
-    size = "the pair's speed, both spheres" if p.get("scene") == "pair" else "the state's size"
-    print(f"  per collision |LAMMPS - theory|: worst {f['worst_deviation']:.2e}, median {f['median_deviation']:.2e} "
-          f"(over {size}: worst {f['worst_relative_deviation']:.2e})"
-          + ("; rows " + ", ".join(f"{n} {s}" for s, n in f["status"].items()) if "status" in f else ""))
-    if not f["has_matrix"]:
-        return
-    print(f"  Omega = {f['Omega']:.8f} +/- {f['Omega_stderr']:.1e} "
-          f"(theory {f['Omega_theory']:.8f}, diff {f['Omega_diff']:.2e})")
-    fitted, theory = (np.round(np.array(f[key]), 7) + 0.0 for key in ("matrix", "matrix_theory"))  # no "-0"
-    with np.printoptions(precision=7, suppress=True, floatmode="fixed"):
-        for fitted_row, theory_row in zip(fitted, theory, strict=True):
-            print(f"  fit {fitted_row}   theory {theory_row}")
-    rms = " ".join(f"{x:.1e}" for x in f["residual_rms"])
-    print(f"  largest element difference {f['max_element_diff']:.2e}; residual rms {rms}")
-    if math.isnan(f["Omega"]):
-        print("  (no tangential slip in this group: Omega cannot be fitted)")

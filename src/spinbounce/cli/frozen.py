@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from .options import check_run_folder, count, model_parser, model_values, note, number, print_json, run_folder_flags
+from .options import (check_run_folder, count, model_parser, model_values, note, number, print_json,
+                      run_folder_flags)
 
 HELP = "hold a sphere in contact at height z (v_n = 0) and compare v_t(t), omega(t) with Eq. 10"
 
@@ -38,8 +39,8 @@ def run(args) -> int:
     if args.json:
         return print_json(r if args.tolerance is not None else
                           {"csv": r["csv"], "record": str(report.record_path), "rows": r["rows"],
-                           "max_abs_error": r["max_abs_error"], "dt": r["parameters"]["dt"], "deck": r["deck"],
-                           "lammps_version": r["lammps_version"]})
+                           "max_abs_error": r["max_abs_error"], "dt": r["parameters"]["dt"],
+                           "deck": r["deck"], "lammps_version": r["lammps_version"]})
     if args.tolerance is not None:
         print(f"frozen contact to tolerance {r['tolerance']:g}: {len(r['levels'])} runs, {r['steps']} LAMMPS "
               f"steps (one plain run would need ~{r['plain_steps_for_same_estimate']:.0f})")

@@ -133,7 +133,8 @@ def model_parser() -> argparse.ArgumentParser:
 def state_parser(three_d: bool = True, optional: bool = False) -> argparse.ArgumentParser:
     """The initial state's options (the paper's plane, and the 3-D ones where honoured);
     ``optional``: none has a default (a state that may be left out altogether)."""
-    title = "initial state" + (" (3-D: v_s, omega_s, omega_n)" if three_d else "") + (" (optional)" if optional else "")
+    title = "initial state" + (" (3-D: v_s, omega_s, omega_n)" if three_d else "")
+    title += " (optional)" if optional else ""
     return _parent(title, parameters.STATE if three_d else parameters.STATE[:3],
                    **({"default": None} if optional else {}))
 
@@ -143,8 +144,8 @@ def pair_parsers() -> list[argparse.ArgumentParser]:
     --m-b, --r-b, --alpha-b) and b's state at first touch (``STATE_B``), as parent parsers."""
     return [_parent("scene: the wall (default), or a free sphere b at rest along the normal (a pair)",
                     parameters.SCENE, default=None),
-            _parent("sphere b's state (--scene pair; default: at rest), in a's frame and sign", parameters.STATE_B,
-                    default=None)]
+            _parent("sphere b's state (--scene pair; default: at rest), in a's frame and sign",
+                    parameters.STATE_B, default=None)]
 
 
 def values_of(args: argparse.Namespace) -> dict:

@@ -25,9 +25,10 @@ def run(args) -> int:
     meta = make_with_runs(make_figure, args.out, args.runs, "spinbounce-restitution-")
     fit = meta["kharaz_fit"]
     if args.json:
+        curves = [{k: c[k] for k in ("label", "theory_kind", "max_abs_state_deviation")}
+                  for c in meta["curves"]]
         return print_json(json_ready({"out": str(args.out), "files": meta["files"], "kharaz_fit": fit,
-                                      "curves": [{k: c[k] for k in ("label", "theory_kind", "max_abs_state_deviation")}
-                                                 for c in meta["curves"]]}))
+                                      "curves": curves}))
     for c in meta["curves"]:
         print(f"{c['label']:<60} ({c['theory_kind']}): largest |LAMMPS - theory| in the state "
               f"{c['max_abs_state_deviation']:.2e}")

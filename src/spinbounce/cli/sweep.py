@@ -23,7 +23,8 @@ STATE_RANGES = (
     ("v_n", ("--vn", "--v-n"), (-1.5, -0.1), "range of v_n (default: -1.5 -0.1)"),
     ("v_t", ("--vt", "--v-t"), (-2.0, 2.0), "range of v_t (default: -2 2)"),
     ("speed", ("--speed",), (0.1, 1.5), "instead of --vn/--vt: range of the impact speed"),
-    ("angle_deg", ("--angle-deg",), (-60.0, 60.0), "incidence angle from the wall's normal, degrees (with --speed)"),
+    ("angle_deg", ("--angle-deg",), (-60.0, 60.0),
+     "incidence angle from the wall's normal, degrees (with --speed)"),
     ("r_omega", ("--r-omega",), (-2.0, 2.0), "range of r*omega (default: -2 2)"),
     ("omega", ("--omega",), None, "instead of --r-omega: range of omega"),
     ("v_s", ("--vs", "--v-s"), None, "3-D: range of v_s (give all three 3-D ranges)"),
@@ -100,7 +101,8 @@ def _states_from_flags(args) -> dict:
     if {"omega", "r_omega"} <= given.keys():
         raise SweepError("--omega: give it or --r-omega, not both")
     pair = ("speed", "angle_deg") if by_speed else ("v_n", "v_t")
-    states = {"n": args.n, **{dest: list(default) for dest, _, default, _ in STATE_RANGES if dest in pair}, **given}
+    defaults = {dest: list(default) for dest, _, default, _ in STATE_RANGES if dest in pair}
+    states = {"n": args.n, **defaults, **given}
     if "omega" not in states:
         states.setdefault("r_omega", [-2.0, 2.0])
     return states

@@ -20,19 +20,17 @@ def register(sub) -> None:
     p.set_defaults(handler=run)
 
 
-def _summary(s: dict) -> dict:
-    return {"set": s["label"], "dt": s["dt"], "plateau": s["plateau"], "switch_ratio": s["switch_ratio"],
-            "state_deviation": s["state_deviation"], "beta_deviation": s["beta_deviation"],
-            "solver_vs_gross_slip": s["limits"]["gross_slip"]["max_abs"],
-            "solver_vs_plateau": s["limits"]["plateau"]["max_abs"], "plateau_where": s["limits"]["plateau"]["where"]}
-
-
 def run(args) -> int:
     from ..records import json_ready
     from ..studies.tangential import make_figure
 
     meta = make_with_runs(make_figure, args.out, args.runs, "spinbounce-tangential-")
-    summary = [_summary(s) for s in meta["sets"]]
+    summary = [{"set": s["label"], "dt": s["dt"], "plateau": s["plateau"], "switch_ratio": s["switch_ratio"],
+                "state_deviation": s["state_deviation"], "beta_deviation": s["beta_deviation"],
+                "solver_vs_gross_slip": s["limits"]["gross_slip"]["max_abs"],
+                "solver_vs_plateau": s["limits"]["plateau"]["max_abs"],
+                "plateau_where": s["limits"]["plateau"]["where"]}
+               for s in meta["sets"]]
     if args.json:
         return print_json(json_ready({"out": str(args.out), "files": meta["files"], "sets": summary}))
     for s in summary:
