@@ -76,6 +76,18 @@ def worker_count(text: str) -> int:
     return value
 
 
+def name_list(what: str, choices):
+    """argparse type of comma-separated names, each one of ``choices()`` (called when parsing)."""
+    def parse(text: str) -> tuple[str, ...]:
+        names = tuple(n.strip() for n in text.split(",") if n.strip())
+        unknown = [n for n in names if n not in choices()]
+        if not names or unknown:
+            raise argparse.ArgumentTypeError(f"unknown {what} {', '.join(unknown) or repr(text)}; choose from: "
+                                             f"{', '.join(choices())}")
+        return names
+    return parse
+
+
 def allow_negative_numbers(parser: argparse.ArgumentParser) -> None:
     """Let ``parser`` (and its subparsers) take e-notation negative values (``--vn -1e-3``)."""
     parser._negative_number_matcher = NEGATIVE_NUMBER  # argparse has no public switch for it

@@ -66,12 +66,6 @@ def register(sub) -> None:
     step.add_argument("--tolerance", type=number, default=None, metavar="TOL",
                       help="instead of --dt: extrapolate each chunk's runs until every row's estimated error is below TOL")
     sweep_model_flags(p)
-    _scene_flags(p)
-    p.set_defaults(handler=run)
-
-
-def _scene_flags(p) -> None:
-    """--scene pair and sphere b's parameters (each one value or several), from the declaration."""
     group = p.add_argument_group("scene, from flags: sphere a (the model's m, r, alpha) against a free sphere b "
                                  "at rest instead of the wall")
     for parameter in parameters.SCENE:
@@ -85,6 +79,7 @@ def _scene_flags(p) -> None:
     for parameter in parameters.STATE_B:  # declared, so refused here with the reason rather than unknown
         group.add_argument(*parameter.flags, dest=parameter.name, type=_b_state_refused, nargs="+", default=None,
                            metavar=parameter.name.upper(), help=argparse.SUPPRESS)
+    p.set_defaults(handler=run)
 
 
 def _b_state_refused(text: str):
