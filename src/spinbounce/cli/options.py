@@ -1,9 +1,7 @@
-"""Options shared by several commands, all derived from the parameter declaration.
+"""Options shared by several commands, every model and state flag made from the declaration.
 
-Every model and state flag of every command is made here from
-:mod:`spinbounce.model.parameters`: the flag, its help (meaning, unit, accepted range and
-default) and its parsing. A command adds the groups it can honour; a flag a command
-cannot honour is not offered there, or is refused with the reason.
+:mod:`spinbounce.model.parameters` gives each flag its help (meaning, unit, accepted range and
+default) and its parsing. A command offers the groups it can honour, or refuses a flag with the reason.
 """
 
 from __future__ import annotations

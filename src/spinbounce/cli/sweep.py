@@ -1,8 +1,7 @@
 """spinbounce sweep: many collisions from a scene file or flags, into a Parquet dataset.
 
-A scene file is the whole sweep: beside one, the model and state flags are refused (name
-them in the file instead); the run flags (--out, --workers, --chunk, --list-chunks, --force, --json)
-apply to either. From flags, every sweepable model parameter takes one value or several.
+A scene file is the whole sweep (beside one, only the run flags apply); from flags, every
+sweepable model parameter takes one value or several.
 """
 
 from __future__ import annotations
