@@ -227,11 +227,12 @@ def collide(v_n: float = -1.0, v_t: float = 1.0, omega: float = 0.0, v_s: float 
     scene, row = result.scene, result.table.iloc[0]  # at the step its accuracy needed
     choice = choose.which(scene.model)
     omega = float(choose.omega_per_sphere(scene.model, scene.v_n)[0])
-    return CollisionReport(_state_table(row, scene.state_names, scene.model.r), choice.name, choice.kind, scene.dt,
-                           scene.nsteps, float(row["error"]), str(row["status"]), out,
-                           float(np.max(scene.model.contact_times(scene.v_n))), None if np.isnan(omega) else omega,
-                           result.step.record(), result.warnings, str(result.info.deck),
-                           None if result.dump is None else str(result.dump), result.info.lammps_version)
+    return CollisionReport(_state_table(row, scene.state_names, scene.model.r), choice.name, choice.kind,
+                           scene.dt, scene.nsteps, float(row["error"]), str(row["status"]), out,
+                           float(np.max(scene.model.contact_times(scene.v_n))),
+                           None if np.isnan(omega) else omega, result.step.record(), result.warnings,
+                           str(result.info.deck), None if result.dump is None else str(result.dump),
+                           result.info.lammps_version)
 
 
 @dataclass(frozen=True)

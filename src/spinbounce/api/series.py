@@ -58,7 +58,8 @@ def frozen(z: float = 0.1, v_t: float = 1.0, omega: float = 0.0, t_end: float = 
             "frozen", {"model": scene.model.as_record(), "z": scene.z, "v_t": scene.v_t, "omega": scene.omega,
                        "nsteps": scene.nsteps, "dt": scene.dt, "every": scene.every})
         result = run_series(scene, folder)
-        record = {**series_record(result), "rows": len(result.table), "lammps_version": result.info.lammps_version}
+        record = {**series_record(result), "rows": len(result.table),
+                  "lammps_version": result.info.lammps_version}
         table = result.table[FROZEN_COLUMNS]
     csv = folder / FROZEN_SERIES
     write_atomic(csv, table.to_csv(index=False, float_format="%.17g"))

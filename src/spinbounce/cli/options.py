@@ -80,8 +80,8 @@ def name_list(what: str, choices):
         names = tuple(n.strip() for n in text.split(",") if n.strip())
         unknown = [n for n in names if n not in choices()]
         if not names or unknown:
-            raise argparse.ArgumentTypeError(f"unknown {what} {', '.join(unknown) or repr(text)}; choose from: "
-                                             f"{', '.join(choices())}")
+            raise argparse.ArgumentTypeError(f"unknown {what} {', '.join(unknown) or repr(text)}; "
+                                             f"choose from: {', '.join(choices())}")
         return names
     return parse
 
