@@ -1,15 +1,9 @@
 """spinbounce: LAMMPS reproduction of a frictional sphere's scattering from a flat wall.
 
-The Python API (:mod:`spinbounce.api`) is at the top::
-
-    import spinbounce
-    print(spinbounce.collide(v_n=-1.0, v_t=1.0, omega=0.0, mu=0.3))
-    spinbounce.theory(gamma_t=0.5)      # the theory that applies (the references: spinbounce.exact)
-    rows = spinbounce.sweep(n=1000, out="runs/sweep", kt_over_kn=[0.1, 0.3])
-    spinbounce.fit(rows)
-
-Importing the package never imports LAMMPS; only :mod:`spinbounce.lammps.runner` does, when a
-run starts, and the API's modules load on first use.
+The Python API (:mod:`spinbounce.api`, whose docstring shows it at work) is at the top:
+``spinbounce.collide``, ``theory``, ``frozen``, ``sweep`` and ``fit``. Importing the package never
+imports LAMMPS; only :mod:`spinbounce.lammps.runner` does, when a run starts, and the API's
+modules load on first use.
 """
 
 import importlib

@@ -31,16 +31,17 @@ class _Pair:
     state: np.ndarray
 
 
-def _split_scene(keywords: dict):
-    """(model keywords, None for the wall or the pair's sphere b and its state); b's keywords are
+def _contact_and_pair(keywords: dict):
+    """(the contact model, None for the wall or the pair's sphere b and its state); b's keywords are
     refused without scene="pair"."""
     from ..scenes.pair.kind import scene_of, sphere_b, state_b
 
     scene = {k: keywords.pop(k) for k in list(keywords) if k in _SCENE_NAMES}
-    if scene_of(scene) == "wall":
-        return keywords, None
-    sphere = sphere_b(**{k: v for k, v in scene.items() if k in parameters.PAIR_SPHERE and v is not None})
-    return keywords, _Pair(sphere, state_b(scene))
+    pair = None
+    if scene_of(scene) != "wall":
+        sphere = sphere_b(**{k: v for k, v in scene.items() if k in parameters.PAIR_SPHERE and v is not None})
+        pair = _Pair(sphere, state_b(scene))
+    return model(**keywords), pair
 
 
 def model(**parameters_) -> ContactModel:
@@ -51,15 +52,15 @@ def model(**parameters_) -> ContactModel:
     return ContactModel(**parameters_)
 
 
-#: A wall collision report's columns: (the table's label, the run's column suffix, the JSON key).
-_REPORT_COLUMNS = (("initial", "initial", "initial"), ("LAMMPS", "lammps", "lammps"), ("theory", "theory", "theory"),
-                   ("error", "error", "error"))
+#: A wall collision report's columns as the table labels them; lower case, the run's column
+#: suffix and the JSON key.
+_REPORT_COLUMNS = ("initial", "LAMMPS", "theory", "error")
 
 
 def _state_table(row, names, r: float) -> pd.DataFrame:
     """One row per state column of a run's row: initial, LAMMPS, theory and error (``attrs["r"]``: r)."""
-    table = pd.DataFrame({label: [float(row[f"{s}_{suffix}"]) for s in names] for label, suffix, _ in _REPORT_COLUMNS},
-                         index=list(names))
+    table = pd.DataFrame({label: [float(row[f"{s}_{label.lower()}"]) for s in names]
+                          for label in _REPORT_COLUMNS}, index=list(names))
     table.attrs["r"] = r
     return table
 
@@ -68,10 +69,10 @@ def _state_record(table: pd.DataFrame) -> dict:
     """A state table as JSON-ready data: per column a state by name, each spin also as an
     angular velocity (r_omega -> omega)."""
     out = {}
-    for label, _, key in _REPORT_COLUMNS:
+    for label in _REPORT_COLUMNS:
         state = {name: float(table.loc[name, label]) for name in table.index}
         state.update({name[2:]: value / table.attrs["r"] for name, value in list(state.items()) if name.startswith("r_")})
-        out[key] = state
+        out[label.lower()] = state
     return out
 
 
@@ -193,19 +194,6 @@ def _collide_pair(pair: _Pair, contact: ContactModel, state: dict, dt, tolerance
     return _pair_report(result.table.iloc[0].to_dict(), result.scene, out, result.step.record())
 
 
-def _wall_report(result, out: Path) -> CollisionReport:
-    scene = result.scene  # at the step its accuracy needed
-    row = result.table.iloc[0]
-    table = _state_table(row, scene.state_names, scene.model.r)
-    choice = choose.which(scene.model)
-    omega = float(choose.omega_per_sphere(scene.model, scene.v_n)[0])
-    return CollisionReport(table, choice.name, choice.kind, scene.dt, scene.nsteps, float(row["error"]),
-                           str(row["status"]), out, float(np.max(scene.model.contact_times(scene.v_n))),
-                           None if np.isnan(omega) else omega, result.step.record(), result.warnings,
-                           str(result.info.deck), None if result.dump is None else str(result.dump),
-                           result.info.lammps_version)
-
-
 def collide(v_n: float = -1.0, v_t: float = 1.0, omega: float = 0.0, v_s: float = 0.0, omega_s: float = 0.0,
             omega_n: float = 0.0, *, dt: float | None = None, tolerance: float | None = None,
             out: str | Path | None = None, force: bool = False, log=None,
@@ -224,8 +212,7 @@ def collide(v_n: float = -1.0, v_t: float = 1.0, omega: float = 0.0, v_s: float 
 
     check_run_folder(out, force)
     state = dict(zip(_STATE_NAMES, (v_n, v_t, omega, v_s, omega_s, omega_n), strict=True))
-    model_parameters, pair = _split_scene(model_parameters)
-    contact = model(**model_parameters)
+    contact, pair = _contact_and_pair(model_parameters)
     if pair is not None:
         return _collide_pair(pair, contact, state, dt, tolerance, out)
     if tolerance is not None:
@@ -236,7 +223,16 @@ def collide(v_n: float = -1.0, v_t: float = 1.0, omega: float = 0.0, v_s: float 
         log(notice)
     out = Path(out) if out is not None else run_folder("collide", {"model": contact.as_record(), **state,
                                                                     "dt": scene.dt})
-    return _wall_report(run_scene(scene, out), out)
+    result = run_scene(scene, out)
+    scene, row = result.scene, result.table.iloc[0]  # at the step its accuracy needed
+    choice = choose.which(scene.model)
+    omega = float(choose.omega_per_sphere(scene.model, scene.v_n)[0])
+    return CollisionReport(_state_table(row, scene.state_names, scene.model.r), choice.name, choice.kind,
+                           scene.dt, scene.nsteps, float(row["error"]), str(row["status"]), out,
+                           float(np.max(scene.model.contact_times(scene.v_n))),
+                           None if np.isnan(omega) else omega, result.step.record(), result.warnings,
+                           str(result.info.deck), None if result.dump is None else str(result.dump),
+                           result.info.lammps_version)
 
 
 @dataclass(frozen=True)
@@ -276,8 +272,7 @@ def theory(v_n: float | None = None, v_t: float = 0.0, omega: float = 0.0, v_s: 
     the scattering matrix and what it rests on (or, where none exists, why not). With
     ``scene="pair"``: the planar pair theory's matrix of sphere a (b at rest), or one state's exact
     and planar outcomes."""
-    model_parameters, pair = _split_scene(model_parameters)
-    contact = model(**model_parameters)
+    contact, pair = _contact_and_pair(model_parameters)
     state = dict(zip(_STATE_NAMES, (v_n, v_t, omega, v_s, omega_s, omega_n), strict=True))
     if pair is not None:
         return _pair_theory(pair, contact, state)

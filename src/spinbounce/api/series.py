@@ -41,6 +41,7 @@ def frozen(z: float = 0.1, v_t: float = 1.0, omega: float = 0.0, t_end: float = 
     (deck, dump, log, ``frozen.csv`` and the record). ``log(line)``: told about long runs and the
     extrapolation's progress. A named ``out`` holding an earlier run is refused unless ``force``."""
     from ..model.timestep import cost_notice
+    from ..pipeline import run_series, series_record
     from ..records import check_run_folder, to_json, write_atomic
     from ..scenes.frozen import Frozen
 
@@ -53,25 +54,19 @@ def frozen(z: float = 0.1, v_t: float = 1.0, omega: float = 0.0, t_end: float = 
         notice = cost_notice(scene.nsteps)
         if log is not None and notice:
             log(notice)
-        table, record, folder = _frozen_run(scene, out)
+        folder = Path(out) if out is not None else run_folder(
+            "frozen", {"model": scene.model.as_record(), "z": scene.z, "v_t": scene.v_t, "omega": scene.omega,
+                       "nsteps": scene.nsteps, "dt": scene.dt, "every": scene.every})
+        result = run_series(scene, folder)
+        record = {**series_record(result), "rows": len(result.table),
+                  "lammps_version": result.info.lammps_version}
+        table = result.table[FROZEN_COLUMNS]
     csv = folder / FROZEN_SERIES
     write_atomic(csv, table.to_csv(index=False, float_format="%.17g"))
     record["csv"] = str(csv)
     record_path = folder / ("tolerance.json" if tolerance is not None else "result.json")
     write_atomic(record_path, to_json(record))
     return FrozenReport(table, record, csv, record_path)
-
-
-def _frozen_run(scene, out) -> tuple[pd.DataFrame, dict, Path]:
-    from ..pipeline import run_series, series_record
-
-    folder = Path(out) if out is not None else run_folder(
-        "frozen", {"model": scene.model.as_record(), "z": scene.z, "v_t": scene.v_t, "omega": scene.omega,
-                   "nsteps": scene.nsteps, "dt": scene.dt, "every": scene.every})
-    result = run_series(scene, folder)
-    record = series_record(result)
-    record.update(rows=len(result.table), lammps_version=result.info.lammps_version)
-    return result.table[FROZEN_COLUMNS], record, folder
 
 
 def _frozen_to_tolerance(scene, tolerance: float, out, log) -> tuple[pd.DataFrame, dict, Path]:

@@ -13,6 +13,7 @@ from .collisions import _MODEL_NAMES
 
 __all__ = ["sweep", "run_sweep", "SweepReport", "fit", "fit_groups"]
 
+
 @dataclass(frozen=True)
 class SweepReport:
     """A finished sweep: its dataset (one Parquet file per chunk), how many rows got each status,

@@ -60,6 +60,19 @@ def _show_warning(message, category, filename, lineno, file=None, line=None):
     print(f"warning: {message}", file=sys.stderr)
 
 
+def _failure(exc: BaseException, command: str) -> tuple[int, str]:
+    """A command's exit status and its one line on stderr for an error it raised."""
+    who = f"spinbounce {command}"
+    if isinstance(exc, KeyboardInterrupt):
+        return 130, f"{who}: interrupted\n"
+    if isinstance(exc, OSError):
+        where = f" {exc.filename}" if exc.filename else ""
+        return 2, f"{who}: error:{where}: {exc.strerror or exc}\n"
+    if isinstance(exc, (LammpsError, ResultError, DumpError)):
+        return 1, f"{who}: {type(exc).__name__}: {exc}\n"
+    return 2, f"{who}: error: {exc}\n"
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
@@ -70,21 +83,8 @@ def main(argv: list[str] | None = None) -> int:
     except BrokenPipeError:  # `spinbounce theory | head`: the reader has gone, and that is fine
         sys.stdout = None
         return 0
-    except KeyboardInterrupt:
+    except (KeyboardInterrupt, OSError, SceneError, SweepError, NoMatrix, LammpsError, ResultError,
+            DumpError) as exc:
         if args.debug:
             raise
-        parser.exit(130, f"spinbounce {args.command}: interrupted\n")
-    except (SceneError, SweepError, NoMatrix) as exc:
-        if args.debug:
-            raise
-        parser.exit(2, f"spinbounce {args.command}: error: {exc}\n")
-    except OSError as exc:
-        if args.debug:
-            raise
-        where = f" {exc.filename}" if exc.filename else ""
-        parser.exit(2, f"spinbounce {args.command}: error:{where}: {exc.strerror or exc}\n")
-    except (LammpsError, ResultError, DumpError) as exc:
-        if args.debug:
-            raise
-        parser.exit(1, f"spinbounce {args.command}: {type(exc).__name__}: {exc}\n")
-    return 1
+        parser.exit(*_failure(exc, args.command))

@@ -2,9 +2,7 @@
 
 from __future__ import annotations
 
-import sys
-
-from .options import json_flag, out_folder, out_option
+from .options import json_flag, note, out_folder, out_option
 
 HELP = "measure how LAMMPS's error against the exact theory falls with dt, and its cost in steps and seconds"
 
@@ -28,34 +26,11 @@ def register(sub) -> None:
     p.set_defaults(handler=run)
 
 
-def _print_summary(summary) -> None:
-    from ..studies.accuracy import TARGETS
-
-    print(f"{'case':<15}{'form':<15}{'order':>7}{'expected':>9}{'err@default':>13}"
-          + "".join(f"{'steps ' + format(t, '.0e'):>14}" for t in TARGETS))
-    for r in summary.to_dict(orient="records"):
-        steps = "".join(
-            f"{(format(r[f'steps_{t:.0e}'], '.3g') + ('*' if r[f'extrapolated_{t:.0e}'] else '')):>14}"
-            for t in TARGETS)
-        print(f"{r['case']:<15}{r['form']:<15}{r['observed_order']:>7.2f}{r['expected_order']:>9g}"
-              f"{r['error_at_default_dt']:>13.2e}{steps}")
-    print("* extrapolated beyond the measured range; err@default: none where no default step takes the form")
-
-
-def _print_defaults(defaults) -> None:
-    print(f"{'default step':<15}{'form':<15}{'chosen by':<28}{'steps':>9}{'error':>11}{'target':>9}")
-    for r in defaults.to_dict(orient="records"):
-        print(f"{r['case']:<15}{r['form']:<15}{r['step_method']:<28}{r['steps_per_collision']:>9}"
-              f"{r['error_reached']:>11.2e}{r['target']:>9g}{'' if r['within_target'] else '  over the target'}")
-    print("error: the largest |LAMMPS - theory| over the size of the initial state")
-
-
 def run(args) -> int:
     from ..records import json_ready, to_json
     from ..studies.accuracy import TARGETS, make_accuracy
 
-    log = (lambda line: print(line, file=sys.stderr)) if args.json else print
-    study, files = make_accuracy(args.out, quick=args.quick, runs=args.runs, log=log)
+    study, files = make_accuracy(args.out, quick=args.quick, runs=args.runs, log=note if args.json else print)
     s = study.summary
     if args.json:
         rows = s[["case", "form", "observed_order", "expected_order", "error_at_default_dt",
@@ -65,8 +40,21 @@ def run(args) -> int:
                   "default_costs": study.costs, "study_seconds": study.metadata["study_seconds"]}
         print(to_json(json_ready(report)), end="")
         return 0
-    _print_summary(s)
-    _print_defaults(study.defaults)
+    print(f"{'case':<15}{'form':<15}{'order':>7}{'expected':>9}{'err@default':>13}"
+          + "".join(f"{'steps ' + format(t, '.0e'):>14}" for t in TARGETS))
+    for r in s.to_dict(orient="records"):
+        steps = "".join(
+            f"{(format(r[f'steps_{t:.0e}'], '.3g') + ('*' if r[f'extrapolated_{t:.0e}'] else '')):>14}"
+            for t in TARGETS)
+        print(f"{r['case']:<15}{r['form']:<15}{r['observed_order']:>7.2f}{r['expected_order']:>9g}"
+              f"{r['error_at_default_dt']:>13.2e}{steps}")
+    print("* extrapolated beyond the measured range; err@default: none where no default step takes the form")
+    print(f"{'default step':<15}{'form':<15}{'chosen by':<28}{'steps':>9}{'error':>11}{'target':>9}")
+    for r in study.defaults.to_dict(orient="records"):
+        print(f"{r['case']:<15}{r['form']:<15}{r['step_method']:<28}{r['steps_per_collision']:>9}"
+              f"{r['error_reached']:>11.2e}{r['target']:>9g}"
+              + ("" if r["within_target"] else "  over the target"))
+    print("error: the largest |LAMMPS - theory| over the size of the initial state")
     for c in study.costs:
         print(f"defaults, {c['step']} ({c['target']:.0e}): {c['lammps_steps']} steps, error {c['error_reached']:.2e}; "
               f"one collision alone {c['single_wall_seconds']:.3g} s, in a batch "

@@ -21,12 +21,9 @@ def register(sub) -> None:
     from ..studies.speed import SPEED_DEFAULTS
 
     p = sub.add_parser("bench", help=HELP, description=HELP + ", side by side on the same states and dt.")
-    p.add_argument("--n-lmp", type=positive_count, default=SPEED_DEFAULTS["n_lmp"], metavar="N",
-                   help="collisions for (a) (default %(default)s)")
-    p.add_argument("--n-inprocess", type=positive_count, default=SPEED_DEFAULTS["n_inprocess"], metavar="N",
-                   help="collisions for (b) (default %(default)s)")
-    p.add_argument("--n-batched", type=positive_count, default=SPEED_DEFAULTS["n_batched"], metavar="N",
-                   help="collisions for (c) (default %(default)s)")
+    for name, method in (("lmp", "a"), ("inprocess", "b"), ("batched", "c")):
+        p.add_argument(f"--n-{name}", type=positive_count, default=SPEED_DEFAULTS[f"n_{name}"], metavar="N",
+                       help=f"collisions for ({method}) (default %(default)s)")
     p.add_argument("--workers", type=worker_count, default=1,
                    help="worker processes for (c); rates are reported per core (default %(default)s)")
     p.add_argument("--chunk-size", type=positive_count, default=None, help="spheres per LAMMPS run in (c) (default: the sweep's)")

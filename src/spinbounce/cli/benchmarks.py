@@ -3,23 +3,15 @@ rigid-body theory and measured data."""
 
 from __future__ import annotations
 
-import argparse
-import sys
-
-from .options import json_flag, out_folder, out_option
+from .options import json_flag, name_list, note, out_folder, out_option, print_json
 
 HELP = "run the published sphere-wall benchmarks (Chung & Ooi Tests 4-6, Thornton's linear law) and report"
 
 
-def _names(text: str) -> list[str]:
+def _benchmark_names() -> list[str]:
     from ..studies.validation import BENCHMARKS
 
-    names = [n.strip() for n in text.split(",") if n.strip()]
-    unknown = [n for n in names if n not in BENCHMARKS]
-    if not names or unknown:
-        raise argparse.ArgumentTypeError(
-            f"unknown benchmark {', '.join(unknown) or repr(text)}; choose from: {', '.join(BENCHMARKS)}")
-    return names
+    return list(BENCHMARKS)
 
 
 def register(sub) -> None:
@@ -30,7 +22,7 @@ def register(sub) -> None:
                      "BENCHMARKS.md, benchmarks.json, benchmarks.png and benchmarks.pdf."),
     )
     out_option(p, "the report, the JSON record and the figure")
-    p.add_argument("--only", type=_names, default=None, metavar="NAME,...",
+    p.add_argument("--only", type=name_list("benchmark", _benchmark_names), default=None, metavar="NAME,...",
                    help="run only these benchmarks (comma-separated): chung-ooi-4, chung-ooi-5, chung-ooi-6, "
                         "thornton-linear")
     p.add_argument("--runs", type=out_folder, default=None, metavar="DIR",
@@ -45,7 +37,6 @@ def register(sub) -> None:
 def _pairs(out, as_json: bool) -> int:
     """The sphere-sphere benchmarks: each in one LAMMPS batch, beside the published value, the
     exact reference and the planar theory."""
-    import json
     import tempfile
     from pathlib import Path
 
@@ -57,8 +48,7 @@ def _pairs(out, as_json: bool) -> int:
     Path(out).mkdir(parents=True, exist_ok=True)
     path = write_atomic(Path(out) / "pair_benchmarks.json", to_json({"benchmarks": records, **software()}))
     if as_json:
-        print(json.dumps(records, indent=2, default=float))
-        return 0
+        return print_json(records, default=float)
     for r in records:
         print(f"{r['name']:<22} {'agrees' if r['agrees'] else 'DISAGREES'}: {r['published']}; {r['quantity']} "
               f"within {r['lammps_vs_published']:.1e} (bound {r['tolerance']:.1e}); LAMMPS vs exact "
@@ -73,7 +63,7 @@ def run(args) -> int:
     if args.pairs:
         return _pairs(args.out, args.json)
 
-    results, files = make_benchmarks(args.out, only=args.only, runs=args.runs, log=lambda s: print(s, file=sys.stderr))
+    results, files = make_benchmarks(args.out, only=args.only, runs=args.runs, log=note)
     print(f"{'benchmark':<17}{'states':>7}{'refine':>7}{'LAMMPS-oracle':>15}{'at 2x':>10}{'<1e-4':>7}"
           f"{'oracle fails':>13}{'oracle-rigid (sliding)':>24}")
     for r in results:

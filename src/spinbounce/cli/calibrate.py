@@ -2,12 +2,8 @@
 
 from __future__ import annotations
 
-import json
-import tempfile
-from pathlib import Path
-
 from ..model.parameters import by_name
-from .options import json_flag, number, optional_number, out_folder
+from .options import json_flag, make_with_runs, number, optional_number, out_folder, print_json
 
 HELP = ("turn targets (normal restitution e, tangential restitution beta or Omega, mu, contact time) into "
         "LAMMPS wall/gran and pair granular parameters, and check them in LAMMPS")
@@ -46,28 +42,14 @@ def register(sub) -> None:
     p.set_defaults(handler=run)
 
 
-def _targets(args):
-    from ..studies.calibrate import Targets
+def run(args) -> int:
+    from ..studies.calibrate import Targets, calibrate, fix_line, measure, pair_lines
 
     beta = args.beta if args.beta is not None else -(1.0 + args.Omega)
     gamma_t = None if args.kt_over_kn is not None else (args.gamma_t or 0.0)
-    return Targets(e=args.e, contact_time=args.contact_time, beta=beta, mu=args.mu, m=args.m, r=args.r,
-                   alpha=args.alpha, limit_damping=args.limit_damping, gamma_t=gamma_t, kt_over_kn=args.kt_over_kn)
-
-
-def _measured(calibration, runs: Path | None) -> dict:
-    from ..studies.calibrate import measure
-
-    if runs is not None:
-        return measure([calibration], runs)[0]
-    with tempfile.TemporaryDirectory(prefix="spinbounce-calibrate-") as folder:
-        return {**measure([calibration], Path(folder))[0], "deck": None}
-
-
-def run(args) -> int:
-    from ..studies.calibrate import calibrate, fix_line, pair_lines
-
-    calibration = calibrate(_targets(args))
+    calibration = calibrate(Targets(e=args.e, contact_time=args.contact_time, beta=beta, mu=args.mu, m=args.m,
+                                    r=args.r, alpha=args.alpha, limit_damping=args.limit_damping,
+                                    gamma_t=gamma_t, kt_over_kn=args.kt_over_kn))
     model = calibration.model
     report = {"targets": {"e": args.e, "beta": calibration.targets.beta, "contact_time": args.contact_time,
                           "mu": args.mu},
@@ -76,17 +58,18 @@ def run(args) -> int:
               "fix_wall_gran": fix_line(model), "pair_granular": list(pair_lines(model)),
               "theory": calibration.achieved_theory()}
     if not args.no_run:
-        report["lammps"] = _measured(calibration, args.runs)
+        report["lammps"] = make_with_runs(lambda _, runs: measure([calibration], runs)[0], None, args.runs,
+                                          "spinbounce-calibrate-")
+        if args.runs is None:  # its deck went with the temporary folder
+            report["lammps"]["deck"] = None
     if args.json:
-        print(json.dumps(report, indent=2))
-        return 0
+        return print_json(report)
     print("parameters: " + ", ".join(f"{k} = {v!r}" for k, v in report["parameters"].items()))
     print(f"wall (z = 0):\n  {report['fix_wall_gran']}")
     print("two equal spheres (kn, gamma_n, kt, gamma_t halved: reduced mass m/2):\n  "
           + "\n  ".join(report["pair_granular"]))
-    rows = [("e", "e"), ("beta", "beta"), ("contact time", "contact_time")]
     print(f"{'':<14}{'target':>14}{'theory':>14}" + ("" if args.no_run else f"{'LAMMPS':>14}"))
-    for label, key in rows:
+    for label, key in (("e", "e"), ("beta", "beta"), ("contact time", "contact_time")):
         line = f"{label:<14}{report['targets'][key]:>14.8g}{report['theory'][key]:>14.8g}"
         print(line + ("" if args.no_run else f"{report['lammps'][key]:>14.8g}"))
     if args.mu is not None and not args.no_run:

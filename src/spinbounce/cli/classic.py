@@ -2,9 +2,8 @@
 
 from __future__ import annotations
 
-import json
-
-from .options import figure_options, make_with_runs, model_from, model_parser, number, state_parser
+from .options import (figure_options, make_with_runs, model_parser, model_values, number, print_json,
+                      state_parser)
 
 HELP = ("for your contact model: how this build's classic wall (fix wall/gran hooke/history) scatters "
         "against the paper's model, speed by speed, and the granular line that gives the paper's model")
@@ -36,10 +35,11 @@ def _speeds(args, model) -> list[float]:
 
 
 def run(args) -> int:
+    from ..model.contact import ContactModel
     from ..records import json_ready
     from ..studies.classic_effect import compare, fix_lines
 
-    model = model_from(args).replace(wall="classic")
+    model = ContactModel(**model_values(args)).replace(wall="classic")
     rows = compare(model, _speeds(args, model), args.v_t, args.omega)
     lines = fix_lines(model)
     record = None
@@ -49,17 +49,8 @@ def run(args) -> int:
         record = make_with_runs(lambda out, runs: make_classic(out, runs, model, args.v_t, args.omega), args.out,
                                 args.runs, "spinbounce-classic-").metadata
     if args.json:
-        print(json.dumps(json_ready({"rows": rows, "fix_lines": lines, "figure": record and record["files"]}), indent=2))
-        return 0
-    _print_table(rows, args)
-    print(f"you run:   {lines['classic']}")
-    print(f"you meant: {lines['granular']}")
-    if record is not None:
-        print(f"wrote {args.out / record['files']['png']}, {args.out / record['files']['pdf']}, {args.out / 'classic.json'}")
-    return 0
-
-
-def _print_table(rows: list[dict], args) -> None:
+        return print_json(json_ready({"rows": rows, "fix_lines": lines,
+                                      "figure": record and record["files"]}))
     print(f"state v_t = {args.v_t:g}, omega = {args.omega:g}; classic: this build's wall/gran hooke/history, "
           "paper: granular linear_history")
     print(f"{'|v_n|':>9s} {'Omega':>9s} {'Omega':>9s} {'v_t out':>9s} {'v_t out':>9s} {'r*w out':>9s} {'r*w out':>9s}"
@@ -71,3 +62,9 @@ def _print_table(rows: list[dict], args) -> None:
         columns = (row["omega_classic"], row["omega_meant"], classic[1], meant[1], classic[2], meant[2])
         print(f"{row['v_n']:9.4g} " + " ".join(f"{round(x, 5) + 0.0:9.5f}" for x in columns)
               + f" {row['energy_gain_classic']:+10.2e} {row['energy_gain_meant']:+10.2e}")
+    print(f"you run:   {lines['classic']}")
+    print(f"you meant: {lines['granular']}")
+    if record is not None:
+        print(f"wrote {args.out / record['files']['png']}, {args.out / record['files']['pdf']}, "
+              f"{args.out / 'classic.json'}")
+    return 0

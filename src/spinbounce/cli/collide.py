@@ -5,10 +5,8 @@ Parsing and printing only: the work is :func:`spinbounce.api.collide`.
 
 from __future__ import annotations
 
-import json
-
-from .options import (check_run_folder, force_flag, json_flag, model_parser, number, scene_parser,
-                      note, out_folder, state_b_parser, state_parser, values_of)
+from .options import (check_run_folder, model_parser, note, number, pair_parsers, print_json,
+                      run_folder_flags, state_parser, values_of)
 
 HELP = "bounce one sphere off the wall (or a second free sphere: --scene pair) in LAMMPS against the theory"
 PAIR_HELP = "collide sphere a with a free sphere b in LAMMPS (pair granular): collide --scene pair"
@@ -21,17 +19,17 @@ def _label(name: str) -> str:
 
 def register(sub) -> None:
     _parser(sub, "collide", HELP, HELP + ". --scene pair: sphere b (--m-b, --r-b, --alpha-b; at rest unless its "
-                                        "state is given, --v-n-b ... --omega-n-b) instead of the wall.", "wall")
-    _parser(sub, "pair", PAIR_HELP, PAIR_HELP + ": the same options, --scene pair by default. Sphere a is the "
-                                                "model's (--m, --r, --alpha), b's state is in a's frame and sign.",
-            "pair")
+                                        "state is given, --v-n-b ... --omega-n-b) instead of the wall.")
+    _parser(sub, "pair", PAIR_HELP,
+            PAIR_HELP + ": the same options, --scene pair by default. Sphere a is the model's (--m, --r, "
+                        "--alpha), b's state is in a's frame and sign.")
 
 
-def _parser(sub, name: str, help_: str, description: str, scene: str) -> None:
-    p = sub.add_parser(name, parents=[model_parser(), state_parser(), scene_parser(), state_b_parser()], help=help_,
+def _parser(sub, name: str, help_: str, description: str) -> None:
+    p = sub.add_parser(name, parents=[model_parser(), state_parser(), *pair_parsers()], help=help_,
                        description=description)
-    if scene == "pair":  # the alias: a pair unless told otherwise
-        p.set_defaults(scene=scene)
+    if name == "pair":  # the alias: a pair unless told otherwise
+        p.set_defaults(scene="pair")
     step = p.add_mutually_exclusive_group()
     step.add_argument("--dt", type=number, default=None,
                       help="timestep (default: the accuracy rule's step, model/timestep.py, with the contact's "
@@ -40,10 +38,8 @@ def _parser(sub, name: str, help_: str, description: str, scene: str) -> None:
     step.add_argument("--tolerance", type=number, default=None, metavar="TOL",
                       help="ask for an accuracy instead: runs at doubling resolutions, extrapolated to dt = 0 "
                            "until the estimated error is below TOL (reported with the result; the wall only)")
-    p.add_argument("--out", type=out_folder, default=None, metavar="DIR",
-                   help="run folder for the deck, dump, log and result.json (default: spinbounce-runs/<kind>-<hash>)")
-    force_flag(p)
-    json_flag(p)
+    run_folder_flags(p, "run folder for the deck, dump, log and result.json (default: "
+                        "spinbounce-runs/<kind>-<hash>)")
     p.set_defaults(handler=run)
 
 
@@ -57,55 +53,38 @@ def run(args) -> int:
     # --out was checked above, naming the command's flags: the API is told to go ahead
     report = api.collide(**values_of(args), dt=args.dt, tolerance=args.tolerance, out=args.out, force=True,
                          log=None if args.json else (print if args.tolerance is not None else note))
-    if isinstance(report, api.PairReport):
-        return print_pair(report, args.json)
-    if isinstance(report, api.ToleranceReport):
-        return _print_tolerance(report, args.json)
-    record = report.record()
+    record = report.record if isinstance(report, api.ToleranceReport) else report.record()
     if args.json:
-        print(json.dumps(record, indent=2))
-        return 0
-    omega_text = f"Omega = {report.Omega:.8g}" if report.Omega is not None else "no single Omega"
-    print(f"collision: dt = {report.dt:.6g} ({report.nsteps} steps, contact time {report.contact_time:.6g}); "
-          f"theory: {report.theory}; {omega_text}")
-    _print_states(record, list(report.table.index), label_width=8)
-    print(f"accuracy: |LAMMPS - theory| / |initial state| = {report.error:.2e} "
-          f"(target {report.step['target']:g}; step: {report.step['method']}); status {report.status}")
-    for w in report.warnings:
-        print(f"warning: {w}")
-    print(f"deck: {report.deck}\ndump: {report.dump}\nLAMMPS {report.lammps_version}")
+        return print_json(record)
+    if isinstance(report, api.PairReport):
+        print_pair_record(record)
+    elif isinstance(report, api.ToleranceReport):
+        print(f"collision to tolerance {record['tolerance']:g}: {len(record['levels'])} runs, "
+              f"{record['steps']} LAMMPS steps (one plain run would need "
+              f"~{record['plain_steps_for_same_estimate']:.0f} for the same error)")
+        _print_states(record, list(report.table.index), label_width=10)
+        print(f"estimated error {record['estimate']:.2e} ({report.how} from the runs in "
+              f"{report.path.parent})")
+        print(f"record: {report.path}")
+    else:
+        omega_text = f"Omega = {report.Omega:.8g}" if report.Omega is not None else "no single Omega"
+        print(f"collision: dt = {report.dt:.6g} ({report.nsteps} steps, contact time "
+              f"{report.contact_time:.6g}); theory: {report.theory}; {omega_text}")
+        _print_states(record, list(report.table.index), label_width=8)
+        print(f"accuracy: |LAMMPS - theory| / |initial state| = {report.error:.2e} "
+              f"(target {report.step['target']:g}; step: {report.step['method']}); status {report.status}")
+        for w in report.warnings:
+            print(f"warning: {w}")
+        print(f"deck: {report.deck}\ndump: {report.dump}\nLAMMPS {report.lammps_version}")
     return 0
 
 
 def _print_states(record: dict, names, label_width: int) -> None:
     """The initial, LAMMPS, theory and error rows of a collision report."""
     print(f"{'':{label_width}}" + "".join(f"{_label(n):>16}" for n in names))
-    for label, key in (("initial", "initial"), ("LAMMPS", "lammps"), ("theory", "theory"), ("error", "error")):
-        fmt = "{:>16.3e}" if key == "error" else "{:>16.10f}"
-        print(f"{label:{label_width}}" + "".join(fmt.format(record[key][n]) for n in names))
-
-
-def _print_tolerance(report, as_json: bool) -> int:
-    record = report.record
-    if as_json:
-        print(json.dumps(record, indent=2))
-        return 0
-    print(f"collision to tolerance {record['tolerance']:g}: {len(record['levels'])} runs, {record['steps']} LAMMPS "
-          f"steps (one plain run would need ~{record['plain_steps_for_same_estimate']:.0f} for the same error)")
-    _print_states(record, list(report.table.index), label_width=10)
-    print(f"estimated error {record['estimate']:.2e} ({report.how} from the runs in {report.path.parent})")
-    print(f"record: {report.path}")
-    return 0
-
-
-def print_pair(report, as_json: bool) -> int:
-    """A pair's run: both spheres' states, LAMMPS beside the references."""
-    record = report.record()
-    if as_json:
-        print(json.dumps(record, indent=2))
-        return 0
-    print_pair_record(record)
-    return 0
+    for label in ("initial", "LAMMPS", "theory", "error"):
+        fmt = "{:>16.3e}" if label == "error" else "{:>16.10f}"
+        print(f"{label:{label_width}}" + "".join(fmt.format(record[label.lower()][n]) for n in names))
 
 
 def print_pair_record(record: dict) -> None:

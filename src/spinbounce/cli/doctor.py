@@ -2,11 +2,7 @@
 
 from __future__ import annotations
 
-import json
-import tempfile
-from pathlib import Path
-
-from .options import json_flag, out_folder
+from .options import json_flag, make_with_runs, out_folder, print_json
 
 HELP = ("run a few tiny collisions and say whether this LAMMPS build's classic granular forms give "
         "the paper's tangential spring or the contact-radius variant (exit 0: paper, 3: variant, 4: neither)")
@@ -20,27 +16,18 @@ def register(sub) -> None:
     p.set_defaults(handler=run)
 
 
-def _diagnose(run_dir: Path | None) -> list:
-    from ..studies import doctor
-
-    if run_dir is not None:
-        return doctor.diagnose(run_dir)
-    with tempfile.TemporaryDirectory(prefix="spinbounce-doctor-") as folder:
-        return doctor.diagnose(Path(folder))
-
-
 def run(args) -> int:
     from ..records import json_ready, software
     from ..studies import doctor
 
-    checks = _diagnose(args.run_dir)
+    checks = make_with_runs(lambda _, runs: doctor.diagnose(runs), None, args.run_dir, "spinbounce-doctor-")
     summary, status = doctor.verdict({c.form.key: c.answer for c in checks})
     if args.json:
         rows = [{"form": c.form.key, "command": c.form.command, "omega_measured": c.measured,
                  "omega_paper": c.paper, "omega_contact_radius": c.contact_radius, "answer": c.answer}
                 for c in checks]
-        print(json.dumps(json_ready({"checks": rows, "verdict": summary, "exit_status": status,
-                                     "upstream": doctor.UPSTREAM, "software": software()}), indent=2))
+        print_json(json_ready({"checks": rows, "verdict": summary, "exit_status": status,
+                                "upstream": doctor.UPSTREAM, "software": software()}))
         return status
     print(f"LAMMPS {software()['lammps_version']}: Omega = u'(out)/u'(in) - 1 of one collision per form")
     print(f"{'form':40s} {'measured':>10s} {'paper':>10s} {'contact-r':>10s}  answer")

@@ -3,10 +3,8 @@
 from __future__ import annotations
 
 import argparse
-import json
-import sys
 
-from .options import json_flag, out_folder, out_option
+from .options import json_flag, note, out_folder, out_option, print_json
 
 HELP = "regenerate the paper's Figs. 2-7 (PNG, PDF and a JSON record each) from LAMMPS runs"
 
@@ -42,16 +40,14 @@ def run(args) -> int:
     from ..figures import check_names, make_figures
 
     only = None if args.only is None else check_names(name for group in args.only for name in group)
-    log = (lambda line: print(line, file=sys.stderr)) if args.json else print
-    records = make_figures(args.out, only=only, log=log, runs=args.runs)
+    records = make_figures(args.out, only=only, log=note if args.json else print, runs=args.runs)
     if args.json:
         summary = [
             {key: m.get(key) for key in ("figure", "files", "max_deviation_exact", "max_deviation_eq22", "dt",
                                          "lammps_version", "spinbounce_version", "runtime_seconds")}
             for m in records
         ]
-        print(json.dumps({"out": str(args.out), "figures": summary}, indent=2))
-        return 0
+        return print_json({"out": str(args.out), "figures": summary})
     total = sum(m["runtime_seconds"] for m in records)
     print(f"{len(records)} figure(s) in {args.out} ({total:.1f} s); LAMMPS {records[0]['lammps_version']}")
     return 0

@@ -3,12 +3,11 @@
 from __future__ import annotations
 
 import argparse
-import json
 import math
 from pathlib import Path
 
 from ..model import parameters
-from .options import optional_number
+from .options import json_flag, optional_number, print_json
 
 #: Parameters a group can be selected by: the model's and the scene's (wall or pair, sphere b's).
 SELECTABLE = parameters.MODEL + parameters.SCENE
@@ -19,7 +18,7 @@ HELP = ("fit the 3x3 scattering matrix (6x6 for a 3-D sweep) and Omega (Eq. 19) 
 def register(sub) -> None:
     p = sub.add_parser("fit", help=HELP, description=HELP + ".")
     p.add_argument("results", type=Path, help="a sweep's output folder (or its chunks/ dataset)")
-    p.add_argument("--json", action="store_true", help="print machine-readable JSON instead of text")
+    json_flag(p)
     p.add_argument("--plot", type=_figure_path, metavar="PATH",
                    help="also draw Delta v_t and r Delta omega against the initial slip, per group "
                         "(Eq. 19), to PATH (.png or .pdf)")
@@ -46,6 +45,8 @@ def _figure_path(text: str) -> Path:
 
 
 def run(args) -> int:
+    import numpy as np
+
     from .. import api
 
     selection = {p.name: getattr(args, p.name) for p in SELECTABLE if hasattr(args, p.name)}
@@ -53,32 +54,27 @@ def run(args) -> int:
     if args.plot:
         print(f"figure: {args.plot}")
     if args.json:
-        print(json.dumps(fits, indent=2))
-        return 0
+        return print_json(fits)
     for f in fits:
-        _print_group(f)
+        p = f["parameters"]
+        print("group: " + ", ".join(f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}"
+                                    for k, v in p.items()))
+        print(f"  collisions {f['n']}; theory: {f['theory']}; {f['regime']}")
+        size = "the pair's speed, both spheres" if p.get("scene") == "pair" else "the state's size"
+        print(f"  per collision |LAMMPS - theory|: worst {f['worst_deviation']:.2e}, median "
+              f"{f['median_deviation']:.2e} (over {size}: worst {f['worst_relative_deviation']:.2e})"
+              + ("; rows " + ", ".join(f"{n} {s}" for s, n in f["status"].items()) if "status" in f else ""))
+        if not f["has_matrix"]:
+            continue
+        print(f"  Omega = {f['Omega']:.8f} +/- {f['Omega_stderr']:.1e} "
+              f"(theory {f['Omega_theory']:.8f}, diff {f['Omega_diff']:.2e})")
+        # rounded, and + 0.0: no "-0"
+        fitted, theory = (np.round(np.array(f[key]), 7) + 0.0 for key in ("matrix", "matrix_theory"))
+        with np.printoptions(precision=7, suppress=True, floatmode="fixed"):
+            for fitted_row, theory_row in zip(fitted, theory, strict=True):
+                print(f"  fit {fitted_row}   theory {theory_row}")
+        rms = " ".join(f"{x:.1e}" for x in f["residual_rms"])
+        print(f"  largest element difference {f['max_element_diff']:.2e}; residual rms {rms}")
+        if math.isnan(f["Omega"]):
+            print("  (no tangential slip in this group: Omega cannot be fitted)")
     return 0
-
-
-def _print_group(f: dict) -> None:
-    import numpy as np
-
-    p = f["parameters"]
-    print("group: " + ", ".join(f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}" for k, v in p.items()))
-    print(f"  collisions {f['n']}; theory: {f['theory']}; {f['regime']}")
-    size = "the pair's speed, both spheres" if p.get("scene") == "pair" else "the state's size"
-    print(f"  per collision |LAMMPS - theory|: worst {f['worst_deviation']:.2e}, median {f['median_deviation']:.2e} "
-          f"(over {size}: worst {f['worst_relative_deviation']:.2e})"
-          + ("; rows " + ", ".join(f"{n} {s}" for s, n in f["status"].items()) if "status" in f else ""))
-    if not f["has_matrix"]:
-        return
-    print(f"  Omega = {f['Omega']:.8f} +/- {f['Omega_stderr']:.1e} "
-          f"(theory {f['Omega_theory']:.8f}, diff {f['Omega_diff']:.2e})")
-    fitted, theory = (np.round(np.array(f[key]), 7) + 0.0 for key in ("matrix", "matrix_theory"))  # no "-0"
-    with np.printoptions(precision=7, suppress=True, floatmode="fixed"):
-        for fitted_row, theory_row in zip(fitted, theory, strict=True):
-            print(f"  fit {fitted_row}   theory {theory_row}")
-    rms = " ".join(f"{x:.1e}" for x in f["residual_rms"])
-    print(f"  largest element difference {f['max_element_diff']:.2e}; residual rms {rms}")
-    if math.isnan(f["Omega"]):
-        print("  (no tangential slip in this group: Omega cannot be fitted)")

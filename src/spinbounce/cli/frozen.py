@@ -2,10 +2,8 @@
 
 from __future__ import annotations
 
-import json
-
-from ..model import parameters
-from .options import check_run_folder, count, force_flag, json_flag, model_parser, note, number, out_folder
+from .options import (check_run_folder, count, model_parser, model_values, note, number, print_json,
+                      run_folder_flags)
 
 HELP = "hold a sphere in contact at height z (v_n = 0) and compare v_t(t), omega(t) with Eq. 10"
 
@@ -24,11 +22,8 @@ def register(sub) -> None:
                       help="ask for an accuracy instead: runs at halving dt, extrapolated to dt = 0 until the "
                            "estimated error is below TOL (the CSV gets an 'estimate' column)")
     p.add_argument("--every", type=count, default=None, help="output every this many steps (default: ~2000 rows)")
-    p.add_argument("--out", type=out_folder, default=None, metavar="DIR",
-                   help="run folder: the deck, dump and log, the time series frozen.csv and its record "
+    run_folder_flags(p, "run folder: the deck, dump and log, the time series frozen.csv and its record "
                         "result.json (default: spinbounce-runs/frozen-<hash>)")
-    force_flag(p)
-    json_flag(p)
     p.set_defaults(handler=run)
 
 
@@ -36,18 +31,16 @@ def run(args) -> int:
     from .. import api
 
     check_run_folder(args.out, args.force)
-    quiet = (lambda *_: None) if args.json else None
     # --out was checked above, naming the command's flags: the API is told to go ahead
     report = api.frozen(args.z, args.v_t, args.omega, args.t_end, dt=args.dt, every=args.every, tolerance=args.tolerance,
-                        out=args.out, force=True, log=quiet or (print if args.tolerance is not None else note),
-                        **{p.name: getattr(args, p.name) for p in parameters.MODEL})
+                        out=args.out, force=True, **model_values(args),
+                        log=None if args.json else (print if args.tolerance is not None else note))
     r = report.record
     if args.json:
-        print(json.dumps(r if args.tolerance is not None else
-                         {"csv": r["csv"], "record": str(report.record_path), "rows": r["rows"],
-                          "max_abs_error": r["max_abs_error"], "dt": r["parameters"]["dt"], "deck": r["deck"],
-                          "lammps_version": r["lammps_version"]}, indent=2))
-        return 0
+        return print_json(r if args.tolerance is not None else
+                          {"csv": r["csv"], "record": str(report.record_path), "rows": r["rows"],
+                           "max_abs_error": r["max_abs_error"], "dt": r["parameters"]["dt"],
+                           "deck": r["deck"], "lammps_version": r["lammps_version"]})
     if args.tolerance is not None:
         print(f"frozen contact to tolerance {r['tolerance']:g}: {len(r['levels'])} runs, {r['steps']} LAMMPS "
               f"steps (one plain run would need ~{r['plain_steps_for_same_estimate']:.0f})")

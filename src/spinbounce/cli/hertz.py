@@ -2,13 +2,18 @@
 
 from __future__ import annotations
 
-import json
-import sys
 from pathlib import Path
 
-from .options import json_flag, number, out_folder, out_option, positive_count
+from .options import json_flag, note, number, out_folder, out_option, positive_count, print_json
 
 HELP = "measure how the energy-conserving kt depends on v_n with a Hertzian normal force, and plot it"
+#: The study's parameters as options: (flag, field of HertzParameters, metavar, help).
+PARAMETERS = (("--v-min", "v_min", "V", "slowest |v_n|"), ("--v-max", "v_max", "V", "fastest |v_n|"),
+              ("--points", "points", "N", "speeds on the log grid"),
+              ("--v-ref", "v_ref", "V", "the speed at which the one-kt series conserves energy"),
+              ("--kn", "kn", None, "Hertzian stiffness K, F = K sqrt(r) delta^1.5"),
+              ("--mass", "m", "M", "sphere mass"), ("--radius", "r", "R", "sphere radius"),
+              ("--alpha", "alpha", "A", "I/(m r^2)"))
 
 
 def register(sub) -> None:
@@ -24,17 +29,9 @@ def register(sub) -> None:
     out_option(p, "the figure, its JSON record and HERTZ.md")
     p.add_argument("--runs", type=out_folder, default=None, metavar="DIR",
                    help="folder for the LAMMPS runs (default: OUT/runs/hertz)")
-    p.add_argument("--v-min", type=number, default=d.v_min, metavar="V", help="slowest |v_n| (default %(default)s)")
-    p.add_argument("--v-max", type=number, default=d.v_max, metavar="V", help="fastest |v_n| (default %(default)s)")
-    p.add_argument("--points", type=positive_count, default=d.points, metavar="N",
-                   help="speeds on the log grid (default %(default)s)")
-    p.add_argument("--v-ref", type=number, default=d.v_ref, metavar="V",
-                   help="the speed at which the one-kt series conserves energy (default %(default)s)")
-    p.add_argument("--kn", type=number, default=d.kn,
-                   help="Hertzian stiffness K, F = K sqrt(r) delta^1.5 (default %(default)s)")
-    p.add_argument("--mass", type=number, default=d.m, metavar="M", help="sphere mass (default %(default)s)")
-    p.add_argument("--radius", type=number, default=d.r, metavar="R", help="sphere radius (default %(default)s)")
-    p.add_argument("--alpha", type=number, default=d.alpha, metavar="A", help="I/(m r^2) (default %(default)s)")
+    for flag, field, metavar, text in PARAMETERS:
+        p.add_argument(flag, dest=field, type=positive_count if field == "points" else number,
+                       default=getattr(d, field), metavar=metavar, help=f"{text} (default %(default)s)")
     json_flag(p)
     p.set_defaults(handler=run)
 
@@ -42,16 +39,13 @@ def register(sub) -> None:
 def run(args) -> int:
     from ..figures.hertz import HertzParameters, make_hertz
 
-    params = HertzParameters(v_min=args.v_min, v_max=args.v_max, points=args.points, v_ref=args.v_ref,
-                             m=args.mass, r=args.radius, alpha=args.alpha, kn=args.kn)
-    log = (lambda line: print(line, file=sys.stderr)) if args.json else print
-    record = make_hertz(args.out, params, runs=args.runs, log=log)
+    params = HertzParameters(**{field: getattr(args, field) for _, field, _, _ in PARAMETERS})
+    record = make_hertz(args.out, params, runs=args.runs, log=note if args.json else print)
     meta = record.metadata
     summary = {key: meta[key] for key in ("max_relative_deviation", "slope_lammps", "max_abs_f_at_kt_star_lammps",
                                           "max_abs_f_fixed_deviation", "lammps_version", "runtime_seconds")}
     if args.json:
-        print(json.dumps({"out": str(args.out), "files": meta["files"], **summary}, indent=2))
-        return 0
+        return print_json({"out": str(args.out), "files": meta["files"], **summary})
     print(f"largest relative deviation of kt* from the closed form: {summary['max_relative_deviation']:.2e}; "
           f"slope {summary['slope_lammps']:.5f} (2/5); largest |f| at kt*: {summary['max_abs_f_at_kt_star_lammps']:.1e}")
     print(f"wrote {record.png}, {record.pdf}, {record.json}, {Path(args.out) / 'HERTZ.md'} "

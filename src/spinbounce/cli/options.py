@@ -1,31 +1,21 @@
-"""Options shared by several commands, all derived from the parameter declaration.
+"""Options shared by several commands, every model and state flag made from the declaration.
 
-Every model and state flag of every command is made here from
-:mod:`spinbounce.model.parameters`: the flag, its help (meaning, unit, accepted range and
-default) and its parsing. A command adds the groups it can honour; a flag a command
-cannot honour is not offered there, or is refused with the reason.
+:mod:`spinbounce.model.parameters` gives each flag its help (meaning, unit, accepted range and
+default) and its parsing. A command offers the groups it can honour, or refuses a flag with the reason.
 """
 
 from __future__ import annotations
 
 import argparse
+import json
 import math
 import os
 import re
 import sys
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 from ..model import parameters
 from ..model.parameters import Parameter
-
-if TYPE_CHECKING:
-    from ..model.contact import ContactModel
-
-__all__ = ["number", "count", "model_parser", "state_parser", "model_from", "json_flag",
-           "optional_number", "force_flag", "check_run_folder", "figure_options", "make_with_runs", "allow_negative_numbers", "sweep_model_flags", "parameter_help",
-           "FIGURES_OUT", "out_folder", "out_file", "out_option",
-           "positive_count", "worker_count"]
 
 #: argparse reads "-1e-3" as an option unless it looks like a negative number to it; its own
 #: pattern misses e-notation. Every parser here takes a word that starts like a negative number
@@ -71,13 +61,29 @@ def positive_count(text: str) -> int:
     return value
 
 
+def cores() -> int:
+    """The cores this process may use."""
+    return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
+
+
 def worker_count(text: str) -> int:
     """Worker processes: >= 1 and at most the cores this process may use (more only slow each other)."""
     value = positive_count(text)
-    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
-    if value > cores:
-        raise argparse.ArgumentTypeError(f"{text!r}: must be at most the {cores} core(s) available")
+    if value > cores():
+        raise argparse.ArgumentTypeError(f"{text!r}: must be at most the {cores()} core(s) available")
     return value
+
+
+def name_list(what: str, choices):
+    """argparse type of comma-separated names, each one of ``choices()`` (called when parsing)."""
+    def parse(text: str) -> tuple[str, ...]:
+        names = tuple(n.strip() for n in text.split(",") if n.strip())
+        unknown = [n for n in names if n not in choices()]
+        if not names or unknown:
+            raise argparse.ArgumentTypeError(f"unknown {what} {', '.join(unknown) or repr(text)}; "
+                                             f"choose from: {', '.join(choices())}")
+        return names
+    return parse
 
 
 def allow_negative_numbers(parser: argparse.ArgumentParser) -> None:
@@ -120,33 +126,36 @@ def _add(group, p: Parameter, **overrides) -> None:
     group.add_argument(*p.flags, **kwargs)
 
 
+def _parent(title: str, declared, **overrides) -> argparse.ArgumentParser:
+    """A parent parser of one option group: each declared parameter as an option."""
+    p = argparse.ArgumentParser(add_help=False)
+    group = p.add_argument_group(title)
+    for parameter in declared:
+        _add(group, parameter, **overrides)
+    return p
+
+
 def model_parser() -> argparse.ArgumentParser:
     """Every contact-model option (declared defaults: the paper's), as a parent parser."""
-    p = argparse.ArgumentParser(add_help=False)
-    group = p.add_argument_group("contact model (defaults: the paper's; units: LAMMPS lj)")
-    for parameter in parameters.MODEL:
-        _add(group, parameter)
-    return p
+    return _parent("contact model (defaults: the paper's; units: LAMMPS lj)", parameters.MODEL)
 
 
 def state_parser(three_d: bool = True, optional: bool = False) -> argparse.ArgumentParser:
     """The initial state's options (the paper's plane, and the 3-D ones where honoured);
     ``optional``: none has a default (a state that may be left out altogether)."""
-    p = argparse.ArgumentParser(add_help=False)
-    group = p.add_argument_group("initial state" + (" (3-D: v_s, omega_s, omega_n)" if three_d else "")
-                                 + (" (optional)" if optional else ""))
-    for parameter in parameters.STATE if three_d else parameters.STATE[:3]:
-        _add(group, parameter, **({"default": None} if optional else {}))
-    return p
+    title = "initial state" + (" (3-D: v_s, omega_s, omega_n)" if three_d else "")
+    title += " (optional)" if optional else ""
+    return _parent(title, parameters.STATE if three_d else parameters.STATE[:3],
+                   **({"default": None} if optional else {}))
 
 
-def state_b_parser() -> argparse.ArgumentParser:
-    """Sphere b's state at first touch (:data:`spinbounce.model.parameters.STATE_B`), as a parent parser."""
-    p = argparse.ArgumentParser(add_help=False)
-    group = p.add_argument_group("sphere b's state (--scene pair; default: at rest), in a's frame and sign")
-    for parameter in parameters.STATE_B:
-        _add(group, parameter, default=None)
-    return p
+def pair_parsers() -> list[argparse.ArgumentParser]:
+    """The scene's options (:data:`~spinbounce.model.parameters.SCENE`: --scene wall|pair, sphere b's
+    --m-b, --r-b, --alpha-b) and b's state at first touch (``STATE_B``), as parent parsers."""
+    return [_parent("scene: the wall (default), or a free sphere b at rest along the normal (a pair)",
+                    parameters.SCENE, default=None),
+            _parent("sphere b's state (--scene pair; default: at rest), in a's frame and sign",
+                    parameters.STATE_B, default=None)]
 
 
 def values_of(args: argparse.Namespace) -> dict:
@@ -160,10 +169,9 @@ def values_of(args: argparse.Namespace) -> dict:
     return values
 
 
-def model_from(args: argparse.Namespace) -> ContactModel:
-    from ..model.contact import ContactModel
-
-    return ContactModel(**{p.name: getattr(args, p.name) for p in parameters.MODEL})
+def model_values(args: argparse.Namespace) -> dict:
+    """The contact model's parameters the command parsed, by name."""
+    return {p.name: getattr(args, p.name) for p in parameters.MODEL}
 
 
 def sweep_model_flags(p: argparse.ArgumentParser) -> None:
@@ -182,9 +190,12 @@ def sweep_model_flags(p: argparse.ArgumentParser) -> None:
                        help="instead of --kt: the stiffness ratio kt/kn (kt = ratio * kn)")
 
 
-def force_flag(p: argparse.ArgumentParser) -> None:
+def run_folder_flags(p: argparse.ArgumentParser, help_: str) -> None:
+    """A run's --out (its run folder: ``help_``), --force and --json."""
+    p.add_argument("--out", type=out_folder, default=None, metavar="DIR", help=help_)
     p.add_argument("--force", action="store_true",
                    help="run into an --out folder that holds an earlier run, replacing its results")
+    json_flag(p)
 
 
 def check_run_folder(out: Path | None, force: bool) -> None:
@@ -193,9 +204,16 @@ def check_run_folder(out: Path | None, force: bool) -> None:
 
     check(out, force, "--out", "--force")
 
+
 def note(line: str) -> None:
     """A line for the user beside a command's output: on stderr, at once."""
     print(line, file=sys.stderr, flush=True)
+
+
+def print_json(value, **options) -> int:
+    """``value`` as indented JSON on stdout; 0, the command's exit status."""
+    print(json.dumps(value, indent=2, **options))
+    return 0
 
 
 #: Where a study writes its figures and records unless told otherwise: a folder of its own, so that
@@ -258,7 +276,7 @@ def figure_options(p: argparse.ArgumentParser) -> None:
     json_flag(p)
 
 
-def make_with_runs(make, out: Path, runs: Path | None, prefix: str):
+def make_with_runs(make, out: Path | None, runs: Path | None, prefix: str):
     """``make(out, runs_folder)``, the runs kept in ``runs`` or in a temporary folder removed after."""
     import tempfile
 
@@ -270,13 +288,3 @@ def make_with_runs(make, out: Path, runs: Path | None, prefix: str):
 
 def json_flag(p: argparse.ArgumentParser) -> None:
     p.add_argument("--json", action="store_true", help="print machine-readable JSON instead of text")
-
-
-def scene_parser() -> argparse.ArgumentParser:
-    """The scene's options (declared in :data:`spinbounce.model.parameters.SCENE`): --scene wall|pair
-    and sphere b's --m-b, --r-b, --alpha-b, as a parent parser."""
-    p = argparse.ArgumentParser(add_help=False)
-    group = p.add_argument_group("scene: the wall (default), or a free sphere b at rest along the normal (a pair)")
-    for parameter in parameters.SCENE:
-        _add(group, parameter, default=None)
-    return p

@@ -2,14 +2,13 @@
 
 from __future__ import annotations
 
-import argparse
 import time
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ..catalogue import LISTED, PRODUCTS, make, product_names
-from .options import out_folder
+from .options import name_list, out_folder
 
 if TYPE_CHECKING:
     from ..studies.claims import Claim
@@ -43,20 +42,10 @@ def register(sub) -> None:
                         "repository keeps its own in figures/)")
     p.add_argument("--run-dir", type=out_folder, default=Path("spinbounce-runs") / "reproduce", metavar="DIR",
                    help="LAMMPS run folders, one per product (default %(default)s)")
-    p.add_argument("--only", type=_products, default=None, metavar="NAME[,NAME...]",
+    p.add_argument("--only", type=name_list("product", product_names), default=None, metavar="NAME[,NAME...]",
                    help=f"make only these products (from {', '.join(product_names())}); the claims are judged only "
                         "when 'claims' is among them")
     p.set_defaults(handler=run)
-
-
-def _products(text: str) -> tuple[str, ...]:
-    """argparse type of --only: product names, comma-separated."""
-    names = tuple(n.strip() for n in text.split(",") if n.strip())
-    unknown = [n for n in names if n not in product_names()]
-    if not names or unknown:
-        raise argparse.ArgumentTypeError(f"unknown product {', '.join(unknown) or repr(text)}; choose from: "
-                                         f"{', '.join(product_names())}")
-    return names
 
 
 def reproduce(out: Path, run_dir: Path, log=print, only=None) -> Reproduction:
@@ -96,7 +85,6 @@ def run(args) -> int:
     made = reproduce(args.out, args.run_dir, only=args.only)
     if args.only is not None:
         print(f"done in {made.seconds:.0f} s: {', '.join(sorted(made.records))} in {made.out}/")
-        return 1 if counts(made.claims)["unresolved"] else 0
-    for line in summary(made):
-        print(line)
+    else:
+        print("\n".join(summary(made)))
     return 1 if counts(made.claims)["unresolved"] else 0

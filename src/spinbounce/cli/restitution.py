@@ -2,9 +2,7 @@
 
 from __future__ import annotations
 
-import json
-
-from .options import figure_options, make_with_runs
+from .options import figure_options, make_with_runs, print_json
 
 HELP = ("map normal and tangential restitution, rebound angle and spin against the incidence angle (Hooke, Hertz, "
         "with and without mu), with Kharaz's measured alumina data and the model fitted to it")
@@ -27,10 +25,10 @@ def run(args) -> int:
     meta = make_with_runs(make_figure, args.out, args.runs, "spinbounce-restitution-")
     fit = meta["kharaz_fit"]
     if args.json:
-        print(json.dumps(json_ready({"out": str(args.out), "files": meta["files"], "kharaz_fit": fit,
-                                     "curves": [{k: c[k] for k in ("label", "theory_kind", "max_abs_state_deviation")}
-                                                for c in meta["curves"]]}), indent=2))
-        return 0
+        curves = [{k: c[k] for k in ("label", "theory_kind", "max_abs_state_deviation")}
+                  for c in meta["curves"]]
+        return print_json(json_ready({"out": str(args.out), "files": meta["files"], "kharaz_fit": fit,
+                                      "curves": curves}))
     for c in meta["curves"]:
         print(f"{c['label']:<60} ({c['theory_kind']}): largest |LAMMPS - theory| in the state "
               f"{c['max_abs_state_deviation']:.2e}")

@@ -1,30 +1,29 @@
 """spinbounce sweep: many collisions from a scene file or flags, into a Parquet dataset.
 
-A scene file is the whole sweep: beside one, the model and state flags are refused (name
-them in the file instead); the run flags (--out, --workers, --chunk, --list-chunks, --force, --json)
-apply to either. From flags, every sweepable model parameter takes one value or several.
+A scene file is the whole sweep (beside one, only the run flags apply); from flags, every
+sweepable model parameter takes one value or several.
 """
 
 from __future__ import annotations
 
 import argparse
-import json
-import os
 import sys
 from pathlib import Path
 
 from ..model import parameters
 from ..model.timestep import MAX_CORE_HOURS
 from ..errors import SweepError
-from .options import count, number, sweep_model_flags, worker_count
+from .options import cores, count, number, print_json, sweep_model_flags, worker_count
 
 HELP = "run many collisions in parallel chunks (resumable) into a Parquet dataset"
-#: State ranges from flags: (dest, flags, default range or None, help).
+#: State ranges from flags: (dest, flags, default range or None, help); the speed's and angle's
+#: defaults hold when either is given.
 STATE_RANGES = (
     ("v_n", ("--vn", "--v-n"), (-1.5, -0.1), "range of v_n (default: -1.5 -0.1)"),
     ("v_t", ("--vt", "--v-t"), (-2.0, 2.0), "range of v_t (default: -2 2)"),
-    ("speed", ("--speed",), None, "instead of --vn/--vt: range of the impact speed"),
-    ("angle_deg", ("--angle-deg",), None, "incidence angle from the wall's normal, degrees (with --speed)"),
+    ("speed", ("--speed",), (0.1, 1.5), "instead of --vn/--vt: range of the impact speed"),
+    ("angle_deg", ("--angle-deg",), (-60.0, 60.0),
+     "incidence angle from the wall's normal, degrees (with --speed)"),
     ("r_omega", ("--r-omega",), (-2.0, 2.0), "range of r*omega (default: -2 2)"),
     ("omega", ("--omega",), None, "instead of --r-omega: range of omega"),
     ("v_s", ("--vs", "--v-s"), None, "3-D: range of v_s (give all three 3-D ranges)"),
@@ -66,12 +65,6 @@ def register(sub) -> None:
     step.add_argument("--tolerance", type=number, default=None, metavar="TOL",
                       help="instead of --dt: extrapolate each chunk's runs until every row's estimated error is below TOL")
     sweep_model_flags(p)
-    _scene_flags(p)
-    p.set_defaults(handler=run)
-
-
-def _scene_flags(p) -> None:
-    """--scene pair and sphere b's parameters (each one value or several), from the declaration."""
     group = p.add_argument_group("scene, from flags: sphere a (the model's m, r, alpha) against a free sphere b "
                                  "at rest instead of the wall")
     for parameter in parameters.SCENE:
@@ -85,6 +78,7 @@ def _scene_flags(p) -> None:
     for parameter in parameters.STATE_B:  # declared, so refused here with the reason rather than unknown
         group.add_argument(*parameter.flags, dest=parameter.name, type=_b_state_refused, nargs="+", default=None,
                            metavar=parameter.name.upper(), help=argparse.SUPPRESS)
+    p.set_defaults(handler=run)
 
 
 def _b_state_refused(text: str):
@@ -93,28 +87,18 @@ def _b_state_refused(text: str):
                                      "and the fit assume it); give b's state to one collision: collide --scene pair")
 
 
-def _given(args) -> list[str]:
-    return [name for name in SCENE_FLAGS if getattr(args, name, None) is not None]
-
-
 def _states_from_flags(args) -> dict:
-    states = {"n": args.n}
-    if args.speed or args.angle_deg:
-        if args.v_n or args.v_t:
-            raise SweepError("--speed/--angle-deg: give them or --vn/--vt, not both")
-        states["speed"] = list(args.speed or (0.1, 1.5))
-        states["angle_deg"] = list(args.angle_deg or (-60.0, 60.0))
-    else:
-        states["v_n"] = list(args.v_n or (-1.5, -0.1))
-        states["v_t"] = list(args.v_t or (-2.0, 2.0))
-    for dest, _, default, _ in STATE_RANGES[4:]:
-        value = getattr(args, dest)
-        if value is not None:
-            states[dest] = list(value)
-    if "omega" not in states:
-        states["r_omega"] = list(args.r_omega or (-2.0, 2.0))
-    elif args.r_omega:
+    given = {dest: list(getattr(args, dest)) for dest, *_ in STATE_RANGES if getattr(args, dest) is not None}
+    by_speed = bool({"speed", "angle_deg"} & given.keys())
+    if by_speed and {"v_n", "v_t"} & given.keys():
+        raise SweepError("--speed/--angle-deg: give them or --vn/--vt, not both")
+    if {"omega", "r_omega"} <= given.keys():
         raise SweepError("--omega: give it or --r-omega, not both")
+    pair = ("speed", "angle_deg") if by_speed else ("v_n", "v_t")
+    defaults = {dest: list(default) for dest, _, default, _ in STATE_RANGES if dest in pair}
+    states = {"n": args.n, **defaults, **given}
+    if "omega" not in states:
+        states.setdefault("r_omega", [-2.0, 2.0])
     return states
 
 
@@ -143,16 +127,12 @@ def spec_from_flags(args) -> dict:
     return raw
 
 
-def _cores() -> int:
-    return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
-
-
 def run(args) -> int:
     from .. import api
     from ..sweeps import chunk_table, load_spec, run_one_chunk, spec_from_dict
 
     if args.scene_file is not None:
-        given = _given(args)
+        given = [name for name in SCENE_FLAGS if getattr(args, name, None) is not None]
         if given:
             flags = ", ".join("--" + name.replace("_", "-") for name in given)
             raise SweepError(f"{flags}: a scene file is the whole sweep; put these in {args.scene_file} instead "
@@ -163,10 +143,9 @@ def run(args) -> int:
     if args.list_chunks:
         table = chunk_table(spec, args.out)
         if args.json:
-            print(json.dumps(table, indent=2))
-        else:
-            for row in table:
-                print(" ".join(str(row[k]) for k in ("k", "group", "chunk", "start", "stop", "path")))
+            return print_json(table)
+        for row in table:
+            print(" ".join(str(row[k]) for k in ("k", "group", "chunk", "start", "stop", "path")))
         return 0
     if args.out is None:
         raise SweepError("--out = None: an output folder is required to run a sweep")
@@ -175,7 +154,7 @@ def run(args) -> int:
         print(f"chunk {args.chunk}: {path}")
         return 0
     try:
-        report = api.run_sweep(spec, args.out, workers=args.workers or _cores(), force=args.force, log=print,
+        report = api.run_sweep(spec, args.out, workers=args.workers or cores(), force=args.force, log=print,
                                size_name="states.n" if args.scene_file is not None else "--n")
     except KeyboardInterrupt:
         print(f"spinbounce sweep: interrupted; the finished chunks in {args.out} are kept: rerun the same "

@@ -3,9 +3,7 @@
 
 from __future__ import annotations
 
-import json
-
-from .options import figure_options, make_with_runs
+from .options import figure_options, make_with_runs, print_json
 
 HELP = ("tangential restitution beta = -g_t'/g_t against |g_t|/|v_n| with Coulomb friction (Becker et al. 2008): "
         "LAMMPS, the exact solver, Walton's gross-slip line and the sticking plateau")
@@ -22,22 +20,19 @@ def register(sub) -> None:
     p.set_defaults(handler=run)
 
 
-def _summary(s: dict) -> dict:
-    return {"set": s["label"], "dt": s["dt"], "plateau": s["plateau"], "switch_ratio": s["switch_ratio"],
-            "state_deviation": s["state_deviation"], "beta_deviation": s["beta_deviation"],
-            "solver_vs_gross_slip": s["limits"]["gross_slip"]["max_abs"],
-            "solver_vs_plateau": s["limits"]["plateau"]["max_abs"], "plateau_where": s["limits"]["plateau"]["where"]}
-
-
 def run(args) -> int:
     from ..records import json_ready
     from ..studies.tangential import make_figure
 
     meta = make_with_runs(make_figure, args.out, args.runs, "spinbounce-tangential-")
-    summary = [_summary(s) for s in meta["sets"]]
+    summary = [{"set": s["label"], "dt": s["dt"], "plateau": s["plateau"], "switch_ratio": s["switch_ratio"],
+                "state_deviation": s["state_deviation"], "beta_deviation": s["beta_deviation"],
+                "solver_vs_gross_slip": s["limits"]["gross_slip"]["max_abs"],
+                "solver_vs_plateau": s["limits"]["plateau"]["max_abs"],
+                "plateau_where": s["limits"]["plateau"]["where"]}
+               for s in meta["sets"]]
     if args.json:
-        print(json.dumps(json_ready({"out": str(args.out), "files": meta["files"], "sets": summary}), indent=2))
-        return 0
+        return print_json(json_ready({"out": str(args.out), "files": meta["files"], "sets": summary}))
     for s in summary:
         print(f"{s['set']}: plateau {s['plateau']:.4f}, switch psi* = {s['switch_ratio']:.4f}; "
               f"|LAMMPS - solver| {s['state_deviation']:.1e} (state), {s['beta_deviation']:.1e} (beta); "

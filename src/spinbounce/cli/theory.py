@@ -5,19 +5,19 @@ Parsing and printing only: the work is :func:`spinbounce.api.theory`.
 
 from __future__ import annotations
 
-import json
 import math
 
 from ..errors import SceneError
-from .options import json_flag, model_parser, number, scene_parser, state_b_parser, state_parser, values_of
+from .collide import print_pair_record
+from .options import json_flag, model_parser, number, pair_parsers, print_json, state_parser, values_of
 
 HELP = ("print the theory that applies to a contact model: its scattering matrix (Eq. 18) and Omega, "
         "or, for a given state, the outcome")
 
 
 def register(sub) -> None:
-    p = sub.add_parser("theory", parents=[model_parser(), state_parser(optional=True), scene_parser(),
-                                          state_b_parser()], help=HELP,
+    parents = [model_parser(), state_parser(optional=True), *pair_parsers()]
+    p = sub.add_parser("theory", parents=parents, help=HELP,
                        description=HELP + ". A state (--v-n, and --v-t, --omega, ...: they default to 0) asks for "
                                           "its outcome instead of the matrix.")
     p.add_argument("--romega", "--r-omega", dest="r_omega", type=number, default=None,
@@ -41,15 +41,14 @@ def _keywords(args) -> dict:
 
 
 def run(args) -> int:
+    import numpy as np
+
     from .. import api
 
     report = api.theory(**_keywords(args))
     if args.json:
-        print(json.dumps(report, indent=2, default=lambda x: x.tolist()))
-        return 0
+        return print_json(report, default=lambda x: x.tolist())
     if "outcome" in report:
-        from .collide import print_pair_record
-
         print_pair_record(report["outcome"])
         return 0
     print(f"theory: {report['theory_name']}")
@@ -61,34 +60,26 @@ def run(args) -> int:
     elif report["matrix"] is None:
         print(f"no single scattering matrix: {report['why_no_matrix']}")
     elif report["theory_kind"] == "pair planar":
-        _print_pair_matrix(report)
-    else:
-        _print_matrix(report, args)
-    return 0
-
-
-def _print_matrix(report: dict, args) -> None:
-    import numpy as np
-
-    damped = report["theory_kind"] == "damped"
-    print(f"tau   = {report['tau']:.10g}   (contact time, Eq. 16; pi*sqrt(m/kn) = "
-          f"{math.pi * math.sqrt(args.m / args.kn):.10g})")
-    print(f"Q     = {report['Q']:.10g}   (Eq. 8)")
-    print(f"Omega = {report['Omega']:.10g}   ({'exact damped' if damped else 'Eq. 18'})")
-    if damped:
-        print(f"        Eq. 18 undamped: {report['Omega_paper']:.10g}; paper's Eq. 22: "
-              f"{report['Omega_paper_damped']:.10g}")
-    print("scattering matrix, (v_n, v_t, r*omega) before -> after:")
-    with np.printoptions(precision=8, suppress=True, floatmode="fixed"):
+        print(f"tau   = {report['tau']:.10g}   (pi sqrt(m*/kn), m* the reduced mass)")
+        print(f"Omega = {report['Omega']:.10g}   (the wall's at alpha_eq = "
+              f"{report['alpha_equivalent']:.10g})")
+        print("scattering matrix of sphere a, (v_n, v_t, r*omega) before -> after:")
         for row in report["matrix"]:
-            print("   ", row)
-    print(f"energy-conserving ratio kt/kn = alpha/(1+alpha) = {report['magic_kt_over_kn']:.10g} (Omega = -2)")
-
-
-def _print_pair_matrix(report: dict) -> None:
-    print(f"tau   = {report['tau']:.10g}   (pi sqrt(m*/kn), m* the reduced mass)")
-    print(f"Omega = {report['Omega']:.10g}   (the wall's at alpha_eq = {report['alpha_equivalent']:.10g})")
-    print("scattering matrix of sphere a, (v_n, v_t, r*omega) before -> after:")
-    for row in report["matrix"]:
-        print("   ", "  ".join(f"{x:11.8f}" for x in row))
-    print(f"model error: {report['model_error']}")
+            print("   ", "  ".join(f"{x:11.8f}" for x in row))
+        print(f"model error: {report['model_error']}")
+    else:
+        damped = report["theory_kind"] == "damped"
+        print(f"tau   = {report['tau']:.10g}   (contact time, Eq. 16; pi*sqrt(m/kn) = "
+              f"{math.pi * math.sqrt(args.m / args.kn):.10g})")
+        print(f"Q     = {report['Q']:.10g}   (Eq. 8)")
+        print(f"Omega = {report['Omega']:.10g}   ({'exact damped' if damped else 'Eq. 18'})")
+        if damped:
+            print(f"        Eq. 18 undamped: {report['Omega_paper']:.10g}; paper's Eq. 22: "
+                  f"{report['Omega_paper_damped']:.10g}")
+        print("scattering matrix, (v_n, v_t, r*omega) before -> after:")
+        with np.printoptions(precision=8, suppress=True, floatmode="fixed"):
+            for row in report["matrix"]:
+                print("   ", row)
+        print(f"energy-conserving ratio kt/kn = alpha/(1+alpha) = {report['magic_kt_over_kn']:.10g} "
+              "(Omega = -2)")
+    return 0

@@ -2,10 +2,7 @@
 
 from __future__ import annotations
 
-import json
-import sys
-
-from .options import figure_options, make_with_runs
+from .options import figure_options, make_with_runs, print_json
 
 HELP = "bounce a sphere many times between two parallel walls in LAMMPS, against the product of the matrices"
 
@@ -29,12 +26,11 @@ def run(args) -> int:
     summary = [{"case": c["label"], "theory": c["theory"], "max_abs_deviation": c["max_abs_deviation"],
                 "final_state_lammps": c["lammps_path"][-1]} for c in meta["cases"]]
     if args.json:
-        print(json.dumps(json_ready({"out": str(args.out), "files": meta["files"], "cases": summary}), indent=2))
-        return 0
+        return print_json(json_ready({"out": str(args.out), "files": meta["files"], "cases": summary}))
     for s in summary:
         final = ", ".join(f"{x:.3g}" for x in s["final_state_lammps"])
         print(f"{s['case']:<40} ({s['theory']}): largest |LAMMPS - theory| {s['max_abs_deviation']:.2e} over "
-              f"{meta['bounces']} bounces; last state ({final})", file=sys.stdout)
+              f"{meta['bounces']} bounces; last state ({final})")
     print(f"wrote {args.out / meta['files']['png']}, {args.out / meta['files']['pdf']}, {args.out / 'two_walls.json'} "
           f"({meta['runtime_seconds']:.1f} s)")
     return 0
