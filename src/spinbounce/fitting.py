@@ -35,7 +35,7 @@ from .exact import choose
 from .laws import own
 
 __all__ = ["GROUP_KEYS", "model_of_group", "fit_matrix", "fit_omega", "fit_groups", "plot_groups", "STICK_TOLERANCE",
-           "omega_gains", "pair_regime", "PAIR_GEOMETRY"]
+           "omega_gains", "regime", "PAIR_GEOMETRY"]
 
 #: Columns that separate fit groups: every declared parameter that changes the outcome (the
 #: scene's too: a wall sweep has none of them), and dt.
@@ -76,14 +76,18 @@ def omega_gains(params: dict) -> tuple[float, float]:
     return alpha / (1 + alpha), 1.0 / (1 + alpha)
 
 
+def slip_changes(initial: np.ndarray, final: np.ndarray, gains: tuple[float, float]) -> tuple[np.ndarray, np.ndarray]:
+    """Eq. 19 stacked over both tangential rows: x = (c_t, c_r) u'(0) and y = the changes of v_t, r omega."""
+    slip = initial[:, 1] + initial[:, 2]
+    return (np.concatenate([gains[0] * slip, gains[1] * slip]),
+            np.concatenate([final[:, 1] - initial[:, 1], final[:, 2] - initial[:, 2]]))
+
+
 def fit_omega(initial: np.ndarray, final: np.ndarray, alpha: float,
               gains: tuple[float, float] | None = None) -> tuple[float, float]:
     """Omega from Eq. 19 by least squares over both tangential rows; (Omega, its standard error).
     ``gains``: Eq. 19's coefficients where they are not the wall's of ``alpha`` (:func:`omega_gains`)."""
-    c_t, c_r = gains or (alpha / (1 + alpha), 1.0 / (1 + alpha))
-    slip = initial[:, 1] + initial[:, 2]
-    x = np.concatenate([c_t * slip, c_r * slip])
-    y = np.concatenate([final[:, 1] - initial[:, 1], final[:, 2] - initial[:, 2]])
+    x, y = slip_changes(initial, final, gains or (alpha / (1 + alpha), 1.0 / (1 + alpha)))
     xx = float(x @ x)
     if xx == 0.0:
         return math.nan, math.nan
@@ -114,27 +118,55 @@ def model_of_group(params: dict) -> ContactModel:
     return ContactModel(**values)
 
 
-def _deviations(group: pd.DataFrame, names) -> dict:
-    """Per-collision |LAMMPS - theory|: worst and median, absolute and over the size of the
-    initial state (the rows' ``error`` column; :mod:`spinbounce.checks`)."""
-    error = np.abs(group[[f"{s}_error" for s in names]].to_numpy()).max(axis=1)
-    initial = group[[f"{s}_initial" for s in names]].to_numpy()
-    relative = group["error"].to_numpy() if "error" in group else error / np.linalg.norm(initial, axis=1)
-    out = {"worst_deviation": float(error.max()), "median_deviation": float(np.median(error)),
-           "worst_relative_deviation": float(relative.max()), "median_relative_deviation": float(np.median(relative))}
-    if "status" in group:
-        out["status"] = {k: int(v) for k, v in group["status"].value_counts().items()}
+def worst_and_median(parts: list) -> tuple[float, float]:
+    """The largest and the median of a group's per-row values, kept batch by batch in ``parts``
+    (emptied: the rows are held once, and partitioned in place, where np.median would copy them;
+    the median is np.median's, the mean of the two middle values for an even count)."""
+    values = np.concatenate(parts)
+    parts.clear()
+    n = len(values)
+    middle = [n // 2 - 1, n // 2] if n % 2 == 0 else [n // 2]
+    values.partition(middle)
+    return float(values.max()), float(np.mean(values[middle]))
+
+
+def deviation_summary(errors: list, relative: list, status: dict | None) -> dict:
+    """Per-collision |LAMMPS - theory| (``errors``, in parts): worst and median, absolute and over
+    the size of the initial state (``relative``: the rows' ``error`` column; :mod:`spinbounce.checks`)."""
+    worst, median = worst_and_median(errors)
+    worst_relative, median_relative = worst_and_median(relative)
+    out = {"worst_deviation": worst, "median_deviation": median,
+           "worst_relative_deviation": worst_relative, "median_relative_deviation": median_relative}
+    if status is not None:
+        out["status"] = status
     return out
 
 
-def regime(model: ContactModel, three_d: bool, off_uncapped: float, scale: float,
-           speeds) -> tuple[np.ndarray | None, str]:
+def regime(params: dict, three_d: bool, off_uncapped: float, scale: float, speeds,
+           geometry: dict) -> tuple[np.ndarray | None, str]:
     """The matrix that describes every collision of a group, or None, and the regime's name.
 
     ``off_uncapped``: the largest |theory - frictionless matrix @ initial| over the group (a
     capped group sticks throughout where it is within STICK_TOLERANCE of ``scale``, its
     largest initial component); ``speeds``: its distinct v_n (a Hertzian group at one speed
-    has one matrix)."""
+    has one matrix). A pair group's planar matrix of a's state is None where the planar
+    theory's model error (``geometry``: the group's largest planar_error, eps and centrifugal
+    ratio) exceeds the accuracy."""
+    model = model_of_group(params)
+    if params.get("scene") == "pair":
+        from .model.timestep import ACCURACY
+        from .scenes.pair.kind import CAPPED_NO_MATRIX, planar_matrix, sphere_b
+
+        where = f"eps up to {geometry['eps']:.2g}, centrifugal ratio up to {geometry['centrifugal']:.2g}"
+        if model.mu is not None:
+            return None, f"pair with a Coulomb cap: {CAPPED_NO_MATRIX}"
+        if geometry["planar_error"] > ACCURACY:
+            return None, (f"pair, planar theory not exact here: its model error {geometry['planar_error']:.1e} "
+                          f"exceeds the accuracy {ACCURACY:g} ({where}); no matrix is claimed, the rows' theory is "
+                          "the exact reference")
+        b = sphere_b(*(params[name] for name in parameters.PAIR_SPHERE))
+        return planar_matrix(model, b, three_d), (f"pair, planar matrix valid: its model error "
+                                                  f"{geometry['planar_error']:.1e} <= the accuracy {ACCURACY:g} ({where})")
     choice = choose.which(model)
     if choice.has_matrix:
         return choose.matrix(model, three_d=three_d), "matrix"
@@ -148,40 +180,6 @@ def regime(model: ContactModel, three_d: bool, off_uncapped: float, scale: float
     return None, f"{choice.name}: no single matrix"
 
 
-def pair_regime(params: dict, three_d: bool, geometry: dict) -> tuple[np.ndarray | None, str]:
-    """A pair group's planar matrix of a's state, or None where the planar theory's model error
-    (``geometry``: the group's largest planar_error, eps and centrifugal ratio) exceeds the accuracy."""
-    from .model.timestep import ACCURACY
-    from .scenes.pair.kind import CAPPED_NO_MATRIX, planar_matrix, sphere_b
-
-    where = f"eps up to {geometry['eps']:.2g}, centrifugal ratio up to {geometry['centrifugal']:.2g}"
-    if model_of_group(params).mu is not None:
-        return None, f"pair with a Coulomb cap: {CAPPED_NO_MATRIX}"
-    if geometry["planar_error"] > ACCURACY:
-        return None, (f"pair, planar theory not exact here: its model error {geometry['planar_error']:.1e} exceeds "
-                      f"the accuracy {ACCURACY:g} ({where}); no matrix is claimed, the rows' theory is the exact "
-                      "reference")
-    b = sphere_b(*(params[name] for name in parameters.PAIR_SPHERE))
-    return planar_matrix(model_of_group(params), b, three_d), \
-        f"pair, planar matrix valid: its model error {geometry['planar_error']:.1e} <= the accuracy {ACCURACY:g} ({where})"
-
-
-def theory_kind(params: dict) -> str:
-    """The theory a group's rows are checked against: the exact pair reference, or choose's."""
-    if params.get("scene") == "pair":
-        return "pair_exact" if model_of_group(params).mu is None else "pair_capped"
-    return choose.which(model_of_group(params)).kind
-
-
-def omega_of_theory(params: dict, matrix_theory: np.ndarray) -> float:
-    """The theory's Omega: Eq. 18's r omega row (the wall), the planar theory's (a pair)."""
-    if params.get("scene") == "pair":
-        from .scenes.pair.kind import planar_Omega, sphere_b
-
-        return planar_Omega(model_of_group(params), sphere_b(*(params[name] for name in parameters.PAIR_SPHERE)))
-    return float((matrix_theory[2, 2] - 1.0) * (1.0 + params["alpha"]))
-
-
 def off_uncapped(model: ContactModel, initial: np.ndarray, theory: np.ndarray) -> float:
     """A capped Hookean group's largest |theory - frictionless matrix @ initial| (0 otherwise)."""
     if choose.which(model).kind != "coulomb" or model.normal_law.contact_radius:
@@ -190,35 +188,49 @@ def off_uncapped(model: ContactModel, initial: np.ndarray, theory: np.ndarray) -
     return float(np.abs(theory - initial @ uncapped.T).max())
 
 
-def _fit_one(group: pd.DataFrame, params: dict) -> dict:
-    names = STATE_3D if f"{STATE_3D[-1]}_initial" in group else STATE  # a 3-D sweep fits the 6x6 map
-    initial = group[[f"{s}_initial" for s in names]].to_numpy()
-    final = group[[f"{s}_lammps" for s in names]].to_numpy()
-    theory = group[[f"{s}_theory" for s in names]].to_numpy()
-    model = model_of_group(params)
-    if params.get("scene") == "pair":
-        matrix_theory, regime_name = pair_regime(params, initial.shape[1] == 6,
-                                                 {k: float(group[k].max()) for k in PAIR_GEOMETRY})
-    else:
-        matrix_theory, regime_name = regime(model, initial.shape[1] == 6, off_uncapped(model, initial, theory),
-                                            float(np.abs(initial).max()), set(np.unique(initial[:, 0])[:2].tolist()))
-    out = {"parameters": group_parameters(params),
-           "n": len(group), "theory": theory_kind(params), "regime": regime_name,
-           "has_matrix": matrix_theory is not None, **_deviations(group, names)}
-    if matrix_theory is None:
+def group_report(params: dict, n: int, found: tuple, deviations: dict, fit: tuple | None = None) -> dict:
+    """One group's record. ``found``: :func:`regime`'s (the theory's matrix or None, the regime's name); ``fit``,
+    where a matrix applies: (matrix, its standard errors, Omega, its standard error, and the
+    residuals' rms and largest size per row)."""
+    matrix_theory, name = found
+    model, pair = model_of_group(params), params.get("scene") == "pair"
+    # the theory the rows are checked against: the exact pair reference, or choose's
+    kind = ("pair_exact" if model.mu is None else "pair_capped") if pair else choose.which(model).kind
+    out = {"parameters": group_parameters(params), "n": n, "theory": kind, "regime": name,
+           "has_matrix": matrix_theory is not None, **deviations}
+    if fit is None:
         return out
-    matrix, stderr, residuals = fit_matrix(initial, final)
-    omega, omega_err = fit_omega(initial[:, :3], final[:, :3], model.alpha, omega_gains(params))
-    omega_theory = omega_of_theory(params, matrix_theory)
+    matrix, stderr, omega, omega_err, rms, worst = fit
+    if pair:  # the planar theory's Omega; the wall's: Eq. 18's r omega row
+        from .scenes.pair.kind import planar_Omega, sphere_b
+
+        omega_theory = float(planar_Omega(model, sphere_b(*(params[k] for k in parameters.PAIR_SPHERE))))
+    else:
+        omega_theory = float((matrix_theory[2, 2] - 1.0) * (1.0 + params["alpha"]))
     out.update({
         "matrix": matrix.tolist(), "matrix_stderr": stderr.tolist(), "matrix_theory": matrix_theory.tolist(),
         "max_element_diff": float(np.abs(matrix - matrix_theory).max()),
-        "Omega": omega, "Omega_stderr": omega_err, "Omega_theory": float(omega_theory),
-        "Omega_diff": omega - float(omega_theory),
-        "residual_rms": np.sqrt((residuals**2).mean(axis=0)).tolist(),
-        "residual_max": np.abs(residuals).max(axis=0).tolist(),
+        "Omega": omega, "Omega_stderr": omega_err, "Omega_theory": omega_theory, "Omega_diff": omega - omega_theory,
+        "residual_rms": rms.tolist(), "residual_max": worst.tolist(),
     })
     return out
+
+
+def _fit_one(group: pd.DataFrame, params: dict) -> dict:
+    names = STATE_3D if f"{STATE_3D[-1]}_initial" in group else STATE  # a 3-D sweep fits the 6x6 map
+    initial, final, theory = (group[[f"{s}_{x}" for s in names]].to_numpy() for x in ("initial", "lammps", "theory"))
+    model = model_of_group(params)
+    found = regime(params, initial.shape[1] == 6, off_uncapped(model, initial, theory), float(np.abs(initial).max()),
+                   set(np.unique(initial[:, 0])[:2].tolist()), {k: float(group[k].max()) for k in PAIR_GEOMETRY if k in group})
+    error = np.abs(group[[f"{s}_error" for s in names]].to_numpy()).max(axis=1)
+    relative = group["error"].to_numpy() if "error" in group else error / np.linalg.norm(initial, axis=1)
+    status = {k: int(v) for k, v in group["status"].value_counts().items()} if "status" in group else None
+    fit = None
+    if found[0] is not None:
+        matrix, stderr, residuals = fit_matrix(initial, final)
+        omega, omega_err = fit_omega(initial[:, :3], final[:, :3], model.alpha, omega_gains(params))
+        fit = (matrix, stderr, omega, omega_err, np.sqrt((residuals**2).mean(axis=0)), np.abs(residuals).max(axis=0))
+    return group_report(params, len(group), found, deviation_summary([error], [relative], status), fit)
 
 
 def fit_groups(rows: pd.DataFrame) -> list[dict]:

@@ -18,8 +18,8 @@ import numpy as np
 import pandas as pd
 
 from .scenes.collision import STATE, STATE_3D
-from .fitting import (GROUP_KEYS, PAIR_GEOMETRY, group_parameters, model_of_group, off_uncapped, omega_gains, omega_of_theory,
-                      pair_regime, regime, theory_kind)
+from .fitting import (GROUP_KEYS, PAIR_GEOMETRY, deviation_summary, group_report, model_of_group, off_uncapped,
+                      omega_gains, regime, slip_changes)
 
 __all__ = ["fit_dataset", "BATCH_ROWS"]
 
@@ -45,8 +45,11 @@ class _Group:
     residual_ss: np.ndarray | None = None
     residual_max: np.ndarray | None = None
     omega_ss: float = 0.0
-    #: A pair group's largest planar_error, eps and centrifugal ratio (fitting.pair_regime).
+    #: A pair group's largest planar_error, eps and centrifugal ratio (fitting.regime).
     geometry: dict = field(default_factory=dict)
+    found: tuple = (None, "")  # fitting.regime's (the theory's matrix or None, the regime's name)
+    coef: np.ndarray | None = None
+    omega: float = math.nan
 
 
 def _batches(files, columns):
@@ -69,19 +72,12 @@ def _arrays(frame: pd.DataFrame, names) -> tuple[np.ndarray, np.ndarray, np.ndar
     return tuple(frame[[f"{s}_{suffix}" for s in names]].to_numpy() for suffix in ("initial", "lammps", "theory"))
 
 
-def _slip_sums(initial, final, gains) -> tuple[np.ndarray, np.ndarray]:
-    slip = initial[:, 1] + initial[:, 2]
-    x = np.concatenate([gains[0] * slip, gains[1] * slip])
-    y = np.concatenate([final[:, 1] - initial[:, 1], final[:, 2] - initial[:, 2]])
-    return x, y
-
-
 def _first_pass(g: _Group, frame: pd.DataFrame, model) -> None:
     initial, final, theory = _arrays(frame, g.names)
     g.n += len(frame)
     g.xtx = initial.T @ initial + (0.0 if g.xtx is None else g.xtx)
     g.xty = initial.T @ final + (0.0 if g.xty is None else g.xty)
-    x, y = _slip_sums(initial[:, :3], final[:, :3], omega_gains(g.params))
+    x, y = slip_changes(initial[:, :3], final[:, :3], omega_gains(g.params))
     g.omega_xx += float(x @ x)
     g.omega_xy += float(x @ y)
     g.scale = max(g.scale, float(np.abs(initial).max()))
@@ -100,14 +96,14 @@ def _first_pass(g: _Group, frame: pd.DataFrame, model) -> None:
             g.status[name] = g.status.get(name, 0) + int(count)
 
 
-def _second_pass(g: _Group, frame: pd.DataFrame, coef: np.ndarray, omega: float) -> None:
+def _second_pass(g: _Group, frame: pd.DataFrame) -> None:
     initial, final, _ = _arrays(frame, g.names)
-    residuals = final - initial @ coef
+    residuals = final - initial @ g.coef
     g.residual_ss = (residuals**2).sum(axis=0) + (0.0 if g.residual_ss is None else g.residual_ss)
     worst = np.abs(residuals).max(axis=0)
     g.residual_max = worst if g.residual_max is None else np.maximum(g.residual_max, worst)
-    x, y = _slip_sums(initial[:, :3], final[:, :3], omega_gains(g.params))
-    g.omega_ss += float(((y - omega * x) ** 2).sum())
+    x, y = slip_changes(initial[:, :3], final[:, :3], omega_gains(g.params))
+    g.omega_ss += float(((y - g.omega * x) ** 2).sum())
 
 
 def _parts(frame: pd.DataFrame, keys):
@@ -136,65 +132,24 @@ def fit_dataset(files, names=None) -> list[dict]:
                 groups[label] = _Group(dict(zip(keys, first, strict=True)), names)
             group = groups[label]
             _first_pass(group, part, model_of_group(group.params))
-    fits = {label: _solve(g) for label, g in groups.items()}
+    for g in groups.values():
+        g.found = regime(g.params, len(g.names) == 6, g.off_uncapped, g.scale, g.speeds, g.geometry)
+        if g.found[0] is not None:
+            g.coef = np.linalg.solve(g.xtx, g.xty)
+            g.omega = g.omega_xy / g.omega_xx if g.omega_xx else math.nan
     for frame in _batches(files, columns):  # pass two: the residuals of the groups that have a matrix
         for label, part in _parts(frame, keys):
-            if fits[label] is not None:
-                g = groups[label]
-                _second_pass(g, part, fits[label][0], fits[label][1])
+            if groups[label].coef is not None:
+                _second_pass(groups[label], part)
     order = sorted(groups, key=lambda label: tuple(str(groups[label].params[k]) for k in keys))
-    return [_report(groups[label], fits[label]) for label in order]
+    return [_report(groups[label]) for label in order]
 
 
-def _solve(g: _Group):
-    if g.params.get("scene") == "pair":
-        matrix_theory, regime_name = pair_regime(g.params, len(g.names) == 6, g.geometry)
-    else:
-        matrix_theory, regime_name = regime(model_of_group(g.params), len(g.names) == 6, g.off_uncapped, g.scale,
-                                            g.speeds)
-    g.params["_regime"], g.params["_matrix_theory"] = regime_name, matrix_theory
-    if matrix_theory is None:
-        return None
-    coef = np.linalg.solve(g.xtx, g.xty)
-    omega = g.omega_xy / g.omega_xx if g.omega_xx else math.nan
-    return coef, omega
-
-
-def _worst_and_median(parts: list) -> tuple[float, float]:
-    """The largest and the median of a group's per-row values, kept batch by batch in ``parts``
-    (emptied: the rows are held once, and partitioned in place, where np.median would copy them;
-    the median is np.median's, the mean of the two middle values for an even count)."""
-    values = np.concatenate(parts)
-    parts.clear()
-    n = len(values)
-    middle = [n // 2 - 1, n // 2] if n % 2 == 0 else [n // 2]
-    values.partition(middle)
-    return float(values.max()), float(np.mean(values[middle]))
-
-
-def _report(g: _Group, fit) -> dict:
-    regime_name, matrix_theory = g.params.pop("_regime"), g.params.pop("_matrix_theory")
-    worst, median = _worst_and_median(g.errors)
-    worst_relative, median_relative = _worst_and_median(g.relative)
-    out = {"parameters": group_parameters(g.params),
-           "n": g.n, "theory": theory_kind(g.params), "regime": regime_name,
-           "has_matrix": fit is not None,
-           "worst_deviation": worst, "median_deviation": median,
-           "worst_relative_deviation": worst_relative, "median_relative_deviation": median_relative}
-    if g.status:
-        out["status"] = g.status
-    if fit is None:
-        return out
-    coef, omega = fit
-    k = len(g.names)
-    dof = max(g.n - k, 1)
-    stderr = np.sqrt(np.outer(g.residual_ss / dof, np.diag(np.linalg.inv(g.xtx))))
-    omega_theory = omega_of_theory(g.params, matrix_theory)
-    out.update({
-        "matrix": coef.T.tolist(), "matrix_stderr": stderr.tolist(), "matrix_theory": matrix_theory.tolist(),
-        "max_element_diff": float(np.abs(coef.T - matrix_theory).max()),
-        "Omega": omega, "Omega_stderr": math.sqrt(g.omega_ss / max(2 * g.n - 1, 1) / g.omega_xx),
-        "Omega_theory": float(omega_theory), "Omega_diff": omega - float(omega_theory),
-        "residual_rms": np.sqrt(g.residual_ss / g.n).tolist(), "residual_max": g.residual_max.tolist(),
-    })
-    return out
+def _report(g: _Group) -> dict:
+    fit = None
+    if g.coef is not None:
+        dof = max(g.n - len(g.names), 1)
+        stderr = np.sqrt(np.outer(g.residual_ss / dof, np.diag(np.linalg.inv(g.xtx))))
+        fit = (g.coef.T, stderr, g.omega, math.sqrt(g.omega_ss / max(2 * g.n - 1, 1) / g.omega_xx),
+               np.sqrt(g.residual_ss / g.n), g.residual_max)
+    return group_report(g.params, g.n, g.found, deviation_summary(g.errors, g.relative, g.status or None), fit)
