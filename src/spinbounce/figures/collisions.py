@@ -16,11 +16,11 @@ import pandas as pd
 from .. import exact
 from ..pipeline import ResultError
 from ..model.contact import ContactModel
-from .core import (FigureData, FigureRecord, base_metadata, collision_run, default_runs, dissipation_columns,
-                   finish_metadata, make, new_figure)
+from .core import (FigureData, base_metadata, collision_run, default_runs, dissipation_columns, finish_metadata,
+                   new_figure)
 
-__all__ = ["FIG5_STATES", "ROLLING_GAMMA_T", "dissipation_curve", "draw_fig4", "draw_fig5", "draw_fig6", "fig4",
-           "fig4_data", "fig5", "fig5_data", "fig6", "fig6_data"]
+__all__ = ["FIG5_STATES", "ROLLING_GAMMA_T", "dissipation_curve", "draw_fig4", "draw_fig5", "draw_fig6",
+           "fig4_data", "fig5_data", "fig6_data"]
 
 #: Tangential damping standing in for the rolling limit (Eq. 23) in LAMMPS: gamma_t/m = 20
 #: is 20 times 1/tau; the exact Omega there is -1.0007 (Eq. 22 says -1 - 7e-10).
@@ -109,10 +109,6 @@ def draw_fig4(data: FigureData):
     ax.text(0.03, 0.04, rf"$k_t/k_n = 1/10$, $\Omega = {data.metadata['parameters']['model']['Omega_exact']:.4f}$; "
             f"{len(p)} collisions", transform=ax.transAxes, fontsize=8.5)
     return fig
-
-
-def fig4(out: Path, runs: Path | None = None) -> FigureRecord:
-    return make(fig4_data, draw_fig4, "fig4", out, runs)
 
 
 # ---------------------------------------------------------------------------
@@ -273,10 +269,6 @@ def draw_fig5(data: FigureData):
     return fig
 
 
-def fig5(out: Path, runs: Path | None = None) -> FigureRecord:
-    return make(fig5_data, draw_fig5, "fig5", out, runs)
-
-
 # ---------------------------------------------------------------------------
 # Fig. 6
 # ---------------------------------------------------------------------------
@@ -378,7 +370,3 @@ def draw_fig6(data: FigureData):
     ax.legend(loc="upper center", ncols=2, fontsize=8, title=rf"$E(0) = {FIG6_ENERGY:g}$", title_fontsize=8.5)
     ax.set_ylim(-0.05, 1.25 * points["f"].max())
     return fig
-
-
-def fig6(out: Path, runs: Path | None = None) -> FigureRecord:
-    return make(fig6_data, draw_fig6, "fig6", out, runs)

@@ -17,12 +17,10 @@ from ..model.contact import ContactModel
 from .core import (
     FROZEN_Z,
     FigureData,
-    FigureRecord,
     base_metadata,
     default_runs,
     finish_metadata,
     frozen_run,
-    make,
     new_figure,
 )
 
@@ -32,11 +30,8 @@ __all__ = [
     "draw_fig2",
     "draw_fig3",
     "draw_fig7",
-    "fig2",
     "fig2_data",
-    "fig3",
     "fig3_data",
-    "fig7",
     "fig7_data",
 ]
 
@@ -99,10 +94,6 @@ def draw_fig2(data: FigureData):
               title=r"$z = 0.1$, $v_t(0) = 1$, $\omega(0) = 0$; dotted: rolling means (Eq. 11)",
               title_fontsize=8.5)
     return fig
-
-
-def fig2(out: Path, runs: Path | None = None) -> FigureRecord:
-    return make(fig2_data, draw_fig2, "fig2", out, runs)
 
 
 # ---------------------------------------------------------------------------
@@ -188,10 +179,6 @@ def draw_fig3(data: FigureData):
     return fig
 
 
-def fig3(out: Path, runs: Path | None = None) -> FigureRecord:
-    return make(fig3_data, draw_fig3, "fig3", out, runs)
-
-
 # ---------------------------------------------------------------------------
 # Fig. 7
 # ---------------------------------------------------------------------------
@@ -257,7 +244,3 @@ def draw_fig7(data: FigureData):
                     r"dash-dot: rolling means (Eq. 11); $z = 0.1$, $v_t(0) = \omega(0) = 1$",
                     transform=axes[1, 0].transAxes, ha="right", va="bottom", fontsize=8)
     return fig
-
-
-def fig7(out: Path, runs: Path | None = None) -> FigureRecord:
-    return make(fig7_data, draw_fig7, "fig7", out, runs)
