@@ -45,10 +45,6 @@ def _model_record(model: ContactModel) -> dict:
     return record
 
 
-# ---------------------------------------------------------------------------
-# Fig. 4
-# ---------------------------------------------------------------------------
-
 #: Fig. 4's sample: this many states, spread evenly (not on a grid, so the slips differ).
 FIG4_N = 200
 
@@ -110,10 +106,6 @@ def draw_fig4(data: FigureData):
             f"{len(p)} collisions", transform=ax.transAxes, fontsize=8.5)
     return fig
 
-
-# ---------------------------------------------------------------------------
-# Fig. 5
-# ---------------------------------------------------------------------------
 
 def _path(state_in, state_out, r: float, flight: float, n: int = 2) -> tuple[np.ndarray, np.ndarray]:
     """Centre positions (x, z): in along the initial velocity to the contact point (0, r),
@@ -268,10 +260,6 @@ def draw_fig5(data: FigureData):
     fig.legend(handles=keys, loc="outside lower center", ncols=3, fontsize=8)
     return fig
 
-
-# ---------------------------------------------------------------------------
-# Fig. 6
-# ---------------------------------------------------------------------------
 
 def fig6_states(alpha: float, m: float = 1.0, energy: float = FIG6_ENERGY) -> np.ndarray:
     """Initial states on the shell E(0) = ``energy``: v_n in {-0.4, -0.7, -1, -1.3} and 30

@@ -96,10 +96,6 @@ class Tuned:
         return max(self.deviations.values())
 
 
-# ---------------------------------------------------------------------------
-# Drawing and saving
-# ---------------------------------------------------------------------------
-
 def new_figure(nrows: int = 1, ncols: int = 1, figsize=None, **subplots):
     """A Figure on an Agg canvas, without pyplot: no global figure list, no GUI backend.
 
@@ -224,10 +220,6 @@ def _relative(path: Path, base: Path) -> str:
         return str(path)
 
 
-# ---------------------------------------------------------------------------
-# Deviations from the exact theory
-# ---------------------------------------------------------------------------
-
 def dissipation_columns(table: pd.DataFrame, model: ContactModel) -> dict[str, np.ndarray]:
     """f = -Delta E/E(0) (Eq. 21) of a collision batch: LAMMPS's and the exact theory's."""
     initial, final, exact = (table[[f"{s}_{x}" for s in ("v_n", "v_t", "r_omega")]].to_numpy()
@@ -237,10 +229,6 @@ def dissipation_columns(table: pd.DataFrame, model: ContactModel) -> dict[str, n
         "f_theory": linear.dissipation(initial, exact, model.m, model.alpha),
     }
 
-
-# ---------------------------------------------------------------------------
-# The step: a pilot at the scene's default, refined from the measured error
-# ---------------------------------------------------------------------------
 
 def tune_dt(run: Callable[[float], tuple[object, dict[str, float], Path]], dt0: float,
             snap: Callable[[float], float], what: str,

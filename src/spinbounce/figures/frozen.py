@@ -58,10 +58,6 @@ def _parameters(model: ContactModel, **scene) -> dict:
     return {"model": model.as_record(), "z": FROZEN_Z, **scene}
 
 
-# ---------------------------------------------------------------------------
-# Fig. 2
-# ---------------------------------------------------------------------------
-
 def fig2_data(out: Path, runs: Path | None = None) -> FigureData:
     """v_t(t) and omega(t) at z = 0.1 from v_t(0) = 1, omega(0) = 0, against Eq. 10."""
     runs = default_runs(out, runs, "fig2")
@@ -95,10 +91,6 @@ def draw_fig2(data: FigureData):
               title_fontsize=8.5)
     return fig
 
-
-# ---------------------------------------------------------------------------
-# Fig. 3
-# ---------------------------------------------------------------------------
 
 def fig3_data(out: Path, runs: Path | None = None) -> FigureData:
     """Frozen trajectories in the (r omega, v_t) plane for r omega(0) = -0.5 (Eqs. 11-13)."""
@@ -178,10 +170,6 @@ def draw_fig3(data: FigureData):
     fig.legend(handles=keys, loc="outside right lower", fontsize=8)
     return fig
 
-
-# ---------------------------------------------------------------------------
-# Fig. 7
-# ---------------------------------------------------------------------------
 
 def fig7_data(out: Path, runs: Path | None = None) -> FigureData:
     """Damped frozen contact, v_t(0) = 1, omega(0) = 1, three gamma_t: LAMMPS against the
