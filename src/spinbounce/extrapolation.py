@@ -276,7 +276,7 @@ def collide_to_tolerance(model: ContactModel, v_n, v_t, omega, tolerance: float,
         dt = collision_rung_dt(model, START_STEPS * 2**k)
         return Collision(model, v_n=v_n, v_t=v_t, omega=omega, dt=dt, **out_of_plane)
 
-    for first in range(5):  # near the tunnelling speed a coarse step's overshoot alone would tunnel: start finer
+    for first in range(5):  # near the tunnelling speed a coarse step's overshoot alone tunnels: start finer
         try:
             names = scene_at(first).state_names
             break

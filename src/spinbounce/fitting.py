@@ -76,7 +76,7 @@ def omega_gains(params: dict) -> tuple[float, float]:
     return alpha / (1 + alpha), 1.0 / (1 + alpha)
 
 
-def slip_changes(initial: np.ndarray, final: np.ndarray, gains: tuple[float, float]) -> tuple[np.ndarray, np.ndarray]:
+def slip_changes(initial: np.ndarray, final: np.ndarray, gains: tuple[float, float]) -> tuple:
     """Eq. 19 stacked over both tangential rows: x = (c_t, c_r) u'(0) and y = the changes of v_t, r omega."""
     slip = initial[:, 1] + initial[:, 2]
     return (np.concatenate([gains[0] * slip, gains[1] * slip]),
@@ -158,15 +158,15 @@ def regime(params: dict, three_d: bool, off_uncapped: float, scale: float, speed
         from .scenes.pair.kind import CAPPED_NO_MATRIX, planar_matrix, sphere_b
 
         where = f"eps up to {geometry['eps']:.2g}, centrifugal ratio up to {geometry['centrifugal']:.2g}"
+        error = f"its model error {geometry['planar_error']:.1e}"
         if model.mu is not None:
             return None, f"pair with a Coulomb cap: {CAPPED_NO_MATRIX}"
         if geometry["planar_error"] > ACCURACY:
-            return None, (f"pair, planar theory not exact here: its model error {geometry['planar_error']:.1e} "
-                          f"exceeds the accuracy {ACCURACY:g} ({where}); no matrix is claimed, the rows' theory is "
-                          "the exact reference")
+            return None, (f"pair, planar theory not exact here: {error} exceeds the accuracy {ACCURACY:g} "
+                          f"({where}); no matrix is claimed, the rows' theory is the exact reference")
         b = sphere_b(*(params[name] for name in parameters.PAIR_SPHERE))
-        return planar_matrix(model, b, three_d), (f"pair, planar matrix valid: its model error "
-                                                  f"{geometry['planar_error']:.1e} <= the accuracy {ACCURACY:g} ({where})")
+        valid = f"pair, planar matrix valid: {error} <= the accuracy {ACCURACY:g} ({where})"
+        return planar_matrix(model, b, three_d), valid
     choice = choose.which(model)
     if choice.has_matrix:
         return choose.matrix(model, three_d=three_d), "matrix"
@@ -189,8 +189,8 @@ def off_uncapped(model: ContactModel, initial: np.ndarray, theory: np.ndarray) -
 
 
 def group_report(params: dict, n: int, found: tuple, deviations: dict, fit: tuple | None = None) -> dict:
-    """One group's record. ``found``: :func:`regime`'s (the theory's matrix or None, the regime's name); ``fit``,
-    where a matrix applies: (matrix, its standard errors, Omega, its standard error, and the
+    """One group's record. ``found``: :func:`regime`'s (the theory's matrix or None, the regime's
+    name); ``fit``, where a matrix applies: (matrix, its standard errors, Omega, its standard error, and the
     residuals' rms and largest size per row)."""
     matrix_theory, name = found
     model, pair = model_of_group(params), params.get("scene") == "pair"
@@ -210,7 +210,8 @@ def group_report(params: dict, n: int, found: tuple, deviations: dict, fit: tupl
     out.update({
         "matrix": matrix.tolist(), "matrix_stderr": stderr.tolist(), "matrix_theory": matrix_theory.tolist(),
         "max_element_diff": float(np.abs(matrix - matrix_theory).max()),
-        "Omega": omega, "Omega_stderr": omega_err, "Omega_theory": omega_theory, "Omega_diff": omega - omega_theory,
+        "Omega": omega, "Omega_stderr": omega_err, "Omega_theory": omega_theory,
+        "Omega_diff": omega - omega_theory,
         "residual_rms": rms.tolist(), "residual_max": worst.tolist(),
     })
     return out
@@ -218,10 +219,12 @@ def group_report(params: dict, n: int, found: tuple, deviations: dict, fit: tupl
 
 def _fit_one(group: pd.DataFrame, params: dict) -> dict:
     names = STATE_3D if f"{STATE_3D[-1]}_initial" in group else STATE  # a 3-D sweep fits the 6x6 map
-    initial, final, theory = (group[[f"{s}_{x}" for s in names]].to_numpy() for x in ("initial", "lammps", "theory"))
+    initial, final, theory = (group[[f"{s}_{x}" for s in names]].to_numpy()
+                              for x in ("initial", "lammps", "theory"))
     model = model_of_group(params)
-    found = regime(params, initial.shape[1] == 6, off_uncapped(model, initial, theory), float(np.abs(initial).max()),
-                   set(np.unique(initial[:, 0])[:2].tolist()), {k: float(group[k].max()) for k in PAIR_GEOMETRY if k in group})
+    geometry = {k: float(group[k].max()) for k in PAIR_GEOMETRY if k in group}
+    found = regime(params, initial.shape[1] == 6, off_uncapped(model, initial, theory),
+                   float(np.abs(initial).max()), set(np.unique(initial[:, 0])[:2].tolist()), geometry)
     error = np.abs(group[[f"{s}_error" for s in names]].to_numpy()).max(axis=1)
     relative = group["error"].to_numpy() if "error" in group else error / np.linalg.norm(initial, axis=1)
     status = {k: int(v) for k, v in group["status"].value_counts().items()} if "status" in group else None
@@ -229,7 +232,8 @@ def _fit_one(group: pd.DataFrame, params: dict) -> dict:
     if found[0] is not None:
         matrix, stderr, residuals = fit_matrix(initial, final)
         omega, omega_err = fit_omega(initial[:, :3], final[:, :3], model.alpha, omega_gains(params))
-        fit = (matrix, stderr, omega, omega_err, np.sqrt((residuals**2).mean(axis=0)), np.abs(residuals).max(axis=0))
+        fit = (matrix, stderr, omega, omega_err, np.sqrt((residuals**2).mean(axis=0)),
+               np.abs(residuals).max(axis=0))
     return group_report(params, len(group), found, deviation_summary([error], [relative], status), fit)
 
 

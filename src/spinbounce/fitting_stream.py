@@ -18,8 +18,8 @@ import numpy as np
 import pandas as pd
 
 from .scenes.collision import STATE, STATE_3D
-from .fitting import (GROUP_KEYS, PAIR_GEOMETRY, deviation_summary, group_report, model_of_group, off_uncapped,
-                      omega_gains, regime, slip_changes)
+from .fitting import (GROUP_KEYS, PAIR_GEOMETRY, deviation_summary, group_report, model_of_group,
+                      off_uncapped, omega_gains, regime, slip_changes)
 
 __all__ = ["fit_dataset", "BATCH_ROWS"]
 
@@ -152,4 +152,5 @@ def _report(g: _Group) -> dict:
         stderr = np.sqrt(np.outer(g.residual_ss / dof, np.diag(np.linalg.inv(g.xtx))))
         fit = (g.coef.T, stderr, g.omega, math.sqrt(g.omega_ss / max(2 * g.n - 1, 1) / g.omega_xx),
                np.sqrt(g.residual_ss / g.n), g.residual_max)
-    return group_report(g.params, g.n, g.found, deviation_summary(g.errors, g.relative, g.status or None), fit)
+    deviations = deviation_summary(g.errors, g.relative, g.status or None)
+    return group_report(g.params, g.n, g.found, deviations, fit)

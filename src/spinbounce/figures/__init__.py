@@ -45,7 +45,7 @@ def check_names(names) -> list[str]:
 
 
 def figure_function(name: str) -> Callable:
-    """``figN(out, runs=None) -> FigureRecord``, which makes figure ``name`` (imports its module on first use)."""
+    """``figN(out, runs=None) -> FigureRecord``, making figure ``name`` (its module imported on first use)."""
     from .core import make
 
     (name,) = check_names([name])

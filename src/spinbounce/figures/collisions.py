@@ -16,8 +16,8 @@ import pandas as pd
 from .. import exact
 from ..pipeline import ResultError
 from ..model.contact import ContactModel
-from .core import (FigureData, base_metadata, collision_run, default_runs, dissipation_columns, finish_metadata,
-                   new_figure)
+from .core import (FigureData, base_metadata, collision_run, default_runs, dissipation_columns,
+                   finish_metadata, new_figure)
 
 __all__ = ["FIG5_STATES", "ROLLING_GAMMA_T", "dissipation_curve", "draw_fig4", "draw_fig5", "draw_fig6",
            "fig4_data", "fig5_data", "fig6_data"]

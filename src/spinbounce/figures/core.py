@@ -333,7 +333,8 @@ def collision_run(model: ContactModel, states: np.ndarray, series_dir: Path, wha
         scene = scene_at(dt)
         folder = Path(series_dir) / f"dt_{scene.dt:.6e}"
         result: RunResult = run_scene(scene, folder, atoms="library")
-        deviations = {s: float(np.abs(result.table[f"{s}_error"]).max()) for s in ("v_n", "v_t", "r_omega", "omega")}
+        deviations = {s: float(np.abs(result.table[f"{s}_error"]).max())
+                      for s in ("v_n", "v_t", "r_omega", "omega")}
         if energy:
             f = dissipation_columns(result.table, model)
             deviations["f"] = float(np.max(np.abs(f["f"] - f["f_theory"])))

@@ -28,8 +28,8 @@ from ..pipeline import ResultError, run_scene
 from ..records import write_atomic
 from ..scenes.collision import Collision
 from .hertz_parameters import OMEGA, V_T, HertzParameters
-from .core import (FigureData, FigureRecord, _relative, base_metadata, default_runs, dissipation_columns, make,
-                   new_figure)
+from .core import (FigureData, FigureRecord, _relative, base_metadata, default_runs, dissipation_columns,
+                   make, new_figure)
 
 __all__ = ["HertzParameters", "hertz_data", "draw_hertz", "hertz_markdown", "make_hertz", "ACCEPTANCE"]
 
@@ -92,7 +92,8 @@ def hertz_data(p: HertzParameters, runs: Path, log=print) -> FigureData:
     folder = runs / "fixed_kt"
     batch = run_scene(fixed, folder, atoms="library").table
     f = dissipation_columns(batch, fixed.model)
-    fixed_table = pd.DataFrame({"v_n": -batch["v_n_initial"].to_numpy(), "f_lammps": f["f"], "f_theory": f["f_theory"]})
+    fixed_table = pd.DataFrame({"v_n": -batch["v_n_initial"].to_numpy(), "f_lammps": f["f"],
+                                "f_theory": f["f_theory"]})
     records.append({"series": "one kt for all speeds", "v_n": fixed_table["v_n"].tolist(), "kt": fixed.model.kt,
                     "dt": fixed.dt, "nsteps": fixed.nsteps, "run_dir": str(folder)})
     table = pd.DataFrame(rows)

@@ -71,7 +71,7 @@ def run_chunk(raw: dict, out: str, group: int, chunk: int, start: int, stop: int
     if spec.scene == "pair":
         labels.update(_pair_columns(columns, spec, group, model, n))
     else:
-        columns["Omega_theory"] = choose.omega_per_sphere(model, states[:, 0])  # NaN where none exists (Coulomb)
+        columns["Omega_theory"] = choose.omega_per_sphere(model, states[:, 0])  # NaN where none (Coulomb)
         labels["theory"] = choose.which(model).kind
     from ..records import lammps_version
 
@@ -80,7 +80,8 @@ def run_chunk(raw: dict, out: str, group: int, chunk: int, start: int, stop: int
     return stop - start, time.perf_counter() - started, loop
 
 
-def _wall_columns(columns: dict, spec: SweepSpec, model, dt, states: np.ndarray, probe: np.ndarray, run_dir: Path):
+def _wall_columns(columns: dict, spec: SweepSpec, model, dt, states: np.ndarray, probe: np.ndarray,
+                  run_dir: Path):
     """Run a wall chunk of ``states``, its rows into ``columns``; (dt, steps, LAMMPS loop seconds)."""
     from ..pipeline import run_scene
 
