@@ -271,12 +271,9 @@ def plot_groups(rows: pd.DataFrame, path: Path) -> Path:
         line = np.array([slip.min(), slip.max()])
         label = (f"$\\alpha$ = {alpha:g}, $k_t/k_n$ = {params['kt'] / params['kn']:g}, "
                  + (f"$\\Omega$ = {big_omega:.5f}" if one_omega else "no single $\\Omega$"))
-        d_vt = group["v_t_lammps"] - group["v_t_initial"]
-        d_rw = group["r_omega_lammps"] - group["r_omega_initial"]
-        for ax, change, column, slope, name in (
-            (ax_vt, d_vt, "v_t", c_t * big_omega, r"$\Delta v_t$"),
-            (ax_rw, d_rw, "r_omega", c_r * big_omega, r"$r\,\Delta\omega$"),
-        ):
+        for ax, column, slope, name in ((ax_vt, "v_t", c_t * big_omega, r"$\Delta v_t$"),
+                                        (ax_rw, "r_omega", c_r * big_omega, r"$r\,\Delta\omega$")):
+            change = group[f"{column}_lammps"] - group[f"{column}_initial"]
             ax.plot(slip, change, ".", ms=2, color="tab:blue", rasterized=True, label="LAMMPS")
             if math.isnan(slope):  # no single Omega (Coulomb, Hertz): the theory sphere by sphere
                 expected = group[f"{column}_theory"] - group[f"{column}_initial"]

@@ -137,19 +137,17 @@ def fig5_data(out: Path, runs: Path | None = None) -> FigureData:
     paths, finals = [], []
     for k, (panel, (_, state)) in enumerate(FIG5_STATES.items()):
         state = np.asarray(state)
-        for model_name, matrix in matrices.items():
-            final = matrix @ state
-            x, z = _path(state, final, r, FIG5_FLIGHT)
-            paths.append(pd.DataFrame({"panel": panel, "curve": model_name, "source": "theory", "x": x, "z": z}))
-            finals.append({"panel": panel, "curve": model_name, "source": "theory",
-                           "v_n": final[0], "v_t": final[1], "r_omega": final[2]})
-        for model_name, tuned in (("rough", tuned_rough), ("rolling", tuned_rolling)):
+        # each theory's path, then LAMMPS's (from its own first and last frames, 7 points a flight)
+        curves = [(name, "theory", state, matrix @ state, 2) for name, matrix in matrices.items()]
+        for name, tuned in (("rough", tuned_rough), ("rolling", tuned_rolling)):
             row = tuned.result.table.iloc[k]
-            start = row[["v_n_lammps_initial", "v_t_lammps_initial", "r_omega_lammps_initial"]].to_numpy(dtype=float)
-            final = row[["v_n_lammps", "v_t_lammps", "r_omega_lammps"]].to_numpy(dtype=float)
-            x, z = _path(start, final, r, FIG5_FLIGHT, n=7)
-            paths.append(pd.DataFrame({"panel": panel, "curve": model_name, "source": "lammps", "x": x, "z": z}))
-            finals.append({"panel": panel, "curve": model_name, "source": "lammps",
+            start, final = (row[[f"{s}_{x}" for s in ("v_n", "v_t", "r_omega")]].to_numpy(dtype=float)
+                            for x in ("lammps_initial", "lammps"))
+            curves.append((name, "lammps", start, final, 7))
+        for name, source, start, final, n in curves:
+            x, z = _path(start, final, r, FIG5_FLIGHT, n)
+            paths.append(pd.DataFrame({"panel": panel, "curve": name, "source": source, "x": x, "z": z}))
+            finals.append({"panel": panel, "curve": name, "source": source,
                            "v_n": final[0], "v_t": final[1], "r_omega": final[2]})
     panels = pd.DataFrame([{"panel": p, "label": lab, "v_n_initial": s[0], "v_t_initial": s[1], "r_omega_initial": s[2]}
                            for p, (lab, s) in FIG5_STATES.items()])

@@ -251,9 +251,8 @@ def tune_dt(run: Callable[[float], tuple[object, dict[str, float], Path]], dt0: 
         result, deviations, folder = run(dt)
         worst = max(deviations.values())
         issues = problems(result)
-        history.append({"dt": dt, "max_deviation_exact": worst, "run_dir": str(folder)})
-        if issues:
-            history[-1]["problems"] = issues
+        history.append({"dt": dt, "max_deviation_exact": worst, "run_dir": str(folder),
+                        **({"problems": issues} if issues else {})})
         if (worst < TARGET and not issues) or attempt == MAX_REFINEMENTS:
             break
         # on target but with problems: no error to extrapolate from, so halve
@@ -270,10 +269,8 @@ def tune_dt(run: Callable[[float], tuple[object, dict[str, float], Path]], dt0: 
                   f"the target {TARGET:g} (a quarter of the acceptance limit {ACCEPTANCE:g})")
     else:
         first = history[0]
-        orders = [
-            math.log(a["max_deviation_exact"] / b["max_deviation_exact"]) / math.log(a["dt"] / b["dt"])
-            for a, b in itertools.pairwise(history)
-        ]
+        orders = [math.log(a["max_deviation_exact"] / b["max_deviation_exact"]) / math.log(a["dt"] / b["dt"])
+                  for a, b in itertools.pairwise(history)]
         why = f"gave {first['max_deviation_exact']:.3g}"
         if first["max_deviation_exact"] >= TARGET:
             why += f", above the target {TARGET:g}"
