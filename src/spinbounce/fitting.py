@@ -22,6 +22,7 @@ first asks whether one matrix describes the group at all:
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -130,18 +131,6 @@ def worst_and_median(parts: list) -> tuple[float, float]:
     return float(values.max()), float(np.mean(values[middle]))
 
 
-def deviation_summary(errors: list, relative: list, status: dict | None) -> dict:
-    """Per-collision |LAMMPS - theory| (``errors``, in parts): worst and median, absolute and over
-    the size of the initial state (``relative``: the rows' ``error`` column; :mod:`spinbounce.checks`)."""
-    worst, median = worst_and_median(errors)
-    worst_relative, median_relative = worst_and_median(relative)
-    out = {"worst_deviation": worst, "median_deviation": median,
-           "worst_relative_deviation": worst_relative, "median_relative_deviation": median_relative}
-    if status is not None:
-        out["status"] = status
-    return out
-
-
 def regime(params: dict, three_d: bool, off_uncapped: float, scale: float, speeds,
            geometry: dict) -> tuple[np.ndarray | None, str]:
     """The matrix that describes every collision of a group, or None, and the regime's name.
@@ -188,60 +177,136 @@ def off_uncapped(model: ContactModel, initial: np.ndarray, theory: np.ndarray) -
     return float(np.abs(theory - initial @ uncapped.T).max())
 
 
-def group_report(params: dict, n: int, found: tuple, deviations: dict, fit: tuple | None = None) -> dict:
-    """One group's record. ``found``: :func:`regime`'s (the theory's matrix or None, the regime's
-    name); ``fit``, where a matrix applies: (matrix, its standard errors, Omega, its standard error, and the
-    residuals' rms and largest size per row)."""
-    matrix_theory, name = found
-    model, pair = model_of_group(params), params.get("scene") == "pair"
+@dataclass
+class GroupFit:
+    """One model group's sums, gathered batch by batch (:func:`accumulate`; then, once
+    :func:`solve` has its matrix, :func:`add_residuals`) and reported by :func:`report`."""
+
+    params: dict
+    names: tuple
+    n: int = 0
+    xtx: np.ndarray | None = None  # the least-squares normal equations, X^T X and X^T Y
+    xty: np.ndarray | None = None
+    omega_xx: float = 0.0  # Eq. 19's sums for Omega (slip_changes)
+    omega_xy: float = 0.0
+    scale: float = 0.0
+    off_uncapped: float = 0.0
+    speeds: set = field(default_factory=set)
+    errors: list = field(default_factory=list)
+    relative: list = field(default_factory=list)
+    status: dict = field(default_factory=dict)
+    residual_ss: np.ndarray | None = None
+    residual_max: np.ndarray | None = None
+    omega_ss: float = 0.0
+    #: A pair group's largest planar_error, eps and centrifugal ratio (:func:`regime`).
+    geometry: dict = field(default_factory=dict)
+    found: tuple = (None, "")  # regime's (the theory's matrix or None, the regime's name)
+    coef: np.ndarray | None = None
+    omega: float = math.nan
+
+    def arrays(self, frame: pd.DataFrame) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        return tuple(frame[[f"{s}_{x}" for s in self.names]].to_numpy()
+                     for x in ("initial", "lammps", "theory"))
+
+
+def accumulate(g: GroupFit, frame: pd.DataFrame) -> None:
+    """Add a batch of the group's rows to its sums (pass one)."""
+    initial, final, theory = g.arrays(frame)
+    g.n += len(frame)
+    g.xtx = initial.T @ initial + (0.0 if g.xtx is None else g.xtx)
+    g.xty = initial.T @ final + (0.0 if g.xty is None else g.xty)
+    x, y = slip_changes(initial[:, :3], final[:, :3], omega_gains(g.params))
+    g.omega_xx += float(x @ x)
+    g.omega_xy += float(x @ y)
+    g.scale = max(g.scale, float(np.abs(initial).max()))
+    g.off_uncapped = max(g.off_uncapped, off_uncapped(model_of_group(g.params), initial, theory))
+    for key in PAIR_GEOMETRY:
+        if key in frame:
+            g.geometry[key] = max(g.geometry.get(key, 0.0), float(frame[key].max()))
+    if len(g.speeds) < 2:
+        g.speeds.update(np.unique(initial[:, 0])[:2].tolist())
+    g.errors.append(np.abs(frame[[f"{s}_error" for s in g.names]].to_numpy()).max(axis=1))
+    # a copy: a column's array is a view of the whole batch's block, which would stay alive
+    g.relative.append(frame["error"].to_numpy().copy() if "error" in frame else
+                      g.errors[-1] / np.linalg.norm(initial, axis=1))
+    if "status" in frame:
+        for name, count in frame["status"].value_counts().items():
+            g.status[name] = g.status.get(name, 0) + int(count)
+
+
+def solve(g: GroupFit, least_squares=None) -> None:
+    """The group's regime and, where a matrix applies, its matrix (from the normal equations, or
+    ``least_squares()``: the coefficients by :func:`numpy.linalg.lstsq` on rows held in memory)."""
+    g.found = regime(g.params, len(g.names) == 6, g.off_uncapped, g.scale, g.speeds, g.geometry)
+    if g.found[0] is not None:
+        g.coef = np.linalg.solve(g.xtx, g.xty) if least_squares is None else least_squares()
+        g.omega = g.omega_xy / g.omega_xx if g.omega_xx else math.nan
+
+
+def add_residuals(g: GroupFit, frame: pd.DataFrame) -> None:
+    """Add a batch's residuals from the solved matrix and Omega (pass two)."""
+    initial, final, _ = g.arrays(frame)
+    residuals = final - initial @ g.coef
+    g.residual_ss = (residuals**2).sum(axis=0) + (0.0 if g.residual_ss is None else g.residual_ss)
+    worst = np.abs(residuals).max(axis=0)
+    g.residual_max = worst if g.residual_max is None else np.maximum(g.residual_max, worst)
+    x, y = slip_changes(initial[:, :3], final[:, :3], omega_gains(g.params))
+    g.omega_ss += float(((y - g.omega * x) ** 2).sum())
+
+
+def report(g: GroupFit) -> dict:
+    """One group's record: its parameters, theory, regime and per-collision deviation (worst and
+    median, absolute and over the size of the initial state: the rows' ``error`` column,
+    :mod:`spinbounce.checks`); where a matrix applies, the fit beside the theory's."""
+    matrix_theory, name = g.found
+    model, pair = model_of_group(g.params), g.params.get("scene") == "pair"
     # the theory the rows are checked against: the exact pair reference, or choose's
     kind = ("pair_exact" if model.mu is None else "pair_capped") if pair else choose.which(model).kind
-    out = {"parameters": group_parameters(params), "n": n, "theory": kind, "regime": name,
-           "has_matrix": matrix_theory is not None, **deviations}
-    if fit is None:
+    worst, median = worst_and_median(g.errors)
+    worst_relative, median_relative = worst_and_median(g.relative)
+    out = {"parameters": group_parameters(g.params), "n": g.n, "theory": kind, "regime": name,
+           "has_matrix": matrix_theory is not None, "worst_deviation": worst, "median_deviation": median,
+           "worst_relative_deviation": worst_relative, "median_relative_deviation": median_relative}
+    if g.status:
+        out["status"] = g.status
+    if g.coef is None:
         return out
-    matrix, stderr, omega, omega_err, rms, worst = fit
+    dof = max(g.n - len(g.names), 1)
+    stderr = np.sqrt(np.outer(g.residual_ss / dof, np.diag(np.linalg.inv(g.xtx))))
+    omega_err = math.sqrt(g.omega_ss / max(2 * g.n - 1, 1) / g.omega_xx) if g.omega_xx else math.nan
     if pair:  # the planar theory's Omega; the wall's: Eq. 18's r omega row
         from .scenes.pair.kind import planar_Omega, sphere_b
 
-        omega_theory = float(planar_Omega(model, sphere_b(*(params[k] for k in parameters.PAIR_SPHERE))))
+        omega_theory = float(planar_Omega(model, sphere_b(*(g.params[k] for k in parameters.PAIR_SPHERE))))
     else:
-        omega_theory = float((matrix_theory[2, 2] - 1.0) * (1.0 + params["alpha"]))
+        omega_theory = float((matrix_theory[2, 2] - 1.0) * (1.0 + g.params["alpha"]))
     out.update({
-        "matrix": matrix.tolist(), "matrix_stderr": stderr.tolist(), "matrix_theory": matrix_theory.tolist(),
-        "max_element_diff": float(np.abs(matrix - matrix_theory).max()),
-        "Omega": omega, "Omega_stderr": omega_err, "Omega_theory": omega_theory,
-        "Omega_diff": omega - omega_theory,
-        "residual_rms": rms.tolist(), "residual_max": worst.tolist(),
+        "matrix": g.coef.T.tolist(), "matrix_stderr": stderr.tolist(),
+        "matrix_theory": matrix_theory.tolist(),
+        "max_element_diff": float(np.abs(g.coef.T - matrix_theory).max()),
+        "Omega": g.omega, "Omega_stderr": omega_err, "Omega_theory": omega_theory,
+        "Omega_diff": g.omega - omega_theory,
+        "residual_rms": np.sqrt(g.residual_ss / g.n).tolist(), "residual_max": g.residual_max.tolist(),
     })
     return out
 
 
-def _fit_one(group: pd.DataFrame, params: dict) -> dict:
-    names = STATE_3D if f"{STATE_3D[-1]}_initial" in group else STATE  # a 3-D sweep fits the 6x6 map
-    initial, final, theory = (group[[f"{s}_{x}" for s in names]].to_numpy()
-                              for x in ("initial", "lammps", "theory"))
-    model = model_of_group(params)
-    geometry = {k: float(group[k].max()) for k in PAIR_GEOMETRY if k in group}
-    found = regime(params, initial.shape[1] == 6, off_uncapped(model, initial, theory),
-                   float(np.abs(initial).max()), set(np.unique(initial[:, 0])[:2].tolist()), geometry)
-    error = np.abs(group[[f"{s}_error" for s in names]].to_numpy()).max(axis=1)
-    relative = group["error"].to_numpy() if "error" in group else error / np.linalg.norm(initial, axis=1)
-    status = {k: int(v) for k, v in group["status"].value_counts().items()} if "status" in group else None
-    fit = None
-    if found[0] is not None:
-        matrix, stderr, residuals = fit_matrix(initial, final)
-        omega, omega_err = fit_omega(initial[:, :3], final[:, :3], model.alpha, omega_gains(params))
-        fit = (matrix, stderr, omega, omega_err, np.sqrt((residuals**2).mean(axis=0)),
-               np.abs(residuals).max(axis=0))
-    return group_report(params, len(group), found, deviation_summary([error], [relative], status), fit)
-
-
 def fit_groups(rows: pd.DataFrame) -> list[dict]:
-    """One fit (or, where no matrix applies, one per-collision report) per model group."""
+    """One fit (or, where no matrix applies, one per-collision report) per model group: the sums
+    of :func:`spinbounce.fitting_stream.fit_dataset` over the rows at once, with the matrix by
+    least squares on the rows themselves."""
     keys = [k for k in GROUP_KEYS if k in rows]
-    return [_fit_one(group, dict(zip(keys, values, strict=True)))
-            for values, group in rows.groupby(keys, dropna=False, sort=True)]
+    names = STATE_3D if f"{STATE_3D[-1]}_initial" in rows else STATE  # a 3-D sweep fits the 6x6 map
+    fits = []
+    for values, group in rows.groupby(keys, dropna=False, sort=True):
+        g = GroupFit(dict(zip(keys, values, strict=True)), names)
+        accumulate(g, group)
+        initial, final, _ = g.arrays(group)
+        solve(g, lambda: np.linalg.lstsq(initial, final, rcond=None)[0])
+        if g.coef is not None:
+            add_residuals(g, group)
+        fits.append(report(g))
+    return fits
 
 
 def plot_groups(rows: pd.DataFrame, path: Path) -> Path:
