@@ -24,15 +24,10 @@ the paper's defaults), while the extrapolation only needs its rungs in the asymp
 regime, which :data:`START_STEPS` already is; at the defaults the whole ladder for 1e-6
 costs fewer steps than one run at the default step.
 
-Where the error has no smooth expansion in dt (a finite Coulomb cap's stick-slip switches
-fall anywhere inside a step; the classic wall's spring kt sqrt(r delta) has an infinite
-slope where the contact starts and ends), extrapolation gains nothing. There the tolerance
-is met by measurement instead (:func:`measured_to_tolerance`): the step is probed against
-the exact theory of what LAMMPS integrates (:func:`spinbounce.stepping.tune` with the
-tolerance as its target, as the default step is for the default accuracy), and each row's
-estimate is its own measured distance to that theory, which the run must bring below the
-tolerance. Those theories are solved to ~1e-9, so the tolerance there is at least
-:data:`MIN_MEASURED_TOLERANCE`.
+Where the error has no smooth expansion in dt (:func:`smooth_in_dt`), extrapolation gains
+nothing: the tolerance is met by measurement instead (:func:`measured_to_tolerance`), the
+step probed against the exact theory of what LAMMPS integrates (:func:`spinbounce.stepping.tune`
+with the tolerance as its target, as the default step is for the default accuracy).
 
 The convergence study (:mod:`spinbounce.studies.accuracy`) climbs the same rungs
 (:func:`contact_steps`, :func:`collision_rung_dt`, :func:`frozen_rung_dt`) and measures the

@@ -1,8 +1,7 @@
 """Figs. 4, 5 and 6: whole collisions against the scattering matrix (Sections 4 and 5).
 
 Every set of initial states that shares one contact model is one batched LAMMPS run
-(atoms handed over in memory). The figure functions build tables from the runs and
-the draw functions read only those tables.
+(atoms handed over in memory).
 """
 
 from __future__ import annotations

@@ -1,8 +1,6 @@
 """Figs. 2, 3 and 7: the frozen contact (Section 3, and its damped form in Section 5).
 
 The sphere is held at z = 0.1 (overlap 0.4) with v_n = 0; only the slip evolves.
-Each figure function runs its scenes, builds tables and hands them to a draw function
-that reads nothing else.
 """
 
 from __future__ import annotations

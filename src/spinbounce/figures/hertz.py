@@ -12,8 +12,6 @@ contact's end falls somewhere in a step, so tau_L is off by at most dt/2 (tests/
 and kt*_L by a relative dt/tau at most: that is the bound the table shows beside each deviation.
 Two checks of what kt* means: a run at kt*_L loses no energy; one kt for every speed,
 chosen to conserve energy at v_ref, loses energy everywhere else.
-
-Flow: scenes -> pipeline runs -> tables -> drawing (the drawing reads only the tables).
 """
 
 from __future__ import annotations

@@ -13,9 +13,7 @@ model's step, as :attr:`Collision.nsteps` counts them), and it peaks at
 
     mb = BASE_MB + SCIPY_MB [finite mu] + n * KB_PER_SPHERE / 1024.
 
-A finite Coulomb limit (``mu``) takes its theory columns from the exact batched stick-slip
-solver, about 1e-5 s a collision; a scene whose step is probed first runs its two probes
-(PROBE_SECONDS), and its steps per collision are estimated a priori
+A scene whose step is probed has its steps per collision estimated a priori
 (:func:`spinbounce.stepping.expected_steps`).
 
 A job asks for the estimate times a margin (TIME_MARGIN, MEM_MARGIN), which must stay
