@@ -261,12 +261,10 @@ def draw_fig5(data: FigureData):
 def fig6_states(alpha: float, m: float = 1.0, energy: float = FIG6_ENERGY) -> np.ndarray:
     """Initial states on the shell E(0) = ``energy``: v_n in {-0.4, -0.7, -1, -1.3} and 30
     directions of (v_t, sqrt(alpha) r omega) on the circle the rest of the energy allows."""
-    rows = []
-    for vn in (-0.4, -0.7, -1.0, -1.3):
-        rho = np.sqrt(2.0 * energy / m - vn * vn)
-        for phi in 2.0 * np.pi * (np.arange(30) + 0.5) / 30:
-            rows.append((vn, rho * np.cos(phi), rho * np.sin(phi) / np.sqrt(alpha)))
-    return np.array(rows)
+    vn = np.repeat([-0.4, -0.7, -1.0, -1.3], 30)
+    phi = np.tile(2.0 * np.pi * (np.arange(30) + 0.5) / 30, 4)
+    rho = np.sqrt(2.0 * energy / m - vn * vn)
+    return np.column_stack([vn, rho * np.cos(phi), rho * np.sin(phi) / np.sqrt(alpha)])
 
 
 def dissipation_curve(slip, Omega: float, alpha: float, m: float = 1.0, energy: float = FIG6_ENERGY,

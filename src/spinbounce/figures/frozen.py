@@ -103,13 +103,11 @@ def fig3_data(out: Path, runs: Path | None = None) -> FigureData:
         paths.append(t)
         vt_m, rw_m = exact.frozen_extremes(vt0, FIG3_R_OMEGA0, model.alpha)
         vbar, rwbar = exact.frozen_means(vt0, FIG3_R_OMEGA0, model.alpha)
-        slip = vt0 + FIG3_R_OMEGA0
-        if slip != 0.0:
+        if vt0 + FIG3_R_OMEGA0 != 0.0:  # else the rolling state: a point
             # the slope d v_t / d(r omega) that LAMMPS's points lie on (Eq. 13 says alpha)
             slope = float(np.polyfit(t["r_omega"], t["v_t"], 1)[0])
             # LAMMPS's far end: the point farthest from the start, against Eq. 12
-            d = np.hypot(t["v_t"] - vt0, t["r_omega"] - FIG3_R_OMEGA0)
-            far = int(np.argmax(d))
+            far = int(np.argmax(np.hypot(t["v_t"] - vt0, t["r_omega"] - FIG3_R_OMEGA0)))
             end_dev = float(max(abs(t["v_t"].iloc[far] - vt_m), abs(t["r_omega"].iloc[far] - rw_m)))
         else:
             slope, end_dev = float("nan"), 0.0

@@ -28,8 +28,7 @@ def check_physics(spec) -> None:
     key_vn = "states.v_n" if "v_n" in spec.states["axes"] else "states.speed"
     for g in range(len(spec.groups)):
         try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")
+            with warnings.catch_warnings(action="ignore"):
                 model, dt = spec.model(g)
         except SceneError as exc:
             ratio = exc.parameter == "kt" and "kt_over_kn" in spec.raw.get("model", {})
@@ -51,8 +50,7 @@ def _check_pairs(spec) -> None:
     fast, _ = spec.normal_speeds()
     for g in range(len(spec.groups)):
         try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")
+            with warnings.catch_warnings(action="ignore"):
                 model, dt = spec.model(g)
                 b = spec.sphere_b(g)
                 contact = pair_contact(model)

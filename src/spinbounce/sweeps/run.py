@@ -269,14 +269,10 @@ def run_one_chunk(spec: SweepSpec, out: Path, k: int, log=print) -> Path:
 
 def chunk_table(spec: SweepSpec, out: Path | None = None) -> list[dict]:
     """Every chunk: its number k, model group, index within the group, row range and file."""
-    rows = []
-    for k, (group, chunk, start, stop) in enumerate(spec.chunks()):
-        row = {"k": k, "group": group, "chunk": chunk, "start": start, "stop": stop,
-               "path": str(chunk_path(Path("."), group, chunk))}
-        if out is not None:
-            row["done"] = chunk_path(Path(out), group, chunk).exists()
-        rows.append(row)
-    return rows
+    return [{"k": k, "group": group, "chunk": chunk, "start": start, "stop": stop,
+             "path": str(chunk_path(Path("."), group, chunk)),
+             **({} if out is None else {"done": chunk_path(Path(out), group, chunk).exists()})}
+            for k, (group, chunk, start, stop) in enumerate(spec.chunks())]
 
 
 def status_counts(path: Path) -> dict[str, int]:
