@@ -44,7 +44,7 @@ def run_chunk(raw: dict, out: str, group: int, chunk: int, start: int, stop: int
     spheres reach LAMMPS in memory (the library route): no data file to write, no dump to
     parse; a pair scene's chunk is one pair batch (:func:`spinbounce.sweeps.pairs.pair_chunk`).
     """
-    from ..records import write_parquet_atomic
+    from ..records import lammps_version, write_parquet_atomic
 
     started = time.perf_counter()
     spec = spec_from_dict(raw)
@@ -73,8 +73,6 @@ def run_chunk(raw: dict, out: str, group: int, chunk: int, start: int, stop: int
     else:
         columns["Omega_theory"] = choose.omega_per_sphere(model, states[:, 0])  # NaN where none (Coulomb)
         labels["theory"] = choose.which(model).kind
-    from ..records import lammps_version
-
     labels.update({"scene_hash": spec.digest, "lammps_version": lammps_version(), "spinbounce_version": __version__})
     write_parquet_atomic(chunk_path(out, group, chunk), _arrow_table(columns, labels))
     return stop - start, time.perf_counter() - started, loop
@@ -124,10 +122,10 @@ def _pair_columns(columns: dict, spec: SweepSpec, group: int, model, n: int) -> 
     """A pair group's scene columns (sphere b's, and the pair's Omega); its labels."""
     from ..scenes.pair.kind import planar_Omega
 
-    b = spec.sphere_b(group)
     for name in parameters.PAIR_SPHERE:
         columns[parameters.by_name(name).column] = np.full(n, spec.groups[group][name])
-    columns["Omega_theory"] = np.full(n, planar_Omega(model, b))  # the planar theory's (the wall's at equal alpha)
+    # the planar theory's Omega (the wall's at equal alpha)
+    columns["Omega_theory"] = np.full(n, planar_Omega(model, spec.sphere_b(group)))
     return {"scene": "pair", "theory": "pair_exact"}
 
 
