@@ -198,14 +198,13 @@ def _ladder(run_level, tolerance: float, p: np.ndarray, log) -> tuple[np.ndarray
     its columns.
     """
     p = np.asarray(p)
-    values, dts, levels, gaps = [], [], [], []
+    values, levels, gaps = [], [], []
     eps = np.finfo(float).eps
     for k in range(MAX_LEVELS):
-        value, dt, info = run_level(k)
+        value, info = run_level(k)  # the outputs, and what the run was (its dt among them)
         values.append(value)
-        dts.append(dt)
         levels.append(info)
-        extrapolated = _extrapolate(values, dts, p)
+        extrapolated = _extrapolate(values, [level["dt"] for level in levels], p)
         if extrapolated is None:
             continue
         best, per_value = extrapolated
@@ -284,7 +283,7 @@ def collide_to_tolerance(model: ContactModel, v_n, v_t, omega, tolerance: float,
         result = run_scene(scene, out_dir / f"level-{k}", atoms="library")
         scenes.append(scene)
         final = result.table[[f"{s}_lammps" for s in names]].to_numpy()
-        return final, scene.dt, {"level": k, "dt": scene.dt, "nsteps": scene.nsteps,
+        return final, {"level": k, "dt": scene.dt, "nsteps": scene.nsteps,
                                  "run": str(out_dir / f"level-{k}"),
                                  "loop_seconds": result.info.loop_seconds}
 
@@ -348,7 +347,7 @@ def frozen_to_tolerance(model: ContactModel, z: float, v_t: float, omega: float,
         if times and not np.array_equal(table["t"].to_numpy(), times[0]):
             raise RuntimeError("frozen levels do not share their output times")
         times.append(table["t"].to_numpy())
-        return (table[["v_t", "r_omega"]].to_numpy(), scene.dt,
+        return (table[["v_t", "r_omega"]].to_numpy(),
                 {"level": k, "dt": scene.dt, "nsteps": scene.nsteps, "run": str(out_dir / f"level-{k}"),
                  "loop_seconds": result.info.loop_seconds})
 

@@ -200,10 +200,8 @@ def finish_metadata(meta: dict, runs: list[dict], out: Path) -> dict:
         )
         records.append(entry)
     worst = max(records, key=lambda e: e["max_deviation_exact"])
-    meta["runs"] = records
-    meta["dt"] = {e["series"]: e["dt"] for e in records}
-    meta["max_deviation_exact"] = worst["max_deviation_exact"]
-    meta["max_deviation_exact_series"] = worst["series"]
+    meta.update(runs=records, dt={e["series"]: e["dt"] for e in records},
+                max_deviation_exact=worst["max_deviation_exact"], max_deviation_exact_series=worst["series"])
     if not 0.0 < meta["max_deviation_exact"] < ACCEPTANCE:
         raise ResultError(
             f"{meta['figure']}: largest deviation between LAMMPS and the exact theory is "
