@@ -234,12 +234,12 @@ def accumulate(g: GroupFit, frame: pd.DataFrame) -> None:
             g.status[name] = g.status.get(name, 0) + int(count)
 
 
-def solve(g: GroupFit, least_squares=None) -> None:
-    """The group's regime and, where a matrix applies, its matrix (from the normal equations, or
-    ``least_squares()``: the coefficients by :func:`numpy.linalg.lstsq` on rows held in memory)."""
+def solve(g: GroupFit, rows: tuple | None = None) -> None:
+    """The group's regime and, where a matrix applies, its matrix: from the normal equations, or
+    by :func:`numpy.linalg.lstsq` on ``rows`` held in memory, (initial, final)."""
     g.found = regime(g.params, len(g.names) == 6, g.off_uncapped, g.scale, g.speeds, g.geometry)
     if g.found[0] is not None:
-        g.coef = np.linalg.solve(g.xtx, g.xty) if least_squares is None else least_squares()
+        g.coef = np.linalg.solve(g.xtx, g.xty) if rows is None else np.linalg.lstsq(*rows, rcond=None)[0]
         g.omega = g.omega_xy / g.omega_xx if g.omega_xx else math.nan
 
 
@@ -301,8 +301,7 @@ def fit_groups(rows: pd.DataFrame) -> list[dict]:
     for values, group in rows.groupby(keys, dropna=False, sort=True):
         g = GroupFit(dict(zip(keys, values, strict=True)), names)
         accumulate(g, group)
-        initial, final, _ = g.arrays(group)
-        solve(g, lambda: np.linalg.lstsq(initial, final, rcond=None)[0])
+        solve(g, g.arrays(group)[:2])
         if g.coef is not None:
             add_residuals(g, group)
         fits.append(report(g))
