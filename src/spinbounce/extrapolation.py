@@ -24,21 +24,14 @@ the paper's defaults), while the extrapolation only needs its rungs in the asymp
 regime, which :data:`START_STEPS` already is; at the defaults the whole ladder for 1e-6
 costs fewer steps than one run at the default step.
 
-Where the error has no smooth expansion in dt (a finite Coulomb cap's stick-slip switches
-fall anywhere inside a step; the classic wall's spring kt sqrt(r delta) has an infinite
-slope where the contact starts and ends), extrapolation gains nothing. There the tolerance
-is met by measurement instead (:func:`measured_to_tolerance`): the step is probed against
-the exact theory of what LAMMPS integrates (:func:`spinbounce.stepping.tune` with the
-tolerance as its target, as the default step is for the default accuracy), and each row's
-estimate is its own measured distance to that theory, which the run must bring below the
-tolerance. Those theories are solved to ~1e-9, so the tolerance there is at least
-:data:`MIN_MEASURED_TOLERANCE`.
+Where the error has no smooth expansion in dt (:func:`smooth_in_dt`), extrapolation gains
+nothing: the tolerance is met by measurement instead (:func:`measured_to_tolerance`), the
+step probed against the exact theory of what LAMMPS integrates (:func:`spinbounce.stepping.tune`
+with the tolerance as its target, as the default step is for the default accuracy).
 
-This module is the per-scene service (``--tolerance``); :mod:`spinbounce.studies.accuracy`
-is the convergence study over cases. Both climb the same rungs (:func:`contact_steps`,
-:func:`collision_rung_dt`, :func:`frozen_rung_dt`: n steps per half-period of the fastest
-mode, the collision's end mid-step through :mod:`spinbounce.model.timestep`), and the study
-measures the raw orders that :func:`raw_orders` assumes here.
+The convergence study (:mod:`spinbounce.studies.accuracy`) climbs the same rungs
+(:func:`contact_steps`, :func:`collision_rung_dt`, :func:`frozen_rung_dt`) and measures the
+raw orders that :func:`raw_orders` assumes here.
 """
 
 from __future__ import annotations
@@ -205,14 +198,13 @@ def _ladder(run_level, tolerance: float, p: np.ndarray, log) -> tuple[np.ndarray
     its columns.
     """
     p = np.asarray(p)
-    values, dts, levels, gaps = [], [], [], []
+    values, levels, gaps = [], [], []
     eps = np.finfo(float).eps
     for k in range(MAX_LEVELS):
-        value, dt, info = run_level(k)
+        value, info = run_level(k)  # the outputs, and what the run was (its dt among them)
         values.append(value)
-        dts.append(dt)
         levels.append(info)
-        extrapolated = _extrapolate(values, dts, p)
+        extrapolated = _extrapolate(values, [level["dt"] for level in levels], p)
         if extrapolated is None:
             continue
         best, per_value = extrapolated
@@ -250,29 +242,6 @@ def smooth_in_dt(model: ContactModel) -> bool:
 MIN_MEASURED_TOLERANCE = 1e-8
 
 
-def _refuse_unsmooth(model: ContactModel) -> None:
-    """Refuse, before any run, a model that neither extrapolation nor measurement can serve."""
-    if model.normal_law.contact_radius:
-        # each sphere's contact ends at its own time, somewhere inside a step that moves with dt
-        raise SceneError("normal", model.normal, "a tolerance needs a smooth error in dt; with a force that grows "
-                                                 "with the contact radius each contact ends anywhere inside a "
-                                                 "step: give a dt instead")
-
-
-def _first_rung(scene_at) -> int:
-    """The first rung whose scene is valid: near the tunnelling speed a coarse step's
-    overshoot alone would tunnel, so start finer (at most 4 doublings)."""
-    first = 0
-    while True:
-        try:
-            scene_at(first)
-            return first
-        except SceneError as exc:
-            if not exc.parameter.startswith("v_n") or "at dt" not in exc.limit or first >= 4:
-                raise
-            first += 1
-
-
 def collide_to_tolerance(model: ContactModel, v_n, v_t, omega, tolerance: float, out_dir: Path,
                          log=lambda *_: None, **out_of_plane) -> tuple[Extrapolated, Collision]:
     """Collisions (one sphere or many, as in :class:`Collision`) to a requested accuracy.
@@ -284,7 +253,11 @@ def collide_to_tolerance(model: ContactModel, v_n, v_t, omega, tolerance: float,
     from .pipeline import run_scene
 
     tol = check_tolerance(tolerance)
-    _refuse_unsmooth(model)
+    if model.normal_law.contact_radius:  # neither extrapolation nor measurement can serve it
+        # each sphere's contact ends at its own time, somewhere inside a step that moves with dt
+        raise SceneError("normal", model.normal, "a tolerance needs a smooth error in dt; with a force that grows "
+                                                 "with the contact radius each contact ends anywhere inside a "
+                                                 "step: give a dt instead")
     if not smooth_in_dt(model):
         return measured_to_tolerance(model, v_n, v_t, omega, tol, out_dir, log, **out_of_plane)
     unknown = set(out_of_plane) - set(STATE_ARGS[3:])
@@ -297,15 +270,20 @@ def collide_to_tolerance(model: ContactModel, v_n, v_t, omega, tolerance: float,
         dt = collision_rung_dt(model, START_STEPS * 2**k)
         return Collision(model, v_n=v_n, v_t=v_t, omega=omega, dt=dt, **out_of_plane)
 
-    first = _first_rung(scene_at)
-    names = scene_at(first).state_names
+    for first in range(5):  # near the tunnelling speed a coarse step's overshoot alone tunnels: start finer
+        try:
+            names = scene_at(first).state_names
+            break
+        except SceneError as exc:
+            if not exc.parameter.startswith("v_n") or "at dt" not in exc.limit or first >= 4:
+                raise
 
     def run_level(k: int):
         scene = scene_at(first + k)
         result = run_scene(scene, out_dir / f"level-{k}", atoms="library")
         scenes.append(scene)
         final = result.table[[f"{s}_lammps" for s in names]].to_numpy()
-        return final, scene.dt, {"level": k, "dt": scene.dt, "nsteps": scene.nsteps,
+        return final, {"level": k, "dt": scene.dt, "nsteps": scene.nsteps,
                                  "run": str(out_dir / f"level-{k}"),
                                  "loop_seconds": result.info.loop_seconds}
 
@@ -369,7 +347,7 @@ def frozen_to_tolerance(model: ContactModel, z: float, v_t: float, omega: float,
         if times and not np.array_equal(table["t"].to_numpy(), times[0]):
             raise RuntimeError("frozen levels do not share their output times")
         times.append(table["t"].to_numpy())
-        return (table[["v_t", "r_omega"]].to_numpy(), scene.dt,
+        return (table[["v_t", "r_omega"]].to_numpy(),
                 {"level": k, "dt": scene.dt, "nsteps": scene.nsteps, "run": str(out_dir / f"level-{k}"),
                  "loop_seconds": result.info.loop_seconds})
 

@@ -22,6 +22,7 @@ first asks whether one matrix describes the group at all:
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -35,7 +36,7 @@ from .exact import choose
 from .laws import own
 
 __all__ = ["GROUP_KEYS", "model_of_group", "fit_matrix", "fit_omega", "fit_groups", "plot_groups", "STICK_TOLERANCE",
-           "omega_gains", "pair_regime", "PAIR_GEOMETRY"]
+           "omega_gains", "regime", "PAIR_GEOMETRY"]
 
 #: Columns that separate fit groups: every declared parameter that changes the outcome (the
 #: scene's too: a wall sweep has none of them), and dt.
@@ -76,14 +77,18 @@ def omega_gains(params: dict) -> tuple[float, float]:
     return alpha / (1 + alpha), 1.0 / (1 + alpha)
 
 
+def slip_changes(initial: np.ndarray, final: np.ndarray, gains: tuple[float, float]) -> tuple:
+    """Eq. 19 stacked over both tangential rows: x = (c_t, c_r) u'(0) and y = the changes of v_t, r omega."""
+    slip = initial[:, 1] + initial[:, 2]
+    return (np.concatenate([gains[0] * slip, gains[1] * slip]),
+            np.concatenate([final[:, 1] - initial[:, 1], final[:, 2] - initial[:, 2]]))
+
+
 def fit_omega(initial: np.ndarray, final: np.ndarray, alpha: float,
               gains: tuple[float, float] | None = None) -> tuple[float, float]:
     """Omega from Eq. 19 by least squares over both tangential rows; (Omega, its standard error).
     ``gains``: Eq. 19's coefficients where they are not the wall's of ``alpha`` (:func:`omega_gains`)."""
-    c_t, c_r = gains or (alpha / (1 + alpha), 1.0 / (1 + alpha))
-    slip = initial[:, 1] + initial[:, 2]
-    x = np.concatenate([c_t * slip, c_r * slip])
-    y = np.concatenate([final[:, 1] - initial[:, 1], final[:, 2] - initial[:, 2]])
+    x, y = slip_changes(initial, final, gains or (alpha / (1 + alpha), 1.0 / (1 + alpha)))
     xx = float(x @ x)
     if xx == 0.0:
         return math.nan, math.nan
@@ -114,27 +119,43 @@ def model_of_group(params: dict) -> ContactModel:
     return ContactModel(**values)
 
 
-def _deviations(group: pd.DataFrame, names) -> dict:
-    """Per-collision |LAMMPS - theory|: worst and median, absolute and over the size of the
-    initial state (the rows' ``error`` column; :mod:`spinbounce.checks`)."""
-    error = np.abs(group[[f"{s}_error" for s in names]].to_numpy()).max(axis=1)
-    initial = group[[f"{s}_initial" for s in names]].to_numpy()
-    relative = group["error"].to_numpy() if "error" in group else error / np.linalg.norm(initial, axis=1)
-    out = {"worst_deviation": float(error.max()), "median_deviation": float(np.median(error)),
-           "worst_relative_deviation": float(relative.max()), "median_relative_deviation": float(np.median(relative))}
-    if "status" in group:
-        out["status"] = {k: int(v) for k, v in group["status"].value_counts().items()}
-    return out
+def worst_and_median(parts: list) -> tuple[float, float]:
+    """The largest and the median of a group's per-row values, kept batch by batch in ``parts``
+    (emptied: the rows are held once, and partitioned in place, where np.median would copy them;
+    the median is np.median's, the mean of the two middle values for an even count)."""
+    values = np.concatenate(parts)
+    parts.clear()
+    n = len(values)
+    middle = [n // 2 - 1, n // 2] if n % 2 == 0 else [n // 2]
+    values.partition(middle)
+    return float(values.max()), float(np.mean(values[middle]))
 
 
-def regime(model: ContactModel, three_d: bool, off_uncapped: float, scale: float,
-           speeds) -> tuple[np.ndarray | None, str]:
+def regime(params: dict, three_d: bool, off_uncapped: float, scale: float, speeds,
+           geometry: dict) -> tuple[np.ndarray | None, str]:
     """The matrix that describes every collision of a group, or None, and the regime's name.
 
     ``off_uncapped``: the largest |theory - frictionless matrix @ initial| over the group (a
     capped group sticks throughout where it is within STICK_TOLERANCE of ``scale``, its
     largest initial component); ``speeds``: its distinct v_n (a Hertzian group at one speed
-    has one matrix)."""
+    has one matrix). A pair group's planar matrix of a's state is None where the planar
+    theory's model error (``geometry``: the group's largest planar_error, eps and centrifugal
+    ratio) exceeds the accuracy."""
+    model = model_of_group(params)
+    if params.get("scene") == "pair":
+        from .model.timestep import ACCURACY
+        from .scenes.pair.kind import CAPPED_NO_MATRIX, planar_matrix, sphere_b
+
+        where = f"eps up to {geometry['eps']:.2g}, centrifugal ratio up to {geometry['centrifugal']:.2g}"
+        error = f"its model error {geometry['planar_error']:.1e}"
+        if model.mu is not None:
+            return None, f"pair with a Coulomb cap: {CAPPED_NO_MATRIX}"
+        if geometry["planar_error"] > ACCURACY:
+            return None, (f"pair, planar theory not exact here: {error} exceeds the accuracy {ACCURACY:g} "
+                          f"({where}); no matrix is claimed, the rows' theory is the exact reference")
+        b = sphere_b(*(params[name] for name in parameters.PAIR_SPHERE))
+        valid = f"pair, planar matrix valid: {error} <= the accuracy {ACCURACY:g} ({where})"
+        return planar_matrix(model, b, three_d), valid
     choice = choose.which(model)
     if choice.has_matrix:
         return choose.matrix(model, three_d=three_d), "matrix"
@@ -148,40 +169,6 @@ def regime(model: ContactModel, three_d: bool, off_uncapped: float, scale: float
     return None, f"{choice.name}: no single matrix"
 
 
-def pair_regime(params: dict, three_d: bool, geometry: dict) -> tuple[np.ndarray | None, str]:
-    """A pair group's planar matrix of a's state, or None where the planar theory's model error
-    (``geometry``: the group's largest planar_error, eps and centrifugal ratio) exceeds the accuracy."""
-    from .model.timestep import ACCURACY
-    from .scenes.pair.kind import CAPPED_NO_MATRIX, planar_matrix, sphere_b
-
-    where = f"eps up to {geometry['eps']:.2g}, centrifugal ratio up to {geometry['centrifugal']:.2g}"
-    if model_of_group(params).mu is not None:
-        return None, f"pair with a Coulomb cap: {CAPPED_NO_MATRIX}"
-    if geometry["planar_error"] > ACCURACY:
-        return None, (f"pair, planar theory not exact here: its model error {geometry['planar_error']:.1e} exceeds "
-                      f"the accuracy {ACCURACY:g} ({where}); no matrix is claimed, the rows' theory is the exact "
-                      "reference")
-    b = sphere_b(*(params[name] for name in parameters.PAIR_SPHERE))
-    return planar_matrix(model_of_group(params), b, three_d), \
-        f"pair, planar matrix valid: its model error {geometry['planar_error']:.1e} <= the accuracy {ACCURACY:g} ({where})"
-
-
-def theory_kind(params: dict) -> str:
-    """The theory a group's rows are checked against: the exact pair reference, or choose's."""
-    if params.get("scene") == "pair":
-        return "pair_exact" if model_of_group(params).mu is None else "pair_capped"
-    return choose.which(model_of_group(params)).kind
-
-
-def omega_of_theory(params: dict, matrix_theory: np.ndarray) -> float:
-    """The theory's Omega: Eq. 18's r omega row (the wall), the planar theory's (a pair)."""
-    if params.get("scene") == "pair":
-        from .scenes.pair.kind import planar_Omega, sphere_b
-
-        return planar_Omega(model_of_group(params), sphere_b(*(params[name] for name in parameters.PAIR_SPHERE)))
-    return float((matrix_theory[2, 2] - 1.0) * (1.0 + params["alpha"]))
-
-
 def off_uncapped(model: ContactModel, initial: np.ndarray, theory: np.ndarray) -> float:
     """A capped Hookean group's largest |theory - frictionless matrix @ initial| (0 otherwise)."""
     if choose.which(model).kind != "coulomb" or model.normal_law.contact_radius:
@@ -190,42 +177,135 @@ def off_uncapped(model: ContactModel, initial: np.ndarray, theory: np.ndarray) -
     return float(np.abs(theory - initial @ uncapped.T).max())
 
 
-def _fit_one(group: pd.DataFrame, params: dict) -> dict:
-    names = STATE_3D if f"{STATE_3D[-1]}_initial" in group else STATE  # a 3-D sweep fits the 6x6 map
-    initial = group[[f"{s}_initial" for s in names]].to_numpy()
-    final = group[[f"{s}_lammps" for s in names]].to_numpy()
-    theory = group[[f"{s}_theory" for s in names]].to_numpy()
-    model = model_of_group(params)
-    if params.get("scene") == "pair":
-        matrix_theory, regime_name = pair_regime(params, initial.shape[1] == 6,
-                                                 {k: float(group[k].max()) for k in PAIR_GEOMETRY})
-    else:
-        matrix_theory, regime_name = regime(model, initial.shape[1] == 6, off_uncapped(model, initial, theory),
-                                            float(np.abs(initial).max()), set(np.unique(initial[:, 0])[:2].tolist()))
-    out = {"parameters": group_parameters(params),
-           "n": len(group), "theory": theory_kind(params), "regime": regime_name,
-           "has_matrix": matrix_theory is not None, **_deviations(group, names)}
-    if matrix_theory is None:
+@dataclass
+class GroupFit:
+    """One model group's sums, gathered batch by batch (:func:`accumulate`; then, once
+    :func:`solve` has its matrix, :func:`add_residuals`) and reported by :func:`report`."""
+
+    params: dict
+    names: tuple
+    n: int = 0
+    xtx: np.ndarray | None = None  # the least-squares normal equations, X^T X and X^T Y
+    xty: np.ndarray | None = None
+    omega_xx: float = 0.0  # Eq. 19's sums for Omega (slip_changes)
+    omega_xy: float = 0.0
+    scale: float = 0.0
+    off_uncapped: float = 0.0
+    speeds: set = field(default_factory=set)
+    errors: list = field(default_factory=list)
+    relative: list = field(default_factory=list)
+    status: dict = field(default_factory=dict)
+    residual_ss: np.ndarray | None = None
+    residual_max: np.ndarray | None = None
+    omega_ss: float = 0.0
+    #: A pair group's largest planar_error, eps and centrifugal ratio (:func:`regime`).
+    geometry: dict = field(default_factory=dict)
+    found: tuple = (None, "")  # regime's (the theory's matrix or None, the regime's name)
+    coef: np.ndarray | None = None
+    omega: float = math.nan
+
+    def arrays(self, frame: pd.DataFrame) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        return tuple(frame[[f"{s}_{x}" for s in self.names]].to_numpy()
+                     for x in ("initial", "lammps", "theory"))
+
+
+def accumulate(g: GroupFit, frame: pd.DataFrame) -> None:
+    """Add a batch of the group's rows to its sums (pass one)."""
+    initial, final, theory = g.arrays(frame)
+    g.n += len(frame)
+    g.xtx = initial.T @ initial + (0.0 if g.xtx is None else g.xtx)
+    g.xty = initial.T @ final + (0.0 if g.xty is None else g.xty)
+    x, y = slip_changes(initial[:, :3], final[:, :3], omega_gains(g.params))
+    g.omega_xx += float(x @ x)
+    g.omega_xy += float(x @ y)
+    g.scale = max(g.scale, float(np.abs(initial).max()))
+    g.off_uncapped = max(g.off_uncapped, off_uncapped(model_of_group(g.params), initial, theory))
+    for key in PAIR_GEOMETRY:
+        if key in frame:
+            g.geometry[key] = max(g.geometry.get(key, 0.0), float(frame[key].max()))
+    if len(g.speeds) < 2:
+        g.speeds.update(np.unique(initial[:, 0])[:2].tolist())
+    g.errors.append(np.abs(frame[[f"{s}_error" for s in g.names]].to_numpy()).max(axis=1))
+    # a copy: a column's array is a view of the whole batch's block, which would stay alive
+    g.relative.append(frame["error"].to_numpy().copy() if "error" in frame else
+                      g.errors[-1] / np.linalg.norm(initial, axis=1))
+    if "status" in frame:
+        for name, count in frame["status"].value_counts().items():
+            g.status[name] = g.status.get(name, 0) + int(count)
+
+
+def solve(g: GroupFit, rows: tuple | None = None) -> None:
+    """The group's regime and, where a matrix applies, its matrix: from the normal equations, or
+    by :func:`numpy.linalg.lstsq` on ``rows`` held in memory, (initial, final)."""
+    g.found = regime(g.params, len(g.names) == 6, g.off_uncapped, g.scale, g.speeds, g.geometry)
+    if g.found[0] is not None:
+        g.coef = np.linalg.solve(g.xtx, g.xty) if rows is None else np.linalg.lstsq(*rows, rcond=None)[0]
+        g.omega = g.omega_xy / g.omega_xx if g.omega_xx else math.nan
+
+
+def add_residuals(g: GroupFit, frame: pd.DataFrame) -> None:
+    """Add a batch's residuals from the solved matrix and Omega (pass two)."""
+    initial, final, _ = g.arrays(frame)
+    residuals = final - initial @ g.coef
+    g.residual_ss = (residuals**2).sum(axis=0) + (0.0 if g.residual_ss is None else g.residual_ss)
+    worst = np.abs(residuals).max(axis=0)
+    g.residual_max = worst if g.residual_max is None else np.maximum(g.residual_max, worst)
+    x, y = slip_changes(initial[:, :3], final[:, :3], omega_gains(g.params))
+    g.omega_ss += float(((y - g.omega * x) ** 2).sum())
+
+
+def report(g: GroupFit) -> dict:
+    """One group's record: its parameters, theory, regime and per-collision deviation (worst and
+    median, absolute and over the size of the initial state: the rows' ``error`` column,
+    :mod:`spinbounce.checks`); where a matrix applies, the fit beside the theory's."""
+    matrix_theory, name = g.found
+    model, pair = model_of_group(g.params), g.params.get("scene") == "pair"
+    # the theory the rows are checked against: the exact pair reference, or choose's
+    kind = ("pair_exact" if model.mu is None else "pair_capped") if pair else choose.which(model).kind
+    worst, median = worst_and_median(g.errors)
+    worst_relative, median_relative = worst_and_median(g.relative)
+    out = {"parameters": group_parameters(g.params), "n": g.n, "theory": kind, "regime": name,
+           "has_matrix": matrix_theory is not None, "worst_deviation": worst, "median_deviation": median,
+           "worst_relative_deviation": worst_relative, "median_relative_deviation": median_relative}
+    if g.status:
+        out["status"] = g.status
+    if g.coef is None:
         return out
-    matrix, stderr, residuals = fit_matrix(initial, final)
-    omega, omega_err = fit_omega(initial[:, :3], final[:, :3], model.alpha, omega_gains(params))
-    omega_theory = omega_of_theory(params, matrix_theory)
+    dof = max(g.n - len(g.names), 1)
+    stderr = np.sqrt(np.outer(g.residual_ss / dof, np.diag(np.linalg.inv(g.xtx))))
+    omega_err = math.sqrt(g.omega_ss / max(2 * g.n - 1, 1) / g.omega_xx) if g.omega_xx else math.nan
+    if pair:  # the planar theory's Omega; the wall's: Eq. 18's r omega row
+        from .scenes.pair.kind import planar_Omega, sphere_b
+
+        omega_theory = float(planar_Omega(model, sphere_b(*(g.params[k] for k in parameters.PAIR_SPHERE))))
+    else:
+        omega_theory = float((matrix_theory[2, 2] - 1.0) * (1.0 + g.params["alpha"]))
     out.update({
-        "matrix": matrix.tolist(), "matrix_stderr": stderr.tolist(), "matrix_theory": matrix_theory.tolist(),
-        "max_element_diff": float(np.abs(matrix - matrix_theory).max()),
-        "Omega": omega, "Omega_stderr": omega_err, "Omega_theory": float(omega_theory),
-        "Omega_diff": omega - float(omega_theory),
-        "residual_rms": np.sqrt((residuals**2).mean(axis=0)).tolist(),
-        "residual_max": np.abs(residuals).max(axis=0).tolist(),
+        "matrix": g.coef.T.tolist(), "matrix_stderr": stderr.tolist(),
+        "matrix_theory": matrix_theory.tolist(),
+        "max_element_diff": float(np.abs(g.coef.T - matrix_theory).max()),
+        "Omega": g.omega, "Omega_stderr": omega_err, "Omega_theory": omega_theory,
+        "Omega_diff": g.omega - omega_theory,
+        "residual_rms": np.sqrt(g.residual_ss / g.n).tolist(), "residual_max": g.residual_max.tolist(),
     })
     return out
 
 
 def fit_groups(rows: pd.DataFrame) -> list[dict]:
-    """One fit (or, where no matrix applies, one per-collision report) per model group."""
+    """One fit (or, where no matrix applies, one per-collision report) per model group: the sums
+    of :func:`spinbounce.fitting_stream.fit_dataset` over the rows at once, with the matrix by
+    least squares on the rows themselves."""
     keys = [k for k in GROUP_KEYS if k in rows]
-    return [_fit_one(group, dict(zip(keys, values, strict=True)))
-            for values, group in rows.groupby(keys, dropna=False, sort=True)]
+    names = STATE_3D if f"{STATE_3D[-1]}_initial" in rows else STATE  # a 3-D sweep fits the 6x6 map
+    fits = []
+    for values, group in rows.groupby(keys, dropna=False, sort=True):
+        g = GroupFit(dict(zip(keys, values, strict=True)), names)
+        accumulate(g, group)
+        solve(g, g.arrays(group)[:2])
+        if g.coef is not None:
+            add_residuals(g, group)
+        fits.append(report(g))
+    return fits
 
 
 def plot_groups(rows: pd.DataFrame, path: Path) -> Path:
@@ -255,12 +335,9 @@ def plot_groups(rows: pd.DataFrame, path: Path) -> Path:
         line = np.array([slip.min(), slip.max()])
         label = (f"$\\alpha$ = {alpha:g}, $k_t/k_n$ = {params['kt'] / params['kn']:g}, "
                  + (f"$\\Omega$ = {big_omega:.5f}" if one_omega else "no single $\\Omega$"))
-        d_vt = group["v_t_lammps"] - group["v_t_initial"]
-        d_rw = group["r_omega_lammps"] - group["r_omega_initial"]
-        for ax, change, column, slope, name in (
-            (ax_vt, d_vt, "v_t", c_t * big_omega, r"$\Delta v_t$"),
-            (ax_rw, d_rw, "r_omega", c_r * big_omega, r"$r\,\Delta\omega$"),
-        ):
+        for ax, column, slope, name in ((ax_vt, "v_t", c_t * big_omega, r"$\Delta v_t$"),
+                                        (ax_rw, "r_omega", c_r * big_omega, r"$r\,\Delta\omega$")):
+            change = group[f"{column}_lammps"] - group[f"{column}_initial"]
             ax.plot(slip, change, ".", ms=2, color="tab:blue", rasterized=True, label="LAMMPS")
             if math.isnan(slope):  # no single Omega (Coulomb, Hertz): the theory sphere by sphere
                 expected = group[f"{column}_theory"] - group[f"{column}_initial"]

@@ -10,16 +10,12 @@ memory grows with the number of groups and the batch, not with the rows.
 
 from __future__ import annotations
 
-import math
-from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
-import pandas as pd
 
 from .scenes.collision import STATE, STATE_3D
-from .fitting import (GROUP_KEYS, PAIR_GEOMETRY, group_parameters, model_of_group, off_uncapped, omega_gains, omega_of_theory,
-                      pair_regime, regime, theory_kind)
+from .fitting import GROUP_KEYS, PAIR_GEOMETRY, GroupFit, accumulate, add_residuals, report, solve
 
 __all__ = ["fit_dataset", "BATCH_ROWS"]
 
@@ -27,30 +23,9 @@ __all__ = ["fit_dataset", "BATCH_ROWS"]
 BATCH_ROWS = 200_000
 
 
-@dataclass
-class _Group:
-    params: dict
-    names: tuple
-    n: int = 0
-    xtx: np.ndarray | None = None
-    xty: np.ndarray | None = None
-    omega_xx: float = 0.0
-    omega_xy: float = 0.0
-    scale: float = 0.0
-    off_uncapped: float = 0.0
-    speeds: set = field(default_factory=set)
-    errors: list = field(default_factory=list)
-    relative: list = field(default_factory=list)
-    status: dict = field(default_factory=dict)
-    residual_ss: np.ndarray | None = None
-    residual_max: np.ndarray | None = None
-    omega_ss: float = 0.0
-    #: A pair group's largest planar_error, eps and centrifugal ratio (fitting.pair_regime).
-    geometry: dict = field(default_factory=dict)
-
-
-def _batches(files, columns):
-    """The files' rows, BATCH_ROWS at a time, one file after another (no read-ahead)."""
+def _batches(files, columns, keys):
+    """(label, rows) of each model group in each batch of BATCH_ROWS rows, one file after another
+    (no read-ahead); a group's label is the same in every batch."""
     import pyarrow.parquet as pq
 
     from .sweeps import SweepError
@@ -60,60 +35,10 @@ def _batches(files, columns):
             reader = pq.ParquetFile(str(path))
             present = [c for c in columns if c in reader.schema_arrow.names]
             for batch in reader.iter_batches(batch_size=BATCH_ROWS, columns=present):
-                yield batch.to_pandas()
+                for values, part in batch.to_pandas().groupby(keys, dropna=False, sort=False, observed=True):
+                    yield repr(tuple(values) if isinstance(values, tuple) else (values,)), part
         except (OSError, ValueError) as exc:  # a file whose footer reads and whose rows do not
             raise SweepError(f"{path}: not a readable sweep chunk ({exc})") from None
-
-
-def _arrays(frame: pd.DataFrame, names) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    return tuple(frame[[f"{s}_{suffix}" for s in names]].to_numpy() for suffix in ("initial", "lammps", "theory"))
-
-
-def _slip_sums(initial, final, gains) -> tuple[np.ndarray, np.ndarray]:
-    slip = initial[:, 1] + initial[:, 2]
-    x = np.concatenate([gains[0] * slip, gains[1] * slip])
-    y = np.concatenate([final[:, 1] - initial[:, 1], final[:, 2] - initial[:, 2]])
-    return x, y
-
-
-def _first_pass(g: _Group, frame: pd.DataFrame, model) -> None:
-    initial, final, theory = _arrays(frame, g.names)
-    g.n += len(frame)
-    g.xtx = initial.T @ initial + (0.0 if g.xtx is None else g.xtx)
-    g.xty = initial.T @ final + (0.0 if g.xty is None else g.xty)
-    x, y = _slip_sums(initial[:, :3], final[:, :3], omega_gains(g.params))
-    g.omega_xx += float(x @ x)
-    g.omega_xy += float(x @ y)
-    g.scale = max(g.scale, float(np.abs(initial).max()))
-    g.off_uncapped = max(g.off_uncapped, off_uncapped(model, initial, theory))
-    for key in PAIR_GEOMETRY:
-        if key in frame:
-            g.geometry[key] = max(g.geometry.get(key, 0.0), float(frame[key].max()))
-    if len(g.speeds) < 2:
-        g.speeds.update(np.unique(initial[:, 0])[:2].tolist())
-    g.errors.append(np.abs(frame[[f"{s}_error" for s in g.names]].to_numpy()).max(axis=1))
-    # a copy: a column's array is a view of the whole batch's block, which would stay alive
-    g.relative.append(frame["error"].to_numpy().copy() if "error" in frame else
-                      g.errors[-1] / np.linalg.norm(initial, axis=1))
-    if "status" in frame:
-        for name, count in frame["status"].value_counts().items():
-            g.status[name] = g.status.get(name, 0) + int(count)
-
-
-def _second_pass(g: _Group, frame: pd.DataFrame, coef: np.ndarray, omega: float) -> None:
-    initial, final, _ = _arrays(frame, g.names)
-    residuals = final - initial @ coef
-    g.residual_ss = (residuals**2).sum(axis=0) + (0.0 if g.residual_ss is None else g.residual_ss)
-    worst = np.abs(residuals).max(axis=0)
-    g.residual_max = worst if g.residual_max is None else np.maximum(g.residual_max, worst)
-    x, y = _slip_sums(initial[:, :3], final[:, :3], omega_gains(g.params))
-    g.omega_ss += float(((y - omega * x) ** 2).sum())
-
-
-def _parts(frame: pd.DataFrame, keys):
-    """(label, rows) of each model group in a batch; the label is the same in every batch."""
-    for values, part in frame.groupby(keys, dropna=False, sort=False, observed=True):
-        yield repr(tuple(values) if isinstance(values, tuple) else (values,)), part
 
 
 def fit_dataset(files, names=None) -> list[dict]:
@@ -128,73 +53,17 @@ def fit_dataset(files, names=None) -> list[dict]:
     keys = [k for k in GROUP_KEYS if k in schema]
     columns = (keys + [f"{s}_{x}" for s in names for x in ("initial", "lammps", "theory", "error")]
                + ["error", "status", *PAIR_GEOMETRY])
-    groups: dict[str, _Group] = {}
-    for frame in _batches(files, columns):
-        for label, part in _parts(frame, keys):
-            if label not in groups:
-                first = (v.item() if isinstance(v, np.generic) else v for v in part[keys].iloc[0])
-                groups[label] = _Group(dict(zip(keys, first, strict=True)), names)
-            group = groups[label]
-            _first_pass(group, part, model_of_group(group.params))
-    fits = {label: _solve(g) for label, g in groups.items()}
-    for frame in _batches(files, columns):  # pass two: the residuals of the groups that have a matrix
-        for label, part in _parts(frame, keys):
-            if fits[label] is not None:
-                g = groups[label]
-                _second_pass(g, part, fits[label][0], fits[label][1])
+    groups: dict[str, GroupFit] = {}
+    for label, part in _batches(files, columns, keys):
+        if label not in groups:
+            first = (v.item() if isinstance(v, np.generic) else v for v in part[keys].iloc[0])
+            groups[label] = GroupFit(dict(zip(keys, first, strict=True)), names)
+        accumulate(groups[label], part)
+    for g in groups.values():
+        solve(g)
+    # pass two: the residuals of the groups that have a matrix
+    for label, part in _batches(files, columns, keys):
+        if groups[label].coef is not None:
+            add_residuals(groups[label], part)
     order = sorted(groups, key=lambda label: tuple(str(groups[label].params[k]) for k in keys))
-    return [_report(groups[label], fits[label]) for label in order]
-
-
-def _solve(g: _Group):
-    if g.params.get("scene") == "pair":
-        matrix_theory, regime_name = pair_regime(g.params, len(g.names) == 6, g.geometry)
-    else:
-        matrix_theory, regime_name = regime(model_of_group(g.params), len(g.names) == 6, g.off_uncapped, g.scale,
-                                            g.speeds)
-    g.params["_regime"], g.params["_matrix_theory"] = regime_name, matrix_theory
-    if matrix_theory is None:
-        return None
-    coef = np.linalg.solve(g.xtx, g.xty)
-    omega = g.omega_xy / g.omega_xx if g.omega_xx else math.nan
-    return coef, omega
-
-
-def _worst_and_median(parts: list) -> tuple[float, float]:
-    """The largest and the median of a group's per-row values, kept batch by batch in ``parts``
-    (emptied: the rows are held once, and partitioned in place, where np.median would copy them;
-    the median is np.median's, the mean of the two middle values for an even count)."""
-    values = np.concatenate(parts)
-    parts.clear()
-    n = len(values)
-    middle = [n // 2 - 1, n // 2] if n % 2 == 0 else [n // 2]
-    values.partition(middle)
-    return float(values.max()), float(np.mean(values[middle]))
-
-
-def _report(g: _Group, fit) -> dict:
-    regime_name, matrix_theory = g.params.pop("_regime"), g.params.pop("_matrix_theory")
-    worst, median = _worst_and_median(g.errors)
-    worst_relative, median_relative = _worst_and_median(g.relative)
-    out = {"parameters": group_parameters(g.params),
-           "n": g.n, "theory": theory_kind(g.params), "regime": regime_name,
-           "has_matrix": fit is not None,
-           "worst_deviation": worst, "median_deviation": median,
-           "worst_relative_deviation": worst_relative, "median_relative_deviation": median_relative}
-    if g.status:
-        out["status"] = g.status
-    if fit is None:
-        return out
-    coef, omega = fit
-    k = len(g.names)
-    dof = max(g.n - k, 1)
-    stderr = np.sqrt(np.outer(g.residual_ss / dof, np.diag(np.linalg.inv(g.xtx))))
-    omega_theory = omega_of_theory(g.params, matrix_theory)
-    out.update({
-        "matrix": coef.T.tolist(), "matrix_stderr": stderr.tolist(), "matrix_theory": matrix_theory.tolist(),
-        "max_element_diff": float(np.abs(coef.T - matrix_theory).max()),
-        "Omega": omega, "Omega_stderr": math.sqrt(g.omega_ss / max(2 * g.n - 1, 1) / g.omega_xx),
-        "Omega_theory": float(omega_theory), "Omega_diff": omega - float(omega_theory),
-        "residual_rms": np.sqrt(g.residual_ss / g.n).tolist(), "residual_max": g.residual_max.tolist(),
-    })
-    return out
+    return [report(groups[label]) for label in order]

@@ -1,7 +1,8 @@
 """The paper's Figs. 2-7, regenerated from LAMMPS runs and the theory.
 
-Each figure is one function ``figN(out, runs=None) -> FigureRecord`` that runs its
-scenes (into ``runs``, default OUT/runs/figN), builds tables, draws from them and writes
+Each figure is ``figN_data(out, runs) -> FigureData``, which runs its scenes (into ``runs``,
+default OUT/runs/figN) and builds tables, and ``draw_figN(data)``, which draws from them only;
+:func:`figure_function` joins them into ``figN(out, runs=None) -> FigureRecord``, which writes
 ``figN.png``, ``figN.pdf`` and ``figN.json`` (the metadata: parameters, steps, versions
 and the largest deviation between LAMMPS and the exact theory) into ``out``.
 
@@ -10,6 +11,7 @@ Importing this package loads neither matplotlib nor LAMMPS; they load when a fig
 
 from __future__ import annotations
 
+import functools
 import importlib
 from collections.abc import Callable
 from pathlib import Path
@@ -43,10 +45,12 @@ def check_names(names) -> list[str]:
 
 
 def figure_function(name: str) -> Callable:
-    """The function that makes figure ``name`` (imports its module on first use)."""
+    """``figN(out, runs=None) -> FigureRecord``, making figure ``name`` (its module imported on first use)."""
+    from .core import make
+
     (name,) = check_names([name])
     module = importlib.import_module(f".{FIGURES[name][0]}", __name__)
-    return getattr(module, name)
+    return functools.partial(make, getattr(module, f"{name}_data"), getattr(module, f"draw_{name}"), name)
 
 
 def make_figures(out: Path, only: list[str] | None = None, log=print, runs: Path | None = None) -> list[dict]:

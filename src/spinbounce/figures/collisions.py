@@ -1,8 +1,7 @@
 """Figs. 4, 5 and 6: whole collisions against the scattering matrix (Sections 4 and 5).
 
 Every set of initial states that shares one contact model is one batched LAMMPS run
-(atoms handed over in memory). The figure functions build tables from the runs and
-the draw functions read only those tables.
+(atoms handed over in memory).
 """
 
 from __future__ import annotations
@@ -16,11 +15,11 @@ import pandas as pd
 from .. import exact
 from ..pipeline import ResultError
 from ..model.contact import ContactModel
-from .core import (FigureData, FigureRecord, base_metadata, collision_run, default_runs, dissipation_columns,
-                   finish_metadata, make, new_figure)
+from .core import (FigureData, base_metadata, collision_run, default_runs, dissipation_columns,
+                   finish_metadata, new_figure)
 
-__all__ = ["FIG5_STATES", "ROLLING_GAMMA_T", "dissipation_curve", "draw_fig4", "draw_fig5", "draw_fig6", "fig4",
-           "fig4_data", "fig5", "fig5_data", "fig6", "fig6_data"]
+__all__ = ["FIG5_STATES", "ROLLING_GAMMA_T", "dissipation_curve", "draw_fig4", "draw_fig5", "draw_fig6",
+           "fig4_data", "fig5_data", "fig6_data"]
 
 #: Tangential damping standing in for the rolling limit (Eq. 23) in LAMMPS: gamma_t/m = 20
 #: is 20 times 1/tau; the exact Omega there is -1.0007 (Eq. 22 says -1 - 7e-10).
@@ -44,10 +43,6 @@ def _model_record(model: ContactModel) -> dict:
     record.update(kt_over_kn=model.kt / model.kn, tau=model.tau, Omega_exact=model.Omega)
     return record
 
-
-# ---------------------------------------------------------------------------
-# Fig. 4
-# ---------------------------------------------------------------------------
 
 #: Fig. 4's sample: this many states, spread evenly (not on a grid, so the slips differ).
 FIG4_N = 200
@@ -111,14 +106,6 @@ def draw_fig4(data: FigureData):
     return fig
 
 
-def fig4(out: Path, runs: Path | None = None) -> FigureRecord:
-    return make(fig4_data, draw_fig4, "fig4", out, runs)
-
-
-# ---------------------------------------------------------------------------
-# Fig. 5
-# ---------------------------------------------------------------------------
-
 def _path(state_in, state_out, r: float, flight: float, n: int = 2) -> tuple[np.ndarray, np.ndarray]:
     """Centre positions (x, z): in along the initial velocity to the contact point (0, r),
     out along the final one. The contact itself (duration tau, a tiny overlap) is a point."""
@@ -149,19 +136,17 @@ def fig5_data(out: Path, runs: Path | None = None) -> FigureData:
     paths, finals = [], []
     for k, (panel, (_, state)) in enumerate(FIG5_STATES.items()):
         state = np.asarray(state)
-        for model_name, matrix in matrices.items():
-            final = matrix @ state
-            x, z = _path(state, final, r, FIG5_FLIGHT)
-            paths.append(pd.DataFrame({"panel": panel, "curve": model_name, "source": "theory", "x": x, "z": z}))
-            finals.append({"panel": panel, "curve": model_name, "source": "theory",
-                           "v_n": final[0], "v_t": final[1], "r_omega": final[2]})
-        for model_name, tuned in (("rough", tuned_rough), ("rolling", tuned_rolling)):
+        # each theory's path, then LAMMPS's (from its own first and last frames, 7 points a flight)
+        curves = [(name, "theory", state, matrix @ state, 2) for name, matrix in matrices.items()]
+        for name, tuned in (("rough", tuned_rough), ("rolling", tuned_rolling)):
             row = tuned.result.table.iloc[k]
-            start = row[["v_n_lammps_initial", "v_t_lammps_initial", "r_omega_lammps_initial"]].to_numpy(dtype=float)
-            final = row[["v_n_lammps", "v_t_lammps", "r_omega_lammps"]].to_numpy(dtype=float)
-            x, z = _path(start, final, r, FIG5_FLIGHT, n=7)
-            paths.append(pd.DataFrame({"panel": panel, "curve": model_name, "source": "lammps", "x": x, "z": z}))
-            finals.append({"panel": panel, "curve": model_name, "source": "lammps",
+            start, final = (row[[f"{s}_{x}" for s in ("v_n", "v_t", "r_omega")]].to_numpy(dtype=float)
+                            for x in ("lammps_initial", "lammps"))
+            curves.append((name, "lammps", start, final, 7))
+        for name, source, start, final, n in curves:
+            x, z = _path(start, final, r, FIG5_FLIGHT, n)
+            paths.append(pd.DataFrame({"panel": panel, "curve": name, "source": source, "x": x, "z": z}))
+            finals.append({"panel": panel, "curve": name, "source": source,
                            "v_n": final[0], "v_t": final[1], "r_omega": final[2]})
     panels = pd.DataFrame([{"panel": p, "label": lab, "v_n_initial": s[0], "v_t_initial": s[1], "r_omega_initial": s[2]}
                            for p, (lab, s) in FIG5_STATES.items()])
@@ -273,23 +258,13 @@ def draw_fig5(data: FigureData):
     return fig
 
 
-def fig5(out: Path, runs: Path | None = None) -> FigureRecord:
-    return make(fig5_data, draw_fig5, "fig5", out, runs)
-
-
-# ---------------------------------------------------------------------------
-# Fig. 6
-# ---------------------------------------------------------------------------
-
 def fig6_states(alpha: float, m: float = 1.0, energy: float = FIG6_ENERGY) -> np.ndarray:
     """Initial states on the shell E(0) = ``energy``: v_n in {-0.4, -0.7, -1, -1.3} and 30
     directions of (v_t, sqrt(alpha) r omega) on the circle the rest of the energy allows."""
-    rows = []
-    for vn in (-0.4, -0.7, -1.0, -1.3):
-        rho = np.sqrt(2.0 * energy / m - vn * vn)
-        for phi in 2.0 * np.pi * (np.arange(30) + 0.5) / 30:
-            rows.append((vn, rho * np.cos(phi), rho * np.sin(phi) / np.sqrt(alpha)))
-    return np.array(rows)
+    vn = np.repeat([-0.4, -0.7, -1.0, -1.3], 30)
+    phi = np.tile(2.0 * np.pi * (np.arange(30) + 0.5) / 30, 4)
+    rho = np.sqrt(2.0 * energy / m - vn * vn)
+    return np.column_stack([vn, rho * np.cos(phi), rho * np.sin(phi) / np.sqrt(alpha)])
 
 
 def dissipation_curve(slip, Omega: float, alpha: float, m: float = 1.0, energy: float = FIG6_ENERGY,
@@ -378,7 +353,3 @@ def draw_fig6(data: FigureData):
     ax.legend(loc="upper center", ncols=2, fontsize=8, title=rf"$E(0) = {FIG6_ENERGY:g}$", title_fontsize=8.5)
     ax.set_ylim(-0.05, 1.25 * points["f"].max())
     return fig
-
-
-def fig6(out: Path, runs: Path | None = None) -> FigureRecord:
-    return make(fig6_data, draw_fig6, "fig6", out, runs)

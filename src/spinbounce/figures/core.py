@@ -39,11 +39,9 @@ __all__ = [
     "FigureRecord",
     "Tuned",
     "base_metadata",
-    "collision_deviations",
     "collision_run",
     "default_runs",
     "finish_metadata",
-    "frozen_deviations",
     "frozen_run",
     "make",
     "new_figure",
@@ -98,10 +96,6 @@ class Tuned:
         return max(self.deviations.values())
 
 
-# ---------------------------------------------------------------------------
-# Drawing and saving
-# ---------------------------------------------------------------------------
-
 def new_figure(nrows: int = 1, ncols: int = 1, figsize=None, **subplots):
     """A Figure on an Agg canvas, without pyplot: no global figure list, no GUI backend.
 
@@ -131,8 +125,7 @@ def save(fig, out: Path, name: str, metadata: dict, started: float | None = None
     write_atomic_with(pdf, lambda tmp: fig.savefig(tmp, format="pdf", metadata={"CreationDate": None, "Creator": f"spinbounce {__version__}"}))
     if started is not None:
         metadata["runtime_seconds"] = time.perf_counter() - started
-    record = dict(metadata)
-    record["files"] = {"png": png.name, "pdf": pdf.name}
+    record = {**metadata, "files": {"png": png.name, "pdf": pdf.name}}
     write_atomic(meta, to_json(record))
     return FigureRecord(name, png, pdf, meta, record)
 
@@ -207,10 +200,8 @@ def finish_metadata(meta: dict, runs: list[dict], out: Path) -> dict:
         )
         records.append(entry)
     worst = max(records, key=lambda e: e["max_deviation_exact"])
-    meta["runs"] = records
-    meta["dt"] = {e["series"]: e["dt"] for e in records}
-    meta["max_deviation_exact"] = worst["max_deviation_exact"]
-    meta["max_deviation_exact_series"] = worst["series"]
+    meta.update(runs=records, dt={e["series"]: e["dt"] for e in records},
+                max_deviation_exact=worst["max_deviation_exact"], max_deviation_exact_series=worst["series"])
     if not 0.0 < meta["max_deviation_exact"] < ACCEPTANCE:
         raise ResultError(
             f"{meta['figure']}: largest deviation between LAMMPS and the exact theory is "
@@ -227,40 +218,15 @@ def _relative(path: Path, base: Path) -> str:
         return str(path)
 
 
-# ---------------------------------------------------------------------------
-# Deviations from the exact theory
-# ---------------------------------------------------------------------------
-
-def frozen_deviations(table: pd.DataFrame, r: float) -> dict[str, float]:
-    """Largest |LAMMPS - exact| of a frozen table in v_t, r*omega and omega.
-
-    omega is drawn in Figs. 2 and 7, and with r < 1 its deviation is the largest of the three.
-    """
-    dv = np.abs(table["v_t"] - table["v_t_theory"]).max()
-    dw = np.abs(table["r_omega"] - table["r_omega_theory"]).max()
-    dom = np.abs(table["omega"] - table["r_omega_theory"] / r).max()
-    return {"v_t": float(dv), "r_omega": float(dw), "omega": float(dom)}
-
-
-def collision_deviations(table: pd.DataFrame) -> dict[str, float]:
-    """Largest |LAMMPS - exact Eq. 18| over a batch, per final-state component."""
-    return {name: float(np.abs(table[f"{name}_error"]).max()) for name in ("v_n", "v_t", "r_omega", "omega")}
-
-
 def dissipation_columns(table: pd.DataFrame, model: ContactModel) -> dict[str, np.ndarray]:
     """f = -Delta E/E(0) (Eq. 21) of a collision batch: LAMMPS's and the exact theory's."""
-    initial = table[["v_n_initial", "v_t_initial", "r_omega_initial"]].to_numpy()
-    final = table[["v_n_lammps", "v_t_lammps", "r_omega_lammps"]].to_numpy()
-    exact = table[["v_n_theory", "v_t_theory", "r_omega_theory"]].to_numpy()
+    initial, final, exact = (table[[f"{s}_{x}" for s in ("v_n", "v_t", "r_omega")]].to_numpy()
+                             for x in ("initial", "lammps", "theory"))
     return {
         "f": linear.dissipation(initial, final, model.m, model.alpha),
         "f_theory": linear.dissipation(initial, exact, model.m, model.alpha),
     }
 
-
-# ---------------------------------------------------------------------------
-# The step: a pilot at the scene's default, refined from the measured error
-# ---------------------------------------------------------------------------
 
 def tune_dt(run: Callable[[float], tuple[object, dict[str, float], Path]], dt0: float,
             snap: Callable[[float], float], what: str,
@@ -283,9 +249,8 @@ def tune_dt(run: Callable[[float], tuple[object, dict[str, float], Path]], dt0: 
         result, deviations, folder = run(dt)
         worst = max(deviations.values())
         issues = problems(result)
-        history.append({"dt": dt, "max_deviation_exact": worst, "run_dir": str(folder)})
-        if issues:
-            history[-1]["problems"] = issues
+        history.append({"dt": dt, "max_deviation_exact": worst, "run_dir": str(folder),
+                        **({"problems": issues} if issues else {})})
         if (worst < TARGET and not issues) or attempt == MAX_REFINEMENTS:
             break
         # on target but with problems: no error to extrapolate from, so halve
@@ -302,10 +267,8 @@ def tune_dt(run: Callable[[float], tuple[object, dict[str, float], Path]], dt0: 
                   f"the target {TARGET:g} (a quarter of the acceptance limit {ACCEPTANCE:g})")
     else:
         first = history[0]
-        orders = [
-            math.log(a["max_deviation_exact"] / b["max_deviation_exact"]) / math.log(a["dt"] / b["dt"])
-            for a, b in itertools.pairwise(history)
-        ]
+        orders = [math.log(a["max_deviation_exact"] / b["max_deviation_exact"]) / math.log(a["dt"] / b["dt"])
+                  for a, b in itertools.pairwise(history)]
         why = f"gave {first['max_deviation_exact']:.3g}"
         if first["max_deviation_exact"] >= TARGET:
             why += f", above the target {TARGET:g}"
@@ -322,39 +285,36 @@ def tune_dt(run: Callable[[float], tuple[object, dict[str, float], Path]], dt0: 
     return Tuned(result, deviations, dt, Path(folder), choice)
 
 
-def _dt_folder(series_dir: Path, dt: float) -> Path:
-    return Path(series_dir) / f"dt_{dt:.6e}"
-
-
 def frozen_run(model: ContactModel, v_t: float, omega: float, t_end: float, series_dir: Path,
                what: str) -> Tuned:
-    """A frozen contact at z = FROZEN_Z, at a step chosen by :func:`tune_dt`.
+    """A frozen contact at z = FROZEN_Z, at a step chosen by :func:`tune_dt`, with its largest
+    |LAMMPS - exact| in v_t, r*omega and omega (drawn in Figs. 2 and 7; with r < 1 the largest).
 
     Each run folder gets ``result.json`` (provenance and the deviation) beside the deck.
     """
 
     def run(dt):
         scene = Frozen(model, z=FROZEN_Z, v_t=v_t, omega=omega, t_end=t_end, dt=dt)
-        folder = _dt_folder(series_dir, scene.dt)
+        folder = Path(series_dir) / f"dt_{scene.dt:.6e}"
         result: SeriesResult = run_series(scene, folder)
-        deviations = frozen_deviations(result.table, model.r)
+        t = result.table
+        deviations = {"v_t": float(np.abs(t["v_t"] - t["v_t_theory"]).max()),
+                      "r_omega": float(np.abs(t["r_omega"] - t["r_omega_theory"]).max()),
+                      "omega": float(np.abs(t["omega"] - t["r_omega_theory"] / model.r).max())}
         record = series_record(result)
         record["deviations_exact"] = deviations
         write_atomic(folder / "result.json", to_json(record))
         return result, deviations, folder
 
     dt0 = Frozen(model, z=FROZEN_Z, v_t=v_t, omega=omega, t_end=t_end).dt
-
-    def snap(dt: float) -> float:
-        return t_end / math.ceil(t_end / dt - 1e-9)
-
-    return tune_dt(run, dt0, snap, what)
+    return tune_dt(run, dt0, lambda dt: t_end / math.ceil(t_end / dt - 1e-9), what)  # whole steps in t_end
 
 
 def collision_run(model: ContactModel, states: np.ndarray, series_dir: Path, what: str,
                   energy: bool = False) -> Tuned:
-    """A batch of collisions (rows v_n, v_t, r*omega) in one LAMMPS run, at a step chosen
-    by :func:`tune_dt`. With ``energy`` the dissipation f joins the compared quantities.
+    """A batch of collisions (rows v_n, v_t, r*omega) in one LAMMPS run, at a step chosen by
+    :func:`tune_dt`, with its largest |LAMMPS - exact Eq. 18| per final-state component. With
+    ``energy`` the dissipation f joins the compared quantities.
 
     A run whose kinetic energy grew (the pipeline's warning) is refined like an inaccurate
     one, and refused if it still does at the last step tried: none of the models can gain energy.
@@ -366,17 +326,16 @@ def collision_run(model: ContactModel, states: np.ndarray, series_dir: Path, wha
 
     def run(dt):
         scene = scene_at(dt)
-        folder = _dt_folder(series_dir, scene.dt)
+        folder = Path(series_dir) / f"dt_{scene.dt:.6e}"
         result: RunResult = run_scene(scene, folder, atoms="library")
-        deviations = collision_deviations(result.table)
+        deviations = {s: float(np.abs(result.table[f"{s}_error"]).max())
+                      for s in ("v_n", "v_t", "r_omega", "omega")}
         if energy:
             f = dissipation_columns(result.table, model)
             deviations["f"] = float(np.max(np.abs(f["f"] - f["f_theory"])))
         return result, deviations, folder
 
-    def snap(dt: float) -> float:
-        # tau/(N + 1/2): the contact ends mid-step, where the cut-off error cancels (model.timestep)
-        return align_mid_step(model.tau, dt)
-
+    # snapped to tau/(N + 1/2): the contact ends mid-step, where the cut-off error cancels (model.timestep);
     # the pipeline warns when kinetic energy grew, which none of these models can do
-    return tune_dt(run, scene_at(None).dt, snap, what, problems=lambda result: list(result.warnings))
+    return tune_dt(run, scene_at(None).dt, lambda dt: align_mid_step(model.tau, dt), what,
+                   problems=lambda result: list(result.warnings))

@@ -1,8 +1,6 @@
 """Figs. 2, 3 and 7: the frozen contact (Section 3, and its damped form in Section 5).
 
 The sphere is held at z = 0.1 (overlap 0.4) with v_n = 0; only the slip evolves.
-Each figure function runs its scenes, builds tables and hands them to a draw function
-that reads nothing else.
 """
 
 from __future__ import annotations
@@ -17,12 +15,10 @@ from ..model.contact import ContactModel
 from .core import (
     FROZEN_Z,
     FigureData,
-    FigureRecord,
     base_metadata,
     default_runs,
     finish_metadata,
     frozen_run,
-    make,
     new_figure,
 )
 
@@ -32,11 +28,8 @@ __all__ = [
     "draw_fig2",
     "draw_fig3",
     "draw_fig7",
-    "fig2",
     "fig2_data",
-    "fig3",
     "fig3_data",
-    "fig7",
     "fig7_data",
 ]
 
@@ -62,10 +55,6 @@ def _frozen_table(tuned, model: ContactModel) -> pd.DataFrame:
 def _parameters(model: ContactModel, **scene) -> dict:
     return {"model": model.as_record(), "z": FROZEN_Z, **scene}
 
-
-# ---------------------------------------------------------------------------
-# Fig. 2
-# ---------------------------------------------------------------------------
 
 def fig2_data(out: Path, runs: Path | None = None) -> FigureData:
     """v_t(t) and omega(t) at z = 0.1 from v_t(0) = 1, omega(0) = 0, against Eq. 10."""
@@ -101,14 +90,6 @@ def draw_fig2(data: FigureData):
     return fig
 
 
-def fig2(out: Path, runs: Path | None = None) -> FigureRecord:
-    return make(fig2_data, draw_fig2, "fig2", out, runs)
-
-
-# ---------------------------------------------------------------------------
-# Fig. 3
-# ---------------------------------------------------------------------------
-
 def fig3_data(out: Path, runs: Path | None = None) -> FigureData:
     """Frozen trajectories in the (r omega, v_t) plane for r omega(0) = -0.5 (Eqs. 11-13)."""
     runs = default_runs(out, runs, "fig3")
@@ -122,13 +103,11 @@ def fig3_data(out: Path, runs: Path | None = None) -> FigureData:
         paths.append(t)
         vt_m, rw_m = exact.frozen_extremes(vt0, FIG3_R_OMEGA0, model.alpha)
         vbar, rwbar = exact.frozen_means(vt0, FIG3_R_OMEGA0, model.alpha)
-        slip = vt0 + FIG3_R_OMEGA0
-        if slip != 0.0:
+        if vt0 + FIG3_R_OMEGA0 != 0.0:  # else the rolling state: a point
             # the slope d v_t / d(r omega) that LAMMPS's points lie on (Eq. 13 says alpha)
             slope = float(np.polyfit(t["r_omega"], t["v_t"], 1)[0])
             # LAMMPS's far end: the point farthest from the start, against Eq. 12
-            d = np.hypot(t["v_t"] - vt0, t["r_omega"] - FIG3_R_OMEGA0)
-            far = int(np.argmax(d))
+            far = int(np.argmax(np.hypot(t["v_t"] - vt0, t["r_omega"] - FIG3_R_OMEGA0)))
             end_dev = float(max(abs(t["v_t"].iloc[far] - vt_m), abs(t["r_omega"].iloc[far] - rw_m)))
         else:
             slope, end_dev = float("nan"), 0.0
@@ -187,14 +166,6 @@ def draw_fig3(data: FigureData):
     fig.legend(handles=keys, loc="outside right lower", fontsize=8)
     return fig
 
-
-def fig3(out: Path, runs: Path | None = None) -> FigureRecord:
-    return make(fig3_data, draw_fig3, "fig3", out, runs)
-
-
-# ---------------------------------------------------------------------------
-# Fig. 7
-# ---------------------------------------------------------------------------
 
 def fig7_data(out: Path, runs: Path | None = None) -> FigureData:
     """Damped frozen contact, v_t(0) = 1, omega(0) = 1, three gamma_t: LAMMPS against the
@@ -257,7 +228,3 @@ def draw_fig7(data: FigureData):
                     r"dash-dot: rolling means (Eq. 11); $z = 0.1$, $v_t(0) = \omega(0) = 1$",
                     transform=axes[1, 0].transAxes, ha="right", va="bottom", fontsize=8)
     return fig
-
-
-def fig7(out: Path, runs: Path | None = None) -> FigureRecord:
-    return make(fig7_data, draw_fig7, "fig7", out, runs)

@@ -12,25 +12,22 @@ contact's end falls somewhere in a step, so tau_L is off by at most dt/2 (tests/
 and kt*_L by a relative dt/tau at most: that is the bound the table shows beside each deviation.
 Two checks of what kt* means: a run at kt*_L loses no energy; one kt for every speed,
 chosen to conserve energy at v_ref, loses energy everywhere else.
-
-Flow: scenes -> pipeline runs -> tables -> drawing (the drawing reads only the tables).
 """
 
 from __future__ import annotations
 
-import time
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
-from ..exact import hertz
-from ..exact import linear
+from ..exact import hertz, linear
 from ..pipeline import ResultError, run_scene
 from ..records import write_atomic
 from ..scenes.collision import Collision
 from .hertz_parameters import OMEGA, V_T, HertzParameters
-from .core import STYLE, FigureData, FigureRecord, _relative, base_metadata, default_runs, new_figure, save
+from .core import (FigureData, FigureRecord, _relative, base_metadata, default_runs, dissipation_columns,
+                   make, new_figure)
 
 __all__ = ["HertzParameters", "hertz_data", "draw_hertz", "hertz_markdown", "make_hertz", "ACCEPTANCE"]
 
@@ -59,10 +56,6 @@ def _scenes(p: HertzParameters, dt: float | None = None) -> tuple[list[Collision
     return scenes[::2], fixed, dt
 
 
-def _slip(row) -> tuple[float, float]:
-    return row["v_t_initial"] + row["r_omega_initial"], row["v_t_lammps"] + row["r_omega_lammps"]
-
-
 def hertz_data(p: HertzParameters, runs: Path, log=print) -> FigureData:
     """Run the measurement into ``runs`` and return its tables and metadata (no drawing)."""
     p.check()
@@ -75,8 +68,7 @@ def hertz_data(p: HertzParameters, runs: Path, log=print) -> FigureData:
         tau = float(hertz.contact_time(v, p.m, p.kn, p.r))
         folder = runs / f"v{k:02d}" / "probe"
         row = run_scene(probe, folder).table.iloc[0]
-        s0, s1 = _slip(row)
-        ratio = s1 / s0
+        ratio = (row["v_t_lammps"] + row["r_omega_lammps"]) / (row["v_t_initial"] + row["r_omega_initial"])
         tau_lammps = float(hertz.contact_time_from_slip_ratio(ratio, probe.model.kt, p.m, p.alpha))
         kt_lammps = float(hertz.kt_from_contact_time(tau_lammps, p.m, p.alpha))
         check = Collision(p.model(kt_lammps), v_n=-v, v_t=V_T, omega=OMEGA, dt=dt)
@@ -97,14 +89,9 @@ def hertz_data(p: HertzParameters, runs: Path, log=print) -> FigureData:
             f"({kt_lammps / kt_star - 1.0:+.2e}); energy lost at kt*_L {rows[-1]['f_at_kt_star_lammps']:+.1e}")
     folder = runs / "fixed_kt"
     batch = run_scene(fixed, folder, atoms="library").table
-    initial = batch[["v_n_initial", "v_t_initial", "r_omega_initial"]].to_numpy()
-    final = batch[["v_n_lammps", "v_t_lammps", "r_omega_lammps"]].to_numpy()
-    exact = batch[["v_n_theory", "v_t_theory", "r_omega_theory"]].to_numpy()
-    fixed_table = pd.DataFrame({
-        "v_n": -batch["v_n_initial"].to_numpy(),
-        "f_lammps": linear.dissipation(initial, final, p.m, p.alpha),
-        "f_theory": linear.dissipation(initial, exact, p.m, p.alpha),
-    })
+    f = dissipation_columns(batch, fixed.model)
+    fixed_table = pd.DataFrame({"v_n": -batch["v_n_initial"].to_numpy(), "f_lammps": f["f"],
+                                "f_theory": f["f_theory"]})
     records.append({"series": "one kt for all speeds", "v_n": fixed_table["v_n"].tolist(), "kt": fixed.model.kt,
                     "dt": fixed.dt, "nsteps": fixed.nsteps, "run_dir": str(folder)})
     table = pd.DataFrame(rows)
@@ -227,16 +214,14 @@ def hertz_markdown(meta: dict) -> str:
 def make_hertz(out: Path, p: HertzParameters = HertzParameters(), runs: Path | None = None,
                log=print) -> FigureRecord:
     """Measure, draw and write hertz.png, hertz.pdf, hertz.json and HERTZ.md into ``out``."""
-    import matplotlib.style
+    def compute(out, runs) -> FigureData:
+        p.check()
+        _scenes(p)  # refuse bad parameters before the run folder is made
+        data = hertz_data(p, default_runs(out, runs, "hertz"), log=log)
+        for r in data.metadata["runs"]:
+            r["run_dir"] = _relative(r["run_dir"], out)
+        return data
 
-    started = time.perf_counter()
-    p.check()
-    _scenes(p)  # refuse bad parameters before the run folder is made
-    folder = default_runs(out, runs, "hertz")
-    data = hertz_data(p, folder, log=log)
-    for r in data.metadata["runs"]:
-        r["run_dir"] = _relative(r["run_dir"], out)
-    with matplotlib.style.context(STYLE):
-        record = save(draw_hertz(data), out, "hertz", data.metadata, started)
+    record = make(compute, draw_hertz, "hertz", out, runs)
     write_atomic(Path(out) / "HERTZ.md", hertz_markdown(record.metadata))
     return record

@@ -13,9 +13,7 @@ model's step, as :attr:`Collision.nsteps` counts them), and it peaks at
 
     mb = BASE_MB + SCIPY_MB [finite mu] + n * KB_PER_SPHERE / 1024.
 
-A finite Coulomb limit (``mu``) takes its theory columns from the exact batched stick-slip
-solver, about 1e-5 s a collision; a scene whose step is probed first runs its two probes
-(PROBE_SECONDS), and its steps per collision are estimated a priori
+A scene whose step is probed has its steps per collision estimated a priori
 (:func:`spinbounce.stepping.expected_steps`).
 
 A job asks for the estimate times a margin (TIME_MARGIN, MEM_MARGIN), which must stay
@@ -92,20 +90,6 @@ class JobRequest:
     cpus_per_task: int = CPUS_PER_CHUNK
 
 
-def _steps_per_collision(spec, group: int) -> int:
-    """LAMMPS steps each collision of ``group`` runs for: its slowest sphere's (Hertz) or the
-    one contact's, at the step its probe will choose (:func:`stepping.expected_steps`)."""
-    fast, slow = spec.normal_speeds()
-    model, dt = spec.model(group)
-    scene = Collision(model, v_n=[-fast, -slow], v_t=0.0, omega=0.0, dt=dt)
-    if spec.tolerance is None:
-        return expected_steps(scene)
-    from ..extrapolation import START_STEPS, collision_rung_dt
-
-    rungs = (START_STEPS * 2**k for k in range(LADDER_RUNGS))
-    return sum(Collision(model, v_n=[-fast], dt=collision_rung_dt(model, n)).nsteps for n in rungs)
-
-
 def _pair_cost(spec, group: int, collisions: int) -> ChunkCost:
     """A pair chunk: two spheres a collision for at most the fine rule's steps (what a batch
     whose probe fails runs), and the pair references, which outweigh LAMMPS here."""
@@ -125,11 +109,22 @@ def chunk_cost(spec, group: int, collisions: int) -> ChunkCost:
     """The estimate for a chunk of ``collisions`` spheres of model group ``group`` of ``spec``."""
     if spec.scene == "pair":
         return _pair_cost(spec, group, collisions)
-    steps = _steps_per_collision(spec, group)
+    # LAMMPS steps a collision runs for: its slowest sphere's (Hertz) or the one contact's, at the
+    # step its probe will choose (stepping.expected_steps); with a tolerance, over the ladder's rungs
+    fast, slow = spec.normal_speeds()
+    model, dt = spec.model(group)
+    scene = Collision(model, v_n=[-fast, -slow], v_t=0.0, omega=0.0, dt=dt)
+    if spec.tolerance is None:
+        steps, probe = expected_steps(scene), (PROBE_SECONDS if scene.needs_probe() else 0.0)
+    else:
+        from ..extrapolation import START_STEPS, collision_rung_dt
+
+        rungs = (START_STEPS * 2**k for k in range(LADDER_RUNGS))
+        steps = sum(Collision(model, v_n=[-fast], dt=collision_rung_dt(model, n)).nsteps for n in rungs)
+        probe = 0.0
     finite_mu = spec.groups[group].get("mu") is not None
     per_collision = steps * SPHERE_STEP_SECONDS + (CAPPED_THEORY_SECONDS if finite_mu else 0.0)
     mem_mb = BASE_MB + (SCIPY_MB if finite_mu else 0) + collisions * KB_PER_SPHERE / 1024
-    probe = PROBE_SECONDS if _probed(spec, group) else 0.0
     return ChunkCost(collisions, steps, START_SECONDS + probe + collisions * per_collision, mem_mb)
 
 
@@ -139,12 +134,6 @@ def collisions_within(spec, group: int, seconds: float) -> int:
     one = chunk_cost(spec, group, 1).seconds
     per_collision = chunk_cost(spec, group, 2).seconds - one  # the estimate is linear in the chunk
     return max(1, math.floor((seconds - one) / per_collision) + 1)
-
-
-def _probed(spec, group: int) -> bool:
-    model, dt = spec.model(group)
-    fast, slow = spec.normal_speeds()
-    return spec.tolerance is None and Collision(model, v_n=[-fast, -slow], dt=dt).needs_probe()
 
 
 def job_request(cost: ChunkCost) -> JobRequest:

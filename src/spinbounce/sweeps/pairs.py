@@ -36,8 +36,6 @@ from ..scenes.pair.table import QUANTITIES, pair_states
 __all__ = ["pair_chunk"]
 
 
-
-
 def _a_columns(names, when: str, v: np.ndarray, w: np.ndarray, r: float, height: np.ndarray) -> dict:
     """a's state columns ``{s}_{when}`` (and its spins as angular velocities) from (n, 3) v and w."""
     state = wall_frame(v, w, r)
@@ -48,12 +46,6 @@ def _a_columns(names, when: str, v: np.ndarray, w: np.ndarray, r: float, height:
             out[f"{SPINS[name]}_{when}"] = state[:, k] / r
     out[f"z_{when}"] = height
     return out
-
-
-def _frame(batch: PairBatch, frames, ids: np.ndarray, step: int) -> dict:
-    """a's v and w, and a's height above b, at ``step`` of the dump."""
-    state = pair_states(batch, ids, frames, step)
-    return {"v": state["a_v"], "w": state["a_w"], "height": state["a_x"][:, 2] - state["b_x"][:, 2]}
 
 
 def pair_chunk(model: ContactModel, b: Sphere, states: np.ndarray, dt: float | None, run_dir: Path,
@@ -76,9 +68,10 @@ def pair_chunk(model: ContactModel, b: Sphere, states: np.ndarray, dt: float | N
     columns = {f"{name}_initial": requested[:, k] for k, name in enumerate(names)}
     columns.update({f"{SPINS[name]}_initial": columns[f"{name}_initial"] / a.r for name in names if name in SPINS})
     frames = read_dump(result.dump)
-    for when, step in (("lammps_initial", 0), ("lammps", batch.nsteps)):
-        state = _frame(batch, frames, result.deck.ids, step)
-        columns.update(_a_columns(names, when, state["v"], state["w"], a.r, state["height"]))
+    for when, step in (("lammps_initial", 0), ("lammps", batch.nsteps)):  # a's state and height above b
+        state = pair_states(batch, result.deck.ids, frames, step)
+        height = state["a_x"][:, 2] - state["b_x"][:, 2]
+        columns.update(_a_columns(names, when, state["a_v"], state["a_w"], a.r, height))
     for suffix, when in (("_exact", "theory"), ("_planar", "planar")):
         v, w = (table[[f"a_{q}{x}{suffix}" for x in "xyz"]].to_numpy() for q in "vw")
         reference = _a_columns(names, when, v, w, a.r, columns["z_lammps"])

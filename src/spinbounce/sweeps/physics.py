@@ -1,16 +1,21 @@
-"""A sweep's physics, checked before anything runs: every model group's model, and its most
-demanding collision (the fastest and slowest |v_n| the states reach) or, for a pair sweep, its
-fastest head-on impact, built as the runs will build them."""
+"""How a sweep refuses to start (one error, naming the key, its value and why), and its physics,
+checked before anything runs: every model group's model, and its most demanding collision (the
+fastest and slowest |v_n| the states reach) or, for a pair sweep, its fastest head-on impact,
+built as the runs will build them."""
 
 from __future__ import annotations
 
 import warnings
 
+from ..errors import SweepError
 from ..model.parameters import SceneError
 from ..scenes.collision import Collision
-from .errors import SweepError, fail as _fail
 
-__all__ = ["check_physics"]
+__all__ = ["SweepError", "check_physics", "fail"]
+
+
+def fail(key: str, value, why: str):
+    raise SweepError(f"{key} = {value!r}: {why}")
 
 
 def check_physics(spec) -> None:
@@ -23,8 +28,7 @@ def check_physics(spec) -> None:
     key_vn = "states.v_n" if "v_n" in spec.states["axes"] else "states.speed"
     for g in range(len(spec.groups)):
         try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")
+            with warnings.catch_warnings(action="ignore"):
                 model, dt = spec.model(g)
         except SceneError as exc:
             ratio = exc.parameter == "kt" and "kt_over_kn" in spec.raw.get("model", {})
@@ -42,19 +46,18 @@ def _check_pairs(spec) -> None:
     from ..scenes.pair.scene import PairBatch
 
     if spec.tolerance is not None:
-        _fail("tolerance", spec.tolerance, "is for the wall only: a pair sweep takes model.dt or the default step")
+        fail("tolerance", spec.tolerance, "is for the wall only: a pair sweep takes model.dt or the default step")
     fast, _ = spec.normal_speeds()
     for g in range(len(spec.groups)):
         try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")
+            with warnings.catch_warnings(action="ignore"):
                 model, dt = spec.model(g)
                 b = spec.sphere_b(g)
                 contact = pair_contact(model)
         except SceneError as exc:
             raise SweepError(f"model.{exc.parameter}: {exc}") from None
         if contact.mu is not None and spec.is_3d:
-            _fail("mu", contact.mu, "needs a 2-D pair sweep (no v_s, omega_s, omega_n): the capped pair reference "
+            fail("mu", contact.mu, "needs a 2-D pair sweep (no v_s, omega_s, omega_n): the capped pair reference "
                                     "solves motion in one plane")
         try:  # head-on at the fastest |v_n|: the deepest overlap (the step's checks are per pair)
             PairBatch(pairs_from_states(model, b, [[-fast, 0.0, 0.0]]), contact, dt)

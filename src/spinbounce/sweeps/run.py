@@ -10,6 +10,7 @@ recomputes exactly the chunks that have no file.
 from __future__ import annotations
 
 import concurrent.futures
+import contextlib
 import fcntl
 import json
 import multiprocessing
@@ -43,7 +44,7 @@ def run_chunk(raw: dict, out: str, group: int, chunk: int, start: int, stop: int
     spheres reach LAMMPS in memory (the library route): no data file to write, no dump to
     parse; a pair scene's chunk is one pair batch (:func:`spinbounce.sweeps.pairs.pair_chunk`).
     """
-    from ..records import write_parquet_atomic
+    from ..records import lammps_version, write_parquet_atomic
 
     started = time.perf_counter()
     spec = spec_from_dict(raw)
@@ -55,38 +56,40 @@ def run_chunk(raw: dict, out: str, group: int, chunk: int, start: int, stop: int
         shutil.rmtree(run_dir)  # a killed earlier attempt
     n = stop - start
     columns = {"group": np.full(n, group), "chunk": np.full(n, chunk), "index": np.arange(start, stop)}
+    # a default step is probed with the group's first rows: every chunk of a group gets the same step
+    probe = spec.initial_states(group, 0, min(spec.n, PROBE_SPHERES))
     if spec.scene == "pair":  # sphere b instead of the wall: the wall's columns and both spheres'
         from .pairs import pair_chunk
 
-        probe = spec.initial_states(group, 0, min(spec.n, PROBE_SPHERES))  # one step per group, as the wall's
         pair_columns, dt, nsteps, loop = pair_chunk(model, spec.sphere_b(group), states, dt, run_dir, probe)
         columns.update(pair_columns)
     else:
-        scene = Collision(model, v_n=states[:, 0], v_t=states[:, 1], omega=states[:, 2], dt=dt,
-                          **dict(zip(("v_s", "omega_s", "omega_n"), states[:, 3:].T, strict=False)))
-        dt, nsteps, loop = _wall_columns(columns, spec, group, scene, run_dir)
+        dt, nsteps, loop = _wall_columns(columns, spec, model, dt, states, probe, run_dir)
     labels = _model_columns(columns, model, n)
     columns["dt"] = np.full(n, dt)  # with a tolerance: the finest run's
     columns["nsteps"] = np.full(n, nsteps)  # with a tolerance: all runs' steps together
     if spec.scene == "pair":
         labels.update(_pair_columns(columns, spec, group, model, n))
     else:
-        columns["Omega_theory"] = choose.omega_per_sphere(model, scene.v_n)  # NaN where none exists (Coulomb)
+        columns["Omega_theory"] = choose.omega_per_sphere(model, states[:, 0])  # NaN where none (Coulomb)
         labels["theory"] = choose.which(model).kind
-    from ..records import lammps_version
-
     labels.update({"scene_hash": spec.digest, "lammps_version": lammps_version(), "spinbounce_version": __version__})
     write_parquet_atomic(chunk_path(out, group, chunk), _arrow_table(columns, labels))
     return stop - start, time.perf_counter() - started, loop
 
 
-def _wall_columns(columns: dict, spec: SweepSpec, group: int, scene: Collision, run_dir: Path):
-    """Run a wall chunk, its rows into ``columns``; (dt, steps, LAMMPS loop seconds)."""
+def _wall_columns(columns: dict, spec: SweepSpec, model, dt, states: np.ndarray, probe: np.ndarray,
+                  run_dir: Path):
+    """Run a wall chunk of ``states``, its rows into ``columns``; (dt, steps, LAMMPS loop seconds)."""
     from ..pipeline import run_scene
 
-    n = scene.n
+    def batch(rows):  # rows (v_n, v_t, omega[, v_s, omega_s, omega_n])
+        return Collision(model, v_n=rows[:, 0], v_t=rows[:, 1], omega=rows[:, 2], dt=dt,
+                         **dict(zip(("v_s", "omega_s", "omega_n"), rows[:, 3:].T, strict=False)))
+
+    scene, n = batch(states), len(states)
     if spec.tolerance is None:
-        result = run_scene(scene, run_dir, atoms="library", record=False, probe_states=_probe_states(spec, group))
+        result = run_scene(scene, run_dir, atoms="library", record=False, probe_states=batch(probe))
         columns.update({name: values.to_numpy() for name, values in result.table.drop(columns=["id"]).items()})
         return result.scene.dt, result.scene.nsteps, result.info.loop_seconds
     # a ladder of runs per chunk, extrapolated; each row carries its error estimate
@@ -100,14 +103,6 @@ def _wall_columns(columns: dict, spec: SweepSpec, group: int, scene: Collision, 
     if "status" not in columns:  # its extrapolated rows, checked the same way
         checks.add_row_checks(columns, scene.row_states(columns))
     return finest.dt, extrapolated.steps, sum(level["loop_seconds"] for level in extrapolated.levels)
-
-
-def _probe_states(spec: SweepSpec, group: int) -> Collision:
-    """The group's first rows: every chunk of a group probes the same states, so gets the same step."""
-    model, dt = spec.model(group)
-    states = spec.initial_states(group, 0, min(spec.n, PROBE_SPHERES))
-    extra = dict(zip(("v_s", "omega_s", "omega_n"), states[:, 3:].T, strict=False))
-    return Collision(model, v_n=states[:, 0], v_t=states[:, 1], omega=states[:, 2], dt=dt, **extra)
 
 
 def _model_columns(columns: dict, model, n: int) -> dict[str, str]:
@@ -127,10 +122,10 @@ def _pair_columns(columns: dict, spec: SweepSpec, group: int, model, n: int) -> 
     """A pair group's scene columns (sphere b's, and the pair's Omega); its labels."""
     from ..scenes.pair.kind import planar_Omega
 
-    b = spec.sphere_b(group)
     for name in parameters.PAIR_SPHERE:
         columns[parameters.by_name(name).column] = np.full(n, spec.groups[group][name])
-    columns["Omega_theory"] = np.full(n, planar_Omega(model, b))  # the planar theory's (the wall's at equal alpha)
+    # the planar theory's Omega (the wall's at equal alpha)
+    columns["Omega_theory"] = np.full(n, planar_Omega(model, spec.sphere_b(group)))
     return {"scene": "pair", "theory": "pair_exact"}
 
 
@@ -145,37 +140,22 @@ def _arrow_table(columns: dict[str, np.ndarray], labels: dict[str, str]):
     return pa.table(arrays)
 
 
-class _Lock:
+@contextlib.contextmanager
+def _lock(path: Path, shared: bool = False, what: str = "another sweep is writing into this folder"):
     """A lock on a file in the output folder, released by the OS even on kill -9.
 
     A whole sweep holds the folder's lock exclusively; single-chunk jobs (``--chunk``, as
     a workflow engine runs them) share it and each holds its own chunk's lock exclusively.
     """
-
-    def __init__(self, path: Path, shared: bool = False, what: str = "another sweep is writing into this folder"):
-        self.path, self.shared, self.what = path, shared, what
-
-    def __enter__(self):
-        self.handle = open(self.path, "a")
+    with open(path, "a") as handle:
         try:
-            fcntl.flock(self.handle, (fcntl.LOCK_SH if self.shared else fcntl.LOCK_EX) | fcntl.LOCK_NB)
+            fcntl.flock(handle, (fcntl.LOCK_SH if shared else fcntl.LOCK_EX) | fcntl.LOCK_NB)
         except BlockingIOError:
-            self.handle.close()
-            raise SweepError(f"{self.path.parent}: {self.what}") from None
-        return self
-
-    def __exit__(self, *exc):
-        fcntl.flock(self.handle, fcntl.LOCK_UN)
-        self.handle.close()
-
-
-def _progress(total: int, done: int):
-    try:
-        from tqdm import tqdm
-    except ImportError:  # pragma: no cover - tqdm is a dependency
-        return None
-    return tqdm(total=total, initial=done, unit="coll", unit_scale=True, dynamic_ncols=True,
-                disable=not sys.stderr.isatty(), desc="collisions")
+            raise SweepError(f"{path.parent}: {what}") from None
+        try:
+            yield
+        finally:
+            fcntl.flock(handle, fcntl.LOCK_UN)
 
 
 def _claim(out: Path, spec: SweepSpec) -> None:
@@ -230,7 +210,9 @@ def run_sweep(spec: SweepSpec, out: Path, workers: int | None = None, log=print)
 
 
 def _run_chunks(spec: SweepSpec, out: Path, workers: int | None, log) -> Path:
-    with _Lock(out / ".lock"):
+    from tqdm import tqdm
+
+    with _lock(out / ".lock"):
         _claim(out, spec)
         todo = [c for c in spec.chunks() if not chunk_path(out, c[0], c[1]).exists()]
         total = spec.n * len(spec.groups)
@@ -238,12 +220,12 @@ def _run_chunks(spec: SweepSpec, out: Path, workers: int | None, log) -> Path:
         if done:
             log(f"resuming: {done} of {total} collisions already done")
         workers = max(1, min(workers or os.cpu_count() or 1, len(todo) or 1))
-        bar = _progress(total, done)
+        bar = tqdm(total=total, initial=done, unit="coll", unit_scale=True, dynamic_ncols=True,
+                   disable=not sys.stderr.isatty(), desc="collisions")
         if workers == 1:  # no pool: one process start fewer, and plain tracebacks
             for c in todo:
                 n, *_ = run_chunk(spec.raw, str(out), *c)
-                if bar is not None:
-                    bar.update(n)
+                bar.update(n)
         else:
             with concurrent.futures.ProcessPoolExecutor(max_workers=workers, mp_context=_context(),
                                                         initializer=_die_with_parent) as pool:
@@ -251,14 +233,12 @@ def _run_chunks(spec: SweepSpec, out: Path, workers: int | None, log) -> Path:
                 try:
                     for future in concurrent.futures.as_completed(futures):
                         n, *_ = future.result()
-                        if bar is not None:
-                            bar.update(n)
+                        bar.update(n)
                 except BaseException:
                     for f in futures:  # the chunks not started are dropped; those running finish
                         f.cancel()  # and write their files whole (the workers ignore Ctrl-C)
                     raise
-        if bar is not None:
-            bar.close()
+        bar.close()
     return out / "chunks"
 
 
@@ -275,8 +255,8 @@ def run_one_chunk(spec: SweepSpec, out: Path, k: int, log=print) -> Path:
     group, chunk, start, stop = chunks[k]
     (out / "chunks").mkdir(parents=True, exist_ok=True)
     final = chunk_path(out, group, chunk)
-    with _Lock(out / ".lock", shared=True, what="a whole sweep is writing into this folder"):
-        with _Lock(out / "chunks" / f".{final.stem}.lock", what=f"chunk {k} is already being run"):
+    with _lock(out / ".lock", shared=True, what="a whole sweep is writing into this folder"):
+        with _lock(out / "chunks" / f".{final.stem}.lock", what=f"chunk {k} is already being run"):
             _claim(out, spec)
             if final.exists():
                 log(f"chunk {k} is already done: {final}")
@@ -287,14 +267,10 @@ def run_one_chunk(spec: SweepSpec, out: Path, k: int, log=print) -> Path:
 
 def chunk_table(spec: SweepSpec, out: Path | None = None) -> list[dict]:
     """Every chunk: its number k, model group, index within the group, row range and file."""
-    rows = []
-    for k, (group, chunk, start, stop) in enumerate(spec.chunks()):
-        row = {"k": k, "group": group, "chunk": chunk, "start": start, "stop": stop,
-               "path": str(chunk_path(Path("."), group, chunk))}
-        if out is not None:
-            row["done"] = chunk_path(Path(out), group, chunk).exists()
-        rows.append(row)
-    return rows
+    return [{"k": k, "group": group, "chunk": chunk, "start": start, "stop": stop,
+             "path": str(chunk_path(Path("."), group, chunk)),
+             **({} if out is None else {"done": chunk_path(Path(out), group, chunk).exists()})}
+            for k, (group, chunk, start, stop) in enumerate(spec.chunks())]
 
 
 def status_counts(path: Path) -> dict[str, int]:

@@ -48,8 +48,7 @@ from ..model import parameters
 from ..model.contact import ContactModel
 from ..model.parameters import SceneError
 from ..scenes.pair.kind import scene_of
-from .errors import SweepError, fail as _fail
-from .physics import check_physics
+from .physics import SweepError, check_physics, fail as _fail
 
 __all__ = ["SweepError", "SweepSpec", "load_spec", "spec_from_dict", "MODEL_KEYS", "DEFAULT_CHUNK", "CHUNK_SECONDS", "MAX_CHUNKS"]
 
@@ -226,27 +225,21 @@ class SweepSpec:
 
     def chunks(self) -> list[tuple[int, int, int, int]]:
         """(group, chunk, start, stop) for every chunk, in order."""
-        out = []
-        for g, size in enumerate(self.chunk_sizes):
-            for c, start in enumerate(range(0, self.n, size)):
-                out.append((g, c, start, min(start + size, self.n)))
-        return out
+        return [(g, c, start, min(start + size, self.n)) for g, size in enumerate(self.chunk_sizes)
+                for c, start in enumerate(range(0, self.n, size))]
 
 
 def load_spec(path: Path) -> SweepSpec:
     path = Path(path)
     try:
         raw = tomllib.loads(path.read_text())
-    except FileNotFoundError:
-        raise SweepError(f"scene file {path} does not exist") from None
-    except IsADirectoryError:
-        raise SweepError(f"scene file {path} is a folder, not a TOML file") from None
-    except UnicodeDecodeError:
-        raise SweepError(f"scene file {path} is not text (a TOML file is expected)") from None
-    except PermissionError:
-        raise SweepError(f"scene file {path} cannot be read (permission denied)") from None
     except tomllib.TOMLDecodeError as exc:
         raise SweepError(f"{path}: not valid TOML: {exc}") from None
+    except (FileNotFoundError, IsADirectoryError, UnicodeDecodeError, PermissionError) as exc:
+        why = {FileNotFoundError: "does not exist", IsADirectoryError: "is a folder, not a TOML file",
+               UnicodeDecodeError: "is not text (a TOML file is expected)",
+               PermissionError: "cannot be read (permission denied)"}[type(exc)]
+        raise SweepError(f"scene file {path} {why}") from None
     return spec_from_dict(raw)
 
 
