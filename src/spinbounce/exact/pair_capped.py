@@ -175,10 +175,10 @@ def _first_event(solution, events) -> tuple[float, int, np.ndarray]:
     t_end, which = min(fired)
     switch, dense = events[1], solution.sol
     g = lambda time: switch(time, dense(time))  # noqa: E731
-    for start, stop in zip(dense.ts[:-1], dense.ts[1:]):
-        if start >= t_end:
+    for t0, t1 in zip(dense.ts[:-1], dense.ts[1:]):
+        if t0 >= t_end:
             break
-        grid = np.linspace(start, min(stop, t_end), INTERIOR_SAMPLES + 2)
+        grid = np.linspace(t0, min(t1, t_end), INTERIOR_SAMPLES + 2)
         values = [g(time) for time in grid]
         for k in range(len(grid) - 1):
             if switch.direction * values[k] < 0.0 <= switch.direction * values[k + 1] and grid[k + 1] < t_end:
