@@ -232,6 +232,17 @@ def test_no_code_outside_the_laws_branches_on_a_laws_keyword():
     assert not found, found
 
 
+def test_no_template_branches_on_a_laws_keyword():
+    # a deck's comments and words come from the law's flags and keyword, never a comparison
+    # with a name (a hertz/material deck once got the Hookean header that way)
+    compared = re.compile(r"""(==|!=|\bin)\s*["']([^"']+)["']|["']([^"']+)["']\s*(==|!=)""")
+    keywords = _law_keywords()
+    found = [f"{path.relative_to(PACKAGE)}:{n}" for path in PACKAGE.rglob("*.j2")
+             for n, line in enumerate(path.read_text().splitlines(), 1)
+             for m in compared.finditer(line) if (m.group(2) or m.group(3)) in keywords]
+    assert not found, found
+
+
 def test_the_keyword_check_sees_a_branch_and_not_an_iteration():
     snippet = ('if model.normal == "hertz" or "classic" != wall:\n    pass\n'
                'ok = wall in ("hooke", "y")\n'
