@@ -82,7 +82,7 @@ def run_curve(curve: Curve, theta_deg: np.ndarray, run_dir: Path) -> dict:
     predicted = choose.predict(curve.model, initial)
     return {"label": curve.label, "theta": theta_deg, "lammps": quantities(initial, final),
             "theory": quantities(initial, predicted), "theory_kind": choose.which(curve.model).kind,
-            "dt": scene.dt, "run": str(run_dir), "max_abs_state_deviation": float(np.abs(final - predicted).max())}
+            "dt": result.scene.dt, "run": str(run_dir), "max_abs_state_deviation": float(np.abs(final - predicted).max())}
 
 
 def kharaz_points() -> dict[str, dict]:
