@@ -41,6 +41,12 @@ CASES = {
     # contact time (kt = 200: the slip turns through most of a half-period)
     "youngs_modulus": (_MATERIAL, {**_MATERIAL, "youngs_modulus": 2.0e4}),
     "poisson_ratio": (_MATERIAL, {**_MATERIAL, "poisson_ratio": 0.45}),
+    # the damping sub-models' coefficients, each on a base of its own damping
+    "damping": ({}, {"damping": "coeff_restitution", "e_n": 0.5}),
+    "e_n": ({"damping": "tsuji", "e_n": 0.5}, {"damping": "tsuji", "e_n": 0.3}),
+    "gamma_n_per_mass": ({"damping": "mass_velocity", "gamma_n_per_mass": 0.5},
+                         {"damping": "mass_velocity", "gamma_n_per_mass": 1.0}),
+    "x_t": ({"damping": "coeff_restitution", "e_n": 0.5}, {"damping": "coeff_restitution", "e_n": 0.5, "x_t": 1.0}),
 }
 STATE = {"v_n": -0.6, "v_t": 0.8, "omega": 0.5}
 #: LAMMPS at the default step against the theory. Damped contacts converge at first order

@@ -19,23 +19,34 @@ sub-models declare their coefficients and words the same way. The wall command's
 this package branches on a sub-model's or a style's keyword.
 """
 
+from .damping import DAMPING, DampingLaw, damping_coefficients, damping_law, damping_parameter
 from .normal import NORMAL, NormalLaw, normal_coefficients, normal_law, normal_parameter
 from .styles import STYLES, Style, style, style_parameter
 
-__all__ = ["NORMAL", "NormalLaw", "normal_law", "normal_parameter", "normal_coefficients", "STYLES", "Style", "style",
-           "style_parameter", "settled", "own"]
+__all__ = ["NORMAL", "NormalLaw", "normal_law", "normal_parameter", "normal_coefficients", "DAMPING", "DampingLaw",
+           "damping_law", "damping_parameter", "damping_coefficients", "STYLES", "Style", "style", "style_parameter",
+           "settled", "own"]
+
+
+def _chosen(values: dict):
+    """The model's normal and damping sub-models, each with every coefficient of its kind."""
+    return ((normal_law(values.get("normal", NormalLaw.default_keyword)), normal_coefficients()),
+            (damping_law(values.get("damping", DampingLaw.default_keyword)), damping_coefficients()))
 
 
 def own(values: dict) -> dict:
-    """``values`` without the coefficients of normal sub-models other than the chosen one: what a
-    model means (a sweep's digest, a fit's group) does not change when a sub-model is added."""
-    law = normal_law(values.get("normal", NormalLaw.default_keyword))
-    taken = {p.name for p in law.coefficients}
-    return {k: v for k, v in values.items() if k in taken or k not in {p.name for p in normal_coefficients()}}
+    """``values`` without the coefficients of sub-models other than the chosen ones, and without
+    a damping that is the default: what a model means (a sweep's digest, a fit's group, a run
+    folder's name) does not change when a sub-model is added."""
+    foreign = {p.name for law, every in _chosen(values) for p in every if p not in law.coefficients}
+    default = values.get("damping") == DampingLaw.default_keyword
+    return {k: v for k, v in values.items() if k not in foreign and not (default and k == "damping")}
 
 
 def settled(values: dict) -> dict:
-    """A model's values with what its normal sub-model derives from its own coefficients (a
-    stiffness made from a material, say), after refusing another sub-model's coefficients."""
-    law = normal_law(values.get("normal", NormalLaw.default_keyword))
-    return {**values, **law.settle(values, normal_coefficients())}
+    """A model's values with what its sub-models derive from their own coefficients (a stiffness
+    made from a material, dashpots made from a restitution), after refusing another sub-model's
+    coefficients: the normal sub-model first, since the damping may need its stiffness."""
+    for law, every in _chosen(values):
+        values = {**values, **law.settle(values, every)}
+    return values

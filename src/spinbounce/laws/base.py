@@ -17,7 +17,8 @@ import numpy as np
 from ..declaration import Parameter
 from ..errors import SceneError
 
-__all__ = ["NormalLaw", "DampingLaw", "TangentialLaw", "Style", "STIFFNESS", "registry", "lookup"]
+__all__ = ["NormalLaw", "DampingLaw", "TangentialLaw", "Style", "STIFFNESS", "registry", "lookup",
+           "refuse_foreign"]
 
 #: The stiffness of ``hooke`` (F = kn delta) and ``hertz`` (F = kn a delta, LAMMPS's K).
 STIFFNESS = Parameter(
@@ -30,6 +31,17 @@ def registry(package: str, modules: tuple[str, ...], entry: str) -> dict:
     """``{keyword: entry}`` of every module of ``package`` named in ``modules``, in their order."""
     found = (getattr(importlib.import_module(f".{name}", package), entry) for name in modules)
     return {item.keyword: item for item in found}
+
+
+def refuse_foreign(kind: str, law, values: dict, foreign: tuple[Parameter, ...]) -> None:
+    """Refuse a value given for a coefficient of another ``kind`` sub-model than ``law`` (the
+    coefficients without a default: a law's own, given only with it)."""
+    for parameter in foreign:
+        if parameter not in law.coefficients and values.get(parameter.name) is not None \
+                and parameter.default is None:
+            raise SceneError(parameter.name, values[parameter.name],
+                             f"is not a coefficient of {kind} = {law.keyword} (it takes "
+                             f"{', '.join(p.name for p in law.coefficients)})")
 
 
 def lookup(entries: dict, parameter: str, keyword):
@@ -62,12 +74,7 @@ class NormalLaw:
     def settle(self, values: dict, foreign: tuple[Parameter, ...]) -> dict:
         """The model's values this law fixes (derived coefficients), after refusing a value
         given for another law's coefficient (``foreign``: every other sub-model's)."""
-        for parameter in foreign:
-            if parameter not in self.coefficients and values.get(parameter.name) is not None \
-                    and parameter.default is None:
-                raise SceneError(parameter.name, values[parameter.name],
-                                 f"is not a coefficient of normal = {self.keyword} (it takes "
-                                 f"{', '.join(p.name for p in self.coefficients)})")
+        refuse_foreign("normal", self, values, foreign)
         return {}
 
     def deck_terms(self, model, eta_n: float) -> tuple:
@@ -99,14 +106,32 @@ class NormalLaw:
 
 
 class DampingLaw:
-    """A damping sub-model: LAMMPS's keyword after ``damping``, its coefficients, and the
-    dashpots it gives LAMMPS (the normal sub-model's damping coefficient, the tangential one's)."""
+    """A damping sub-model: LAMMPS's keyword after ``damping``, its coefficients, the dashpots
+    it gives LAMMPS (the normal sub-model's damping coefficient ETA_N, the tangential one's X_T)
+    and the viscous dashpots they make in a contact of effective mass ``m_eff``: the normal
+    -gamma_n v_n and the tangential -gamma_t u' that every exact reference takes."""
 
     keyword: str = ""
+    #: The sub-model a model without a ``damping`` has (the paper's viscous dashpots).
+    default_keyword = "velocity"
+    #: One line for the ``damping`` parameter's help.
+    summary: str = ""
     coefficients: tuple[Parameter, ...] = ()
+    #: The model's values it computes from its coefficients (reset when a model is copied).
+    derived: tuple[str, ...] = ()
+
+    def settle(self, values: dict, foreign: tuple[Parameter, ...]) -> dict:
+        """The model's values this law fixes (its dashpots against a wall, whose effective mass
+        is the sphere's), after refusing another damping sub-model's coefficients."""
+        refuse_foreign("damping", self, values, foreign)
+        return {}
+
+    def check(self, model) -> None:
+        """Refuse an assembly whose dashpots change during a contact: every exact reference here
+        takes constant ones."""
 
     def dashpots(self, model) -> tuple[float, float, bool, list[str]]:
-        """(the normal coefficient, the tangential one, whether to write ``damping KEYWORD``, notes)."""
+        """(ETA_N, X_T, whether to write ``damping KEYWORD``, notes) for a deck."""
         raise NotImplementedError
 
     def deck_terms(self, written: bool) -> tuple:

@@ -18,7 +18,7 @@ import numpy as np
 
 from .. import exact
 from ..exact import choose
-from ..laws import NORMAL, NormalLaw, Style, normal_law, own, settled, style
+from ..laws import NORMAL, DampingLaw, NormalLaw, Style, damping_law, normal_law, own, settled, style
 from .parameters import MODEL, SceneError, positive_number
 from .stability import stability_limit
 from .timestep import MIN_STEPS_PER_HALF_PERIOD, mode_rate
@@ -52,6 +52,7 @@ class ContactPhysics:
                 PhysicsWarning,
                 stacklevel=4,
             )
+        self.damping_law.check(self)
         if not self.normal_law.damped_theory and self.gamma_n > 0.0:
             raise SceneError(
                 "gamma_n",
@@ -75,9 +76,10 @@ class ContactPhysics:
         return own(dataclasses.asdict(self))
 
     def replace(self, **changes):
-        """A copy with some parameters changed (checked again); what the normal sub-model derives
-        is derived anew unless it is changed too."""
-        reset = {p.name: p.default for p in MODEL if p.name in self.normal_law.derived and p.name not in changes}
+        """A copy with some parameters changed (checked again); what the sub-models derive is
+        derived anew unless it is changed too."""
+        derived = {*self.normal_law.derived, *self.damping_law.derived}
+        reset = {p.name: p.default for p in MODEL if p.name in derived and p.name not in changes}
         return dataclasses.replace(self, **reset, **changes)
 
     # -- the law -------------------------------------------------------------------
@@ -85,6 +87,11 @@ class ContactPhysics:
     def normal_law(self) -> NormalLaw:
         """The normal sub-model (:mod:`spinbounce.laws.normal`): asked for what it can do."""
         return normal_law(self.normal)
+
+    @property
+    def damping_law(self) -> DampingLaw:
+        """The damping sub-model (:mod:`spinbounce.laws.damping`): asked for what it can do."""
+        return damping_law(self.damping)
 
     @property
     def style(self) -> Style:

@@ -14,8 +14,7 @@ from __future__ import annotations
 
 from ..declaration import Parameter, finite_number, positive_number
 from ..errors import SceneError
-from ..laws import normal_coefficients, normal_parameter, style_parameter
-from ..laws.damping.velocity import GAMMA_N, GAMMA_T
+from ..laws import damping_coefficients, damping_parameter, normal_coefficients, normal_parameter, style_parameter
 from ..laws.tangential.linear_history import KT, MU
 
 __all__ = ["finite_number", "positive_number", "Parameter", "MODEL", "STATE", "RUN", "SCENE", "STATE_B", "PAIR_SPHERE", "PAIR_ONLY", "ALL",
@@ -35,12 +34,12 @@ MODEL: tuple[Parameter, ...] = (
               deck="fix nve/sphere (alpha = 2/5) or fix rigid with a centre point"),
     *normal_coefficients(),
     KT,
-    GAMMA_N,
-    GAMMA_T,
+    *damping_coefficients(),
     MU,
     Parameter("limit_damping", "never let the normal force pull (LAMMPS's limit_damping)", "-", False, kind="flag",
               deck="wall/gran ... limit_damping"),
     normal_parameter(),
+    damping_parameter(),
     style_parameter(),
 )
 

@@ -1,18 +1,40 @@
 """The damping sub-models, registered by LAMMPS keyword: one entry each in :data:`DAMPING`.
 
-Today one: ``velocity`` (:mod:`.velocity`), the paper's viscous damping. LAMMPS's others
-(``mass_velocity``, ``viscoelastic``, ``tsuji``, ``coeff_restitution``) come as modules here.
+``velocity`` (:mod:`.velocity`) is the paper's viscous damping; ``mass_velocity``, ``tsuji`` and
+``coeff_restitution`` make the same dashpots from a coefficient LAMMPS scales by the contact
+(:mod:`.scaled`). ``viscoelastic`` (a dashpot that grows with the contact radius) is not here yet.
 """
 
 from __future__ import annotations
 
-from ..base import DampingLaw, registry
+from ...declaration import Parameter
+from ..base import DampingLaw, lookup, registry
 
-__all__ = ["DAMPING", "DampingLaw"]
+__all__ = ["DAMPING", "DampingLaw", "damping_law", "damping_coefficients", "damping_parameter"]
 
 #: The registry: one entry per sub-model, the module (here) that defines its ``LAW``.
 MODULES = (
     "velocity",
+    "mass_velocity",
+    "tsuji",
+    "coeff_restitution",
 )
 #: Every damping sub-model, by its LAMMPS keyword.
 DAMPING: dict[str, DampingLaw] = registry(__name__, MODULES, "LAW")
+
+
+def damping_law(keyword: str) -> DampingLaw:
+    """The sub-model of ``keyword``, or a :class:`SceneError` listing the registered ones."""
+    return lookup(DAMPING, "damping", keyword)
+
+
+def damping_coefficients() -> tuple[Parameter, ...]:
+    """Every damping sub-model's coefficients, each once, in registry order."""
+    return tuple(dict.fromkeys(p for law in DAMPING.values() for p in law.coefficients))
+
+
+def damping_parameter() -> Parameter:
+    """The ``damping`` choice: one of the registered keywords."""
+    laws = "; ".join(f"{law.keyword}: {law.summary}" for law in DAMPING.values())
+    return Parameter("damping", f"damping model ({laws})", "-", DampingLaw.default_keyword, kind="choice",
+                     choices=tuple(DAMPING), deck="granular NORMAL KN ETA_N damping DAMPING")

@@ -25,6 +25,7 @@ VANISHING_ETA_N = 1.0e-12
 
 class Velocity(DampingLaw):
     keyword = "velocity"
+    summary = "viscous dashpots gamma_n and gamma_t, the paper's"
     coefficients = (GAMMA_N, GAMMA_T)
 
     def dashpots(self, model) -> tuple[float, float, bool, list[str]]:

@@ -43,6 +43,10 @@ def pair_contact(model: ContactModel) -> PairContact:
                                                  "force that does not grow with the contact radius)")
     if model.limit_damping:
         raise SceneError("limit_damping", True, "is not covered by the pair's exact reference: leave it out")
+    if model.damping_law.derived:
+        raise SceneError("damping", model.damping, "must be velocity with scene = pair for now: the pair batches rescale "
+                                                   "each pair's time, and with it a dashpot given as gamma_n, gamma_t; "
+                                                   "this damping's own coefficient is not one")
     if not model.style.pairs:
         raise SceneError("wall", model.wall, "must be granular with scene = pair (there is no wall; the classic "
                                              "pair style is not covered by the pair's references)")

@@ -1,0 +1,120 @@
+"""LAMMPS's damping models mass_velocity, tsuji, coeff_restitution: dashpots, refusals, LAMMPS vs reference.
+
+Each makes the paper's gamma_n and gamma_t from a coefficient LAMMPS scales by the contact
+(spinbounce.laws.damping.scaled); against a wall with the Hookean force those dashpots are
+constant, so the exact damped references (closed form, or the Coulomb solver with a cap)
+answer. The LAMMPS runs show it: at the default step every row is within the default accuracy
+of the reference, and LAMMPS extrapolated to dt = 0 meets it to 1e-6, which dashpots off by a
+part in a thousand could not do (they move the restitution by ~1e-4).
+"""
+
+import math
+
+import numpy as np
+import pytest
+
+import spinbounce
+from spinbounce.lammps.decks import wall_parameters
+from spinbounce.model.contact import ContactModel
+from spinbounce.model.parameters import SceneError
+from spinbounce.pipeline import run_scene
+from spinbounce.scenes.collision import Collision
+
+LAWS = {
+    "mass_velocity": {"gamma_n_per_mass": 0.8, "x_t": 0.7},
+    "tsuji": {"e_n": 0.5, "x_t": 0.5},
+    "coeff_restitution": {"e_n": 0.3, "x_t": 1.2},
+}
+
+
+def damped(name: str, **kw) -> ContactModel:
+    return ContactModel(damping=name, **LAWS[name], **kw)
+
+
+def test_the_dashpots_are_lammps_prefactors():
+    # by hand, m = 2, kn = 10: mass_velocity gamma_n = 0.8 * 2; coeff_restitution
+    # 2 beta sqrt(m kn) with beta = -ln e / sqrt(pi^2 + ln^2 e); tsuji Marshall's polynomial at
+    # e = 0.5 (0.340894...) times sqrt(m kn), with no sqrt(2) in this build
+    assert damped("mass_velocity", m=2.0).gamma_n == pytest.approx(1.6, rel=1e-15)
+    log_e = math.log(0.3)
+    beta = -log_e / math.sqrt(math.pi**2 + log_e**2)
+    assert damped("coeff_restitution", m=2.0).gamma_n == pytest.approx(2 * beta * math.sqrt(20.0), rel=1e-14)
+    poly = 1.2728 - 4.2783 / 2 + 11.087 / 4 - 22.348 / 8 + 27.467 / 16 - 18.022 / 32 + 4.8218 / 64
+    assert damped("tsuji", m=2.0).gamma_n == pytest.approx(poly * math.sqrt(20.0), rel=1e-14)
+    for name in LAWS:
+        model = damped(name)
+        assert model.gamma_t == pytest.approx(LAWS[name]["x_t"] * model.gamma_n, rel=1e-15)
+
+
+def test_coeff_restitution_gives_its_restitution_exactly_with_hooke():
+    for e in (0.05, 0.3, 0.9, 1.0):
+        assert ContactModel(damping="coeff_restitution", e_n=e).restitution == pytest.approx(e, rel=1e-12)
+
+
+def test_the_deck_gives_the_coefficient_and_the_keyword():
+    style = wall_parameters(damped("tsuji", kt=2.0))["style"]
+    assert style.startswith("granular hooke 10.0 0.5 damping tsuji tangential linear_history 2.0 0.5 ")
+
+
+def test_a_record_names_the_damping_only_when_it_is_not_the_default():
+    # digests, run folders and stored references of velocity-damped models are unchanged
+    assert "damping" not in ContactModel().as_record() and "x_t" not in ContactModel().as_record()
+    record = damped("tsuji").as_record()
+    assert record["damping"] == "tsuji" and record["e_n"] == 0.5 and "gamma_n" not in record
+
+
+def test_a_copy_derives_the_dashpots_anew():
+    model = damped("coeff_restitution")
+    assert model.replace(e_n=0.6).restitution == pytest.approx(0.6, rel=1e-12)
+    assert model.replace(kt=3.0).gamma_n == model.gamma_n
+    assert ContactModel(**{f: getattr(model, f) for f in model.__dataclass_fields__}) == model  # from its columns
+
+
+@pytest.mark.parametrize("given, name", [
+    ({"damping": "tsuji"}, "e_n"),                                                     # its coefficient is needed
+    ({"x_t": 0.5}, "x_t"),                                                             # velocity takes gamma_t
+    ({"damping": "tsuji", "e_n": 0.5, "gamma_n": 0.3}, "gamma_n"),                   # made from e_n
+    ({"damping": "tsuji", "e_n": 0.5, "gamma_n_per_mass": 1.0}, "gamma_n_per_mass"),  # mass_velocity's
+    ({"damping": "coeff_restitution", "e_n": 0.0}, "e_n"),
+    ({"damping": "coeff_restitution", "e_n": 1.5}, "e_n"),
+    ({"damping": "mass_velocity", "gamma_n_per_mass": 100.0}, "gamma_n_per_mass"),   # over critical
+    ({"damping": "tsuji", "e_n": 0.5, "normal": "hertz"}, "damping"),                 # not constant there
+    ({"damping": "tsuji", "e_n": 0.5, "wall": "classic"}, "damping"),                 # a fixed assembly
+    ({"damping": "viscous"}, "damping"),
+])
+def test_each_refusal_names_the_parameter(given, name):
+    with pytest.raises(SceneError) as info:
+        ContactModel(**given)
+    assert info.value.parameter == name
+
+
+def test_a_pair_refuses_it_by_name():
+    with pytest.raises(SceneError) as info:
+        spinbounce.theory(scene="pair", damping="tsuji", e_n=0.5)
+    assert info.value.parameter == "damping"
+
+
+def _random_states(rng, n: int) -> np.ndarray:
+    return np.column_stack([-rng.uniform(0.2, 1.5, n), rng.uniform(-1.0, 1.0, n), rng.uniform(-2.0, 2.0, n)])
+
+
+@pytest.mark.lammps
+@pytest.mark.parametrize("name", sorted(LAWS))
+@pytest.mark.parametrize("mu", [None, 0.3])
+def test_lammps_at_the_default_step_meets_the_reference(name, mu, tmp_path):
+    # the default step is probed for the default accuracy, 1e-4 of each state's size
+    states = _random_states(np.random.default_rng(sum(map(ord, name))), 8)
+    scene = Collision(damped(name, m=1.7, mu=mu), v_n=states[:, 0], v_t=states[:, 1], omega=states[:, 2] / 0.5)
+    result = run_scene(scene, tmp_path, record=False)
+    assert (result.table["status"] == "ok").all()
+    assert result.table["error"].max() <= 1e-4
+
+
+@pytest.mark.lammps
+@pytest.mark.parametrize("name", sorted(LAWS))
+def test_lammps_extrapolated_to_dt_zero_meets_the_reference(name, tmp_path):
+    # Richardson extrapolation of LAMMPS's own runs (spinbounce.extrapolation) to 1e-6; the
+    # extrapolated state meets the exact reference within its estimate and 1e-6
+    report = spinbounce.collide(-0.9, 0.6, 1.4, m=1.3, damping=name, **LAWS[name], tolerance=1e-6, out=tmp_path / "t")
+    assert report.record["estimate"] <= 1e-6
+    assert np.abs(report.table["error"]).max() <= 1e-6
