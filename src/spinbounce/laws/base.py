@@ -126,9 +126,10 @@ class DampingLaw:
         refuse_foreign("damping", self, values, foreign)
         return {}
 
-    def check(self, model) -> None:
-        """Refuse an assembly whose dashpots change during a contact: every exact reference here
-        takes constant ones."""
+    @property
+    def normal_coefficient(self) -> str:
+        """The coefficient a user gives for the normal dashpot (named when it is refused)."""
+        return "gamma_n"
 
     def dashpots(self, model) -> tuple[float, float, bool, list[str]]:
         """(ETA_N, X_T, whether to write ``damping KEYWORD``, notes) for a deck."""

@@ -52,7 +52,6 @@ class ContactPhysics:
                 PhysicsWarning,
                 stacklevel=4,
             )
-        self.damping_law.check(self)
         if not self.normal_law.damped_theory and self.gamma_n > 0.0:
             raise SceneError(
                 "gamma_n",
@@ -157,11 +156,14 @@ class ContactPhysics:
         limit, and a sphere that leaves the wall too slowly for a run to see it go."""
         for parameter in MODEL:
             parameter.check_default_step(getattr(self, parameter.name))
-        if not self.normal_law.contact_radius and self.restitution < MIN_RESTITUTION:
+        # a restitution rounded a part in 1e15 below the limit (e_n = 1e-3 exactly) is the limit
+        if not self.normal_law.contact_radius and self.restitution < MIN_RESTITUTION * (1.0 - 1e-12):
             limit = exact.gamma_n_for_restitution(MIN_RESTITUTION, self.m, self.kn)
-            raise SceneError("gamma_n", self.gamma_n,
-                             f"must be below {limit:.6g} (restitution {MIN_RESTITUTION:g}) at the default step: here "
-                             f"the sphere leaves at {self.restitution:.3g} of its speed, too slowly for the step's "
+            name = self.damping_law.normal_coefficient
+            made = "" if name == "gamma_n" else f"makes gamma_n = {self.gamma_n:.6g}, which "
+            raise SceneError(name, getattr(self, name),
+                             f"{made}must be below {limit:.6g} (restitution {MIN_RESTITUTION:g}) at the default "
+                             f"step: here the sphere leaves at {self.restitution:.3g} of its speed, too slowly for the step's "
                              "probe to see the contact end; give a dt of your own")
 
     def contact_times(self, v_n) -> np.ndarray:

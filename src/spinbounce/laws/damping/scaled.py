@@ -6,8 +6,8 @@ LAMMPS (``GranSubModDamping*``) multiplies the normal sub-model's ETA_N by a pre
 contact (its effective mass, its stiffness) and the tangential damping is X_T times the result.
 With the Hookean force that prefactor is constant through a contact, so the dashpots are the
 paper's gamma_n and gamma_t, which every exact reference takes; against a wall the effective
-mass is the sphere's. With a force that grows with the contact radius it is not constant: no
-exact reference here integrates that yet, and such an assembly is refused by name.
+mass is the sphere's. With a force that grows with the contact radius no exact reference here
+integrates a damped contact yet, and such an assembly is refused by name.
 """
 
 from __future__ import annotations
@@ -16,7 +16,8 @@ import math
 
 from ...declaration import Parameter
 from ...errors import SceneError
-from ..base import DampingLaw
+from ..base import DampingLaw, NormalLaw
+from ..normal import normal_law
 
 __all__ = ["Scaled", "X_T", "E_N"]
 
@@ -27,8 +28,8 @@ X_T = Parameter("x_t", "tangential damping over normal damping, gamma_t/gamma_n 
 #: Below it the sphere creeps out of the overlap too slowly for a run to see the end (as the
 #: model's own lower limit on the restitution, spinbounce.model.contact.MIN_RESTITUTION).
 E_N = Parameter(
-    "e_n", "damping tsuji or coeff_restitution: the normal restitution the dashpot is set for (LAMMPS's ETA_N); "
-    "none for any other damping", "1", None, low=1e-3, high=1.0, optional=True,
+    "e_n", "damping tsuji or coeff_restitution: the restitution LAMMPS makes the dashpot from (its ETA_N; "
+    "coeff_restitution with hooke gives it exactly, tsuji does not); none for any other damping", "1", None, low=1e-3, high=1.0, optional=True,
     why="at e_n = 1 there is no damping; below 1e-3 the sphere creeps out too slowly for a run to see it leave",
     deck="granular hooke KN ETA_N damping tsuji|coeff_restitution")
 
@@ -44,8 +45,17 @@ class Scaled(DampingLaw):
         """The normal dashpot of a Hookean contact of effective mass ``m_eff``."""
         raise NotImplementedError
 
+    @property
+    def normal_coefficient(self) -> str:
+        return self.coefficient.name
+
     def settle(self, values: dict, foreign: tuple[Parameter, ...]) -> dict:
         super().settle(values, foreign)
+        if normal_law(values.get("normal", NormalLaw.default_keyword)).contact_radius:
+            raise SceneError("damping", self.keyword, f"is not covered with normal = {values['normal']}: no exact "
+                                                      "reference here integrates a damped contact whose force grows "
+                                                      "with the contact radius yet (damping = velocity with "
+                                                      "gamma_n = 0 is)")
         given = values.get(self.coefficient.name)
         if given is None:
             raise SceneError(self.coefficient.name, None, f"must be given with damping = {self.keyword} "
@@ -62,12 +72,6 @@ class Scaled(DampingLaw):
                 raise SceneError(name, values[name], f"is made from {self.coefficient.name} and x_t with damping = "
                                                      f"{self.keyword}: give those, or damping = velocity")
         return made
-
-    def check(self, model) -> None:
-        if model.normal_law.contact_radius:
-            raise SceneError("damping", self.keyword, f"is not covered with normal = {model.normal}: its dashpot "
-                                                      "changes with the overlap there, and no exact reference here "
-                                                      "integrates that yet (damping = velocity with gamma_n = 0 is)")
 
     def dashpots(self, model) -> tuple[float, float, bool, list[str]]:
         return float(getattr(model, self.coefficient.name)), float(model.x_t or 0.0), True, []
