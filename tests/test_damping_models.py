@@ -141,3 +141,19 @@ def test_two_walls_run_the_damping_asked_for(tmp_path):
     states = run_two_walls(scene, tmp_path).states
     expected = theory_path(model, scene.initial, 2)
     assert np.abs(states.reshape(expected.shape) - expected).max() <= 5e-4
+
+
+@pytest.mark.lammps
+def test_a_sweep_resumed_across_the_new_columns_still_fits(tmp_path):
+    # a velocity sweep begun before these parameters existed has chunks without their columns;
+    # its digest is unchanged, so it resumes, and the fit groups on the columns every chunk has
+    import pandas as pd
+
+    from spinbounce.fitting_stream import fit_dataset
+
+    spinbounce.sweep(n=20, out=tmp_path / "sweep")
+    rows = pd.concat(pd.read_parquet(f) for f in sorted((tmp_path / "sweep").rglob("*.parquet")))
+    rows.iloc[:8].to_parquet(tmp_path / "new.parquet")
+    rows.iloc[8:].drop(columns=["damping", "e_n", "x_t", "gamma_n_per_mass"]).to_parquet(tmp_path / "old.parquet")
+    (group,) = fit_dataset([tmp_path / "new.parquet", tmp_path / "old.parquet"])
+    assert group["n"] == 20

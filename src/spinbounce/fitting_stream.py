@@ -48,7 +48,9 @@ def fit_dataset(files, names=None) -> list[dict]:
     files = chunk_files(Path(files)) if not isinstance(files, list) else files
     import pyarrow.parquet as pq
 
-    schema = pq.read_schema(str(files[0])).names
+    # the columns every chunk has: a sweep resumed under a later spinbounce has chunks with the
+    # columns of parameters added since (at their defaults in the later chunks)
+    schema = set.intersection(*(set(pq.read_schema(str(f)).names) for f in files))
     names = names or (STATE_3D if f"{STATE_3D[-1]}_initial" in schema else STATE)
     keys = [k for k in GROUP_KEYS if k in schema]
     columns = (keys + [f"{s}_{x}" for s in names for x in ("initial", "lammps", "theory", "error")]
