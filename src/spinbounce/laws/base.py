@@ -18,7 +18,7 @@ from ..declaration import Parameter
 from ..errors import SceneError
 
 __all__ = ["NormalLaw", "DampingLaw", "TangentialLaw", "Style", "STIFFNESS", "registry", "lookup",
-           "refuse_foreign"]
+           "refuse_foreign", "coefficients", "choice"]
 
 #: The stiffness of ``hooke`` (F = kn delta) and ``hertz`` (F = kn a delta, LAMMPS's K).
 STIFFNESS = Parameter(
@@ -42,6 +42,17 @@ def refuse_foreign(kind: str, law, values: dict, foreign: tuple[Parameter, ...])
             raise SceneError(parameter.name, values[parameter.name],
                              f"is not a coefficient of {kind} = {law.keyword} (it takes "
                              f"{', '.join(p.name for p in law.coefficients)})")
+
+
+def coefficients(entries: dict) -> tuple[Parameter, ...]:
+    """Every coefficient of the sub-models in ``entries`` (a registry), each once, in its order."""
+    return tuple(dict.fromkeys(p for law in entries.values() for p in law.coefficients))
+
+
+def choice(name: str, meaning: str, entries: dict, default: str, deck: str) -> Parameter:
+    """The parameter that picks one of ``entries`` (a registry) by keyword, each summarised."""
+    laws = "; ".join(f"{law.keyword}: {law.summary}" for law in entries.values())
+    return Parameter(name, f"{meaning} ({laws})", "-", default, kind="choice", choices=tuple(entries), deck=deck)
 
 
 def lookup(entries: dict, parameter: str, keyword):

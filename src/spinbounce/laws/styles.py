@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from ..declaration import Parameter
 from ..errors import SceneError
-from .base import Style, lookup
+from .base import Style, choice, lookup
 from .damping import DAMPING
 from .normal import NORMAL
 from .tangential import TANGENTIAL
@@ -121,6 +121,5 @@ def style(keyword: str) -> Style:
 
 def style_parameter() -> Parameter:
     """The ``wall`` choice: one of the registered styles."""
-    styles = "; ".join(f"{s.keyword}: {s.summary}" for s in STYLES.values())
-    return Parameter("wall", f"the wall command ({styles})", "-", "granular", kind="choice", choices=tuple(STYLES),
-                     deck="wall/gran granular ... | wall/gran hooke/history KN KT GAMMA_N/m GAMMA_T/m MU 1")
+    return choice("wall", "the wall command", STYLES, "granular",
+                  "wall/gran granular ... | wall/gran hooke/history KN KT GAMMA_N/m GAMMA_T/m MU 1")

@@ -8,7 +8,7 @@
 from __future__ import annotations
 
 from ...declaration import Parameter
-from ..base import DampingLaw, lookup, registry
+from ..base import DampingLaw, choice, coefficients, lookup, registry
 
 __all__ = ["DAMPING", "DampingLaw", "damping_law", "damping_coefficients", "damping_parameter"]
 
@@ -30,11 +30,10 @@ def damping_law(keyword: str) -> DampingLaw:
 
 def damping_coefficients() -> tuple[Parameter, ...]:
     """Every damping sub-model's coefficients, each once, in registry order."""
-    return tuple(dict.fromkeys(p for law in DAMPING.values() for p in law.coefficients))
+    return coefficients(DAMPING)
 
 
 def damping_parameter() -> Parameter:
     """The ``damping`` choice: one of the registered keywords."""
-    laws = "; ".join(f"{law.keyword}: {law.summary}" for law in DAMPING.values())
-    return Parameter("damping", f"damping model ({laws})", "-", DampingLaw.default_keyword, kind="choice",
-                     choices=tuple(DAMPING), deck="granular NORMAL KN ETA_N damping DAMPING")
+    return choice("damping", "damping model", DAMPING, DampingLaw.default_keyword,
+                  "granular NORMAL KN ETA_N damping DAMPING")

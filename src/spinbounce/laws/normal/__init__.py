@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from ...declaration import Parameter
-from ..base import NormalLaw, lookup, registry
+from ..base import NormalLaw, choice, coefficients, lookup, registry
 
 __all__ = ["NORMAL", "NormalLaw", "normal_law", "normal_parameter", "normal_coefficients"]
 
@@ -24,12 +24,10 @@ def normal_law(keyword: str) -> NormalLaw:
 
 def normal_coefficients() -> tuple[Parameter, ...]:
     """Every normal sub-model's coefficients, each once, in registry order."""
-    return tuple(dict.fromkeys(p for law in NORMAL.values() for p in law.coefficients))
+    return coefficients(NORMAL)
 
 
 def normal_parameter() -> Parameter:
     """The ``normal`` choice: one of the registered keywords."""
-    laws = "; ".join(f"{law.keyword}: {law.summary}" for law in NORMAL.values())
-    return Parameter("normal", f"normal force law ({laws})", "-", NormalLaw.default_keyword, kind="choice",
-                     choices=tuple(NORMAL),
-                     deck="wall/gran granular NORMAL ... | pair_coeff * * NORMAL ...")
+    return choice("normal", "normal force law", NORMAL, NormalLaw.default_keyword,
+                  "wall/gran granular NORMAL ... | pair_coeff * * NORMAL ...")

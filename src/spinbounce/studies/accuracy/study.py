@@ -222,24 +222,7 @@ def run_study(quick: bool = False, runs: Path | None = None, log=print) -> Study
         **provenance,
         "machine": {"platform": platform.platform(), "cpus": os.cpu_count(), "load_average_at_start": load},
         "quick": quick,
-        "parameters": {
-            "ladder_steps_per_half_period": list(steps),
-            "forms": {MID: "dt = t_end/(M + 1/2) (model.timestep.mid_step_dt; Hertz: each speed's own t_end)",
-                      EDGE: "dt = tau/M", ANY: "dt = pi/(n w), w the fastest mode at the largest |v_n|",
-                      FROZEN: "dt = t_end/ceil(t_end n w/pi)"},
-            "fit_levels": FIT_LEVELS,
-            "error_floor": ERROR_FLOOR,
-            "targets": list(TARGETS),
-            "cost_batch_spheres": COST_BATCH[quick],
-            "timing_repeats": TIMING_REPEATS[quick],
-            "frozen": {"z": FROZEN_Z, "t_end": FROZEN_T_END},
-            "box": {"v_n": list(BOX[0]), "v_t": list(BOX[1]), "r_omega": list(BOX[2])},
-            "default_step": ("the scenes' own (dt = None): model.timestep's second-order rule for the "
-                             "paper's linear contact, a probe against the exact theory otherwise "
-                             "(stepping.tune), HERTZ_STEPS_PER_HALF_PERIOD for a Hertzian batch of several "
-                             "speeds, Frozen.default_dt"),
-            "accuracy": ACCURACY, "frozen_accuracy": FROZEN_ACCURACY, "safety": SAFETY,
-        },
+        "parameters": _parameters(quick, steps),
         "error": "largest |LAMMPS - theory| over the case's states and state columns (frozen: over the "
                  "time series); theory: each case's own (Eq. 18, Eq. 10, exact.hertz, the Coulomb oracle)",
         "runs": str(Path(runs)) if runs is not None else None,

@@ -9,7 +9,7 @@ but any changed command does), and what produced them in ``MANIFEST.json`` (:mod
 Only :func:`regenerate` writes them; :func:`check` and the tests run in throw-away folders.
 """
 
-import importlib
+from .. import lazy_exports
 
 #: Each module and the names it exports here: importing the package loads none of them (the
 #: command's ``--help`` reads the case names only), a name's module loads on first use.
@@ -22,11 +22,4 @@ _EXPORTS = {
               "REGENERATE_COMMAND", "check", "compare_decks", "compare_manifest", "expected_files",
               "format_report", "manifest", "normalise_deck", "read_manifest", "regenerate", "render_golden"),
 }
-_WHERE = {name: module for module, names in _EXPORTS.items() for name in names}
-__all__ = sorted(_WHERE)
-
-
-def __getattr__(name: str):  # no name here is also a module's: importing one would hide it
-    if name in _WHERE:
-        return getattr(importlib.import_module(f".{_WHERE[name]}", __name__), name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+__all__, __getattr__ = lazy_exports(__name__, _EXPORTS)

@@ -10,7 +10,7 @@ the figure. Units: SI (kg, m, s, N/m), passed through LAMMPS's scale-free lj uni
 the package's (:mod:`.quantities`).
 """
 
-import importlib
+from .. import lazy_exports
 
 #: Each module and the names it exports here, loaded on a name's first use (the command line
 #: checks a benchmark's name without loading the runs).
@@ -22,11 +22,4 @@ _EXPORTS = {
     "quantities": ("QUANTITIES", "first_touch_stick", "impact_speed", "quantity", "walton"),
     "run": ("ACCEPTANCE", "BenchmarkRun", "refined_dt", "run_benchmark"),
 }
-_WHERE = {name: module for module, names in _EXPORTS.items() for name in names}
-__all__ = sorted(_WHERE)
-
-
-def __getattr__(name: str):  # no name here is also a module's: importing one would hide it
-    if name in _WHERE:
-        return getattr(importlib.import_module(f".{_WHERE[name]}", __name__), name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+__all__, __getattr__ = lazy_exports(__name__, _EXPORTS)
