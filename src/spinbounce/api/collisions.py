@@ -147,7 +147,7 @@ def _pair_batch(pair: _Pair, contact: ContactModel, state: dict, dt=None):
     from ..scenes.pair.scene import PairBatch
 
     row = [state[k] for k in _STATE_NAMES]
-    return PairBatch(pairs_from_states(contact, pair.b, [row], pair.state), pair_contact(contact), dt)
+    return PairBatch(pairs_from_states(contact, pair.b, [row], pair.state), pair_contact(contact, pair.b), dt)
 
 
 #: A pair row's geometry and spheres, reported beside the states.
@@ -300,7 +300,7 @@ def _pair_theory(pair: _Pair, contact: ContactModel, state: dict) -> dict:
     from ..scenes.pair.kind import CAPPED_NO_MATRIX, pair_contact, planar_matrix, planar_Omega
     from ..scenes.pair.table import pair_table
 
-    law = pair_contact(contact).law()
+    law = pair_contact(contact, pair.b).law()
     out = {"theory_kind": "pair planar", "theory_name": "planar pair theory (exact only as eps -> 0) and the exact "
                                                         "reference",
            "alpha_equivalent": planar.equivalent_alpha(contact.m, contact.alpha, pair.b.m, pair.b.alpha),

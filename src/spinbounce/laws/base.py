@@ -137,10 +137,18 @@ class DampingLaw:
         refuse_foreign("damping", self, values, foreign)
         return {}
 
+    #: How LAMMPS's ETA_N follows a contact run in time units s times longer (masses s^2, speeds
+    #: 1/s; the dashpot gamma_n must become s gamma_n): ETA_N times s to this power.
+    eta_time_power: int = 1
+
     @property
     def normal_coefficient(self) -> str:
         """The coefficient a user gives for the normal dashpot (named when it is refused)."""
         return "gamma_n"
+
+    def contact_dashpots(self, model, m_eff: float) -> tuple[float, float]:
+        """(gamma_n, gamma_t) in a contact of effective mass ``m_eff`` (a pair's)."""
+        return model.gamma_n, model.gamma_t
 
     def dashpots(self, model) -> tuple[float, float, bool, list[str]]:
         """(ETA_N, X_T, whether to write ``damping KEYWORD``, notes) for a deck."""

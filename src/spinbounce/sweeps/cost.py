@@ -98,7 +98,8 @@ def _pair_cost(spec, group: int, collisions: int) -> ChunkCost:
 
     model, dt = spec.model(group)
     fast, _ = spec.normal_speeds()
-    steps = PairBatch(pairs_from_states(model, spec.sphere_b(group), [[-fast, 0.0, 0.0]]), pair_contact(model), dt).nsteps
+    b = spec.sphere_b(group)
+    steps = PairBatch(pairs_from_states(model, b, [[-fast, 0.0, 0.0]]), pair_contact(model, b), dt).nsteps
     theory = CAPPED_PAIR_THEORY_SECONDS if model.mu is not None else PAIR_THEORY_SECONDS
     probe = PAIR_PROBE_SECONDS if dt is None else 0.0
     seconds = START_SECONDS + probe + collisions * (2 * steps * SPHERE_STEP_SECONDS + theory)

@@ -60,7 +60,7 @@ def pair_chunk(model: ContactModel, b: Sphere, states: np.ndarray, dt: float | N
     names = SPACE_COLUMNS if states.shape[1] == 6 else PLANE_COLUMNS
     pairs = pairs_from_states(model, b, states)
     a = pairs[0].a
-    contact = pair_contact(model)
+    contact = pair_contact(model, b)
     probe = None if probe_states is None else PairBatch(tuple(pairs_from_states(model, b, probe_states)), contact)
     result = run_scene(PairBatch(pairs, contact, dt), run_dir, record=False, probe_states=probe)
     table, batch = result.table, result.scene

@@ -53,7 +53,7 @@ def _check_pairs(spec) -> None:
             with warnings.catch_warnings(action="ignore"):
                 model, dt = spec.model(g)
                 b = spec.sphere_b(g)
-                contact = pair_contact(model)
+                contact = pair_contact(model, b)
         except SceneError as exc:
             raise SweepError(f"model.{exc.parameter}: {exc}") from None
         if contact.mu is not None and spec.is_3d:

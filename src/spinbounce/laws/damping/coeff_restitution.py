@@ -19,6 +19,7 @@ class CoeffRestitution(Scaled):
     summary = "the dashpot that gives normal restitution e_n (Hookean: exactly)"
     coefficient = E_N
     coefficients = (E_N, X_T)
+    eta_time_power = 0  # sqrt(m_eff kn) already brings s: a restitution does not follow time
 
     def gamma_n(self, values: dict, m_eff: float) -> float:
         log_e = math.log(values[self.coefficient.name])

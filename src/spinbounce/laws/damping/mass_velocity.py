@@ -22,6 +22,7 @@ class MassVelocity(Scaled):
     summary = "gamma_n = gamma_n_per_mass m_eff, gamma_t = x_t gamma_n"
     coefficient = GAMMA_N_PER_MASS
     coefficients = (GAMMA_N_PER_MASS, X_T)
+    eta_time_power = -1  # ETA_N m_eff: the mass already brings s^2
 
     def gamma_n(self, values: dict, m_eff: float) -> float:
         return values[self.coefficient.name] * m_eff

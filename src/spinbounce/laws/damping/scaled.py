@@ -5,9 +5,9 @@ paper's gamma_n and gamma_t made from their own coefficient.
 LAMMPS (``GranSubModDamping*``) multiplies the normal sub-model's ETA_N by a prefactor of the
 contact (its effective mass, its stiffness) and the tangential damping is X_T times the result.
 With the Hookean force that prefactor is constant through a contact, so the dashpots are the
-paper's gamma_n and gamma_t, which every exact reference takes; against a wall the effective
-mass is the sphere's. With a force that grows with the contact radius no exact reference here
-integrates a damped contact yet, and such an assembly is refused by name.
+paper's gamma_n and gamma_t, which every exact reference takes; the effective mass is the
+sphere's against a wall, m m_b/(m + m_b) in a pair. With a force that grows with the contact
+radius no exact reference here integrates a damped contact yet: such an assembly is refused.
 """
 
 from __future__ import annotations
@@ -72,6 +72,10 @@ class Scaled(DampingLaw):
                 raise SceneError(name, values[name], f"is made from {self.coefficient.name} and x_t with damping = "
                                                      f"{self.keyword}: give those, or damping = velocity")
         return made
+
+    def contact_dashpots(self, model, m_eff: float) -> tuple[float, float]:
+        gamma_n = self.gamma_n(vars(model), m_eff)
+        return gamma_n, (model.x_t or 0.0) * gamma_n
 
     def dashpots(self, model) -> tuple[float, float, bool, list[str]]:
         return float(getattr(model, self.coefficient.name)), float(model.x_t or 0.0), True, []

@@ -25,6 +25,7 @@ class Tsuji(Scaled):
     summary = "the dashpot alpha(e_n) sqrt(m_eff kn) of Marshall's fit (its restitution is not e_n)"
     coefficient = E_N
     coefficients = (E_N, X_T)
+    eta_time_power = 0  # sqrt(m_eff kn) already brings s: a restitution does not follow time
 
     def gamma_n(self, values: dict, m_eff: float) -> float:
         e = values[self.coefficient.name]

@@ -80,9 +80,10 @@ def render_pairs(batch) -> Deck:
     wall["coefficients"] = deck_words(model.style.coefficient_terms(model, wall["eta_n"], wall["x_t"], wall["damping"],
                                                                     wall["mu"]))
     scales = batch.scale_classes[1]
+    power = model.damping_law.eta_time_power  # how ETA_N follows each class's time scale
     classes = [{"types": f"{atom_type('free', c)}*{atom_type('point', c)}",
-                "coefficients": deck_words(model.style.coefficient_terms(model, wall["eta_n"] * scale, wall["x_t"],
-                                                                         True, wall["mu"]))}
+                "coefficients": deck_words(model.style.coefficient_terms(model, wall["eta_n"] * scale**power,
+                                                                         wall["x_t"], True, wall["mu"]))}
                for c, scale in enumerate(scales)]
     box = ((0.0, grid * cell),) * 3
     files = {DATA_FILE: data_file(f"sphere pairs for {DECK_NAME}", atoms, 3 * len(scales), box)}

@@ -36,21 +36,24 @@ def scene_of(values: dict) -> str:
     return scene
 
 
-def pair_contact(model: ContactModel) -> PairContact:
-    """The pair deck's contact law from a contact model, or why the pair cannot run it."""
+def pair_contact(model: ContactModel, b: Sphere) -> PairContact:
+    """The pair deck's contact law from a contact model against sphere ``b``, or why the pair
+    cannot run it. Its dashpots are the damping's in the pair's effective mass m b/(m + b)."""
     if model.normal_law.contact_radius:
         raise SceneError("normal", model.normal, "must be hooke with scene = pair (the pair's references integrate a "
                                                  "force that does not grow with the contact radius)")
     if model.limit_damping:
         raise SceneError("limit_damping", True, "is not covered by the pair's exact reference: leave it out")
-    if model.damping_law.derived:
-        raise SceneError("damping", model.damping, "must be velocity with scene = pair for now: the pair batches rescale "
-                                                   "each pair's time, and with it a dashpot given as gamma_n, gamma_t; "
-                                                   "this damping's own coefficient is not one")
     if not model.style.pairs:
         raise SceneError("wall", model.wall, "must be granular with scene = pair (there is no wall; the classic "
                                              "pair style is not covered by the pair's references)")
-    return PairContact(model.kn, model.kt, model.gamma_n, model.gamma_t, model.mu)
+    law = model.damping_law
+    gamma_n, gamma_t = law.contact_dashpots(model, model.m * b.m / (model.m + b.m))
+    if law.derived and model.mu is not None and model.x_t:
+        raise SceneError("x_t", model.x_t, "must be 0 (or none) with a Coulomb cap (mu) in a pair: the capped pair "
+                                           "reference has no tangential damping")
+    own = tuple((p.name, getattr(model, p.name)) for p in law.coefficients) if law.derived else ()
+    return PairContact(model.kn, model.kt, gamma_n, gamma_t, model.mu, model.damping, own)
 
 
 def sphere_b(m_b=1.0, r_b=0.5, alpha_b=0.4) -> Sphere:
@@ -96,13 +99,13 @@ def planar_matrix(model: ContactModel, b: Sphere, three_d: bool = False) -> np.n
     states[:, spins] /= model.r  # the matrix acts on r omega: a unit r omega is omega = 1/r
     pairs = pairs_from_states(model, b, states)
     vectors = {k: np.array([p.vectors()[k] for p in pairs]) for k in ("n", "v_a", "v_b", "w_a", "w_b")}
-    v_a, _, w_a, _ = planar.predict(**vectors, **pairs[0].properties(), **pair_contact(model).law())
+    v_a, _, w_a, _ = planar.predict(**vectors, **pairs[0].properties(), **pair_contact(model, b).law())
     outcome = wall_frame(v_a, w_a, model.r)[:, :size]
     return np.column_stack([-outcome[0], *(outcome[k] - outcome[0] for k in range(1, size))]) + 0.0
 
 
 def planar_Omega(model: ContactModel, b: Sphere) -> float:
     """The pair's Omega (the planar theory's; the wall's for equal alpha)."""
-    law = pair_contact(model).law()
+    law = pair_contact(model, b).law()
     return float(planar.Omega(model.m, model.alpha, b.m, b.alpha, law["kn"], law["kt"], law["gamma_t"],
                               law["gamma_n"]))

@@ -100,9 +100,13 @@ class PairContact:
     gamma_n: float = by_name("gamma_n").default
     gamma_t: float = by_name("gamma_t").default
     mu: float | None = by_name("mu").default
+    #: The damping sub-model whose dashpots gamma_n and gamma_t are (for this batch's spheres), and
+    #: its own coefficients as (name, value) pairs: the deck writes those, LAMMPS scaling them.
+    damping: str = by_name("damping").default
+    damping_coefficients: tuple = ()
 
     def __post_init__(self):
-        _checked(self, ("kn", "kt", "gamma_n", "gamma_t", "mu"))
+        _checked(self, ("kn", "kt", "gamma_n", "gamma_t", "mu", "damping"))
         if self.mu is not None and self.gamma_t != 0.0:
             raise SceneError("gamma_t", self.gamma_t, "must be 0 with a Coulomb cap (mu) in a pair: the capped "
                                                       "pair reference has no tangential damping")
@@ -173,7 +177,8 @@ class Pair:
         """The wall contact with this pair's normal and slip equations (:mod:`exact.pair`)."""
         a, b = self.a, self.b
         return ContactModel(m=planar.reduced_mass(a.m, b.m), r=min(a.r, b.r),
-                            alpha=planar.equivalent_alpha(a.m, a.alpha, b.m, b.alpha), **contact.law())
+                            alpha=planar.equivalent_alpha(a.m, a.alpha, b.m, b.alpha), **contact.law(),
+                            damping=contact.damping, **dict(contact.damping_coefficients))
 
     def speed(self) -> float:
         """The larger of the impact speed |v_a - v_b| and the initial slip speed |u'(0)|:
