@@ -95,7 +95,7 @@ def test_pair_contact_names_what_a_pair_cannot_run():
                           (ContactModel(limit_damping=True), "limit_damping"),
                           (ContactModel(wall="classic"), "wall")):
         with pytest.raises(SceneError, match=needle):
-            pair_contact(model)
+            pair_contact(model, sphere_b())  # against sphere b, as every caller gives it
 
 
 @pytest.mark.lammps
