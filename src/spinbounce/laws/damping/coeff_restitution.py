@@ -9,21 +9,18 @@ from __future__ import annotations
 
 import math
 
-from .scaled import E_N, X_T, Scaled
+from .scaled import FromRestitution
 
 __all__ = ["CoeffRestitution", "LAW"]
 
 
-class CoeffRestitution(Scaled):
+class CoeffRestitution(FromRestitution):
     keyword = "coeff_restitution"
     summary = "the dashpot that gives normal restitution e_n (Hookean: exactly)"
-    coefficient = E_N
-    coefficients = (E_N, X_T)
-    eta_time_power = 0  # sqrt(m_eff kn) already brings s: a restitution does not follow time
 
-    def gamma_n(self, values: dict, m_eff: float) -> float:
-        log_e = math.log(values[self.coefficient.name])
-        return -2.0 * log_e / math.sqrt(math.pi**2 + log_e**2) * math.sqrt(m_eff * values["kn"])
+    def factor(self, e: float) -> float:
+        log_e = math.log(e)
+        return -2.0 * log_e / math.sqrt(math.pi**2 + log_e**2)
 
 
 LAW = CoeffRestitution()

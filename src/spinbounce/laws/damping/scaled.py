@@ -19,7 +19,7 @@ from ...errors import SceneError
 from ..base import DampingLaw, NormalLaw
 from ..normal import normal_law
 
-__all__ = ["Scaled", "X_T", "E_N"]
+__all__ = ["Scaled", "FromRestitution", "X_T", "E_N"]
 
 X_T = Parameter("x_t", "tangential damping over normal damping, gamma_t/gamma_n (LAMMPS's X_T), with a damping "
                 "other than velocity; none: 0", "1", None, low=0.0, optional=True,
@@ -79,3 +79,18 @@ class Scaled(DampingLaw):
 
     def dashpots(self, model) -> tuple[float, float, bool, list[str]]:
         return float(getattr(model, self.coefficient.name)), float(model.x_t or 0.0), True, []
+
+
+class FromRestitution(Scaled):
+    """A dashpot set from a restitution e_n: a factor of e_n times sqrt(m_eff kn)."""
+
+    coefficient = E_N
+    coefficients = (E_N, X_T)
+    eta_time_power = 0  # sqrt(m_eff kn) already brings s: a restitution does not follow time
+
+    def factor(self, e: float) -> float:
+        """gamma_n / sqrt(m_eff kn) for the restitution ``e``."""
+        raise NotImplementedError
+
+    def gamma_n(self, values: dict, m_eff: float) -> float:
+        return self.factor(values[self.coefficient.name]) * math.sqrt(m_eff * values["kn"])

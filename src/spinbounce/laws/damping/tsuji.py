@@ -10,9 +10,7 @@ The restitution it gives is not e: e is the polynomial's argument.
 
 from __future__ import annotations
 
-import math
-
-from .scaled import E_N, X_T, Scaled
+from .scaled import FromRestitution
 
 __all__ = ["Tsuji", "LAW", "MARSHALL"]
 
@@ -20,17 +18,12 @@ __all__ = ["Tsuji", "LAW", "MARSHALL"]
 MARSHALL = (1.2728, -4.2783, 11.087, -22.348, 27.467, -18.022, 4.8218)
 
 
-class Tsuji(Scaled):
+class Tsuji(FromRestitution):
     keyword = "tsuji"
     summary = "the dashpot alpha(e_n) sqrt(m_eff kn) of Marshall's fit (its restitution is not e_n)"
-    coefficient = E_N
-    coefficients = (E_N, X_T)
-    eta_time_power = 0  # sqrt(m_eff kn) already brings s: a restitution does not follow time
 
-    def gamma_n(self, values: dict, m_eff: float) -> float:
-        e = values[self.coefficient.name]
-        alpha = sum(c * e**k for k, c in enumerate(MARSHALL))
-        return alpha * math.sqrt(m_eff * values["kn"])
+    def factor(self, e: float) -> float:
+        return sum(c * e**k for k, c in enumerate(MARSHALL))
 
 
 LAW = Tsuji()
