@@ -132,10 +132,12 @@ def collision_rung_dt(model: ContactModel, per_half_period: float) -> float:
     return mid_step_dt(model.tau, contact_steps(model, per_half_period))
 
 
-def frozen_rung_dt(model: ContactModel, per_half_period: float, t_end: float) -> float:
+def frozen_rung_dt(model: ContactModel, per_half_period: float, t_end: float,
+                   overlap: float | None = None) -> float:
     """The frozen step at ``per_half_period`` steps per half-period, snapped to a whole number
-    of steps in ``t_end``. With kt = gamma_t = 0 nothing evolves: 100 steps."""
-    rate = model.fastest_rate(frozen=True)
+    of steps in ``t_end``, held at ``overlap`` (a Mindlin spring needs it). With kt = gamma_t = 0
+    nothing evolves: 100 steps."""
+    rate = model.fastest_rate(frozen=True, overlap=overlap)
     dt = math.pi / rate / per_half_period if rate > 0.0 else t_end / 100
     return t_end / math.ceil(t_end / dt - 1e-9)
 
@@ -232,9 +234,10 @@ def smooth_in_dt(model: ContactModel) -> bool:
 
     Not with a finite cap (its stick-slip switches leave kinks anywhere inside a step), nor
     for the classic wall (measured: at tolerance 1e-6 the ladder's estimate was 1.0e-6 where
-    the error was 2.1e-6; its spring kt sqrt(r delta) has an infinite slope at contact).
+    the error was 2.1e-6; its spring kt sqrt(r delta) has an infinite slope at contact), nor for
+    a Mindlin spring k_t sqrt(r delta), for the same reason.
     """
-    return model.mu is None and model.style.smooth_in_dt
+    return model.mu is None and model.style.smooth_in_dt and not model.tangential_law.contact_radius
 
 
 #: The exact theories the measured route checks against (exact.coulomb, exact.classic)
@@ -335,7 +338,7 @@ def frozen_to_tolerance(model: ContactModel, z: float, v_t: float, omega: float,
 
     tol = check_tolerance(tolerance)
     out_dir = Path(out_dir)
-    dt0 = frozen_rung_dt(model, START_STEPS, t_end)
+    dt0 = frozen_rung_dt(model, START_STEPS, t_end, model.r - z)
     every0 = max(1, round(t_end / dt0) // samples)
     p = raw_orders(model, 2, frozen=True)
     times: list[np.ndarray] = []

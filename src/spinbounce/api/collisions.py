@@ -281,6 +281,9 @@ def theory(v_n: float | None = None, v_t: float = 0.0, omega: float = 0.0, v_s: 
     if v_n is not None:
         out["initial"], out["theory"] = choose.outcome(contact, **state)
         out["contact_time"] = float(contact.contact_times(v_n)[0])
+    elif choice.kind == "mindlin" and choice.has_matrix:
+        out.update(choose.mindlin_theory(contact), restitution=1.0, matrix=np.asarray(contact.matrix()),
+                   order=["v_n", "v_t", "r_omega"])
     elif choice.has_matrix:
         from .. import exact
 

@@ -59,6 +59,8 @@ def run(args) -> int:
             print(f"{label:8}" + "".join(f"{report[label][n]:>16.10f}" for n in names))
     elif report["matrix"] is None:
         print(f"no single scattering matrix: {report['why_no_matrix']}")
+    elif report["theory_kind"] == "mindlin":
+        _print_mindlin(report)
     elif report["theory_kind"] == "pair planar":
         print(f"tau   = {report['tau']:.10g}   (pi sqrt(m*/kn), m* the reduced mass)")
         print(f"Omega = {report['Omega']:.10g}   (the wall's at alpha_eq = "
@@ -83,3 +85,25 @@ def run(args) -> int:
         print(f"energy-conserving ratio kt/kn = alpha/(1+alpha) = {report['magic_kt_over_kn']:.10g} "
               "(Omega = -2)")
     return 0
+
+
+def _print_mindlin(report: dict) -> None:
+    import numpy as np
+
+    print(f"Omega = {report['Omega']:.10g}   ({report['Omega_depends_on']}; lam = (1 + alpha)/alpha k_t/kn "
+          f"= {report['lam']:.10g}, k_t = {report['k_t']:.10g})")
+    print(f"energy: {report['energy']} (|Omega + 1| {'>' if report['energy'] == 'gained' else '<='} 1)")
+    print("scattering matrix, (v_n, v_t, r*omega) before -> after:")
+    with np.printoptions(precision=8, suppress=True, floatmode="fixed"):
+        for row in report["matrix"]:
+            print("   ", row)
+    poisson = report.get("energy_conserving_poisson_ratio")
+    for key, ratios in report["energy_conserving_k_t_over_kn"].items():
+        line = f"{key} (energy conserved) at k_t/kn = {_numbers(ratios) or 'none found'}"
+        if poisson is not None:
+            line += f"; at Poisson's ratio {_numbers(poisson[key]) or 'none in (-1, 1/2]'}"
+        print(line)
+
+
+def _numbers(values) -> str:
+    return ", ".join(f"{x:.10g}" for x in values)

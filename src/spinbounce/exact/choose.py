@@ -11,6 +11,9 @@ classic_wall  a tangential spring on the contact radius (this build's    no (Ome
 coulomb       a finite mu: the contact sticks and slides in turn         no
               (:mod:`.coulomb`, exact and batched; checked against
               :mod:`.oracle`)
+mindlin       a tangential stiffness on the contact radius (LAMMPS's     Hertzian,
+              Mindlin variants), no cap, undamped normal force: Eq. 18   undamped: yes;
+              with the Omega of :mod:`.mindlin`                          else Omega(v_n)
 hertzian      a normal force on the contact radius (Hertzian), no cap:   no (Omega(v_n))
               Eq. 18 sphere by sphere with the Omega of each contact
               time (:mod:`.hertz`)
@@ -19,8 +22,8 @@ damped        Hookean with gamma_n or gamma_t, no cap: Eq. 18 with the   yes
 linear        Hookean, no damping, no Coulomb cap: Eq. 18                yes
 ============  =========================================================  ===============
 
-The first that applies is the choice. The model's sub-models are asked (its normal law's
-``contact_radius``, its style's ``tangential_contact_radius``), never named.
+The first that applies is the choice. The model's sub-models are asked (its normal and
+tangential laws' ``contact_radius``, its style's ``tangential_contact_radius``), never named.
 
 States are rows of (v_n, v_t, r omega) or, in 3-D, (v_n, v_t, r omega, v_s, r omega_s,
 r omega_n), as everywhere in spinbounce. The model is read through its fields only.
@@ -35,7 +38,8 @@ import numpy as np
 from . import hertz, linear
 from ..errors import NoMatrix
 
-__all__ = ["Choice", "which", "predict", "outcome", "matrix", "matrices", "omega_per_sphere", "frozen", "NoMatrix"]
+__all__ = ["Choice", "which", "predict", "outcome", "matrix", "matrices", "omega_per_sphere", "frozen", "NoMatrix",
+           "mindlin_theory"]
 
 
 @dataclass(frozen=True)
@@ -62,6 +66,13 @@ def which(model) -> Choice:
         return Choice("coulomb", "Coulomb stick-slip solution (exact in each phase, switches to machine precision)",
                       f"with mu = {model.mu!r} the contact sticks and slides in turn, so the outcome is not "
                       "linear in the initial state: give a state (v_n, v_t, omega) for its outcome")
+    if model.tangential_law.contact_radius:
+        name = "Eq. 18 with the Omega of LAMMPS's Mindlin contact (exact.mindlin)"
+        if _mindlin_speed_free(model):
+            return Choice("mindlin", name + ": Hertzian and undamped, the same at every v_n")
+        return Choice("mindlin", name + ", sphere by sphere",
+                      f"with tangential = {model.tangential} and {_mindlin_speed_dependence(model)} Omega depends "
+                      "on v_n: give v_n for its matrix")
     if model.normal_law.contact_radius:
         return Choice("hertzian", "Eq. 18 per sphere, Omega of the Hertzian contact time tau(v_n)",
                       "with normal = hertz the contact time, and with it Omega, depends on v_n: "
@@ -71,6 +82,54 @@ def which(model) -> Choice:
     return Choice("linear", "Eq. 18")
 
 
+def _mindlin_speed_free(model) -> bool:
+    """A Mindlin contact's Omega is the same at every v_n: a Hertzian force and no dashpot
+    (exact.mindlin: lam = (1 + alpha)/alpha k_t/kn, zeta = 0)."""
+    return model.normal_law.contact_radius and model.gamma_t == 0.0
+
+
+def _mindlin_speed_dependence(model) -> str:
+    return "a tangential dashpot gamma_t" if model.normal_law.contact_radius else f"normal = {model.normal}"
+
+
+def _mindlin_omega(model, v_n) -> np.ndarray:
+    """Each sphere's Omega of a Mindlin contact (:mod:`.mindlin`, its scaled contact)."""
+    from . import mindlin  # scipy's integrator: loaded when a Mindlin contact is asked
+
+    v_n = np.atleast_1d(np.asarray(v_n, dtype=float))
+    if _mindlin_speed_free(model):  # one contact answers every speed (its rounding aside)
+        v_n = v_n[:1] * 0.0 - 1.0
+    power, m, r, alpha = model.normal_law.power, model.m, model.r, model.alpha
+    t0 = mindlin.time_unit(power, m, model.kn * r ** (power - 1.0), v_n)
+    lam = mindlin.lam(model.tangential_law.stiffness(model), alpha, m, r, v_n, t0)
+    return np.atleast_1d(mindlin.Omega(lam, mindlin.zeta(model.gamma_t, m, alpha, t0), model.tangential_law.variant,
+                                       power))
+
+
+def mindlin_theory(model) -> dict:
+    """What the paper's theory becomes for a Mindlin contact that has one matrix (Hertzian,
+    undamped): lam = (1 + alpha)/alpha k_t/kn sets Omega at every v_n; where the bounce conserves
+    energy (Omega = -2, and Omega = 0) in k_t/kn and, with LAMMPS's NULL stiffness, in Poisson's
+    ratio; and whether this model's bounce gains energy (|Omega + 1| > 1)."""
+    from . import mindlin
+
+    law, alpha = model.tangential_law, model.alpha
+    k = law.stiffness(model)
+    lam = mindlin.speed_free_lam(k, model.kn, alpha)
+    ratio = float(_mindlin_omega(model, -1.0)[0]) + 1.0
+    points = mindlin.unit_ratio_lams(mindlin.Variant(*law.variant))
+    per_lam = alpha / (1.0 + alpha)  # k_t/kn = lam alpha/(1 + alpha)
+    out = {"lam": lam, "k_t": k, "k_t_over_kn": k / model.kn, "Omega": ratio - 1.0,
+           "Omega_depends_on": "alpha and k_t/kn only: the same at every v_n",
+           "energy": "gained" if abs(ratio) > 1.0 + 1e-9 else "conserved" if abs(ratio) > 1.0 - 1e-9 else "lost",
+           "energy_conserving_k_t_over_kn": {key: [x * per_lam for x in lams] for key, lams in points.items()}}
+    if model.mindlin_kt is None:
+        out["energy_conserving_poisson_ratio"] = {
+            key: sorted(nu for nu in (mindlin.poisson_ratio_of(x * per_lam) for x in lams) if nu is not None)
+            for key, lams in points.items()}
+    return out
+
+
 def _omega(model) -> float:
     """The exact damped Omega of a Hookean model without a cap (Eq. 18's when undamped)."""
     return linear.Omega_exact(model.m, model.kn, model.kt, model.alpha, model.gamma_t, model.gamma_n,
@@ -78,6 +137,8 @@ def _omega(model) -> float:
 
 
 def _matrix3(model) -> np.ndarray:
+    if which(model).kind == "mindlin":  # undamped normal force: e = 1
+        return linear.scattering_matrix(model.alpha, float(_mindlin_omega(model, -1.0)[0]), 1.0)
     e = linear.restitution(model.m, model.kn, model.gamma_n, not model.limit_damping)
     return linear.scattering_matrix(model.alpha, _omega(model), e)
 
@@ -90,7 +151,7 @@ def matrix(model, v_n: float | None = None, three_d: bool = False) -> np.ndarray
     choice = which(model)
     if choice.kind == "coulomb":
         raise NoMatrix(choice.no_matrix_reason)
-    if choice.kind == "hertzian":
+    if not choice.has_matrix:  # one matrix per v_n
         if v_n is None:
             raise NoMatrix(choice.no_matrix_reason)
         m3 = matrices(model, v_n)[0]
@@ -103,9 +164,12 @@ def matrices(model, v_n) -> np.ndarray:
     """(n, 3, 3): each sphere's scattering matrix (one per v_n for a Hertzian model; the one
     matrix repeated otherwise); :class:`NoMatrix` with a Coulomb cap."""
     v_n = np.atleast_1d(np.asarray(v_n, dtype=float))
-    if which(model).kind == "hertzian":
+    choice = which(model)
+    if choice.kind == "hertzian":
         return hertz.scattering_matrices(v_n, model.m, model.kn, model.r, model.kt, model.alpha,
                                          model.gamma_t)
+    if choice.kind == "mindlin" and not choice.has_matrix:
+        return np.stack([linear.scattering_matrix(model.alpha, float(w), 1.0) for w in _mindlin_omega(model, v_n)])
     return np.broadcast_to(matrix(model), (v_n.size, 3, 3))
 
 
@@ -122,6 +186,8 @@ def omega_per_sphere(model, v_n) -> np.ndarray:
         return np.full(v_n.shape, np.nan)
     if kind == "hertzian":
         return np.atleast_1d(hertz.Omega(v_n, model.m, model.kn, model.r, model.kt, model.alpha, model.gamma_t))
+    if kind == "mindlin":
+        return np.broadcast_to(_mindlin_omega(model, v_n), v_n.shape).copy()
     return np.full(v_n.shape, _omega(model))
 
 
@@ -145,7 +211,7 @@ def predict(model, initial) -> np.ndarray:
         if width == 6:
             return coulomb.bounce_3d(model, *columns, initial[:, 3], initial[:, 4] / r, initial[:, 5] / r)
         return coulomb.bounce_2d(model, *columns)
-    if kind == "hertzian":
+    if kind in ("hertzian", "mindlin"):
         each = matrices(model, initial[:, 0])
         if width == 6:
             each = np.array([linear.block_from(m3) for m3 in each])
@@ -196,4 +262,5 @@ def frozen(model, t, v_t0: float, r_omega0: float, z: float | None = None) -> tu
 
         return classic.frozen_velocities(t, v_t0, r_omega0, model.kt, model.alpha, model.r, model.r - z, model.m,
                                          model.gamma_t / model.m)
-    return linear.frozen_velocities(t, v_t0, r_omega0, model.kt, model.m, model.alpha, model.gamma_t)
+    kt = model.tangential_law.frozen_stiffness(model, None if z is None else model.r - z)
+    return linear.frozen_velocities(t, v_t0, r_omega0, kt, model.m, model.alpha, model.gamma_t)

@@ -22,31 +22,36 @@ this package branches on a sub-model's or a style's keyword.
 from .damping import DAMPING, DampingLaw, damping_coefficients, damping_law, damping_parameter
 from .normal import NORMAL, NormalLaw, normal_coefficients, normal_law, normal_parameter
 from .styles import STYLES, Style, style, style_parameter
+from .tangential import TANGENTIAL, TangentialLaw, tangential_coefficients, tangential_law, tangential_parameter
 
 __all__ = ["NORMAL", "NormalLaw", "normal_law", "normal_parameter", "normal_coefficients", "DAMPING", "DampingLaw",
-           "damping_law", "damping_parameter", "damping_coefficients", "STYLES", "Style", "style", "style_parameter",
-           "settled", "own"]
+           "damping_law", "damping_parameter", "damping_coefficients", "TANGENTIAL", "TangentialLaw",
+           "tangential_law", "tangential_parameter", "tangential_coefficients", "STYLES", "Style", "style",
+           "style_parameter", "settled", "own"]
 
 
 def _chosen(values: dict):
-    """The model's normal and damping sub-models, each with every coefficient of its kind."""
+    """The model's normal, damping and tangential sub-models, each with every coefficient of its kind."""
     return ((normal_law(values.get("normal", NormalLaw.default_keyword)), normal_coefficients()),
-            (damping_law(values.get("damping", DampingLaw.default_keyword)), damping_coefficients()))
+            (damping_law(values.get("damping", DampingLaw.default_keyword)), damping_coefficients()),
+            (tangential_law(values.get("tangential", TangentialLaw.default_keyword)), tangential_coefficients()))
 
 
 def own(values: dict) -> dict:
     """``values`` without the coefficients of sub-models other than the chosen ones, and without
-    a damping that is the default: what a model means (a sweep's digest, a fit's group, a run
-    folder's name) does not change when a sub-model is added."""
+    a damping or tangential choice that is the default: what a model means (a sweep's digest, a
+    fit's group, a run folder's name) does not change when a sub-model is added."""
     foreign = {p.name for law, every in _chosen(values) for p in every if p not in law.coefficients}
-    default = values.get("damping") == DampingLaw.default_keyword
-    return {k: v for k, v in values.items() if k not in foreign and not (default and k == "damping")}
+    default = {kind for kind, law in (("damping", DampingLaw), ("tangential", TangentialLaw))
+               if values.get(kind) == law.default_keyword}
+    return {k: v for k, v in values.items() if k not in foreign and k not in default}
 
 
 def settled(values: dict) -> dict:
     """A model's values with what its sub-models derive from their own coefficients (a stiffness
     made from a material, dashpots made from a restitution), after refusing another sub-model's
-    coefficients: the normal sub-model first, since the damping may need its stiffness."""
+    coefficients: the normal sub-model first, since the damping may need its stiffness, and the
+    tangential one last, since it may need both."""
     for law, every in _chosen(values):
         values = {**values, **law.settle(values, every)}
     return values

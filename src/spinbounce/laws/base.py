@@ -17,8 +17,12 @@ import numpy as np
 from ..declaration import Parameter
 from ..errors import SceneError
 
-__all__ = ["NormalLaw", "DampingLaw", "TangentialLaw", "Style", "STIFFNESS", "registry", "lookup",
+__all__ = ["NormalLaw", "DampingLaw", "TangentialLaw", "Style", "STIFFNESS", "NO_CAP_MU", "registry", "lookup",
            "refuse_foreign", "coefficients", "choice"]
+
+#: LAMMPS always caps |F_t| <= mu F_n: "no cap" is this large mu (measured on this build: mu = 1e4
+#: leaves a 1e-4 error floor, 1e12 does not).
+NO_CAP_MU = 1.0e12
 
 #: The stiffness of ``hooke`` (F = kn delta) and ``hertz`` (F = kn a delta, LAMMPS's K).
 STIFFNESS = Parameter(
@@ -81,12 +85,20 @@ class NormalLaw:
     contact_radius: bool = False
     #: An exact reference of this normal motion exists with normal damping (gamma_n > 0).
     damped_theory: bool = True
+    #: The force's power of the overlap, F = kn r^(power - 1) delta^power (LAMMPS's, against a wall).
+    power: float = 1.0
+    #: It is made from a material (E, nu), so a Mindlin stiffness can be too (LAMMPS's NULL k_t).
+    material: bool = False
 
     def settle(self, values: dict, foreign: tuple[Parameter, ...]) -> dict:
         """The model's values this law fixes (derived coefficients), after refusing a value
         given for another law's coefficient (``foreign``: every other sub-model's)."""
         refuse_foreign("normal", self, values, foreign)
         return {}
+
+    def shear_stiffness(self, model) -> float:
+        """LAMMPS's NULL Mindlin stiffness 8 G* of its material (only a ``material`` law has one)."""
+        raise NotImplementedError(f"normal = {self.keyword} has no material")
 
     def deck_terms(self, model, eta_n: float) -> tuple:
         """Its part of a deck, as LAMMPS reads it after ``granular``: the keyword (a word from
@@ -159,18 +171,48 @@ class DampingLaw:
 
 
 class TangentialLaw:
-    """A tangential sub-model: LAMMPS's keyword after ``tangential``, its coefficients, and its
-    words given the damping's tangential coefficient."""
+    """A tangential sub-model: LAMMPS's keyword after ``tangential``, its coefficients, its flags,
+    its words given the damping's tangential coefficient, and its spring's stiffness (the step
+    rule's slip mode; the frozen contact's spring)."""
 
     keyword: str = ""
+    #: The sub-model a model without a ``tangential`` has (the paper's Cundall-Strack spring).
+    default_keyword = "linear_history"
+    #: One line for the ``tangential`` parameter's help.
+    summary: str = ""
     coefficients: tuple[Parameter, ...] = ()
+    #: The model's values it computes from its coefficients (reset when a model is copied).
+    derived: tuple[str, ...] = ()
+    #: Its stiffness grows with the contact radius a = sqrt(R delta) (LAMMPS's contact_radius_flag):
+    #: its exact reference is :mod:`spinbounce.exact.mindlin`.
+    contact_radius: bool = False
+    #: Two free spheres can run it against an exact pair reference.
+    pairs: bool = True
+
+    def settle(self, values: dict, foreign: tuple[Parameter, ...]) -> dict:
+        """The model's values this law fixes, after refusing another tangential sub-model's
+        coefficients (and what it cannot be checked with)."""
+        refuse_foreign("tangential", self, values, foreign)
+        return {}
 
     def cap(self, model) -> tuple[float, str]:
-        """The Coulomb cap a wall deck writes for the model, and a note saying why."""
-        raise NotImplementedError
+        """The Coulomb cap a deck writes for the model, and why: the model's, or :data:`NO_CAP_MU`
+        for none (LAMMPS always applies one)."""
+        if model.mu is None:
+            return NO_CAP_MU, ("the paper's model has no Coulomb limit; LAMMPS always applies one, so mu = "
+                               f"{NO_CAP_MU:g}")
+        return model.mu, f"Coulomb limit |F_t| <= {model.mu!r} F_n: not the paper's model"
 
     def deck_terms(self, model, x_t: float, mu: float) -> tuple:
         """Its words, given the damping's tangential coefficient and the cap to write."""
+        raise NotImplementedError
+
+    def slip_stiffness(self, model, speed: float | None) -> float:
+        """The slip spring's stiffness at its stiffest, for a contact at |v_n| = ``speed``."""
+        raise NotImplementedError
+
+    def frozen_stiffness(self, model, overlap: float | None) -> float:
+        """The slip spring's stiffness at a fixed ``overlap`` (the frozen contact)."""
         raise NotImplementedError
 
 

@@ -30,23 +30,22 @@ class Granular(Style):
 
     The words after ``granular`` are the normal sub-model's (:mod:`spinbounce.laws.normal`), the
     model's damping's (:mod:`spinbounce.laws.damping`) and the tangential one's
-    (:mod:`spinbounce.laws.tangential`: ``linear_history``), as LAMMPS's GranularModel assembles
+    model's tangential one's (:mod:`spinbounce.laws.tangential`), as LAMMPS's GranularModel assembles
     them; ``pair_coeff`` takes the same words after the atom types.
     """
 
     keyword = "granular"
     summary = "the paper's model, wall/gran granular"
-    tangential = TANGENTIAL["linear_history"]
 
     def coefficient_terms(self, model, eta_n: float, x_t: float, damping: bool, mu: float) -> tuple:
         """The words after ``granular`` (``fix wall/gran``) or after the types (``pair_coeff``):
         the normal sub-model's, the damping's, the tangential one's with its cap, limit_damping."""
         return (*model.normal_law.deck_terms(model, eta_n), *model.damping_law.deck_terms(damping),
-                *self.tangential.deck_terms(model, x_t, mu), *(("limit_damping",) if model.limit_damping else ()))
+                *model.tangential_law.deck_terms(model, x_t, mu), *(("limit_damping",) if model.limit_damping else ()))
 
     def wall_terms(self, model) -> dict:
         eta_n, x_t, damping, notes = model.damping_law.dashpots(model)
-        mu, cap_note = self.tangential.cap(model)
+        mu, cap_note = model.tangential_law.cap(model)
         terms = ("granular", *self.coefficient_terms(model, eta_n, x_t, damping, mu))
         return {"eta_n": eta_n, "x_t": x_t, "damping": damping, "mu": mu, "terms": terms,
                 "comment": "; ".join([*notes, cap_note])}
@@ -70,9 +69,10 @@ class Classic(Style):
     # its spring kt sqrt(r delta) has an infinite slope at contact
     smooth_in_dt = False
     pairs = False
-    #: The one normal and the one damping sub-model of the assembly.
+    #: The one normal, damping and tangential sub-model of the assembly.
     normal = NORMAL["hooke"]
     damping = DAMPING["velocity"]
+    tangential = TANGENTIAL["linear_history"]
 
     def check(self, model) -> None:
         if model.normal_law is not self.normal:
@@ -81,6 +81,9 @@ class Classic(Style):
         if model.damping_law is not self.damping:
             raise SceneError("damping", model.damping, f"must be {self.damping.keyword} with wall = {self.keyword} "
                                                        "(hooke/history's dashpots are its own: give gamma_n, gamma_t)")
+        if model.tangential_law is not self.tangential:
+            raise SceneError("tangential", model.tangential, f"must be {self.tangential.keyword} with wall = "
+                                                             f"{self.keyword} (hooke/history's spring is its own)")
         if model.limit_damping:
             raise SceneError("limit_damping", True, f"is not covered by the classic wall's theory: leave it out "
                                                      f"with wall = {self.keyword}")

@@ -18,7 +18,8 @@ import numpy as np
 
 from .. import exact
 from ..exact import choose
-from ..laws import NORMAL, DampingLaw, NormalLaw, Style, damping_law, normal_law, own, settled, style
+from ..laws import (NORMAL, DampingLaw, NormalLaw, Style, TangentialLaw, damping_law, normal_law, own, settled, style,
+                    tangential_law)
 from .parameters import MODEL, SceneError, positive_number
 from .stability import stability_limit
 from .timestep import MIN_STEPS_PER_HALF_PERIOD, mode_rate
@@ -77,7 +78,7 @@ class ContactPhysics:
     def replace(self, **changes):
         """A copy with some parameters changed (checked again); what the sub-models derive is
         derived anew unless it is changed too."""
-        derived = {*self.normal_law.derived, *self.damping_law.derived}
+        derived = {*self.normal_law.derived, *self.damping_law.derived, *self.tangential_law.derived}
         reset = {p.name: p.default for p in MODEL if p.name in derived and p.name not in changes}
         return dataclasses.replace(self, **reset, **changes)
 
@@ -91,6 +92,11 @@ class ContactPhysics:
     def damping_law(self) -> DampingLaw:
         """The damping sub-model (:mod:`spinbounce.laws.damping`): asked for what it can do."""
         return damping_law(self.damping)
+
+    @property
+    def tangential_law(self) -> TangentialLaw:
+        """The tangential sub-model (:mod:`spinbounce.laws.tangential`): asked for what it can do."""
+        return tangential_law(self.tangential)
 
     @property
     def style(self) -> Style:
@@ -121,6 +127,10 @@ class ContactPhysics:
 
     @property
     def Q(self) -> float:
+        """(1 + alpha)/alpha kt/m: the slip's squared frequency (a spring that does not change)."""
+        if self.tangential_law.contact_radius:
+            raise SceneError("tangential", self.tangential, "has no single Q: its stiffness grows with the contact "
+                                                            "radius (spinbounce.exact.mindlin)")
         return exact.Q(self.kt, self.m, self.alpha)
 
     @property
@@ -129,7 +139,12 @@ class ContactPhysics:
 
     @property
     def Omega(self) -> float:
-        """Exact Omega (Eq. 18's when undamped)."""
+        """Exact Omega (Eq. 18's when undamped; a Mindlin contact's where it has one matrix)."""
+        if self.tangential_law.contact_radius:
+            choice = choose.which(self)
+            if not choice.has_matrix:
+                raise SceneError("tangential", self.tangential, f"has no single Omega: {choice.no_matrix_reason}")
+            return float(choose.omega_per_sphere(self, -1.0)[0])
         self._hooke_only("Omega")
         return exact.Omega_exact(self.m, self.kn, self.kt, self.alpha, self.gamma_t, self.gamma_n,
                                   not self.limit_damping)
@@ -175,36 +190,41 @@ class ContactPhysics:
         return self.normal_law.max_overlap(self, speed)
 
     # -- numerics --------------------------------------------------------------------
-    def modes(self, frozen: bool, speed: float | None = None) -> dict[str, tuple[float, float]]:
+    def modes(self, frozen: bool, speed: float | None = None,
+              overlap: float | None = None) -> dict[str, tuple[float, float]]:
         """The linear contact modes a scene integrates: name -> (w, c) of x'' + c x' + w^2 x = 0.
 
         The Hertzian normal mode is nonlinear; it is represented by its stiffest point, the
         largest overlap of the fastest sphere, whose |v_n| is ``speed``.
         """
-        out = {"slip": (math.sqrt(self.Q), 2.0 * self.zeta)}
+        law = self.tangential_law
+        stiffness = law.frozen_stiffness(self, overlap) if frozen else law.slip_stiffness(self, speed)
+        q = exact.Q(stiffness, self.m, self.alpha)
+        out = {"slip": (math.sqrt(q), 2.0 * self.zeta)}
         if not frozen:
             out["normal"] = self.normal_law.normal_mode(self, speed)
         return out
 
-    def fastest_rate(self, frozen: bool, speed: float | None = None) -> float:
+    def fastest_rate(self, frozen: bool, speed: float | None = None, overlap: float | None = None) -> float:
         """Largest rate (1/time) among the integrated modes: frequency or fast decay rate."""
-        return max(mode_rate(w, c) for w, c in self.modes(frozen, speed).values())
+        return max(mode_rate(w, c) for w, c in self.modes(frozen, speed, overlap).values())
 
-    def steps_per_half_period(self, dt: float, frozen: bool, speed: float | None = None) -> float:
+    def steps_per_half_period(self, dt: float, frozen: bool, speed: float | None = None,
+                              overlap: float | None = None) -> float:
         """How finely ``dt`` resolves the fastest integrated mode: its half-period over dt (inf if
         nothing moves)."""
-        rate = self.fastest_rate(frozen, speed)
+        rate = self.fastest_rate(frozen, speed, overlap)
         return math.pi / rate / dt if rate > 0.0 else math.inf
 
-    def dt_limit(self, frozen: bool, speed: float | None = None) -> tuple[float, str]:
+    def dt_limit(self, frozen: bool, speed: float | None = None, overlap: float | None = None) -> tuple[float, str]:
         """Stability limit of LAMMPS's step and the mode that sets it."""
-        limits = {name: stability_limit(w, c) for name, (w, c) in self.modes(frozen, speed).items()}
+        limits = {name: stability_limit(w, c) for name, (w, c) in self.modes(frozen, speed, overlap).items()}
         name = min(limits, key=limits.get)
         return limits[name], name
 
-    def check_dt(self, dt, frozen: bool, speed: float | None = None) -> float:
+    def check_dt(self, dt, frozen: bool, speed: float | None = None, overlap: float | None = None) -> float:
         dt = positive_number("dt", dt)
-        limit, mode = self.dt_limit(frozen, speed)
+        limit, mode = self.dt_limit(frozen, speed, overlap)
         if dt >= limit:
             raise SceneError(
                 "dt",
@@ -212,13 +232,13 @@ class ContactPhysics:
                 f"must be below the stability limit {limit:.6g} of the {mode} mode "
                 "(LAMMPS's velocity-Verlet step diverges above it)",
             )
-        steps = self.steps_per_half_period(dt, frozen, speed)
+        steps = self.steps_per_half_period(dt, frozen, speed, overlap)
         if steps < MIN_STEPS_PER_HALF_PERIOD * (1.0 - 1e-9):  # a rung of exactly that many steps is accepted
             raise SceneError(
                 "dt",
                 dt,
                 f"resolves the fastest contact mode with only {steps:.3g} steps per half-period: must be at most "
-                f"{math.pi / self.fastest_rate(frozen, speed) / MIN_STEPS_PER_HALF_PERIOD:.6g} "
+                f"{math.pi / self.fastest_rate(frozen, speed, overlap) / MIN_STEPS_PER_HALF_PERIOD:.6g} "
                 f"({MIN_STEPS_PER_HALF_PERIOD} steps; fewer "
                 "give a caricature of the contact, whatever the target)",
             )

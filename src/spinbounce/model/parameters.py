@@ -14,8 +14,10 @@ from __future__ import annotations
 
 from ..declaration import Parameter, finite_number, positive_number
 from ..errors import SceneError
-from ..laws import damping_coefficients, damping_parameter, normal_coefficients, normal_parameter, style_parameter
+from ..laws import (damping_coefficients, damping_parameter, normal_coefficients, normal_parameter, style_parameter,
+                    tangential_parameter)
 from ..laws.tangential.linear_history import KT, MU
+from ..laws.tangential.mindlin import MINDLIN_KT
 
 __all__ = ["finite_number", "positive_number", "Parameter", "MODEL", "STATE", "RUN", "SCENE", "STATE_B", "PAIR_SPHERE", "PAIR_ONLY", "ALL",
            "by_name", "SceneError", "markdown_table"]
@@ -36,10 +38,12 @@ MODEL: tuple[Parameter, ...] = (
     KT,
     *damping_coefficients(),
     MU,
+    MINDLIN_KT,
     Parameter("limit_damping", "never let the normal force pull (LAMMPS's limit_damping)", "-", False, kind="flag",
               deck="wall/gran ... limit_damping"),
     normal_parameter(),
     damping_parameter(),
+    tangential_parameter(),
     style_parameter(),
 )
 

@@ -20,6 +20,7 @@ class Hertz(NormalLaw):
     keyword = "hertz"
     summary = "Hertz, F = kn a delta with contact radius a = sqrt(r delta)"
     contact_radius = True
+    power = 1.5
     damped_theory = False
 
     def contact_times(self, model, v_n) -> np.ndarray:

@@ -18,7 +18,7 @@ from ...errors import SceneError
 from ..base import STIFFNESS
 from .hertz import Hertz
 
-__all__ = ["HertzMaterial", "LAW", "YOUNGS_MODULUS", "POISSON_RATIO", "stiffness"]
+__all__ = ["HertzMaterial", "LAW", "YOUNGS_MODULUS", "POISSON_RATIO", "stiffness", "shear_stiffness"]
 
 YOUNGS_MODULUS = Parameter(
     "youngs_modulus", "hertz/material: Young's modulus E (LAMMPS's E); none for any other normal law",
@@ -36,11 +36,18 @@ def stiffness(youngs_modulus: float, poisson_ratio: float) -> float:
     return 4.0 / 3.0 * youngs_modulus / (2.0 * (1.0 - poisson_ratio**2))
 
 
+def shear_stiffness(youngs_modulus: float, poisson_ratio: float) -> float:
+    """LAMMPS's NULL Mindlin stiffness 8 G*, G* = E/(4 (2 - nu)(1 + nu)) (``mix_stiffnessG_wall``; the
+    same number between two spheres of one material, ``mix_stiffnessG``)."""
+    return 8.0 * youngs_modulus / (4.0 * (2.0 - poisson_ratio) * (1.0 + poisson_ratio))
+
+
 class HertzMaterial(Hertz):
     keyword = "hertz/material"
     summary = "Hertz with kn = 2 E/(3 (1 - nu^2)) from youngs_modulus E and poisson_ratio nu"
     coefficients = (YOUNGS_MODULUS, POISSON_RATIO)
     derived = ("kn",)
+    material = True
 
     def settle(self, values: dict, foreign: tuple[Parameter, ...]) -> dict:
         super().settle(values, foreign)
@@ -54,6 +61,9 @@ class HertzMaterial(Hertz):
             raise SceneError("kn", kn, f"is made from the material with normal = {self.keyword} (k = 2 E/(3 (1 - nu^2)) "
                                        f"= {k:.6g}): give youngs_modulus and poisson_ratio only")
         return {"kn": k}
+
+    def shear_stiffness(self, model) -> float:
+        return shear_stiffness(model.youngs_modulus, model.poisson_ratio)
 
     def deck_terms(self, model, eta_n: float) -> tuple:
         return (self.keyword, float(model.youngs_modulus), float(eta_n), float(model.poisson_ratio))

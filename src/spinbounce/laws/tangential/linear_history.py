@@ -2,7 +2,7 @@
 history, capped at |F_t| <= mu |F_n|.
 
 LAMMPS always applies the cap; the paper's model has none, so no cap is written as
-:data:`NO_CAP_MU` (measured on this build: mu = 1e4 leaves a 1e-4 error floor, 1e12 does not).
+:data:`~spinbounce.laws.base.NO_CAP_MU`.
 """
 
 from __future__ import annotations
@@ -10,35 +10,34 @@ from __future__ import annotations
 import math
 
 from ...declaration import Parameter
-from ..base import TangentialLaw
+from ..base import NO_CAP_MU, TangentialLaw
 
 __all__ = ["LinearHistory", "LAW", "KT", "MU", "NO_CAP_MU"]
 
-KT = Parameter("kt", "tangential spring constant on the slip history (Cundall-Strack)", "force/length", 1.0,
-               low=0.0, why="a negative spring would push the slip away", deck="tangential linear_history KT")
+KT = Parameter("kt", "linear_history: tangential spring constant on the slip history (Cundall-Strack)", "force/length",
+               1.0, low=0.0, why="a negative spring would push the slip away", deck="tangential linear_history KT")
 MU = Parameter("mu", "Coulomb friction coefficient, |F_t| <= mu |F_n|; none (or inf; tables hold inf): the paper's "
                "model (no cap)", "1", None, low=0.0, optional=True, none_value=math.inf,
                why="a friction coefficient is not negative", default_step_high=100.0,
                default_step_why="above 100 the cap acts only where F_n vanishes, at the contact's ends, and "
                                 "LAMMPS's step converges there too slowly for the default accuracy: give none for "
                                 "no cap, or a dt of your own (each row then reports its error)",
-               deck="tangential linear_history ... MU (none: 1e12)")
-#: LAMMPS always caps |F_t| <= mu F_n: "no cap" is this large mu.
-NO_CAP_MU = 1.0e12
+               deck="tangential linear_history|mindlin... ... MU (none: 1e12)")
 
 
 class LinearHistory(TangentialLaw):
     keyword = "linear_history"
+    summary = "the paper's Cundall-Strack spring kt on the slip history"
     coefficients = (KT, MU)
-
-    def cap(self, model) -> tuple[float, str]:
-        """The MU a wall deck writes, and why: the model's, or :data:`NO_CAP_MU` for none."""
-        if model.mu is None:
-            return NO_CAP_MU, f"the paper's model has no Coulomb limit; LAMMPS always applies one, so mu = {NO_CAP_MU:g}"
-        return model.mu, f"Coulomb limit |F_t| <= {model.mu!r} F_n: not the paper's model"
 
     def deck_terms(self, model, x_t: float, mu: float) -> tuple:
         return ("tangential", self.keyword, float(model.kt), float(x_t), float(mu))
+
+    def slip_stiffness(self, model, speed: float | None) -> float:
+        return model.kt
+
+    def frozen_stiffness(self, model, overlap: float | None) -> float:
+        return model.kt
 
 
 LAW = LinearHistory()

@@ -227,7 +227,7 @@ class Collision:
     def record(self, deck) -> dict:
         """The run's parameters, for its provenance record."""
         m = self.model
-        if m.normal_law.contact_radius:  # per sphere: the contact time and Omega depend on v_n
+        if m.normal_law.contact_radius or m.tangential_law.contact_radius:  # per sphere: tau or Omega(v_n)
             tau, omega = m.contact_times(self.v_n).tolist(), choose.omega_per_sphere(m, self.v_n).tolist()
         else:
             tau, omega = m.tau, m.Omega

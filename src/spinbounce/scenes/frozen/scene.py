@@ -57,7 +57,8 @@ class Frozen:
         set_(self, "omega", finite_number("omega", self.omega))
         set_(self, "t_end", positive_number("t_end", self.t_end))
         given = self.dt is not None
-        set_(self, "dt", m.check_dt(self.dt if given else self.default_dt(), frozen=True))
+        set_(self, "dt", m.check_dt(self.dt if given else self.default_dt(), frozen=True,
+                                        overlap=self.overlap))
         why = f"t_end = {self.t_end:g} at dt = {self.dt:.3g}" + ("" if given else ", the default accuracy's step")
         named = ("dt", self.dt) if given else ("t_end", self.t_end)
         steps = check_steps(steps_to(self.t_end, self.dt), *named, why)
@@ -80,7 +81,12 @@ class Frozen:
     @property
     def steps_per_half_period(self) -> float:
         """How finely dt resolves the slip mode (its half-period over dt; inf if nothing moves)."""
-        return self.model.steps_per_half_period(self.dt, frozen=True)
+        return self.model.steps_per_half_period(self.dt, frozen=True, overlap=self.overlap)
+
+    @property
+    def overlap(self) -> float:
+        """r - z: how deep the sphere is held (a Mindlin spring's contact radius is sqrt(r overlap))."""
+        return self.model.r - self.z
 
     @property
     def t_final(self) -> float:
@@ -91,7 +97,7 @@ class Frozen:
         """The step for the frozen contact's accuracy (FROZEN_ACCURACY, second order on the slip
         mode over t_end) and, with gamma_t, the first-order damping bound for the default one."""
         m = self.model
-        w, c = m.modes(frozen=True)["slip"]
+        w, c = m.modes(frozen=True, overlap=self.overlap)["slip"]
         if w == 0.0 and c == 0.0:  # kt = gamma_t = 0: nothing evolves; any dt is exact
             return self.t_end / 1000
         dt = second_order_dt([(w, c)], self.t_end, FROZEN_ACCURACY)

@@ -119,9 +119,9 @@ class TwoWalls:
             raise SceneError("models", len(models), f"must give one model per sphere ({len(self.initial)})")
         for model in models:
             if model.normal_law.contact_radius or model.style.tangential_contact_radius \
-                    or model.alpha != ALPHA_NVE_SPHERE:
+                    or model.tangential_law.contact_radius or model.alpha != ALPHA_NVE_SPHERE:
                 raise SceneError("model", model, "two walls run Hookean spheres with alpha = 2/5 (fix nve/sphere) "
-                                 "on granular walls; a Hertzian or classic wall or another alpha is not "
+                                 "on granular walls; a Hertzian, Mindlin or classic wall or another alpha is not "
                                  "implemented here")
         if len(set(models)) > MAX_MODELS:
             raise SceneError("models", len(set(models)), f"at most {MAX_MODELS} distinct models in one run "

@@ -1,0 +1,5 @@
+"""``tangential mindlin/force``: a Mindlin variant (:mod:`.mindlin`)."""
+
+from .mindlin import Mindlin
+
+LAW = Mindlin("mindlin/force")
