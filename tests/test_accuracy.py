@@ -98,7 +98,7 @@ def _mid_step_count(t_end, dt):
 def test_ladder_rungs_and_default_steps_end_mid_step():
     """The ladder's mid-step rungs and the scenes' default step both put the contact's end in
     the middle of a step (to rounding: 1e-9 of M), each rung resolving the fastest mode with at
-    least its n steps per half-period; the Hertzian batch's default is the ANY rung at its
+    least its n steps per half-period; a damped Hertzian batch's default is the ANY rung at its
     fixed resolution, the only fixed one left."""
     for model in (ContactModel(), ContactModel(kt=50.0), ContactModel(gamma_n=1.0)):
         for n in (32, 250, 1000):
@@ -111,7 +111,7 @@ def test_ladder_rungs_and_default_steps_end_mid_step():
     assert collision_dt(m, 250, EDGE) == pytest.approx(m.tau / 250)
     steps = 10.0 / frozen_dt(ContactModel(gamma_t=1.0), 1000)
     assert steps == pytest.approx(round(steps), abs=1e-9)
-    hertz = ContactModel(normal="hertz")
+    hertz = ContactModel(normal="hertz", gamma_t=0.5)  # a dashpot: not time-scaled, the fixed rule
     assert collision_dt(hertz, HERTZ_STEPS_PER_HALF_PERIOD, ANY, speed=0.8) == Collision(hertz, v_n=[-0.8, -0.1]).dt
     with pytest.raises(ValueError, match="form"):
         collision_dt(m, 250, FROZEN)

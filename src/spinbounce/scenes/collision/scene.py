@@ -5,12 +5,18 @@ A scene is pure data, checked when it is built (:mod:`spinbounce.scenes`). The n
 the model's normal sub-model (:mod:`spinbounce.laws.normal`): the paper's Hookean spring, or a
 force that grows with the contact radius (Hertz), whose contact time depends on v_n; the scene
 asks the sub-model for the contact's times, overlap and mode.
+
+One dt cannot end contacts of different lengths mid-step, and LAMMPS's error is first order
+unless a contact ends mid-step. So an undamped batch of Hertzian speeds runs each sphere in
+its own time units (:attr:`Collision.time_scales`, as the pair batches do): every contact then
+lasts the longest one's time in the deck, and one step ends them all mid-step.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
@@ -19,17 +25,20 @@ from ...exact import choose
 from ...exact.choose import PLANE_COLUMNS, SPACE_COLUMNS
 from ...model import parameters
 from ...model.contact import ContactModel
-from ...model.parameters import SceneError
+from ...model.parameters import SceneError, positive_number
 from ...model.stability import overlap_stretch
-from ...model.timestep import align_mid_step, check_steps, second_order_dt, steps_through, steps_per_contact
+from ...model.timestep import (align_mid_step, check_steps, mode_rate, second_order_dt, steps_per_contact,
+                               steps_through)
 from ...lammps.decks import wall_parameters
 
-__all__ = ["Collision", "row_states", "HERTZ_STEPS_PER_HALF_PERIOD", "STATE", "STATE_3D", "STATE_ARGS"]
+__all__ = ["Collision", "row_states", "scaled_contact_time", "HERTZ_STEPS_PER_HALF_PERIOD", "STATE",
+           "STATE_3D", "STATE_ARGS"]
 
 #: How many steps late, per unit of gamma_n/m t_exit/e, LAMMPS's damped sphere may leave the
 #: wall (an upper bound on the measured 0.1 to 0.3).
 EXIT_DELAY = 0.5
-#: Default resolution of a Hertzian collision: steps per half-period of the fastest mode.
+#: Default resolution of a Hertzian batch of several speeds that cannot be time-scaled (a
+#: dashpot, :func:`scaled_contact_time`): steps per half-period of the fastest mode.
 #: Each sphere's contact ends at its own time, so no one dt puts every end mid-step and the
 #: error is first order: cutting the tangential force off somewhere inside the last step
 #: moves the final slip rate by at most sqrt(Q) dt |u'(0)|/2 (measured: 0.498 of
@@ -58,6 +67,22 @@ def _as_vector(name: str, value) -> tuple[float, ...]:
     return tuple((arr + 0.0).tolist())
 
 
+def scaled_contact_time(model: ContactModel, v_n) -> float | None:
+    """How long every contact of a time-scaled batch of spheres at these v_n lasts in its deck: the
+    longest contact time T*, sphere i running at the time scale s_i = T*/T_i >= 1
+    (:attr:`Collision.time_scales`). None where the batch runs as it is: its contacts all last
+    as long (one dt ends them all mid-step), or it has a dashpot. A contact run in time units s
+    times longer (mass times s^2, velocities and spins over s, same radius and wall) follows the
+    same overlaps and forces at the same fraction of the contact, the Hertzian and Hookean
+    force, the tangential springs (kt, or k_t a, on the slip history) and the Coulomb cap
+    mu F_n alike; a dashpot -gamma v would need gamma times s, sphere by sphere, which one
+    wall command cannot give."""
+    if model.gamma_n > 0.0 or model.gamma_t > 0.0:
+        return None
+    times = model.contact_times(v_n)
+    return float(np.max(times)) if np.ptp(times) > 0.0 else None
+
+
 def row_states(m: ContactModel, names, columns: dict) -> checks.RowStates:
     """A wall table's rows as the checks read them: its ``{s}_initial``, ``{s}_lammps`` and ``{s}_theory``
     state columns; errors relative to the initial state's size."""
@@ -81,6 +106,13 @@ class Collision:
     with any of them non-zero is 3-D: its states have six columns (:data:`STATE_3D`).
     ``dt = None`` takes the step of the default accuracy (:meth:`default_dt`, the contact's
     end mid-step; a run may refine it by a probe: :mod:`spinbounce.stepping`).
+
+    ``deck_contact_time``: how long every contact lasts in the deck, each sphere time-scaled to
+    it (:attr:`time_scales`). None at the default step takes :func:`scaled_contact_time` (a batch
+    of Hertzian speeds without a dashpot: its longest contact); with a given dt, None runs every
+    sphere at dt. The probe's scenes carry it (:meth:`rows`, :meth:`at_step`), and a sweep gives
+    every chunk of a group its slowest possible sphere's: one step then ends every contact
+    mid-step in all of them.
     """
 
     model: ContactModel = field(default_factory=ContactModel)
@@ -91,6 +123,7 @@ class Collision:
     v_s: tuple[float, ...] = (0.0,)
     omega_s: tuple[float, ...] = (0.0,)
     omega_n: tuple[float, ...] = (0.0,)
+    deck_contact_time: float | None = None
     #: Whether dt came from the default rule (a run may then tune it: spinbounce.stepping).
     default_step: bool = field(init=False, default=False)
 
@@ -122,8 +155,9 @@ class Collision:
                 f"|v_n| must be below {m.normal_law.tunnelling_speed(m):.6g}: the overlap would reach {reach:.6g} "
                 f">= r = {m.r:g}, the centre would cross the wall and the sphere tunnel through it",
             )
+        self._check_scale()
         dt = self.default_dt() if self.dt is None else self.dt
-        set_(self, "dt", m.check_dt(dt, frozen=False, speed=speed))
+        set_(self, "dt", self._checked_dt(dt))
         # refused before anything runs: a collision that needs more steps than one run may take
         modes = m.modes(frozen=False, speed=speed)
         mode = max(modes, key=lambda name: math.hypot(*modes[name]))
@@ -131,33 +165,112 @@ class Collision:
         why = (f"dt = {self.dt:.3g}: the {mode} mode ({causes[mode]}) is fast against the contact time "
                f"{float(np.max(m.contact_times(self.v_n))):.3g}")
         check_steps(self.nsteps, "dt", self.dt, why, spheres=self.n)
-        stretch = overlap_stretch(m.normal_law.normal_mode(m, speed)[0], self.dt)
-        if reach * stretch >= m.r:
+        # the step's stretch of the deepest overlap, each end sphere at its own step dt/s
+        law = m.normal_law
+        stretched = max(float(m.max_overlap(v)) * overlap_stretch(law.normal_mode(m, v)[0], self.dt / s)
+                        for v, s in self._end_spheres())
+        if stretched >= m.r:
             raise SceneError(
                 "v_n",
                 max(vn, key=abs),
                 f"at dt = {self.dt:.6g} the step's own oscillation stretches the overlap to "
-                f"{reach * stretch:.6g} >= r = {m.r:g} (exact: {reach:.6g}): the sphere would tunnel "
+                f"{stretched:.6g} >= r = {m.r:g} (exact: {reach:.6g}): the sphere would tunnel "
                 "through the wall; use a smaller dt or a slower |v_n|",
             )
 
+    def _check_scale(self) -> None:
+        """The deck's contact time: the default step's :func:`scaled_contact_time`, or a given one
+        (positive, and only where the scale is exact: no dashpot)."""
+        m, given = self.model, self.deck_contact_time
+        if given is None:
+            if self.dt is None:
+                object.__setattr__(self, "deck_contact_time", scaled_contact_time(m, self.v_n))
+            return
+        object.__setattr__(self, "deck_contact_time", positive_number("deck_contact_time", given))
+        if m.gamma_n > 0.0 or m.gamma_t > 0.0:
+            raise SceneError("deck_contact_time", given, "must be None with a dashpot (gamma_n or gamma_t "
+                             "> 0): a time-scaled sphere's damping would have to scale with it")
+
+    def _end_spheres(self) -> list[tuple[float, float]]:
+        """(|v_n|, time scale) of the fastest and the slowest sphere (the fastest alone unless the
+        batch is time-scaled). In deck time a mode w of sphere i is w/s_i = w T_i/T*, and w T is a
+        power of |v_n| for every law here (Hertz: the same at every speed; a fixed spring: T's,
+        |v_n|^(-1/5)): the fastest mode in the deck is the fastest or the slowest sphere's."""
+        if not self.time_scaled:
+            return [(self.speed, 1.0)]
+        speeds, scales = np.abs(np.asarray(self.v_n)), self.time_scales
+        return [(float(speeds[k]), float(scales[k])) for k in (np.argmax(speeds), np.argmin(speeds))]
+
+    def deck_modes(self) -> list[tuple[float, float]]:
+        """The contact's modes (w, c) as the deck integrates them: the fastest sphere's, and in a
+        time-scaled batch each end sphere's rates over its time scale (:meth:`_end_spheres`)."""
+        rates = [(s, self.model.modes(frozen=False, speed=v).values()) for v, s in self._end_spheres()]
+        return [(w / s, c / s) for s, modes in rates for w, c in modes]
+
+    def _checked_dt(self, dt) -> float:
+        """dt, refused above the stability limit or too coarse for a contact mode: the fastest
+        sphere's at dt, or in a time-scaled batch each end sphere's at its own step dt/s."""
+        m = self.model
+        if not self.time_scaled:
+            return m.check_dt(dt, frozen=False, speed=self.speed)
+        dt = positive_number("dt", dt)
+        for v, s in self._end_spheres():
+            try:
+                m.check_dt(dt / s, frozen=False, speed=v)
+            except SceneError as exc:
+                raise SceneError("dt", dt, f"as the sphere at |v_n| = {v:.6g} runs it (time-scaled by "
+                                 f"{s:.6g}: its step is dt/{s:.6g} = {dt / s:.6g}), {exc.limit}") from None
+        return dt
+
     def default_dt(self) -> float:
         """The step of the default accuracy (:mod:`.timestep`): second order on every contact
-        mode over the contact's length, the contact's end mid-step. A Hertzian batch whose
-        spheres end at different times cannot be aligned and runs at first order
-        (:data:`HERTZ_STEPS_PER_HALF_PERIOD`); a single speed is aligned like a Hookean contact."""
+        mode over the contact's length, the contact's end mid-step. A batch of Hertzian speeds is
+        aligned so in deck time, each sphere time-scaled to the longest contact
+        (:attr:`time_scales`), its modes those of :meth:`deck_modes`; one with a dashpot cannot be
+        scaled exactly, its spheres end at different times, and it keeps a fixed first-order rule
+        (:data:`HERTZ_STEPS_PER_HALF_PERIOD`). A single speed is aligned like a Hookean contact."""
         m = self.model
-        times = m.contact_times(self.v_n)
-        if np.ptp(times) > 0.0:
+        times = self.deck_contact_times
+        if np.ptp(times) > 0.0 and self.deck_contact_time is None:
             return math.pi / m.fastest_rate(frozen=False, speed=self.speed) / HERTZ_STEPS_PER_HALF_PERIOD
-        t_force = float(m.normal_law.force_times(m, self.v_n)[0])
-        modes = m.modes(frozen=False, speed=self.speed).values()
-        return align_mid_step(t_force, second_order_dt(modes, float(times[0])))
+        return align_mid_step(self.force_time, second_order_dt(self.deck_modes(), float(np.max(times))))
+
+    @cached_property
+    def time_scales(self) -> np.ndarray:
+        """Per sphere, how many times slower its time runs in the deck: T*/T_i, T* the deck's
+        contact time (:func:`scaled_contact_time`); its mass is m s^2, its velocities and spins
+        over s, and its final ones are LAMMPS's times s. All ones when not time-scaled."""
+        if self.deck_contact_time is None:
+            return np.ones(self.n)
+        return self.deck_contact_time / self.model.contact_times(self.v_n)
+
+    @property
+    def time_scaled(self) -> bool:
+        """Whether any sphere runs at a time scale other than 1 (its deck sets masses per sphere)."""
+        return bool(np.any(self.time_scales != 1.0))
+
+    @property
+    def deck_contact_times(self) -> np.ndarray:
+        """Each sphere's contact time in the deck: T_i s_i (T* for every sphere of a scaled batch)."""
+        return self.model.contact_times(self.v_n) * self.time_scales
+
+    @property
+    def force_time(self) -> float:
+        """When the last contact force ends in the deck (:meth:`NormalLaw.force_times`, in deck time)."""
+        m = self.model
+        return float(np.max(m.normal_law.force_times(m, self.v_n) * self.time_scales))
+
+    @property
+    def row_dt(self) -> np.ndarray:
+        """The step each sphere ran at, in its own time: dt/s_i (dt unless time-scaled)."""
+        return self.dt / self.time_scales
 
     @property
     def steps_per_half_period(self) -> float:
-        """How finely dt resolves the fastest contact mode (its half-period over dt)."""
-        return self.model.steps_per_half_period(self.dt, frozen=False, speed=self.speed)
+        """How finely dt resolves the fastest contact mode (its half-period over dt; in deck time)."""
+        if not self.time_scaled:
+            return self.model.steps_per_half_period(self.dt, frozen=False, speed=self.speed)
+        return math.pi / max(mode_rate(w, c) for w, c in self.deck_modes()) / self.dt
 
     @property
     def speed(self) -> float:
@@ -191,7 +304,7 @@ class Collision:
         """Steps that end the contact: the step after tau, and one more for rounding; with
         strong normal damping more, as the sphere leaves slowly (:data:`EXIT_DELAY`)."""
         m = self.model
-        t_exit = float(np.max(m.contact_times(self.v_n)))  # a speed-dependent contact: the slowest's
+        t_exit = float(np.max(self.deck_contact_times))  # a speed-dependent contact: the slowest's
         # LAMMPS's first-order error in the overlap, about gamma_n/m dt |v_n| t_exit, is crossed
         # at the exit speed e |v_n|: the exit is late by that many steps, whatever dt is
         late = math.ceil(EXIT_DELAY * m.gamma_n / m.m * t_exit / m.restitution) if m.gamma_n else 0
@@ -231,20 +344,31 @@ class Collision:
             tau, omega = m.contact_times(self.v_n).tolist(), choose.omega_per_sphere(m, self.v_n).tolist()
         else:
             tau, omega = m.tau, m.Omega
-        return {"model": m.as_record(), "dt": self.dt, "nsteps": self.nsteps, "tau": tau, "Omega": omega,
-                "wall": wall_parameters(m), "integrator": "rigid" if deck.rigid else "nve/sphere",
-                "atoms": "library" if deck.atoms is not None else ("data_file" if deck.files else "inline")}
+        out = {"model": m.as_record(), "dt": self.dt, "nsteps": self.nsteps, "tau": tau, "Omega": omega,
+               "wall": wall_parameters(m), "integrator": "rigid" if deck.rigid else "nve/sphere",
+               "atoms": "library" if deck.atoms is not None else ("data_file" if deck.files else "inline")}
+        if self.time_scaled:
+            scales = self.time_scales
+            out["time_scaled"] = {
+                "deck_contact_time": self.deck_contact_time,
+                "scales": [float(scales.min()), float(scales.max())],
+                "row_dt": [float(self.row_dt.min()), float(self.row_dt.max())],
+                "meaning": "sphere i ran in time units s_i times longer (mass m s_i^2, v and omega over "
+                           "s_i): every contact lasted deck_contact_time at dt; its own step was dt/s_i"}
+        return out
 
     def needs_probe(self) -> bool:
         """Whether the step must be measured: not the paper's linear contact, and not a
-        Hertzian batch of several speeds (its end cannot be aligned; it keeps its fixed rule)."""
+        Hertzian batch of several speeds that is not time-scaled (its ends cannot be aligned;
+        it keeps its fixed rule)."""
         if choose.which(self.model).kind == "linear":
             return False
-        return not np.ptp(self.model.contact_times(self.v_n)) > 0.0
+        return self.deck_contact_time is not None or not np.ptp(self.model.contact_times(self.v_n)) > 0.0
 
     def probe_time(self, sample: "Collision") -> float:
-        """The contact's length the probe's steps are counted over: the force's, the longest."""
-        return float(np.max(self.model.normal_law.force_times(self.model, self.v_n)))
+        """The contact's length the probe's steps are counted over: the force's, the longest (in
+        deck time: the sample carries this scene's :attr:`deck_contact_time`)."""
+        return self.force_time
 
     def first_probe_steps(self, t_contact: float) -> int:
         return steps_per_contact(t_contact, self.dt)
@@ -258,7 +382,9 @@ class Collision:
 
     def rows(self, index) -> "Collision":
         """The scene of the spheres ``index`` only."""
-        return Collision(self.model, dt=self.dt, **{n: np.asarray(getattr(self, n))[index] for n in STATE_ARGS})
+        return Collision(self.model, dt=self.dt, deck_contact_time=self.deck_contact_time,
+                         **{n: np.asarray(getattr(self, n))[index] for n in STATE_ARGS})
 
     def at_step(self, dt: float) -> "Collision":
-        return Collision(self.model, dt=dt, **{n: getattr(self, n) for n in STATE_ARGS})
+        return Collision(self.model, dt=dt, deck_contact_time=self.deck_contact_time,
+                         **{n: getattr(self, n) for n in STATE_ARGS})

@@ -32,16 +32,18 @@ def collision_table(scene, initial, final) -> dict[str, np.ndarray]:
     ``initial`` and ``final`` map LAMMPS's column names (z, vx, vz, omegay, ...) to one
     value per sphere in id order (ids 1..n): a dump frame or a dict of arrays. The theory
     acts on the *requested* initial state, so a mangled input would show as an error.
-    A 3-D scene adds the columns of :data:`STATE_3D` beyond the paper's three.
+    A 3-D scene adds the columns of :data:`STATE_3D` beyond the paper's three. A time-scaled
+    sphere's velocities and spins are LAMMPS's times its scale (:attr:`Collision.time_scales`).
     """
-    r, names = scene.model.r, scene.state_names
+    r, names, scales = scene.model.r, scene.state_names, scene.time_scales[:, None]
     spins = tuple(SPINS[s] for s in names if s in SPINS)
     columns = {"id": np.arange(1, scene.n + 1)}
     columns.update({f"{name}_initial": value for name, value in zip(names, scene.initial.T)})
     columns.update({f"{spin}_initial": np.asarray(getattr(scene, spin)) for spin in spins})
     for when, frame in (("lammps_initial", initial), ("lammps", final)):
         # the state at r = 1: its spins are the angular velocities, in the paper's signs
-        state = wall_frame(*(np.column_stack([frame[f"{q}{axis}"] for axis in "xyz"]) for q in ("v", "omega")), 1.0)
+        v, w = (np.column_stack([frame[f"{q}{axis}"] for axis in "xyz"]) * scales for q in ("v", "omega"))
+        state = wall_frame(v, w, 1.0)
         values = {name: r * state[:, k] if name in SPINS else state[:, k] for k, name in enumerate(names)}
         values.update({SPINS[name]: state[:, k] for k, name in enumerate(names) if name in SPINS})
         values["z"] = np.asarray(frame["z"])

@@ -101,10 +101,12 @@ class Runs:
         self._done: dict[str, tuple] = {}
 
     def collide(self, name: str, model: ContactModel, vn, vt, omega, dt=None):
-        """(scene, result table) of a batch of collisions."""
+        """(scene, result table) of a batch of collisions: the scene as it ran (a default step's
+        probe may have refined its dt)."""
         if name not in self._done:
-            scene = Collision(model, v_n=vn, v_t=vt, omega=omega, dt=dt)
-            self._done[name] = scene, run_scene(scene, self.root / name, atoms="library").table
+            result = run_scene(Collision(model, v_n=vn, v_t=vt, omega=omega, dt=dt), self.root / name,
+                               atoms="library")
+            self._done[name] = result.scene, result.table
         return self._done[name]
 
     def frozen(self, name: str, model: ContactModel, **kwargs):
@@ -132,8 +134,9 @@ def final(t) -> np.ndarray:
 
 
 def contact_time(scene: Collision, t) -> np.ndarray:
-    """When each sphere left the wall: the run's end minus its free flight from z = r."""
-    end = scene.nsteps * scene.dt
+    """When each sphere left the wall: the run's end minus its free flight from z = r, in the
+    sphere's own time (a time-scaled sphere's step is dt over its scale: Collision.row_dt)."""
+    end = scene.nsteps * scene.row_dt
     return end - (t["z_lammps"].to_numpy() - scene.model.r) / t["v_n_lammps"].to_numpy()
 
 
