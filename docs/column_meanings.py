@@ -38,7 +38,9 @@ OTHER = {
     "error": "largest |LAMMPS - theory| over the state columns, over the size of the initial state",
     "energy_excess": "kinetic energy LAMMPS ended with beyond the theory's, over E(0)",
     "status": "ok, inaccurate (error above the target), energy_gained or grazing (overlap too small to resolve)",
-    "dt": "the timestep that ran (with a tolerance: the finest run's)",
+    "dt": "the timestep this row ran at (a time-scaled Hertzian batch: the deck's dt over the row's time "
+          "scale s_i, the step in its own time; a pair sweep: the batch's deck step; with a tolerance: the "
+          "finest run's)",
     "nsteps": "LAMMPS steps (with a tolerance: all runs' together)",
     "tolerance": "the accuracy asked for (sweeps with a tolerance only)",
     "Omega_theory": "the theory's Omega (Eq. 18) for this sphere's v_n; NaN where none exists",

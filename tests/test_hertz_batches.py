@@ -190,3 +190,28 @@ def test_a_batch_with_a_dashpot_keeps_the_fixed_rule(tmp_path):
     result = _run(scene, tmp_path)
     assert result.step.method != "probe" and result.scene.dt == scene.dt
     assert result.table["error"].max() <= ACCURACY and (result.table["status"] == "ok").all()
+
+
+@pytest.mark.lammps
+def test_a_sweep_scales_every_chunk_to_one_contact_and_records_each_row_s_step(tmp_path):
+    """Every chunk and the group's probe states take the group's slowest possible contact T*, so
+    the probe's rows end mid-step at each chunk's step; each row's dt is the step it ran at,
+    dt/s_i = dt T_i/T*. (Each chunk starts its probe from its own rule, which follows its own
+    end speeds: 8.7e-3 and 8.8e-3 here, as a Hookean Mindlin sweep's chunks do.)"""
+    from spinbounce.sweeps import read_results, run_sweep, spec_from_dict
+    from spinbounce.sweeps.cost import chunk_cost
+
+    spec = spec_from_dict({"seed": 3, "chunk_size": 40, "model": {"normal": "hertz"},
+                           "states": {"n": 100, "v_n": [-0.8, -0.1], "v_t": [-2.0, 2.0], "r_omega": [-2.0, 2.0]}})
+    run_sweep(spec, tmp_path / "sweep", workers=1, log=lambda *_: None)
+    rows = read_results(tmp_path / "sweep")
+    assert len(rows) == 100 and rows["chunk"].nunique() == 3
+    assert rows["error"].max() <= ACCURACY and (rows["status"] == "ok").all()
+    t_star = float(HERTZ.contact_times(-0.1)[0])
+    rows["deck_dt"] = rows["dt"] * t_star / HERTZ.contact_times(rows["v_n_initial"].to_numpy())
+    for _, chunk in rows.groupby("chunk"):  # one deck step a chunk, which ends T* mid-step
+        dt = chunk["deck_dt"].iloc[0]
+        assert np.allclose(chunk["deck_dt"], dt, rtol=1e-12) and (chunk["nsteps"] == chunk["nsteps"].iloc[0]).all()
+        assert (t_star / dt - 0.5) == pytest.approx(round(t_star / dt - 0.5), abs=1e-6)
+    estimate = chunk_cost(spec, 0, 40).steps  # an upper estimate of the probed steps
+    assert rows["nsteps"].max() <= estimate <= 2 * rows["nsteps"].min()

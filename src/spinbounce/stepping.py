@@ -127,7 +127,8 @@ def extrapolate(coarser: tuple[int, float], finer: tuple[int, float], target: fl
 #: studies/accuracy's default-step table); a cap with tangential but no normal damping also
 #: errs at first touch, about CAPPED_FIRST_TOUCH mu (gamma_t/m) T dt (measured 2.8 at mu =
 #: 10); Coulomb and Hertzian contacts refine the rule's step by about ROUGH (measured 1.0
-#: to 1.3 for mu from 0.3 to 3, 1.6 for a Hertzian speed of its own).
+#: to 1.3 for mu from 0.3 to 3, 1.6 for a Hertzian speed of its own, 1.0 for a time-scaled
+#: batch of Hertzian speeds, with linear_history or mindlin).
 DAMPED = 0.4
 CAPPED_FIRST_TOUCH = 4.0
 ROUGH = 1.5

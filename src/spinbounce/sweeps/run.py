@@ -25,7 +25,7 @@ import pandas as pd
 
 from .. import __version__, checks
 from ..model import parameters
-from ..scenes.collision import Collision
+from ..scenes.collision import Collision, scaled_contact_time
 from ..stepping import PROBE_SPHERES
 from ..exact import choose
 from .spec import SweepError, SweepSpec, spec_from_dict
@@ -66,7 +66,7 @@ def run_chunk(raw: dict, out: str, group: int, chunk: int, start: int, stop: int
     else:
         dt, nsteps, loop = _wall_columns(columns, spec, model, dt, states, probe, run_dir)
     labels = _model_columns(columns, model, n)
-    columns["dt"] = np.full(n, dt)  # with a tolerance: the finest run's
+    columns["dt"] = np.broadcast_to(dt, n).copy()  # each row's own step; with a tolerance: the finest run's
     columns["nsteps"] = np.full(n, nsteps)  # with a tolerance: all runs' steps together
     if spec.scene == "pair":
         labels.update(_pair_columns(columns, spec, group, model, n))
@@ -80,18 +80,24 @@ def run_chunk(raw: dict, out: str, group: int, chunk: int, start: int, stop: int
 
 def _wall_columns(columns: dict, spec: SweepSpec, model, dt, states: np.ndarray, probe: np.ndarray,
                   run_dir: Path):
-    """Run a wall chunk of ``states``, its rows into ``columns``; (dt, steps, LAMMPS loop seconds)."""
+    """Run a wall chunk of ``states``, its rows into ``columns``; (dt, steps, LAMMPS loop seconds), dt
+    each row's own step (a time-scaled batch's dt over the row's time scale: Collision.row_dt)."""
     from ..pipeline import run_scene
+
+    # at the default step a batch of Hertzian speeds is time-scaled: every chunk of the group and
+    # its probe to the slowest possible sphere's contact, so that one step ends them all mid-step
+    scaled_to = scaled_contact_time(model, -np.array(spec.normal_speeds())) if dt is None else None
 
     def batch(rows):  # rows (v_n, v_t, omega[, v_s, omega_s, omega_n])
         return Collision(model, v_n=rows[:, 0], v_t=rows[:, 1], omega=rows[:, 2], dt=dt,
+                         deck_contact_time=scaled_to,
                          **dict(zip(("v_s", "omega_s", "omega_n"), rows[:, 3:].T, strict=False)))
 
     scene, n = batch(states), len(states)
     if spec.tolerance is None:
         result = run_scene(scene, run_dir, atoms="library", record=False, probe_states=batch(probe))
         columns.update({name: values.to_numpy() for name, values in result.table.drop(columns=["id"]).items()})
-        return result.scene.dt, result.scene.nsteps, result.info.loop_seconds
+        return result.scene.row_dt, result.scene.nsteps, result.info.loop_seconds
     # a ladder of runs per chunk, extrapolated; each row carries its error estimate
     from ..extrapolation import collide_to_tolerance, collision_frame
 
