@@ -34,7 +34,7 @@ def register(sub) -> None:
                    help="JSON report (default %(default)s)")
     p.add_argument("--keep-runs", type=out_folder, metavar="DIR", help="keep every run's folder here")
     p.add_argument("--n-models", type=positive_count, default=100_000, metavar="N",
-                   help="collisions per model sweep (frictionless, mu 2-D and 3-D; Hertz takes N/100) "
+                   help="collisions per model sweep (frictionless, mu 2-D and 3-D, Hertz, Hertz-Mindlin) "
                         "(default %(default)s)")
     p.add_argument("--n-pairs", type=pair_count, default=200, metavar="N",
                    help=f"impacts LAMMPS's pair-to-wall cost is measured over (1 to {MAX_PAIR_IMPACTS}; "
@@ -95,7 +95,7 @@ def _print_models(n: int, seed: int, n_pairs: int) -> dict:
     from ..studies.solver_speed import measure_throughput
     from ..studies.speed import chunk_jobs, measure_models, parallel_efficiency
 
-    models = measure_models(n=n, n_hertz=max(1, n // 100), seed=seed)["models"]
+    models = measure_models(n=n, seed=seed)["models"]
     print(f"{'sweep (one core)':<18}{'collisions':>11}{'coll/s':>10}{'time/coll vs frictionless':>27}"
           f"{'theory':>8}{'checks':>8}{'steps':>8}{'max error':>11}")
     for m in models:

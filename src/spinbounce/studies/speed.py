@@ -13,11 +13,12 @@ second, the largest error against Eq. 18, and the share of its wall time spent o
 LAMMPS's run loop ("Loop time" in the log): start-up, templating, file I/O, parsing.
 
 What each model costs in a sweep (:func:`measure_models`): for the paper's model, Coulomb
-friction in the plane and in 3-D, and the Hertzian wall, one sweep of the same sampled states
-on one core. Its wall time is split into LAMMPS (the rest) and the theory columns
-(:func:`spinbounce.exact.choose.predict` timed again on the same states); the share of the row
-checks (:mod:`spinbounce.checks`) is reported, and the cost estimate that sizes cluster jobs
-(:mod:`spinbounce.sweeps.cost`) stands beside the measured time.
+friction in the plane and in 3-D, the Hertzian wall and Hertz-Mindlin (its batches of speeds
+time-scaled: :attr:`spinbounce.scenes.collision.Collision.time_scales`), one sweep of the
+same number of sampled states on one core. Its wall time is split into LAMMPS (the rest) and
+the theory columns (:func:`spinbounce.exact.choose.predict` timed again on the same states);
+the share of the row checks (:mod:`spinbounce.checks`) is reported, and the cost estimate
+that sizes cluster jobs (:mod:`spinbounce.sweeps.cost`) stands beside the measured time.
 
 These are measurements on a shared machine, not pass/fail checks: run them side by side
 so that the ratios, not the absolute rates, carry the result.
@@ -50,6 +51,8 @@ MODELS = {
     "mu = 0.3 (2-D)": ({"mu": 0.3}, PLANE),
     "mu = 0.3 (3-D)": ({"mu": 0.3}, SPACE),
     "Hertz": ({"normal": "hertz"}, {**PLANE, "v_n": [-0.8, -0.1]}),
+    "Hertz-Mindlin": ({"normal": "hertz/material", "youngs_modulus": 1e4, "poisson_ratio": 0.3,
+                       "tangential": "mindlin"}, {**PLANE, "v_n": [-0.8, -0.1]}),
 }
 
 
@@ -129,7 +132,7 @@ def scene_needs(spec, count: int, folder: Path) -> dict:
         path = prepare_run_dir(folder / name, deck)
         started = time.perf_counter()
         info = run_deck(path, atoms=deck.atoms)
-        final_v = info.final["v"][: scene.n]
+        final_v = info.final["v"][: scene.n] * scene.time_scales[:, None]  # a time-scaled sphere's: times s
         out[name] = {"wall_seconds": time.perf_counter() - started, "loop_seconds": info.loop_seconds,
                      "steps": scene.nsteps + extra,
                      "max_abs_vn_error": float(np.abs(final_v[:, 2] - scene.predicted()[:, 0]).max())}
@@ -227,12 +230,12 @@ def _one(name: str, n: int, seed: int, root: Path, log) -> dict:
             "collisions_per_second": n / wall, "estimated_seconds": chunk_cost(spec, 0, n).seconds}
 
 
-def measure_models(n: int = 100_000, n_hertz: int = 1_000, seed: int = 0, keep: Path | None = None,
-                   log=lambda *_: None) -> dict:
-    """Each model's sweep on one core; ratios of time per collision to the frictionless one."""
+def measure_models(n: int = 100_000, seed: int = 0, keep: Path | None = None, log=lambda *_: None) -> dict:
+    """Each model's sweep of ``n`` collisions on one core; ratios of time per collision to the
+    frictionless one."""
     root = Path(keep) if keep else Path(tempfile.mkdtemp(prefix="spinbounce-bench-models-"))
     try:
-        out = [_one(name, n_hertz if name == "Hertz" else n, seed, root, log) for name in MODELS]
+        out = [_one(name, n, seed, root, log) for name in MODELS]
     finally:
         if keep is None:
             shutil.rmtree(root, ignore_errors=True)
