@@ -14,7 +14,8 @@ by a probe (:mod:`spinbounce.stepping`), which starts from this rule's step.
 **Where the end falls.** With ``dt = t_end/(N + 1/2)`` the contact ends mid-step, where the
 error of LAMMPS's cutting the force off within the step cancels to first order (LAMMPS_FACTS
 section 10; docs/explanation/numerics.md). Every collision with one contact time (Hookean)
-takes its step from here; a Hertzian wall's spheres end at their own times: first order.
+takes its step from here; a batch of Hertzian speeds too, each sphere time-scaled to the
+longest contact (scenes.collision); with a dashpot its spheres end at their own times: first order.
 """
 
 from __future__ import annotations

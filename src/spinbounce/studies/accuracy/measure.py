@@ -33,8 +33,9 @@ __all__ = ["FULL_LADDER", "QUICK_LADDER", "DEFAULT_FORMS", "ladder", "collision_
 FULL_LADDER = tuple(2**k for k in range(5, 17))  # 32 .. 65536
 QUICK_LADDER = (64, 128, 256, 512, 1024)
 #: The forms a scene's default step can take: its end mid-step (every Hookean contact, and a
-#: Hertzian wall at one speed), one dt for several Hertzian speeds, a frozen contact. No
-#: default puts the end on a step boundary: that form is the study's contrast only.
+#: Hertzian wall at one speed), one dt for several Hertzian speeds (time-scaled, every end
+#: mid-step in deck time; with a dashpot the fixed rule), a frozen contact. No default puts
+#: the end on a step boundary: that form is the study's contrast only.
 DEFAULT_FORMS = (MID, ANY, FROZEN)
 
 
@@ -47,8 +48,9 @@ def collision_dt(model: ContactModel, n: float, form: str, speed: float | None =
 
     Hookean: the mid-step rung or its end on a step, tau/M. ``ANY``: pi/(n w) for a Hertzian
     wall, whose fastest mode w depends on the fastest |v_n|, ``speed`` (for n =
-    HERTZ_STEPS_PER_HALF_PERIOD the default of a Hertzian batch of several speeds). A
-    Hertzian mid-step dt is one speed's own: :func:`_hertz_mid_dt`.
+    HERTZ_STEPS_PER_HALF_PERIOD the default of a damped Hertzian batch of several speeds). A
+    Hertzian mid-step dt is one speed's own: :func:`_hertz_mid_dt`. A given dt runs every
+    sphere at it (no time scale).
     """
     if form == MID:
         return collision_rung_dt(model, n)
@@ -167,8 +169,9 @@ def run_frozen_level(case: Case, dt: float | None, folder: Path, repeats: int = 
 
 def run_level(case: Case, n: float | None, form: str, folder: Path, repeats: int = 1) -> dict:
     """One level of ``case`` in ``form`` at ``n`` steps per half-period (None: the scenes'
-    default step: the a priori rule, the probe, a Hertzian batch's fixed resolution, or the
-    frozen rule; pipeline.run_scene tunes a default step): its row."""
+    default step: the a priori rule, the probe (a Hertzian batch: time-scaled), a damped
+    Hertzian batch's fixed resolution, or the frozen rule; pipeline.run_scene tunes a default
+    step): its row."""
     if form == FROZEN:
         return run_frozen_level(case, None if n is None else frozen_dt(case.model, n), folder, repeats)
     speed = float(np.max(np.abs(np.asarray(case.states, dtype=float)[:, 0])))  # the fastest |v_n|

@@ -189,7 +189,8 @@ def _parameters(quick: bool, steps: tuple[int, ...]) -> dict:
         "box": {"v_n": list(BOX[0]), "v_t": list(BOX[1]), "r_omega": list(BOX[2])},
         "default_step": ("the scenes' own (dt = None): model.timestep's second-order rule for the paper's linear "
                          "contact, a probe against the exact theory otherwise (stepping.tune), "
-                         "HERTZ_STEPS_PER_HALF_PERIOD for a Hertzian batch of several speeds, Frozen.default_dt"),
+                         "a Hertzian batch of several speeds time-scaled and probed (Collision.time_scales; "
+                         "HERTZ_STEPS_PER_HALF_PERIOD with a dashpot), Frozen.default_dt"),
         "accuracy": ACCURACY, "frozen_accuracy": FROZEN_ACCURACY, "safety": SAFETY,
     }
 
