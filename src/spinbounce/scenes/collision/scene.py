@@ -8,8 +8,8 @@ asks the sub-model for the contact's times, overlap and mode.
 
 One dt cannot end contacts of different lengths mid-step, and LAMMPS's error is first order
 unless a contact ends mid-step. So an undamped batch of Hertzian speeds runs each sphere in
-its own time units (:attr:`Collision.time_scales`, as the pair batches do): every contact then
-lasts the longest one's time in the deck, and one step ends them all mid-step.
+its own time units (:mod:`.time_scale`, as the pair batches do): every contact then lasts the
+longest one's time in the deck, and one step ends them all mid-step.
 """
 
 from __future__ import annotations
@@ -30,9 +30,9 @@ from ...model.stability import overlap_stretch
 from ...model.timestep import (align_mid_step, check_steps, mode_rate, second_order_dt, steps_per_contact,
                                steps_through)
 from ...lammps.decks import wall_parameters
+from .time_scale import dashpot, scaled_contact_time
 
-__all__ = ["Collision", "row_states", "scaled_contact_time", "HERTZ_STEPS_PER_HALF_PERIOD", "STATE",
-           "STATE_3D", "STATE_ARGS"]
+__all__ = ["Collision", "row_states", "HERTZ_STEPS_PER_HALF_PERIOD", "STATE", "STATE_3D", "STATE_ARGS"]
 
 #: How many steps late, per unit of gamma_n/m t_exit/e, LAMMPS's damped sphere may leave the
 #: wall (an upper bound on the measured 0.1 to 0.3).
@@ -65,22 +65,6 @@ def _as_vector(name: str, value) -> tuple[float, ...]:
         i = int(bad[0])
         raise SceneError(f"{name}[{i}]" if arr.size > 1 else name, float(arr[i]), "must be finite")
     return tuple((arr + 0.0).tolist())
-
-
-def scaled_contact_time(model: ContactModel, v_n) -> float | None:
-    """How long every contact of a time-scaled batch of spheres at these v_n lasts in its deck: the
-    longest contact time T*, sphere i running at the time scale s_i = T*/T_i >= 1
-    (:attr:`Collision.time_scales`). None where the batch runs as it is: its contacts all last
-    as long (one dt ends them all mid-step), or it has a dashpot. A contact run in time units s
-    times longer (mass times s^2, velocities and spins over s, same radius and wall) follows the
-    same overlaps and forces at the same fraction of the contact, the Hertzian and Hookean
-    force, the tangential springs (kt, or k_t a, on the slip history) and the Coulomb cap
-    mu F_n alike; a dashpot -gamma v would need gamma times s, sphere by sphere, which one
-    wall command cannot give."""
-    if model.gamma_n > 0.0 or model.gamma_t > 0.0:
-        return None
-    times = model.contact_times(v_n)
-    return float(np.max(times)) if np.ptp(times) > 0.0 else None
 
 
 def row_states(m: ContactModel, names, columns: dict) -> checks.RowStates:
@@ -187,7 +171,7 @@ class Collision:
                 object.__setattr__(self, "deck_contact_time", scaled_contact_time(m, self.v_n))
             return
         object.__setattr__(self, "deck_contact_time", positive_number("deck_contact_time", given))
-        if m.gamma_n > 0.0 or m.gamma_t > 0.0:
+        if dashpot(m):
             raise SceneError("deck_contact_time", given, "must be None with a dashpot (gamma_n or gamma_t "
                              "> 0): a time-scaled sphere's damping would have to scale with it")
 
