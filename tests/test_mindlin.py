@@ -18,7 +18,7 @@ import pytest
 from scipy.integrate import solve_ivp
 
 import spinbounce
-from spinbounce.exact import choose, mindlin
+from spinbounce.exact import choose, mindlin, mindlin_capped
 from spinbounce.lammps.decks import wall_parameters
 from spinbounce.model.contact import ContactModel
 from spinbounce.model.parameters import SceneError
@@ -145,7 +145,7 @@ def test_a_record_names_the_tangential_law_only_when_it_is_not_the_default():
     ({"tangential": "mindlin"}, "mindlin_kt"),                                  # NULL needs a material
     ({"tangential": "mindlin", "mindlin_kt": 3.0, "kt": 2.0}, "kt"),            # linear_history's spring
     ({"mindlin_kt": 3.0}, "mindlin_kt"),                                        # not linear_history's
-    ({"tangential": "mindlin", "mindlin_kt": 3.0, "mu": 0.3}, "mu"),            # no capped reference yet
+    ({"tangential": "mindlin", "mindlin_kt": 3.0, "mu": 0.3, "gamma_t": 0.1}, "gamma_t"),  # capped: no dashpot
     ({"tangential": "mindlin", "mindlin_kt": 3.0, "gamma_n": 0.3}, "gamma_n"),  # no damped reference yet
     ({"tangential": "mindlin", "mindlin_kt": 3.0, "damping": "tsuji", "e_n": 0.5}, "e_n"),
     ({"tangential": "mindlin", "mindlin_kt": -3.0}, "mindlin_kt"),
@@ -221,3 +221,72 @@ def test_converged_lammps_meets_the_reference(variant, tmp_path):
     state = np.array([-0.8, 0.6, -0.3])
     final = _converged(model, state, tmp_path, 1000)
     assert np.abs(final - choose.predict(model, state[None, :])[0]).max() <= 1e-6
+
+
+# --- with a Coulomb cap ---------------------------------------------------------------------
+
+def test_a_slide_throughout_is_the_rigid_body_impulse():
+    # |u'| large against mu |v_n|: the contact slides from first touch to the end, so the
+    # tangential impulse is mu times the normal one, 2 mu m |v_n| (e = 1), whatever the spring
+    for variant in VARIANTS:
+        model = ContactModel(tangential=variant, mu=0.2, **MATERIAL)
+        final = choose.predict(model, np.array([[-0.5, 1.5, -0.3]]))[0]
+        impulse = 2 * 0.2 * 0.5
+        assert final == pytest.approx([0.5, 1.5 - impulse, -0.3 - impulse / 0.4], abs=1e-10)
+
+
+@pytest.mark.parametrize("variant", VARIANTS)
+@pytest.mark.parametrize("assembly", sorted(ASSEMBLIES))
+def test_a_cap_that_never_binds_gives_the_uncapped_reference(variant, assembly):
+    # two integrations written apart (in time with events; in sqrt(delta) with no cap) of the same
+    # contact. mu = 1e12 (what a deck writes for none) binds only where F_n vanishes, at the exit:
+    # a displacement history's force vanishes there with a (measured 1e-12 apart), a force history
+    # does not, and the last slide moves it by ~ mu^(-2/3) (1.9e-5, 1.9e-7, 1.9e-9 at mu = 1e6, 1e9,
+    # 1e12, measured): 1e-8
+    law = {k: v for k, v in ASSEMBLIES[assembly].items() if k != "gamma_t"}
+    states = np.array([[-0.3, 0.8, -0.2], [-1.2, -0.4, 0.9]])
+    capped = choose.predict(ContactModel(tangential=variant, mu=1e12, **law), states)
+    assert capped == pytest.approx(choose.predict(ContactModel(tangential=variant, **law), states), abs=1e-8)
+
+
+def test_mindlin_s_criterion_decides_the_first_phase():
+    # against the Hertzian force, the contact starts sliding when k_t |u'(0)| (2/3 of it with a
+    # force history) exceeds mu kn |v_n|, and sticking otherwise
+    law = dict(m=1.0, r=0.5, alpha=0.4, K=100.0 * math.sqrt(0.5), power=1.5, k=50.0, mu=0.5)
+    for force, threshold in ((False, 1.0), (True, 1.5)):  # u' at which k u' (2/3) = mu kn |v_n| = 50
+        contact = mindlin_capped._Contact((force, False), **law)
+        assert contact.first_phase(1.0, 0.99 * threshold) == "stick"
+        assert contact.first_phase(1.0, 1.01 * threshold) == "slip"
+
+
+@pytest.mark.lammps
+@pytest.mark.parametrize("variant", VARIANTS)
+@pytest.mark.parametrize("assembly", sorted(ASSEMBLIES))
+def test_capped_lammps_at_the_default_step_meets_the_reference(variant, assembly, tmp_path):
+    # random planar states across stick and slip, each within 1e-4 of its size at the default step
+    rng = np.random.default_rng(sum(map(ord, variant + assembly)) + 1)
+    states = _random_states(rng, 6)[:, :3]
+    law = {k: v for k, v in ASSEMBLIES[assembly].items() if k != "gamma_t"}
+    scene = Collision(ContactModel(tangential=variant, mu=0.3, **law), v_n=states[:, 0], v_t=states[:, 1],
+                      omega=states[:, 2] / 0.5)
+    result = run_scene(scene, tmp_path, record=False)
+    assert (result.table["status"] == "ok").all()
+    assert result.table["error"].max() <= 1e-4
+
+
+@pytest.mark.slow
+@pytest.mark.lammps
+@pytest.mark.parametrize("variant", VARIANTS)
+def test_converged_capped_lammps_meets_the_reference(variant, tmp_path):
+    # a state that sticks, then slides (mu = 0.3, u'(0) = 0.5 against |v_n| = 1): dt halved
+    # until the change is below 1e-7; the reference within 1e-6
+    model = ContactModel(tangential=variant, r=0.45, mu=0.3, **MATERIAL)
+    state = np.array([-1.0, 0.5, 0.0])
+    final = _converged(model, state, tmp_path, 1000)
+    assert np.abs(final - choose.predict(model, state[None, :])[0]).max() <= 1e-6
+
+
+def test_a_capped_3d_state_is_refused_by_name():
+    with pytest.raises(SceneError) as info:
+        Collision(ContactModel(tangential="mindlin", mu=0.3, **MATERIAL), v_n=-1.0, v_t=0.5, v_s=0.2)
+    assert info.value.parameter == "tangential"

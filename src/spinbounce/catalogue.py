@@ -72,6 +72,8 @@ PRODUCTS: tuple[Product, ...] = (
             ("benchmarks",)),
     Product("hertz", "spinbounce hertz", "Hertzian contact time and scattering, HERTZ.md",
             _figure("figures.hertz", "make_hertz"), ("hertz",)),
+    Product("mindlin", "spinbounce reproduce --only mindlin", "Omega of LAMMPS's Mindlin springs against Poisson's ratio",
+            _figure("figures.mindlin", "make_mindlin"), ("mindlin",)),
     Product("classic", "spinbounce classic --figure", "this build's classic wall against the paper's model",
             _figure("figures.classic", "make_classic"), ("classic",)),
     Product("two_walls", "spinbounce two-walls", "many bounces between two walls against the matrices",

@@ -164,7 +164,7 @@ def regime(params: dict, three_d: bool, off_uncapped: float, scale: float, speed
             return choose.matrix(model.replace(mu=None), three_d=three_d), \
                 "sticks throughout: the frictionless matrix applies"
         return None, "stick and slip: no single matrix (outcomes are not linear in the initial state)"
-    if choice.kind == "hertzian" and len(speeds) == 1:
+    if choice.kind in ("hertzian", "mindlin") and len(speeds) == 1:
         return choose.matrix(model, v_n=float(next(iter(speeds))), three_d=three_d), "matrix at one v_n"
     return None, f"{choice.name}: no single matrix"
 

@@ -11,6 +11,8 @@ classic_wall  a tangential spring on the contact radius (this build's    no (Ome
 coulomb       a finite mu: the contact sticks and slides in turn         no
               (:mod:`.coulomb`, exact and batched; checked against
               :mod:`.oracle`)
+mindlin_      a Mindlin spring with a finite mu: stick and slip in turn,     no
+capped        in the plane (:mod:`.mindlin_capped`, exact per phase)
 mindlin       a tangential stiffness on the contact radius (LAMMPS's     Hertzian,
               Mindlin variants), no cap, undamped normal force: Eq. 18   undamped: yes;
               with the Omega of :mod:`.mindlin`                          else Omega(v_n)
@@ -62,6 +64,11 @@ def which(model) -> Choice:
                                  "kt sqrt(r delta); exact.classic)",
                       "the classic wall's tangential spring grows with the overlap, so Omega depends on v_n "
                       "and on the length unit: give a state (v_n, v_t, omega) for its outcome")
+    if model.mu is not None and model.tangential_law.contact_radius:
+        return Choice("mindlin_capped", "the Coulomb-capped Mindlin contact (exact.mindlin_capped: exact in each stick "
+                      "or slip phase, in the paper's plane)",
+                      f"with mu = {model.mu!r} the contact sticks and slides in turn, so the outcome is not linear "
+                      "in the initial state: give a state (v_n, v_t, omega) for its outcome")
     if model.mu is not None:
         return Choice("coulomb", "Coulomb stick-slip solution (exact in each phase, switches to machine precision)",
                       f"with mu = {model.mu!r} the contact sticks and slides in turn, so the outcome is not "
@@ -149,7 +156,7 @@ def matrix(model, v_n: float | None = None, three_d: bool = False) -> np.ndarray
     A Hertzian model has one matrix per v_n; a Coulomb-capped one has none.
     """
     choice = which(model)
-    if choice.kind == "coulomb":
+    if choice.kind in ("coulomb", "mindlin_capped"):
         raise NoMatrix(choice.no_matrix_reason)
     if not choice.has_matrix:  # one matrix per v_n
         if v_n is None:
@@ -182,7 +189,7 @@ def omega_per_sphere(model, v_n) -> np.ndarray:
 
         return np.array([classic.Omega_eff(v, model.kn, model.kt, model.alpha, model.r, model.m,
                                            model.gamma_n / model.m, model.gamma_t / model.m) for v in v_n])
-    if kind in ("coulomb", "classic_wall"):
+    if kind in ("coulomb", "classic_wall", "mindlin_capped"):
         return np.full(v_n.shape, np.nan)
     if kind == "hertzian":
         return np.atleast_1d(hertz.Omega(v_n, model.m, model.kn, model.r, model.kt, model.alpha, model.gamma_t))
@@ -203,6 +210,15 @@ def predict(model, initial) -> np.ndarray:
             raise NoMatrix("the classic wall's theory is in the paper's plane: give no v_s, omega_s or omega_n")
         wall = classic_wall(model)
         return np.array([classic.bounce(wall, *state).final for state in initial])
+    if kind == "mindlin_capped":
+        from . import mindlin_capped
+
+        if width != 3:
+            raise NoMatrix("the capped Mindlin reference is in the paper's plane: give no v_s, omega_s or omega_n")
+        law, power = model.tangential_law, model.normal_law.power
+        return mindlin_capped.bounce_many(law.variant, initial, m=model.m, r=model.r, alpha=model.alpha,
+                                          K=model.kn * model.r ** (power - 1.0), power=power,
+                                          k=law.stiffness(model), mu=model.mu)
     if kind == "coulomb":  # the exact batched solver; the scipy oracle is its independent check
         from . import coulomb
 

@@ -188,6 +188,8 @@ class TangentialLaw:
     contact_radius: bool = False
     #: Two free spheres can run it against an exact pair reference.
     pairs: bool = True
+    #: With a Coulomb cap its exact reference holds in the paper's plane only.
+    capped_planar_only: bool = False
 
     def settle(self, values: dict, foreign: tuple[Parameter, ...]) -> dict:
         """The model's values this law fixes, after refusing another tangential sub-model's

@@ -3,8 +3,9 @@ contact radius, F_t = -k_t a h with a = sqrt(R delta), h the slip history (a dis
 ``/force``, the elastic force itself, h' = -k_t a u'), rescaled by a_new/a_old while a shrinks
 (``_rescale``). K_T = NULL (``mindlin_kt`` none) is LAMMPS's 8 G* from the material's E and nu.
 
-Their exact reference is :mod:`spinbounce.exact.mindlin` (no cap, no normal damping: refused
-here until a reference of those exists). The step rule resolves the slip's spring at its
+Their exact references are :mod:`spinbounce.exact.mindlin` (no cap) and
+:mod:`spinbounce.exact.mindlin_capped` (a Coulomb cap, in the paper's plane, no tangential
+dashpot); normal damping is refused here until a reference of it exists. The step rule resolves the slip's spring at its
 stiffest, k_t sqrt(r delta_max) at the fastest speed.
 """
 
@@ -33,6 +34,7 @@ class Mindlin(TangentialLaw):
     coefficients = (MINDLIN_KT, MU)
     contact_radius = True
     pairs = False
+    capped_planar_only = True
 
     def __init__(self, keyword: str):
         self.keyword = keyword
@@ -54,9 +56,10 @@ class Mindlin(TangentialLaw):
             raise SceneError("mindlin_kt", None, f"must be given with normal = {normal.keyword}: none is LAMMPS's "
                                                  "NULL, 8 G* from normal = hertz/material's youngs_modulus and "
                                                  "poisson_ratio")
-        if values.get("mu") is not None:
-            raise SceneError("mu", values["mu"], f"must be none with tangential = {self.keyword}: there is no exact "
-                                                 "reference of a Coulomb-capped Mindlin contact here yet")
+        if values.get("mu") is not None and values.get("gamma_t", 0.0) > 0.0:
+            raise SceneError("gamma_t", values["gamma_t"], f"must be 0 with a Coulomb cap (mu) and tangential = "
+                                                           f"{self.keyword}: the capped Mindlin reference has no "
+                                                           "tangential dashpot")
         if values.get("gamma_n", 0.0) > 0.0:
             name = damping_law(values.get("damping", "velocity")).normal_coefficient
             raise SceneError(name, values.get(name), f"must leave the normal force undamped with tangential = "

@@ -3,8 +3,9 @@
 * :mod:`.ledger`: the claim record, the verdict kinds and what every claim shares;
 * :mod:`.collisions`, :mod:`.contact`, :mod:`.frozen`, :mod:`.damping`, :mod:`.energy`: the
   claims by topic, one function each; after the paper's, the LAMMPS implementation it used,
-  in this build (:mod:`.collisions`) and :mod:`.pairs` (two spheres of equal alpha have the
-  wall's Omega);
+  in this build (:mod:`.collisions`), :mod:`.pairs` (two spheres of equal alpha have the
+  wall's Omega) and :mod:`.nonlinear` (the prediction for nonlinear contacts, Hertzian and
+  Hertz-Mindlin);
 * here: the claims in order, and the ledger written as CLAIMS.md and claims.json.
 """
 
@@ -15,7 +16,7 @@ from dataclasses import asdict
 from pathlib import Path
 
 from ...records import software, to_json, write_atomic
-from . import collisions, contact, damping, energy, frozen, pairs
+from . import collisions, contact, damping, energy, frozen, nonlinear, pairs
 from .ledger import COLLISION_TOL, FROZEN_TOL, VERDICTS, Claim, Runs, g, verdict
 
 __all__ = ["CLAIMS", "COLLISION_TOL", "FROZEN_TOL", "VERDICTS", "Claim", "counts", "evaluate_claims",
@@ -29,7 +30,7 @@ CLAIMS = (
     collisions.rough_no_spin, collisions.rough_no_slide, collisions.reflection_angle, damping.eq22,
     frozen.decay_rate, damping.rapid_damping_rolls, damping.eq23_matrix, damping.rolling_vs_rough,
     energy.no_slip_no_loss, energy.friction_less_dissipation, collisions.classic_wall_is_eq1,
-    pairs.equal_alpha,
+    pairs.equal_alpha, nonlinear.hertz_special_speed, nonlinear.mindlin_every_speed,
 )
 
 
