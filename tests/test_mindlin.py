@@ -290,3 +290,46 @@ def test_a_capped_3d_state_is_refused_by_name():
     with pytest.raises(SceneError) as info:
         Collision(ContactModel(tangential="mindlin", mu=0.3, **MATERIAL), v_n=-1.0, v_t=0.5, v_s=0.2)
     assert info.value.parameter == "tangential"
+
+
+# --- the classic wall's spring inside granular: linear_history_classic ------------------------
+
+CLASSIC = {"tangential": "linear_history_classic", "kt": 100.0, "kn": 50.0}
+
+
+def test_the_classic_spring_is_mindlin_s_equations_without_a_cap():
+    # this build's linear_history_classic: kt a on the displacement history (LAMMPS gives
+    # bit-identical outcomes for the two), so without a cap the Mindlin reference answers
+    states = np.array([[-0.3, 0.8, -0.2], [-1.2, -0.4, 0.9]])
+    classic = choose.predict(ContactModel(**CLASSIC), states)
+    mindlin_kt = {k: v for k, v in CLASSIC.items() if k != "kt"} | {"tangential": "mindlin", "mindlin_kt": 100.0}
+    assert np.array_equal(classic, choose.predict(ContactModel(**mindlin_kt), states))
+
+
+@pytest.mark.lammps
+def test_the_capped_classic_spring_is_the_classic_wall(tmp_path):
+    # with a cap its history resets by kt alone: the classic wall's theory (exact.classic), which
+    # the classic wall itself (hooke/history, mass_velocity dashpots gamma/m) runs too
+    model = ContactModel(mu=0.3, gamma_n=0.5, gamma_t=0.2, **CLASSIC)
+    wall = ContactModel(wall="classic", mu=0.3, gamma_n=0.5, gamma_t=0.2, kt=100.0, kn=50.0)
+    states = np.array([[-0.7, 0.5, 0.2], [-0.3, -0.4, 0.9]])
+    assert np.array_equal(choose.predict(model, states), choose.predict(wall, states))
+    result = run_scene(Collision(model, v_n=states[:, 0], v_t=states[:, 1], omega=states[:, 2] / 0.5), tmp_path,
+                       record=False)
+    assert (result.table["status"] == "ok").all() and result.table["error"].max() <= 1e-4
+
+
+@pytest.mark.lammps
+@pytest.mark.parametrize("law", [CLASSIC, {**CLASSIC, "normal": "hertz", "kn": 5000.0, "gamma_t": 0.3}])
+def test_the_classic_spring_at_the_default_step_meets_the_reference(law, tmp_path):
+    states = _random_states(np.random.default_rng(7), 6)
+    scene = Collision(ContactModel(**law), v_n=states[:, 0], v_t=states[:, 1], omega=states[:, 2] / 0.5,
+                      v_s=states[:, 3], omega_s=states[:, 4] / 0.5, omega_n=states[:, 5] / 0.5)
+    result = run_scene(scene, tmp_path, record=False)
+    assert (result.table["status"] == "ok").all() and result.table["error"].max() <= 1e-4
+
+
+def test_the_capped_classic_spring_is_refused_with_the_hertzian_force():
+    with pytest.raises(SceneError) as info:
+        ContactModel(tangential="linear_history_classic", normal="hertz", mu=0.3)
+    assert info.value.parameter == "mu"

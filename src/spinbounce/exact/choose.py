@@ -64,6 +64,11 @@ def which(model) -> Choice:
                                  "kt sqrt(r delta); exact.classic)",
                       "the classic wall's tangential spring grows with the overlap, so Omega depends on v_n "
                       "and on the length unit: give a state (v_n, v_t, omega) for its outcome")
+    if model.mu is not None and model.tangential_law.classic_cap:
+        return Choice("classic_wall", "the classic wall's spring as this LAMMPS build integrates it (kt sqrt(r delta), "
+                                      "its cap reset by kt alone; exact.classic)",
+                      f"with mu = {model.mu!r} the contact sticks and slides in turn: give a state (v_n, v_t, omega) "
+                      "for its outcome")
     if model.mu is not None and model.tangential_law.contact_radius:
         return Choice("mindlin_capped", "the Coulomb-capped Mindlin contact (exact.mindlin_capped: exact in each stick "
                       "or slip phase, in the paper's plane)",
@@ -258,10 +263,16 @@ def outcome(model, v_n: float, v_t: float = 0.0, omega: float = 0.0, v_s: float 
 
 def classic_wall(model):
     """The classic wall's own parameters, as its style gives them to the deck (its dashpots are
-    rates gamma/m, its cap at most 1e4: :class:`spinbounce.laws.styles.Classic`)."""
+    rates gamma/m, its cap at most 1e4: :class:`spinbounce.laws.styles.Classic`); or, for the
+    classic spring inside ``granular`` (``linear_history_classic``), the model's own."""
     from . import classic
 
-    return classic.ClassicWall(**model.style.coefficients(model), alpha=model.alpha, r=model.r, m=model.m)
+    if model.style.tangential_contact_radius:
+        values = model.style.coefficients(model)
+    else:
+        values = {"kn": model.kn, "kt": model.kt, "gamma_n": model.gamma_n / model.m,
+                  "gamma_t": model.gamma_t / model.m, "mu": model.mu}
+    return classic.ClassicWall(**values, alpha=model.alpha, r=model.r, m=model.m)
 
 
 def frozen(model, t, v_t0: float, r_omega0: float, z: float | None = None) -> tuple[np.ndarray, np.ndarray]:

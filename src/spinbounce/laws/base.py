@@ -190,6 +190,9 @@ class TangentialLaw:
     pairs: bool = True
     #: With a Coulomb cap its exact reference holds in the paper's plane only.
     capped_planar_only: bool = False
+    #: Its cap resets the history by kt alone (this build's classic spring): with a cap its
+    #: reference is :mod:`spinbounce.exact.classic`.
+    classic_cap: bool = False
 
     def settle(self, values: dict, foreign: tuple[Parameter, ...]) -> dict:
         """The model's values this law fixes, after refusing another tangential sub-model's

@@ -1,6 +1,7 @@
 """The tangential sub-models, registered by LAMMPS keyword: one entry each in :data:`TANGENTIAL`.
 
-``linear_history`` (:mod:`.linear_history`) is the paper's Cundall-Strack spring; the Mindlin
+``linear_history`` (:mod:`.linear_history`) is the paper's Cundall-Strack spring;
+``linear_history_classic`` (:mod:`.linear_history_classic`) the classic wall's; the Mindlin
 variants (:mod:`.mindlin`: ``mindlin``, ``mindlin/force``, ``mindlin_rescale``,
 ``mindlin_rescale/force``) grow their stiffness with the contact radius.
 """
@@ -15,6 +16,7 @@ __all__ = ["TANGENTIAL", "TangentialLaw", "tangential_law", "tangential_coeffici
 #: The registry: one entry per sub-model, the module (here) that defines its ``LAW``.
 MODULES = (
     "linear_history",
+    "linear_history_classic",
     "mindlin",
     "mindlin_force",
     "mindlin_rescale",

@@ -1,0 +1,66 @@
+"""``tangential linear_history_classic KT X_T MU``: the classic wall's tangential sub-model, as
+the pinned LAMMPS build runs it inside ``granular``.
+
+This build sets its ``contact_radius_flag``: the spring is kt a on the slip history with a =
+sqrt(R delta), the equations of ``mindlin`` with k_t = kt (measured: LAMMPS's outcomes of the
+two are bit-identical without a cap). Its cap differs: it resets the history by kt alone, not
+kt a (``exact.classic``'s sawtooth and slide). So without a cap its reference is
+:mod:`spinbounce.exact.mindlin`, with a cap :mod:`spinbounce.exact.classic` (Hookean force only;
+with the Hertzian force and a cap it is refused). ``--wall classic`` is the same sub-model in its
+fixed assembly (``hooke/history``).
+"""
+
+from __future__ import annotations
+
+import math
+
+from ...declaration import Parameter
+from ...errors import SceneError
+from ..base import TangentialLaw
+from ..normal import normal_law
+from .linear_history import KT, MU
+
+__all__ = ["LinearHistoryClassic", "LAW"]
+
+
+class LinearHistoryClassic(TangentialLaw):
+    keyword = "linear_history_classic"
+    summary = "the classic wall's spring, kt a xi in this build, its cap reset by kt alone"
+    coefficients = (KT, MU)
+    contact_radius = True
+    pairs = False
+    capped_planar_only = True
+    classic_cap = True
+    #: (force, rescale): a displacement history, never rescaled (mindlin's equations).
+    variant = (False, False)
+
+    def settle(self, values: dict, foreign: tuple[Parameter, ...]) -> dict:
+        super().settle(values, foreign)
+        normal = normal_law(values.get("normal", "hooke"))
+        if values.get("mu") is not None and normal.contact_radius:
+            raise SceneError("mu", values["mu"], f"must be none with tangential = {self.keyword} and normal = "
+                                                 f"{normal.keyword}: its cap resets the history by kt alone, "
+                                                 "which no reference here follows with a Hertzian force")
+        if values.get("mu") is not None and values.get("limit_damping"):
+            raise SceneError("limit_damping", True, f"is not covered by the capped reference of tangential = "
+                                                    f"{self.keyword} (exact.classic): leave it out")
+        return {}
+
+    def stiffness(self, model) -> float:
+        return model.kt
+
+    def deck_terms(self, model, x_t: float, mu: float) -> tuple:
+        return ("tangential", self.keyword, float(model.kt), float(x_t), float(mu))
+
+    def slip_stiffness(self, model, speed: float | None) -> float:
+        if speed is None:
+            raise ValueError("the classic spring's slip mode needs the fastest |v_n| (speed)")
+        return self.frozen_stiffness(model, float(model.max_overlap(speed)))
+
+    def frozen_stiffness(self, model, overlap: float | None) -> float:
+        if overlap is None:
+            raise ValueError("the classic spring needs its overlap")
+        return model.kt * math.sqrt(model.r * overlap)
+
+
+LAW = LinearHistoryClassic()
