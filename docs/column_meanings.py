@@ -38,9 +38,10 @@ OTHER = {
     "error": "largest |LAMMPS - theory| over the state columns, over the size of the initial state",
     "energy_excess": "kinetic energy LAMMPS ended with beyond the theory's, over E(0)",
     "status": "ok, inaccurate (error above the target), energy_gained or grazing (overlap too small to resolve)",
-    "dt": "the timestep this row ran at (a time-scaled Hertzian batch: the deck's dt over the row's time "
-          "scale s_i, the step in its own time; a pair sweep: the batch's deck step; with a tolerance: the "
-          "finest run's)",
+    "dt": "the timestep the group ran at (a pair sweep: the batch's deck step; with a tolerance: the finest "
+          "run's); a time-scaled row's own step is dt/time_scale",
+    "time_scale": "how many times slower the row ran in the deck (a time-scaled Hertzian batch: s_i = T*/T_i, "
+                  "its contact stretched to the batch's longest, so its own step was dt/s_i; 1 otherwise)",
     "nsteps": "LAMMPS steps (with a tolerance: all runs' together)",
     "tolerance": "the accuracy asked for (sweeps with a tolerance only)",
     "Omega_theory": "the theory's Omega (Eq. 18) for this sphere's v_n; NaN where none exists",

@@ -194,10 +194,10 @@ def test_a_batch_with_a_dashpot_keeps_the_fixed_rule(tmp_path):
 
 @pytest.mark.lammps
 def test_a_sweep_scales_every_chunk_to_one_contact_and_records_each_row_s_step(tmp_path):
-    """Every chunk and the group's probe states take the group's slowest possible contact T*, so
-    the probe's rows end mid-step at each chunk's step; each row's dt is the step it ran at,
-    dt/s_i = dt T_i/T*. (Each chunk starts its probe from its own rule, which follows its own
-    end speeds: 8.7e-3 and 8.8e-3 here, as a Hookean Mindlin sweep's chunks do.)"""
+    """Every chunk and the group's probe states take the group's slowest possible contact T*, and
+    the probe starts from the probe states' rule, so every chunk of the group runs one deck step
+    (the group's dt column, which the fit groups on) that ends T* mid-step; each row's own step
+    is dt/time_scale, time_scale = s_i = T*/T_i."""
     from spinbounce.sweeps import read_results, run_sweep, spec_from_dict
     from spinbounce.sweeps.cost import chunk_cost
 
@@ -208,10 +208,10 @@ def test_a_sweep_scales_every_chunk_to_one_contact_and_records_each_row_s_step(t
     assert len(rows) == 100 and rows["chunk"].nunique() == 3
     assert rows["error"].max() <= ACCURACY and (rows["status"] == "ok").all()
     t_star = float(HERTZ.contact_times(-0.1)[0])
-    rows["deck_dt"] = rows["dt"] * t_star / HERTZ.contact_times(rows["v_n_initial"].to_numpy())
-    for _, chunk in rows.groupby("chunk"):  # one deck step a chunk, which ends T* mid-step
-        dt = chunk["deck_dt"].iloc[0]
-        assert np.allclose(chunk["deck_dt"], dt, rtol=1e-12) and (chunk["nsteps"] == chunk["nsteps"].iloc[0]).all()
-        assert (t_star / dt - 0.5) == pytest.approx(round(t_star / dt - 0.5), abs=1e-6)
+    assert rows["time_scale"].to_numpy() == pytest.approx(
+        t_star / HERTZ.contact_times(rows["v_n_initial"].to_numpy()), rel=1e-12)
+    dt = rows["dt"].iloc[0]  # one deck step for the group, which ends T* mid-step
+    assert (rows["dt"] == dt).all() and (rows["nsteps"] == rows["nsteps"].iloc[0]).all()
+    assert (t_star / dt - 0.5) == pytest.approx(round(t_star / dt - 0.5), abs=1e-6)
     estimate = chunk_cost(spec, 0, 40).steps  # an upper estimate of the probed steps
     assert rows["nsteps"].max() <= estimate <= 2 * rows["nsteps"].min()

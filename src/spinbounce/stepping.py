@@ -58,7 +58,7 @@ def tune(scene, out: Path, run: Callable, probe_states=None, target: float = ACC
     source = probe_states or scene
     sample = source.rows(np.arange(source.n)[:: max(1, math.ceil(source.n / PROBE_SPHERES))])
     t_contact = scene.probe_time(sample)
-    coarse_steps = scene.first_probe_steps(t_contact)
+    coarse_steps = sample.first_probe_steps(t_contact)  # the probe states' rule: one per sweep group
     limit = scene.step_limit(t_contact)
     errors: list[float] = []
     folders = itertools.count()

@@ -12,6 +12,7 @@ import pandas as pd
 from ..model import parameters
 from ..model.contact import ContactModel
 from ..exact import choose
+from ..laws.words import expand_contact
 from ..records import run_folder
 
 __all__ = ["collide", "theory", "model", "CollisionReport", "PairReport", "ToleranceReport"]
@@ -45,7 +46,10 @@ def _contact_and_pair(keywords: dict):
 
 
 def model(**parameters_) -> ContactModel:
-    """A checked contact model from declared parameter names (unknown names are refused)."""
+    """A checked contact model from declared parameter names (unknown names are refused); a
+    ``contact`` line (LAMMPS's granular words, :func:`spinbounce.laws.words.parse_contact`) is
+    read into them."""
+    parameters_ = expand_contact(parameters_)
     unknown = set(parameters_) - _MODEL_NAMES
     if unknown:
         raise TypeError(f"unknown model parameter(s) {sorted(unknown)}; declared: {sorted(_MODEL_NAMES)}")

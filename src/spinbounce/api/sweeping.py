@@ -65,7 +65,8 @@ def sweep(n: int, out: str | Path, *, v_n=(-1.5, -0.1), v_t=(-2.0, 2.0), r_omega
     from ..sweeps import read_results
 
     # sphere b's state passes on, to be refused by the spec with the reason
-    unknown = set(model_grid) - _MODEL_NAMES - {p.name for p in parameters.SCENE + parameters.STATE_B} - {"kt_over_kn"}
+    unknown = (set(model_grid) - _MODEL_NAMES - {p.name for p in parameters.SCENE + parameters.STATE_B}
+               - {"kt_over_kn", "contact"})
     if unknown:
         raise TypeError(f"unknown model parameter(s) {sorted(unknown)}")
     grid = {k: ["none" if v is None else v for v in (vals if isinstance(vals, (list, tuple)) else [vals])]

@@ -110,14 +110,23 @@ def parameter_help(p: Parameter, default=True) -> str:
     return f"{p.meaning}{unit}; {p.range_text()}" + (f" (default {shown})" if default else "")
 
 
+class _Given(argparse.Action):
+    """Store the value and note that the user gave the option (``given_options``): a default
+    is not a value given, so it never clashes with the same parameter given by ``--contact``."""
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        setattr(namespace, self.dest, True if self.nargs == 0 else values)
+        namespace.__dict__.setdefault("given_options", set()).add(self.dest)
+
+
 def _add(group, p: Parameter, **overrides) -> None:
     """One declared parameter as an option of ``group``."""
     if p.kind == "flag":
-        group.add_argument(*p.flags, dest=p.name, action="store_true", default=p.default,
+        group.add_argument(*p.flags, dest=p.name, action=_Given, nargs=0, default=p.default,
                            help=parameter_help(p, default=False))
         return
     kwargs = {"dest": p.name, "default": p.default, "help": parameter_help(p),
-              "metavar": p.name.upper()}
+              "metavar": p.name.upper(), "action": _Given}
     if p.kind == "choice":
         kwargs.update(choices=p.choices, type=str, metavar=None)
     else:
@@ -135,9 +144,17 @@ def _parent(title: str, declared, **overrides) -> argparse.ArgumentParser:
     return p
 
 
+#: ``--contact``'s help: the one option that sets several model parameters at once.
+CONTACT_HELP = ("the contact law as LAMMPS's granular words, after 'fix wall/gran granular' or in pair_coeff, e.g. "
+                "'hertz/material 1e4 0.3 0.3 damping tsuji tangential mindlin NULL 1.0 0.5': read into the "
+                "parameters below (never passed to LAMMPS as text); a parameter may not be given both ways")
+
+
 def model_parser() -> argparse.ArgumentParser:
-    """Every contact-model option (declared defaults: the paper's), as a parent parser."""
-    return _parent("contact model (defaults: the paper's; units: LAMMPS lj)", parameters.MODEL)
+    """Every contact-model option (declared defaults: the paper's), and ``--contact``, as a parent parser."""
+    parser = _parent("contact model (defaults: the paper's; units: LAMMPS lj)", parameters.MODEL)
+    parser.add_argument("--contact", default=None, metavar="'WORDS'", help=CONTACT_HELP)
+    return parser
 
 
 def state_parser(three_d: bool = True, optional: bool = False) -> argparse.ArgumentParser:
@@ -162,16 +179,26 @@ def values_of(args: argparse.Namespace) -> dict:
     """Every declared parameter the command parsed, by name, as the API takes them (the scene's
     and b's only where given)."""
     values = {}
+    contact = getattr(args, "contact", None)
+    given = getattr(args, "given_options", set())
     for parameter in parameters.MODEL + parameters.STATE + parameters.SCENE + parameters.STATE_B:
         value = getattr(args, parameter.name, None)
+        if parameter in parameters.MODEL and contact is not None and parameter.name not in given:
+            continue  # a default: --contact sets it, or the model's default applies
         if value is not None or parameter in parameters.MODEL:
             values[parameter.name] = value
-    return values
+    return values if contact is None else {**values, "contact": contact}
 
 
 def model_values(args: argparse.Namespace) -> dict:
-    """The contact model's parameters the command parsed, by name."""
-    return {p.name: getattr(args, p.name) for p in parameters.MODEL}
+    """The contact model's parameters the command parsed, by name (``--contact`` read into them)."""
+    from ..laws.words import expand_contact
+
+    values = {p.name: getattr(args, p.name) for p in parameters.MODEL}
+    if getattr(args, "contact", None) is None:
+        return values
+    given = getattr(args, "given_options", set())
+    return expand_contact({**{k: v for k, v in values.items() if k in given}, "contact": args.contact})
 
 
 def sweep_model_flags(p: argparse.ArgumentParser) -> None:
@@ -188,6 +215,8 @@ def sweep_model_flags(p: argparse.ArgumentParser) -> None:
             _add(group, parameter, nargs="+", default=None)
     group.add_argument("--kt-over-kn", dest="kt_over_kn", type=number, nargs="+", default=None, metavar="RATIO",
                        help="instead of --kt: the stiffness ratio kt/kn (kt = ratio * kn)")
+    group.add_argument("--contact", nargs="+", default=None, metavar="'WORDS'",
+                       help=CONTACT_HELP + "; several lines: each a group")
 
 
 def run_folder_flags(p: argparse.ArgumentParser, help_: str) -> None:

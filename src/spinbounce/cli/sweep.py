@@ -122,6 +122,8 @@ def spec_from_flags(args) -> dict:
             model[parameter.name] = getattr(args, parameter.name)
     if args.dt is not None:
         model["dt"] = args.dt
+    if getattr(args, "contact", None) is not None:
+        model["contact"] = args.contact
     if model:
         raw["model"] = model
     return raw

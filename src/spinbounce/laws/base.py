@@ -100,10 +100,15 @@ class NormalLaw:
         """LAMMPS's NULL Mindlin stiffness 8 G* of its material (only a ``material`` law has one)."""
         raise NotImplementedError(f"normal = {self.keyword} has no material")
 
+    #: Its coefficients in LAMMPS's order after its keyword (``eta_n``: the damping's ETA_N): the
+    #: deck writes them and ``--contact`` reads them (:mod:`spinbounce.laws.words`).
+    lammps_coefficients: tuple[str, ...] = ("kn", "eta_n")
+
     def deck_terms(self, model, eta_n: float) -> tuple:
         """Its part of a deck, as LAMMPS reads it after ``granular``: the keyword (a word from
         the registry), then its coefficients as numbers (the deck formats them)."""
-        return (self.keyword, float(model.kn), float(eta_n))
+        return (self.keyword, *(float(eta_n if name == "eta_n" else getattr(model, name))
+                                for name in self.lammps_coefficients))
 
     # -- the normal motion (exact) --------------------------------------------------
     def contact_times(self, model, v_n) -> np.ndarray:
@@ -169,6 +174,10 @@ class DampingLaw:
     def deck_terms(self, written: bool) -> tuple:
         return ("damping", self.keyword) if written else ()
 
+    def from_lammps(self, eta_n: float, x_t: float) -> dict:
+        """The model's values of a deck's ETA_N and X_T under this damping (``--contact``)."""
+        raise NotImplementedError
+
 
 class TangentialLaw:
     """A tangential sub-model: LAMMPS's keyword after ``tangential``, its coefficients, its flags,
@@ -208,9 +217,15 @@ class TangentialLaw:
                                f"{NO_CAP_MU:g}")
         return model.mu, f"Coulomb limit |F_t| <= {model.mu!r} F_n: not the paper's model"
 
+    #: Its coefficients in LAMMPS's order after its keyword (``x_t``: the damping's X_T; ``mu``:
+    #: the cap): the deck writes them, ``--contact`` reads them. A value of none is written NULL.
+    lammps_coefficients: tuple[str, ...] = ("kt", "x_t", "mu")
+
     def deck_terms(self, model, x_t: float, mu: float) -> tuple:
         """Its words, given the damping's tangential coefficient and the cap to write."""
-        raise NotImplementedError
+        given = {"x_t": x_t, "mu": mu}
+        values = (given[name] if name in given else getattr(model, name) for name in self.lammps_coefficients)
+        return ("tangential", self.keyword, *("NULL" if v is None else float(v) for v in values))
 
     def slip_stiffness(self, model, speed: float | None) -> float:
         """The slip spring's stiffness at its stiffest, for a contact at |v_n| = ``speed``."""

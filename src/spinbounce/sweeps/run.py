@@ -66,7 +66,7 @@ def run_chunk(raw: dict, out: str, group: int, chunk: int, start: int, stop: int
     else:
         dt, nsteps, loop = _wall_columns(columns, spec, model, dt, states, probe, run_dir)
     labels = _model_columns(columns, model, n)
-    columns["dt"] = np.broadcast_to(dt, n).copy()  # each row's own step; with a tolerance: the finest run's
+    columns["dt"] = np.full(n, dt)  # the group's step; with a tolerance: the finest run's
     columns["nsteps"] = np.full(n, nsteps)  # with a tolerance: all runs' steps together
     if spec.scene == "pair":
         labels.update(_pair_columns(columns, spec, group, model, n))
@@ -80,8 +80,9 @@ def run_chunk(raw: dict, out: str, group: int, chunk: int, start: int, stop: int
 
 def _wall_columns(columns: dict, spec: SweepSpec, model, dt, states: np.ndarray, probe: np.ndarray,
                   run_dir: Path):
-    """Run a wall chunk of ``states``, its rows into ``columns``; (dt, steps, LAMMPS loop seconds), dt
-    each row's own step (a time-scaled batch's dt over the row's time scale: Collision.row_dt)."""
+    """Run a wall chunk of ``states``, its rows into ``columns``; (dt, steps, LAMMPS loop seconds). A
+    time-scaled batch's rows each ran at dt/time_scale in their own time (Collision.row_dt): the
+    ``time_scale`` column."""
     from ..pipeline import run_scene
 
     # at the default step a batch of Hertzian speeds is time-scaled: every chunk of the group and
@@ -97,7 +98,8 @@ def _wall_columns(columns: dict, spec: SweepSpec, model, dt, states: np.ndarray,
     if spec.tolerance is None:
         result = run_scene(scene, run_dir, atoms="library", record=False, probe_states=batch(probe))
         columns.update({name: values.to_numpy() for name, values in result.table.drop(columns=["id"]).items()})
-        return result.scene.row_dt, result.scene.nsteps, result.info.loop_seconds
+        columns["time_scale"] = result.scene.time_scales
+        return result.scene.dt, result.scene.nsteps, result.info.loop_seconds
     # a ladder of runs per chunk, extrapolated; each row carries its error estimate
     from ..extrapolation import collide_to_tolerance, collision_frame
 

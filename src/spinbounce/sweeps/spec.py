@@ -54,7 +54,7 @@ __all__ = ["SweepError", "SweepSpec", "load_spec", "spec_from_dict", "MODEL_KEYS
 
 #: Model keys of a scene file: every sweepable declared parameter, kt_over_kn and dt.
 MODEL_KEYS = (tuple(p.name for p in parameters.MODEL if p.sweepable) + tuple(p.name for p in parameters.SCENE)
-              + ("kt_over_kn", "dt"))
+              + ("kt_over_kn", "dt", "contact"))
 STATE_KEYS = ("v_n", "v_t", "speed", "angle_deg", "omega", "r_omega",
               "v_s", "omega_s", "r_omega_s", "omega_n", "r_omega_n")
 #: Optional out-of-plane states (3-D): each given as an angular velocity or times r.
@@ -255,9 +255,10 @@ def _groups(model: dict) -> list[dict]:
             _fail(f"model.{key}", model[key], f"unknown key (allowed: {', '.join(MODEL_KEYS)})")
     if "kt" in model and "kt_over_kn" in model:
         _fail("model.kt_over_kn", model["kt_over_kn"], "give kt or kt_over_kn, not both")
+    contacts = _contacts(model)
     # declaration order, not the file's: the same sweep numbers its groups the same way
     axes = {key: (_numbers(f"model.{key}", model[key]) if key == "dt" else _model_values(key, model[key]))
-            for key in MODEL_KEYS if key in model}
+            for key in MODEL_KEYS if key in model and key != "contact"}
     defaults = {p.name: p.default for p in parameters.MODEL}
     try:
         scene = scene_of({k: v[0] for k, v in axes.items()})
@@ -266,8 +267,8 @@ def _groups(model: dict) -> list[dict]:
     if scene == "pair":  # b's defaults too; a wall sweep's groups stay as they were
         defaults.update({p.name: p.default for p in parameters.SCENE}, scene="pair")
     groups = []
-    for combo in itertools.product(*axes.values()):
-        params = {**defaults, **dict(zip(axes, combo, strict=True))}
+    for read, combo in itertools.product(contacts, itertools.product(*axes.values())):
+        params = {**defaults, **read, **dict(zip(axes, combo, strict=True))}
         if "kt_over_kn" in params:  # over the kn the normal law settles on (it may derive it)
             try:
                 kn = settled(params)["kn"]
@@ -276,6 +277,24 @@ def _groups(model: dict) -> list[dict]:
             params["kt"] = params.pop("kt_over_kn") * kn
         groups.append(params)
     return groups
+
+
+def _contacts(model: dict) -> list[dict]:
+    """Each ``contact`` line of the model table (one, or a list: each a group) read into model
+    values (:func:`spinbounce.laws.words.parse_contact`); a key given beside them is refused."""
+    from ..laws.words import parse_contact
+
+    lines, read = model.get("contact", []), []
+    for line in lines if isinstance(lines, list) else [lines]:
+        try:
+            values = parse_contact(line)
+        except SceneError as exc:
+            raise SweepError(f"model.{exc}") from None
+        clash = sorted(set(values) & set(model))
+        if clash:
+            _fail(f"model.{clash[0]}", model[clash[0]], "is given by model.contact too: give it once")
+        read.append(values)
+    return read or [{}]
 
 
 def _check_top(raw: dict) -> tuple[int, int | None, float | None]:

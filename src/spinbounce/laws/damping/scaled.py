@@ -73,6 +73,9 @@ class Scaled(DampingLaw):
                                                      f"{self.keyword}: give those, or damping = velocity")
         return made
 
+    def from_lammps(self, eta_n: float, x_t: float) -> dict:
+        return {self.coefficient.name: eta_n, "x_t": x_t or None}  # X_T = 0 is x_t none
+
     def contact_dashpots(self, model, m_eff: float) -> tuple[float, float]:
         gamma_n = self.gamma_n(vars(model), m_eff)
         return gamma_n, (model.x_t or 0.0) * gamma_n

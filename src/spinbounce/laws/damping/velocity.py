@@ -28,6 +28,9 @@ class Velocity(DampingLaw):
     summary = "viscous dashpots gamma_n and gamma_t, the paper's"
     coefficients = (GAMMA_N, GAMMA_T)
 
+    def from_lammps(self, eta_n: float, x_t: float) -> dict:
+        return {"gamma_n": eta_n, "gamma_t": x_t * eta_n}
+
     def dashpots(self, model) -> tuple[float, float, bool, list[str]]:
         if model.gamma_t == 0.0 and model.gamma_n == 0.0:
             return 0.0, 0.0, False, []

@@ -48,6 +48,7 @@ class HertzMaterial(Hertz):
     coefficients = (YOUNGS_MODULUS, POISSON_RATIO)
     derived = ("kn",)
     material = True
+    lammps_coefficients = ("youngs_modulus", "eta_n", "poisson_ratio")
 
     def settle(self, values: dict, foreign: tuple[Parameter, ...]) -> dict:
         super().settle(values, foreign)
@@ -65,8 +66,6 @@ class HertzMaterial(Hertz):
     def shear_stiffness(self, model) -> float:
         return shear_stiffness(model.youngs_modulus, model.poisson_ratio)
 
-    def deck_terms(self, model, eta_n: float) -> tuple:
-        return (self.keyword, float(model.youngs_modulus), float(eta_n), float(model.poisson_ratio))
 
 
 LAW = HertzMaterial()

@@ -30,9 +30,6 @@ class LinearHistory(TangentialLaw):
     summary = "the paper's Cundall-Strack spring kt on the slip history"
     coefficients = (KT, MU)
 
-    def deck_terms(self, model, x_t: float, mu: float) -> tuple:
-        return ("tangential", self.keyword, float(model.kt), float(x_t), float(mu))
-
     def slip_stiffness(self, model, speed: float | None) -> float:
         return model.kt
 

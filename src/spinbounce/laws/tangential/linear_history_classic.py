@@ -49,9 +49,6 @@ class LinearHistoryClassic(TangentialLaw):
     def stiffness(self, model) -> float:
         return model.kt
 
-    def deck_terms(self, model, x_t: float, mu: float) -> tuple:
-        return ("tangential", self.keyword, float(model.kt), float(x_t), float(mu))
-
     def slip_stiffness(self, model, speed: float | None) -> float:
         if speed is None:
             raise ValueError("the classic spring's slip mode needs the fastest |v_n| (speed)")

@@ -32,6 +32,7 @@ MINDLIN_KT = Parameter(
 
 class Mindlin(TangentialLaw):
     coefficients = (MINDLIN_KT, MU)
+    lammps_coefficients = ("mindlin_kt", "x_t", "mu")
     contact_radius = True
     pairs = False
     capped_planar_only = True
@@ -70,10 +71,6 @@ class Mindlin(TangentialLaw):
     def stiffness(self, model) -> float:
         """k_t: the model's ``mindlin_kt``, or LAMMPS's NULL, 8 G* of the normal law's material."""
         return model.normal_law.shear_stiffness(model) if model.mindlin_kt is None else model.mindlin_kt
-
-    def deck_terms(self, model, x_t: float, mu: float) -> tuple:
-        k = "NULL" if model.mindlin_kt is None else float(model.mindlin_kt)
-        return ("tangential", self.keyword, k, float(x_t), float(mu))
 
     def slip_stiffness(self, model, speed: float | None) -> float:
         if speed is None:
