@@ -41,7 +41,8 @@ OTHER = {
     "dt": "the timestep the group ran at (a pair sweep: the batch's deck step; with a tolerance: the finest "
           "run's); a time-scaled row's own step is dt/time_scale",
     "time_scale": "how many times slower the row ran in the deck (a time-scaled Hertzian batch: s_i = T*/T_i, "
-                  "its contact stretched to the batch's longest, so its own step was dt/s_i; 1 otherwise)",
+                  "its contact stretched to the batch's longest; an aligned pair batch: the pair's own; its "
+                  "own step was dt/time_scale; 1 otherwise)",
     "nsteps": "LAMMPS steps (with a tolerance: all runs' together)",
     "tolerance": "the accuracy asked for (sweeps with a tolerance only)",
     "Omega_theory": "the theory's Omega (Eq. 18) for this sphere's v_n; NaN where none exists",

@@ -79,7 +79,7 @@ def pair_chunk(model: ContactModel, b: Sphere, states: np.ndarray, dt: float | N
     for name in names + tuple(SPINS[n] for n in names if n in SPINS):
         columns[f"{name}_error"] = columns[f"{name}_lammps"] - columns[f"{name}_theory"]
     for key in ("eps", "centrifugal", "turn", "contact_time", "planar_error", "error", "energy_gain", "energy_excess",
-                "status"):
+                "status", "time_scale"):
         columns[key] = table[key].to_numpy()
     columns.update({q + suffix: table[q + suffix].to_numpy() for q in QUANTITIES for suffix in ("", "_exact", "_planar")})
     columns["step_method"] = np.full(len(pairs), result.step.method, dtype=object)
