@@ -45,6 +45,8 @@ SPEED_DEFAULTS = {"n_lmp": 30, "n_inprocess": 300, "n_batched": 200_000}
 #: The states a sweep samples: the 100,000-collision acceptance sweep's ranges (3-D: and the rest).
 PLANE = {"v_n": [-1.5, -0.1], "v_t": [-2.0, 2.0], "r_omega": [-2.0, 2.0]}
 SPACE = {**PLANE, "v_s": [-2.0, 2.0], "r_omega_s": [-2.0, 2.0], "r_omega_n": [-2.0, 2.0]}
+#: The Hookean model Hertz-Mindlin's cost is set beside (``spinbounce bench``).
+HOOKE_AT_MINDLIN = "Hooke, kt/kn 1.235"
 #: The models a sweep is measured for, with the states each samples.
 MODELS = {
     "frictionless": ({}, PLANE),
@@ -53,6 +55,9 @@ MODELS = {
     "Hertz": ({"normal": "hertz"}, {**PLANE, "v_n": [-0.8, -0.1]}),
     "Hertz-Mindlin": ({"normal": "hertz/material", "youngs_modulus": 1e4, "poisson_ratio": 0.3,
                        "tangential": "mindlin"}, {**PLANE, "v_n": [-0.8, -0.1]}),
+    # the Hookean sweep at Hertz-Mindlin's stiffness ratio (LAMMPS's NULL k_t/kn = 3 (1 - nu)/(2 - nu)
+    # at nu = 0.3): the same slip mode against the normal one, so the same accuracy asks comparable steps
+    HOOKE_AT_MINDLIN: ({"kt_over_kn": 3.0 * 0.7 / 1.7}, {**PLANE, "v_n": [-0.8, -0.1]}),
 }
 
 
@@ -240,8 +245,12 @@ def measure_models(n: int = 100_000, seed: int = 0, keep: Path | None = None, lo
         if keep is None:
             shutil.rmtree(root, ignore_errors=True)
     base = out[0]["wall_seconds"] / out[0]["collisions"]
+    per_collision = {entry["model"]: entry["wall_seconds"] / entry["collisions"] for entry in out}
     for entry in out:
         entry["time_per_collision_over_frictionless"] = entry["wall_seconds"] / entry["collisions"] / base
+        if entry["model"] == "Hertz-Mindlin":
+            entry["time_per_collision_over_hooke_at_its_ratio"] = (per_collision["Hertz-Mindlin"]
+                                                                   / per_collision[HOOKE_AT_MINDLIN])
         entry["checks_share"] = entry["checks_seconds"] / entry["wall_seconds"]
         entry["measured_over_estimated"] = entry["wall_seconds"] / entry["estimated_seconds"]
     return {"models": out}
