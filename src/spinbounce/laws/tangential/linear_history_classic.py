@@ -12,24 +12,19 @@ fixed assembly (``hooke/history``).
 
 from __future__ import annotations
 
-import math
-
 from ...declaration import Parameter
 from ...errors import SceneError
-from ..base import TangentialLaw
 from ..normal import normal_law
 from .linear_history import KT, MU
+from .mindlin import RadiusSpring
 
 __all__ = ["LinearHistoryClassic", "LAW"]
 
 
-class LinearHistoryClassic(TangentialLaw):
+class LinearHistoryClassic(RadiusSpring):
     keyword = "linear_history_classic"
     summary = "the classic wall's spring, kt a xi in this build, its cap reset by kt alone"
     coefficients = (KT, MU)
-    contact_radius = True
-    pairs = False
-    capped_planar_only = True
     classic_cap = True
     #: (force, rescale): a displacement history, never rescaled (mindlin's equations).
     variant = (False, False)
@@ -48,16 +43,6 @@ class LinearHistoryClassic(TangentialLaw):
 
     def stiffness(self, model) -> float:
         return model.kt
-
-    def slip_stiffness(self, model, speed: float | None) -> float:
-        if speed is None:
-            raise ValueError("the classic spring's slip mode needs the fastest |v_n| (speed)")
-        return self.frozen_stiffness(model, float(model.max_overlap(speed)))
-
-    def frozen_stiffness(self, model, overlap: float | None) -> float:
-        if overlap is None:
-            raise ValueError("the classic spring needs its overlap")
-        return model.kt * math.sqrt(model.r * overlap)
 
 
 LAW = LinearHistoryClassic()

@@ -20,7 +20,7 @@ from ..damping import damping_law
 from ..normal import normal_law
 from .linear_history import KT, MU
 
-__all__ = ["Mindlin", "MINDLIN_KT", "LAW"]
+__all__ = ["RadiusSpring", "Mindlin", "MINDLIN_KT", "LAW"]
 
 MINDLIN_KT = Parameter(
     "mindlin_kt", "Mindlin variants: tangential stiffness k_t, F_t = k_t a xi with contact radius a = sqrt(R delta) "
@@ -30,12 +30,32 @@ MINDLIN_KT = Parameter(
     deck="tangential mindlin|mindlin/force|mindlin_rescale|mindlin_rescale/force K_T|NULL X_T MU")
 
 
-class Mindlin(TangentialLaw):
-    coefficients = (MINDLIN_KT, MU)
-    lammps_coefficients = ("mindlin_kt", "x_t", "mu")
+class RadiusSpring(TangentialLaw):
+    """A spring k a on the slip history whose stiffness grows with the contact radius a = sqrt(r delta)
+    (the Mindlin variants, and this build's ``linear_history_classic``): its stiffness at an overlap."""
+
     contact_radius = True
     pairs = False
     capped_planar_only = True
+
+    def stiffness(self, model) -> float:
+        """k: the spring is k sqrt(r delta)."""
+        raise NotImplementedError
+
+    def slip_stiffness(self, model, speed: float | None) -> float:
+        if speed is None:
+            raise ValueError(f"a {self.keyword} collision's slip mode needs the fastest |v_n| (speed)")
+        return self.frozen_stiffness(model, float(model.max_overlap(speed)))
+
+    def frozen_stiffness(self, model, overlap: float | None) -> float:
+        if overlap is None:
+            raise ValueError(f"a {self.keyword} spring needs its overlap")
+        return self.stiffness(model) * math.sqrt(model.r * overlap)
+
+
+class Mindlin(RadiusSpring):
+    coefficients = (MINDLIN_KT, MU)
+    lammps_coefficients = ("mindlin_kt", "x_t", "mu")
 
     def __init__(self, keyword: str):
         self.keyword = keyword
@@ -72,15 +92,6 @@ class Mindlin(TangentialLaw):
         """k_t: the model's ``mindlin_kt``, or LAMMPS's NULL, 8 G* of the normal law's material."""
         return model.normal_law.shear_stiffness(model) if model.mindlin_kt is None else model.mindlin_kt
 
-    def slip_stiffness(self, model, speed: float | None) -> float:
-        if speed is None:
-            raise ValueError("a Mindlin collision's slip mode needs the fastest |v_n| (speed)")
-        return self.frozen_stiffness(model, float(model.max_overlap(speed)))
-
-    def frozen_stiffness(self, model, overlap: float | None) -> float:
-        if overlap is None:
-            raise ValueError("a Mindlin contact's spring needs its overlap")
-        return self.stiffness(model) * math.sqrt(model.r * overlap)
 
 
 LAW = Mindlin("mindlin")
