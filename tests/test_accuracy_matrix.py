@@ -88,7 +88,8 @@ REFUSED = {
     "kt/kn = 1e9": ({"kt": 1e10}, "dt", "steps"),
     "alpha = 1.5": ({"alpha": 1.5}, "alpha", "in (0, 1]"),
     "mu < 0": ({"mu": -0.1}, "mu", "not negative"),
-    "hertz with gamma_n": ({"normal": "hertz", "gamma_n": 1.0}, "gamma_n", "no exact theory"),
+    "hertz with gamma_n and mu": ({"normal": "hertz", "gamma_n": 1.0, "mu": 0.3}, "mu",
+                                  "no reference here integrates a Coulomb cap"),
 }
 
 

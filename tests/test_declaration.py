@@ -47,6 +47,8 @@ CASES = {
     "gamma_n_per_mass": ({"damping": "mass_velocity", "gamma_n_per_mass": 0.5},
                          {"damping": "mass_velocity", "gamma_n_per_mass": 1.0}),
     "x_t": ({"damping": "coeff_restitution", "e_n": 0.5}, {"damping": "coeff_restitution", "e_n": 0.5, "x_t": 1.0}),
+    "gamma_n_per_mass_radius": ({"damping": "viscoelastic", "gamma_n_per_mass_radius": 0.5},
+                                {"damping": "viscoelastic", "gamma_n_per_mass_radius": 1.5}),
     # the Mindlin sub-models on a Hookean force: a stiffness k_t of its own (no material for NULL)
     "tangential": ({}, {"tangential": "mindlin_rescale", "mindlin_kt": 100.0}),
     "mindlin_kt": ({"tangential": "mindlin", "mindlin_kt": 100.0}, {"tangential": "mindlin", "mindlin_kt": 300.0}),

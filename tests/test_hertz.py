@@ -126,9 +126,9 @@ def test_a_bad_normal_law_is_refused_naming_the_allowed_ones():
     assert all(law in str(info.value) for law in NORMAL_LAWS)
 
 
-def test_damped_hertz_is_refused_and_hooke_only_quantities_ask_for_v_n():
-    with pytest.raises(SceneError, match="gamma_n.*no exact theory"):
-        ContactModel(normal="hertz", gamma_n=0.5)
+def test_damped_hertz_with_a_cap_is_refused_and_hooke_only_quantities_ask_for_v_n():
+    with pytest.raises(SceneError, match="no reference here integrates a Coulomb cap"):
+        ContactModel(normal="hertz", gamma_n=0.5, mu=0.3)
     model = ContactModel(normal="hertz")
     for name in ("tau", "Omega", "restitution", "t_exit"):
         with pytest.raises(SceneError, match="depends on v_n"):

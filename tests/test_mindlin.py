@@ -18,7 +18,7 @@ import pytest
 from scipy.integrate import solve_ivp
 
 import spinbounce
-from spinbounce.exact import choose, mindlin, mindlin_capped
+from spinbounce.exact import choose, contact_phases, mindlin
 from spinbounce.lammps.decks import wall_parameters
 from spinbounce.model.contact import ContactModel
 from spinbounce.model.parameters import SceneError
@@ -146,8 +146,8 @@ def test_a_record_names_the_tangential_law_only_when_it_is_not_the_default():
     ({"tangential": "mindlin", "mindlin_kt": 3.0, "kt": 2.0}, "kt"),            # linear_history's spring
     ({"mindlin_kt": 3.0}, "mindlin_kt"),                                        # not linear_history's
     ({"tangential": "mindlin", "mindlin_kt": 3.0, "mu": 0.3, "gamma_t": 0.1}, "gamma_t"),  # capped: no dashpot
-    ({"tangential": "mindlin", "mindlin_kt": 3.0, "gamma_n": 0.3}, "gamma_n"),  # no damped reference yet
-    ({"tangential": "mindlin", "mindlin_kt": 3.0, "damping": "tsuji", "e_n": 0.5}, "e_n"),
+    ({"tangential": "mindlin", "mindlin_kt": 3.0, "gamma_n": 0.3, "mu": 0.3}, "mu"),  # no capped damped reference
+    ({"tangential": "mindlin", "mindlin_kt": 3.0, "damping": "tsuji", "e_n": 0.5, "mu": 0.2}, "mu"),
     ({"tangential": "mindlin", "mindlin_kt": -3.0}, "mindlin_kt"),
     ({"tangential": "mindlin", "mindlin_kt": 3.0, "wall": "classic"}, "tangential"),
     ({"tangential": "mindlin/forced"}, "tangential"),
@@ -254,7 +254,7 @@ def test_mindlin_s_criterion_decides_the_first_phase():
     # force history) exceeds mu kn |v_n|, and sticking otherwise
     law = dict(m=1.0, r=0.5, alpha=0.4, K=100.0 * math.sqrt(0.5), power=1.5, k=50.0, mu=0.5)
     for force, threshold in ((False, 1.0), (True, 1.5)):  # u' at which k u' (2/3) = mu kn |v_n| = 50
-        contact = mindlin_capped._Contact((force, False), **law)
+        contact = contact_phases._Contact(contact_phases.Law(**law, force_history=force))
         assert contact.first_phase(1.0, 0.99 * threshold) == "stick"
         assert contact.first_phase(1.0, 1.01 * threshold) == "slip"
 

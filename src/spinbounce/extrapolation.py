@@ -235,9 +235,10 @@ def smooth_in_dt(model: ContactModel) -> bool:
     Not with a finite cap (its stick-slip switches leave kinks anywhere inside a step), nor
     for the classic wall (measured: at tolerance 1e-6 the ladder's estimate was 1.0e-6 where
     the error was 2.1e-6; its spring kt sqrt(r delta) has an infinite slope at contact), nor for
-    a Mindlin spring k_t sqrt(r delta), for the same reason.
+    a Mindlin spring k_t sqrt(r delta), or a dashpot on the contact radius, for the same reason.
     """
-    return model.mu is None and model.style.smooth_in_dt and not model.tangential_law.contact_radius
+    return (model.mu is None and model.style.smooth_in_dt and not model.tangential_law.contact_radius
+            and not model.normal_law.integrated(model))
 
 
 #: The exact theories the measured route checks against (exact.coulomb, exact.classic)
@@ -318,7 +319,8 @@ def measured_to_tolerance(model: ContactModel, v_n, v_t, omega, tolerance: float
         if distance.max() <= tolerance:
             break
         # the probe's states missed a harder row: twice the steps, the contact's end kept mid-step
-        scene = dataclasses.replace(scene, dt=refine_mid_step(model.tau, result.scene.dt, 2))
+        t_end = float(np.max(model.contact_times(scene.v_n)))
+        scene = dataclasses.replace(scene, dt=refine_mid_step(t_end, result.scene.dt, 2))
     else:
         raise ResultError(f"tolerance = {tolerance:g} not reached: |LAMMPS - theory| = {distance.max():.2g} at "
                           f"dt = {result.scene.dt:.4g}; give a smaller dt or a looser tolerance")

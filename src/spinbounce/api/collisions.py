@@ -264,10 +264,20 @@ def _collide_to_tolerance(contact: ContactModel, state: dict, tolerance: float, 
     record = {**_state_record(table), "estimate": result.max_estimate, "theory_kind": choose.which(contact).kind,
               "tolerance": result.tolerance, "steps": result.steps,
               "plain_steps_for_same_estimate": result.plain_steps_for(result.max_estimate),
-              "levels": result.levels, "Omega": contact.Omega, **software()}
+              "levels": result.levels, "Omega": _tolerance_omega(contact, state["v_n"]), **software()}
     path = Path(out) / "tolerance.json"
     write_atomic(path, to_json(record))
     return ToleranceReport(table, record, result.how, path)
+
+
+def _tolerance_omega(contact: ContactModel, v_n: float) -> float | None:
+    """The Omega a tolerance run's record gives: the model's where it has one (a capped model's
+    uncapped Omega, as it always gave), else this speed's (its theory's per sphere), else None."""
+    if not (contact.normal_law.contact_radius or contact.tangential_law.contact_radius
+            or contact.normal_law.integrated(contact)):
+        return contact.Omega
+    omega = float(choose.omega_per_sphere(contact, v_n)[0])
+    return omega if np.isfinite(omega) else None
 
 
 def theory(v_n: float | None = None, v_t: float = 0.0, omega: float = 0.0, v_s: float = 0.0, omega_s: float = 0.0,

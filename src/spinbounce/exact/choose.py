@@ -12,7 +12,7 @@ coulomb       a finite mu: the contact sticks and slides in turn         no
               (:mod:`.coulomb`, exact and batched; checked against
               :mod:`.oracle`)
 mindlin_      a Mindlin spring with a finite mu: stick and slip in turn,     no
-capped        in the plane (:mod:`.mindlin_capped`, exact per phase)
+capped        in the plane (:mod:`.contact_phases`, exact per phase)
 mindlin       a tangential stiffness on the contact radius (LAMMPS's     Hertzian,
               Mindlin variants), no cap, undamped normal force: Eq. 18   undamped: yes;
               with the Omega of :mod:`.mindlin`                          else Omega(v_n)
@@ -33,6 +33,7 @@ r omega_n), as everywhere in spinbounce. The model is read through its fields on
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -70,7 +71,7 @@ def which(model) -> Choice:
                       f"with mu = {model.mu!r} the contact sticks and slides in turn: give a state (v_n, v_t, omega) "
                       "for its outcome")
     if model.mu is not None and model.tangential_law.contact_radius:
-        return Choice("mindlin_capped", "the Coulomb-capped Mindlin contact (exact.mindlin_capped: exact in each stick "
+        return Choice("mindlin_capped", "the Coulomb-capped Mindlin contact (exact.contact_phases: exact in each stick "
                       "or slip phase, in the paper's plane)",
                       f"with mu = {model.mu!r} the contact sticks and slides in turn, so the outcome is not linear "
                       "in the initial state: give a state (v_n, v_t, omega) for its outcome")
@@ -78,6 +79,11 @@ def which(model) -> Choice:
         return Choice("coulomb", "Coulomb stick-slip solution (exact in each phase, switches to machine precision)",
                       f"with mu = {model.mu!r} the contact sticks and slides in turn, so the outcome is not "
                       "linear in the initial state: give a state (v_n, v_t, omega) for its outcome")
+    if damped_nonlinear(model):
+        return Choice("damped_nonlinear", "Eq. 18 sphere by sphere with the Omega and restitution of the damped "
+                      "contact integrated in time (exact.contact_phases)",
+                      "with normal damping on a contact whose force, spring or dashpot grows with the contact "
+                      "radius, the restitution and Omega depend on v_n: give v_n for its matrix")
     if model.tangential_law.contact_radius:
         name = "Eq. 18 with the Omega of LAMMPS's Mindlin contact (exact.mindlin)"
         if _mindlin_speed_free(model):
@@ -92,6 +98,41 @@ def which(model) -> Choice:
     if model.gamma_n > 0.0 or model.gamma_t > 0.0:
         return Choice("damped", "Eq. 18 with the exact damped Omega and restitution")
     return Choice("linear", "Eq. 18")
+
+
+def damped_nonlinear(model) -> bool:
+    """Normal damping on a contact whose force, spring or dashpot grows with the contact radius:
+    its reference is the contact integrated in time (:mod:`.contact_phases`)."""
+    normal = model.normal_law
+    return model.gamma_n > 0.0 and (normal.contact_radius or model.tangential_law.contact_radius
+                                    or model.damping_law.radius_power(normal) > 0.0)
+
+
+def phase_law(model, normal_only: bool = False):
+    """The model as :class:`.contact_phases.Law`: the normal force kn r^(p - 1) delta^p, the spring,
+    the dashpots gamma a^s and the cap (``normal_only``: no spring, no cap)."""
+    from .contact_phases import Law
+
+    normal, tangential = model.normal_law, model.tangential_law
+    power, (force, rescale) = normal.power, tangential.variant
+    return Law(m=model.m, r=model.r, alpha=model.alpha, K=model.kn * model.r ** (power - 1.0), power=power,
+               k=0.0 if normal_only else tangential.stiffness(model),
+               spring_power=1.0 if tangential.contact_radius else 0.0, force_history=force, rescale=rescale,
+               mu=math.inf if normal_only or model.mu is None else model.mu, c_n=model.gamma_n,
+               c_t=0.0 if normal_only else model.gamma_t, damping_power=model.damping_law.radius_power(normal))
+
+
+def _damped_matrices(model, v_n) -> np.ndarray:
+    """(n, 3, 3): Eq. 18 per sphere with the restitution and Omega of its own damped contact, from
+    one integration of a unit slip (the slip is linear in its initial rate)."""
+    from . import contact_phases
+
+    law = phase_law(model)
+    out = []
+    for v in np.atleast_1d(v_n):
+        v_out, v_t, r_omega, _ = contact_phases.bounce(law, float(v), 1.0, 0.0)
+        out.append(linear.scattering_matrix(model.alpha, v_t + r_omega - 1.0, v_out / abs(float(v))))
+    return np.array(out)
 
 
 def _mindlin_speed_free(model) -> bool:
@@ -182,6 +223,8 @@ def matrices(model, v_n) -> np.ndarray:
                                          model.gamma_t)
     if choice.kind == "mindlin" and not choice.has_matrix:
         return np.stack([linear.scattering_matrix(model.alpha, float(w), 1.0) for w in _mindlin_omega(model, v_n)])
+    if choice.kind == "damped_nonlinear":
+        return _damped_matrices(model, v_n)
     return np.broadcast_to(matrix(model), (v_n.size, 3, 3))
 
 
@@ -200,6 +243,9 @@ def omega_per_sphere(model, v_n) -> np.ndarray:
         return np.atleast_1d(hertz.Omega(v_n, model.m, model.kn, model.r, model.kt, model.alpha, model.gamma_t))
     if kind == "mindlin":
         return np.broadcast_to(_mindlin_omega(model, v_n), v_n.shape).copy()
+    if kind == "damped_nonlinear":
+        matrices_ = _damped_matrices(model, v_n)
+        return (matrices_[:, 1, 1] - 1.0) * (1.0 + model.alpha) / model.alpha  # Eq. 18: M_tt = 1 + alpha Omega/(1+alpha)
     return np.full(v_n.shape, _omega(model))
 
 
@@ -216,14 +262,11 @@ def predict(model, initial) -> np.ndarray:
         wall = classic_wall(model)
         return np.array([classic.bounce(wall, *state).final for state in initial])
     if kind == "mindlin_capped":
-        from . import mindlin_capped
+        from . import contact_phases
 
         if width != 3:
             raise NoMatrix("the capped Mindlin reference is in the paper's plane: give no v_s, omega_s or omega_n")
-        law, power = model.tangential_law, model.normal_law.power
-        return mindlin_capped.bounce_many(law.variant, initial, m=model.m, r=model.r, alpha=model.alpha,
-                                          K=model.kn * model.r ** (power - 1.0), power=power,
-                                          k=law.stiffness(model), mu=model.mu)
+        return contact_phases.bounce_many(phase_law(model), initial)[:, :3]
     if kind == "coulomb":  # the exact batched solver; the scipy oracle is its independent check
         from . import coulomb
 
@@ -232,7 +275,7 @@ def predict(model, initial) -> np.ndarray:
         if width == 6:
             return coulomb.bounce_3d(model, *columns, initial[:, 3], initial[:, 4] / r, initial[:, 5] / r)
         return coulomb.bounce_2d(model, *columns)
-    if kind in ("hertzian", "mindlin"):
+    if kind in ("hertzian", "mindlin", "damped_nonlinear"):
         each = matrices(model, initial[:, 0])
         if width == 6:
             each = np.array([linear.block_from(m3) for m3 in each])
@@ -289,5 +332,8 @@ def frozen(model, t, v_t0: float, r_omega0: float, z: float | None = None) -> tu
 
         return classic.frozen_velocities(t, v_t0, r_omega0, model.kt, model.alpha, model.r, model.r - z, model.m,
                                          model.gamma_t / model.m)
-    kt = model.tangential_law.frozen_stiffness(model, None if z is None else model.r - z)
-    return linear.frozen_velocities(t, v_t0, r_omega0, kt, model.m, model.alpha, model.gamma_t)
+    overlap = None if z is None else model.r - z
+    kt = model.tangential_law.frozen_stiffness(model, overlap)
+    s = model.damping_law.radius_power(model.normal_law)  # a dashpot gamma_t a^s is constant when held
+    gamma_t = model.gamma_t * math.sqrt(model.r * overlap) ** s if s and model.gamma_t else model.gamma_t
+    return linear.frozen_velocities(t, v_t0, r_omega0, kt, model.m, model.alpha, gamma_t)

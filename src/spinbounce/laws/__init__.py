@@ -19,6 +19,7 @@ sub-models declare their coefficients and words the same way. The wall command's
 this package branches on a sub-model's or a style's keyword.
 """
 
+from ..errors import SceneError
 from .damping import DAMPING, DampingLaw, damping_coefficients, damping_law, damping_parameter
 from .normal import NORMAL, NormalLaw, normal_coefficients, normal_law, normal_parameter
 from .styles import STYLES, Style, style, style_parameter
@@ -54,4 +55,20 @@ def settled(values: dict) -> dict:
     tangential one last, since it may need both."""
     for law, every in _chosen(values):
         values = {**values, **law.settle(values, every)}
+    _refuse_capped_damped_nonlinear(values)
     return values
+
+
+def _refuse_capped_damped_nonlinear(values: dict) -> None:
+    """A Coulomb cap on a damped contact whose force or spring grows with the contact radius: no
+    reference here integrates it (exact.contact_phases takes a cap without a dashpot)."""
+    (normal, _), (damping, _), (tangential, _) = _chosen(values)
+    damped = (values.get("gamma_n") or 0.0) > 0.0
+    nonlinear = normal.contact_radius or tangential.contact_radius or damping.radius_power(normal) > 0.0
+    if damped and nonlinear and values.get("mu") is not None and not tangential.classic_cap:
+        raise SceneError("mu", values["mu"], "must be none with normal damping on a contact whose force or spring "
+                                             "grows with the contact radius: no reference here integrates a "
+                                             "Coulomb cap with that dashpot yet")
+    if damped and nonlinear and values.get("limit_damping"):
+        raise SceneError("limit_damping", True, "is not covered with normal damping on a contact whose force, "
+                                                "spring or dashpot grows with the contact radius: leave it out")

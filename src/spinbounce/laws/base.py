@@ -4,7 +4,7 @@ defines its entry, and a keyword finds it (or is refused with the registered one
 
 A sub-model is asked, never named: its coefficients, its flags (``contact_radius``: the
 force grows with the contact radius a = sqrt(R delta), LAMMPS's ``contact_radius_flag``;
-``damped_theory``: an exact reference exists with normal damping), the words it adds to a
+``power``: F = kn r^(p - 1) delta^p), the words it adds to a
 deck, and the contact's normal motion for the exact reference and the step rule.
 """
 
@@ -83,8 +83,6 @@ class NormalLaw:
     #: The force grows with the contact radius a = sqrt(R delta): the contact time, and with it
     #: Omega, depends on the impact speed (Hertzian: F = kn a delta).
     contact_radius: bool = False
-    #: An exact reference of this normal motion exists with normal damping (gamma_n > 0).
-    damped_theory: bool = True
     #: The force's power of the overlap, F = kn r^(power - 1) delta^power (LAMMPS's, against a wall).
     power: float = 1.0
     #: It is made from a material (E, nu), so a Mindlin stiffness can be too (LAMMPS's NULL k_t).
@@ -114,6 +112,30 @@ class NormalLaw:
     def contact_times(self, model, v_n) -> np.ndarray:
         """Each sphere's time until it is out of the overlap."""
         raise NotImplementedError
+
+    def restitutions(self, model, v_n) -> np.ndarray:
+        """Each sphere's normal restitution -v_n(out)/v_n(0)."""
+        raise NotImplementedError
+
+    def integrated(self, model) -> bool:
+        """Whether its damped contact has no closed form here: a dashpot, and a force or a dashpot
+        that grows with the contact radius (its exits are then :meth:`integrated_exits`)."""
+        return model.gamma_n > 0.0 and (self.contact_radius or model.damping_law.radius_power(self) > 0.0)
+
+    def integrated_exits(self, model, v_n) -> np.ndarray:
+        """(n, 2) restitution and contact time of each contact, the normal motion integrated in
+        time (spinbounce.exact.contact_phases; scipy is loaded here, when one is asked)."""
+        from ..exact import choose, contact_phases
+
+        law = choose.phase_law(model, normal_only=True)
+        return np.array([contact_phases.normal_exit(law, abs(float(v))) for v in np.atleast_1d(v_n)])
+
+    def dashpot_rate(self, model, speed: float) -> float:
+        """The normal dashpot over the mass at the deepest overlap of |v_n| = ``speed`` (undamped,
+        an upper bound): gamma_n a^s/m."""
+        s = model.damping_law.radius_power(self)
+        a_max = float(np.sqrt(model.r * self.max_overlap(model, speed))) if s else 1.0
+        return model.gamma_n * a_max**s / model.m
 
     def force_times(self, model, v_n) -> np.ndarray:
         """Each sphere's time until the contact force ends (at or before it leaves the overlap)."""
@@ -157,6 +179,11 @@ class DampingLaw:
     #: How LAMMPS's ETA_N follows a contact run in time units s times longer (masses s^2, speeds
     #: 1/s; the dashpot gamma_n must become s gamma_n): ETA_N times s to this power.
     eta_time_power: int = 1
+
+    def radius_power(self, normal) -> float:
+        """s of its dashpots c = gamma a^s with the ``normal`` sub-model (LAMMPS's prefactor: 0 for
+        a constant one; 1/2 for sqrt(m_eff F/delta) with the Hertzian force, F/delta = kn a)."""
+        return 0.0
 
     @property
     def normal_coefficient(self) -> str:
@@ -202,6 +229,13 @@ class TangentialLaw:
     #: Its cap resets the history by kt alone (this build's classic spring): with a cap its
     #: reference is :mod:`spinbounce.exact.classic`.
     classic_cap: bool = False
+    #: (force, rescale): its history is the elastic force (``/force``), not a displacement; it is
+    #: rescaled by a_new/a_old while the contact radius shrinks (``_rescale``).
+    variant: tuple[bool, bool] = (False, False)
+
+    def stiffness(self, model) -> float:
+        """k of its spring k a^q (q = 1 on the contact radius, else 0): linear_history's kt."""
+        return model.kt
 
     def settle(self, values: dict, foreign: tuple[Parameter, ...]) -> dict:
         """The model's values this law fixes, after refusing another tangential sub-model's

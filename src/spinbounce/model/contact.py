@@ -53,16 +53,9 @@ class ContactPhysics:
                 PhysicsWarning,
                 stacklevel=4,
             )
-        if not self.normal_law.damped_theory and self.gamma_n > 0.0:
-            raise SceneError(
-                "gamma_n",
-                self.gamma_n,
-                f"must be 0 with normal = {self.normal!r}: there is no exact theory here of its damped "
-                "contact to check it against",
-            )
         self.style.check(self)
         critical = 2.0 * math.sqrt(self.m * self.kn)
-        if self.gamma_n >= critical:
+        if not self.normal_law.contact_radius and self.gamma_n >= critical:
             raise SceneError(
                 "gamma_n",
                 self.gamma_n,
@@ -112,6 +105,9 @@ class ContactPhysics:
         if self.normal_law.contact_radius:
             raise SceneError("normal", self.normal, f"has no single {what}: it depends on v_n "
                              "(per-sphere values: Collision.predicted(), spinbounce.exact.hertz)")
+        if self.normal_law.integrated(self):
+            raise SceneError("damping", self.damping, f"has no single {what}: its dashpot grows with the contact "
+                             "radius, so it depends on v_n (per-sphere values: Collision.predicted())")
 
     @property
     def tau(self) -> float:
@@ -172,7 +168,8 @@ class ContactPhysics:
         for parameter in MODEL:
             parameter.check_default_step(getattr(self, parameter.name))
         # a restitution rounded a part in 1e15 below the limit (e_n = 1e-3 exactly) is the limit
-        if not self.normal_law.contact_radius and self.restitution < MIN_RESTITUTION * (1.0 - 1e-12):
+        hookean = not self.normal_law.contact_radius and not self.normal_law.integrated(self)
+        if hookean and self.restitution < MIN_RESTITUTION * (1.0 - 1e-12):
             limit = exact.gamma_n_for_restitution(MIN_RESTITUTION, self.m, self.kn)
             name = self.damping_law.normal_coefficient
             made = "" if name == "gamma_n" else f"makes gamma_n = {self.gamma_n:.6g}, which "
@@ -200,7 +197,10 @@ class ContactPhysics:
         law = self.tangential_law
         stiffness = law.frozen_stiffness(self, overlap) if frozen else law.slip_stiffness(self, speed)
         q = exact.Q(stiffness, self.m, self.alpha)
-        out = {"slip": (math.sqrt(q), 2.0 * self.zeta)}
+        s = self.damping_law.radius_power(self.normal_law)  # a dashpot gamma_t a^s: at its largest a
+        depth = overlap if frozen else (float(self.max_overlap(speed)) if speed is not None else None)
+        zeta = self.zeta * (math.sqrt(self.r * depth) ** s if s and depth is not None else 1.0)
+        out = {"slip": (math.sqrt(q), 2.0 * zeta)}
         if not frozen:
             out["normal"] = self.normal_law.normal_mode(self, speed)
         return out

@@ -1,8 +1,9 @@
 """The damping sub-models, registered by LAMMPS keyword: one entry each in :data:`DAMPING`.
 
-``velocity`` (:mod:`.velocity`) is the paper's viscous damping; ``mass_velocity``, ``tsuji`` and
-``coeff_restitution`` make the same dashpots from a coefficient LAMMPS scales by the contact
-(:mod:`.scaled`). ``viscoelastic`` (a dashpot that grows with the contact radius) is not here yet.
+``velocity`` (:mod:`.velocity`) is the paper's viscous damping; ``mass_velocity``, ``tsuji``,
+``coeff_restitution`` and ``viscoelastic`` make dashpots from a coefficient LAMMPS scales by the
+contact (:mod:`.scaled`): constant with the Hookean force except viscoelastic's, which grows
+with the contact radius, as tsuji's and coeff_restitution's do with the Hertzian force.
 """
 
 from __future__ import annotations
@@ -18,6 +19,7 @@ MODULES = (
     "mass_velocity",
     "tsuji",
     "coeff_restitution",
+    "viscoelastic",
 )
 #: Every damping sub-model, by its LAMMPS keyword.
 DAMPING: dict[str, DampingLaw] = registry(__name__, MODULES, "LAW")

@@ -18,9 +18,11 @@ class CoeffRestitution(FromRestitution):
     keyword = "coeff_restitution"
     summary = "the dashpot that gives normal restitution e_n (Hookean: exactly)"
 
-    def factor(self, e: float) -> float:
+    def factor(self, e: float, normal) -> float:
         log_e = math.log(e)
-        return -2.0 * log_e / math.sqrt(math.pi**2 + log_e**2)
+        beta = -log_e / math.sqrt(math.pi**2 + log_e**2)
+        # LAMMPS: 2 beta for hooke; sqrt(3/2) 2 sqrt(5/6) beta (with sqrt(m_eff F/delta)) for any other
+        return (math.sqrt(1.5) * 2.0 * math.sqrt(5.0 / 6.0) if normal.contact_radius else 2.0) * beta
 
 
 LAW = CoeffRestitution()

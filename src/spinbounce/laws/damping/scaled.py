@@ -4,10 +4,11 @@ paper's gamma_n and gamma_t made from their own coefficient.
 
 LAMMPS (``GranSubModDamping*``) multiplies the normal sub-model's ETA_N by a prefactor of the
 contact (its effective mass, its stiffness) and the tangential damping is X_T times the result.
-With the Hookean force that prefactor is constant through a contact, so the dashpots are the
-paper's gamma_n and gamma_t, which every exact reference takes; the effective mass is the
-sphere's against a wall, m m_b/(m + m_b) in a pair. With a force that grows with the contact
-radius no exact reference here integrates a damped contact yet: such an assembly is refused.
+With the Hookean force that prefactor is constant through a contact (but viscoelastic's), so the
+dashpots are the paper's gamma_n and gamma_t, which every exact reference takes; the effective
+mass is the sphere's against a wall, m m_b/(m + m_b) in a pair. Where the prefactor grows with
+the contact radius a (:meth:`radius_power` s > 0), gamma_n and gamma_t are the coefficients of
+a^s, and the reference is the contact integrated in time (spinbounce.exact.contact_phases).
 """
 
 from __future__ import annotations
@@ -29,7 +30,7 @@ X_T = Parameter("x_t", "tangential damping over normal damping, gamma_t/gamma_n 
 #: model's own lower limit on the restitution, spinbounce.model.contact.MIN_RESTITUTION).
 E_N = Parameter(
     "e_n", "damping tsuji or coeff_restitution: the restitution LAMMPS makes the dashpot from (its ETA_N; "
-    "coeff_restitution with hooke gives it exactly, tsuji does not); none for any other damping", "1", None, low=1e-3, high=1.0, optional=True,
+    "coeff_restitution gives it exactly, with hooke or hertz; tsuji does not); none for any other damping", "1", None, low=1e-3, high=1.0, optional=True,
     why="at e_n = 1 there is no damping; below 1e-3 the sphere creeps out too slowly for a run to see it leave",
     deck="granular hooke KN ETA_N damping tsuji|coeff_restitution")
 
@@ -51,18 +52,14 @@ class Scaled(DampingLaw):
 
     def settle(self, values: dict, foreign: tuple[Parameter, ...]) -> dict:
         super().settle(values, foreign)
-        if normal_law(values.get("normal", NormalLaw.default_keyword)).contact_radius:
-            raise SceneError("damping", self.keyword, f"is not covered with normal = {values['normal']}: no exact "
-                                                      "reference here integrates a damped contact whose force grows "
-                                                      "with the contact radius yet (damping = velocity with "
-                                                      "gamma_n = 0 is)")
         given = values.get(self.coefficient.name)
         if given is None:
             raise SceneError(self.coefficient.name, None, f"must be given with damping = {self.keyword} "
                                                           f"({self.coefficient.meaning.split(';')[0]})")
         gamma_n = self.gamma_n(values, values["m"])
         critical = 2.0 * math.sqrt(values["m"] * values["kn"])
-        if gamma_n >= critical:
+        normal = normal_law(values.get("normal", NormalLaw.default_keyword))
+        if not normal.contact_radius and self.radius_power(normal) == 0.0 and gamma_n >= critical:
             raise SceneError(self.coefficient.name, given, f"makes gamma_n = {gamma_n:.6g}, at or above critical "
                                                            f"damping 2 sqrt(m kn) = {critical:.6g}: the sphere "
                                                            "would never leave the wall")
@@ -91,9 +88,13 @@ class FromRestitution(Scaled):
     coefficients = (E_N, X_T)
     eta_time_power = 0  # sqrt(m_eff kn) already brings s: a restitution does not follow time
 
-    def factor(self, e: float) -> float:
-        """gamma_n / sqrt(m_eff kn) for the restitution ``e``."""
+    def factor(self, e: float, normal) -> float:
+        """gamma_n / sqrt(m_eff kn) for the restitution ``e`` with the ``normal`` sub-model."""
         raise NotImplementedError
 
+    def radius_power(self, normal) -> float:
+        return normal.power - 1.0  # sqrt(m_eff F/delta): F/delta = kn a^(2 (p - 1))
+
     def gamma_n(self, values: dict, m_eff: float) -> float:
-        return self.factor(values[self.coefficient.name]) * math.sqrt(m_eff * values["kn"])
+        normal = normal_law(values.get("normal", NormalLaw.default_keyword))
+        return self.factor(values[self.coefficient.name], normal) * math.sqrt(m_eff * values["kn"])

@@ -22,7 +22,7 @@ class Tsuji(FromRestitution):
     keyword = "tsuji"
     summary = "the dashpot alpha(e_n) sqrt(m_eff kn) of Marshall's fit (its restitution is not e_n)"
 
-    def factor(self, e: float) -> float:
+    def factor(self, e: float, normal) -> float:
         return sum(c * e**k for k, c in enumerate(MARSHALL))
 
 

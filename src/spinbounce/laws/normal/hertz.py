@@ -2,8 +2,8 @@
 
 kn is LAMMPS's K (force/length^2); against a flat wall m delta'' = -kn sqrt(r) delta^(3/2).
 Exact reference: :mod:`spinbounce.exact.hertz` (the contact time grows as |v_n|^(-1/5), so
-Omega depends on the impact speed, sphere by sphere). No exact reference of the damped Hertzian
-contact is here, so normal damping is refused.
+Omega depends on the impact speed, sphere by sphere); with normal damping the contact integrated
+in time, :mod:`spinbounce.exact.contact_phases` (restitution and contact time per speed).
 """
 
 from __future__ import annotations
@@ -21,11 +21,16 @@ class Hertz(NormalLaw):
     summary = "Hertz, F = kn a delta with contact radius a = sqrt(r delta)"
     contact_radius = True
     power = 1.5
-    damped_theory = False
 
     def contact_times(self, model, v_n) -> np.ndarray:
         v = np.atleast_1d(np.asarray(v_n, dtype=float))
+        if self.integrated(model):
+            return self.integrated_exits(model, v)[:, 1]
         return np.asarray(hertz.contact_time(v, model.m, model.kn, model.r), dtype=float)
+
+    def restitutions(self, model, v_n) -> np.ndarray:
+        v = np.atleast_1d(np.asarray(v_n, dtype=float))
+        return self.integrated_exits(model, v)[:, 0] if self.integrated(model) else np.ones(v.shape)
 
     def tunnelling_speed(self, model) -> float:
         return hertz.tunnelling_speed(model.m, model.kn, model.r)
@@ -36,7 +41,7 @@ class Hertz(NormalLaw):
     def normal_mode(self, model, speed: float | None) -> tuple[float, float]:
         if speed is None:
             raise ValueError("a Hertzian collision's normal mode needs the fastest |v_n| (speed)")
-        return float(hertz.normal_frequency(speed, model.m, model.kn, model.r)), 0.0
+        return float(hertz.normal_frequency(speed, model.m, model.kn, model.r)), self.dashpot_rate(model, speed)
 
 
 LAW = Hertz()

@@ -3,9 +3,9 @@ contact radius, F_t = -k_t a h with a = sqrt(R delta), h the slip history (a dis
 ``/force``, the elastic force itself, h' = -k_t a u'), rescaled by a_new/a_old while a shrinks
 (``_rescale``). K_T = NULL (``mindlin_kt`` none) is LAMMPS's 8 G* from the material's E and nu.
 
-Their exact references are :mod:`spinbounce.exact.mindlin` (no cap) and
-:mod:`spinbounce.exact.mindlin_capped` (a Coulomb cap, in the paper's plane, no tangential
-dashpot); normal damping is refused here until a reference of it exists. The step rule resolves the slip's spring at its
+Their exact references are :mod:`spinbounce.exact.mindlin` (no cap, an undamped normal force)
+and :mod:`spinbounce.exact.contact_phases` (normal damping; or a Coulomb cap, in the paper's
+plane, with no dashpot). The step rule resolves the slip's spring at its
 stiffest, k_t sqrt(r delta_max) at the fastest speed.
 """
 
@@ -16,7 +16,6 @@ import math
 from ...declaration import Parameter
 from ...errors import SceneError
 from ..base import TangentialLaw
-from ..damping import damping_law
 from ..normal import normal_law
 from .linear_history import KT, MU
 
@@ -81,11 +80,6 @@ class Mindlin(RadiusSpring):
             raise SceneError("gamma_t", values["gamma_t"], f"must be 0 with a Coulomb cap (mu) and tangential = "
                                                            f"{self.keyword}: the capped Mindlin reference has no "
                                                            "tangential dashpot")
-        if values.get("gamma_n", 0.0) > 0.0:
-            name = damping_law(values.get("damping", "velocity")).normal_coefficient
-            raise SceneError(name, values.get(name), f"must leave the normal force undamped with tangential = "
-                                                     f"{self.keyword}: there is no exact reference of a damped "
-                                                     "Mindlin contact here yet")
         return {}
 
     def stiffness(self, model) -> float:

@@ -294,7 +294,8 @@ class Collision:
         t_exit = float(np.max(self.deck_contact_times))  # a speed-dependent contact: the slowest's
         # LAMMPS's first-order error in the overlap, about gamma_n/m dt |v_n| t_exit, is crossed
         # at the exit speed e |v_n|: the exit is late by that many steps, whatever dt is
-        late = math.ceil(EXIT_DELAY * m.gamma_n / m.m * t_exit / m.restitution) if m.gamma_n else 0
+        exit_speed = float(np.min(m.normal_law.restitutions(m, self.v_n))) if m.gamma_n else 1.0
+        late = math.ceil(EXIT_DELAY * m.gamma_n / m.m * t_exit / exit_speed) if m.gamma_n else 0
         return steps_through(t_exit, self.dt) + max(0, late - 2)
 
     def predicted(self) -> np.ndarray:
@@ -327,7 +328,7 @@ class Collision:
     def record(self, deck) -> dict:
         """The run's parameters, for its provenance record."""
         m = self.model
-        if m.normal_law.contact_radius or m.tangential_law.contact_radius:  # per sphere: tau or Omega(v_n)
+        if m.normal_law.contact_radius or m.tangential_law.contact_radius or m.normal_law.integrated(m):
             tau, omega = m.contact_times(self.v_n).tolist(), choose.omega_per_sphere(m, self.v_n).tolist()
         else:
             tau, omega = m.tau, m.Omega

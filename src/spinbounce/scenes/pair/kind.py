@@ -42,6 +42,9 @@ def pair_contact(model: ContactModel, b: Sphere) -> PairContact:
     if model.normal_law.contact_radius:
         raise SceneError("normal", model.normal, "must be hooke with scene = pair (the pair's references integrate a "
                                                  "force that does not grow with the contact radius)")
+    if model.normal_law.integrated(model):
+        raise SceneError("damping", model.damping, "must give a constant dashpot with scene = pair: the pair's "
+                                                   "references take constant dashpots")
     if not model.tangential_law.pairs:
         raise SceneError("tangential", model.tangential, "must be linear_history with scene = pair: there is no "
                                                          "exact pair reference of a Mindlin contact here yet")
