@@ -118,3 +118,15 @@ def test_converged_lammps_meets_the_reference(name, tmp_path):
             break
         previous = final
     assert np.abs(final - choose.predict(model, state[None, :])[0]).max() <= 1e-6
+
+
+def test_hertz_mindlin_with_a_restitution_dashpot_has_one_matrix_at_every_speed():
+    # dashpots sqrt(m_eff kn a) on the Hertzian force with a Mindlin spring: every contact is the
+    # same one scaled, so one restitution and one Omega (checked here by integrating three speeds)
+    model = ContactModel(**MATERIAL, damping="coeff_restitution", e_n=0.7, x_t=0.3, tangential="mindlin")
+    assert choose.which(model).has_matrix
+    speeds = (0.05, 0.5, 2.0)
+    finals = [contact_phases.bounce(choose.phase_law(model), -v, 1.0, 0.0) for v in speeds]
+    assert np.ptp([f[1] + f[2] for f in finals]) < 1e-9  # the slip ratio, 1 + Omega
+    assert np.ptp([f[0] / v for f, v in zip(finals, speeds)]) < 1e-9  # the restitution
+    assert model.matrix()[0, 0] == pytest.approx(-0.7, abs=1e-9)

@@ -61,6 +61,10 @@ def run(args) -> int:
         print(f"no single scattering matrix: {report['why_no_matrix']}")
     elif report["theory_kind"] == "mindlin":
         _print_mindlin(report)
+    elif report["theory_kind"] == "damped_nonlinear":
+        print(f"Omega = {report['Omega']:.10g}, restitution = {report['restitution']:.10g}   "
+              f"({report['Omega_depends_on']})")
+        _print_matrix(report["matrix"])
     elif report["theory_kind"] == "pair planar":
         print(f"tau   = {report['tau']:.10g}   (pi sqrt(m*/kn), m* the reduced mass)")
         print(f"Omega = {report['Omega']:.10g}   (the wall's at alpha_eq = "
@@ -88,15 +92,10 @@ def run(args) -> int:
 
 
 def _print_mindlin(report: dict) -> None:
-    import numpy as np
-
     print(f"Omega = {report['Omega']:.10g}   ({report['Omega_depends_on']}; lam = (1 + alpha)/alpha k_t/kn "
           f"= {report['lam']:.10g}, k_t = {report['k_t']:.10g})")
     print(f"energy: {report['energy']} (|Omega + 1| {'>' if report['energy'] == 'gained' else '<='} 1)")
-    print("scattering matrix, (v_n, v_t, r*omega) before -> after:")
-    with np.printoptions(precision=8, suppress=True, floatmode="fixed"):
-        for row in report["matrix"]:
-            print("   ", row)
+    _print_matrix(report["matrix"])
     poisson = report.get("energy_conserving_poisson_ratio")
     for key, ratios in report["energy_conserving_k_t_over_kn"].items():
         line = f"{key} (energy conserved) at k_t/kn = {_numbers(ratios) or 'none found'}"
@@ -107,3 +106,12 @@ def _print_mindlin(report: dict) -> None:
 
 def _numbers(values) -> str:
     return ", ".join(f"{x:.10g}" for x in values)
+
+
+def _print_matrix(matrix) -> None:
+    import numpy as np
+
+    print("scattering matrix, (v_n, v_t, r*omega) before -> after:")
+    with np.printoptions(precision=8, suppress=True, floatmode="fixed"):
+        for row in matrix:
+            print("   ", row)

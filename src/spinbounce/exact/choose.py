@@ -80,8 +80,10 @@ def which(model) -> Choice:
                       f"with mu = {model.mu!r} the contact sticks and slides in turn, so the outcome is not "
                       "linear in the initial state: give a state (v_n, v_t, omega) for its outcome")
     if damped_nonlinear(model):
-        return Choice("damped_nonlinear", "Eq. 18 sphere by sphere with the Omega and restitution of the damped "
-                      "contact integrated in time (exact.contact_phases)",
+        name = "Eq. 18 with the Omega and restitution of the damped contact integrated in time (exact.contact_phases)"
+        if _self_similar(model):
+            return Choice("damped_nonlinear", name + ": self-similar, the same at every v_n")
+        return Choice("damped_nonlinear", name + ", sphere by sphere",
                       "with normal damping on a contact whose force, spring or dashpot grows with the contact "
                       "radius, the restitution and Omega depend on v_n: give v_n for its matrix")
     if model.tangential_law.contact_radius:
@@ -106,6 +108,15 @@ def damped_nonlinear(model) -> bool:
     normal = model.normal_law
     return model.gamma_n > 0.0 and (normal.contact_radius or model.tangential_law.contact_radius
                                     or model.damping_law.radius_power(normal) > 0.0)
+
+
+def _self_similar(model) -> bool:
+    """The Hertzian force, a spring on the contact radius and dashpots sqrt(m_eff F/delta) (tsuji,
+    coeff_restitution): scaled to its own depth and time every contact is the same, so one
+    restitution and one Omega hold at every v_n."""
+    normal, tangential = model.normal_law, model.tangential_law
+    return (normal.contact_radius and tangential.contact_radius
+            and model.damping_law.radius_power(normal) == normal.power - 1.0)
 
 
 def phase_law(model, normal_only: bool = False):
@@ -190,8 +201,11 @@ def _omega(model) -> float:
 
 
 def _matrix3(model) -> np.ndarray:
-    if which(model).kind == "mindlin":  # undamped normal force: e = 1
+    kind = which(model).kind
+    if kind == "mindlin":  # undamped normal force: e = 1
         return linear.scattering_matrix(model.alpha, float(_mindlin_omega(model, -1.0)[0]), 1.0)
+    if kind == "damped_nonlinear":  # self-similar: any speed's
+        return _damped_matrices(model, -1.0)[0]
     e = linear.restitution(model.m, model.kn, model.gamma_n, not model.limit_damping)
     return linear.scattering_matrix(model.alpha, _omega(model), e)
 
@@ -224,7 +238,8 @@ def matrices(model, v_n) -> np.ndarray:
     if choice.kind == "mindlin" and not choice.has_matrix:
         return np.stack([linear.scattering_matrix(model.alpha, float(w), 1.0) for w in _mindlin_omega(model, v_n)])
     if choice.kind == "damped_nonlinear":
-        return _damped_matrices(model, v_n)
+        return np.broadcast_to(_damped_matrices(model, -1.0)[0], (v_n.size, 3, 3)) if choice.has_matrix \
+            else _damped_matrices(model, v_n)
     return np.broadcast_to(matrix(model), (v_n.size, 3, 3))
 
 
