@@ -1,0 +1,95 @@
+"""calibrate for Hertz-Mindlin: reachable targets met in LAMMPS, unreachable ones refused with the range.
+
+Targets are drawn reachable by construction (a random material or k_t, its exact e and beta), then
+calibrated from e and beta alone; LAMMPS, at the default step (1e-4 of the state), must meet both
+targets within 1e-3, the acceptance bar.
+"""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from spinbounce.cli import main
+from spinbounce.studies.calibrate import Unreachable
+from spinbounce.studies.calibrate_mindlin import (MindlinTargets, achieved, beta_range, calibrate_mindlin,
+                                                  measure_mindlin)
+
+VARIANTS = ("mindlin", "mindlin/force", "mindlin_rescale", "mindlin_rescale/force")
+
+
+def _reachable(rng) -> MindlinTargets:
+    """A passive target some model reaches (-1 <= beta <= 1), drawn until one is."""
+    while True:
+        targets = _drawn(rng)
+        if -1.0 <= targets.beta <= 1.0:
+            return targets
+
+
+def _drawn(rng) -> MindlinTargets:
+    """A random e, variant and (nu, or nu and k_t), and the beta it reaches."""
+    e, variant = float(rng.uniform(0.3, 0.95)), str(rng.choice(VARIANTS))
+    if rng.random() < 0.5:  # beta through the NULL stiffness's Poisson's ratio
+        nu = float(rng.uniform(-0.9, 0.5))
+        beta = achieved(calibrate_mindlin(MindlinTargets(e=e, poisson_ratio=nu, tangential=variant)))["beta"]
+        return MindlinTargets(e=e, beta=beta, tangential=variant)
+    held = MindlinTargets(e=e, poisson_ratio=0.3, tangential=variant)
+    model = calibrate_mindlin(held)
+    ratio = float(10.0 ** rng.uniform(-2.5, 0.5))
+    beta = achieved(model.replace(mindlin_kt=ratio * model.kn))["beta"]
+    return MindlinTargets(e=e, beta=beta, poisson_ratio=0.3, tangential=variant)
+
+
+def _meets_in_lammps(targets: MindlinTargets, tmp_path) -> None:
+    model = calibrate_mindlin(targets)
+    theory = achieved(model)
+    assert theory["e"] == pytest.approx(targets.e, abs=1e-8) and theory["beta"] == pytest.approx(targets.beta, abs=1e-8)
+    lammps = measure_mindlin(model, tmp_path)
+    assert abs(lammps["e"] - targets.e) <= 1e-3 and abs(lammps["beta"] - targets.beta) <= 1e-3
+
+
+@pytest.mark.lammps
+@pytest.mark.parametrize("seed", range(3))
+def test_a_reachable_target_is_met_in_lammps(seed, tmp_path):
+    _meets_in_lammps(_reachable(np.random.default_rng(seed)), tmp_path)
+
+
+@pytest.mark.slow
+@pytest.mark.lammps
+def test_thirty_random_reachable_targets_are_met_in_lammps(tmp_path):
+    rng = np.random.default_rng(2026)
+    for k in range(30):
+        _meets_in_lammps(_reachable(rng), tmp_path / str(k))
+
+
+def test_an_unreachable_beta_is_refused_with_the_reachable_range():
+    targets = MindlinTargets(e=0.8, beta=0.2)  # the NULL stiffness of a solid sphere keeps most slip
+    low, high, name, _, _ = beta_range(targets)
+    with pytest.raises(Unreachable) as info:
+        calibrate_mindlin(targets)
+    assert info.value.parameter == "beta" and f"[{low:.6g}, {high:.6g}]" in str(info.value) and name in str(info.value)
+
+
+def test_a_beta_of_an_energy_gaining_bounce_is_refused():
+    with pytest.raises(Unreachable) as info:
+        calibrate_mindlin(MindlinTargets(e=0.9, beta=-1.02))
+    assert info.value.parameter == "beta" and "[-1, 1]" in str(info.value)
+
+
+def test_e_is_the_restitution_at_every_speed():
+    # coeff_restitution's Hertzian dashpot: e_n = e, and the contact is the same at every speed
+    model = calibrate_mindlin(MindlinTargets(e=0.55, poisson_ratio=0.2))
+    assert model.e_n == 0.55
+    assert model.normal_law.restitutions(model, [-0.05, -0.7, -2.0]) == pytest.approx([0.55] * 3, abs=1e-9)
+
+
+def test_the_cli_calibrates_and_refuses_the_linear_model_s_options(capsys):
+    assert main(["calibrate", "--e", "0.7", "--beta", "-0.6", "--tangential", "mindlin", "--no-run", "--json"]) == 0
+    report = json.loads(capsys.readouterr().out)
+    assert report["theory"]["e"] == pytest.approx(0.7, abs=1e-9)
+    assert report["theory"]["beta"] == pytest.approx(-0.6, abs=1e-9)
+    with pytest.raises(SystemExit):
+        main(["calibrate", "--e", "0.7", "--beta", "-0.6", "--tangential", "mindlin", "--contact-time", "1"])
+    assert "contact_time = 1.0" in capsys.readouterr().err
