@@ -20,6 +20,6 @@ _EXPORTS = {
     "materials": ("AL_ALLOY", "ALUMINA", "SOLID", "STEEL", "Material", "gamma_n_for_restitution_cut",
                   "hertz_contact_time", "hookean_matching_hertz", "mindlin_ratio"),
     "quantities": ("QUANTITIES", "first_touch_stick", "impact_speed", "quantity", "walton"),
-    "run": ("ACCEPTANCE", "BenchmarkRun", "refined_dt", "run_benchmark"),
+    "run": ("ACCEPTANCE", "BenchmarkRun", "refined_dt", "restitution", "run_benchmark"),
 }
 __all__, __getattr__ = lazy_exports(__name__, _EXPORTS)

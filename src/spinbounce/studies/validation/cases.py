@@ -14,7 +14,7 @@ from ...model.contact import ContactModel
 from .digitised import (KHARAZ_2001, KRATOS, KRATOS_BENCHMARKS, KRATOS_CHUNG_OOI, KRATOS_T10, LETHE,
                         MFIX_DEM05, THORNTON_PSI2_LINEAR, THORNTON_SPIN, Measured)
 from .materials import (AL_ALLOY, AL_WALL_T4, ALUMINA, SOLID, STEEL, gamma_n_for_restitution_cut,
-                        hookean_matching_hertz, mindlin_ratio)
+                        hertz_mindlin_rigid_wall, hookean_matching_hertz, mindlin_ratio)
 from .quantities import QUANTITIES
 
 __all__ = ["BENCHMARKS", "Benchmark", "Series", "select", "with_states"]
@@ -110,6 +110,7 @@ def _chung_ooi_5() -> Benchmark:
     # sliding and the spurious switch at delta = 0 is taken for the exit)
     model = ContactModel(m=m, r=r, alpha=SOLID, kn=kn, kt=kt, mu=mu, limit_damping=False)
     states = tuple((-v_n, v_n * math.tan(t), 0.0) for t in kratos_angles())
+    hertz_mindlin = ContactModel(m=m, r=r, alpha=SOLID, mu=mu, **hertz_mindlin_rigid_wall(STEEL, r))
     return Benchmark(
         name="chung-ooi-5",
         title="Chung & Ooi Test 5: steel sphere, v_n = 5 m/s across tangential speeds, elastic",
@@ -123,8 +124,11 @@ def _chung_ooi_5() -> Benchmark:
         stiffness=(f"Hookean kn = {kn:.4g} N/m gives steel's Hertz contact time on a rigid wall at "
                    f"v_n = 5 m/s ({math.pi * math.sqrt(m / kn):.4g} s); kt = kn 2(1 - nu)/(2 - nu) = "
                    f"{kt:.4g} N/m (Mindlin, nu = 0.3). The test's second material (polyethylene, nu = 0.4) "
-                   f"would give kt/kn = {mindlin_ratio(0.4):.3f} and the same sliding branch."),
-        series=(Series("steel, e = 1", model, states),),
+                   f"would give kt/kn = {mindlin_ratio(0.4):.3f} and the same sliding branch. The second series "
+                   f"is the test's own Hertz-Mindlin law, LAMMPS's hertz with kn = 4/3 E/(1 - nu^2) (a rigid "
+                   f"wall: E* = E/(1 - nu^2)) and tangential mindlin with k_t = 8 G/(2 - nu), G = E/(2 (1 + nu)), "
+                   f"the rigid wall's 8 G* (hertz/material would mix the wall as steel)."),
+        series=(Series("steel, e = 1", model, states), Series("steel, Hertz-Mindlin", hertz_mindlin, states)),
         x="incident_co5",
         panels=("recoil_co5", "spin_co5"),
         to_state=lambda model, x: (-v_n, x * model.mu * v_n, 0.0),

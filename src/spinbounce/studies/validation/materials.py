@@ -17,7 +17,7 @@ from ...exact import pair as planar
 from .digitised import KRATOS, YADE_T2
 
 __all__ = ["AL_ALLOY", "ALUMINA", "AL_WALL_T4", "SOLID", "STEEL", "Material", "bisect_damping",
-           "gamma_n_for_restitution_cut", "hertz_contact_time", "hookean_matching_hertz",
+           "gamma_n_for_restitution_cut", "hertz_contact_time", "hertz_mindlin_rigid_wall", "hookean_matching_hertz",
            "matched_pair_contact", "mindlin_ratio"]
 
 #: A solid sphere: I = (2/5) m r^2.
@@ -55,6 +55,15 @@ def hertz_contact_time(m: float, r: float, e_star: float, v: float) -> float:
     """
     delta_max = (15.0 * m * v * v / (16.0 * e_star * math.sqrt(r))) ** 0.4
     return 2.0 * hertz.CONTACT_INTEGRAL * delta_max / v
+
+
+def hertz_mindlin_rigid_wall(material: Material, r: float) -> dict:
+    """LAMMPS's Hertz-Mindlin on a rigid wall as model parameters: ``hertz`` with kn = 4/3 E*, E* =
+    E/(1 - nu^2) (F = kn sqrt(r) delta^(3/2)), and ``mindlin`` with k_t = 8 G*, G* = G/(2 - nu),
+    G = E/(2 (1 + nu)). (``hertz/material`` would mix the wall as the sphere's own material.)"""
+    e_star = material.effective_modulus()
+    g_star = material.E / (2.0 * (1.0 + material.nu)) / (2.0 - material.nu)
+    return {"normal": "hertz", "kn": 4.0 / 3.0 * e_star, "tangential": "mindlin", "mindlin_kt": 8.0 * g_star}
 
 
 def mindlin_ratio(nu: float) -> float:

@@ -17,7 +17,7 @@ import numpy as np
 from ...records import json_ready, software, write_atomic
 from .cases import select
 from .quantities import QUANTITIES, quantity, walton
-from .run import ACCEPTANCE, BenchmarkRun, run_benchmark
+from .run import ACCEPTANCE, BenchmarkRun, restitution, run_benchmark
 
 __all__ = ["make_benchmarks", "draw", "markdown", "record"]
 
@@ -38,7 +38,7 @@ def _draw_series(ax, run: BenchmarkRun, k: int, y: str) -> None:
     # Walton's outcome on a dense grid of the benchmark's x quantity
     grid = np.linspace(np.nanmin(s["x"]), np.nanmax(s["x"]), 400)
     initial = np.array([bench.to_state(series.model, x) for x in grid]) * [1.0, 1.0, series.model.r]
-    final, _ = walton(series.model, initial, series.model.restitution, bench.beta0)
+    final, _ = walton(series.model, initial, restitution(series.model, initial), bench.beta0)
     ax.plot(quantity(bench.x, initial, initial, series.model), quantity(y, initial, final, series.model),
             "--", color=c, lw=0.9, alpha=0.8, label="rigid body" if k == 0 else None)
     m = run.measured
@@ -162,11 +162,14 @@ def _section(run: BenchmarkRun) -> list[str]:
     lines += ["", f"Stiffness: {bench.stiffness}", "",
               f"Step: refine {bench.refine}; {bench.refine_why}."]
     for series in bench.series:
-        mdl = series.model
-        lines.append(f"Model ({series.label}): m = {mdl.m:.6g} kg, r = {mdl.r:g} m, kn = {mdl.kn:.6g} N/m, "
-                     f"kt = {mdl.kt:.6g} N/m, gamma_n = {mdl.gamma_n:.6g} kg/s, mu = {mdl.mu:g}, "
-                     f"restitution {mdl.restitution:.6g}, limit_damping {mdl.limit_damping}, contact time "
-                     f"{mdl.tau:.4g} s.")
+        mdl, v_n = series.model, series.states[0][0]
+        spring = (f"kt = {mdl.kt:.6g} N/m" if not mdl.tangential_law.contact_radius
+                  else f"tangential {mdl.tangential}, k_t = {mdl.tangential_law.stiffness(mdl):.6g} N/m^2")
+        lines.append(f"Model ({series.label}): m = {mdl.m:.6g} kg, r = {mdl.r:g} m, {mdl.normal} kn = {mdl.kn:.6g} "
+                     f"{'N/m^2' if mdl.normal_law.contact_radius else 'N/m'}, {spring}, gamma_n = {mdl.gamma_n:.6g} "
+                     f"kg/s, mu = {mdl.mu:g}, restitution {float(mdl.normal_law.restitutions(mdl, v_n)[0]):.6g}, "
+                     f"limit_damping {mdl.limit_damping}, contact time "
+                     f"{float(mdl.normal_law.force_times(mdl, v_n)[0]):.4g} s.")
     lines += [f"- {n}" for n in bench.notes]
     lines += [
         "",
@@ -261,8 +264,10 @@ def record(runs: list[BenchmarkRun], meta: dict) -> dict:
             "sources": [{"what": w, "source": s} for w, s in b.sources], "stiffness": b.stiffness,
             "refine": b.refine, "refine_why": b.refine_why, "beta0": b.beta0, "x": b.x, "panels": list(b.panels),
             "series": [{"label": s.label, "model": {k: getattr(s.model, k) for k in (
-                "m", "r", "alpha", "kn", "kt", "gamma_n", "gamma_t", "mu", "limit_damping")},
-                "restitution": s.model.restitution, "tau": s.model.tau} for s in b.series],
+                "m", "r", "alpha", "kn", "kt", "gamma_n", "gamma_t", "mu", "limit_damping")}
+                | {k: v for k, v in s.model.as_record().items() if k in ("normal", "tangential", "mindlin_kt")},
+                "restitution": float(restitution(s.model, np.array(s.states))[0]),
+                "tau": float(s.model.normal_law.force_times(s.model, s.states[0][0])[0])} for s in b.series],
             "runs": run.runs, "summary": run.summary(),
             "states": run.table.to_dict(orient="records"),
             "measured": run.measured.to_dict(orient="records") if len(run.measured) else [],

@@ -19,11 +19,11 @@ from ...scenes.collision import Collision, STATE
 from ...model.contact import ContactModel
 from ...model.timestep import refine_mid_step
 from ...pipeline import run_scene
-from ...exact import oracle
+from ...exact import choose, oracle
 from .cases import Benchmark, Series
 from .quantities import QUANTITIES, first_touch_stick, impact_speed, quantity, walton
 
-__all__ = ["ACCEPTANCE", "BenchmarkRun", "refined_dt", "run_benchmark"]
+__all__ = ["ACCEPTANCE", "BenchmarkRun", "refined_dt", "restitution", "run_benchmark"]
 
 #: Largest |LAMMPS - oracle| allowed, as a fraction of the impact speed (:func:`impact_speed`).
 ACCEPTANCE = 1e-4
@@ -32,11 +32,22 @@ ACCEPTANCE = 1e-4
 FINALS = ("lammps", "lammps_2f", "oracle", "rigid")
 
 
-def refined_dt(model: ContactModel, refine: int) -> float:
-    """The scene's default step made ``refine`` times finer, the contact's end kept mid-step
-    (:func:`spinbounce.model.timestep.refine_mid_step`)."""
-    default = Collision(model, v_n=-1.0, v_t=0.0, omega=0.0).dt
-    return refine_mid_step(model.tau, default, refine)
+def refined_dt(model: ContactModel, refine: int, speed: float = 1.0) -> float:
+    """The scene's default step at |v_n| = ``speed`` made ``refine`` times finer, the contact's end
+    kept mid-step (:func:`spinbounce.model.timestep.refine_mid_step`; a Hookean contact's step
+    and end do not depend on the speed)."""
+    default = Collision(model, v_n=-speed, v_t=0.0, omega=0.0).dt
+    return refine_mid_step(_force_time(model, speed), default, refine)
+
+
+def _force_time(model: ContactModel, speed: float) -> float:
+    """How long the contact force lasts at |v_n| = ``speed`` (the Hookean tau at any speed)."""
+    return float(model.normal_law.force_times(model, -speed)[0])
+
+
+def restitution(model: ContactModel, states) -> np.ndarray:
+    """Each state's normal restitution (the Hookean one's constant; a Hertzian one's per speed)."""
+    return model.normal_law.restitutions(model, np.asarray(states, dtype=float)[:, 0])
 
 
 @dataclass(frozen=True)
@@ -89,7 +100,12 @@ class BenchmarkRun:
 
 
 def _oracle(model: ContactModel, states) -> tuple[np.ndarray, list[str], list[str]]:
-    """Oracle finals (v_n, v_t, r omega), contact patterns and errors, state by state."""
+    """Oracle finals (v_n, v_t, r omega), contact patterns and errors, state by state: the Coulomb
+    oracle for the Hookean or Hertzian spring on the slip history, else the theory that applies
+    (:func:`spinbounce.exact.choose.predict`: a Mindlin contact's, capped or not)."""
+    if choose.which(model).kind != "coulomb":
+        initial = np.array([(v_n, v_t, model.r * w) for v_n, v_t, w in states])
+        return choose.predict(model, initial), [choose.which(model).kind] * len(states), [""] * len(states)
     rows = []
     for v_n, v_t, omega in states:
         try:
@@ -103,11 +119,13 @@ def _oracle(model: ContactModel, states) -> tuple[np.ndarray, list[str], list[st
 
 def _run_lammps(model, states, oracle_final, refine: int, folder: Path) -> tuple[np.ndarray, dict]:
     s = np.asarray(states, dtype=float)
-    scene = _OracleBatch(model, v_n=s[:, 0], v_t=s[:, 1], omega=s[:, 2], dt=refined_dt(model, refine),
+    speed = float(np.max(np.abs(s[:, 0])))
+    scene = _OracleBatch(model, v_n=s[:, 0], v_t=s[:, 1], omega=s[:, 2], dt=refined_dt(model, refine, speed),
                          oracle_final=tuple(np.asarray(oracle_final).ravel()))
     result = run_scene(scene, folder, atoms="library", record=True)
     final = result.table[[f"{c}_lammps" for c in STATE]].to_numpy(dtype=float)
-    run = {"refine": refine, "dt": scene.dt, "nsteps": scene.nsteps, "tau": model.tau, "run_dir": str(folder),
+    run = {"refine": refine, "dt": scene.dt, "nsteps": scene.nsteps, "tau": _force_time(model, speed),
+           "run_dir": str(folder),
            "lammps_wall_seconds": result.info.wall_seconds, "warnings": list(result.warnings)}
     return final, run
 
@@ -172,7 +190,7 @@ def run_benchmark(bench: Benchmark, root: Path, refine: int | None = None, log=p
                 labels.append(f"{p.quantity} @ {x:.4g}")
         initial = np.array([(v_n, v_t, model.r * w) for v_n, v_t, w in states])
         oracle_final, patterns, errors = _oracle(model, states)
-        rigid, regimes = walton(model, initial, model.restitution, bench.beta0)
+        rigid, regimes = walton(model, initial, restitution(model, initial), bench.beta0)
         finals = {"oracle": oracle_final, "rigid": rigid}
         folder = Path(root) / bench.name / f"series_{k}"
         for name, factor in (("lammps", refine), ("lammps_2f", 2 * refine)):
