@@ -102,3 +102,21 @@ def test_a_sweep_takes_lines_each_a_group():
     groups = [spec.model(k) for k in range(4)]
     assert sorted((m.kt, m.gamma_n, m.alpha) for m, _ in groups) == [(1.0, 0.0, 0.3), (1.0, 0.0, 0.4),
                                                                        (2.0, 0.5, 0.3), (2.0, 0.5, 0.4)]
+
+
+@pytest.mark.parametrize("values, name", [
+    ({"contact": "hooke 10 0 tangential linear_history 1 -1 0.3"}, "contact"),   # X_T < 0
+    ({"contact": "hooke 10 0 tangential linear_history 1 0 0.3", "wall": "classic"}, "wall"),
+])
+def test_what_a_line_cannot_mean_is_refused_by_name(values, name):
+    with pytest.raises(SceneError) as info:
+        spinbounce.theory(**values)
+    assert info.value.parameter == name
+
+
+def test_a_sweep_refuses_kt_over_kn_beside_a_line():
+    from spinbounce.sweeps import SweepError
+
+    with pytest.raises(SweepError, match="kt_over_kn"):
+        spec_from_dict({"states": {"n": 4, "v_n": [-1.0, -0.1], "v_t": [-1.0, 1.0], "r_omega": [-1.0, 1.0]},
+                        "model": {"contact": "hooke 10 0 tangential linear_history 2 0 0.3", "kt_over_kn": 0.5}})

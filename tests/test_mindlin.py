@@ -255,8 +255,8 @@ def test_mindlin_s_criterion_decides_the_first_phase():
     law = dict(m=1.0, r=0.5, alpha=0.4, K=100.0 * math.sqrt(0.5), power=1.5, k=50.0, mu=0.5)
     for force, threshold in ((False, 1.0), (True, 1.5)):  # u' at which k u' (2/3) = mu kn |v_n| = 50
         contact = contact_phases._Contact(contact_phases.Law(**law, force_history=force))
-        assert contact.first_phase(1.0, 0.99 * threshold) == "stick"
-        assert contact.first_phase(1.0, 1.01 * threshold) == "slip"
+        assert contact.first_phase(1.0, 0.99 * threshold, 1.0)[0] == "stick"
+        assert contact.first_phase(1.0, 1.01 * threshold, 1.0)[0] == "slip"
 
 
 @pytest.mark.lammps
@@ -333,3 +333,30 @@ def test_the_capped_classic_spring_is_refused_with_the_hertzian_force():
     with pytest.raises(SceneError) as info:
         ContactModel(tangential="linear_history_classic", normal="hertz", mu=0.3)
     assert info.value.parameter == "mu"
+
+
+def test_a_hookean_capped_contact_that_slides_almost_at_once_has_a_reference(tmp_path):
+    # the cap mu kn v t outgrows the trial force k a u' t at first, for t* = (mu kn v/(k sqrt(r v) u'))^2:
+    # far below a step here, it starts sliding (it once chattered at t = 0); LAMMPS agrees
+    model = ContactModel(tangential="mindlin", mindlin_kt=20.0, mu=1e-4)
+    scene = Collision(model, v_n=-1.0, v_t=-2.0, omega=1.0)
+    result = run_scene(scene, tmp_path, record=False)
+    assert (result.table["status"] == "ok").all() and result.table["error"].max() <= 1e-4
+
+
+@pytest.mark.parametrize("given, name", [
+    ({"normal": "hertz", "tangential": "mindlin", "mindlin_kt": 1e308}, "mindlin_kt"),
+    ({"normal": "hertz", "tangential": "mindlin", "mindlin_kt": 5.0, "gamma_t": 1e5}, "gamma_t"),
+])
+def test_a_slip_beyond_the_reference_s_reach_is_refused_by_name(given, name):
+    with pytest.raises(SceneError) as info:
+        choose.predict(ContactModel(**given), np.array([[-0.5, 0.3, 0.0]]))
+    assert info.value.parameter == name
+
+
+def test_a_tolerance_sweep_of_a_spring_on_the_contact_radius_is_refused():
+    from spinbounce.sweeps import SweepError, spec_from_dict
+
+    with pytest.raises(SweepError, match="tolerance"):
+        spec_from_dict({"tolerance": 1e-5, "states": {"n": 4, "v_n": [-1.0, -0.1], "v_t": [-1.0, 1.0],
+                        "r_omega": [-1.0, 1.0]}, "model": {"tangential": "mindlin", "mindlin_kt": 20.0}})

@@ -70,7 +70,7 @@ def sweep(n: int, out: str | Path, *, v_n=(-1.5, -0.1), v_t=(-2.0, 2.0), r_omega
     if unknown:
         raise TypeError(f"unknown model parameter(s) {sorted(unknown)}")
     grid = {k: ["none" if v is None else v for v in (vals if isinstance(vals, (list, tuple)) else [vals])]
-            for k, vals in model_grid.items()}
+            for k, vals in model_grid.items() if not (k == "contact" and vals is None)}
     if dt is not None:
         grid["dt"] = dt
     raw = {"seed": seed, "states": {"n": n, "v_n": list(v_n), "v_t": list(v_t), "r_omega": list(r_omega)}}

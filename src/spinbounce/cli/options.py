@@ -146,7 +146,7 @@ def _parent(title: str, declared, **overrides) -> argparse.ArgumentParser:
 
 #: ``--contact``'s help: the one option that sets several model parameters at once.
 CONTACT_HELP = ("the contact law as LAMMPS's granular words, after 'fix wall/gran granular' or in pair_coeff, e.g. "
-                "'hertz/material 1e4 0.3 0.3 damping tsuji tangential mindlin NULL 1.0 0.5': read into the "
+                "'hertz/material 1e4 0.3 0.3 damping tsuji tangential mindlin NULL 1.0 1e12': read into the "
                 "parameters below (never passed to LAMMPS as text); a parameter may not be given both ways")
 
 

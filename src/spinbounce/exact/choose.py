@@ -7,7 +7,8 @@ benchmarks) asks here; nothing else looks at a model's parameters to pick a theo
 kind          when                                                       one matrix?
 ============  =========================================================  ===============
 classic_wall  a tangential spring on the contact radius (this build's    no (Omega(v_n))
-              classic wall, kt sqrt(r delta)): :mod:`.classic`
+              classic wall, kt sqrt(r delta); and linear_history_classic
+              with a cap): :mod:`.classic`
 coulomb       a finite mu: the contact sticks and slides in turn         no
               (:mod:`.coulomb`, exact and batched; checked against
               :mod:`.oracle`)
@@ -39,7 +40,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import hertz, linear
-from ..errors import NoMatrix
+from ..errors import NoMatrix, SceneError
 
 __all__ = ["Choice", "which", "predict", "outcome", "matrix", "matrices", "omega_per_sphere", "frozen", "NoMatrix",
            "mindlin_theory"]
@@ -165,9 +166,15 @@ def _mindlin_omega(model, v_n) -> np.ndarray:
         v_n = v_n[:1] * 0.0 - 1.0
     power, m, r, alpha = model.normal_law.power, model.m, model.r, model.alpha
     t0 = mindlin.time_unit(power, m, model.kn * r ** (power - 1.0), v_n)
-    lam = mindlin.lam(model.tangential_law.stiffness(model), alpha, m, r, v_n, t0)
-    return np.atleast_1d(mindlin.Omega(lam, mindlin.zeta(model.gamma_t, m, alpha, t0), model.tangential_law.variant,
-                                       power))
+    k = model.tangential_law.stiffness(model)
+    lam, zeta = mindlin.lam(k, alpha, m, r, v_n, t0), mindlin.zeta(model.gamma_t, m, alpha, t0)
+    for name, value, scaled, limit in (("mindlin_kt", k, lam, mindlin.LAM_MAX), ("gamma_t", model.gamma_t, zeta,
+                                                                                 mindlin.ZETA_MAX)):
+        if np.max(scaled) > limit:
+            raise SceneError(name, value, f"makes the slip {'turn' if name == 'mindlin_kt' else 'die out'} far "
+                                          f"faster than the contact ({float(np.max(scaled)):.3g} > {limit:g} in its "
+                                          "scaled time): beyond the reach of the Mindlin reference")
+    return np.atleast_1d(mindlin.Omega(lam, zeta, model.tangential_law.variant, power))
 
 
 def mindlin_theory(model) -> dict:

@@ -177,13 +177,22 @@ class _Contact:
             event.terminal, event.direction = True, -1
         return found
 
-    def first_phase(self, v: float, slip: float) -> str:
-        """Stick or slip from first touch, from the t -> 0 limits of the trial force and the cap."""
-        law = self.law
-        if not self.capped or slip == 0.0 or law.power < 1.5:
-            return "stick"
-        trial = law.k * math.sqrt(law.r * v) * abs(slip) * (2.0 / 3.0 if law.force_history else 1.0)
-        return "slip" if trial > law.mu * law.K * v**1.5 else "stick"
+    def first_phase(self, v: float, slip: float, span: float) -> tuple[str, float]:
+        """(stick or slip, the first step) from first touch: the t -> 0 limits of the trial force,
+        k a^q |u'| t (over 1 + q/2 for a force history), and the cap mu K (v t)^p. Where they grow
+        alike (Hertz on a Mindlin spring) their ratio decides; where the cap grows faster at first
+        (Hooke) the contact sticks until t*, where the trial force overtakes it: a t* far below the
+        contact's time is taken as sliding from the start (its stick moves nothing, ~ (t*/T)^(p+1))."""
+        law, first = self.law, span * 1e-9
+        if not self.capped or slip == 0.0:
+            return "stick", first
+        q = law.spring_power
+        trial = law.k * (law.r * v) ** (q / 2.0) * abs(slip) / (1.0 + q / 2.0 if law.force_history else 1.0)
+        cap, growth = law.mu * law.K * v**law.power, 1.0 + q / 2.0 - law.power  # trial/cap ~ t^growth
+        if growth <= 0.0:
+            return ("slip" if trial > cap else "stick"), first
+        t_star = (cap / trial) ** (1.0 / growth)
+        return ("slip", first) if t_star < first else ("stick", min(first, 1e-3 * t_star))
 
 
 #: The tail starts where the overlap is back to this fraction of its largest, and ends where
@@ -207,17 +216,17 @@ def bounce(law: Law, v_n: float, v_t: float, r_omega: float) -> tuple[float, flo
     speed = -v_n
     y = np.array([0.0, speed, v_t, r_omega, 0.0, 0.0])
     slip = v_t + r_omega
-    phase = contact.first_phase(speed, slip)
-    sigma = math.copysign(1.0, slip) if slip else 1.0
-    leg, x, x_tail = "load", 0.0, 0.0
     undamped_depth = ((law.power + 1.0) * law.m * speed**2 / (2.0 * law.K)) ** (1.0 / (law.power + 1.0))
     span = 10.0 * undamped_depth / speed  # several contact times
+    phase, first = contact.first_phase(speed, slip, span)
+    sigma = math.copysign(1.0, slip) if slip else 1.0
+    leg, x, x_tail = "load", 0.0, 0.0
     for _ in range(MAX_PHASES):
         tail = leg == "tail"
         end = x_tail * TAIL_END if tail else x + span
         events = contact.events(phase, sigma, leg)
         sol = solve_ivp(contact.rhs(phase, sigma, tail), (x, end), y, method="DOP853", rtol=RTOL, atol=ATOL,
-                        events=events, first_step=span * 1e-9 if x == 0.0 else None)
+                        events=events, first_step=first if x == 0.0 else None)
         hit = [j for j, times in enumerate(sol.t_events) if times.size]
         if not hit:
             if not tail or sol.status != 0:

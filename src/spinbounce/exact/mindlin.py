@@ -51,6 +51,10 @@ RTOL = 1.0e-13
 ATOL = 1.0e-15
 #: Where the variable changes from sigma to s and back: x at this fraction of its largest value.
 SWITCH = 0.5
+#: The reach of the explicit integration: lam beyond it turns the slip some 160 times in a contact
+#: (seconds a solve, growing as sqrt(lam)); zeta beyond it damps the slip out within 1e-3 of one.
+LAM_MAX = 1.0e6
+ZETA_MAX = 1.0e3
 
 
 class Variant(tuple):

@@ -96,9 +96,10 @@ def draw(data: dict):
         nu_ax, ratio_ax = axes[0]
         ratios = np.asarray(data["k_t_over_kn"])
         for variant, curves in data["variants"].items():
-            # mindlin/force has mindlin's Omega at every lam: dashed, over mindlin's wider line
-            style = {"linestyle": "--"} if variant.endswith("/force") and "rescale" not in variant else \
-                {"linewidth": 2.5} if variant == VARIANTS[0] else {}
+            # a force history without a rescale has the displacement one's Omega at every lam: dashed,
+            # over the displacement one's wider line
+            key = mindlin.VARIANTS[variant]
+            style = {} if key.rescale else {"linestyle": "--"} if key.force else {"linewidth": 2.5}
             line, = nu_ax.plot(data["poisson_ratio"], curves["omega_of_poisson_ratio"], label=variant, **style)
             for marker, speed in zip("os", SPEEDS):
                 points = [p for p in curves["lammps_poisson"] if abs(p["v_n"]) == speed]
@@ -107,7 +108,8 @@ def draw(data: dict):
             ratio_ax.plot(ratios, curves["omega_of_k_t_over_kn"], color=line.get_color(), label=variant, **style)
             ratio_ax.plot([p["k_t_over_kn"] for p in curves["lammps_k_t_over_kn"]],
                           [p["omega"] for p in curves["lammps_k_t_over_kn"]], "o", color=line.get_color(), ms=4)
-        gain = np.abs(np.asarray(data["variants"][VARIANTS[0]]["omega_of_k_t_over_kn"]) + 1.0) > 1.0
+        plain = next(v for v in VARIANTS if not any(mindlin.VARIANTS[v]))  # displacement, no rescale
+        gain = np.abs(np.asarray(data["variants"][plain]["omega_of_k_t_over_kn"]) + 1.0) > 1.0
         ratio_ax.fill_between(ratios, -2.2, 0.2, where=gain, color="0.85", zorder=0,
                               label="energy gained (mindlin, mindlin/force)")
         magic = data["alpha"] / (1.0 + data["alpha"])

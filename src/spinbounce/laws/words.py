@@ -3,7 +3,9 @@
 
 For example ``hertz/material 1e4 0.3 0.3 damping tsuji tangential mindlin NULL 1.0 0.5`` is
 normal = hertz/material with E = 1e4, ETA_N = 0.3 and nu = 0.3, damping = tsuji (ETA_N is its
-restitution e_n), tangential = mindlin with LAMMPS's NULL stiffness, X_T = 1 and mu = 0.5. Each
+restitution e_n), tangential = mindlin with LAMMPS's NULL stiffness, X_T = 1 and mu = 0.5 (a
+cap on that damped contact is then refused by the model: no reference takes it yet; mu = 1e12,
+what spinbounce writes for none, is read as none). Each
 sub-model declares its coefficients in LAMMPS's order (``lammps_coefficients``) and the damping
 says what ETA_N and X_T mean to it (``from_lammps``), so the words are read by the registries that
 write decks. The text never reaches LAMMPS: it becomes validated numbers and registered keywords,
@@ -82,6 +84,9 @@ def parse_contact(text: str) -> dict:
         _fail(text, "needs a tangential sub-model (LAMMPS refuses a granular model without one)")
     damping = damping or DAMPING[DampingLaw.default_keyword]
     eta_n, x_t, mu = found.pop("eta_n"), found.pop("x_t"), found.pop("mu")
+    for name, value in (("ETA_N", eta_n), ("X_T", x_t)):
+        if value < 0.0:
+            _fail(value, f"{name} must be >= 0 (negative damping would create energy)")
     values.update(found, damping=damping.keyword, tangential=tangential.keyword,
                   mu=None if mu >= NO_CAP_MU else mu, **damping.from_lammps(eta_n, x_t))
     return values
@@ -91,6 +96,8 @@ def expand_contact(values: dict) -> dict:
     """``values`` with a ``contact`` line read into parameters; one given both ways is refused."""
     if values.get("contact") is None:
         return {k: v for k, v in values.items() if k != "contact"}
+    if values.get("wall") not in (None, "granular"):
+        raise SceneError("wall", values["wall"], "must be granular with contact: the line is granular's words")
     read = parse_contact(values["contact"])
     for name, value in values.items():
         if name in read and value is not None:

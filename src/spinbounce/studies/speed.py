@@ -57,7 +57,7 @@ MODELS = {
                        "tangential": "mindlin"}, {**PLANE, "v_n": [-0.8, -0.1]}),
     # the Hookean sweep at Hertz-Mindlin's stiffness ratio (LAMMPS's NULL k_t/kn = 3 (1 - nu)/(2 - nu)
     # at nu = 0.3): the same slip mode against the normal one, so the same accuracy asks comparable steps
-    HOOKE_AT_MINDLIN: ({"kt_over_kn": 3.0 * 0.7 / 1.7}, {**PLANE, "v_n": [-0.8, -0.1]}),
+    HOOKE_AT_MINDLIN: ({"kt_over_kn": 3.0 * (1.0 - 0.3) / (2.0 - 0.3)}, {**PLANE, "v_n": [-0.8, -0.1]}),
 }
 
 

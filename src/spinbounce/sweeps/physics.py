@@ -33,6 +33,11 @@ def check_physics(spec) -> None:
         except SceneError as exc:
             ratio = exc.parameter == "kt" and "kt_over_kn" in spec.raw.get("model", {})
             raise SweepError(f"{'model.kt_over_kn' if ratio else f'model.{exc.parameter}'}: {exc}") from None
+        if spec.tolerance is not None and (model.normal_law.contact_radius or model.tangential_law.contact_radius
+                                           or model.normal_law.integrated(model)):
+            fail("tolerance", spec.tolerance, "is refused for a contact whose force, spring or dashpot grows with "
+                                              "the contact radius (its steps depend on each speed and its error is "
+                                              "not smooth in dt): give model.dt, or the default step")
         try:
             Collision(model, v_n=[-fast, -slow], v_t=0.0, omega=0.0, dt=dt)
         except SceneError as exc:

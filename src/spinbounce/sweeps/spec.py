@@ -285,6 +285,8 @@ def _contacts(model: dict) -> list[dict]:
     from ..laws.words import parse_contact
 
     lines, read = model.get("contact", []), []
+    if lines and "kt_over_kn" in model:
+        _fail("model.kt_over_kn", model["kt_over_kn"], "give kt in model.contact's line, not beside it")
     for line in lines if isinstance(lines, list) else [lines]:
         try:
             values = parse_contact(line)

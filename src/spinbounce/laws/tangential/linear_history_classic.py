@@ -14,6 +14,7 @@ from __future__ import annotations
 
 from ...declaration import Parameter
 from ...errors import SceneError
+from ..base import NormalLaw
 from ..normal import normal_law
 from .linear_history import KT, MU
 from .mindlin import RadiusSpring
@@ -31,7 +32,7 @@ class LinearHistoryClassic(RadiusSpring):
 
     def settle(self, values: dict, foreign: tuple[Parameter, ...]) -> dict:
         super().settle(values, foreign)
-        normal = normal_law(values.get("normal", "hooke"))
+        normal = normal_law(values.get("normal", NormalLaw.default_keyword))
         if values.get("mu") is not None and normal.contact_radius:
             raise SceneError("mu", values["mu"], f"must be none with tangential = {self.keyword} and normal = "
                                                  f"{normal.keyword}: its cap resets the history by kt alone, "

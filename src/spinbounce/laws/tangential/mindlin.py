@@ -15,7 +15,7 @@ import math
 
 from ...declaration import Parameter
 from ...errors import SceneError
-from ..base import TangentialLaw
+from ..base import NormalLaw, TangentialLaw
 from ..normal import normal_law
 from .linear_history import KT, MU
 
@@ -71,7 +71,7 @@ class Mindlin(RadiusSpring):
         if kt != KT.default:
             raise SceneError("kt", kt, f"is linear_history's spring, not a coefficient of tangential = {self.keyword}: "
                                        "give mindlin_kt (none: 8 G* from the material)")
-        normal = normal_law(values.get("normal", "hooke"))
+        normal = normal_law(values.get("normal", NormalLaw.default_keyword))
         if values.get("mindlin_kt") is None and not normal.material:
             raise SceneError("mindlin_kt", None, f"must be given with normal = {normal.keyword}: none is LAMMPS's "
                                                  "NULL, 8 G* from normal = hertz/material's youngs_modulus and "

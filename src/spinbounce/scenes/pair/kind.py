@@ -47,7 +47,7 @@ def pair_contact(model: ContactModel, b: Sphere) -> PairContact:
                                                    "references take constant dashpots")
     if not model.tangential_law.pairs:
         raise SceneError("tangential", model.tangential, "must be linear_history with scene = pair: there is no "
-                                                         "exact pair reference of a Mindlin contact here yet")
+                                                         "exact pair reference of a spring on the contact radius here yet")
     if model.limit_damping:
         raise SceneError("limit_damping", True, "is not covered by the pair's exact reference: leave it out")
     if not model.style.pairs:
