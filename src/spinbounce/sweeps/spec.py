@@ -285,16 +285,15 @@ def _contacts(model: dict) -> list[dict]:
     from ..laws.words import parse_contact
 
     lines, read = model.get("contact", []), []
-    if lines and "kt_over_kn" in model:
+    if lines and "kt_over_kn" in model:  # the line gives kt
         _fail("model.kt_over_kn", model["kt_over_kn"], "give kt in model.contact's line, not beside it")
     for line in lines if isinstance(lines, list) else [lines]:
         try:
             values = parse_contact(line)
         except SceneError as exc:
             raise SweepError(f"model.{exc}") from None
-        clash = sorted(set(values) & set(model))
-        if clash:
-            _fail(f"model.{clash[0]}", model[clash[0]], "is given by model.contact too: give it once")
+        for name in sorted(set(values) & set(model)):  # the first, named
+            _fail(f"model.{name}", model[name], "is given by model.contact too: give it once")
         read.append(values)
     return read or [{}]
 
