@@ -21,8 +21,11 @@ this package branches on a sub-model's or a style's keyword.
 
 from ..errors import SceneError
 from .damping import DAMPING, DampingLaw, damping_coefficients, damping_law, damping_parameter
+from .damping import KIND as DAMPING_KIND
+from .normal import KIND as NORMAL_KIND
 from .normal import NORMAL, NormalLaw, normal_coefficients, normal_law, normal_parameter
 from .styles import STYLES, Style, style, style_parameter
+from .tangential import KIND as TANGENTIAL_KIND
 from .tangential import TANGENTIAL, TangentialLaw, tangential_coefficients, tangential_law, tangential_parameter
 
 __all__ = ["NORMAL", "NormalLaw", "normal_law", "normal_parameter", "normal_coefficients", "DAMPING", "DampingLaw",
@@ -31,11 +34,14 @@ __all__ = ["NORMAL", "NormalLaw", "normal_law", "normal_parameter", "normal_coef
            "style_parameter", "settled", "own"]
 
 
+#: The kinds of sub-model, in the order a model settles them: the normal first (the damping may
+#: need its stiffness), the tangential last (it may need both).
+KINDS = (NORMAL_KIND, DAMPING_KIND, TANGENTIAL_KIND)
+
+
 def _chosen(values: dict):
     """The model's normal, damping and tangential sub-models, each with every coefficient of its kind."""
-    return ((normal_law(values.get("normal", NormalLaw.default_keyword)), normal_coefficients()),
-            (damping_law(values.get("damping", DampingLaw.default_keyword)), damping_coefficients()),
-            (tangential_law(values.get("tangential", TangentialLaw.default_keyword)), tangential_coefficients()))
+    return tuple((kind.law(values.get(kind.name, kind.default)), kind.coefficients()) for kind in KINDS)
 
 
 def own(values: dict) -> dict:
@@ -43,8 +49,7 @@ def own(values: dict) -> dict:
     a damping or tangential choice that is the default: what a model means (a sweep's digest, a
     fit's group, a run folder's name) does not change when a sub-model is added."""
     foreign = {p.name for law, every in _chosen(values) for p in every if p not in law.coefficients}
-    default = {kind for kind, law in (("damping", DampingLaw), ("tangential", TangentialLaw))
-               if values.get(kind) == law.default_keyword}
+    default = {kind.name for kind in (DAMPING_KIND, TANGENTIAL_KIND) if values.get(kind.name) == kind.default}
     return {k: v for k, v in values.items() if k not in foreign and k not in default}
 
 

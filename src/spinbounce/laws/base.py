@@ -17,7 +17,7 @@ import numpy as np
 from ..declaration import Parameter
 from ..errors import SceneError
 
-__all__ = ["NormalLaw", "DampingLaw", "TangentialLaw", "Style", "STIFFNESS", "NO_CAP_MU", "registry", "lookup",
+__all__ = ["NormalLaw", "DampingLaw", "TangentialLaw", "Style", "Kind", "STIFFNESS", "NO_CAP_MU", "registry", "lookup",
            "refuse_foreign", "coefficients", "choice"]
 
 #: LAMMPS always caps |F_t| <= mu F_n: "no cap" is this large mu (measured on this build: mu = 1e4
@@ -57,6 +57,27 @@ def choice(name: str, meaning: str, entries: dict, default: str, deck: str) -> P
     """The parameter that picks one of ``entries`` (a registry) by keyword, each summarised."""
     laws = "; ".join(f"{law.keyword}: {law.summary}" for law in entries.values())
     return Parameter(name, f"{meaning} ({laws})", "-", default, kind="choice", choices=tuple(entries), deck=deck)
+
+
+class Kind:
+    """One kind of sub-model (normal, damping, tangential): the parameter that picks one, what it
+    means, the registry, the default keyword and the deck's words; it finds a sub-model by keyword,
+    lists every sub-model's coefficients and makes the choice parameter."""
+
+    def __init__(self, name: str, meaning: str, entries: dict, default: str, deck: str):
+        self.name, self.meaning, self.entries, self.default, self.deck = name, meaning, entries, default, deck
+
+    def law(self, keyword: str):
+        """The sub-model of ``keyword``, or a :class:`SceneError` listing the registered ones."""
+        return lookup(self.entries, self.name, keyword)
+
+    def coefficients(self) -> tuple[Parameter, ...]:
+        """Every sub-model's coefficients, each once, in registry order."""
+        return coefficients(self.entries)
+
+    def parameter(self) -> Parameter:
+        """The choice of one of the registered keywords."""
+        return choice(self.name, self.meaning, self.entries, self.default, self.deck)
 
 
 def lookup(entries: dict, parameter: str, keyword):

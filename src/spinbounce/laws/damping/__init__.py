@@ -8,8 +8,7 @@ with the contact radius, as tsuji's and coeff_restitution's do with the Hertzian
 
 from __future__ import annotations
 
-from ...declaration import Parameter
-from ..base import DampingLaw, choice, coefficients, lookup, registry
+from ..base import DampingLaw, Kind, registry
 
 __all__ = ["DAMPING", "DampingLaw", "damping_law", "damping_coefficients", "damping_parameter"]
 
@@ -25,17 +24,7 @@ MODULES = (
 DAMPING: dict[str, DampingLaw] = registry(__name__, MODULES, "LAW")
 
 
-def damping_law(keyword: str) -> DampingLaw:
-    """The sub-model of ``keyword``, or a :class:`SceneError` listing the registered ones."""
-    return lookup(DAMPING, "damping", keyword)
-
-
-def damping_coefficients() -> tuple[Parameter, ...]:
-    """Every damping sub-model's coefficients, each once, in registry order."""
-    return coefficients(DAMPING)
-
-
-def damping_parameter() -> Parameter:
-    """The ``damping`` choice: one of the registered keywords."""
-    return choice("damping", "damping model", DAMPING, DampingLaw.default_keyword,
-                  "granular NORMAL KN ETA_N damping DAMPING")
+#: The kind: its parameter, its registry, its default and its deck's words.
+KIND = Kind("damping", "damping model", DAMPING, DampingLaw.default_keyword,
+            "granular NORMAL KN ETA_N damping DAMPING")
+damping_law, damping_coefficients, damping_parameter = KIND.law, KIND.coefficients, KIND.parameter

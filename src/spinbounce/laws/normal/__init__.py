@@ -2,8 +2,7 @@
 
 from __future__ import annotations
 
-from ...declaration import Parameter
-from ..base import NormalLaw, choice, coefficients, lookup, registry
+from ..base import Kind, NormalLaw, registry
 
 __all__ = ["NORMAL", "NormalLaw", "normal_law", "normal_parameter", "normal_coefficients"]
 
@@ -17,17 +16,7 @@ MODULES = (
 NORMAL: dict[str, NormalLaw] = registry(__name__, MODULES, "LAW")
 
 
-def normal_law(keyword: str) -> NormalLaw:
-    """The sub-model of ``keyword``, or a :class:`SceneError` listing the registered ones."""
-    return lookup(NORMAL, "normal", keyword)
-
-
-def normal_coefficients() -> tuple[Parameter, ...]:
-    """Every normal sub-model's coefficients, each once, in registry order."""
-    return coefficients(NORMAL)
-
-
-def normal_parameter() -> Parameter:
-    """The ``normal`` choice: one of the registered keywords."""
-    return choice("normal", "normal force law", NORMAL, NormalLaw.default_keyword,
-                  "wall/gran granular NORMAL ... | pair_coeff * * NORMAL ...")
+#: The kind: its parameter, its registry, its default and its deck's words.
+KIND = Kind("normal", "normal force law", NORMAL, NormalLaw.default_keyword,
+            "wall/gran granular NORMAL ... | pair_coeff * * NORMAL ...")
+normal_law, normal_coefficients, normal_parameter = KIND.law, KIND.coefficients, KIND.parameter

@@ -8,8 +8,7 @@ variants (:mod:`.mindlin`: ``mindlin``, ``mindlin/force``, ``mindlin_rescale``,
 
 from __future__ import annotations
 
-from ...declaration import Parameter
-from ..base import TangentialLaw, choice, coefficients, lookup, registry
+from ..base import Kind, TangentialLaw, registry
 
 __all__ = ["TANGENTIAL", "TangentialLaw", "tangential_law", "tangential_coefficients", "tangential_parameter"]
 
@@ -26,17 +25,7 @@ MODULES = (
 TANGENTIAL: dict[str, TangentialLaw] = registry(__name__, MODULES, "LAW")
 
 
-def tangential_law(keyword: str) -> TangentialLaw:
-    """The sub-model of ``keyword``, or a :class:`SceneError` listing the registered ones."""
-    return lookup(TANGENTIAL, "tangential", keyword)
-
-
-def tangential_coefficients() -> tuple[Parameter, ...]:
-    """Every tangential sub-model's coefficients, each once, in registry order."""
-    return coefficients(TANGENTIAL)
-
-
-def tangential_parameter() -> Parameter:
-    """The ``tangential`` choice: one of the registered keywords."""
-    return choice("tangential", "tangential force law", TANGENTIAL, TangentialLaw.default_keyword,
-                  "wall/gran granular ... tangential TANGENTIAL ... | pair_coeff * * ... tangential TANGENTIAL ...")
+#: The kind: its parameter, its registry, its default and its deck's words.
+KIND = Kind("tangential", "tangential force law", TANGENTIAL, TangentialLaw.default_keyword,
+            "wall/gran granular ... tangential TANGENTIAL ... | pair_coeff * * ... tangential TANGENTIAL ...")
+tangential_law, tangential_coefficients, tangential_parameter = KIND.law, KIND.coefficients, KIND.parameter
