@@ -113,6 +113,8 @@ def test_the_paper_s_magic_ratio_conserves_energy_at_every_speed():
     model = ContactModel(normal="hertz", kn=1.0e4, tangential="mindlin", mindlin_kt=1.0e4 * alpha / (1 + alpha))
     report = spinbounce.theory(**{k: getattr(model, k) for k in ("normal", "kn", "tangential", "mindlin_kt")})
     assert report["Omega"] == pytest.approx(-2.0, abs=1e-10) and report["energy"] == "conserved"
+    # what was searched is said: lam up to 30, k_t/kn up to 30 alpha/(1 + alpha)
+    assert report["energy_conserving_searched_to_k_t_over_kn"] == pytest.approx(30 * alpha / (1 + alpha), rel=1e-12)
     assert report["energy_conserving_k_t_over_kn"]["Omega = -2"][:2] == pytest.approx([alpha / 1.4, 1.5 * alpha / 1.4],
                                                                                      abs=1e-11)
     # the NULL stiffness of a material: k_t/kn = 3 (1 - nu)/(2 - nu) >= 1 > alpha/(1 + alpha) at alpha = 2/5

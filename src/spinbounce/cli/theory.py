@@ -97,6 +97,7 @@ def _print_mindlin(report: dict) -> None:
     print(f"energy: {report['energy']} (|Omega + 1| {'>' if report['energy'] == 'gained' else '<='} 1)")
     _print_matrix(report["matrix"])
     poisson = report.get("energy_conserving_poisson_ratio")
+    print(f"energy conserved (searched up to k_t/kn = {report['energy_conserving_searched_to_k_t_over_kn']:.4g}):")
     for key, ratios in report["energy_conserving_k_t_over_kn"].items():
         line = f"{key} (energy conserved) at k_t/kn = {_numbers(ratios) or 'none found'}"
         if poisson is not None:

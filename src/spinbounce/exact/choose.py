@@ -193,7 +193,8 @@ def mindlin_theory(model) -> dict:
     out = {"lam": lam, "k_t": k, "k_t_over_kn": k / model.kn, "Omega": ratio - 1.0,
            "Omega_depends_on": "alpha and k_t/kn only: the same at every v_n",
            "energy": "gained" if abs(ratio) > 1.0 + 1e-9 else "conserved" if abs(ratio) > 1.0 - 1e-9 else "lost",
-           "energy_conserving_k_t_over_kn": {key: [x * per_lam for x in lams] for key, lams in points.items()}}
+           "energy_conserving_k_t_over_kn": {key: [x * per_lam for x in lams] for key, lams in points.items()},
+           "energy_conserving_searched_to_k_t_over_kn": mindlin.LAM_SEARCHED * per_lam}
     if model.mindlin_kt is None:
         out["energy_conserving_poisson_ratio"] = {
             key: sorted(nu for nu in (mindlin.poisson_ratio_of(x * per_lam) for x in lams) if nu is not None)
@@ -267,7 +268,8 @@ def omega_per_sphere(model, v_n) -> np.ndarray:
         return np.broadcast_to(_mindlin_omega(model, v_n), v_n.shape).copy()
     if kind == "damped_nonlinear":
         matrices_ = _damped_matrices(model, v_n)
-        return (matrices_[:, 1, 1] - 1.0) * (1.0 + model.alpha) / model.alpha  # Eq. 18: M_tt = 1 + alpha Omega/(1+alpha)
+        # Eq. 18: M_tt = 1 + alpha Omega/(1 + alpha)
+        return (matrices_[:, 1, 1] - 1.0) * (1.0 + model.alpha) / model.alpha
     return np.full(v_n.shape, _omega(model))
 
 

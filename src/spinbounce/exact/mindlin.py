@@ -44,7 +44,8 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
-__all__ = ["Variant", "VARIANTS", "slip_ratio", "Omega", "time_unit", "lam", "speed_free_lam", "zeta", "wall_stiffness_ratio",
+__all__ = ["Variant", "VARIANTS", "slip_ratio", "Omega", "time_unit", "lam", "speed_free_lam", "zeta",
+           "wall_stiffness_ratio", "LAM_SEARCHED",
            "unit_ratio_lams", "poisson_ratio_of", "RTOL"]
 
 RTOL = 1.0e-13
@@ -196,8 +197,13 @@ LAM_GRID_STEP = 0.2
 LAM_GRID_OFFSET = 0.1371
 
 
+#: How far :func:`unit_ratio_lams` looks by default.
+LAM_SEARCHED = 30.0
+
+
 @lru_cache(maxsize=64)
-def unit_ratio_lams(variant: Variant, power: float = 1.5, lam_max: float = 30.0) -> dict[str, tuple[float, ...]]:
+def unit_ratio_lams(variant: Variant, power: float = 1.5,
+                    lam_max: float = LAM_SEARCHED) -> dict[str, tuple[float, ...]]:
     """Every lam up to ``lam_max`` at which the slip ratio crosses -1 (Omega = -2: the slip
     reverses, the paper's energy-conserving bounce) or +1 (Omega = 0: the tangential state comes
     back unchanged), refined to 1e-12; undamped (zeta = 0). Between two crossings of the same
