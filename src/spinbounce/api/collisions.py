@@ -11,7 +11,7 @@ import pandas as pd
 
 from ..model import parameters
 from ..model.contact import ContactModel
-from ..exact import choose
+from ..exact import choose, linear
 from ..laws.words import expand_contact
 from ..records import run_folder
 
@@ -297,7 +297,7 @@ def theory(v_n: float | None = None, v_t: float = 0.0, omega: float = 0.0, v_s: 
         out["contact_time"] = float(contact.contact_times(v_n)[0])
     elif choice.kind == "damped_nonlinear" and choice.has_matrix:
         m3 = np.asarray(contact.matrix())
-        out.update(Omega=float((m3[1, 1] - 1.0) * (1.0 + contact.alpha) / contact.alpha), restitution=float(-m3[0, 0]),
+        out.update(Omega=float(linear.Omega_of_matrix(m3, contact.alpha)), restitution=float(-m3[0, 0]),
                    matrix=m3, order=["v_n", "v_t", "r_omega"], Omega_depends_on="the same at every v_n (self-similar)")
     elif choice.kind == "mindlin" and choice.has_matrix:
         out.update(choose.mindlin_theory(contact), restitution=1.0, matrix=np.asarray(contact.matrix()),

@@ -120,6 +120,11 @@ def _self_similar(model) -> bool:
             and model.damping_law.radius_power(normal) == normal.power - 1.0)
 
 
+def _force_constant(model) -> float:
+    """K of the wall's normal force K delta^p: kn r^(p - 1) (Hooke: kn; Hertz: kn sqrt(r))."""
+    return model.kn * model.r ** (model.normal_law.power - 1.0)
+
+
 def phase_law(model, normal_only: bool = False):
     """The model as :class:`.contact_phases.Law`: the normal force kn r^(p - 1) delta^p, the spring,
     the dashpots gamma a^s and the cap (``normal_only``: no spring, no cap)."""
@@ -127,7 +132,7 @@ def phase_law(model, normal_only: bool = False):
 
     normal, tangential = model.normal_law, model.tangential_law
     power, (force, rescale) = normal.power, tangential.variant
-    return Law(m=model.m, r=model.r, alpha=model.alpha, K=model.kn * model.r ** (power - 1.0), power=power,
+    return Law(m=model.m, r=model.r, alpha=model.alpha, K=_force_constant(model), power=power,
                k=0.0 if normal_only else tangential.stiffness(model),
                spring_power=1.0 if tangential.contact_radius else 0.0, force_history=force, rescale=rescale,
                mu=math.inf if normal_only or model.mu is None else model.mu, c_n=model.gamma_n,
@@ -165,7 +170,7 @@ def _mindlin_omega(model, v_n) -> np.ndarray:
     if _mindlin_speed_free(model):  # one contact answers every speed (its rounding aside)
         v_n = v_n[:1] * 0.0 - 1.0
     power, m, r, alpha = model.normal_law.power, model.m, model.r, model.alpha
-    t0 = mindlin.time_unit(power, m, model.kn * r ** (power - 1.0), v_n)
+    t0 = mindlin.time_unit(power, m, _force_constant(model), v_n)
     k = model.tangential_law.stiffness(model)
     lam, zeta = mindlin.lam(k, alpha, m, r, v_n, t0), mindlin.zeta(model.gamma_t, m, alpha, t0)
     for name, value, scaled, limit in (("mindlin_kt", k, lam, mindlin.LAM_MAX), ("gamma_t", model.gamma_t, zeta,
@@ -266,10 +271,8 @@ def omega_per_sphere(model, v_n) -> np.ndarray:
         return np.atleast_1d(hertz.Omega(v_n, model.m, model.kn, model.r, model.kt, model.alpha, model.gamma_t))
     if kind == "mindlin":
         return np.broadcast_to(_mindlin_omega(model, v_n), v_n.shape).copy()
-    if kind == "damped_nonlinear":
-        matrices_ = _damped_matrices(model, v_n)
-        # Eq. 18: M_tt = 1 + alpha Omega/(1 + alpha)
-        return (matrices_[:, 1, 1] - 1.0) * (1.0 + model.alpha) / model.alpha
+    if kind == "damped_nonlinear":  # one integration in all if self-similar, else one a sphere
+        return linear.Omega_of_matrix(matrices(model, v_n), model.alpha)
     return np.full(v_n.shape, _omega(model))
 
 

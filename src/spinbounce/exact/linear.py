@@ -30,6 +30,7 @@ __all__ = [
     "Omega_paper_damped",
     "Omega_exact",
     "scattering_matrix",
+    "Omega_of_matrix",
     "block_matrix",
     "block_from",
     "rough_matrix",
@@ -261,6 +262,12 @@ def scattering_matrix(alpha: float, Omega: float, e: float = 1.0) -> np.ndarray:
             [0.0, b * Omega, 1.0 + b * Omega],
         ]
     )
+
+
+def Omega_of_matrix(m3, alpha: float):
+    """Eq. 18 read backwards: Omega from a scattering matrix's (v_t -> v_t) entry, 1 + alpha Omega/(1 + alpha)
+    (``m3``: one 3x3 matrix or a stack of them)."""
+    return (np.asarray(m3)[..., 1, 1] - 1.0) * (1.0 + alpha) / alpha
 
 
 def block_matrix(alpha: float, Omega: float, e: float = 1.0) -> np.ndarray:

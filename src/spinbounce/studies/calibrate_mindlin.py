@@ -19,6 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq
 
+from ..exact.linear import Omega_of_matrix
 from ..model.contact import ContactModel
 from .calibrate import Unreachable
 
@@ -56,7 +57,7 @@ def _model(t: MindlinTargets, poisson_ratio: float, mindlin_kt: float | None = N
 def achieved(model: ContactModel) -> dict:
     """e and beta of the model's one matrix (the same at every speed)."""
     m3 = model.matrix()
-    omega = (m3[1, 1] - 1.0) * (1.0 + model.alpha) / model.alpha
+    omega = Omega_of_matrix(m3, model.alpha)
     return {"e": float(-m3[0, 0]), "beta": float(-(1.0 + omega))}
 
 
