@@ -41,7 +41,7 @@ def test_the_integration_meets_the_damped_oscillator():
     # Hooke, velocity damping, the paper's spring with a dashpot: restitution and Omega in closed form
     model = ContactModel(gamma_n=0.6, gamma_t=0.3, kt=2.0)
     for v in (-0.3, -1.4):
-        v_out, v_t, r_omega, time = contact_phases.bounce(choose.phase_law(model), v, 1.0, 0.0)
+        v_out, v_t, r_omega, time = contact_phases.bounce(contact_phases.Law.of(model), v, 1.0, 0.0)
         assert v_out / -v == pytest.approx(linear.restitution(model.m, model.kn, model.gamma_n), abs=1e-10)
         assert v_t + r_omega - 1.0 == pytest.approx(model.Omega, abs=1e-10)
         assert time == pytest.approx(linear.exit_time(model.m, model.kn, model.gamma_n), abs=1e-10)
@@ -50,7 +50,7 @@ def test_the_integration_meets_the_damped_oscillator():
 def test_the_integration_meets_the_undamped_hertzian_contact():
     model = ContactModel(normal="hertz", kn=1000.0, kt=30.0, gamma_t=0.1)
     for v in (-0.2, -1.1):
-        v_out, v_t, r_omega, time = contact_phases.bounce(choose.phase_law(model), v, 1.0, 0.0)
+        v_out, v_t, r_omega, time = contact_phases.bounce(contact_phases.Law.of(model), v, 1.0, 0.0)
         assert v_out == pytest.approx(-v, abs=1e-10)
         assert time == pytest.approx(float(hertz.contact_time(v, model.m, model.kn, model.r)), rel=1e-10)
         assert v_t + r_omega - 1.0 == pytest.approx(float(hertz.Omega(v, model.m, model.kn, model.r, model.kt,
@@ -126,7 +126,7 @@ def test_hertz_mindlin_with_a_restitution_dashpot_has_one_matrix_at_every_speed(
     model = ContactModel(**MATERIAL, damping="coeff_restitution", e_n=0.7, x_t=0.3, tangential="mindlin")
     assert choose.which(model).has_matrix
     speeds = (0.05, 0.5, 2.0)
-    finals = [contact_phases.bounce(choose.phase_law(model), -v, 1.0, 0.0) for v in speeds]
+    finals = [contact_phases.bounce(contact_phases.Law.of(model), -v, 1.0, 0.0) for v in speeds]
     assert np.ptp([f[1] + f[2] for f in finals]) < 1e-9  # the slip ratio, 1 + Omega
     assert np.ptp([f[0] / v for f, v in zip(finals, speeds)]) < 1e-9  # the restitution
     assert model.matrix()[0, 0] == pytest.approx(-0.7, abs=1e-9)

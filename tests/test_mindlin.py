@@ -147,9 +147,9 @@ def test_a_record_names_the_tangential_law_only_when_it_is_not_the_default():
     ({"tangential": "mindlin"}, "mindlin_kt"),                                  # NULL needs a material
     ({"tangential": "mindlin", "mindlin_kt": 3.0, "kt": 2.0}, "kt"),            # linear_history's spring
     ({"mindlin_kt": 3.0}, "mindlin_kt"),                                        # not linear_history's
-    ({"tangential": "mindlin", "mindlin_kt": 3.0, "mu": 0.3, "gamma_t": 0.1}, "gamma_t"),  # capped: no dashpot
-    ({"tangential": "mindlin", "mindlin_kt": 3.0, "gamma_n": 0.3, "mu": 0.3}, "mu"),  # no capped damped reference
-    ({"tangential": "mindlin", "mindlin_kt": 3.0, "damping": "tsuji", "e_n": 0.5, "mu": 0.2}, "mu"),
+    ({"tangential": "mindlin", "mindlin_kt": 3.0, "gamma_n": 0.3, "limit_damping": True}, "limit_damping"),  # no mu
+    ({"tangential": "mindlin", "mindlin_kt": 3.0, "damping": "tsuji", "e_n": 0.5, "limit_damping": True},
+     "limit_damping"),
     ({"tangential": "mindlin", "mindlin_kt": -3.0}, "mindlin_kt"),
     ({"tangential": "mindlin", "mindlin_kt": 3.0, "wall": "classic"}, "tangential"),
     ({"tangential": "mindlin/forced"}, "tangential"),
@@ -286,12 +286,6 @@ def test_converged_capped_lammps_meets_the_reference(variant, tmp_path):
     state = np.array([-1.0, 0.5, 0.0])
     final = _converged(model, state, tmp_path, 1000)
     assert np.abs(final - choose.predict(model, state[None, :])[0]).max() <= 1e-6
-
-
-def test_a_capped_3d_state_is_refused_by_name():
-    with pytest.raises(SceneError) as info:
-        Collision(ContactModel(tangential="mindlin", mu=0.3, **MATERIAL), v_n=-1.0, v_t=0.5, v_s=0.2)
-    assert info.value.parameter == "tangential"
 
 
 # --- the classic wall's spring inside granular: linear_history_classic ------------------------

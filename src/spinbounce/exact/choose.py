@@ -12,8 +12,10 @@ classic_wall  a tangential spring on the contact radius (this build's    no (Ome
 coulomb       a finite mu: the contact sticks and slides in turn         no
               (:mod:`.coulomb`, exact and batched; checked against
               :mod:`.oracle`)
-mindlin_      a Mindlin spring with a finite mu: stick and slip in turn,     no
-capped        in the plane (:mod:`.contact_phases`, exact per phase)
+capped_       a finite mu with a spring, force or dashpot on the         no
+nonlinear     contact radius: stick and slip in turn
+              (:mod:`.contact_phases` in the plane without dashpots,
+              else :mod:`.oracle`)
 mindlin       a tangential stiffness on the contact radius (LAMMPS's     Hertzian,
               Mindlin variants), no cap, undamped normal force: Eq. 18   undamped: yes;
               with the Omega of :mod:`.mindlin`                          else Omega(v_n)
@@ -71,9 +73,9 @@ def which(model) -> Choice:
                                       "its cap reset by kt alone; exact.classic)",
                       f"with mu = {model.mu!r} the contact sticks and slides in turn: give a state (v_n, v_t, omega) "
                       "for its outcome")
-    if model.mu is not None and model.tangential_law.contact_radius:
-        return Choice("mindlin_capped", "the Coulomb-capped Mindlin contact (exact.contact_phases: exact in each stick "
-                      "or slip phase, in the paper's plane)",
+    if model.mu is not None and (model.tangential_law.contact_radius or damped_nonlinear(model)):
+        return Choice("capped_nonlinear", "the Coulomb-capped contact on the contact radius (exact in each stick or "
+                      "slip phase: exact.contact_phases, or exact.oracle with a dashpot or in 3-D)",
                       f"with mu = {model.mu!r} the contact sticks and slides in turn, so the outcome is not linear "
                       "in the initial state: give a state (v_n, v_t, omega) for its outcome")
     if model.mu is not None:
@@ -120,23 +122,23 @@ def _self_similar(model) -> bool:
             and model.damping_law.radius_power(normal) == normal.power - 1.0)
 
 
-def _force_constant(model) -> float:
-    """K of the wall's normal force K delta^p: kn r^(p - 1) (Hooke: kn; Hertz: kn sqrt(r))."""
-    return model.kn * model.r ** (model.normal_law.power - 1.0)
+def _capped_nonlinear(model, initial) -> np.ndarray:
+    """Final states of a capped contact whose spring, force or dashpot grows with the contact radius:
+    in the plane and without dashpots exact.contact_phases (its phases in sqrt(delta) near the ends,
+    about 4x faster), else exact.oracle (3-D slides, dashpots, a tensile turn, limit_damping). The
+    two meet to 1e-10 where both apply (tests/test_capped_nonlinear.py)."""
+    if initial.shape[1] == 3 and model.gamma_n == 0.0 and model.gamma_t == 0.0:
+        from . import contact_phases
 
+        return contact_phases.bounce_many(contact_phases.Law.of(model), initial)[:, :3]
+    from . import oracle
 
-def phase_law(model, normal_only: bool = False):
-    """The model as :class:`.contact_phases.Law`: the normal force kn r^(p - 1) delta^p, the spring,
-    the dashpots gamma a^s and the cap (``normal_only``: no spring, no cap)."""
-    from .contact_phases import Law
-
-    normal, tangential = model.normal_law, model.tangential_law
-    power, (force, rescale) = normal.power, tangential.variant
-    return Law(m=model.m, r=model.r, alpha=model.alpha, K=_force_constant(model), power=power,
-               k=0.0 if normal_only else tangential.stiffness(model),
-               spring_power=1.0 if tangential.contact_radius else 0.0, force_history=force, rescale=rescale,
-               mu=math.inf if normal_only or model.mu is None else model.mu, c_n=model.gamma_n,
-               c_t=0.0 if normal_only else model.gamma_t, damping_power=model.damping_law.radius_power(normal))
+    r = model.r
+    spins = initial[:, [2, 4, 5]] / r if initial.shape[1] == 6 else np.column_stack([initial[:, 2] / r,
+                                                                                      np.zeros((len(initial), 2))])
+    v_s = initial[:, 3] if initial.shape[1] == 6 else None
+    return oracle.bounce_many(model, initial[:, 0], initial[:, 1], spins[:, 0], v_s, spins[:, 1],
+                              spins[:, 2])[:, :initial.shape[1]]
 
 
 def _damped_matrices(model, v_n) -> np.ndarray:
@@ -144,7 +146,7 @@ def _damped_matrices(model, v_n) -> np.ndarray:
     one integration of a unit slip (the slip is linear in its initial rate)."""
     from . import contact_phases
 
-    law = phase_law(model)
+    law = contact_phases.Law.of(model)
     out = []
     for v in np.atleast_1d(v_n):
         v_out, v_t, r_omega, _ = contact_phases.bounce(law, float(v), 1.0, 0.0)
@@ -170,7 +172,7 @@ def _mindlin_omega(model, v_n) -> np.ndarray:
     if _mindlin_speed_free(model):  # one contact answers every speed (its rounding aside)
         v_n = v_n[:1] * 0.0 - 1.0
     power, m, r, alpha = model.normal_law.power, model.m, model.r, model.alpha
-    t0 = mindlin.time_unit(power, m, _force_constant(model), v_n)
+    t0 = mindlin.time_unit(power, m, model.normal_law.wall_constant(model), v_n)
     k = model.tangential_law.stiffness(model)
     lam, zeta = mindlin.lam(k, alpha, m, r, v_n, t0), mindlin.zeta(model.gamma_t, m, alpha, t0)
     for name, value, scaled, limit in (("mindlin_kt", k, lam, mindlin.LAM_MAX), ("gamma_t", model.gamma_t, zeta,
@@ -229,7 +231,7 @@ def matrix(model, v_n: float | None = None, three_d: bool = False) -> np.ndarray
     A Hertzian model has one matrix per v_n; a Coulomb-capped one has none.
     """
     choice = which(model)
-    if choice.kind in ("coulomb", "mindlin_capped"):
+    if choice.kind in ("coulomb", "capped_nonlinear"):
         raise NoMatrix(choice.no_matrix_reason)
     if not choice.has_matrix:  # one matrix per v_n
         if v_n is None:
@@ -265,7 +267,7 @@ def omega_per_sphere(model, v_n) -> np.ndarray:
 
         return np.array([classic.Omega_eff(v, model.kn, model.kt, model.alpha, model.r, model.m,
                                            model.gamma_n / model.m, model.gamma_t / model.m) for v in v_n])
-    if kind in ("coulomb", "classic_wall", "mindlin_capped"):
+    if kind in ("coulomb", "classic_wall", "capped_nonlinear"):
         return np.full(v_n.shape, np.nan)
     if kind == "hertzian":
         return np.atleast_1d(hertz.Omega(v_n, model.m, model.kn, model.r, model.kt, model.alpha, model.gamma_t))
@@ -288,12 +290,8 @@ def predict(model, initial) -> np.ndarray:
             raise NoMatrix("the classic wall's theory is in the paper's plane: give no v_s, omega_s or omega_n")
         wall = classic_wall(model)
         return np.array([classic.bounce(wall, *state).final for state in initial])
-    if kind == "mindlin_capped":
-        from . import contact_phases
-
-        if width != 3:
-            raise NoMatrix("the capped Mindlin reference is in the paper's plane: give no v_s, omega_s or omega_n")
-        return contact_phases.bounce_many(phase_law(model), initial)[:, :3]
+    if kind == "capped_nonlinear":
+        return _capped_nonlinear(model, initial)
     if kind == "coulomb":  # the exact batched solver; the scipy oracle is its independent check
         from . import coulomb
 

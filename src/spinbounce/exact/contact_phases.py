@@ -77,6 +77,19 @@ class Law:
     c_t: float = 0.0
     damping_power: float = 0.0
 
+    @classmethod
+    def of(cls, model, normal_only: bool = False) -> "Law":
+        """A wall contact model's law (read through its fields and sub-models): the force
+        kn r^(p - 1) delta^p, the spring, the dashpots gamma a^s and the cap (``normal_only``: no
+        spring, no cap)."""
+        normal, tangential = model.normal_law, model.tangential_law
+        force, rescale = tangential.variant
+        return cls(m=model.m, r=model.r, alpha=model.alpha, K=normal.wall_constant(model), power=normal.power,
+                   k=0.0 if normal_only else tangential.stiffness(model),
+                   spring_power=1.0 if tangential.contact_radius else 0.0, force_history=force, rescale=rescale,
+                   mu=math.inf if normal_only or model.mu is None else model.mu, c_n=model.gamma_n,
+                   c_t=0.0 if normal_only else model.gamma_t, damping_power=model.damping_law.radius_power(normal))
+
 
 class _Contact:
     """One collision under a :class:`Law`: its forces, its phases' rates and switches."""

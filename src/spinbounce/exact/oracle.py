@@ -7,24 +7,29 @@ adaptive DOP853 at a relative tolerance of 1e-12, and locates every change of re
 as an event (end of contact, stick -> slip, slip -> stick, and the normal force's end
 under ``limit_damping``), restarting the integration there so no step straddles a kink.
 
-The model is the continuous-time limit of LAMMPS's ``granular hooke ... tangential
-linear_history`` wall contact, written in the paper's variables and in 3-D:
+The model is the continuous-time limit of LAMMPS's ``granular`` wall contact with a cap, written
+in the paper's variables and in 3-D, for any normal force K delta^p with a dashpot gamma_n a^s and
+any tangential spring of :class:`.contact_phases.Law` (the paper's ``linear_history`` and the
+Mindlin variants, whose stiffness k a, dashpot and history grow or shrink with the contact radius
+a = sqrt(r delta); their forces: :mod:`.oracle_forces`):
 
-* normal: overlap delta = r - z, F_n = kn delta + gamma_n delta' (or kn sqrt(r) delta^(3/2)
-  + gamma_n delta' with ``normal = "hertz"``; tensile allowed, or cut at zero with
-  ``limit_damping``), m v_n' = F_n;
+* normal: m v_n' = F_n (tensile allowed, or cut at zero with ``limit_damping``);
 * tangential, a 2-vector per quantity (directions t and s): velocity v, r*omega with the
   paper's sign (so the slip rate is u' = v + r*omega in each direction, see
-  :mod:`scenes`), and the elastic 'trial force' A = kt xi + gamma_t u' of the history xi;
+  :mod:`scenes`), and the elastic 'trial force' A = spring + gamma_t u' of the history;
   m v' = F_t and alpha m (r omega)' = F_t; the spin about the normal never changes;
-* sticking (|A| < mu |F_n|): F_t = -A and A' = kt u' + gamma_t u'';
+* sticking (|A| < mu |F_n|): F_t = -A, A' as :meth:`.oracle_forces.Forces.stick_rate`
+  (the paper's spring: kt u' + gamma_t u'');
 * sliding (|A| = mu |F_n|): F_t = -mu |F_n| s with s the unit vector of A. LAMMPS rescales
-  the history so that |A| stays on the cap (``linear_history``'s rescale); in continuous
-  time the cap's radius follows mu |F_n| and s turns towards the slip velocity,
-  s' = kt u'_perp / (mu |F_n|), with u'_perp the part of u' across s (zero in the plane;
-  stiff in 3-D near the contact's ends, see ``_Contact.integrate``). Sliding lasts while
-  the sticking rate of A would carry it beyond the cap: s . (kt u' + gamma_t u''_stick)
-  > d(mu |F_n|)/dt.
+  the history so that |A| stays on the cap; in continuous time the cap's radius follows
+  mu |F_n| and s turns towards the slip velocity, s' = k_x u'_perp / (mu |F_n|), with u'_perp
+  the part of u' across s (zero in the plane; stiff in 3-D near the contact's ends, see
+  ``_Contact.integrate``) and k_x the sticking A' per unit slip across s. Sliding lasts while
+  the sticking rate of A would carry it beyond the cap: s . A'_stick > d(mu |F_n|)/dt.
+
+A contact whose coefficients grow with a starts a hair after first touch and ends a hair before
+the exit (FIRST_TOUCH, LAST_OVERLAP), where a's rates are infinite; a rescale's start, the
+deepest point, is an event.
 
 The cap mu |F_n| uses the magnitude of the total normal force, as LAMMPS does: a normal
 force that turns tensile (gamma_n > 0 without ``limit_damping``) still holds friction.
@@ -39,6 +44,9 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from typing import TYPE_CHECKING
+
+from .contact_phases import Law
+from .oracle_forces import Forces, D as _D, VN as _VN, V as _V, W as _W, A as _A
 
 if TYPE_CHECKING:  # the oracle reads a model's fields; it needs nothing else of model/
     from ..model.contact import ContactModel  # noqa: F401
@@ -57,14 +65,22 @@ LOG_ACROSS_ATOL = 1.0e-3
 #: rate no step can follow. The slower turn only bends a force that small, through an angle
 #: the size of u'_perp / |u'|.
 TURN_FLOOR = 1.0e-8
+#: A contact whose force, spring or dashpot grows with the contact radius a = sqrt(r delta)
+#: starts this many contact times after first touch, where a > 0: at a = 0 the rates of a^s
+#: are infinite. What the first stretch would have done is there in closed form to its
+#: leading order (:meth:`_Contact.first_touch`), the rest ~ 1e-12 of the speed.
+FIRST_TOUCH = 1.0e-12
+#: Such a contact ends where its overlap is back to this fraction of the undamped largest: its
+#: forces ~ a^s vanish there with infinite rates (a radius dashpot's after a tensile turn can hold
+#: a stick to the exit), and what they would still do, ~ (1e-12)^(1 + s/2) of the speed, is left.
+LAST_OVERLAP = 1.0e-12
 #: More regime switches than this in one contact mean the regimes chatter: refuse.
 MAX_SWITCHES = 200
 #: Events are found from sign changes between steps; a cap on the step (in contact
 #: times) keeps an event function from crossing zero twice within one step unseen.
 MIN_STEPS_PER_CONTACT = 64
 
-# state layout: delta, v_n, v (2), w = r*omega (2), A or s (2)
-_D, _VN, _V, _W, _A = 0, 1, slice(2, 4), slice(4, 6), slice(6, 8)
+# state layout (oracle_forces): delta, v_n, v (2), w = r*omega (2), A or s (2)
 # a 3-D slide's state (see _Contact.integrate): the same up to w, then the angle of s, the
 # log of |u'_perp| and its sign (constant): _TURNING slots in all
 _THETA, _LOG_ACROSS, _SIDE, _TURNING = 6, 7, 8, 9
@@ -100,36 +116,20 @@ class _Contact:
         if model.mu is None:
             raise ValueError("the oracle models LAMMPS's Coulomb cap: give a finite mu "
                              "(theory.scattering_matrix is exact without one)")
-        self.m, self.r, self.alpha = model.m, model.r, model.alpha
-        self.kn, self.kt = model.kn, model.kt
-        self.gn, self.gt, self.mu = model.gamma_n, model.gamma_t, model.mu
+        law = self.law = Law.of(model)
+        self.forces = Forces(law)
+        self.m, self.r, self.alpha, self.mu = law.m, law.r, law.alpha, law.mu
+        self.gn = law.c_n  # the normal dashpot's prefactor: gamma_n a^s
         self.tensile = not model.limit_damping
-        self.hertz = model.normal_law.contact_radius
-        self.slip_mass = (1.0 + 1.0 / self.alpha) / self.m  # u'' = slip_mass * F_t
+        self.nonlinear = self.forces.nonlinear
+        self.slip_mass = self.forces.slip_mass
         # set per collision (bounce): a force and a rate of force negligible against the
         # contact's own, the margins by which a switching function must pass zero to count
         self.floor = self.floor_rate = 0.0
         self.turn_floor = 0.0  # a 3-D slide turns s no faster than at this cap (TURN_FLOOR)
         self.turned = False  # whether F_n has passed through zero on the way out
-
-    def normal(self, y) -> tuple[float, float]:
-        """(F_n, dF_n/dt) before any cut at zero, continued smoothly past the exit.
-
-        Every event function stays smooth where a step overshoots a switch (the exit, the
-        normal force's turn): scipy locates an event by a root search over the whole step,
-        and a function held flat at zero there hands the search the step's far end as
-        its root, which then hides an earlier event (a turn just before the exit).
-        """
-        delta, rate = y[_D], -y[_VN]
-        if self.hertz:  # F = kn sqrt(r) delta^(3/2) (LAMMPS's hertz wall), odd beyond the exit
-            root = math.sqrt(self.r * abs(delta))
-            f = self.kn * root * delta + self.gn * rate
-            stiffness = 1.5 * self.kn * root
-        else:
-            f = self.kn * delta + self.gn * rate
-            stiffness = self.kn
-        accel = -f / self.m  # delta'' = -v_n'
-        return f, stiffness * rate + self.gn * accel
+        self.unloading = False  # whether the overlap has passed its deepest point
+        self.exit_overlap = 0.0  # where the contact counts as ended (LAST_OVERLAP)
 
     def cap(self, y) -> tuple[float, float]:
         """(mu |F_n|, its rate), after limit_damping's cut, continued smoothly past a turn.
@@ -139,7 +139,7 @@ class _Contact:
         rounding may leave a hair on the wrong side of zero. Within a step that overshoots
         the turn the cap goes on smoothly below zero (the event cuts the step there).
         """
-        f, df = self.normal(y)
+        f, df = self.forces.normal(y)
         if self.turned:
             if not self.tensile:
                 return 0.0, 0.0
@@ -147,26 +147,26 @@ class _Contact:
         return self.mu * f, self.mu * df
 
     def rhs(self, phase: str):
-        kt, gt, m, alpha = self.kt, self.gt, self.m, self.alpha
+        m, alpha = self.m, self.alpha
 
         def f(t, y):
             dy = np.zeros(y.size)
             dy[_D] = -y[_VN]
             if phase == "free":
                 return dy
-            dy[_VN] = 0.0 if self.turned and not self.tensile else self.normal(y)[0] / self.m
+            dy[_VN] = 0.0 if self.turned and not self.tensile else self.forces.normal(y)[0] / self.m
             if phase == "coast":
                 return dy
             u_rate = y[_V] + y[_W]
             if phase == "stick":
                 force = -y[_A]
-                dy[_A] = kt * u_rate + gt * self.slip_mass * force
+                dy[_A] = self.forces.stick_rate(y, force, u_rate)
             else:  # slip: A = c s rides on the cap, s turning towards the slip
                 c, _ = self.cap(y)
                 s = self.slide_direction(y)
                 force = -c * s
                 if y.size == _TURNING and y[_SIDE]:  # in the plane (and at q = 0) s stays put
-                    rate = kt / math.hypot(c, self.turn_floor)
+                    rate = self.forces.across_stiffness(y) / math.hypot(c, self.turn_floor)
                     # |q| <= |u'|: bounds a trial step that overshoots log |q| (then rejected)
                     across = min(math.exp(min(y[_LOG_ACROSS], 700.0)), math.hypot(*u_rate))
                     dy[_THETA] = rate * y[_SIDE] * across
@@ -180,7 +180,7 @@ class _Contact:
     # -- events -----------------------------------------------------------------------
     def events(self, phase: str):
         def exit_(t, y):
-            return y[_D]
+            return y[_D] - self.exit_overlap
 
         out = [exit_]
         if phase == "stick":
@@ -202,9 +202,14 @@ class _Contact:
             # the normal force ends (limit_damping) or turns tensile: there the cap is zero
             # and grows again, a kink the step-wise event search could miss inside one step
             def force_zero(t, y):
-                return self.normal(y)[0]
+                return self.forces.normal(y)[0]
 
             out.append(force_zero)
+        if self.law.rescale and not self.unloading and phase != "free":
+            def deepest(t, y):  # a rescale starts here: a kink in A' no step should straddle
+                return -y[_VN]
+
+            out.append(deepest)
         for event in out:  # each stops the integration where it falls through zero
             event.terminal, event.direction = True, -1.0
         return out
@@ -220,6 +225,9 @@ class _Contact:
         cap no faster than the cap grows sticks on it instead.
         """
         cap, dcap = self.cap(y)
+        if name == "deepest":
+            self.unloading = True
+            return phase
         if name == "force_zero":
             self.turned = True  # F_n stays below zero from here to the exit
             if not self.tensile:
@@ -229,7 +237,7 @@ class _Contact:
             return self.start(y, cap_rising=True)
         if name == "cap_gone" or (cap < self.floor and dcap <= 0.0):
             y[_A] = 0.0  # the cap is gone or going: no tangential force left to speak of
-            if self.gn > 0.0 and not self.turned and self.normal(y)[1] < 0.0:
+            if self.gn > 0.0 and not self.turned and self.forces.normal(y)[1] < 0.0:
                 # F_n ~ 0 and falling: the turn is here (an event starting at its root may miss it)
                 return self.switch("force_zero", y, "coast")
             return "coast"
@@ -267,14 +275,14 @@ class _Contact:
                                              math.copysign(1.0, across) if across else 0.0]])
             atol = np.full(_TURNING, ATOL)
             atol[_LOG_ACROSS] = LOG_ACROSS_ATOL
-        rtol = RTOL / 10 if self.hertz else RTOL
+        rtol = RTOL / 10 if self.nonlinear else RTOL
         return solve_ivp(self.rhs(phase), (t, horizon), y, method=METHOD, rtol=rtol, atol=atol,
                          events=events, max_step=tau / MIN_STEPS_PER_CONTACT)
 
     def push(self, y, s, c: float) -> float:
         """How fast sticking would carry A outwards along s, with A on a cap of radius c:
-        s . (kt u' + gamma_t u''), the sticking force being -c s."""
-        return float(np.dot(s, self.kt * (y[_V] + y[_W]))) - self.gt * self.slip_mass * c
+        s . A' (sticking), the sticking force being -c s."""
+        return float(np.dot(s, self.forces.stick_rate(y, -c * s, y[_V] + y[_W])))
 
     def start(self, y, cap_rising: bool = False) -> str:
         """The regime at first touch (or where the cap restarts); puts A on or inside the cap.
@@ -322,11 +330,11 @@ def bounce(model: ContactModel, v_n: float, v_t: float = 0.0, omega: float = 0.0
     c.turn_floor = TURN_FLOOR * c.floor / 1e-12
     r = model.r
     initial = np.array([v_n, v_t, r * omega, v_s, r * omega_s, r * omega_n])
-    # (delta, v_n, v, r omega, A): the history starts at zero, so A = gamma_t u'
-    y = np.concatenate([[0.0], initial[[0, 1, 3, 2, 4]], model.gamma_t * (initial[[1, 3]] + initial[[2, 4]])])
+    t = FIRST_TOUCH * tau if c.nonlinear else 0.0
+    c.exit_overlap = LAST_OVERLAP * float(model.max_overlap(abs(v_n))) if c.nonlinear else 0.0
+    y = c.forces.first_touch(initial, t)
     phase = c.start(y)
-    t = 0.0
-    regimes = [(0.0, phase)]
+    regimes = [(t, phase)]
     nfev = 0
     # a generous horizon: the contact must end well within it (checked below)
     horizon = 50.0 * tau
@@ -340,7 +348,7 @@ def bounce(model: ContactModel, v_n: float, v_t: float = 0.0, omega: float = 0.0
         t = float(sol.t_events[hit][0])
         y = sol.y_events[hit][0]
         y = np.concatenate([y[:_THETA], c.slide_direction(y)])  # 8 slots (a 3-D slide's angle back to s)
-        if hit == 0 or (y[_D] <= 0.0 and y[_VN] > 0.0):  # exit (a switch can fall on it)
+        if hit == 0 or (y[_D] <= c.exit_overlap and y[_VN] > 0.0):  # exit (a switch can fall on it)
             break
         phase = c.switch(events[hit].__name__, y, phase)
         regimes.append((t, phase))

@@ -60,20 +60,18 @@ def settled(values: dict) -> dict:
     tangential one last, since it may need both."""
     for law, every in _chosen(values):
         values = {**values, **law.settle(values, every)}
-    _refuse_capped_damped_nonlinear(values)
+    _refuse_limit_damping_uncapped(values)
     return values
 
 
-def _refuse_capped_damped_nonlinear(values: dict) -> None:
-    """A Coulomb cap on a damped contact whose force or spring grows with the contact radius: no
-    reference here integrates it (exact.contact_phases takes a cap without a dashpot)."""
+def _refuse_limit_damping_uncapped(values: dict) -> None:
+    """limit_damping without a cap on a damped contact whose force, spring or dashpot grows with the
+    contact radius: its reference (exact.contact_phases) lets the normal force pull; with a cap the
+    oracle cuts it."""
     (normal, _), (damping, _), (tangential, _) = _chosen(values)
     damped = (values.get("gamma_n") or 0.0) > 0.0
     nonlinear = normal.contact_radius or tangential.contact_radius or damping.radius_power(normal) > 0.0
-    if damped and nonlinear and values.get("mu") is not None and not tangential.classic_cap:
-        raise SceneError("mu", values["mu"], "must be none with normal damping on a contact whose force or spring "
-                                             "grows with the contact radius: no reference here integrates a "
-                                             "Coulomb cap with that dashpot yet")
-    if damped and nonlinear and values.get("limit_damping"):
-        raise SceneError("limit_damping", True, "is not covered with normal damping on a contact whose force, "
-                                                "spring or dashpot grows with the contact radius: leave it out")
+    if damped and nonlinear and values.get("limit_damping") and values.get("mu") is None:
+        raise SceneError("limit_damping", True, "needs a Coulomb cap (mu) with normal damping on a contact whose "
+                                                "force, spring or dashpot grows with the contact radius: give mu "
+                                                "or leave it out")

@@ -115,6 +115,10 @@ class NormalLaw:
         refuse_foreign("normal", self, values, foreign)
         return {}
 
+    def wall_constant(self, model) -> float:
+        """K of the wall's force K delta^power: kn r^(power - 1) (Hooke: kn; Hertz: kn sqrt(r))."""
+        return model.kn * model.r ** (self.power - 1.0)
+
     def shear_stiffness(self, model) -> float:
         """LAMMPS's NULL Mindlin stiffness 8 G* of its material (only a ``material`` law has one)."""
         raise NotImplementedError(f"normal = {self.keyword} has no material")
@@ -146,9 +150,9 @@ class NormalLaw:
     def integrated_exits(self, model, v_n) -> np.ndarray:
         """(n, 2) restitution and contact time of each contact, the normal motion integrated in
         time (spinbounce.exact.contact_phases; scipy is loaded here, when one is asked)."""
-        from ..exact import choose, contact_phases
+        from ..exact import contact_phases
 
-        law = choose.phase_law(model, normal_only=True)
+        law = contact_phases.Law.of(model, normal_only=True)
         return np.array([contact_phases.normal_exit(law, abs(float(v))) for v in np.atleast_1d(v_n)])
 
     def dashpot_rate(self, model, speed: float) -> float:
@@ -245,8 +249,6 @@ class TangentialLaw:
     contact_radius: bool = False
     #: Two free spheres can run it against an exact pair reference.
     pairs: bool = True
-    #: With a Coulomb cap its exact reference holds in the paper's plane only.
-    capped_planar_only: bool = False
     #: Its cap resets the history by kt alone (this build's classic spring): with a cap its
     #: reference is :mod:`spinbounce.exact.classic`.
     classic_cap: bool = False

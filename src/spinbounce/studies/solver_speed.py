@@ -36,7 +36,7 @@ def random_case(rng: np.random.Generator,
     gamma_t zero or up to twice the tangential critical 2 sqrt(kt m alpha/(1 + alpha));
     limit_damping on or off; incidence from head-on to 89 degrees; r omega zero or up to
     30 |v| either way. ``normal = "hertz"`` draws the same numbers and drops gamma_n
-    (no reference here takes a cap on a damped Hertzian contact).
+    (the batched solver takes the Hertzian force undamped; with a dashpot it is the oracle's alone).
     """
     kn = 10.0
     alpha = float(rng.choice(ALPHAS))
@@ -46,7 +46,7 @@ def random_case(rng: np.random.Generator,
     gamma_t = 0.0 if rng.random() < 0.3 else 2.0 * rng.random() * critical_t
     with warnings.catch_warnings():  # alpha = 1 is a thin shell's inertia, on purpose
         warnings.simplefilter("ignore", PhysicsWarning)
-        damped = not normal_law(normal).contact_radius  # a capped damped Hertzian contact has no reference
+        damped = not normal_law(normal).contact_radius  # the batched solver's Hertzian force is undamped
         model = ContactModel(kn=kn, kt=kt, alpha=alpha, gamma_t=gamma_t, normal=normal,
                              gamma_n=gamma_n if damped else 0.0,
                              mu=float(10.0 ** rng.uniform(-3.0, 3.0)),

@@ -35,7 +35,6 @@ class RadiusSpring(TangentialLaw):
 
     contact_radius = True
     pairs = False
-    capped_planar_only = True
 
     def stiffness(self, model) -> float:
         """k: the spring is k sqrt(r delta)."""
@@ -76,10 +75,6 @@ class Mindlin(RadiusSpring):
             raise SceneError("mindlin_kt", None, f"must be given with normal = {normal.keyword}: none is LAMMPS's "
                                                  "NULL, 8 G* from normal = hertz/material's youngs_modulus and "
                                                  "poisson_ratio")
-        if values.get("mu") is not None and values.get("gamma_t", 0.0) > 0.0:
-            raise SceneError("gamma_t", values["gamma_t"], f"must be 0 with a Coulomb cap (mu) and tangential = "
-                                                           f"{self.keyword}: the capped Mindlin reference has no "
-                                                           "tangential dashpot")
         return {}
 
     def stiffness(self, model) -> float:

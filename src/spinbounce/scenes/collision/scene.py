@@ -127,9 +127,6 @@ class Collision:
         if m.style.planar_only and self.is_3d:
             raise SceneError("wall", m.wall, f"the {m.wall} wall's theory is in the paper's plane: give no v_s, "
                                              f"omega_s or omega_n with wall = {m.wall}")
-        if m.mu is not None and m.tangential_law.capped_planar_only and self.is_3d:
-            raise SceneError("tangential", m.tangential, "with a Coulomb cap (mu) its exact reference is in the "
-                                                         "paper's plane: give no v_s, omega_s or omega_n")
         away = np.flatnonzero(np.asarray(vn) >= 0.0)
         if away.size:
             i = int(away[0])

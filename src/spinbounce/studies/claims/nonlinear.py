@@ -65,7 +65,7 @@ def mindlin_every_speed(runs: Runs) -> Claim:
     material = ContactModel(normal="hertz/material", youngs_modulus=KN, poisson_ratio=0.3, tangential="mindlin")
     lammps_null, exact_null = _omegas(runs, "mindlin-null-every-speed", material)
     # the speed-free Omega is one scaled solve; the contact integrated in time at each speed must agree
-    in_time = np.array([sum(contact_phases.bounce(choose.phase_law(material), v, V_T, 0.0)[1:3]) / V_T - 1.0
+    in_time = np.array([sum(contact_phases.bounce(contact_phases.Law.of(material), v, V_T, 0.0)[1:3]) / V_T - 1.0
                         for v in SPEEDS])
     every = bool(np.all(np.abs(exact + 2.0) < 1e-9)) and float(np.abs(in_time - exact_null).max()) < 1e-9
     agree = max(np.abs(lammps - exact).max(), np.abs(lammps_null - exact_null).max()) <= COLLISION_TOL
