@@ -15,28 +15,20 @@ import math
 import numpy as np
 import pytest
 
+from converged import converged
 from spinbounce.exact import choose, contact_phases, oracle
 from spinbounce.model.contact import ContactModel
 from spinbounce.pipeline import run_scene
 from spinbounce.scenes.collision import Collision
+from test_damped_nonlinear import ASSEMBLIES as DAMPED, MATERIAL
 
-MATERIAL = {"normal": "hertz/material", "youngs_modulus": 1.0e4, "poisson_ratio": 0.3}
 VARIANTS = ("mindlin", "mindlin/force", "mindlin_rescale", "mindlin_rescale/force")
-#: Each damping sub-model with a cap, on the Hertzian and Hookean forces, with each kind of spring.
-ASSEMBLIES = {
-    "hertz velocity": {"normal": "hertz", "kn": 1000.0, "gamma_n": 0.5, "gamma_t": 0.2},
-    "hertz mass_velocity": {"normal": "hertz", "kn": 1000.0, "damping": "mass_velocity", "gamma_n_per_mass": 0.8,
-                            "x_t": 0.5},
-    "hertz tsuji mindlin": {**MATERIAL, "damping": "tsuji", "e_n": 0.5, "x_t": 1.0, "tangential": "mindlin"},
-    "hertz coeff_restitution mindlin_rescale": {**MATERIAL, "damping": "coeff_restitution", "e_n": 0.7,
-                                                "tangential": "mindlin_rescale", "x_t": 0.3},
-    "hooke mindlin/force": {"kn": 50.0, "gamma_n": 0.8, "tangential": "mindlin/force", "mindlin_kt": 300.0},
-    "hooke viscoelastic": {"damping": "viscoelastic", "gamma_n_per_mass_radius": 0.5, "x_t": 0.5},
-    "hertz viscoelastic mindlin": {"normal": "hertz", "kn": 1000.0, "damping": "viscoelastic",
-                                   "gamma_n_per_mass_radius": 2.0, "x_t": 0.5, "tangential": "mindlin",
-                                   "mindlin_kt": 400.0},
-    "hertz-mindlin undamped": {**MATERIAL, "tangential": "mindlin_rescale"},
-}
+#: Each damping sub-model with a cap, on the Hertzian and Hookean forces, with each kind of spring
+#: (test_damped_nonlinear's, the restitution dashpot with a tangential one), and Hertz-Mindlin undamped.
+ASSEMBLIES = {name: law for name, law in DAMPED.items() if name != "hooke linear_history_classic"}
+ASSEMBLIES["hertz coeff_restitution mindlin_rescale"] = {**DAMPED["hertz coeff_restitution mindlin_rescale"],
+                                                         "x_t": 0.3}
+ASSEMBLIES["hertz-mindlin undamped"] = {**MATERIAL, "tangential": "mindlin_rescale"}
 #: How far beyond the law's threshold x_t |u'| = mu |v_n| (a damped displacement history on the
 #: contact radius, a dashpot-led start) a random state must lie for LAMMPS at the default step to
 #: meet 1e-4: measured above 1e-4 from 1.03 to 1.48 times the threshold (tsuji, mu = 0.5,
@@ -102,21 +94,6 @@ def test_lammps_at_the_default_step_meets_the_reference(name, mu, extra, tmp_pat
         assert (table["status"] == "ok").all() and table["error"].max() <= 1e-4
 
 
-def _converged(model: ContactModel, state, out, steps: int = 1000) -> np.ndarray:
-    """LAMMPS's final state with dt halved until two runs differ by less than 1e-7, the contact's
-    end mid-step (dt = tau/(N + 1/2))."""
-    tau = float(model.contact_times(state[0])[0])
-    previous = None
-    for k in range(14):
-        scene = Collision(model, v_n=state[0], v_t=state[1], omega=state[2] / model.r, dt=tau / (steps * 2**k + 0.5))
-        final = run_scene(scene, out / f"run-{k}", record=False).table[
-            ["v_n_lammps", "v_t_lammps", "r_omega_lammps"]].to_numpy()[0]
-        if previous is not None and np.abs(final - previous).max() < 1e-7:
-            return final
-        previous = final
-    raise AssertionError("LAMMPS did not converge to 1e-7")
-
-
 @pytest.mark.slow
 @pytest.mark.lammps
 @pytest.mark.parametrize("name, mu, state", [
@@ -131,7 +108,7 @@ def test_converged_lammps_meets_the_reference(name, mu, state, tmp_path):
     # reference there, converging at first order); the reference within 1e-6
     model = ContactModel(mu=mu, **ASSEMBLIES[name])
     state = np.array(state)
-    final = _converged(model, state, tmp_path)
+    final = converged(model, state, tmp_path)
     assert np.abs(final - choose.predict(model, state[None, :])[0]).max() <= 1e-6
 
 

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from converged import converged
 
 from spinbounce.exact import choose, contact_phases, hertz, linear
 from spinbounce.model.contact import ContactModel
@@ -108,15 +109,7 @@ def test_converged_lammps_meets_the_reference(name, tmp_path):
     # reference within 1e-6 (the damped runs converge at first order: the last is ~1e-7 away)
     model = ContactModel(**ASSEMBLIES[name])
     state = np.array([-0.8, 0.6, -0.3])
-    tau = float(model.contact_times(state[0])[0])
-    previous = None
-    for k in range(16):
-        scene = Collision(model, v_n=state[0], v_t=state[1], omega=state[2] / model.r, dt=tau / (1000 * 2**k + 0.5))
-        final = run_scene(scene, tmp_path / f"run-{k}", record=False).table[
-            ["v_n_lammps", "v_t_lammps", "r_omega_lammps"]].to_numpy()[0]
-        if previous is not None and np.abs(final - previous).max() < 1e-7:
-            break
-        previous = final
+    final = converged(model, state, tmp_path)
     assert np.abs(final - choose.predict(model, state[None, :])[0]).max() <= 1e-6
 
 

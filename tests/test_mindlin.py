@@ -18,6 +18,7 @@ import pytest
 from scipy.integrate import solve_ivp
 
 import spinbounce
+from converged import converged
 from spinbounce.exact import choose, contact_phases, mindlin
 from spinbounce.lammps.decks import wall_parameters
 from spinbounce.model.contact import ContactModel
@@ -196,23 +197,6 @@ def test_lammps_at_the_default_step_meets_the_reference(variant, assembly, tmp_p
     assert result.table["error"].max() <= 1e-4
 
 
-def _converged(model: ContactModel, state, out, steps: int) -> np.ndarray:
-    """LAMMPS's final state with dt halved until two runs differ by less than 1e-7, the contact's
-    end kept mid-step (dt = tau/(N + 1/2)): otherwise the end's place in its step jumps from run
-    to run and two runs can agree by chance."""
-    tau = float(model.contact_times(state[0])[0])
-    previous = None
-    for k in range(16):
-        scene = Collision(model, v_n=state[0], v_t=state[1], omega=state[2] / model.r,
-                          dt=tau / (steps * 2**k + 0.5))
-        final = run_scene(scene, out / f"run-{k}", record=False).table[["v_n_lammps", "v_t_lammps",
-                                                                        "r_omega_lammps"]].to_numpy()[0]
-        if previous is not None and np.abs(final - previous).max() < 1e-7:
-            return final
-        previous = final
-    raise AssertionError("LAMMPS did not converge to 1e-7")
-
-
 @pytest.mark.slow
 @pytest.mark.lammps
 @pytest.mark.parametrize("variant", VARIANTS)
@@ -221,7 +205,7 @@ def test_converged_lammps_meets_the_reference(variant, tmp_path):
     # their last run is some 1e-7 from the limit); the reference within 1e-6
     model = ContactModel(tangential=variant, r=0.45, **MATERIAL)
     state = np.array([-0.8, 0.6, -0.3])
-    final = _converged(model, state, tmp_path, 1000)
+    final = converged(model, state, tmp_path)
     assert np.abs(final - choose.predict(model, state[None, :])[0]).max() <= 1e-6
 
 
@@ -284,7 +268,7 @@ def test_converged_capped_lammps_meets_the_reference(variant, tmp_path):
     # until the change is below 1e-7; the reference within 1e-6
     model = ContactModel(tangential=variant, r=0.45, mu=0.3, **MATERIAL)
     state = np.array([-1.0, 0.5, 0.0])
-    final = _converged(model, state, tmp_path, 1000)
+    final = converged(model, state, tmp_path)
     assert np.abs(final - choose.predict(model, state[None, :])[0]).max() <= 1e-6
 
 
