@@ -1,5 +1,4 @@
-"""LAMMPS run to its converged answer for one wall collision, shared by the tests that hold a
-reference to converged LAMMPS."""
+"""LAMMPS run to convergence for one wall collision, shared by the tests against converged LAMMPS."""
 
 from __future__ import annotations
 

@@ -16,7 +16,9 @@ import numpy as np
 import pytest
 
 from converged import converged
+from spinbounce.errors import PhysicsWarning
 from spinbounce.exact import choose, contact_phases, oracle
+from spinbounce.exact.wall_law import Law
 from spinbounce.model.contact import ContactModel
 from spinbounce.pipeline import run_scene
 from spinbounce.scenes.collision import Collision
@@ -29,32 +31,22 @@ ASSEMBLIES = {name: law for name, law in DAMPED.items() if name != "hooke linear
 ASSEMBLIES["hertz coeff_restitution mindlin_rescale"] = {**DAMPED["hertz coeff_restitution mindlin_rescale"],
                                                          "x_t": 0.3}
 ASSEMBLIES["hertz-mindlin undamped"] = {**MATERIAL, "tangential": "mindlin_rescale"}
-#: How far beyond the law's threshold x_t |u'| = mu |v_n| (a damped displacement history on the
-#: contact radius, a dashpot-led start) a random state must lie for LAMMPS at the default step to
-#: meet 1e-4: measured above 1e-4 from 1.03 to 1.48 times the threshold (tsuji, mu = 0.5,
-#: |v_n| = 0.9, the fixed batch step); just above it LAMMPS converges only slowly (see below).
-BAND = (0.9, 1.6)
-
-
-def _slip_ratio(model: ContactModel, states: np.ndarray) -> np.ndarray:
-    """x_t |u'| / (mu |v_n|) of each state: where a damped displacement history pushes along the slip."""
-    slip = np.hypot(states[:, 1] + states[:, 2], states[:, 3] + states[:, 4] if states.shape[1] == 6 else 0.0)
-    return model.gamma_t / model.gamma_n * slip / (model.mu * np.abs(states[:, 0]))
-
-
-def _pushes_along(model: ContactModel) -> bool:
-    law = model.tangential_law
-    return (law.contact_radius and not law.variant[0] and model.gamma_t > 0.0
-            and model.damping_law.radius_power(model.normal_law) < 1.0)
+#: States between 1 and this many times the law's jump (x_t |u'| = mu |v_n|; a damped displacement
+#: history on the contact radius with a dashpot-led start) are left out of the random states:
+#: there LAMMPS converges too slowly for any run (a probed single sphere at 1.05 needed 3.2e8
+#: steps) and the scene answers at its rule's step, each row's error reported (tested below).
+#: From 1.2 up, probed (single spheres and batches) they met 1e-4.
+BAND = (1.0, 1.2)
 
 
 def _random_states(rng, n: int, model: ContactModel) -> np.ndarray:
-    """Random 3-D states, those in the threshold's band (BAND) of a law that has one drawn again."""
-    out = []
+    """Random 3-D states, those in the jump's band (BAND) of a law that has one drawn again."""
+    law, out = Law.of(model), []
     while len(out) < n:
         s = np.array([-rng.uniform(0.2, 1.2), *rng.uniform(-1.0, 1.0, 2), *rng.uniform(-0.5, 0.5, 2),
                       rng.uniform(-1.0, 1.0)])
-        if not (_pushes_along(model) and BAND[0] < _slip_ratio(model, s[None, :])[0] < BAND[1]):
+        ratio = law.threshold_ratio(s[0], math.hypot(s[1] + s[2], s[3] + s[4]))
+        if not (law.first_touch_runaway and BAND[0] < ratio < BAND[1]):
             out.append(s)
     return np.array(out)
 
@@ -112,21 +104,44 @@ def test_converged_lammps_meets_the_reference(name, mu, state, tmp_path):
     assert np.abs(final - choose.predict(model, state[None, :])[0]).max() <= 1e-6
 
 
-def _energy(model: ContactModel, state) -> float:
-    return float(state[0] ** 2 + state[1] ** 2 + state[2] ** 2 / model.alpha)
+def test_a_damped_displacement_history_jumps_where_the_first_trial_force_reaches_the_cap(monkeypatch):
+    # tsuji, Hertz-Mindlin, mu = 0.5: just above x_t |u'| = mu |v_n| the friction pushes along the
+    # slip from first touch, and r omega's outcome jumps by 0.14 (15% of |v_n|) across 0.1% of the
+    # threshold; the /force variant, whose history does not grow with a, moves by 1e-3 there
+    # (measured: 1e-3 apart across 0.2% of the state, its own slope)
+    jumps = {}
+    for variant in ("mindlin", "mindlin/force"):
+        model = ContactModel(mu=0.5, **{**DAMPED["hertz tsuji mindlin"], "tangential": variant})
+        below, above = (oracle.bounce(model, -0.9, f * 0.5 * 0.9, 0.0).final for f in (0.999, 1.001))
+        jumps[variant] = float(np.abs(above - below).max())
+    assert jumps["mindlin"] > 0.1 and jumps["mindlin/force"] < 0.01
 
 
-def test_a_damped_displacement_history_pushes_along_the_slip_above_the_threshold():
-    # tsuji, Hertz-Mindlin, mu = 0.5: below x_t |u'| = mu |v_n| the bounce loses energy like any
-    # damped contact; above it the first slide pushes along the slip (u' grows) and the bounce
-    # gains energy (1.2069 in, 1.2509 out at 1.4 mu). The /force variant, on the same contact,
-    # does not.
-    model = ContactModel(mu=0.5, **ASSEMBLIES["hertz tsuji mindlin"])
-    below, above = (np.array([-0.9, f * 0.5 * 0.9, 0.0]) for f in (0.9, 1.4))
-    assert _energy(model, oracle.bounce(model, *below).final) < _energy(model, below)
-    assert _energy(model, oracle.bounce(model, *above).final) > _energy(model, above) * 1.03
-    force = ContactModel(mu=0.5, **{**ASSEMBLIES["hertz tsuji mindlin"], "tangential": "mindlin/force"})
-    assert _energy(force, oracle.bounce(force, *above).final) < _energy(force, above)
+@pytest.mark.parametrize("f", [1.0001, 1.01, 1.3, 3.0])
+def test_the_oracle_s_answer_does_not_depend_on_where_it_starts(f, monkeypatch):
+    # the first phase is taken in the limit of a start at t -> 0 (exact.oracle.first_phase): a
+    # start 100 times nearer first touch moves the answer by rounding (measured 1e-14), where a
+    # start-bound stick moved it by 5e-2 at 1.001 times the threshold
+    model = ContactModel(mu=0.5, **DAMPED["hertz tsuji mindlin"])
+    answers = []
+    for first in (1e-12, 1e-14):
+        monkeypatch.setattr(oracle, "FIRST_TOUCH", first)
+        answers.append(oracle.bounce(model, -0.9, f * 0.5 * 0.9, 0.0).final)
+    assert np.abs(answers[0] - answers[1]).max() <= 1e-9
+
+
+@pytest.mark.lammps
+def test_a_state_just_above_the_jump_is_answered_with_its_error(tmp_path):
+    # 1.05 times the threshold: no affordable step reaches 1e-4 (the probe asked for 3.2e8 steps):
+    # answered at the rule's step, with a warning, the row inaccurate and its error reported
+    model = ContactModel(mu=0.5, **DAMPED["hertz tsuji mindlin"])
+    with pytest.warns(PhysicsWarning, match="jumps at 1"):
+        scene = Collision(model, v_n=-0.9, v_t=1.05 * 0.45, omega=0.0)
+    result = run_scene(scene, tmp_path, record=False)
+    row = result.table.iloc[0]
+    assert row["status"] == "inaccurate" and row["error"] > 1e-4
+    exact = choose.predict(model, np.array([[-0.9, 1.05 * 0.45, 0.0]]))[0]
+    assert row["v_t_theory"] == pytest.approx(exact[1], abs=1e-12)
 
 
 @pytest.mark.slow

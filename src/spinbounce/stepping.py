@@ -22,6 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .errors import SceneError
 from .model.timestep import ACCURACY, SAFETY, StepChoice, mid_step_dt
 
 __all__ = ["StepChoice", "tune", "converge", "extrapolate", "expected_steps", "PROBE_SPHERES", "SAFETY", "FALLBACK"]
@@ -40,7 +41,7 @@ CHECK_SLACK = 1.5
 ORDER_FLOOR = 0.5
 MAX_GROWTH = 64
 #: The method recorded when a probe could not do better than the scene's fine rule.
-FALLBACK = "fine rule (probe could not reach the target coarser)"
+FALLBACK = "the rule (the probe could not reach the target coarser, or within a run's steps)"
 
 
 def tune(scene, out: Path, run: Callable, probe_states=None, target: float = ACCURACY):
@@ -78,11 +79,19 @@ def tune(scene, out: Path, run: Callable, probe_states=None, target: float = ACC
         coarse_steps *= 2
     else:
         raise RuntimeError(f"no probe of {scene.model} finished its contact within {coarse_steps} steps")
-    steps, order, predicted = converge(*pair, target, probe, limit=limit)
-    fine = scene.fallback()
-    if fine is not None and (steps >= limit or predicted > target * SAFETY * CHECK_SLACK):
-        return fine, StepChoice(fine.dt, FALLBACK, target, order, tuple(errors), None)
-    tuned = scene.at_step(mid_step_dt(t_contact, steps))
+    try:
+        steps, order, predicted = converge(*pair, target, probe, limit=limit)
+        fine = scene.fallback()
+        if fine is not None and (steps >= limit or predicted > target * SAFETY * CHECK_SLACK):
+            return fine, StepChoice(fine.dt, FALLBACK, target, order, tuple(errors), None)
+        tuned = scene.at_step(mid_step_dt(t_contact, steps))
+    except SceneError as exc:  # the step the target asks for is beyond what one run may take
+        if exc.parameter != "dt":
+            raise
+        probes = ", ".join(f"{e:.2g}" for e in errors)
+        raise SceneError("dt", "default", f"is probed for the accuracy {target:g}, and here (probe errors {probes}) "
+                                          f"{exc.limit}: give dt to run at a step of your choice, each row's "
+                                          "error reported") from None
     return tuned, StepChoice(tuned.dt, "probe", target, order, tuple(errors), predicted)
 
 

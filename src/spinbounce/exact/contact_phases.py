@@ -41,11 +41,12 @@ Pure numpy and scipy; knows nothing of LAMMPS.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
 from scipy.integrate import solve_ivp
+
+from .wall_law import Law
 
 __all__ = ["Law", "bounce", "bounce_many", "normal_exit", "RTOL"]
 
@@ -55,40 +56,6 @@ ATOL = 1.0e-15
 MAX_PHASES = 200
 # state: overlap, its rate, v_t, r omega, history, time
 _D, _DR, _V, _W, _H, _T = range(6)
-
-
-@dataclass(frozen=True)
-class Law:
-    """A wall contact's law: the normal force K delta^p, the spring k a^q on a displacement (or,
-    ``force_history``, a force) history, rescaled or not, the dashpots C_n a^s and C_t a^s, the cap
-    mu (inf: none); the sphere's m, r and alpha."""
-
-    m: float
-    r: float
-    alpha: float
-    K: float
-    power: float
-    k: float
-    spring_power: float = 1.0
-    force_history: bool = False
-    rescale: bool = False
-    mu: float = math.inf
-    c_n: float = 0.0
-    c_t: float = 0.0
-    damping_power: float = 0.0
-
-    @classmethod
-    def of(cls, model, normal_only: bool = False) -> "Law":
-        """A wall contact model's law (read through its fields and sub-models): the force
-        kn r^(p - 1) delta^p, the spring, the dashpots gamma a^s and the cap (``normal_only``: no
-        spring, no cap)."""
-        normal, tangential = model.normal_law, model.tangential_law
-        force, rescale = tangential.variant
-        return cls(m=model.m, r=model.r, alpha=model.alpha, K=normal.wall_constant(model), power=normal.power,
-                   k=0.0 if normal_only else tangential.stiffness(model),
-                   spring_power=1.0 if tangential.contact_radius else 0.0, force_history=force, rescale=rescale,
-                   mu=math.inf if normal_only or model.mu is None else model.mu, c_n=model.gamma_n,
-                   c_t=0.0 if normal_only else model.gamma_t, damping_power=model.damping_law.radius_power(normal))
 
 
 class _Contact:

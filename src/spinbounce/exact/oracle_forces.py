@@ -1,4 +1,4 @@
-"""The forces of a wall contact in the oracle's state, for any :class:`.contact_phases.Law`.
+"""The forces of a wall contact in the oracle's state, for any :class:`.wall_law.Law`.
 
 The state is (delta, v_n, v (2), w = r omega (2), A (2)): the overlap, the normal velocity,
 the tangential velocity and r times the spin in the directions t and s, and the trial force
@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .contact_phases import Law
+from .wall_law import Law
 
 __all__ = ["Forces", "D", "VN", "V", "W", "A"]
 

@@ -27,9 +27,10 @@ from ...model import parameters
 from ...model.contact import ContactModel
 from ...model.parameters import SceneError, positive_number
 from ...model.stability import overlap_stretch
-from ...model.timestep import (align_mid_step, check_steps, mode_rate, second_order_dt, steps_per_contact,
+from ...model.timestep import (MAX_STEPS, align_mid_step, check_steps, mode_rate, second_order_dt, steps_per_contact,
                                steps_through)
 from ...lammps.decks import wall_parameters
+from .jump import near_the_jump, warn_near_the_jump
 from .time_scale import dashpot, scaled_contact_time
 
 __all__ = ["Collision", "row_states", "HERTZ_STEPS_PER_HALF_PERIOD", "STATE", "STATE_3D", "STATE_ARGS"]
@@ -127,6 +128,8 @@ class Collision:
         if m.style.planar_only and self.is_3d:
             raise SceneError("wall", m.wall, f"the {m.wall} wall's theory is in the paper's plane: give no v_s, "
                                              f"omega_s or omega_n with wall = {m.wall}")
+        if self.dt is None:  # once, where the default step is chosen (a probe's scenes carry their dt)
+            warn_near_the_jump(self.model, self.near_the_jump())
         away = np.flatnonzero(np.asarray(vn) >= 0.0)
         if away.size:
             i = int(away[0])
@@ -345,10 +348,16 @@ class Collision:
     def needs_probe(self) -> bool:
         """Whether the step must be measured: not the paper's linear contact, and not a
         Hertzian batch of several speeds that is not time-scaled (its ends cannot be aligned;
-        it keeps its fixed rule)."""
+        it keeps its fixed rule) unless some state lies just above its law's jump
+        (:meth:`near_the_jump`), where the fixed rule falls short."""
         if choose.which(self.model).kind == "linear":
             return False
-        return self.deck_contact_time is not None or not np.ptp(self.model.contact_times(self.v_n)) > 0.0
+        aligned = self.deck_contact_time is not None or not np.ptp(self.model.contact_times(self.v_n)) > 0.0
+        return aligned or bool(np.any(self.near_the_jump()))
+
+    def near_the_jump(self) -> np.ndarray:
+        """Per state, whether its law's outcome jumps just below it (:func:`.jump.near_the_jump`)."""
+        return near_the_jump(self.model, self.initial)
 
     def probe_time(self, sample: "Collision") -> float:
         """The contact's length the probe's steps are counted over: the force's, the longest (in
@@ -359,11 +368,16 @@ class Collision:
         return steps_per_contact(t_contact, self.dt)
 
     def step_limit(self, t_contact: float) -> float:
-        return math.inf
+        """Steps per contact a probe may ask for: any (a step beyond a run's limit is refused with
+        the probe's errors, stepping.tune), but a quarter of the limit with a state near its law's
+        jump (:meth:`near_the_jump`), which falls back to the rule's step instead."""
+        return MAX_STEPS // 4 if np.any(self.near_the_jump()) else math.inf
 
     def fallback(self):
-        """The scene at the step a probe falls back to: none, the wall's probe always answers."""
-        return None
+        """The scene at the step a probe falls back to: with a state near its law's jump, where no
+        affordable step may reach the target, this one (the rule's step), each row's error reported;
+        else none, the wall's probe answers."""
+        return self if np.any(self.near_the_jump()) else None
 
     def rows(self, index) -> "Collision":
         """The scene of the spheres ``index`` only."""

@@ -1,0 +1,63 @@
+"""A wall contact's law as every exact reference of a capped or damped nonlinear contact reads it:
+the normal force K delta^p, the tangential spring k a^q on a displacement or force history (rescaled
+or not), the dashpots C a^s and the cap, with a = sqrt(r delta) the contact radius.
+
+Pure numpy (no scipy): a scene asks it about its states before anything is integrated.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["Law"]
+
+
+@dataclass(frozen=True)
+class Law:
+    """A wall contact's law: the normal force K delta^p, the spring k a^q on a displacement (or,
+    ``force_history``, a force) history, rescaled or not, the dashpots C_n a^s and C_t a^s, the cap
+    mu (inf: none); the sphere's m, r and alpha."""
+
+    m: float
+    r: float
+    alpha: float
+    K: float
+    power: float
+    k: float
+    spring_power: float = 1.0
+    force_history: bool = False
+    rescale: bool = False
+    mu: float = math.inf
+    c_n: float = 0.0
+    c_t: float = 0.0
+    damping_power: float = 0.0
+
+    @property
+    def first_touch_runaway(self) -> bool:
+        """A displacement history on a^q (q > 0) with both dashpots on, a^s, s < q: at first touch a
+        trial force gamma_t u' beyond the cap sets the history against the slip, and it then grows
+        faster than the cap (exact.oracle's first phase): above :meth:`threshold_ratio` 1 the
+        friction pushes along the slip from first touch, and the outcome jumps there."""
+        return (not self.force_history and self.spring_power > self.damping_power and self.c_n > 0.0
+                and self.c_t > 0.0 and math.isfinite(self.mu))
+
+    def threshold_ratio(self, v_n, slip):
+        """c_t |u'| / (mu c_n |v_n|) of each state: the first trial force over the cap, both led by
+        their dashpots at first touch (LAMMPS's x_t |u'| / (mu |v_n|))."""
+        return self.c_t * np.abs(slip) / (self.mu * self.c_n * np.abs(v_n))
+
+    @classmethod
+    def of(cls, model, normal_only: bool = False) -> "Law":
+        """A wall contact model's law (read through its fields and sub-models): the force
+        kn r^(p - 1) delta^p, the spring, the dashpots gamma a^s and the cap (``normal_only``: no
+        spring, no cap)."""
+        normal, tangential = model.normal_law, model.tangential_law
+        force, rescale = tangential.variant
+        return cls(m=model.m, r=model.r, alpha=model.alpha, K=normal.wall_constant(model), power=normal.power,
+                   k=0.0 if normal_only else tangential.stiffness(model),
+                   spring_power=1.0 if tangential.contact_radius else 0.0, force_history=force, rescale=rescale,
+                   mu=math.inf if normal_only or model.mu is None else model.mu, c_n=model.gamma_n,
+                   c_t=0.0 if normal_only else model.gamma_t, damping_power=model.damping_law.radius_power(normal))
