@@ -60,6 +60,8 @@ def test_oracle_in_gross_sliding_is_the_rigid_body_law_up_to_the_first_touch_sti
     checked = 0
     for series in bench.series:
         model = series.model
+        if model.normal_law.contact_radius:  # a Hertz-Mindlin series: its dashpot pulls (below)
+            continue
         states = np.array(series.states)
         initial = states * [1.0, 1.0, model.r]
         rigid, regimes = B.walton(model, initial, B.restitution(model, initial), bench.beta0)
@@ -104,6 +106,8 @@ def test_hookean_springs_have_the_hertz_time_and_mindlin_ratio_and_the_damping_t
     for name in ("chung-ooi-6", "thornton-linear"):
         for series in B.BENCHMARKS[name].series:
             mdl = series.model
+            if mdl.normal_law.contact_radius:
+                continue
             assert mdl.kt / mdl.kn == pytest.approx(B.mindlin_ratio(B.AL_ALLOY.nu), rel=1e-14)
             v_n = abs(series.states[0][0])
             t_h = B.hertz_contact_time(mdl.m, mdl.r, B.AL_ALLOY.effective_modulus(), v_n)
@@ -111,6 +115,33 @@ def test_hookean_springs_have_the_hertz_time_and_mindlin_ratio_and_the_damping_t
     for name, e in (("chung-ooi-4", 0.98), ("chung-ooi-6", 0.5)):
         # bisection to 1e-15 in gamma_n: the restitution to ~1e-14
         assert B.BENCHMARKS[name].series[0].model.restitution == pytest.approx(e, abs=1e-12)
+
+
+def test_the_hertz_mindlin_series_take_the_materials_and_the_restitution_at_every_speed():
+    # kn = 4/3 E*, k_t = 8 G* of sphere and wall (Test 4: alumina on the alloy wall; Test 6: a
+    # rigid wall), and coeff_restitution's e at every impact speed (1e-9: the integrated exit)
+    for name, wall, e in (("chung-ooi-4", B.AL_WALL_T4, 0.98), ("chung-ooi-6", None, 0.5)):
+        series = B.BENCHMARKS[name].series[1]
+        mdl, material = series.model, (B.ALUMINA if wall else B.AL_ALLOY)
+        assert mdl.kn == pytest.approx(4.0 / 3.0 * material.effective_modulus(wall), rel=1e-14)
+        assert mdl.mindlin_kt == pytest.approx(8.0 * material.shear_modulus(wall), rel=1e-14)
+        speeds = [-abs(s[0]) for s in series.states]
+        assert mdl.normal_law.restitutions(mdl, speeds) == pytest.approx(e, abs=1e-9)
+
+
+def test_hertz_mindlin_in_gross_sliding_takes_mu_times_the_whole_normal_force():
+    # the rigid-body law's friction impulse is mu (1 + e) m |v_n|; LAMMPS's cap is mu |F_n|, and
+    # a dashpot that pulls near the exit adds mu times that pull: with e = 0.98 the oracle's
+    # sliding states stay within 1e-5 of the rigid law, with e = 0.5 they do not (1.6e-2 measured)
+    near = {}
+    for name in ("chung-ooi-4", "chung-ooi-6"):
+        bench = B.BENCHMARKS[name]
+        model = bench.series[1].model
+        initial = np.array(bench.series[1].states) * [1.0, 1.0, model.r]
+        rigid, regimes = B.walton(model, initial, B.restitution(model, initial), bench.beta0)
+        i = [k for k, r in enumerate(regimes) if r == "sliding"][-1]
+        near[name] = np.abs(choose.predict(model, initial[i:i + 1])[0] - rigid[i]).max() / B.impact_speed(initial)[i]
+    assert near["chung-ooi-4"] < 1e-5 < 1e-3 < near["chung-ooi-6"]
 
 
 @pytest.mark.lammps

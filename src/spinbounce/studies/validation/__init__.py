@@ -17,9 +17,9 @@ from .. import lazy_exports
 _EXPORTS = {
     "cases": ("BENCHMARKS", "Benchmark", "Series", "select", "with_states"),
     "digitised": ("Measured",),
-    "materials": ("AL_ALLOY", "ALUMINA", "SOLID", "STEEL", "Material", "gamma_n_for_restitution_cut",
+    "materials": ("AL_ALLOY", "AL_WALL_T4", "ALUMINA", "SOLID", "STEEL", "Material", "gamma_n_for_restitution_cut",
                   "hertz_contact_time", "hookean_matching_hertz", "mindlin_ratio"),
-    "quantities": ("QUANTITIES", "first_touch_stick", "impact_speed", "quantity", "walton"),
-    "run": ("ACCEPTANCE", "BenchmarkRun", "refined_dt", "restitution", "run_benchmark"),
+    "quantities": ("QUANTITIES", "first_touch_stick", "impact_speed", "quantity", "restitution", "walton"),
+    "run": ("ACCEPTANCE", "BenchmarkRun", "refined_dt", "run_benchmark"),
 }
 __all__, __getattr__ = lazy_exports(__name__, _EXPORTS)

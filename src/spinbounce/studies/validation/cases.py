@@ -15,7 +15,7 @@ from .digitised import (KHARAZ_2001, KRATOS, KRATOS_BENCHMARKS, KRATOS_CHUNG_OOI
                         MFIX_DEM05, THORNTON_PSI2_LINEAR, THORNTON_SPIN, Measured)
 from .materials import (AL_ALLOY, AL_WALL_T4, ALUMINA, SOLID, STEEL, gamma_n_for_restitution_cut,
                         hertz_mindlin_rigid_wall, hookean_matching_hertz, mindlin_ratio)
-from .quantities import QUANTITIES
+from .quantities import QUANTITIES, restitution
 
 __all__ = ["BENCHMARKS", "Benchmark", "Series", "select", "with_states"]
 
@@ -60,6 +60,14 @@ def kratos_angles(n: int = 17) -> np.ndarray:
     return np.radians(90.0 * np.arange(1, n + 1) / (n + 1))
 
 
+def _hertz_mindlin(material, r: float, mu: float, e: float, wall=None) -> ContactModel:
+    """The test's own Hertz-Mindlin law in LAMMPS's words: ``hertz`` kn = 4/3 E*, ``damping
+    coeff_restitution`` e (its restitution at every speed, the normal force let pull), ``mindlin``
+    k_t = 8 G* with no tangential dashpot, and the cap mu (:func:`hertz_mindlin_rigid_wall`)."""
+    return ContactModel(m=material.mass(r), r=r, alpha=SOLID, mu=mu, damping="coeff_restitution", e_n=e,
+                        **hertz_mindlin_rigid_wall(material, r, wall))
+
+
 def _chung_ooi_4() -> Benchmark:
     r, speed, mu, e = 2.5e-3, 3.9, 0.092, 0.98
     m = ALUMINA.mass(r)
@@ -88,8 +96,13 @@ def _chung_ooi_4() -> Benchmark:
                    f"{mindlin_ratio(ALUMINA.nu):.3f} for nu = 0.23). For comparison, the Hookean spring with the "
                    f"Hertz contact time of alumina on the aluminium-alloy wall at the 45-deg normal speed "
                    f"would be kn = {kn_hertz:.3g} N/m, kt = {kt_hertz:.3g} N/m. Only kt/kn shapes the normalised "
-                   "outcome of a linear contact; kn sets its duration."),
-        series=(Series("e = 0.98", model, states, KHARAZ_2001),),
+                   "outcome of a linear contact; kn sets its duration. The second series is the test's own "
+                   "Hertz-Mindlin law on the aluminium-alloy wall (E* and G* of the two materials; "
+                   "coeff_restitution e = 0.98, the normal force let pull; no tangential dashpot; mu = 0.092), "
+                   "held to the Coulomb oracle carried over to it (exact.oracle)."),
+        series=(Series("e = 0.98", model, states, KHARAZ_2001),
+                Series("Hertz-Mindlin, e = 0.98", _hertz_mindlin(ALUMINA, r, mu, e, AL_WALL_T4), states,
+                       KHARAZ_2001)),
         x="theta",
         panels=("e_t", "omega_out", "rebound_contact", "rebound_centre"),
         to_state=lambda model, theta: (-speed * math.cos(math.radians(theta)),
@@ -159,11 +172,14 @@ def _chung_ooi_6() -> Benchmark:
         stiffness=(f"Test 6's material constants were not found; the aluminium alloy of Test 2 (same r and v_n) "
                    f"stands in. kn = {kn:.4g} N/m gives its Hertz contact time on a rigid wall at 0.2 m/s "
                    f"({math.pi * math.sqrt(m / kn):.4g} s), kt = {kt:.4g} N/m (Mindlin ratio "
-                   f"{mindlin_ratio(AL_ALLOY.nu):.3f}). The sliding branch (x <= 1) does not depend on them."),
-        series=(Series("Al alloy, e = 0.5", model, states),),
+                   f"{mindlin_ratio(AL_ALLOY.nu):.3f}). The sliding branch (x <= 1) does not depend on them. The "
+                   "second series is Hertz-Mindlin on a rigid wall with the same alloy (coeff_restitution e = 0.5, "
+                   "no tangential dashpot), held to the Coulomb oracle carried over to it (exact.oracle)."),
+        series=(Series("Al alloy, e = 0.5", model, states),
+                Series("Hertz-Mindlin, e = 0.5", _hertz_mindlin(AL_ALLOY, r, mu, e), states)),
         x="x_co6",
         panels=("beta_co6", "tan_recoil"),
-        to_state=lambda model, x: (-v_n, 0.0, 3.5 * model.mu * (1.0 + model.restitution) * v_n / x / model.r),
+        to_state=lambda model, x: (-v_n, 0.0, 3.5 * model.mu * (1.0 + float(restitution(model, [(-v_n, 0.0, 0.0)])[0])) * v_n / x / model.r),
         refine=32,
         refine_why=("measured max |LAMMPS - oracle|/U: 1.3e-3 at the default step, 3.3e-4 at refine 4, 8.2e-5 at "
                     "16, 4.1e-5 at 32, 2.0e-5 at 64 (first order: e = 0.5 is strong normal damping); refine 32 "

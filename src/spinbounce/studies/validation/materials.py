@@ -44,6 +44,12 @@ class Material:
             inverse += (1.0 - wall.nu**2) / wall.E
         return 1.0 / inverse
 
+    def shear_modulus(self, wall: Material | None = None) -> float:
+        """G* of Mindlin's law: 1/G* = (2 - nu)/G + (2 - nu_w)/G_w, G = E/(2 (1 + nu)) (rigid wall: no
+        second term)."""
+        inverse = sum((2.0 - body.nu) * 2.0 * (1.0 + body.nu) / body.E for body in (self, wall) if body is not None)
+        return 1.0 / inverse
+
 
 def hertz_contact_time(m: float, r: float, e_star: float, v: float) -> float:
     """Duration of an elastic Hertzian impact of a sphere (mass m, radius r) on a flat wall.
@@ -57,13 +63,13 @@ def hertz_contact_time(m: float, r: float, e_star: float, v: float) -> float:
     return 2.0 * hertz.CONTACT_INTEGRAL * delta_max / v
 
 
-def hertz_mindlin_rigid_wall(material: Material, r: float) -> dict:
-    """LAMMPS's Hertz-Mindlin on a rigid wall as model parameters: ``hertz`` with kn = 4/3 E*, E* =
-    E/(1 - nu^2) (F = kn sqrt(r) delta^(3/2)), and ``mindlin`` with k_t = 8 G*, G* = G/(2 - nu),
-    G = E/(2 (1 + nu)). (``hertz/material`` would mix the wall as the sphere's own material.)"""
-    e_star = material.effective_modulus()
-    g_star = material.E / (2.0 * (1.0 + material.nu)) / (2.0 - material.nu)
-    return {"normal": "hertz", "kn": 4.0 / 3.0 * e_star, "tangential": "mindlin", "mindlin_kt": 8.0 * g_star}
+def hertz_mindlin_rigid_wall(material: Material, r: float, wall: Material | None = None) -> dict:
+    """LAMMPS's Hertz-Mindlin on a wall (rigid, or of the material ``wall``) as model parameters:
+    ``hertz`` with kn = 4/3 E* (F = kn sqrt(r) delta^(3/2)) and ``mindlin`` with k_t = 8 G*
+    (:meth:`Material.effective_modulus`, :meth:`Material.shear_modulus`). (``hertz/material`` would
+    mix the wall as the sphere's own material.)"""
+    return {"normal": "hertz", "kn": 4.0 / 3.0 * material.effective_modulus(wall), "tangential": "mindlin",
+            "mindlin_kt": 8.0 * material.shear_modulus(wall)}
 
 
 def mindlin_ratio(nu: float) -> float:

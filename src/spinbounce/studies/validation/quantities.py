@@ -15,7 +15,12 @@ import numpy as np
 from ...model.contact import ContactModel
 from ...exact.rigid_body import walton
 
-__all__ = ["QUANTITIES", "first_touch_stick", "impact_speed", "quantity", "walton"]
+__all__ = ["QUANTITIES", "first_touch_stick", "impact_speed", "quantity", "restitution", "walton"]
+
+
+def restitution(model: ContactModel, states) -> np.ndarray:
+    """Each state's normal restitution (the Hookean one's constant; a Hertzian one's per speed)."""
+    return model.normal_law.restitutions(model, np.atleast_2d(np.asarray(states, dtype=float))[:, 0])
 
 
 def _q(label: str, unit: str, f: Callable) -> dict:
@@ -33,18 +38,18 @@ QUANTITIES: dict[str, dict] = {
     "rebound_centre": _q(r"centre-of-mass rebound angle (deg)", "deg",
                          lambda i, f, m: np.degrees(np.arctan(f[:, 1] / f[:, 0]))),
     "psi1": _q(r"$\Psi_1 = 2 v_t/(\mu(1+e)|v_n|)$", "",
-               lambda i, f, m: 2.0 * (i[:, 1] + i[:, 2]) / (m.mu * (1.0 + m.restitution) * np.abs(i[:, 0]))),
+               lambda i, f, m: 2.0 * (i[:, 1] + i[:, 2]) / (m.mu * (1.0 + restitution(m, i)) * np.abs(i[:, 0]))),
     "psi2": _q(r"$\Psi_2 = 2(v_t'+r\omega')/(\mu(1+e)|v_n|)$", "",
                lambda i, f, m: 2.0 * (f[:, 1] + f[:, 2])
-               / (m.mu * (1.0 + m.restitution) * np.abs(i[:, 0]))),
+               / (m.mu * (1.0 + restitution(m, i)) * np.abs(i[:, 0]))),
     "spin_thornton": _q(r"$2r\omega'/(\mu(1+e)|v_n|)$", "",
-                        lambda i, f, m: 2.0 * f[:, 2] / (m.mu * (1.0 + m.restitution) * np.abs(i[:, 0]))),
+                        lambda i, f, m: 2.0 * f[:, 2] / (m.mu * (1.0 + restitution(m, i)) * np.abs(i[:, 0]))),
     "incident_co5": _q(r"$V_{st}/(\mu V_{cn})$", "",
                        lambda i, f, m: (i[:, 1] + i[:, 2]) / (m.mu * np.abs(i[:, 0]))),
     "recoil_co5": _q(r"$V'_{st}/(\mu V'_{cn})$", "", lambda i, f, m: (f[:, 1] + f[:, 2]) / (m.mu * f[:, 0])),
     "spin_co5": _q(r"$r\omega'/(\mu V_{cn})$", "", lambda i, f, m: f[:, 2] / (m.mu * np.abs(i[:, 0]))),
     "x_co6": _q(r"$3.5\mu(1+e)V_{cn}/V_{st}$", "",
-                lambda i, f, m: 3.5 * m.mu * (1.0 + m.restitution) * np.abs(i[:, 0]) / (i[:, 1] + i[:, 2])),
+                lambda i, f, m: 3.5 * m.mu * (1.0 + restitution(m, i)) * np.abs(i[:, 0]) / (i[:, 1] + i[:, 2])),
     "beta_co6": _q(r"$\beta = -V'_{st}/V_{st}$", "", lambda i, f, m: -(f[:, 1] + f[:, 2]) / (i[:, 1] + i[:, 2])),
     "tan_incident": _q(r"$V_{st}/V_{cn}$", "", lambda i, f, m: (i[:, 1] + i[:, 2]) / np.abs(i[:, 0])),
     "tan_recoil": _q(r"$V'_{st}/V'_{cn}$", "", lambda i, f, m: (f[:, 1] + f[:, 2]) / f[:, 0]),

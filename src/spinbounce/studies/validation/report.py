@@ -16,8 +16,8 @@ import numpy as np
 
 from ...records import json_ready, software, write_atomic
 from .cases import select
-from .quantities import QUANTITIES, quantity, walton
-from .run import ACCEPTANCE, BenchmarkRun, restitution, run_benchmark
+from .quantities import QUANTITIES, quantity, restitution, walton
+from .run import ACCEPTANCE, BenchmarkRun, run_benchmark
 
 __all__ = ["make_benchmarks", "draw", "markdown", "record"]
 
@@ -46,6 +46,14 @@ def _draw_series(ax, run: BenchmarkRun, k: int, y: str) -> None:
     if len(pts):
         first = not any(h.get_label() == "data" for h in ax.lines)
         ax.plot(pts["x"], pts["measured"], "s", ms=3.5, color=c if many else "k", label="data" if first else None)
+
+
+def _dashpot(model) -> str:
+    """The normal dashpot of a series' model: gamma_n (kg/s), or its damping model's prefactor of a^s."""
+    s = model.damping_law.radius_power(model.normal_law)
+    if not s:
+        return f"gamma_n = {model.gamma_n:.6g} kg/s"
+    return f"damping {model.damping}, dashpot gamma_n a^{s:g} with gamma_n = {model.gamma_n:.6g} (SI)"
 
 
 def draw(runs: list[BenchmarkRun]):
@@ -117,7 +125,11 @@ def _introduction(meta: dict) -> list[str]:
         "spring's load), no tangential damping, a solid sphere (alpha = 2/5). chung-ooi-5 is undamped (e = 1): its normal "
         "force is never tensile, and `limit_damping` is left off there. "
         "The rigid-body column is Walton's law with beta0 = 0 (the contact point stops when the Coulomb bound "
-        "is not reached); it is exact for this model in gross sliding when e = 1, and approached with damping.",
+        "is not reached); it is exact for this model in gross sliding when e = 1, and approached with damping. "
+        "The Hertz-Mindlin series (chung-ooi-4, chung-ooi-6) are LAMMPS's `hertz` with `damping "
+        "coeff_restitution` (the normal force let pull) and `tangential mindlin` without a tangential dashpot, "
+        "set beside the Coulomb oracle carried over to them (exact.oracle); their pull near the exit adds "
+        "friction the rigid-body law does not have.",
         "",
         "## Summary",
     ]
@@ -166,8 +178,7 @@ def _section(run: BenchmarkRun) -> list[str]:
         spring = (f"kt = {mdl.kt:.6g} N/m" if not mdl.tangential_law.contact_radius
                   else f"tangential {mdl.tangential}, k_t = {mdl.tangential_law.stiffness(mdl):.6g} N/m^2")
         lines.append(f"Model ({series.label}): m = {mdl.m:.6g} kg, r = {mdl.r:g} m, {mdl.normal} kn = {mdl.kn:.6g} "
-                     f"{'N/m^2' if mdl.normal_law.contact_radius else 'N/m'}, {spring}, gamma_n = {mdl.gamma_n:.6g} "
-                     f"kg/s, mu = {mdl.mu:g}, restitution {float(mdl.normal_law.restitutions(mdl, v_n)[0]):.6g}, "
+                     f"{'N/m^2' if mdl.normal_law.contact_radius else 'N/m'}, {spring}, {_dashpot(mdl)}, mu = {mdl.mu:g}, restitution {float(mdl.normal_law.restitutions(mdl, v_n)[0]):.6g}, "
                      f"limit_damping {mdl.limit_damping}, contact time "
                      f"{float(mdl.normal_law.force_times(mdl, v_n)[0]):.4g} s.")
     lines += [f"- {n}" for n in bench.notes]

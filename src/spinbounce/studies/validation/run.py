@@ -21,9 +21,9 @@ from ...model.timestep import refine_mid_step
 from ...pipeline import run_scene
 from ...exact import choose, oracle
 from .cases import Benchmark, Series
-from .quantities import QUANTITIES, first_touch_stick, impact_speed, quantity, walton
+from .quantities import QUANTITIES, first_touch_stick, impact_speed, quantity, restitution, walton
 
-__all__ = ["ACCEPTANCE", "BenchmarkRun", "refined_dt", "restitution", "run_benchmark"]
+__all__ = ["ACCEPTANCE", "BenchmarkRun", "refined_dt", "run_benchmark"]
 
 #: Largest |LAMMPS - oracle| allowed, as a fraction of the impact speed (:func:`impact_speed`).
 ACCEPTANCE = 1e-4
@@ -43,11 +43,6 @@ def refined_dt(model: ContactModel, refine: int, speed: float = 1.0) -> float:
 def _force_time(model: ContactModel, speed: float) -> float:
     """How long the contact force lasts at |v_n| = ``speed`` (the Hookean tau at any speed)."""
     return float(model.normal_law.force_times(model, -speed)[0])
-
-
-def restitution(model: ContactModel, states) -> np.ndarray:
-    """Each state's normal restitution (the Hookean one's constant; a Hertzian one's per speed)."""
-    return model.normal_law.restitutions(model, np.asarray(states, dtype=float)[:, 0])
 
 
 @dataclass(frozen=True)
@@ -71,6 +66,20 @@ class BenchmarkRun:
     measured: pd.DataFrame
     runs: list[dict]
 
+    def _measured_summary(self) -> dict:
+        """Per quantity (and series, when several have data): points, the model's and the rigid body's
+        largest distance from the measured values."""
+        m = self.measured
+        if not len(m):
+            return {}
+        several = m["series"].nunique() > 1
+        return {_measured_key(q, label, several): {
+                    "points": int(len(g)),
+                    "max_abs_model_minus_measured": float(g["model_minus_measured"].abs().max()),
+                    "max_abs_rigid_minus_measured": float(g["rigid_minus_measured"].abs().max()),
+                    "unit": QUANTITIES[q]["unit"]}
+                for (label, q), g in m.groupby(["series", "quantity"], sort=False)}
+
     def summary(self) -> dict:
         t = self.table
         ok = t[t["oracle_ok"]]
@@ -89,14 +98,12 @@ class BenchmarkRun:
             "max_dev_oracle_rigid_rel_sliding": (float(sliding["dev_oracle_rigid_rel"].max())
                                                  if len(sliding) else None),
             "refine": self.benchmark.refine,
-            "measured": {
-                q: {"points": int(len(g)),
-                    "max_abs_model_minus_measured": float(g["model_minus_measured"].abs().max()),
-                    "max_abs_rigid_minus_measured": float(g["rigid_minus_measured"].abs().max()),
-                    "unit": QUANTITIES[q]["unit"]}
-                for q, g in self.measured.groupby("quantity", sort=False)
-            } if len(self.measured) else {},
+            "measured": self._measured_summary(),
         }
+
+
+def _measured_key(quantity_name: str, series: str, several: bool) -> str:
+    return f"{quantity_name} ({series})" if several else quantity_name
 
 
 def _oracle(model: ContactModel, states) -> tuple[np.ndarray, list[str], list[str]]:
