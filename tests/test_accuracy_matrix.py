@@ -88,8 +88,6 @@ REFUSED = {
     "kt/kn = 1e9": ({"kt": 1e10}, "dt", "steps"),
     "alpha = 1.5": ({"alpha": 1.5}, "alpha", "in (0, 1]"),
     "mu < 0": ({"mu": -0.1}, "mu", "not negative"),
-    "hertz with gamma_n and limit_damping, no cap": ({"normal": "hertz", "gamma_n": 1.0, "limit_damping": True},
-                                                     "limit_damping", "needs a Coulomb cap"),
 }
 
 

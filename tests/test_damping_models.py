@@ -78,7 +78,6 @@ def test_a_copy_derives_the_dashpots_anew():
     ({"damping": "tsuji", "e_n": 0.5, "gamma_n_per_mass": 1.0}, "gamma_n_per_mass"),  # mass_velocity's
     ({"damping": "coeff_restitution", "e_n": 0.0}, "e_n"),
     ({"damping": "coeff_restitution", "e_n": 1.5}, "e_n"),
-    ({"damping": "tsuji", "e_n": 0.5, "normal": "hertz", "limit_damping": True}, "limit_damping"),  # needs mu
     ({"damping": "mass_velocity", "gamma_n_per_mass": 100.0}, "gamma_n_per_mass"),   # over critical
     ({"damping": "tsuji", "e_n": 0.5, "wall": "classic"}, "damping"),                 # a fixed assembly
     ({"damping": "viscous"}, "damping"),

@@ -126,10 +126,7 @@ def test_a_bad_normal_law_is_refused_naming_the_allowed_ones():
     assert all(law in str(info.value) for law in NORMAL_LAWS)
 
 
-def test_damped_hertz_without_a_cap_refuses_limit_damping_and_hooke_only_quantities_ask_for_v_n():
-    with pytest.raises(SceneError, match="needs a Coulomb cap") as info:
-        ContactModel(normal="hertz", gamma_n=0.5, limit_damping=True)
-    assert info.value.parameter == "limit_damping"
+def test_hooke_only_quantities_ask_for_v_n():
     model = ContactModel(normal="hertz")
     for name in ("tau", "Omega", "restitution", "t_exit"):
         with pytest.raises(SceneError, match="depends on v_n"):

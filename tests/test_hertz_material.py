@@ -49,8 +49,6 @@ def test_the_deck_gives_the_material_not_the_stiffness():
     ({"normal": "hertz/material", "youngs_modulus": E, "poisson_ratio": 0.6}, "poisson_ratio"),
     ({"normal": "hertz/material", "youngs_modulus": E, "poisson_ratio": -1.0}, "poisson_ratio"),
     ({"normal": "hertz/material", "youngs_modulus": -E, "poisson_ratio": NU}, "youngs_modulus"),
-    ({"normal": "hertz/material", "youngs_modulus": E, "poisson_ratio": NU, "gamma_n": 1.0, "limit_damping": True},
-     "limit_damping"),
     ({"normal": "hertz/material", "youngs_modulus": E, "poisson_ratio": NU, "wall": "classic"}, "normal"),
 ])
 def test_each_refusal_names_the_parameter(given, name):

@@ -148,9 +148,6 @@ def test_a_record_names_the_tangential_law_only_when_it_is_not_the_default():
     ({"tangential": "mindlin"}, "mindlin_kt"),                                  # NULL needs a material
     ({"tangential": "mindlin", "mindlin_kt": 3.0, "kt": 2.0}, "kt"),            # linear_history's spring
     ({"mindlin_kt": 3.0}, "mindlin_kt"),                                        # not linear_history's
-    ({"tangential": "mindlin", "mindlin_kt": 3.0, "gamma_n": 0.3, "limit_damping": True}, "limit_damping"),  # no mu
-    ({"tangential": "mindlin", "mindlin_kt": 3.0, "damping": "tsuji", "e_n": 0.5, "limit_damping": True},
-     "limit_damping"),
     ({"tangential": "mindlin", "mindlin_kt": -3.0}, "mindlin_kt"),
     ({"tangential": "mindlin", "mindlin_kt": 3.0, "wall": "classic"}, "tangential"),
     ({"tangential": "mindlin/forced"}, "tangential"),

@@ -73,11 +73,13 @@ def which(model) -> Choice:
                                       "its cap reset by kt alone; exact.classic)",
                       f"with mu = {model.mu!r} the contact sticks and slides in turn: give a state (v_n, v_t, omega) "
                       "for its outcome")
-    if model.mu is not None and (model.tangential_law.contact_radius or damped_nonlinear(model)):
+    if (model.mu is not None and (model.tangential_law.contact_radius or damped_nonlinear(model))
+            or damped_nonlinear(model) and model.limit_damping):  # the cap LAMMPS always has cuts friction
         return Choice("capped_nonlinear", "the Coulomb-capped contact on the contact radius (exact in each stick or "
                       "slip phase: exact.contact_phases, or exact.oracle with a dashpot or in 3-D)",
-                      f"with mu = {model.mu!r} the contact sticks and slides in turn, so the outcome is not linear "
-                      "in the initial state: give a state (v_n, v_t, omega) for its outcome")
+                      f"with mu = {model.mu!r} the contact sticks and slides in turn (and limit_damping cuts the "
+                      "friction with the normal force), so the outcome is not linear in the initial state: give a "
+                      "state (v_n, v_t, omega) for its outcome")
     if model.mu is not None:
         return Choice("coulomb", "Coulomb stick-slip solution (exact in each phase, switches to machine precision)",
                       f"with mu = {model.mu!r} the contact sticks and slides in turn, so the outcome is not "
@@ -127,6 +129,8 @@ def _capped_nonlinear(model, initial) -> np.ndarray:
     in the plane and without dashpots exact.contact_phases (its phases in sqrt(delta) near the ends,
     about 4x faster), else exact.oracle (3-D slides, dashpots, a tensile turn, limit_damping). The
     two meet to 1e-10 where both apply (tests/test_capped_nonlinear.py)."""
+    if model.mu is None:  # limit_damping: the cap LAMMPS always has (1e12), cut to zero with the normal force
+        model = model.replace(mu=model.tangential_law.cap(model)[0])
     if initial.shape[1] == 3 and model.gamma_n == 0.0 and model.gamma_t == 0.0:
         from . import contact_phases
 

@@ -146,7 +146,12 @@ class _Contact:
                 return self.law.mu * abs(self.normal(y)) - abs(self.stick_force(y))
 
             found.append(to_slip)
-        elif phase == "slip":
+        if leg != "load" and not self.law.tensile and self.law.c_n > 0.0:
+            def turn(t, y):  # limit_damping: the force ends here, and the sphere coasts out
+                return self.normal(y)
+
+            found.append(turn)
+        if phase == "slip":
             def to_stick(t, y):
                 y = np.array(y)
                 y[_H] = self.pinned_history(y, sigma)
@@ -185,7 +190,12 @@ TAIL_END = 1.0e-6
 
 def bounce(law: Law, v_n: float, v_t: float, r_omega: float) -> tuple[float, float, float, float]:
     """(v_n, v_t, r omega, contact time) at the exit of one collision starting to touch at
-    (v_n < 0, v_t, r omega).
+    (v_n < 0, v_t, r omega) (:func:`_bounce`)."""
+    return _bounce(law, v_n, v_t, r_omega)[:4]
+
+
+def _bounce(law: Law, v_n: float, v_t: float, r_omega: float) -> tuple[float, float, float, float, float]:
+    """(v_n, v_t, r omega, contact time, the force's end) of one collision.
 
     Three legs, each restarted at every stick/slip switch: in time from first touch to the
     deepest point and back out to half the deepest overlap; then the tail in the variable
@@ -211,12 +221,14 @@ def bounce(law: Law, v_n: float, v_t: float, r_omega: float) -> tuple[float, flo
         if not hit:
             if not tail or sol.status != 0:
                 raise RuntimeError(f"a contact's {leg} did not end: {sol.message}")
-            return -sol.y[_DR, -1], sol.y[_V, -1], sol.y[_W, -1], sol.y[_T, -1]
+            return -sol.y[_DR, -1], sol.y[_V, -1], sol.y[_W, -1], sol.y[_T, -1], sol.y[_T, -1]
         which = min(hit, key=lambda j: abs(sol.t_events[j][0] - x))
         x, y = float(sol.t_events[which][0]), np.array(sol.y_events[which][0])
         if tail and x <= end * (1.0 + 1e-9):  # a switch at the tail's end, where the forces have gone
-            return -y[_DR], y[_V], y[_W], y[_T]
+            return -y[_DR], y[_V], y[_W], y[_T], y[_T]
         name = events[which].__name__
+        if name == "turn":  # no force from here: the overlap closes at the rate it has
+            return -y[_DR], y[_V], y[_W], y[_T] + y[_D] / -y[_DR], y[_T]
         if name == "deepest":
             leg, contact.tail_overlap = "unload", TAIL_START * y[_D]
         elif name == "tail":
@@ -231,10 +243,11 @@ def bounce(law: Law, v_n: float, v_t: float, r_omega: float) -> tuple[float, flo
 
 
 @lru_cache(maxsize=65536)
-def normal_exit(law: Law, speed: float) -> tuple[float, float]:
-    """(restitution, contact time) of the normal motion alone at impact speed ``speed`` (no slip)."""
-    v_n, _, _, time = bounce(law, -speed, 0.0, 0.0)
-    return v_n / speed, time
+def normal_exit(law: Law, speed: float) -> tuple[float, float, float]:
+    """(restitution, contact time, the force's end) of the normal motion alone at impact speed
+    ``speed`` (no slip; the force ends before the contact with limit_damping)."""
+    v_n, _, _, time, force_end = _bounce(law, -speed, 0.0, 0.0)
+    return v_n / speed, time, force_end
 
 
 def bounce_many(law: Law, states) -> np.ndarray:

@@ -34,6 +34,8 @@ class Law:
     c_n: float = 0.0
     c_t: float = 0.0
     damping_power: float = 0.0
+    #: The normal force may pull (False: limit_damping cuts it at zero, and the sphere coasts out).
+    tensile: bool = True
 
     @property
     def first_touch_runaway(self) -> bool:
@@ -60,4 +62,5 @@ class Law:
                    k=0.0 if normal_only else tangential.stiffness(model),
                    spring_power=1.0 if tangential.contact_radius else 0.0, force_history=force, rescale=rescale,
                    mu=math.inf if normal_only or model.mu is None else model.mu, c_n=model.gamma_n,
-                   c_t=0.0 if normal_only else model.gamma_t, damping_power=model.damping_law.radius_power(normal))
+                   c_t=0.0 if normal_only else model.gamma_t, damping_power=model.damping_law.radius_power(normal),
+                   tensile=not model.limit_damping)

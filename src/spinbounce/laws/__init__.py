@@ -19,7 +19,6 @@ sub-models declare their coefficients and words the same way. The wall command's
 this package branches on a sub-model's or a style's keyword.
 """
 
-from ..errors import SceneError
 from .damping import DAMPING, DampingLaw, damping_coefficients, damping_law, damping_parameter
 from .damping import KIND as DAMPING_KIND
 from .normal import KIND as NORMAL_KIND
@@ -60,18 +59,4 @@ def settled(values: dict) -> dict:
     tangential one last, since it may need both."""
     for law, every in _chosen(values):
         values = {**values, **law.settle(values, every)}
-    _refuse_limit_damping_uncapped(values)
     return values
-
-
-def _refuse_limit_damping_uncapped(values: dict) -> None:
-    """limit_damping without a cap on a damped contact whose force, spring or dashpot grows with the
-    contact radius: its reference (exact.contact_phases) lets the normal force pull; with a cap the
-    oracle cuts it."""
-    (normal, _), (damping, _), (tangential, _) = _chosen(values)
-    damped = (values.get("gamma_n") or 0.0) > 0.0
-    nonlinear = normal.contact_radius or tangential.contact_radius or damping.radius_power(normal) > 0.0
-    if damped and nonlinear and values.get("limit_damping") and values.get("mu") is None:
-        raise SceneError("limit_damping", True, "needs a Coulomb cap (mu) with normal damping on a contact whose "
-                                                "force, spring or dashpot grows with the contact radius: give mu "
-                                                "or leave it out")

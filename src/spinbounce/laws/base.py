@@ -148,8 +148,8 @@ class NormalLaw:
         return model.gamma_n > 0.0 and (self.contact_radius or model.damping_law.radius_power(self) > 0.0)
 
     def integrated_exits(self, model, v_n) -> np.ndarray:
-        """(n, 2) restitution and contact time of each contact, the normal motion integrated in
-        time (spinbounce.exact.contact_phases; scipy is loaded here, when one is asked)."""
+        """(n, 3) restitution, contact time and the force's end of each contact, the normal motion
+        integrated in time (spinbounce.exact.contact_phases; scipy is loaded here, when one is asked)."""
         from ..exact import contact_phases
 
         law = contact_phases.Law.of(model, normal_only=True)
@@ -163,7 +163,10 @@ class NormalLaw:
         return model.gamma_n * a_max**s / model.m
 
     def force_times(self, model, v_n) -> np.ndarray:
-        """Each sphere's time until the contact force ends (at or before it leaves the overlap)."""
+        """Each sphere's time until the contact force ends (at or before it leaves the overlap: with
+        limit_damping where the force turns)."""
+        if self.integrated(model):
+            return self.integrated_exits(model, v_n)[:, 2]
         return self.contact_times(model, v_n)
 
     def tunnelling_speed(self, model) -> float:

@@ -3,9 +3,8 @@
 
 For example ``hertz/material 1e4 0.3 0.3 damping tsuji tangential mindlin NULL 1.0 0.5`` is
 normal = hertz/material with E = 1e4, ETA_N = 0.3 and nu = 0.3, damping = tsuji (ETA_N is its
-restitution e_n), tangential = mindlin with LAMMPS's NULL stiffness, X_T = 1 and mu = 0.5 (a
-cap on that damped contact is then refused by the model: no reference takes it yet; mu = 1e12,
-what spinbounce writes for none, is read as none). Each
+restitution e_n), tangential = mindlin with LAMMPS's NULL stiffness, X_T = 1 and mu = 0.5 (mu =
+1e12, what spinbounce writes for none, is read as none). Each
 sub-model declares its coefficients in LAMMPS's order (``lammps_coefficients``) and the damping
 says what ETA_N and X_T mean to it (``from_lammps``), so the words are read by the registries that
 write decks. The text never reaches LAMMPS: it becomes validated numbers and registered keywords,

@@ -30,8 +30,8 @@ class Hooke(NormalLaw):
 
     def force_times(self, model, v_n) -> np.ndarray:
         v = np.atleast_1d(np.asarray(v_n, dtype=float))
-        if self.integrated(model):  # tensile allowed (limit_damping is refused there)
-            return self.contact_times(model, v)
+        if self.integrated(model):
+            return self.integrated_exits(model, v)[:, 2]
         return np.full(v.shape, linear.collision_time(model.m, model.kn, model.gamma_n, not model.limit_damping))
 
     def restitutions(self, model, v_n) -> np.ndarray:
