@@ -27,13 +27,15 @@ turn,
 
 Near its end the cap falls as delta^p while a sticking force falls as delta at most, so every
 capped contact ends sliding (or with no slip). A cap is taken here with a spring on the contact
-radius and no dashpot (others have references of their own: exact.coulomb, exact.classic).
+radius and no dashpot (others have references of their own: exact.oracle, exact.coulomb,
+exact.classic).
 
 Each collision is integrated with scipy's DOP853 (rtol 1e-12), restarting at every switch
 (events) and at the deepest point (where the rescale starts); near the exit in the variable
 sqrt(delta) (:func:`bounce`), where a's infinite slope in time is smooth. Planar only: a 3-D slide
 turns its direction, which this module does not follow (without a cap the slip is linear and
-each direction is the plane's).
+each direction is the plane's; with one, exact.oracle follows it). With limit_damping the normal
+force ends where it would turn to pull, and the sphere coasts out (the ``turn`` event).
 
 Pure numpy and scipy; knows nothing of LAMMPS.
 """

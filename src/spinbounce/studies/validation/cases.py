@@ -11,7 +11,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ...model.contact import ContactModel
-from .digitised import (KHARAZ_2001, KRATOS, KRATOS_BENCHMARKS, KRATOS_CHUNG_OOI, KRATOS_T10, LETHE,
+from .digitised import (CHUNG_OOI_5, KHARAZ_2001, KRATOS, KRATOS_BENCHMARKS, KRATOS_CHUNG_OOI, KRATOS_T10, LETHE,
                         MFIX_DEM05, THORNTON_PSI2_LINEAR, THORNTON_SPIN, Measured)
 from .materials import (AL_ALLOY, AL_WALL_T4, ALUMINA, SOLID, STEEL, gamma_n_for_restitution_cut,
                         hertz_mindlin_rigid_wall, hookean_matching_hertz, mindlin_ratio)
@@ -133,6 +133,7 @@ def _chung_ooi_5() -> Benchmark:
              "(repository path not resolved)"),
             ("v_t = v_n tan(theta_i), theta_i = 90 i/18 deg, i = 1..17", KRATOS_CHUNG_OOI),
             ("steel: E = 208 GPa, nu = 0.3, rho = 7850 kg/m^3; rigid wall", STEEL.source),
+            *((f"published {QUANTITIES[p.quantity]['label']}: {p.label}", p.source) for p in CHUNG_OOI_5),
         ),
         stiffness=(f"Hookean kn = {kn:.4g} N/m gives steel's Hertz contact time on a rigid wall at "
                    f"v_n = 5 m/s ({math.pi * math.sqrt(m / kn):.4g} s); kt = kn 2(1 - nu)/(2 - nu) = "
@@ -141,7 +142,8 @@ def _chung_ooi_5() -> Benchmark:
                    f"is the test's own Hertz-Mindlin law, LAMMPS's hertz with kn = 4/3 E/(1 - nu^2) (a rigid "
                    f"wall: E* = E/(1 - nu^2)) and tangential mindlin with k_t = 8 G/(2 - nu), G = E/(2 (1 + nu)), "
                    f"the rigid wall's 8 G* (hertz/material would mix the wall as steel)."),
-        series=(Series("steel, e = 1", model, states), Series("steel, Hertz-Mindlin", hertz_mindlin, states)),
+        series=(Series("steel, e = 1", model, states),
+                Series("steel, Hertz-Mindlin", hertz_mindlin, states, CHUNG_OOI_5)),
         x="incident_co5",
         panels=("recoil_co5", "spin_co5"),
         to_state=lambda model, x: (-v_n, x * model.mu * v_n, 0.0),

@@ -72,13 +72,13 @@ class BenchmarkRun:
         m = self.measured
         if not len(m):
             return {}
-        several = m["series"].nunique() > 1
-        return {_measured_key(q, label, several): {
+        several = m["series"].nunique() > 1 or m.groupby("quantity")["data"].nunique().max() > 1
+        return {_measured_key(q, f"{label}: {data}" if several else label, several): {
                     "points": int(len(g)),
                     "max_abs_model_minus_measured": float(g["model_minus_measured"].abs().max()),
                     "max_abs_rigid_minus_measured": float(g["rigid_minus_measured"].abs().max()),
                     "unit": QUANTITIES[q]["unit"]}
-                for (label, q), g in m.groupby(["series", "quantity"], sort=False)}
+                for (label, q, data), g in m.groupby(["series", "quantity", "data"], sort=False)}
 
     def summary(self) -> dict:
         t = self.table
@@ -169,7 +169,7 @@ def _measured_rows(series: Series, frame: pd.DataFrame, origin) -> list[dict]:
         row = frame.iloc[idx]
         model_value, rigid_value = row[f"{p.quantity}_oracle"], row[f"{p.quantity}_rigid"]
         rows.append({
-            "series": series.label, "quantity": p.quantity, "x": p.x[j], "measured": p.values[j],
+            "series": series.label, "quantity": p.quantity, "data": p.label, "x": p.x[j], "measured": p.values[j],
             "lammps": row[f"{p.quantity}_lammps"], "model": model_value, "rigid": rigid_value,
             "model_minus_measured": model_value - p.values[j], "rigid_minus_measured": rigid_value - p.values[j],
             "regime_rigid": row["regime_rigid"], "oracle_pattern": row["oracle_pattern"], "source": p.source,
