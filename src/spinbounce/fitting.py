@@ -144,12 +144,12 @@ def regime(params: dict, three_d: bool, off_uncapped: float, scale: float, speed
     model = model_of_group(params)
     if params.get("scene") == "pair":
         from .model.timestep import ACCURACY
-        from .scenes.pair.kind import CAPPED_NO_MATRIX, planar_matrix, sphere_b
+        from .scenes.pair.kind import no_planar_matrix, planar_matrix, sphere_b
 
         where = f"eps up to {geometry['eps']:.2g}, centrifugal ratio up to {geometry['centrifugal']:.2g}"
         error = f"its model error {geometry['planar_error']:.1e}"
-        if model.mu is not None:
-            return None, f"pair with a Coulomb cap: {CAPPED_NO_MATRIX}"
+        if (why := no_planar_matrix(model)) is not None:
+            return None, f"pair with a Coulomb cap: {why}" if model.mu is not None else f"pair: {why}"
         if geometry["planar_error"] > ACCURACY:
             return None, (f"pair, planar theory not exact here: {error} exceeds the accuracy {ACCURACY:g} "
                           f"({where}); no matrix is claimed, the rows' theory is the exact reference")

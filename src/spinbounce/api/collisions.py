@@ -318,21 +318,24 @@ def theory(v_n: float | None = None, v_t: float = 0.0, omega: float = 0.0, v_s: 
 
 def _pair_theory(pair: _Pair, contact: ContactModel, state: dict) -> dict:
     from ..exact import pair as planar
-    from ..scenes.pair.kind import CAPPED_NO_MATRIX, pair_contact, planar_matrix, planar_Omega
+    from ..scenes.pair.kind import no_planar_matrix, pair_contact, planar_matrix, planar_Omega
     from ..scenes.pair.table import pair_table
 
-    law = pair_contact(contact, pair.b).law()
+    pair_law = pair_contact(contact, pair.b)
+    law = pair_law.law()
+    tau = None if pair_law.on_contact_radius else float(planar.contact_time(contact.m, pair.b.m, law["kn"],
+                                                                                law["gamma_n"]))
     out = {"theory_kind": "pair planar", "theory_name": "planar pair theory (exact only as eps -> 0) and the exact "
                                                         "reference",
            "alpha_equivalent": planar.equivalent_alpha(contact.m, contact.alpha, pair.b.m, pair.b.alpha),
-           "tau": float(planar.contact_time(contact.m, pair.b.m, law["kn"], law["gamma_n"])),
+           "tau": tau,
            "model_error": "the planar theory holds the line of centres fixed: it is exact only as "
                           "eps = v_t tau/(r + r_b) -> 0 (figures/pair_validity); give a state for the exact reference"}
     if state["v_n"] is not None:
         batch = _pair_batch(pair, contact, state)
         out["outcome"] = _pair_report(pair_table(batch, None).iloc[0].to_dict(), batch, None).record()
-    elif contact.mu is not None:
-        out.update(matrix=None, why_no_matrix=f"mu = {contact.mu!r}: {CAPPED_NO_MATRIX}")
+    elif (why := no_planar_matrix(contact)) is not None:
+        out.update(matrix=None, why_no_matrix=f"mu = {contact.mu!r}: {why}" if contact.mu is not None else why)
     elif np.any(pair.state):
         out.update(matrix=None, why_no_matrix="sphere b moves: the planar matrix maps a's state with b at rest")
     else:

@@ -30,10 +30,11 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.integrate import solve_ivp
 
-__all__ = ["PairOutcome", "solve", "RTOL", "longest_step", "start", "outcome"]
+__all__ = ["PairOutcome", "solve", "RTOL", "HOOKE", "longest_step", "start", "outcome"]
 
 #: Relative tolerance of the integration (the absolute one is this times the speeds).
 RTOL = 1e-12
+
 
 
 def longest_step(tau: float, v_rel, n0, radsum: float) -> float:
@@ -56,7 +57,13 @@ class PairOutcome:
     turn: float
 
 
-def _rates(t, state, n0, p, planar):
+def _contact_radius_power(p, delta: float, s: float) -> float:
+    """a^s of the contact radius a = sqrt(R_eff |delta|) (1 for s = 0)."""
+    return 1.0 if s == 0.0 else (p["r_eff"] * abs(delta)) ** (s / 2.0)
+
+
+def _rates(t, state, n0, p, planar, overlap=None):
+    """d(state)/dt; ``overlap``: the overlap where it is known better than from the centres (_tail)."""
     d, v_a, v_b, w_a, w_b, xi = state.reshape(6, 3)
     radsum = p["r_a"] + p["r_b"]
     if planar:
@@ -66,32 +73,61 @@ def _rates(t, state, n0, p, planar):
         dist = np.sqrt(d @ d)
         n, delta = d / dist, radsum - dist
         lever_a, lever_b = p["r_a"] - 0.5 * delta, p["r_b"] - 0.5 * delta
+    delta = delta if overlap is None else overlap
     v = v_a - v_b
     v_n = v @ n
     slip = v - v_n * n - np.cross(p["r_a"] * w_a + p["r_b"] * w_b, n)
-    f_t = -p["kt"] * xi - p["gamma_t"] * slip
-    force = (p["kn"] * delta - p["gamma_n"] * v_n) * n + f_t
+    damp = _contact_radius_power(p, delta, p["damping_power"])
+    spring = p["kt"] * _contact_radius_power(p, delta, p["spring_power"])
+    elastic = xi if p["force_history"] else -spring * xi
+    f_t = elastic - p["gamma_t"] * damp * slip
+    depth = abs(delta) ** (p["power"] - 1.0) if p["power"] != 1.0 else 1.0
+    force = (p["K"] * depth * delta - p["gamma_n"] * damp * v_n) * n + f_t
     arm = -np.cross(n, f_t)
+    history = -spring * slip if p["force_history"] else slip
+    if p["rescale"] and v_n > 0.0 and delta > 0.0:  # a shrinks: the history by a_new/a_old (a'/a = delta'/2 delta)
+        history = history - xi * v_n / (2.0 * delta)
     return np.concatenate([v, force / p["m_a"], -force / p["m_b"], lever_a * arm / p["i_a"],
-                           lever_b * arm / p["i_b"], slip])
+                           lever_b * arm / p["i_b"], history])
+
+
+#: The law of :func:`solve` beyond kn, kt and the dashpots: LAMMPS's Hookean force and linear_history.
+HOOKE = {"power": 1.0, "spring_power": 0.0, "force_history": False, "rescale": False, "damping_power": 0.0}
+
+
+def _scales(p, v_rel, n0, m_star: float) -> tuple[float, float]:
+    """(contact time, fastest rate) of the normal motion at the impact speed, undamped: the Hookean
+    pi sqrt(m*/kn), or for K delta^p its time over the undamped depth, and the stiffest rates
+    there (the spring k a^q at the deepest a)."""
+    speed = abs(float(v_rel @ n0))
+    power, K = p["power"], p["K"]
+    depth = ((power + 1.0) * m_star * speed**2 / (2.0 * K)) ** (1.0 / (power + 1.0))
+    tau = np.pi * np.sqrt(m_star / K) if power == 1.0 else 2.0 * 1.5 * depth / speed
+    normal = np.sqrt(K * power * depth ** (power - 1.0) / m_star)
+    spring = p["kt"] * _contact_radius_power(p, depth, p["spring_power"])
+    mobility = 1 / p["m_a"] + 1 / p["m_b"] + p["r_a"] ** 2 / p["i_a"] + p["r_b"] ** 2 / p["i_b"]
+    return tau, normal + np.sqrt(spring * mobility)
 
 
 def start(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, planar, rtol, **law):
     """What both pair references start from: (unit n0, coefficients, state (d, v_a, v_b, w_a, w_b)
-    at first touch, v_a - v_b, contact time tau, longest step, absolute tolerance of that state)."""
+    at first touch, v_a - v_b, contact time tau, longest step, absolute tolerance of that state).
+    ``law``: gamma_n, gamma_t and the keys of :data:`HOOKE` (missing: Hooke's)."""
     n0 = np.asarray(n, dtype=float)
     n0 = n0 / np.linalg.norm(n0)
     radsum = r_a + r_b
+    r_eff = r_a * r_b / radsum
+    law = {**HOOKE, **law}
     p = {"r_a": r_a, "r_b": r_b, "m_a": m_a, "m_b": m_b, "i_a": alpha_a * m_a * r_a**2,
-         "i_b": alpha_b * m_b * r_b**2, "kn": kn, "kt": kt, **law}
+         "i_b": alpha_b * m_b * r_b**2, "kn": kn, "kt": kt, "r_eff": r_eff,
+         "K": kn * r_eff ** (law["power"] - 1.0), **law}
     state = np.concatenate([radsum * n0, v_a, v_b, w_a, w_b]).astype(float)
     v_rel = np.asarray(v_a, dtype=float) - np.asarray(v_b, dtype=float)
     if v_rel @ n0 >= 0.0:
         raise ValueError("the spheres must approach at first touch: (v_a - v_b).n < 0")
     speed = max(np.linalg.norm(v_rel), radsum * (np.linalg.norm(w_a) + np.linalg.norm(w_b)))
     m_star = m_a * m_b / (m_a + m_b)
-    tau = np.pi * np.sqrt(m_star / kn)
-    fast = np.sqrt(kn / m_star) + np.sqrt(kt * (1 / m_a + 1 / m_b + r_a**2 / p["i_a"] + r_b**2 / p["i_b"]))
+    tau, fast = _scales(p, v_rel, n0, m_star)
     longest = tau / 8.0 if planar else longest_step(tau, v_rel, n0, radsum)
     return n0, p, state, v_rel, tau, longest, rtol * speed * min(radsum / speed, 1.0 / fast)
 
@@ -104,22 +140,67 @@ def outcome(end, n0, t) -> PairOutcome:
 
 
 def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, gamma_n=0.0, gamma_t=0.0,
-          planar=False, rtol=RTOL) -> PairOutcome:
+          planar=False, rtol=RTOL, **law) -> PairOutcome:
     """One pair from first touch (|d| = r_a + r_b, d along the unit vector ``n``) until it separates.
 
-    Vectors are 3-sequences in LAMMPS's frame; angular velocities are LAMMPS's omega.
+    Vectors are 3-sequences in LAMMPS's frame; angular velocities are LAMMPS's omega. ``law``: the
+    keys of :data:`HOOKE` for a force or spring on the contact radius (kn is then LAMMPS's, the
+    force kn R_eff^(p - 1) delta^p; kt the spring's k of k a^q; the dashpots gamma a^s).
     """
     n0, p, state, _, tau, longest, atol = start(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b,
-                                                kn, kt, planar, rtol, gamma_n=gamma_n, gamma_t=gamma_t)
+                                                kn, kt, planar, rtol, gamma_n=gamma_n, gamma_t=gamma_t, **law)
+    radial = p["power"] != 1.0 or p["spring_power"] or p["damping_power"]
+    # a law on the contact radius leaves the time at TAIL_START of its depth for x = sqrt(delta) (_tail)
+    depth = _depth(p, state[3:6] - state[6:9], n0, m_a * m_b / (m_a + m_b)) * TAIL_START if radial else 0.0
 
-    def separated(t, y, *_):
+    def gap(y) -> float:
         d = y[:3]
         return (d @ n0 if planar else np.sqrt(d @ d)) - (r_a + r_b)
 
+    def separated(t, y, *_):
+        return gap(y) + depth
+
     separated.terminal, separated.direction = True, 1.0
-    # the start (gap 0, closing) is no upward crossing; the end is the first one
+    # the start (gap 0, closing) is no upward crossing; the end (or the tail's start) is the first one
     solution = solve_ivp(_rates, (0.0, 20.0 * tau), np.concatenate([state, np.zeros(3)]), method="DOP853",
                          args=(n0, p, planar), max_step=longest, rtol=rtol, atol=atol, events=separated)
     if solution.status != 1 or not len(solution.t_events[0]):
         raise RuntimeError(f"the pair did not separate within 20 contact times: {solution.message}")
-    return outcome(solution.y_events[0][0], n0, solution.t_events[0][0])
+    end, t_end = solution.y_events[0][0], solution.t_events[0][0]
+    if radial:
+        end, t_end = _tail(end, t_end, -gap(end), n0, p, planar, rtol, atol)
+    return outcome(end, n0, t_end)
+
+
+#: A law on the contact radius leaves the time for x = sqrt(delta) where its overlap is back to this
+#: fraction of the undamped depth, and ends where x is TAIL_END of its value there: its rates, a'/a
+#: and a^s, are singular in time at the exit and regular in x (the wall's exact.contact_phases does
+#: the same), the overlap there x^2 (not the centres' distance less r_a + r_b, which rounding
+#: blurs by ~1e-16 (r_a + r_b)). What is left beyond, ~ 1e-12 of the speed, is left.
+TAIL_START = 0.5
+TAIL_END = 1e-6
+
+
+def _depth(p, v_rel, n0, m_star: float) -> float:
+    """The undamped deepest overlap of the normal force K delta^p at the impact speed."""
+    speed = abs(float(v_rel @ n0))
+    return ((p["power"] + 1.0) * m_star * speed**2 / (2.0 * p["K"])) ** (1.0 / (p["power"] + 1.0))
+
+
+def _tail(state, t: float, delta: float, n0, p, planar, rtol, atol):
+    """(state, time) at the end of the contact, integrated in x = sqrt(delta) from ``delta`` down: dy/dx =
+    dy/dt 2 x/delta', the time a state of its own."""
+    def rates(x, y):
+        core = y[:-1]
+        d, v = core[:3], core[3:6] - core[6:9]
+        n = n0 if planar else d / np.sqrt(d @ d)
+        stretch = -2.0 * x / (v @ n)  # dt/dx = 2 x/delta', delta' = -v.n (> 0 while the spheres part)
+        return np.append(_rates(0.0, core, n0, p, planar, overlap=x * x) * stretch, stretch)
+
+    x0 = np.sqrt(delta)
+    tail_atol = np.append(np.broadcast_to(atol, state.shape), atol)
+    solution = solve_ivp(rates, (x0, x0 * TAIL_END), np.append(state, t), method="DOP853", rtol=rtol,
+                         atol=tail_atol)
+    if solution.status != 0:
+        raise RuntimeError(f"the pair's contact did not end: {solution.message}")
+    return solution.y[:-1, -1], float(solution.y[-1, -1])

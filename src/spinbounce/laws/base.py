@@ -250,8 +250,6 @@ class TangentialLaw:
     #: Its stiffness grows with the contact radius a = sqrt(R delta) (LAMMPS's contact_radius_flag):
     #: its exact reference is :mod:`spinbounce.exact.mindlin`.
     contact_radius: bool = False
-    #: Two free spheres can run it against an exact pair reference.
-    pairs: bool = True
     #: Its cap resets the history by kt alone (this build's classic spring): with a cap its
     #: reference is :mod:`spinbounce.exact.classic`.
     classic_cap: bool = False

@@ -34,7 +34,6 @@ class RadiusSpring(TangentialLaw):
     (the Mindlin variants, and this build's ``linear_history_classic``): its stiffness at an overlap."""
 
     contact_radius = True
-    pairs = False
 
     def stiffness(self, model) -> float:
         """k: the spring is k sqrt(r delta)."""

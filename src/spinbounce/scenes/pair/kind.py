@@ -6,8 +6,9 @@ Sphere a keeps the model's m, r and alpha and the wall scene's initial state, in
 frame: the line of centres is LAMMPS's z (b below a), so a's (v_n, v_t, r omega, v_s,
 r omega_s, r omega_n) are the wall's columns; b starts at rest without spin, or in its own
 state of the same six columns (one collision's: :data:`~spinbounce.model.parameters.STATE_B`). The
-contact law is the model's kn, kt, gamma_n, gamma_t and mu; what the pair deck cannot express
-is refused here with the reason (:func:`pair_contact`).
+contact law is the model's: its sub-models and coefficients (a force, spring or dashpot on the
+contact radius with a = sqrt(R_eff delta), R_eff = r r_b/(r + r_b)) and mu; what the pair's references
+cannot take is refused here with the reason (:func:`pair_contact`).
 """
 
 from __future__ import annotations
@@ -18,13 +19,17 @@ from ...lammps.decks import lammps_vectors, wall_frame
 from ...model.contact import ContactModel
 from ...model.parameters import PAIR_ONLY, PAIR_SPHERE, STATE_B, SceneError, by_name
 from ...exact import pair as planar
+from ...exact.wall_law import Law
 from .scene import Pair, PairContact, Sphere
 
 __all__ = ["pair_contact", "sphere_b", "state_b", "pairs_from_states", "wall_frame", "planar_matrix", "planar_Omega",
-           "scene_of", "CAPPED_NO_MATRIX"]
+           "scene_of", "no_planar_matrix", "CAPPED_NO_MATRIX", "RADIAL_NO_MATRIX"]
 
 #: Why a pair with a Coulomb cap has no scattering matrix (theory, the API and fit say it).
 CAPPED_NO_MATRIX = "a capped pair has no matrix: the slides make the outcome depend on the state"
+#: Why a pair whose force, spring or dashpot grows with the contact radius has none here.
+RADIAL_NO_MATRIX = ("a pair whose force, spring or dashpot grows with the contact radius has no closed planar "
+                    "theory here: give a state for its exact reference")
 
 
 def scene_of(values: dict) -> str:
@@ -36,30 +41,50 @@ def scene_of(values: dict) -> str:
     return scene
 
 
+#: The model's words that choose a pair's law beyond the damping (the deck writes them again).
+LAW_WORDS = ("normal", "youngs_modulus", "poisson_ratio", "tangential", "mindlin_kt")
+
+
 def pair_contact(model: ContactModel, b: Sphere) -> PairContact:
     """The pair deck's contact law from a contact model against sphere ``b``, or why the pair
-    cannot run it. Its dashpots are the damping's in the pair's effective mass m b/(m + b)."""
-    if model.normal_law.contact_radius:
-        raise SceneError("normal", model.normal, "must be hooke with scene = pair (the pair's references integrate a "
-                                                 "force that does not grow with the contact radius)")
-    if model.normal_law.integrated(model):
-        raise SceneError("damping", model.damping, "must give a constant dashpot with scene = pair: the pair's "
-                                                   "references take constant dashpots")
-    if not model.tangential_law.pairs:
-        raise SceneError("tangential", model.tangential, "must be linear_history with scene = pair: there is no "
-                                                         "exact pair reference of a spring on the contact radius here yet")
+    cannot run it. Its dashpots are the damping's in the pair's effective mass m b/(m + b); a force,
+    spring or dashpot on the contact radius takes a = sqrt(R_eff delta) (the uncapped reference,
+    :mod:`spinbounce.exact.pair_exact`)."""
+    shape = _shape(model)
+    if shape and model.mu is not None:
+        raise SceneError("mu", model.mu, "must be none with scene = pair and a force, spring or dashpot on the "
+                                         "contact radius: the capped pair reference takes the Hookean law only")
     if model.limit_damping:
         raise SceneError("limit_damping", True, "is not covered by the pair's exact reference: leave it out")
     if not model.style.pairs:
         raise SceneError("wall", model.wall, "must be granular with scene = pair (there is no wall; the classic "
                                              "pair style is not covered by the pair's references)")
-    law = model.damping_law
-    gamma_n, gamma_t = law.contact_dashpots(model, model.m * b.m / (model.m + b.m))
-    if law.derived and model.mu is not None and model.x_t:
+    damping = model.damping_law
+    gamma_n, gamma_t = damping.contact_dashpots(model, model.m * b.m / (model.m + b.m))
+    if damping.derived and model.mu is not None and model.x_t:
         raise SceneError("x_t", model.x_t, "must be 0 (or none) with a Coulomb cap (mu) in a pair: the capped pair "
                                            "reference has no tangential damping")
-    own = tuple((p.name, getattr(model, p.name)) for p in law.coefficients) if law.derived else ()
-    return PairContact(model.kn, model.kt, gamma_n, gamma_t, model.mu, model.damping, own)
+    own = tuple((p.name, getattr(model, p.name)) for p in damping.coefficients) if damping.derived else ()
+    words = tuple((name, getattr(model, name)) for name in LAW_WORDS if getattr(model, name) != by_name(name).default)
+    return PairContact(model.kn, model.kt, gamma_n, gamma_t, model.mu, model.damping, own, shape, words)
+
+
+def _shape(model: ContactModel) -> tuple:
+    """The law's shape beyond Hooke and linear_history as :attr:`PairContact.shape` ((name, value)
+    pairs), or () for the Hookean law."""
+    law = Law.of(model)
+    if law.power == 1.0 and law.spring_power == 0.0 and law.damping_power == 0.0:
+        return ()
+    return (("power", law.power), ("spring_power", law.spring_power), ("force_history", law.force_history),
+            ("rescale", law.rescale), ("damping_power", law.damping_power), ("k", law.k))
+
+
+def no_planar_matrix(model: ContactModel) -> str | None:
+    """Why the planar theory gives a's state no matrix with this law (a cap; a law on the contact
+    radius), or None."""
+    if model.mu is not None:
+        return CAPPED_NO_MATRIX
+    return RADIAL_NO_MATRIX if _shape(model) else None
 
 
 def sphere_b(m_b=1.0, r_b=0.5, alpha_b=0.4) -> Sphere:

@@ -23,15 +23,15 @@ from functools import cached_property
 
 import numpy as np
 
-from ... import checks, exact
+from ... import checks
 from ...lammps.decks import ALPHA_NVE_SPHERE
-from ...exact import linear
 from ...exact import pair as planar
-from ...exact import pair_capped, pair_exact
+from ...exact import pair_capped
 from ...model.contact import ContactModel
 from ...model.parameters import SceneError, by_name
 from ...model.stability import overlap_stretch
 from ...model.timestep import check_steps, steps_per_contact, steps_through
+from .contact import PairContact, checked as _checked
 from .deck import PAIR_NO_CAP_MU, render_pairs
 
 __all__ = ["Sphere", "PairContact", "Pair", "PairBatch", "ALPHA_NVE_SPHERE", "PAIR_STEPS_PER_HALF_PERIOD",
@@ -50,11 +50,6 @@ PAIR_STEPS_PER_HALF_PERIOD = 8000
 START_STEPS = 100
 #: The most time-scale classes (atom types per kind of sphere) of an aligned damped batch.
 SCALE_CLASSES = 32
-
-
-def _checked(owner, names: tuple[str, ...]) -> None:
-    for name in names:
-        object.__setattr__(owner, name, by_name(name).check(getattr(owner, name)))
 
 
 def _vector(name: str, value) -> tuple[float, float, float]:
@@ -87,44 +82,6 @@ class Sphere:
     @property
     def rigid(self) -> bool:
         return self.alpha != ALPHA_NVE_SPHERE
-
-
-@dataclass(frozen=True)
-class PairContact:
-    """The contact law shared by every pair of a batch. ``mu``: the Coulomb cap (None: the
-    paper's uncapped model); a capped pair's reference (:mod:`spinbounce.exact.pair_capped`)
-    has no tangential damping and needs planar motion (checked per pair by :class:`PairBatch`)."""
-
-    kn: float = by_name("kn").default  # the declared defaults (spinbounce.model.parameters), not copies
-    kt: float = by_name("kt").default
-    gamma_n: float = by_name("gamma_n").default
-    gamma_t: float = by_name("gamma_t").default
-    mu: float | None = by_name("mu").default
-    #: The damping sub-model whose dashpots gamma_n and gamma_t are (for this batch's spheres), and
-    #: its own coefficients as (name, value) pairs: the deck writes those, LAMMPS scaling them.
-    damping: str = by_name("damping").default
-    damping_coefficients: tuple = ()
-
-    def __post_init__(self):
-        _checked(self, ("kn", "kt", "gamma_n", "gamma_t", "mu", "damping"))
-        if self.mu is not None and self.gamma_t != 0.0:
-            raise SceneError("gamma_t", self.gamma_t, "must be 0 with a Coulomb cap (mu) in a pair: the capped "
-                                                      "pair reference has no tangential damping")
-
-    def law(self) -> dict:
-        """kn, kt, gamma_n and gamma_t, as the uncapped references and the planar theory take them."""
-        return {"kn": self.kn, "kt": self.kt, "gamma_n": self.gamma_n, "gamma_t": self.gamma_t}
-
-    @property
-    def damped(self) -> bool:
-        return self.gamma_n > 0.0 or self.gamma_t > 0.0
-
-    def solve(self, pair: "Pair", planar: bool = False):
-        """The pair's outcome as LAMMPS integrates it (``planar``: with n held fixed), capped or not."""
-        if not self.mu:  # no cap, or a cap of zero: no tangential force (the capped solver divides by mu)
-            law = self.law() | ({} if self.mu is None else {"kt": 0.0})
-            return pair_exact.solve(**pair.vectors(), **pair.properties(), **law, planar=planar)
-        return pair_capped.solve(**pair.vectors(), **pair.properties(), **self.law(), mu=self.mu, planar=planar)
 
 
 @dataclass(frozen=True)
@@ -174,11 +131,14 @@ class Pair:
         return {"n": self.normal, "v_a": self.v_a, "v_b": self.v_b, "w_a": self.w_a, "w_b": self.w_b}
 
     def equivalent_wall(self, contact: PairContact) -> ContactModel:
-        """The wall contact with this pair's normal and slip equations (:mod:`exact.pair`)."""
+        """The wall contact with this pair's normal and slip equations (:mod:`exact.pair`): the reduced
+        mass, the equivalent alpha and, for a law on the contact radius, the radius R_eff of
+        a = sqrt(R_eff delta) (else the smaller radius, which the overlap must stay below)."""
         a, b = self.a, self.b
-        return ContactModel(m=planar.reduced_mass(a.m, b.m), r=min(a.r, b.r),
+        r = a.r * b.r / (a.r + b.r) if contact.on_contact_radius else min(a.r, b.r)
+        return ContactModel(m=planar.reduced_mass(a.m, b.m), r=r,
                             alpha=planar.equivalent_alpha(a.m, a.alpha, b.m, b.alpha), **contact.law(),
-                            damping=contact.damping, **dict(contact.damping_coefficients))
+                            damping=contact.damping, **dict(contact.damping_coefficients), **dict(contact.words))
 
     def speed(self) -> float:
         """The larger of the impact speed |v_a - v_b| and the initial slip speed |u'(0)|:
@@ -219,18 +179,20 @@ class PairBatch:
             raise SceneError("pairs", self.pairs, "must be one or more Pair")
         object.__setattr__(self, "pairs", pairs)
         models = [p.equivalent_wall(self.contact) for p in pairs]
+        speeds = [abs(p.v_n) for p in pairs]
         if self.dt is None:  # the wall's limits of the default step, for each distinct equivalent contact
             for model in {repr(m): m for m in models}.values():
                 model.replace(mu=self.contact.mu).check_default_step()
-            dt = min(math.pi / m.fastest_rate(frozen=False) / PAIR_STEPS_PER_HALF_PERIOD for m in models)
+            dt = min(math.pi / m.fastest_rate(frozen=False, speed=v) / PAIR_STEPS_PER_HALF_PERIOD
+                     for m, v in zip(models, speeds, strict=True))
         else:
             dt = self.dt
         for k, (pair, model) in enumerate(zip(pairs, models, strict=True)):
-            dt = model.check_dt(dt, frozen=False)
+            dt = model.check_dt(dt, frozen=False, speed=abs(pair.v_n))
             # the deepest overlap, stretched by the step as for the wall, must stay below the smaller
             # radius, or the smaller centre would enter the larger sphere
-            reach = float(exact.max_overlap(pair.v_n, model.m, model.kn, model.gamma_n))
-            reach *= overlap_stretch(math.sqrt(model.kn / model.m), dt)
+            reach = float(model.max_overlap(abs(pair.v_n)))
+            reach *= overlap_stretch(model.normal_law.normal_mode(model, abs(pair.v_n))[0], dt)
             if reach >= model.r:
                 raise SceneError(f"pairs[{k}].v_n", pair.v_n, "|v_n| is too large: the overlap would reach "
                                  f"{reach:.6g} >= the smaller radius {model.r:g}")
@@ -352,15 +314,14 @@ class PairBatch:
                                    * (radii[side] if q == "w" else 1.0) for side in "ab" for q in "vw"])
         weights = np.column_stack([np.repeat([[getattr(p, side).m * (getattr(p, side).alpha if q == "w" else 1.0)]
                                               for p in self.pairs], 3, axis=1) for side in "ab" for q in "vw"])
-        m_star = planar.reduced_mass(columns["m_a"], columns["m_b"])
-        overlap = np.array([float(linear.max_overlap(v_n, m, self.contact.kn, self.contact.gamma_n))
-                            for v_n, m in zip(columns["v_n_relative"], m_star, strict=True)])
+        overlap = np.array([float(p.equivalent_wall(self.contact).max_overlap(abs(p.v_n))) for p in self.pairs])
         return checks.RowStates(initial, states(""), states("_exact"), weights, columns["speed"], overlap,
                                 columns["r_a"] + columns["r_b"])
 
     def record(self, deck) -> dict:
         cap = self.contact.mu if self.contact.mu is not None else f"none ({PAIR_NO_CAP_MU:g})"
-        return {"contact": self.contact.law(), "dt": self.dt, "nsteps": self.nsteps, "mu": cap}
+        return {"contact": self.contact.law() | dict(self.contact.words), "dt": self.dt, "nsteps": self.nsteps,
+                "mu": cap}
 
     def needs_probe(self) -> bool:
         return True

@@ -1,0 +1,114 @@
+"""Two free spheres with a force, spring or dashpot on the contact radius: reference and LAMMPS.
+
+The pair reference (spinbounce.exact.pair_exact) integrates LAMMPS's pair law with a =
+sqrt(R_eff delta), the reduced mass and the turning line of centres, near the end in x =
+sqrt(delta). Held here to the wall's references, written apart (exact.mindlin, exact.
+contact_phases), in the limit where the pair is the wall: the line of centres held fixed and
+sphere b 1e12 times heavier; and to LAMMPS, at the default step (1e-4, the default accuracy) and
+converged (1e-6).
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+import pytest
+
+from spinbounce.errors import PhysicsWarning
+from spinbounce.exact import choose, pair_exact
+from spinbounce.exact.wall_law import Law
+from spinbounce.lammps.decks import wall_frame
+from spinbounce.model.contact import ContactModel
+from spinbounce.model.parameters import SceneError
+from spinbounce.pipeline import run_scene
+from spinbounce.scenes.pair.kind import pair_contact, pairs_from_states
+from spinbounce.scenes.pair.scene import PairBatch, Sphere
+
+#: One law of each shape: the Hertzian force and each Mindlin history, every damping model's
+#: dashpot power (a^0, a^(1/2) and a^1), on the Hertzian and the Hookean force.
+LAWS = {
+    "hertz/material mindlin": dict(normal="hertz/material", youngs_modulus=1e4, poisson_ratio=0.3,
+                                   tangential="mindlin"),
+    "hertz mindlin_rescale": dict(normal="hertz", kn=1000.0, tangential="mindlin_rescale", mindlin_kt=400.0),
+    "hertz mindlin/force tsuji": dict(normal="hertz", kn=1000.0, tangential="mindlin/force", mindlin_kt=400.0,
+                                      damping="tsuji", e_n=0.6, x_t=0.5),
+    "hooke viscoelastic": dict(kn=50.0, damping="viscoelastic", gamma_n_per_mass_radius=0.5, x_t=0.5),
+    "hertz velocity": dict(normal="hertz", kn=1000.0, gamma_n=0.5, gamma_t=0.2),
+    "hertz coeff_restitution mindlin_rescale/force": dict(normal="hertz", kn=1000.0, damping="coeff_restitution",
+                                                          e_n=0.7, tangential="mindlin_rescale/force",
+                                                          mindlin_kt=300.0, x_t=0.3),
+}
+B = Sphere(1.3, 0.35, 0.5)
+QUANTITIES = [f"{side}_{q}{x}" for side in "ab" for q in "vw" for x in "xyz"]
+
+
+@pytest.mark.parametrize("name", sorted(LAWS))
+def test_the_fixed_line_pair_against_a_heavy_sphere_is_the_wall(name):
+    # b 1e12 times heavier and the line of centres held: the wall with a = sqrt(R_eff delta). The
+    # wall's r is a's lever arm, so R_eff (0.476 here) is taken into the coefficients: K r^(p - 1),
+    # k r^(q/2), gamma r^(s/2) the same in both. Measured 7e-11 at worst (b's finite mass: 1e-12): 1e-9
+    model = ContactModel(m=1.0, r=0.5, **LAWS[name])
+    law, heavy = Law.of(model), Sphere(1e12, 10.0, 0.4)
+    c = 0.5 / (0.5 * 10.0 / 10.5)
+    rng = np.random.default_rng(len(name))
+    for _ in range(3):
+        state = np.array([-rng.uniform(0.2, 1.2), rng.uniform(-1, 1), rng.uniform(-1, 1)])
+        pair = pairs_from_states(model, heavy, np.array([[state[0], state[1], state[2] / model.r]]))[0]
+        got = pair_exact.solve(**pair.vectors(), **pair.properties(), kn=model.kn * c ** (law.power - 1.0),
+                               kt=law.k * c ** (law.spring_power / 2.0), gamma_n=law.c_n * c ** (law.damping_power / 2),
+                               gamma_t=law.c_t * c ** (law.damping_power / 2), power=law.power,
+                               spring_power=law.spring_power, force_history=law.force_history, rescale=law.rescale,
+                               damping_power=law.damping_power, planar=True)
+        final = wall_frame(got.v_a[None, :], got.w_a[None, :], model.r)[0][:3]
+        assert final == pytest.approx(choose.predict(model, state[None, :])[0], abs=1e-9 * np.abs(state).max())
+
+
+def _states(rng, n: int) -> np.ndarray:
+    return np.column_stack([-rng.uniform(0.2, 1.0, n), rng.uniform(-1, 1, n), rng.uniform(-1, 1, n),
+                            rng.uniform(-0.5, 0.5, n), rng.uniform(-0.5, 0.5, n), rng.uniform(-1, 1, n)])
+
+
+@pytest.mark.lammps
+@pytest.mark.parametrize("name", sorted(LAWS))
+def test_lammps_at_the_default_step_meets_the_reference(name, tmp_path):
+    # random 3-D pairs (unequal spheres), alone and in a batch: every pair within 1e-4 of its speed
+    model = ContactModel(m=1.0, r=0.5, **LAWS[name])
+    rng = np.random.default_rng(sum(map(ord, name)))
+    for n in (1, 4):
+        batch = PairBatch(pairs_from_states(model, B, _states(rng, n)), pair_contact(model, B))
+        table = run_scene(batch, tmp_path / f"n{n}", record=False).table
+        assert (table["status"] == "ok").all() and table["error"].max() <= 1e-4
+
+
+@pytest.mark.slow
+@pytest.mark.lammps
+@pytest.mark.parametrize("name", ["hertz/material mindlin", "hertz mindlin_rescale", "hertz mindlin/force tsuji",
+                                  "hooke viscoelastic"])
+def test_converged_lammps_meets_the_reference(name, tmp_path):
+    # dt halved (each pair's end mid-step: the batch's lead) until the change is below 1e-7
+    # (measured: within 5.6e-8 to 1.4e-7 of the reference there); the reference within 1e-6
+    model = ContactModel(m=1.0, r=0.5, **LAWS[name])
+    pairs = pairs_from_states(model, B, np.array([[-0.7, 0.5, 0.3, 0.2, -0.1, 0.4]]))
+    contact = pair_contact(model, B)
+    tau = float(PairBatch(pairs, contact).contact_times[0])
+    previous = None
+    for k in range(15):
+        table = run_scene(PairBatch(pairs, contact, dt=tau / (500 * 2**k + 0.5)), tmp_path / f"run-{k}",
+                          record=False).table
+        final = table[QUANTITIES].to_numpy()[0]
+        if previous is not None and np.abs(final - previous).max() < 1e-7:
+            break
+        previous = final
+    else:
+        raise AssertionError("LAMMPS did not converge to 1e-7")
+    assert np.abs(final - table[[q + "_exact" for q in QUANTITIES]].to_numpy()[0]).max() <= 1e-6
+
+
+def test_a_cap_on_a_pair_on_the_contact_radius_is_refused_by_name():
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", PhysicsWarning)
+        model = ContactModel(mu=0.3, **LAWS["hertz mindlin_rescale"])
+    with pytest.raises(SceneError) as info:
+        pair_contact(model, B)
+    assert info.value.parameter == "mu"
