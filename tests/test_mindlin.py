@@ -185,14 +185,17 @@ def _random_states(rng, n: int) -> np.ndarray:
 @pytest.mark.lammps
 @pytest.mark.parametrize("variant", VARIANTS)
 @pytest.mark.parametrize("assembly", sorted(ASSEMBLIES))
-def test_lammps_at_the_default_step_meets_the_reference(variant, assembly, tmp_path):
-    # random 3-D states, each within the default accuracy (1e-4 of its size) at the default step
-    rng = np.random.default_rng(sum(map(ord, variant + assembly)))
+@pytest.mark.parametrize("mu", [None, 0.3], ids=["uncapped", "capped"])
+def test_lammps_at_the_default_step_meets_the_reference(variant, assembly, mu, tmp_path):
+    # random 3-D states across stick and slip, each within the default accuracy (1e-4 of its
+    # size) at the default step; with a cap the references are exact.contact_phases (planar, no
+    # dashpot) and exact.oracle (the rest)
+    rng = np.random.default_rng(sum(map(ord, variant + assembly)) + (mu is not None))
     states = _random_states(rng, 6)
     r = 0.45
-    scene = Collision(ContactModel(tangential=variant, r=r, m=1.2, **ASSEMBLIES[assembly]), v_n=states[:, 0],
-                      v_t=states[:, 1], omega=states[:, 2] / r, v_s=states[:, 3], omega_s=states[:, 4] / r,
-                      omega_n=states[:, 5] / r)
+    scene = Collision(ContactModel(tangential=variant, r=r, m=1.2, mu=mu, **ASSEMBLIES[assembly]),
+                      v_n=states[:, 0], v_t=states[:, 1], omega=states[:, 2] / r, v_s=states[:, 3],
+                      omega_s=states[:, 4] / r, omega_n=states[:, 5] / r)
     result = run_scene(scene, tmp_path, record=False)
     assert (result.table["status"] == "ok").all()
     assert result.table["error"].max() <= 1e-4
@@ -201,11 +204,14 @@ def test_lammps_at_the_default_step_meets_the_reference(variant, assembly, tmp_p
 @pytest.mark.slow
 @pytest.mark.lammps
 @pytest.mark.parametrize("variant", VARIANTS)
-def test_converged_lammps_meets_the_reference(variant, tmp_path):
+@pytest.mark.parametrize("mu, state", [(None, (-0.8, 0.6, -0.3)), (0.3, (-1.0, 0.5, 0.0))],
+                         ids=["uncapped", "capped"])
+def test_converged_lammps_meets_the_reference(variant, mu, state, tmp_path):
     # dt halved until the change is below 1e-7 (the force variants converge at first order, so
-    # their last run is some 1e-7 from the limit); the reference within 1e-6
-    model = ContactModel(tangential=variant, r=0.45, **MATERIAL)
-    state = np.array([-0.8, 0.6, -0.3])
+    # their last run is some 1e-7 from the limit); the reference within 1e-6. The capped state
+    # sticks, then slides (mu = 0.3, u'(0) = 0.5 against |v_n| = 1)
+    model = ContactModel(tangential=variant, r=0.45, mu=mu, **MATERIAL)
+    state = np.array(state)
     final = converged(model, state, tmp_path)
     assert np.abs(final - choose.predict(model, state[None, :])[0]).max() <= 1e-6
 
@@ -244,33 +250,6 @@ def test_mindlin_s_criterion_decides_the_first_phase():
         contact = contact_phases._Contact(contact_phases.Law(**law, force_history=force))
         assert contact.first_phase(1.0, 0.99 * threshold, 1.0)[0] == "stick"
         assert contact.first_phase(1.0, 1.01 * threshold, 1.0)[0] == "slip"
-
-
-@pytest.mark.lammps
-@pytest.mark.parametrize("variant", VARIANTS)
-@pytest.mark.parametrize("assembly", sorted(ASSEMBLIES))
-def test_capped_lammps_at_the_default_step_meets_the_reference(variant, assembly, tmp_path):
-    # random planar states across stick and slip, each within 1e-4 of its size at the default step
-    rng = np.random.default_rng(sum(map(ord, variant + assembly)) + 1)
-    states = _random_states(rng, 6)[:, :3]
-    law = {k: v for k, v in ASSEMBLIES[assembly].items() if k != "gamma_t"}
-    scene = Collision(ContactModel(tangential=variant, mu=0.3, **law), v_n=states[:, 0], v_t=states[:, 1],
-                      omega=states[:, 2] / 0.5)
-    result = run_scene(scene, tmp_path, record=False)
-    assert (result.table["status"] == "ok").all()
-    assert result.table["error"].max() <= 1e-4
-
-
-@pytest.mark.slow
-@pytest.mark.lammps
-@pytest.mark.parametrize("variant", VARIANTS)
-def test_converged_capped_lammps_meets_the_reference(variant, tmp_path):
-    # a state that sticks, then slides (mu = 0.3, u'(0) = 0.5 against |v_n| = 1): dt halved
-    # until the change is below 1e-7; the reference within 1e-6
-    model = ContactModel(tangential=variant, r=0.45, mu=0.3, **MATERIAL)
-    state = np.array([-1.0, 0.5, 0.0])
-    final = converged(model, state, tmp_path)
-    assert np.abs(final - choose.predict(model, state[None, :])[0]).max() <= 1e-6
 
 
 # --- the classic wall's spring inside granular: linear_history_classic ------------------------

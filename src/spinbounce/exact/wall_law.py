@@ -39,16 +39,21 @@ class Law:
 
     @property
     def first_touch_runaway(self) -> bool:
-        """A displacement history on a^q (q > 0) with both dashpots on, a^s, s < q: at first touch a
-        trial force gamma_t u' beyond the cap sets the history against the slip, and it then grows
-        faster than the cap (exact.oracle's first phase): above :meth:`threshold_ratio` 1 the
-        friction pushes along the slip from first touch, and the outcome jumps there."""
-        return (not self.force_history and self.spring_power > self.damping_power and self.c_n > 0.0
-                and self.c_t > 0.0 and math.isfinite(self.mu))
+        """A displacement history on a^q (q > 0) with a tangential dashpot a^s, s < q, and a cap: at first
+        touch a trial force gamma_t u' beyond the cap sets the history against the slip, and it then
+        grows faster than the cap (exact.oracle's first phase), so the friction pushes along the slip
+        from first touch. With a normal dashpot the cap is led by it as the trial force is, and this
+        happens above :meth:`threshold_ratio` 1, where the outcome jumps; without one the cap starts
+        at zero, below any trial force, and it happens whenever there is slip."""
+        return (not self.force_history and self.spring_power > self.damping_power and self.c_t > 0.0
+                and math.isfinite(self.mu))
 
     def threshold_ratio(self, v_n, slip):
         """c_t |u'| / (mu c_n |v_n|) of each state: the first trial force over the cap, both led by
-        their dashpots at first touch (LAMMPS's x_t |u'| / (mu |v_n|))."""
+        their dashpots at first touch (LAMMPS's x_t |u'| / (mu |v_n|)); infinite without a normal
+        dashpot (the cap starts at zero)."""
+        if self.c_n == 0.0:
+            return np.where(np.abs(slip) > 0.0, np.inf, 0.0)
         return self.c_t * np.abs(slip) / (self.mu * self.c_n * np.abs(v_n))
 
     @classmethod
