@@ -77,9 +77,10 @@ def which(model) -> Choice:
             or damped_nonlinear(model) and model.limit_damping):  # the cap LAMMPS always has cuts friction
         return Choice("capped_nonlinear", "the Coulomb-capped contact on the contact radius (exact in each stick or "
                       "slip phase: exact.contact_phases, or exact.oracle with a dashpot or in 3-D)",
-                      f"with mu = {model.mu!r} the contact sticks and slides in turn (and limit_damping cuts the "
-                      "friction with the normal force), so the outcome is not linear in the initial state: give a "
-                      "state (v_n, v_t, omega) for its outcome")
+                      (f"with mu = {model.mu!r} the contact sticks and slides in turn" if model.mu is not None else
+                       "limit_damping cuts the friction with the normal force at its turn (LAMMPS's cap, 1e12)")
+                      + ", so the outcome is not linear in the initial state: give a state (v_n, v_t, omega) for its "
+                      "outcome")
     if model.mu is not None:
         return Choice("coulomb", "Coulomb stick-slip solution (exact in each phase, switches to machine precision)",
                       f"with mu = {model.mu!r} the contact sticks and slides in turn, so the outcome is not "
