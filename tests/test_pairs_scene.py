@@ -69,7 +69,8 @@ def test_a_wall_sweep_has_no_scene_keys_and_b_needs_a_pair(tmp_path):
 
 
 @pytest.mark.parametrize("model,needle", [({"mu": 0.3, "gamma_t": 0.5}, "gamma_t = 0.5: must be 0 with a Coulomb cap"),
-                                          ({"normal": "hertz", "mu": 0.3}, "mu = 0.3: must be none with scene = pair"),
+                                          ({"normal": "hertz", "gamma_n": 0.5, "limit_damping": True},
+                                           "limit_damping = True: is not covered by the pair's exact reference"),
                                           ({"scene": ["wall", "pair"]}, "one scene per sweep"),
                                           ({"alpha_b": 1.5}, "alpha_b = 1.5: must lie in"),
                                           ({"m_b": "heavy"}, "m_b = 'heavy': must be a number")])

@@ -9,7 +9,7 @@ lost spheres and a contact that had not finished are errors, not results.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -21,7 +21,7 @@ from .lammps.decks import Deck, INLINE_SPHERES, RESULT_TABLE, prepare_run_dir
 from .lammps.runner import RunInfo, run_deck
 from .model.timestep import ACCURACY, StepChoice
 from .records import software, to_json, write_atomic, write_parquet_atomic
-from .stepping import tune
+from .stepping import FALLBACK, tune
 
 __all__ = ["ResultError", "RunResult", "SeriesResult", "run_scene", "run_series", "prepare_run_dir", "provenance",
            "write_record", "RESULT_TABLE"]
@@ -101,12 +101,15 @@ def run_scene(scene, out_dir: Path, atoms: str | None = None, record: bool = Tru
     (:func:`write_record`). ``runner``: :func:`runner.run_deck` (in this process) or
     :func:`runner.run_deck_lmp` (the ``lmp`` executable).
     """
-    scene, step = tune(scene, Path(out_dir) / "probe", _probe_errors, probe_states, target)
-    deck = scene.render(atoms)
-    deck_path = prepare_run_dir(out_dir, deck)
-    info = runner(deck_path, atoms=deck.atoms)
-    columns = scene.read(info, deck, deck_path.parent)
-    deviation = checks.add_row_checks(columns, scene.row_states(columns), target)
+    given, (scene, step) = scene, tune(scene, Path(out_dir) / "probe", _probe_errors, probe_states, target)
+    deck, deck_path, info, columns, deviation = _run(scene, out_dir, atoms, runner, target)
+    fine = given.fallback() if step.method == "probe" else None
+    worst = float(np.max(columns["error"]))
+    if fine is not None and fine.dt < scene.dt and worst > target:
+        # the probe's step, chosen on a sample, missed the target on the whole scene: its rule's
+        scene, step = fine, replace(step, dt=fine.dt, method=f"{FALLBACK}; the probe's step erred {worst:.2g}",
+                                    predicted_error=None)
+        deck, deck_path, info, columns, deviation = _run(scene, out_dir, atoms, runner, target)
     table = pd.DataFrame(columns)
     notes = tuple(checks.notes(table["status"], target))
     dump = None if deck.dump is None else deck_path.parent / deck.dump
@@ -116,6 +119,17 @@ def run_scene(scene, out_dir: Path, atoms: str | None = None, record: bool = Tru
                      warnings=list(notes), max_abs_error=deviation, max_error=result.max_error, step=step.record(),
                      status=checks.summary(table["status"]), table=table)
     return result
+
+
+def _run(scene, out_dir: Path, atoms, runner, target: float):
+    """One run of ``scene`` in ``out_dir``: (deck, its path, LAMMPS's info, the checked columns, the
+    largest absolute deviation)."""
+    deck = scene.render(atoms)
+    deck_path = prepare_run_dir(out_dir, deck)
+    info = runner(deck_path, atoms=deck.atoms)
+    columns = scene.read(info, deck, deck_path.parent)
+    deviation = checks.add_row_checks(columns, scene.row_states(columns), target)
+    return deck, deck_path, info, columns, deviation
 
 
 @dataclass(frozen=True)

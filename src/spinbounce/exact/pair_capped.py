@@ -20,6 +20,13 @@ of scipy's DOP853 at rtol 1e-12, restarted at each: the outcome is accurate to ~
 the speeds. Without tangential damping (gamma_t = 0) only. ``planar=True`` freezes n and
 the lever arms: the wall's capped problem of the equivalent sphere (:mod:`.pair`), which
 the wall's exact solver must then reproduce (tests/test_pairs_capped.py).
+
+Any law of :data:`.pair_exact.HOOKE` (a force K delta^p, a spring k a^q on a displacement or a
+force history, rescaled or not, dashpots a^s): the sticking state is the elastic force E (F_t = -E
+along t), E' = k a^q u'.t + R E with R = a'/a (q for a displacement history, once more while a
+shrinks with a rescale), pinned to the cap in a slide; such a law starts FIRST_TOUCH contact times
+after first touch and ends LAST_OVERLAP of its depth before the overlap does (the wall's oracle
+does the same; tests/test_pairs_nonlinear.py holds it to the wall's references).
 """
 
 from __future__ import annotations
@@ -31,6 +38,7 @@ from scipy.optimize import brentq
 from . import pair as pair_theory
 
 from .pair_exact import RTOL, PairOutcome, outcome, start
+from .pair_exact import undamped_depth as pair_depth
 
 __all__ = ["solve", "plane_normal", "MAX_PHASES"]
 
@@ -40,6 +48,10 @@ MAX_PHASES = 200
 INTERIOR_SAMPLES = 8
 #: A switch must be passed by this fraction of the cap's scale (as in the wall's oracle).
 MARGIN = 1e-12
+#: A law on the contact radius starts this many contact times after first touch and ends where the
+#: overlap is back to LAST_OVERLAP of its undamped depth (the wall's oracle does the same).
+FIRST_TOUCH = 1e-12
+LAST_OVERLAP = 1e-10
 
 
 def plane_normal(n, v_a, v_b, w_a, w_b) -> np.ndarray | None:
@@ -82,11 +94,28 @@ class _Contact:
         v_n = v @ n
         t = np.cross(self.e, n)
         slip = (v - v_n * n - np.cross(p["r_a"] * w_a + p["r_b"] * w_b, n)) @ t
-        f_n = p["kn"] * (radsum - dist) - p["gamma_n"] * v_n
+        delta, rate = radsum - dist, -v_n  # the overlap and its rate
+        depth = abs(delta) ** (p["power"] - 1.0) if p["power"] != 1.0 else 1.0
+        damp, shrink = self.radius_power(delta, p["damping_power"]), (rate / (2.0 * delta) if delta else 0.0)
+        f_n = p["K"] * depth * delta + p["gamma_n"] * damp * rate
         across = 0.0 if self.planar else float((v - v_n * n) @ (v - v_n * n)) / dist
-        df_n = -p["kn"] * v_n - p["gamma_n"] * (f_n / self.m_star + across)
+        accel = -(f_n / self.m_star + across)  # delta''
+        df_n = (p["K"] * p["power"] * depth * rate
+                + p["gamma_n"] * damp * (accel + (p["damping_power"] * shrink * rate if p["damping_power"] else 0.0)))
+        # the sticking elastic force E (F_t = -E): E' = k a^q u' + R E, R = a'/a (q for a displacement
+        # history, and once more while a shrinks with a rescale)
+        spring = p["kt"] * self.radius_power(delta, p["spring_power"])
+        scale = (0.0 if p["force_history"] else p["spring_power"]) + (1.0 if p["rescale"] and rate < 0.0 else 0.0)
         return {"n": n, "t": t, "v": v, "slip": slip, "f_n": f_n, "df_n": df_n, "dist": dist, "levers": levers,
-                "xi": y[15]}
+                "elastic": y[15], "spring": spring, "growth": scale * shrink}
+
+    def radius_power(self, delta: float, s: float) -> float:
+        """a^s of the contact radius a = sqrt(R_eff |delta|) (1 for s = 0)."""
+        return 1.0 if s == 0.0 else (self.p["r_eff"] * abs(delta)) ** (s / 2.0)
+
+    def stick_rate(self, k: dict, elastic: float) -> float:
+        """E' while sticking with the elastic force ``elastic``."""
+        return k["spring"] * k["slip"] + k["growth"] * elastic
 
     def cap(self, k: dict) -> float:
         """mu |F_n|, with |F_n| taken as F_n on the phase's side (``f_side``): a phase ends where F_n
@@ -100,19 +129,21 @@ class _Contact:
 
     def rates(self, _t, y):
         p, k = self.p, self.kinematics(y)
-        f_t = -(p["kt"] * k["xi"] if self.phase == 0 else self.phase * self.cap(k))
+        f_t = -(k["elastic"] if self.phase == 0 else self.phase * self.cap(k))
         force = k["f_n"] * k["n"] + f_t * k["t"]
         arm = -np.cross(k["n"], f_t * k["t"])
         return np.concatenate([k["v"], force / p["m_a"], -force / p["m_b"], k["levers"][0] * arm / p["i_a"],
-                               k["levers"][1] * arm / p["i_b"], [k["slip"] if self.phase == 0 else 0.0]])
+                               k["levers"][1] * arm / p["i_b"],
+                               [self.stick_rate(k, k["elastic"]) if self.phase == 0 else 0.0]])
 
     def stick_ends(self, _t, y) -> float:
         k = self.kinematics(y)
-        return self.p["kt"] * abs(k["xi"]) - self.cap(k) - MARGIN * self.force_scale
+        return abs(k["elastic"]) - self.cap(k) - MARGIN * self.force_scale
 
     def slide_ends(self, _t, y) -> float:
         k = self.kinematics(y)
-        return self.phase * self.p["kt"] * k["slip"] - self.cap_rate(k) + MARGIN * self.force_scale / self.tau
+        return (self.phase * self.stick_rate(k, self.phase * self.cap(k)) - self.cap_rate(k)
+                + MARGIN * self.force_scale / self.tau)
 
     def normal_force(self, _t, y) -> float:
         """F_n on the side it started the phase on: falls through 0 when F_n changes sign."""
@@ -129,21 +160,21 @@ class _Contact:
         at_zero = normal_zero or not abs(k["f_n"]) > self.f_rounding
         self.f_side = np.sign(k["df_n"]) if at_zero else np.sign(k["f_n"])
         if switched:
-            self.phase = int(np.sign(k["xi"]) or np.sign(k["slip"])) if self.phase == 0 else 0
+            self.phase = int(np.sign(k["elastic"]) or np.sign(k["slip"])) if self.phase == 0 else 0
         else:
             self.phase = self.phase_at(y)
 
     def separated(self, _t, y) -> float:
-        return self.kinematics(y)["dist"] - (self.p["r_a"] + self.p["r_b"])
+        return self.kinematics(y)["dist"] - (self.p["r_a"] + self.p["r_b"]) + self.last
 
     def phase_at(self, y) -> int:
         """The phase that holds from state y: a slide (the history's way, or the slip's where the
         history is 0) while the sticking rate outruns the cap, else sticking."""
         k = self.kinematics(y)
-        if self.p["kt"] * abs(k["xi"]) < self.cap(k) - MARGIN * self.force_scale:
+        if abs(k["elastic"]) < self.cap(k) - MARGIN * self.force_scale:
             return 0
-        sign = np.sign(k["xi"]) or self.phase or np.sign(k["slip"])
-        return int(sign) if sign * self.p["kt"] * k["slip"] > self.cap_rate(k) else 0
+        sign = np.sign(k["elastic"]) or self.phase or np.sign(k["slip"])
+        return int(sign) if sign * self.stick_rate(k, sign * self.cap(k)) > self.cap_rate(k) else 0
 
 
 def _event(function, direction: float):
@@ -188,8 +219,9 @@ def _first_event(solution, events) -> tuple[float, int, np.ndarray]:
 
 
 def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, mu, gamma_n=0.0, gamma_t=0.0,
-          planar=False, rtol=RTOL) -> PairOutcome:
-    """One capped pair from first touch until it separates (arguments as :func:`.pair_exact.solve`)."""
+          planar=False, rtol=RTOL, **law) -> PairOutcome:
+    """One capped pair from first touch until it separates (arguments as :func:`.pair_exact.solve`,
+    ``law`` its keys of :data:`.pair_exact.HOOKE`)."""
     if gamma_t != 0.0:
         raise ValueError("the capped pair reference has no tangential damping (gamma_t must be 0)")
     e = plane_normal(n, v_a, v_b, w_a, w_b)
@@ -197,25 +229,40 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, m
         raise ValueError("the capped pair reference needs planar motion: the line of centres and both "
                          "velocities in one plane, both spins along its normal")
     n0, p, y, v_rel, tau, longest, atol = start(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b,
-                                                kn, kt, planar, rtol, mu=mu, gamma_n=gamma_n)
+                                                kn, kt, planar, rtol, mu=mu, gamma_n=gamma_n, **law)
     contact = _Contact(p, e, n0, planar)
     contact.tau = tau
-    contact.f_rounding = 16.0 * kn * np.spacing(r_a + r_b)
-    contact.force_scale = mu * abs(v_rel @ n0) * np.sqrt(contact.m_star * kn)
+    radial = p["power"] != 1.0 or p["spring_power"] or p["damping_power"]
+    m_star, speed = contact.m_star, abs(v_rel @ n0)
+    depth = pair_depth(p, v_rel, n0, m_star)
+    stiffness = p["K"] * p["power"] * depth ** (p["power"] - 1.0)  # kn for the Hookean force
+    contact.f_rounding = 16.0 * stiffness * np.spacing(r_a + r_b)
+    contact.force_scale = mu * speed * np.sqrt(m_star * stiffness)
+    # a law on the contact radius starts a hair after first touch (the elastic force grown as u' t,
+    # over 1 + q/2 for a force history) and ends a hair before the overlap does, where a's rates
+    # are infinite (what the ends would do, ~ (1e-10)^(1 + s/2) of the speed, is left)
+    contact.last = LAST_OVERLAP * depth if radial else 0.0
+    t = FIRST_TOUCH * tau if radial else 0.0
     y = np.append(y, 0.0)
-    atol = np.append(np.full(15, atol), rtol * contact.force_scale / kt)
-    damped_time = float(pair_theory.contact_time(m_a, m_b, kn, gamma_n))  # the window: 20 contact times
+    if t:
+        y[:3] += v_rel * t
+        k0 = contact.kinematics(y)
+        y[15] = k0["spring"] * k0["slip"] * t / (1.0 + p["spring_power"] / 2.0 if p["force_history"] else 1.0)
+    atol = np.append(np.full(15, atol), rtol * contact.force_scale)
+    damped_time = float(pair_theory.contact_time(m_a, m_b, kn, gamma_n)) if not radial else tau
     window = 20.0 * (max(contact.tau, damped_time) if np.isfinite(damped_time) else contact.tau)
     contact.restart(y)
-    t = 0.0
     for _ in range(MAX_PHASES):
         events = _events(contact)
         solution = solve_ivp(contact.rates, (t, t + window), y, method="DOP853", rtol=rtol, atol=atol,
                              events=events, max_step=longest, dense_output=True)
         t, which, y = _first_event(solution, events)
         if which == 0:
+            if contact.last:  # the spheres part freely from the cut to the end of the overlap
+                k = contact.kinematics(y)
+                t += contact.last / max(abs(k["v"] @ k["n"]), 1e-300)
             return outcome(y, n0, t)
-        if contact.phase != 0:  # leaving a slide (or passing F_n = 0 in one): the history sits on the cap
-            y[15] = contact.phase * p["mu"] * abs(contact.kinematics(y)["f_n"]) / kt
+        if contact.phase != 0:  # leaving a slide (or passing F_n = 0 in one): the elastic force on the cap
+            y[15] = contact.phase * p["mu"] * abs(contact.kinematics(y)["f_n"])
         contact.restart(y, switched=which == 1, normal_zero=which == 2)
     raise RuntimeError(f"the capped pair switched phase more than {MAX_PHASES} times (chattering)")

@@ -151,7 +151,7 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, g
                                                 kn, kt, planar, rtol, gamma_n=gamma_n, gamma_t=gamma_t, **law)
     radial = p["power"] != 1.0 or p["spring_power"] or p["damping_power"]
     # a law on the contact radius leaves the time at TAIL_START of its depth for x = sqrt(delta) (_tail)
-    depth = _depth(p, state[3:6] - state[6:9], n0, m_a * m_b / (m_a + m_b)) * TAIL_START if radial else 0.0
+    depth = undamped_depth(p, state[3:6] - state[6:9], n0, m_a * m_b / (m_a + m_b)) * TAIL_START if radial else 0.0
 
     def gap(y) -> float:
         d = y[:3]
@@ -181,7 +181,7 @@ TAIL_START = 0.5
 TAIL_END = 1e-6
 
 
-def _depth(p, v_rel, n0, m_star: float) -> float:
+def undamped_depth(p, v_rel, n0, m_star: float) -> float:
     """The undamped deepest overlap of the normal force K delta^p at the impact speed."""
     speed = abs(float(v_rel @ n0))
     return ((p["power"] + 1.0) * m_star * speed**2 / (2.0 * p["K"])) ** (1.0 / (p["power"] + 1.0))

@@ -71,4 +71,5 @@ class PairContact:
         if not self.mu:  # no cap, or a cap of zero: no tangential force (the capped solver divides by mu)
             law = self.reference_law() | ({} if self.mu is None else {"kt": 0.0})
             return pair_exact.solve(**pair.vectors(), **pair.properties(), **law, planar=planar)
-        return pair_capped.solve(**pair.vectors(), **pair.properties(), **self.law(), mu=self.mu, planar=planar)
+        return pair_capped.solve(**pair.vectors(), **pair.properties(), **self.reference_law(), mu=self.mu,
+                                 planar=planar)

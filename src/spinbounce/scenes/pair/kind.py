@@ -51,9 +51,6 @@ def pair_contact(model: ContactModel, b: Sphere) -> PairContact:
     spring or dashpot on the contact radius takes a = sqrt(R_eff delta) (the uncapped reference,
     :mod:`spinbounce.exact.pair_exact`)."""
     shape = _shape(model)
-    if shape and model.mu is not None:
-        raise SceneError("mu", model.mu, "must be none with scene = pair and a force, spring or dashpot on the "
-                                         "contact radius: the capped pair reference takes the Hookean law only")
     if model.limit_damping:
         raise SceneError("limit_damping", True, "is not covered by the pair's exact reference: leave it out")
     if not model.style.pairs:
