@@ -302,9 +302,10 @@ class _Contact:
     def first_phase(self, y) -> str:
         """The regime at first touch (:meth:`start`), in the limit of a start at t -> 0.
 
-        A displacement history on the contact radius (k a^q h, q > 0) with a dashpot-led cap that
-        grows as a^s, s < q, is the one case where that limit is not the start at FIRST_TOUCH: with
-        the first trial force gamma_t u' beyond the cap, A is set on the cap and the history to the
+        A displacement history on the contact radius (k a^q h, q > 0) with a tangential dashpot a^s,
+        s < q (:attr:`.wall_law.Law.first_touch_runaway`), is the one case where that limit is not
+        the start at FIRST_TOUCH: with the first trial force gamma_t u' beyond the cap (led by the
+        normal dashpot, or without one starting at zero), A is set on the cap and the history to the
         elastic part c - gamma_t |u'|, against the slip. Sticking, that part grows as a^q (R = q a'/a),
         faster than the cap, and reaches the cap's far side within a time proportional to the start
         (measured: 1e5 starts at 1.04 times the threshold): as the start goes to zero the contact

@@ -34,7 +34,7 @@ class Forces:
     def __init__(self, law: Law):
         self.law = law
         self.r, self.m, self.gn = law.r, law.m, law.c_n
-        self.nonlinear = law.power != 1.0 or law.spring_power != 0.0 or law.damping_power != 0.0
+        self.nonlinear = law.on_contact_radius
         self.slip_mass = (1.0 + 1.0 / law.alpha) / law.m  # u'' = slip_mass * F_t
 
     def radius_power(self, y, s: float) -> tuple[float, float]:

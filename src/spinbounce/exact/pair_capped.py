@@ -39,6 +39,7 @@ from . import pair as pair_theory
 
 from .pair_exact import RTOL, PairOutcome, outcome, start
 from .pair_exact import undamped_depth as pair_depth
+from .wall_law import on_contact_radius
 
 __all__ = ["solve", "plane_normal", "MAX_PHASES"]
 
@@ -232,7 +233,7 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, m
                                                 kn, kt, planar, rtol, mu=mu, gamma_n=gamma_n, **law)
     contact = _Contact(p, e, n0, planar)
     contact.tau = tau
-    radial = p["power"] != 1.0 or p["spring_power"] or p["damping_power"]
+    radial = on_contact_radius(p["power"], p["spring_power"], p["damping_power"])
     m_star, speed = contact.m_star, abs(v_rel @ n0)
     depth = pair_depth(p, v_rel, n0, m_star)
     stiffness = p["K"] * p["power"] * depth ** (p["power"] - 1.0)  # kn for the Hookean force

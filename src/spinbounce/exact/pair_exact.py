@@ -30,6 +30,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.integrate import solve_ivp
 
+from .wall_law import on_contact_radius
+
 __all__ = ["PairOutcome", "solve", "RTOL", "HOOKE", "longest_step", "start", "outcome"]
 
 #: Relative tolerance of the integration (the absolute one is this times the speeds).
@@ -149,7 +151,7 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, g
     """
     n0, p, state, _, tau, longest, atol = start(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b,
                                                 kn, kt, planar, rtol, gamma_n=gamma_n, gamma_t=gamma_t, **law)
-    radial = p["power"] != 1.0 or p["spring_power"] or p["damping_power"]
+    radial = on_contact_radius(p["power"], p["spring_power"], p["damping_power"])
     # a law on the contact radius leaves the time at TAIL_START of its depth for x = sqrt(delta) (_tail)
     depth = undamped_depth(p, state[3:6] - state[6:9], n0, m_a * m_b / (m_a + m_b)) * TAIL_START if radial else 0.0
 

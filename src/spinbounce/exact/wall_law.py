@@ -12,7 +12,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["Law"]
+__all__ = ["Law", "on_contact_radius"]
+
+
+def on_contact_radius(power: float, spring_power: float, damping_power: float) -> bool:
+    """Whether a force K delta^power, a spring k a^spring_power or dashpots gamma a^damping_power
+    grow with the contact radius: the references then start and end a hair inside the contact."""
+    return power != 1.0 or spring_power != 0.0 or damping_power != 0.0
 
 
 @dataclass(frozen=True)
@@ -36,6 +42,11 @@ class Law:
     damping_power: float = 0.0
     #: The normal force may pull (False: limit_damping cuts it at zero, and the sphere coasts out).
     tensile: bool = True
+
+    @property
+    def on_contact_radius(self) -> bool:
+        """Whether its force, spring or dashpot grows with the contact radius (:func:`on_contact_radius`)."""
+        return on_contact_radius(self.power, self.spring_power, self.damping_power)
 
     @property
     def first_touch_runaway(self) -> bool:

@@ -70,7 +70,7 @@ def _shape(model: ContactModel) -> tuple:
     """The law's shape beyond Hooke and linear_history as :attr:`PairContact.shape` ((name, value)
     pairs), or () for the Hookean law."""
     law = Law.of(model)
-    if law.power == 1.0 and law.spring_power == 0.0 and law.damping_power == 0.0:
+    if not law.on_contact_radius:
         return ()
     return (("power", law.power), ("spring_power", law.spring_power), ("force_history", law.force_history),
             ("rescale", law.rescale), ("damping_power", law.damping_power), ("k", law.k))
