@@ -2,8 +2,10 @@
 
 * The capped reference with its line of centres held fixed is the wall's capped problem of the
   equivalent sphere (reduced mass, alpha_eq: exact/pair.py), which the wall's exact stick-slip
-  solver (exact.choose) solves independently: 1e-9 of the speeds, the references' own
-  accuracy (measured worst 1.9e-11 over 200 random cases).
+  solver (exact.choose) solves independently, in the plane and in 3-D, with dashpots: 1e-9 of
+  the speeds, the references' own accuracy (measured worst 1.9e-11 over 200 random cases).
+* Turning, it conserves the pair's momentum and angular momentum (the contact force passes
+  between the centres at the lever arms' split), to its integration's accuracy.
 * LAMMPS converges to the turning reference at first order in dt (second where a contact
   slides throughout), down to 1e-9 of the speed: that the limit is the reference shows both
   the capped history rule (turned with the line of centres, rescaled onto the cap) and the
@@ -19,42 +21,50 @@ from spinbounce.cli import main
 from spinbounce.model.parameters import SceneError
 from spinbounce.scenes.pair import Pair, PairBatch, PairContact, Sphere
 from spinbounce.pipeline import run_scene
-from spinbounce.exact import choose, pair_capped, pair_exact
+from spinbounce.exact import choose, pair_exact
 
 SOLVER_AGREEMENT = 1e-9
 
 
-def _random_planar_pair(rng) -> tuple[Pair, float, float]:
-    """A pair moving in the x-z plane (spins along y), with a random contact law (kt, mu, gamma_n)."""
+def _random_pair(rng, planar: bool = True) -> tuple[Pair, float, float]:
+    """A pair moving in the x-z plane (spins along y), or in 3-D, with a random contact law (kt, mu)."""
     a, b = (Sphere(rng.uniform(0.3, 3.0), rng.uniform(0.2, 1.0), rng.choice([0.4, 0.25, 0.6])) for _ in range(2))
     angle = rng.uniform(0.0, 2.0 * np.pi)
     n, t = np.array([np.sin(angle), 0.0, np.cos(angle)]), np.array([np.cos(angle), 0.0, -np.sin(angle)])
     v_b = np.array([rng.uniform(-1, 1), 0.0, rng.uniform(-1, 1)])
-    pair = Pair(a=a, b=b, normal=n, v_a=v_b - rng.uniform(0.2, 2.0) * n + rng.uniform(-3, 3) * t, v_b=v_b,
-                w_a=(0.0, rng.uniform(-2, 2), 0.0), w_b=(0.0, rng.uniform(-2, 2), 0.0))
-    return pair, rng.uniform(0.5, 9.0), 10 ** rng.uniform(-2, 1)
+    v_a = v_b - rng.uniform(0.2, 2.0) * n + rng.uniform(-3, 3) * t
+    w_a, w_b = np.array([0.0, rng.uniform(-2, 2), 0.0]), np.array([0.0, rng.uniform(-2, 2), 0.0])
+    if not planar:  # velocities across the x-z plane (n lies in it), spins in every direction
+        v_a, v_b = (v + (0.0, rng.uniform(-2, 2), 0.0) for v in (v_a, v_b))
+        w_a, w_b = (w + (rng.uniform(-2, 2), 0.0, rng.uniform(-2, 2)) for w in (w_a, w_b))
+    return Pair(a=a, b=b, normal=n, v_a=v_a, v_b=v_b, w_a=w_a, w_b=w_b), rng.uniform(0.5, 9.0), 10 ** rng.uniform(-2, 1)
 
 
-def _in_plane(pair: Pair, v_a, v_b, w_a, w_b) -> np.ndarray:
-    """(v.n, v.t, slip.t) of the relative motion, t = e x n in the pair's plane."""
+def _wall_columns(pair: Pair, v_a, v_b, w_a, w_b) -> np.ndarray:
+    """The equivalent wall's (v_n, v_t, r omega, v_s, r omega_s) of the relative motion: the relative
+    velocity along n, t and s = n x t (t in the x-z plane), and r omega = u' - v along t and s."""
     n = np.asarray(pair.normal)
-    t = np.cross(pair_capped.plane_normal(**pair.vectors()), n)
+    t = np.cross((0.0, 1.0, 0.0), n)
+    s = np.cross(n, t)
     v = np.asarray(v_a) - np.asarray(v_b)
     slip = v - (v @ n) * n - np.cross(pair.a.r * np.asarray(w_a) + pair.b.r * np.asarray(w_b), n)
-    return np.array([v @ n, v @ t, slip @ t])
+    return np.array([v @ n, v @ t, (slip - v) @ t, v @ s, (slip - v) @ s])
 
 
-def test_the_capped_reference_with_n_held_is_the_walls_exact_stick_slip_solution():
-    rng = np.random.default_rng(11)
-    for _ in range(100):
-        pair, kt, mu = _random_planar_pair(rng)
-        gamma_n = rng.choice([0.0, rng.uniform(0.0, 2.0)])
-        held = PairContact(10.0, kt, gamma_n, mu=mu).solve(pair, planar=True)
-        wall = pair.equivalent_wall(PairContact(10.0, kt, gamma_n)).replace(mu=mu)
-        v_n, v_t, slip = _in_plane(pair, pair.v_a, pair.v_b, pair.w_a, pair.w_b)
-        _, final = choose.outcome(wall, v_n, v_t, (slip - v_t) / wall.r)
-        want = np.array([final["v_n"], final["v_t"], final["v_t"] + final["r_omega"]])
-        got = _in_plane(pair, held.v_a, held.v_b, held.w_a, held.w_b)
+@pytest.mark.parametrize("planar", [True, False], ids=["planar", "3-D"])
+def test_the_capped_reference_with_n_held_is_the_walls_exact_stick_slip_solution(planar):
+    # with dashpots (gamma_n, gamma_t: the wall's exact damped stick-slip solver) half the time
+    rng = np.random.default_rng(11 if planar else 14)
+    for _ in range(100 if planar else 40):  # a 3-D case takes ~0.5 s (a slide's turn is stiff as the cap closes)
+        pair, kt, mu = _random_pair(rng, planar)
+        gamma_n, gamma_t = (rng.choice([0.0, rng.uniform(0.0, 2.0)]) for _ in range(2))
+        held = PairContact(10.0, kt, gamma_n, gamma_t, mu=mu).solve(pair, planar=True)
+        wall = pair.equivalent_wall(PairContact(10.0, kt, gamma_n, gamma_t)).replace(mu=mu)
+        v_n, v_t, r_omega, v_s, r_omega_s = _wall_columns(pair, pair.v_a, pair.v_b, pair.w_a, pair.w_b)
+        _, final = choose.outcome(wall, v_n, v_t, r_omega / wall.r, v_s, r_omega_s / wall.r)
+        want = np.array([final[k] for k in ("v_n", "v_t", "r_omega")] + ([] if planar else [final["v_s"],
+                                                                                          final["r_omega_s"]]))
+        got = _wall_columns(pair, held.v_a, held.v_b, held.w_a, held.w_b)[: want.size]
         assert np.abs(got - want).max() < SOLVER_AGREEMENT * pair.speed()
 
 
@@ -70,27 +80,31 @@ def test_a_cap_never_reached_with_n_held_is_the_uncapped_reference():
         assert np.abs(np.asarray(getattr(capped, q)) - getattr(uncapped, q)).max() < SOLVER_AGREEMENT
 
 
-def test_the_turning_capped_reference_conserves_momentum():
+@pytest.mark.parametrize("planar", [True, False], ids=["planar", "3-D"])
+def test_the_turning_capped_reference_conserves_momentum_and_angular_momentum(planar):
+    # b feels minus a's force, and the torques -(r - delta/2) n x F_t on each add up to -|d| n x F_t,
+    # the moment of a's force about b's centre: both are conserved to the integration's accuracy
     rng = np.random.default_rng(12)
-    for _ in range(20):
-        pair, kt, mu = _random_planar_pair(rng)
-        o = PairContact(10.0, kt, rng.uniform(0.0, 1.0), mu=mu).solve(pair)
-        before = pair.a.m * np.asarray(pair.v_a) + pair.b.m * np.asarray(pair.v_b)
-        after = pair.a.m * o.v_a + pair.b.m * o.v_b
-        assert np.abs(after - before).max() < SOLVER_AGREEMENT * pair.speed() * (pair.a.m + pair.b.m)
+    for _ in range(20 if planar else 8):
+        pair, kt, mu = _random_pair(rng, planar)
+        o = PairContact(10.0, kt, rng.uniform(0.0, 1.0), rng.uniform(0.0, 1.0), mu=mu).solve(pair)
+        a, b = pair.a, pair.b
+        before = a.m * np.asarray(pair.v_a) + b.m * np.asarray(pair.v_b)
+        after = a.m * o.v_a + b.m * o.v_b
+        assert np.abs(after - before).max() < SOLVER_AGREEMENT * pair.speed() * (a.m + b.m)
+        # about the centre of mass: m* d x (v_a - v_b) + I_a w_a + I_b w_b, d = a's centre less b's
+        def angular_momentum(d, v_a, v_b, w_a, w_b):
+            spins = a.alpha * a.m * a.r**2 * np.asarray(w_a) + b.alpha * b.m * b.r**2 * np.asarray(w_b)
+            return a.m * b.m / (a.m + b.m) * np.cross(d, np.subtract(v_a, v_b)) + spins
+
+        l_before = angular_momentum((a.r + b.r) * np.asarray(pair.normal), pair.v_a, pair.v_b, pair.w_a, pair.w_b)
+        l_after = angular_momentum(o.d_end, o.v_a, o.v_b, o.w_a, o.w_b)
+        assert np.abs(l_after - l_before).max() < SOLVER_AGREEMENT * pair.speed() * (a.m + b.m) * (a.r + b.r)
 
 
-def test_a_capped_pair_refuses_what_its_reference_cannot_solve():
-    with pytest.raises(SceneError, match="gamma_t"):
-        PairContact(gamma_t=0.5, mu=0.3)
-    with pytest.raises(SceneError, match="one plane"):
-        PairBatch([Pair(v_a=(1.0, 0.5, -1.0), w_a=(0.3, 0.0, 0.0))], PairContact(mu=0.3))
-    with pytest.raises(SceneError, match="mu"):
-        PairContact(mu=-0.1)
-
-
-def _capped_cases() -> list[Pair]:
-    """12 planar pairs: unequal spheres (alpha 2/5 and rigid bodies), oblique, spinning, b moving."""
+def _capped_cases(three_d: bool = False) -> list[Pair]:
+    """12 pairs: unequal spheres (alpha 2/5 and rigid bodies), oblique, spinning, b moving; planar, or
+    (``three_d``) with velocities across the plane and spins in it."""
     rng = np.random.default_rng(13)
     out = []
     for a, b in ((Sphere(1.0, 0.5, 0.4), Sphere(1.0, 0.5, 0.4)), (Sphere(1.0, 0.5, 0.25), Sphere(3.0, 0.8, 0.4)),
@@ -99,16 +113,21 @@ def _capped_cases() -> list[Pair]:
             angle = rng.uniform(0.0, 2.0 * np.pi)
             n, t = np.array([np.sin(angle), 0.0, np.cos(angle)]), np.array([np.cos(angle), 0.0, -np.sin(angle)])
             v_b = np.array([rng.uniform(-0.5, 0.5), 0.0, rng.uniform(-0.5, 0.5)])
-            out.append(Pair(a=a, b=b, normal=n, v_a=v_b - 0.6 * n + 0.6 * ratio * t, v_b=v_b,
-                            w_a=(0.0, rng.uniform(-1, 1) / a.r, 0.0), w_b=(0.0, rng.uniform(-1, 1) / b.r, 0.0)))
+            across = rng.uniform(-0.6, 0.6, 4) if three_d else np.zeros(4)
+            out.append(Pair(a=a, b=b, normal=n, v_a=v_b - 0.6 * n + 0.6 * ratio * t + (0.0, across[0], 0.0),
+                            v_b=v_b, w_a=(across[1] / a.r, rng.uniform(-1, 1) / a.r, across[2] / a.r),
+                            w_b=(across[3] / b.r, rng.uniform(-1, 1) / b.r, 0.0)))
     return out
 
 
 @pytest.mark.lammps
-@pytest.mark.parametrize("contact", [PairContact(mu=0.3), PairContact(kt=2.0, gamma_n=0.8, mu=0.1)],
-                         ids=["undamped", "damped"])
-def test_lammps_capped_pairs_are_within_the_default_accuracy(tmp_path, contact):
-    result = run_scene(PairBatch(_capped_cases(), contact), tmp_path, record=False)
+@pytest.mark.parametrize("contact, three_d", [(PairContact(mu=0.3), False),
+                                             (PairContact(kt=2.0, gamma_n=0.8, mu=0.1), False),
+                                             (PairContact(mu=0.3), True),
+                                             (PairContact(kt=2.0, gamma_n=0.8, gamma_t=0.4, mu=0.1), True)],
+                         ids=["undamped", "damped", "3-D", "3-D, both dashpots"])
+def test_lammps_capped_pairs_are_within_the_default_accuracy(tmp_path, contact, three_d):
+    result = run_scene(PairBatch(_capped_cases(three_d), contact), tmp_path, record=False)
     assert result.max_error < 1e-4
     assert result.table["eps"].max() > 0.5  # the line of centres turns: the planar model would not do
     assert result.table["planar_error"].max() > 10 * result.max_error

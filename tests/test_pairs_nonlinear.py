@@ -20,7 +20,6 @@ from spinbounce.exact import choose, pair_capped, pair_exact
 from spinbounce.exact.wall_law import Law
 from spinbounce.lammps.decks import wall_frame
 from spinbounce.model.contact import ContactModel
-from spinbounce.model.parameters import SceneError
 from spinbounce.pipeline import run_scene
 from spinbounce.scenes.pair.kind import pair_contact, pairs_from_states
 from spinbounce.scenes.pair.scene import PairBatch, Sphere
@@ -109,61 +108,80 @@ def test_converged_lammps_meets_the_reference(name, tmp_path):
     assert np.abs(final - exact).max() <= 1e-6
 
 
-#: The capped pair reference takes no tangential dashpot: each law without one.
-CAPPED = {name: {k: (0.0 if k in ("x_t", "gamma_t") else v) for k, v in law.items()} for name, law in LAWS.items()}
+#: Capped: each law (with its dashpots), and a displacement history with a tangential dashpot, whose
+#: friction pushes along the slip from first touch above the jump (spinbounce.scenes.jump).
+CAPPED = LAWS | {"hertz mindlin tsuji": dict(normal="hertz", kn=1000.0, tangential="mindlin", mindlin_kt=400.0,
+                                             damping="tsuji", e_n=0.6, x_t=0.5)}
 
 
 @pytest.mark.parametrize("name", sorted(CAPPED))
 def test_the_capped_fixed_line_pair_against_a_heavy_sphere_is_the_wall(name):
-    # as above, with mu = 0.3: the capped pair reference (stick and slide, in time) against the
-    # wall's (exact.contact_phases in sqrt(delta) without dashpots, exact.oracle with one).
-    # Measured 3.5e-9 at worst (the Mindlin springs' stick-slip switches): 1e-8
+    # as above, with mu = 0.3, in 3-D: the capped pair reference (stick and slide, in time) against the
+    # wall's (exact.contact_phases in sqrt(delta) without dashpots, exact.oracle with one, exact.coulomb
+    # for Hooke's law). Measured 1.5e-11 at worst but with the Hookean viscoelastic law: 3.7e-8, where
+    # a contact slides into the tensile turn of the normal force and the oracle coasts over its last
+    # 1e-12 of cap, then sticks, while the pair's reference slides on the way sticking pushes (the
+    # same states in the plane: 1e-12 but one, 4.1e-9): 1e-7
     model = ContactModel(m=1.0, r=0.5, mu=0.3, **CAPPED[name])
     law, heavy = Law.of(model), Sphere(1e12, 10.0, 0.4)
     c = 0.5 / (0.5 * 10.0 / 10.5)
     rng = np.random.default_rng(len(name) + 1)
     for _ in range(3):
-        state = np.array([-rng.uniform(0.2, 1.2), rng.uniform(-1, 1), rng.uniform(-1, 1)])
-        pair = pairs_from_states(model, heavy, np.array([[state[0], state[1], state[2] / model.r]]))[0]
+        state = _states(rng, 1)[0] * (1.2, 1.0, 1.0, 2.0, 2.0, 1.0)
+        pair = pairs_from_states(model, heavy, state[None, :] / (1.0, 1.0, model.r, 1.0, model.r, model.r))[0]
         got = pair_capped.solve(**pair.vectors(), **pair.properties(), kn=model.kn * c ** (law.power - 1.0),
                                 kt=law.k * c ** (law.spring_power / 2.0), mu=0.3,
-                                gamma_n=law.c_n * c ** (law.damping_power / 2), power=law.power,
+                                gamma_n=law.c_n * c ** (law.damping_power / 2),
+                                gamma_t=law.c_t * c ** (law.damping_power / 2), power=law.power,
                                 spring_power=law.spring_power, force_history=law.force_history, rescale=law.rescale,
                                 damping_power=law.damping_power, planar=True)
-        final = wall_frame(got.v_a[None, :], got.w_a[None, :], model.r)[0][:3]
-        assert final == pytest.approx(choose.predict(model, state[None, :])[0], abs=1e-8 * np.abs(state).max())
+        final = wall_frame(got.v_a[None, :], got.w_a[None, :], model.r)[0]
+        assert final == pytest.approx(choose.predict(model, state[None, :])[0], abs=1e-7 * np.abs(state).max())
+
+
+def _away_from_the_jump(batch: PairBatch) -> np.ndarray:
+    """Pairs whose first trial force is not just above the cap: LAMMPS converges to those near the jump
+    slowly (below 1.2 times it, not at 1e-4 within any affordable step; docs: Hertz-Mindlin)."""
+    return ~batch.near_the_jump()
 
 
 @pytest.mark.lammps
 @pytest.mark.parametrize("name", sorted(CAPPED))
 def test_capped_lammps_at_the_default_step_meets_the_reference(name, tmp_path):
-    # random planar pairs (the capped reference's motion), alone and in a batch, mu = 0.3: every
-    # pair within 1e-4 of its speed (a probe's step that misses on the whole batch falls back to
-    # the fine rule: measured 1.1e-4 at the probe's step, 3.0e-7 at the rule's, on one batch)
+    # random 3-D pairs, alone and in a batch, mu = 0.3: every pair within 1e-4 of its speed (a probe's
+    # step that misses on the whole batch falls back to the fine rule: measured 1.1e-4 at the probe's
+    # step, 3.0e-7 at the rule's, on one batch); pairs near the jump left out (its own test)
     model = ContactModel(m=1.0, r=0.5, mu=0.3, **CAPPED[name])
     rng = np.random.default_rng(sum(map(ord, name)) + 1)
     for n in (1, 4):
-        states = _states(rng, n)[:, :3]
-        batch = PairBatch(pairs_from_states(model, B, states), pair_contact(model, B))
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", PhysicsWarning)
+            pairs = pairs_from_states(model, B, _states(rng, 2 * n))
+            away = _away_from_the_jump(PairBatch(pairs, pair_contact(model, B)))
+        batch = PairBatch(tuple(np.array(pairs, dtype=object)[away][:n]), pair_contact(model, B))
         table = run_scene(batch, tmp_path / f"n{n}", record=False).table
         assert (table["status"] == "ok").all() and table["error"].max() <= 1e-4
 
 
+def test_a_pair_near_its_laws_jump_is_warned_of():
+    # x_t |u'| just above mu |v_n| (1.13 times): the friction pushes along the slip from first touch
+    model = ContactModel(m=1.0, r=0.5, mu=0.3, **CAPPED["hertz mindlin tsuji"])
+    pair = pairs_from_states(model, B, [[-1.0, 0.678, 0.0]])
+    with pytest.warns(PhysicsWarning, match="just above the cap"):
+        batch = PairBatch(pair, pair_contact(model, B))
+    assert batch.near_the_jump().tolist() == [True]
+    far = PairBatch(pairs_from_states(model, B, [[-1.0, 3.0, 0.0]]), pair_contact(model, B))  # 5 times the cap
+    assert not far.near_the_jump().any() and batch.step_limit(1.0) > 10 * far.step_limit(1.0)  # probed finer
+
+
 @pytest.mark.slow
 @pytest.mark.lammps
-@pytest.mark.parametrize("name", ["hertz/material mindlin", "hertz mindlin_rescale", "hooke viscoelastic"])
+@pytest.mark.parametrize("name", ["hertz/material mindlin", "hertz mindlin_rescale", "hooke viscoelastic",
+                                  "hertz mindlin tsuji"])
 def test_converged_capped_lammps_meets_the_reference(name, tmp_path):
-    # a planar pair, mu = 0.3, dt halved until the change is below 1e-7 (measured: within 6.1e-8
-    # to 7.4e-8 of the capped reference there); the reference within 1e-6
+    # a 3-D pair, mu = 0.3, dt halved until the change is below 1e-7 (measured: within 2.4e-8 to 9.2e-8 of the
+    # capped reference there); the reference within 1e-6. Its first trial force is 3.8 times the cap
+    # with a tangential dashpot, away from the jump (where LAMMPS converges slowly)
     model = ContactModel(m=1.0, r=0.5, mu=0.3, **CAPPED[name])
-    final, exact = _converged(model, np.array([[-0.7, 0.5, 0.3]]), tmp_path)
+    final, exact = _converged(model, np.array([[-0.7, 1.0, 0.6, 0.4, -0.2, 0.4]]), tmp_path)
     assert np.abs(final - exact).max() <= 1e-6
-
-
-def test_a_capped_pair_with_a_tangential_dashpot_is_refused_by_name():
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", PhysicsWarning)
-        model = ContactModel(mu=0.3, **LAWS["hertz mindlin/force tsuji"])
-    with pytest.raises(SceneError) as info:
-        pair_contact(model, B)
-    assert info.value.parameter == "x_t"

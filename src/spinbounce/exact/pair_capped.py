@@ -1,32 +1,35 @@
-"""What LAMMPS integrates for two free spheres with a Coulomb cap, in planar motion: the capped reference.
+"""What LAMMPS integrates for two free spheres with a Coulomb cap, in 3-D: the capped reference.
 
-``pair_style granular hooke KN ETA_N damping velocity tangential linear_history KT 0 MU`` with a
-finite MU. It differs from the uncapped model of :mod:`.pair_exact` in two ways, both read
-in LAMMPS's linear_history sub-model:
+``pair_style granular <normal> ... damping <model> tangential <law> KT X_T MU`` with a finite MU.
+It differs from the uncapped model of :mod:`.pair_exact` in two ways, both read in LAMMPS's
+tangential sub-models (``linear_history`` and the Mindlin variants):
 
-* every step whose |xi.n| kt exceeds 1e-10 mu |F_n| (every step once the line of centres
-  turns) projects the history xi back into the tangent plane and restores its length: in
-  continuous time xi turns with n and keeps no normal component;
-* |F_t| <= mu |F_n| with F_n the total normal force, damping included (LAMMPS's Fncrit):
-  on the cap the history is rescaled so that kt |xi| = mu |F_n|.
+* every step whose |h.n| k exceeds 1e-10 mu |F_n| (every step once the line of centres turns)
+  projects the history h back into the tangent plane and restores its length: in continuous
+  time h turns with n, h' gaining -(h.n') n, and keeps no normal component;
+* |F_t| <= mu |F_n| with F_n the total normal force, damping included (LAMMPS's Fncrit): on the
+  cap the history is reset so that the trial force has length mu |F_n|.
 
-Solved here for motion in one plane (the line of centres, both velocities in the plane,
-both spins along its normal e), where the slip and the history lie along the in-plane
-tangent t = e x n and the history is a number: xi' = u'.t while sticking. The contact
-sticks while kt |xi| < mu |F_n|, slides while the sticking rate would carry the force past
-the cap (sigma kt u'.t > d(mu |F_n|)/dt, sigma the slide's sign), and each switch, the
-normal force's zero (the cap's kink, with gamma_n > 0) and the end of contact are events
-of scipy's DOP853 at rtol 1e-12, restarted at each: the outcome is accurate to ~1e-10 of
-the speeds. Without tangential damping (gamma_t = 0) only. ``planar=True`` freezes n and
-the lever arms: the wall's capped problem of the equivalent sphere (:mod:`.pair`), which
-the wall's exact solver must then reproduce (tests/test_pairs_capped.py).
+The state beyond the spheres' is the trial force A = E + gamma_t a^s u' (F_t = -A on a while
+sticking), E the history's elastic force (k a^q h for a displacement history, the history itself
+for a force history) and u' the slip rate. Sticking (|A| < mu |F_n|):
 
-Any law of :data:`.pair_exact.HOOKE` (a force K delta^p, a spring k a^q on a displacement or a
-force history, rescaled or not, dashpots a^s): the sticking state is the elastic force E (F_t = -E
-along t), E' = k a^q u'.t + R E with R = a'/a (q for a displacement history, once more while a
-shrinks with a rescale), pinned to the cap in a slide; such a law starts FIRST_TOUCH contact times
-after first touch and ends LAST_OVERLAP of its depth before the overlap does (the wall's oracle
-does the same; tests/test_pairs_nonlinear.py holds it to the wall's references).
+    A' = k a^q u' + R E - (E.n') n + (gamma_t a^s u')',
+
+R = a'/a times q for a displacement history, once more while a shrinks with a rescale. Sliding,
+A = c s rides the cap c = mu |F_n| and its direction s turns towards the sticking rate:
+s' = -(s.n') n + ((n x s).A'_stick) (n x s)/c, with A'_stick the rate above at A = c s. A slide
+lasts while sticking would carry A beyond the cap (s.A'_stick > c'); each switch, the normal
+force's zero (the cap's kink, with gamma_n > 0), a rescale's deepest point and the end of contact
+are events of scipy's DOP853 at rtol 1e-12, restarted at each: the outcome is accurate to ~1e-10
+of the speeds. ``planar=True`` freezes n and the lever arms: the wall's capped problem of the
+equivalent sphere (:mod:`.pair`), which the wall's references must then reproduce
+(tests/test_pairs_capped.py, tests/test_pairs_nonlinear.py).
+
+A law on the contact radius (a force K delta^p, a spring k a^q, dashpots a^s: the keys of
+:data:`.pair_exact.HOOKE`) starts FIRST_TOUCH contact times after first touch and ends
+LAST_OVERLAP of its depth before the overlap does, where a's rates are infinite (the wall's
+oracle does the same).
 """
 
 from __future__ import annotations
@@ -41,7 +44,7 @@ from .pair_exact import RTOL, PairOutcome, outcome, start
 from .pair_exact import undamped_depth as pair_depth
 from .wall_law import on_contact_radius
 
-__all__ = ["solve", "plane_normal", "MAX_PHASES"]
+__all__ = ["solve", "MAX_PHASES"]
 
 #: More phases than this in one contact is chattering, not a contact (the measured cases take < 10).
 MAX_PHASES = 200
@@ -49,41 +52,36 @@ MAX_PHASES = 200
 INTERIOR_SAMPLES = 8
 #: A switch must be passed by this fraction of the cap's scale (as in the wall's oracle).
 MARGIN = 1e-12
+#: Below this fraction of the cap's scale a slide turns s no faster than at it (the wall's oracle's
+#: TURN_FLOOR): near the cap's zeros s' ~ 1/c would grow without bound; the slower turn only bends
+#: a force that small.
+TURN_FLOOR = 1e-8
 #: A law on the contact radius starts this many contact times after first touch and ends where the
 #: overlap is back to LAST_OVERLAP of its undamped depth (the wall's oracle does the same).
 FIRST_TOUCH = 1e-12
 LAST_OVERLAP = 1e-10
 
 
-def plane_normal(n, v_a, v_b, w_a, w_b) -> np.ndarray | None:
-    """The unit normal e of the plane the motion keeps to, or None when it does not keep to one.
-
-    The line of centres and both velocities must lie in one plane, and both spins along its
-    normal, to 1e-12 of their sizes; a head-on pair without spin has any such plane."""
-    n = np.asarray(n, dtype=float) / np.linalg.norm(n)
-    candidates = [np.cross(n, v) for v in (v_a, v_b)] + [np.asarray(w, dtype=float) for w in (w_a, w_b)]
-    e = max(candidates, key=np.linalg.norm)
-    if np.linalg.norm(e) == 0.0:
-        helper = np.eye(3)[int(np.argmin(np.abs(n)))]
-        return np.cross(n, helper) / np.linalg.norm(np.cross(n, helper))
-    e = e / np.linalg.norm(e)
-    in_plane = [abs(np.dot(e, x)) <= 1e-12 * max(np.linalg.norm(x), 1e-300) for x in (n, v_a, v_b)]
-    along = [np.linalg.norm(np.cross(e, w)) <= 1e-12 * max(np.linalg.norm(w), 1e-300) for w in (w_a, w_b)]
-    return e if all(in_plane) and all(along) else None
+def _unit(x: np.ndarray) -> np.ndarray | None:
+    size = np.linalg.norm(x)
+    return x / size if size > 0.0 else None
 
 
 class _Contact:
-    """The pair's equations in one phase: 0 sticking, +1 or -1 sliding that way."""
+    """The pair's equations in one phase (``sliding`` or not); y[15:18] is A sticking, s sliding, and
+    y[18] the overlap delta, a state of its own (delta' = -v.n): from the centres' distance, rounding
+    would blur it by ~1e-16 (r_a + r_b), more than a law on the contact radius starts with."""
 
-    def __init__(self, p: dict, e: np.ndarray, n0: np.ndarray, planar: bool):
-        self.p, self.e, self.n0, self.planar = p, e, n0, planar
+    def __init__(self, p: dict, n0: np.ndarray, planar: bool):
+        self.p, self.n0, self.planar = p, n0, planar
         self.m_star = p["m_a"] * p["m_b"] / (p["m_a"] + p["m_b"])
-        self.phase, self.f_side = 0, 1.0
+        self.sliding, self.f_side = False, 1.0
 
     def kinematics(self, y) -> dict:
         p = self.p
         d, v_a, v_b, w_a, w_b = y[:15].reshape(5, 3)
         radsum = p["r_a"] + p["r_b"]
+        v = v_a - v_b
         if self.planar:
             n, dist = self.n0, d @ self.n0
             levers = (p["r_a"], p["r_b"])
@@ -91,32 +89,45 @@ class _Contact:
             dist = np.sqrt(d @ d)
             n = d / dist
             levers = (p["r_a"] - 0.5 * (radsum - dist), p["r_b"] - 0.5 * (radsum - dist))
-        v = v_a - v_b
         v_n = v @ n
-        t = np.cross(self.e, n)
-        slip = (v - v_n * n - np.cross(p["r_a"] * w_a + p["r_b"] * w_b, n)) @ t
-        delta, rate = radsum - dist, -v_n  # the overlap and its rate
+        v_t = v - v_n * n
+        turn = np.zeros(3) if self.planar else v_t / dist  # n'
+        spin = p["r_a"] * w_a + p["r_b"] * w_b
+        delta, rate = y[18], -v_n  # the overlap and its rate
         depth = abs(delta) ** (p["power"] - 1.0) if p["power"] != 1.0 else 1.0
         damp, shrink = self.radius_power(delta, p["damping_power"]), (rate / (2.0 * delta) if delta else 0.0)
         f_n = p["K"] * depth * delta + p["gamma_n"] * damp * rate
-        across = 0.0 if self.planar else float((v - v_n * n) @ (v - v_n * n)) / dist
-        accel = -(f_n / self.m_star + across)  # delta''
-        df_n = (p["K"] * p["power"] * depth * rate
-                + p["gamma_n"] * damp * (accel + (p["damping_power"] * shrink * rate if p["damping_power"] else 0.0)))
-        # the sticking elastic force E (F_t = -E): E' = k a^q u' + R E, R = a'/a (q for a displacement
-        # history, and once more while a shrinks with a rescale)
-        spring = p["kt"] * self.radius_power(delta, p["spring_power"])
+        accel = -(f_n / self.m_star + v_t @ turn)  # delta''
+        df_n = p["K"] * p["power"] * depth * rate + p["gamma_n"] * damp * (accel + p["damping_power"] * shrink * rate)
         scale = (0.0 if p["force_history"] else p["spring_power"]) + (1.0 if p["rescale"] and rate < 0.0 else 0.0)
-        return {"n": n, "t": t, "v": v, "slip": slip, "f_n": f_n, "df_n": df_n, "dist": dist, "levers": levers,
-                "elastic": y[15], "spring": spring, "growth": scale * shrink}
+        return {"n": n, "turn": turn, "v": v, "v_n": v_n, "spin": spin, "slip": v_t - np.cross(spin, n),
+                "f_n": f_n, "df_n": df_n, "dist": dist, "levers": levers,
+                "spring": p["kt"] * self.radius_power(delta, p["spring_power"]), "growth": scale * shrink,
+                "dashpot": p["gamma_t"] * damp, "dashpot_rate": p["gamma_t"] * p["damping_power"] * shrink * damp}
 
     def radius_power(self, delta: float, s: float) -> float:
         """a^s of the contact radius a = sqrt(R_eff |delta|) (1 for s = 0)."""
         return 1.0 if s == 0.0 else (self.p["r_eff"] * abs(delta)) ** (s / 2.0)
 
-    def stick_rate(self, k: dict, elastic: float) -> float:
-        """E' while sticking with the elastic force ``elastic``."""
-        return k["spring"] * k["slip"] + k["growth"] * elastic
+    def accelerations(self, k: dict, f_t: np.ndarray) -> tuple:
+        """(v_a', v_b', w_a', w_b') under the normal force and the friction ``f_t`` on a."""
+        p = self.p
+        force = k["f_n"] * k["n"] + f_t
+        arm = -np.cross(k["n"], f_t)
+        return (force / p["m_a"], -force / p["m_b"], k["levers"][0] * arm / p["i_a"],
+                k["levers"][1] * arm / p["i_b"])
+
+    def stick_rate(self, k: dict, trial: np.ndarray) -> np.ndarray:
+        """A' while sticking with the trial force ``trial`` (the friction -trial)."""
+        p, n, turn = self.p, k["n"], k["turn"]
+        dv_a, dv_b, dw_a, dw_b = self.accelerations(k, -trial)
+        dv = dv_a - dv_b
+        dspin = p["r_a"] * dw_a + p["r_b"] * dw_b
+        slip_rate = (dv - (dv @ n) * n - (turn @ k["v"]) * n - k["v_n"] * turn  # u''
+                     - np.cross(dspin, n) - np.cross(k["spin"], turn))
+        elastic = trial - k["dashpot"] * k["slip"]
+        return (k["spring"] * k["slip"] + k["growth"] * elastic - (elastic @ turn) * n
+                + k["dashpot_rate"] * k["slip"] + k["dashpot"] * slip_rate)
 
     def cap(self, k: dict) -> float:
         """mu |F_n|, with |F_n| taken as F_n on the phase's side (``f_side``): a phase ends where F_n
@@ -128,72 +139,116 @@ class _Contact:
         """d(mu |F_n|)/dt on the phase's side."""
         return self.p["mu"] * self.f_side * k["df_n"]
 
+    def direction(self, k: dict, y) -> np.ndarray:
+        """A slide's unit s, held in the tangent plane (its drift off it is the integrator's)."""
+        s = y[15:18] - (y[15:18] @ k["n"]) * k["n"]
+        return s / np.linalg.norm(s)
+
     def rates(self, _t, y):
-        p, k = self.p, self.kinematics(y)
-        f_t = -(k["elastic"] if self.phase == 0 else self.phase * self.cap(k))
-        force = k["f_n"] * k["n"] + f_t * k["t"]
-        arm = -np.cross(k["n"], f_t * k["t"])
-        return np.concatenate([k["v"], force / p["m_a"], -force / p["m_b"], k["levers"][0] * arm / p["i_a"],
-                               k["levers"][1] * arm / p["i_b"],
-                               [self.stick_rate(k, k["elastic"]) if self.phase == 0 else 0.0]])
+        k = self.kinematics(y)
+        if self.sliding:
+            s = self.direction(k, y)
+            c = self.cap(k)
+            across = np.cross(k["n"], s)
+            tail = (-(s @ k["turn"]) * k["n"]
+                    + (across @ self.stick_rate(k, c * s)) * across / np.hypot(c, self.turn_floor))
+            trial = c * s
+        else:
+            trial = y[15:18]
+            tail = self.stick_rate(k, trial)
+        return np.concatenate([k["v"], *self.accelerations(k, -trial), tail, [-k["v_n"]]])
 
     def stick_ends(self, _t, y) -> float:
         k = self.kinematics(y)
-        return abs(k["elastic"]) - self.cap(k) - MARGIN * self.force_scale
+        return np.linalg.norm(y[15:18]) - self.cap(k) - MARGIN * self.force_scale
+
+    def push(self, k: dict, s: np.ndarray) -> float:
+        """How fast sticking would carry A outwards along s with A = c s on the cap, less the cap's rate."""
+        return s @ self.stick_rate(k, self.cap(k) * s) - self.cap_rate(k)
 
     def slide_ends(self, _t, y) -> float:
         k = self.kinematics(y)
-        return (self.phase * self.stick_rate(k, self.phase * self.cap(k)) - self.cap_rate(k)
-                + MARGIN * self.force_scale / self.tau)
+        return self.push(k, self.direction(k, y)) + MARGIN * self.force_scale / self.tau
 
     def normal_force(self, _t, y) -> float:
         """F_n on the side it started the phase on: falls through 0 when F_n changes sign."""
         return self.f_side * self.kinematics(y)["f_n"]
 
-    def restart(self, y, switched: bool = False, normal_zero: bool = False) -> None:
-        """Enter the next phase from state y: the other one after a switch (a stick that reached
-        the cap slides the history's way, a slide whose cap outgrew it sticks; deciding again
-        from y could undo the switch, as the event's root is found only to ~1e-15 s), or the
-        one that holds at first touch or after F_n's zero (``normal_zero``: F_n is then on the
-        side it moves to, whatever the sign of the residue the root leaves)."""
-        k = self.kinematics(y)
-        # the sign of F_n; at F_n = 0 (to rounding, or its zero's event), the sign it moves to
-        at_zero = normal_zero or not abs(k["f_n"]) > self.f_rounding
-        self.f_side = np.sign(k["df_n"]) if at_zero else np.sign(k["f_n"])
-        if switched:
-            self.phase = int(np.sign(k["elastic"]) or np.sign(k["slip"])) if self.phase == 0 else 0
-        else:
-            self.phase = self.phase_at(y)
+    def deepest(self, _t, y) -> float:
+        """The overlap's rate: a rescale starts where it falls through 0 (a kink in A')."""
+        return -self.kinematics(y)["v_n"]
 
     def separated(self, _t, y) -> float:
-        return self.kinematics(y)["dist"] - (self.p["r_a"] + self.p["r_b"]) + self.last
+        return self.last - y[18]
 
-    def phase_at(self, y) -> int:
-        """The phase that holds from state y: a slide (the history's way, or the slip's where the
-        history is 0) while the sticking rate outruns the cap, else sticking."""
+    def on_cap(self, y, s: np.ndarray | None) -> None:
+        """With A on the cap along s (or just past it): slide if sticking would push A outwards faster
+        than the cap grows, else stick with A = c s (no s, no slip: stick with A = 0)."""
         k = self.kinematics(y)
-        if abs(k["elastic"]) < self.cap(k) - MARGIN * self.force_scale:
-            return 0
-        sign = np.sign(k["elastic"]) or self.phase or np.sign(k["slip"])
-        return int(sign) if sign * self.stick_rate(k, sign * self.cap(k)) > self.cap_rate(k) else 0
+        if s is None:
+            self.sliding, y[15:18] = False, 0.0
+        elif self.push(k, s) > 0.0:
+            self.sliding, y[15:18] = True, s
+        else:
+            self.sliding, y[15:18] = False, self.cap(k) * s
+
+    def begin(self, y) -> None:
+        """The phase at first touch: sticking if A is inside the cap, else as :meth:`on_cap` along A
+        (or the slip). A displacement history on a^q with a dashpot a^s, s < q, whose first trial
+        force is beyond the cap slides along the slip from the start (the wall oracle's
+        ``first_phase``, :attr:`.wall_law.Law.first_touch_runaway`)."""
+        k = self.kinematics(y)  # F_n's side: at first touch (to rounding) the side it moves to
+        self.f_side = np.sign(k["f_n"] if abs(k["f_n"]) > self.f_rounding else k["df_n"]) or 1.0
+        trial = y[15:18]
+        if np.linalg.norm(trial) < self.cap(k) - MARGIN * self.force_scale:
+            self.sliding = False
+            return
+        s = _unit(trial)
+        self.on_cap(y, s if s is not None else self.rate_direction(k))
+        if self.runaway and not self.sliding and s is not None:
+            self.sliding, y[15:18] = True, -s
+
+    def switch(self, y, which: str) -> None:
+        """The phase after the event ``which``: a stick that reached the cap slides along A, a slide
+        whose cap outgrew it sticks on the cap (deciding again from y could undo the switch, the
+        event's root found only to ~1e-15 s); at F_n's zero the cap restarts from zero on the side F_n
+        moves to, whatever the sign of the residue the root leaves."""
+        k = self.kinematics(y)
+        if which == "deepest":
+            self.unloading = True
+        elif which == "stick_ends":
+            self.sliding, y[15:18] = True, y[15:18] / np.linalg.norm(y[15:18])
+        elif which == "slide_ends":
+            self.sliding, y[15:18] = False, self.cap(k) * self.direction(k, y)
+        else:  # normal_force: A is on or inside a cap of zero, and leaves it the way sticking pushes it
+            self.f_side = np.sign(k["df_n"]) or -self.f_side
+            self.on_cap(y, self.rate_direction(k))
+
+    def rate_direction(self, k: dict) -> np.ndarray | None:
+        """Where sticking pushes a trial force of zero (the cap's zero, first touch): the unit A'
+        at A = 0, else the slip's (None if neither has one). A slide's s would turn there at an
+        infinite rate (s' ~ 1/c), whatever it was before."""
+        rate = _unit(self.stick_rate(k, np.zeros(3)))
+        return rate if rate is not None else _unit(k["slip"])
+
+    def events(self) -> list:
+        """End of contact, the phase's own end, and (with damping) the normal force's zero, (with a
+        rescale) the deepest point; each stops the integration, which restarts there."""
+        out = [_event(self.separated, 1.0), _event(self.slide_ends, -1.0) if self.sliding
+               else _event(self.stick_ends, 1.0)]
+        if self.p["gamma_n"] > 0.0:
+            out.append(_event(self.normal_force, -1.0))
+        if self.p["rescale"] and not self.unloading:
+            out.append(_event(self.deepest, -1.0))
+        return out
 
 
 def _event(function, direction: float):
     def event(t, y):
         return function(t, y)
 
-    event.terminal, event.direction = True, direction
+    event.terminal, event.direction, event.__name__ = True, direction, function.__name__
     return event
-
-
-def _events(contact: _Contact) -> list:
-    """End of contact, the phase's own end, and (with damping) the normal force's zero; all stop
-    the integration, which restarts there."""
-    events = [_event(contact.separated, 1.0),
-              _event(contact.stick_ends, 1.0) if contact.phase == 0 else _event(contact.slide_ends, -1.0)]
-    if contact.p["gamma_n"] > 0.0:
-        events.append(_event(contact.normal_force, -1.0))
-    return events
 
 
 def _first_event(solution, events) -> tuple[float, int, np.ndarray]:
@@ -219,51 +274,57 @@ def _first_event(solution, events) -> tuple[float, int, np.ndarray]:
     return t_end, which, solution.y_events[which][0].copy()
 
 
+def _first_touch(contact: _Contact, y, t: float) -> np.ndarray:
+    """The state t after first touch (a law on the contact radius): the centres moved by v t, the
+    elastic force grown as k a^q u' t (over 1 + q/2 for a force history), the dashpot's part beside it."""
+    p = contact.p
+    y[:3] += (y[3:6] - y[6:9]) * t
+    y[18] = -((y[3:6] - y[6:9]) @ contact.n0) * t
+    k = contact.kinematics(y)
+    elastic = k["spring"] * k["slip"] * t / (1.0 + p["spring_power"] / 2.0 if p["force_history"] else 1.0)
+    y[15:18] = elastic + k["dashpot"] * k["slip"]
+    return y
+
+
 def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, mu, gamma_n=0.0, gamma_t=0.0,
           planar=False, rtol=RTOL, **law) -> PairOutcome:
     """One capped pair from first touch until it separates (arguments as :func:`.pair_exact.solve`,
     ``law`` its keys of :data:`.pair_exact.HOOKE`)."""
-    if gamma_t != 0.0:
-        raise ValueError("the capped pair reference has no tangential damping (gamma_t must be 0)")
-    e = plane_normal(n, v_a, v_b, w_a, w_b)
-    if e is None:
-        raise ValueError("the capped pair reference needs planar motion: the line of centres and both "
-                         "velocities in one plane, both spins along its normal")
     n0, p, y, v_rel, tau, longest, atol = start(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b,
-                                                kn, kt, planar, rtol, mu=mu, gamma_n=gamma_n, **law)
-    contact = _Contact(p, e, n0, planar)
-    contact.tau = tau
+                                                kn, kt, planar, rtol, mu=mu, gamma_n=gamma_n, gamma_t=gamma_t, **law)
+    contact = _Contact(p, n0, planar)
+    contact.tau, contact.unloading = tau, False
     radial = on_contact_radius(p["power"], p["spring_power"], p["damping_power"])
+    contact.runaway = not p["force_history"] and p["spring_power"] > p["damping_power"] and gamma_t > 0.0
     m_star, speed = contact.m_star, abs(v_rel @ n0)
     depth = pair_depth(p, v_rel, n0, m_star)
     stiffness = p["K"] * p["power"] * depth ** (p["power"] - 1.0)  # kn for the Hookean force
     contact.f_rounding = 16.0 * stiffness * np.spacing(r_a + r_b)
     contact.force_scale = mu * speed * np.sqrt(m_star * stiffness)
-    # a law on the contact radius starts a hair after first touch (the elastic force grown as u' t,
-    # over 1 + q/2 for a force history) and ends a hair before the overlap does, where a's rates
-    # are infinite (what the ends would do, ~ (1e-10)^(1 + s/2) of the speed, is left)
+    contact.turn_floor = TURN_FLOOR * contact.force_scale
+    # a law on the contact radius starts a hair after first touch and ends a hair before the overlap
+    # does, where a's rates are infinite (what the ends would do, ~ (1e-10)^(1 + s/2) of the speed, is left)
     contact.last = LAST_OVERLAP * depth if radial else 0.0
     t = FIRST_TOUCH * tau if radial else 0.0
-    y = np.append(y, 0.0)
-    if t:
-        y[:3] += v_rel * t
-        k0 = contact.kinematics(y)
-        y[15] = k0["spring"] * k0["slip"] * t / (1.0 + p["spring_power"] / 2.0 if p["force_history"] else 1.0)
-    atol = np.append(np.full(15, atol), rtol * contact.force_scale)
+    y = _first_touch(contact, np.append(y, np.zeros(4)), t)
+    # the overlap's tolerance: relative from its first touch on (a law on the contact radius starts at ~1e-12 of it)
+    atol = np.concatenate([np.full(15, atol), np.full(3, rtol * contact.force_scale), [rtol * 1e-12 * depth]])
     damped_time = float(pair_theory.contact_time(m_a, m_b, kn, gamma_n)) if not radial else tau
     window = 20.0 * (max(contact.tau, damped_time) if np.isfinite(damped_time) else contact.tau)
-    contact.restart(y)
+    contact.begin(y)
     for _ in range(MAX_PHASES):
-        events = _events(contact)
+        events = contact.events()
+        if contact.sliding:  # s is a unit vector: its tolerance is rtol's
+            atol[15:18] = rtol
+        else:
+            atol[15:18] = rtol * contact.force_scale
         solution = solve_ivp(contact.rates, (t, t + window), y, method="DOP853", rtol=rtol, atol=atol,
                              events=events, max_step=longest, dense_output=True)
         t, which, y = _first_event(solution, events)
         if which == 0:
             if contact.last:  # the spheres part freely from the cut to the end of the overlap
                 k = contact.kinematics(y)
-                t += contact.last / max(abs(k["v"] @ k["n"]), 1e-300)
+                t += contact.last / max(abs(k["v_n"]), 1e-300)
             return outcome(y, n0, t)
-        if contact.phase != 0:  # leaving a slide (or passing F_n = 0 in one): the elastic force on the cap
-            y[15] = contact.phase * p["mu"] * abs(contact.kinematics(y)["f_n"])
-        contact.restart(y, switched=which == 1, normal_zero=which == 2)
+        contact.switch(y, events[which].__name__)
     raise RuntimeError(f"the capped pair switched phase more than {MAX_PHASES} times (chattering)")

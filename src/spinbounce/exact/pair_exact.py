@@ -49,7 +49,8 @@ def longest_step(tau: float, v_rel, n0, radsum: float) -> float:
 
 @dataclass(frozen=True)
 class PairOutcome:
-    """Velocities and spins after the contact, its duration, and how far n turned (radians)."""
+    """Velocities and spins after the contact, its duration, how far n turned (radians) and a's centre
+    less b's at separation (``d_end``)."""
 
     v_a: np.ndarray
     v_b: np.ndarray
@@ -57,6 +58,7 @@ class PairOutcome:
     w_b: np.ndarray
     contact_time: float
     turn: float
+    d_end: np.ndarray | None = None
 
 
 def _contact_radius_power(p, delta: float, s: float) -> float:
@@ -138,7 +140,7 @@ def outcome(end, n0, t) -> PairOutcome:
     """The outcome from the state (d, v_a, v_b, w_a, w_b, ...) at separation, time t."""
     d_end, v_a, v_b, w_a, w_b = end[:15].reshape(5, 3)
     turn = float(np.arccos(np.clip(d_end @ n0 / np.linalg.norm(d_end), -1.0, 1.0)))
-    return PairOutcome(v_a=v_a, v_b=v_b, w_a=w_a, w_b=w_b, contact_time=float(t), turn=turn)
+    return PairOutcome(v_a=v_a, v_b=v_b, w_a=w_a, w_b=w_b, contact_time=float(t), turn=turn, d_end=d_end.copy())
 
 
 def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, gamma_n=0.0, gamma_t=0.0,

@@ -49,9 +49,11 @@ CAPPED_THEORY_SECONDS = 1e-5
 PROBE_SECONDS = 0.3
 #: A pair's references per collision on one core (scenes.pair.table.pair_table: the exact reference
 #: and the planar theory; the capped reference solves both by events), measured on 100
-#: pairs each: 13 ms uncapped, 76 to 89 ms capped; with room.
+#: pairs each: 13 ms uncapped, 66 to 89 ms capped; 415 to 450 ms capped in 3-D, where a slide's
+#: direction turns stiffly as the cap closes (40 pairs); with room.
 PAIR_THEORY_SECONDS = 0.02
 CAPPED_PAIR_THEORY_SECONDS = 0.12
+CAPPED_PAIR_3D_THEORY_SECONDS = 0.6
 #: A pair chunk's probe (stepping.tune): up to five LAMMPS runs of at most
 #: PROBE_SPHERES pairs, each at up to the fine rule's steps.
 PAIR_PROBE_SECONDS = 5.0
@@ -104,7 +106,9 @@ def _pair_cost(spec, group: int, collisions: int) -> ChunkCost:
     fast, _ = spec.normal_speeds()
     b = spec.sphere_b(group)
     steps = PairBatch(pairs_from_states(model, b, [[-fast, 0.0, 0.0]]), pair_contact(model, b), dt).nsteps
-    theory = CAPPED_PAIR_THEORY_SECONDS if model.mu is not None else PAIR_THEORY_SECONDS
+    theory = PAIR_THEORY_SECONDS
+    if model.mu is not None:
+        theory = CAPPED_PAIR_3D_THEORY_SECONDS if spec.is_3d else CAPPED_PAIR_THEORY_SECONDS
     probe = PAIR_PROBE_SECONDS if dt is None else 0.0
     seconds = START_SECONDS + probe + collisions * (2 * steps * SPHERE_STEP_SECONDS + theory)
     return ChunkCost(collisions, steps, seconds, BASE_MB + SCIPY_MB + 2 * collisions * KB_PER_SPHERE / 1024)

@@ -61,9 +61,6 @@ def _check_pairs(spec) -> None:
                 contact = pair_contact(model, b)
         except SceneError as exc:
             raise SweepError(f"model.{exc.parameter}: {exc}") from None
-        if contact.mu is not None and spec.is_3d:
-            fail("mu", contact.mu, "needs a 2-D pair sweep (no v_s, omega_s, omega_n): the capped pair reference "
-                                    "solves motion in one plane")
         try:  # head-on at the fastest |v_n|: the deepest overlap (the step's checks are per pair)
             PairBatch(pairs_from_states(model, b, [[-fast, 0.0, 0.0]]), contact, dt)
         except SceneError as exc:

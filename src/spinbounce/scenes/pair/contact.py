@@ -7,7 +7,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ...exact import pair_capped, pair_exact
-from ...model.parameters import SceneError, by_name
+from ...model.parameters import by_name
 
 __all__ = ["PairContact", "checked"]
 
@@ -21,8 +21,7 @@ def checked(owner, names: tuple[str, ...]) -> None:
 @dataclass(frozen=True)
 class PairContact:
     """The contact law shared by every pair of a batch. ``mu``: the Coulomb cap (None: the
-    paper's uncapped model); a capped pair's reference (:mod:`spinbounce.exact.pair_capped`)
-    has no tangential damping and needs planar motion (checked per pair by :class:`PairBatch`)."""
+    paper's uncapped model; a capped pair's reference is :mod:`spinbounce.exact.pair_capped`)."""
 
     kn: float = by_name("kn").default  # the declared defaults (spinbounce.model.parameters), not copies
     kt: float = by_name("kt").default
@@ -41,9 +40,6 @@ class PairContact:
 
     def __post_init__(self):
         checked(self, ("kn", "kt", "gamma_n", "gamma_t", "mu", "damping"))
-        if self.mu is not None and self.gamma_t != 0.0:
-            raise SceneError("gamma_t", self.gamma_t, "must be 0 with a Coulomb cap (mu) in a pair: the capped "
-                                                      "pair reference has no tangential damping")
 
     def law(self) -> dict:
         """kn, kt, gamma_n and gamma_t, as the uncapped references and the planar theory take them."""
@@ -69,7 +65,7 @@ class PairContact:
         """The outcome of ``pair`` (a :class:`.scene.Pair`) as LAMMPS integrates it (``planar``: with n held
         fixed), capped or not."""
         if not self.mu:  # no cap, or a cap of zero: no tangential force (the capped solver divides by mu)
-            law = self.reference_law() | ({} if self.mu is None else {"kt": 0.0})
+            law = self.reference_law() | ({} if self.mu is None else {"kt": 0.0, "gamma_t": 0.0})
             return pair_exact.solve(**pair.vectors(), **pair.properties(), **law, planar=planar)
         return pair_capped.solve(**pair.vectors(), **pair.properties(), **self.reference_law(), mu=self.mu,
                                  planar=planar)

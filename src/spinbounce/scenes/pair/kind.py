@@ -58,9 +58,6 @@ def pair_contact(model: ContactModel, b: Sphere) -> PairContact:
                                              "pair style is not covered by the pair's references)")
     damping = model.damping_law
     gamma_n, gamma_t = damping.contact_dashpots(model, model.m * b.m / (model.m + b.m))
-    if damping.derived and model.mu is not None and model.x_t:
-        raise SceneError("x_t", model.x_t, "must be 0 (or none) with a Coulomb cap (mu) in a pair: the capped pair "
-                                           "reference has no tangential damping")
     own = tuple((p.name, getattr(model, p.name)) for p in damping.coefficients) if damping.derived else ()
     words = tuple((name, getattr(model, name)) for name in LAW_WORDS if getattr(model, name) != by_name(name).default)
     return PairContact(model.kn, model.kt, gamma_n, gamma_t, model.mu, model.damping, own, shape, words)

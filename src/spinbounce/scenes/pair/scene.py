@@ -18,6 +18,7 @@ critical damping, the step's stability and resolution.
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, field, replace
 from functools import cached_property
 
@@ -26,11 +27,12 @@ import numpy as np
 from ... import checks
 from ...lammps.decks import ALPHA_NVE_SPHERE
 from ...exact import pair as planar
-from ...exact import pair_capped
+from ...errors import PhysicsWarning
 from ...model.contact import ContactModel
 from ...model.parameters import SceneError, by_name
 from ...model.stability import overlap_stretch
-from ...model.timestep import check_steps, steps_per_contact, steps_through
+from ...model.timestep import MAX_STEPS, check_steps, steps_per_contact, steps_through
+from ..jump import near_the_jump, warn_near_the_jump
 from .contact import PairContact, checked as _checked
 from .deck import PAIR_NO_CAP_MU, render_pairs
 
@@ -46,6 +48,8 @@ __all__ = ["Sphere", "PairContact", "Pair", "PairBatch", "ALPHA_NVE_SPHERE", "PA
 #: Largest error against the exact reference over the 24 cases of studies.cases(), with
 #: the placement of :attr:`PairBatch.lead`: 5.8e-5 of the speed at this resolution.
 PAIR_STEPS_PER_HALF_PERIOD = 8000
+#: A batch runs this fraction of its longest contact beyond the last pair's end (:attr:`PairBatch.nsteps`).
+CONTACT_MARGIN = 0.05
 #: The probe's coarser run: steps per contact (the wall's rule takes 174 at its defaults).
 START_STEPS = 100
 #: The most time-scale classes (atom types per kind of sphere) of an aligned damped batch.
@@ -140,11 +144,15 @@ class Pair:
                             alpha=planar.equivalent_alpha(a.m, a.alpha, b.m, b.alpha), **contact.law(),
                             damping=contact.damping, **dict(contact.damping_coefficients), **dict(contact.words))
 
+    def slip_speed(self) -> float:
+        """|u'(0)|: the contact points' initial relative tangential speed."""
+        slip = planar.slip_rate(np.asarray(self.normal), self.v_a, self.v_b, self.w_a, self.w_b, self.a.r, self.b.r)
+        return float(np.linalg.norm(slip))
+
     def speed(self) -> float:
         """The larger of the impact speed |v_a - v_b| and the initial slip speed |u'(0)|:
         the scale errors are measured in."""
-        slip = planar.slip_rate(np.asarray(self.normal), self.v_a, self.v_b, self.w_a, self.w_b, self.a.r, self.b.r)
-        return float(max(np.linalg.norm(np.subtract(self.v_a, self.v_b)), np.linalg.norm(slip)))
+        return max(float(np.linalg.norm(np.subtract(self.v_a, self.v_b))), self.slip_speed())
 
 
 def time_scaled(pair: Pair, scale: float) -> Pair:
@@ -196,11 +204,10 @@ class PairBatch:
             if reach >= model.r:
                 raise SceneError(f"pairs[{k}].v_n", pair.v_n, "|v_n| is too large: the overlap would reach "
                                  f"{reach:.6g} >= the smaller radius {model.r:g}")
-            if self.contact.mu is not None and pair_capped.plane_normal(**pair.vectors()) is None:
-                raise SceneError(f"pairs[{k}]", "3-D motion", "must move in one plane with a Coulomb cap (mu): the "
-                                 "line of centres and both velocities in a plane, both spins along its normal")
         object.__setattr__(self, "dt", dt)
-        if self.dt is not None and not self.default_step:  # a given step: refused if no run may take it
+        if self.default_step:
+            warn_near_the_jump(models[0], self.near_the_jump())
+        else:  # a given step: refused if no run may take it
             check_steps(float(np.max(self.contact_times)) / dt, "dt", dt, "to end the longest contact",
                         spheres=2 * len(pairs))
 
@@ -285,8 +292,11 @@ class PairBatch:
 
     @property
     def nsteps(self) -> int:
-        """Steps that carry every pair past the end of its contact (and one more)."""
-        return steps_through(float(np.max(self.lead + self.deck_contact_times)), self.dt)
+        """Steps that carry every pair past the end of its contact, CONTACT_MARGIN of the longest more (and
+        one more): a contact LAMMPS ends later than the reference (a coarse step; a state near its law's
+        jump) is then measured and reported, not lost."""
+        longest = float(np.max(self.deck_contact_times))
+        return steps_through(float(np.max(self.lead + self.deck_contact_times)) + CONTACT_MARGIN * longest, self.dt)
 
     # --- what the pipeline and the step probe ask of every scene (spinbounce.scenes) ---
 
@@ -334,15 +344,25 @@ class PairBatch:
         return START_STEPS
 
     def step_limit(self, t_contact: float) -> int:
-        """The fine rule's steps per contact: a probe that needs as many keeps the fine rule."""
-        return steps_per_contact(t_contact, self.dt)
+        """The fine rule's steps per contact: a probe that needs as many keeps the fine rule; with a pair
+        near its law's jump (:meth:`near_the_jump`), where the rule falls short, a quarter of a run's limit."""
+        return MAX_STEPS // 4 if np.any(self.near_the_jump()) else steps_per_contact(t_contact, self.dt)
+
+    def near_the_jump(self) -> np.ndarray:
+        """Per pair, whether its law's outcome jumps just below it (:func:`spinbounce.scenes.jump.near_the_jump`
+        of its equivalent wall at its own v_n and slip speed)."""
+        if self.contact.mu is None:
+            return np.zeros(self.n, dtype=bool)
+        return np.array([near_the_jump(p.equivalent_wall(self.contact).replace(mu=self.contact.mu),
+                                       np.array([[p.v_n, p.slip_speed(), 0.0]]))[0] for p in self.pairs])
 
     def fallback(self) -> "PairBatch":
         """The batch at its fine rule's step, aligned."""
         return PairBatch(self.pairs, self.contact, self.dt, aligned=True)
 
     def rows(self, index) -> "PairBatch":
-        return PairBatch(tuple(self.pairs[i] for i in index), self.contact)
+        with warnings.catch_warnings(action="ignore", category=PhysicsWarning):  # this batch's own: warned once
+            return PairBatch(tuple(self.pairs[i] for i in index), self.contact)
 
     def at_step(self, dt: float) -> "PairBatch":
         return PairBatch(self.pairs, self.contact, dt, aligned=True)

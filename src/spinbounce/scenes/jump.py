@@ -1,6 +1,7 @@
 """States near a law's jump: where the first trial force of a damped displacement history on the
 contact radius reaches the cap (:attr:`spinbounce.exact.wall_law.Law.first_touch_runaway`), the
-outcome jumps and LAMMPS converges to it slowly; the wall scene warns of them and probes their step.
+outcome jumps and LAMMPS converges to it slowly; the wall and the pair scenes warn of them and probe
+their step finer than their rules.
 """
 
 from __future__ import annotations
@@ -9,8 +10,8 @@ import warnings
 
 import numpy as np
 
-from ...errors import PhysicsWarning
-from ...exact.wall_law import Law
+from ..errors import PhysicsWarning
+from ..exact.wall_law import Law
 
 __all__ = ["NEAR_THE_JUMP", "near_the_jump", "warn_near_the_jump"]
 
