@@ -68,8 +68,7 @@ def test_a_wall_sweep_has_no_scene_keys_and_b_needs_a_pair(tmp_path):
         spec_from_dict({"model": {"m_b": 2.0}, "states": wall.raw["states"]})
 
 
-@pytest.mark.parametrize("model,needle", [({"mu": 0.3, "gamma_t": 0.5}, "gamma_t = 0.5: must be 0 with a Coulomb cap"),
-                                          ({"normal": "hertz", "gamma_n": 0.5, "limit_damping": True},
+@pytest.mark.parametrize("model,needle", [({"normal": "hertz", "gamma_n": 0.5, "limit_damping": True},
                                            "limit_damping = True: is not covered by the pair's exact reference"),
                                           ({"scene": ["wall", "pair"]}, "one scene per sweep"),
                                           ({"alpha_b": 1.5}, "alpha_b = 1.5: must lie in"),
@@ -92,8 +91,7 @@ def test_planar_matrix_becomes_the_walls_as_m_b_grows():
 
 
 def test_pair_contact_names_what_a_pair_cannot_run():
-    for model, needle in ((ContactModel(mu=0.3, gamma_t=0.5), "gamma_t"),
-                          (ContactModel(limit_damping=True), "limit_damping"),
+    for model, needle in ((ContactModel(limit_damping=True), "limit_damping"),
                           (ContactModel(wall="classic"), "wall")):
         with pytest.raises(SceneError, match=needle):
             pair_contact(model, sphere_b())  # against sphere b, as every caller gives it

@@ -4,6 +4,7 @@ integrate."""
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 from ...exact import pair_capped, pair_exact
@@ -63,9 +64,18 @@ class PairContact:
 
     def solve(self, pair, planar: bool = False):
         """The outcome of ``pair`` (a :class:`.scene.Pair`) as LAMMPS integrates it (``planar``: with n held
-        fixed), capped or not."""
-        if not self.mu:  # no cap, or a cap of zero: no tangential force (the capped solver divides by mu)
-            law = self.reference_law() | ({} if self.mu is None else {"kt": 0.0, "gamma_t": 0.0})
-            return pair_exact.solve(**pair.vectors(), **pair.properties(), **law, planar=planar)
-        return pair_capped.solve(**pair.vectors(), **pair.properties(), **self.reference_law(), mu=self.mu,
-                                 planar=planar)
+        fixed), capped or not; solved once per law and pair (a step probe's runs share them)."""
+        return _solve(self, pair, planar)
+
+
+#: Outcomes kept: a probe runs the same pairs at up to five steps, each batch asking for their references.
+SOLVED = 1 << 14
+
+
+@functools.lru_cache(maxsize=SOLVED)
+def _solve(contact: PairContact, pair, planar: bool):
+    if not contact.mu:  # no cap, or a cap of zero: no tangential force (the capped solver divides by mu)
+        law = contact.reference_law() | ({} if contact.mu is None else {"kt": 0.0, "gamma_t": 0.0})
+        return pair_exact.solve(**pair.vectors(), **pair.properties(), **law, planar=planar)
+    return pair_capped.solve(**pair.vectors(), **pair.properties(), **contact.reference_law(), mu=contact.mu,
+                             planar=planar)
