@@ -10,6 +10,7 @@ converged (1e-6).
 
 from __future__ import annotations
 
+import functools
 import warnings
 
 import numpy as np
@@ -185,3 +186,45 @@ def test_converged_capped_lammps_meets_the_reference(name, tmp_path):
     model = ContactModel(m=1.0, r=0.5, mu=0.3, **CAPPED[name])
     final, exact = _converged(model, np.array([[-0.7, 1.0, 0.6, 0.4, -0.2, 0.4]]), tmp_path)
     assert np.abs(final - exact).max() <= 1e-6
+
+
+#: Each law with a normal dashpot, uncapped and capped, with LAMMPS's limit_damping.
+LIMITED = [(name, mu) for name in sorted(CAPPED) for mu in (None, 0.3)
+           if ContactModel(m=1.0, r=0.5, **CAPPED[name]).gamma_n > 0.0]
+
+
+@pytest.mark.parametrize("name, mu", LIMITED)
+def test_a_fixed_line_pair_with_limit_damping_against_a_heavy_sphere_is_the_wall(name, mu):
+    # the normal force cut at its turn, and the friction with it (the no-cap mu = 1e100 of the pair deck,
+    # 1e12 of the wall's, times zero): from the turn the spheres part force-free. Measured 3.2e-11 at worst
+    # against the wall's references (exact.oracle; the closed form for Hooke's law without a cap), but
+    # 1.1e-8 where a damped displacement history's first trial force starts at 0.97 of the cap (the
+    # pair's reference at a tenth of its rtol there; 2e-7 at rtol itself): 1e-7
+    model = ContactModel(m=1.0, r=0.5, mu=mu, limit_damping=True, **CAPPED[name])
+    law, heavy = Law.of(model), Sphere(1e12, 10.0, 0.4)
+    c = 0.5 / (0.5 * 10.0 / 10.5) if law.on_contact_radius else 1.0
+    rng = np.random.default_rng(len(name) + 7)
+    for _ in range(3):
+        state = _states(rng, 1)[0] * (1.2, 1.0, 1.0, 2.0, 2.0, 1.0)
+        pair = pairs_from_states(model, heavy, state[None, :] / (1.0, 1.0, model.r, 1.0, model.r, model.r))[0]
+        law_of_pair = dict(kn=model.kn * c ** (law.power - 1.0), kt=law.k * c ** (law.spring_power / 2.0),
+                           gamma_n=law.c_n * c ** (law.damping_power / 2), gamma_t=law.c_t * c ** (law.damping_power / 2),
+                           power=law.power, spring_power=law.spring_power, force_history=law.force_history,
+                           rescale=law.rescale, damping_power=law.damping_power, planar=True, tensile=False)
+        solve = pair_exact.solve if mu is None else functools.partial(pair_capped.solve, mu=mu)
+        got = solve(**pair.vectors(), **pair.properties(), **law_of_pair)
+        final = wall_frame(got.v_a[None, :], got.w_a[None, :], model.r)[0]
+        assert final == pytest.approx(choose.predict(model, state[None, :])[0], abs=1e-7 * np.abs(state).max())
+
+
+@pytest.mark.lammps
+@pytest.mark.parametrize("name, mu", [("hertz mindlin/force tsuji", None), ("hooke viscoelastic", 0.3),
+                                      ("hertz coeff_restitution mindlin_rescale/force", 0.3)])
+def test_lammps_with_limit_damping_at_the_default_step_meets_the_reference(name, mu, tmp_path):
+    # random 3-D pairs in a batch: every pair within 1e-4 of its speed (measured 1.9e-5 to 5.3e-5 on eight
+    # laws and caps), the deck carrying limit_damping
+    model = ContactModel(m=1.0, r=0.5, mu=mu, limit_damping=True, **CAPPED[name])
+    batch = PairBatch(pairs_from_states(model, B, _states(np.random.default_rng(len(name)), 4)), pair_contact(model, B))
+    assert "limit_damping" in batch.render().text
+    table = run_scene(batch, tmp_path, record=False).table
+    assert (table["status"] == "ok").all() and table["error"].max() <= 1e-4

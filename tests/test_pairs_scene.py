@@ -68,9 +68,7 @@ def test_a_wall_sweep_has_no_scene_keys_and_b_needs_a_pair(tmp_path):
         spec_from_dict({"model": {"m_b": 2.0}, "states": wall.raw["states"]})
 
 
-@pytest.mark.parametrize("model,needle", [({"normal": "hertz", "gamma_n": 0.5, "limit_damping": True},
-                                           "limit_damping = True: is not covered by the pair's exact reference"),
-                                          ({"scene": ["wall", "pair"]}, "one scene per sweep"),
+@pytest.mark.parametrize("model,needle", [({"scene": ["wall", "pair"]}, "one scene per sweep"),
                                           ({"alpha_b": 1.5}, "alpha_b = 1.5: must lie in"),
                                           ({"m_b": "heavy"}, "m_b = 'heavy': must be a number")])
 def test_a_pair_sweep_refuses_what_the_pair_cannot_run(model, needle):
@@ -91,8 +89,7 @@ def test_planar_matrix_becomes_the_walls_as_m_b_grows():
 
 
 def test_pair_contact_names_what_a_pair_cannot_run():
-    for model, needle in ((ContactModel(limit_damping=True), "limit_damping"),
-                          (ContactModel(wall="classic"), "wall")):
+    for model, needle in ((ContactModel(wall="classic"), "wall"),):
         with pytest.raises(SceneError, match=needle):
             pair_contact(model, sphere_b())  # against sphere b, as every caller gives it
 

@@ -32,7 +32,7 @@ from scipy.integrate import solve_ivp
 
 from .wall_law import on_contact_radius
 
-__all__ = ["PairOutcome", "solve", "RTOL", "HOOKE", "longest_step", "start", "outcome"]
+__all__ = ["PairOutcome", "solve", "RTOL", "HOOKE", "longest_step", "start", "outcome", "free_flight"]
 
 #: Relative tolerance of the integration (the absolute one is this times the speeds).
 RTOL = 1e-12
@@ -66,18 +66,30 @@ def _contact_radius_power(p, delta: float, s: float) -> float:
     return 1.0 if s == 0.0 else (p["r_eff"] * abs(delta)) ** (s / 2.0)
 
 
-def _rates(t, state, n0, p, planar, overlap=None):
-    """d(state)/dt; ``overlap``: the overlap where it is known better than from the centres (_tail)."""
-    d, v_a, v_b, w_a, w_b, xi = state.reshape(6, 3)
+def _geometry(state, n0, p, planar, overlap=None) -> tuple:
+    """(n, overlap, lever arms) of a state; ``overlap``: where it is known better than from the
+    centres (_tail)."""
+    d = state[:3]
     radsum = p["r_a"] + p["r_b"]
     if planar:
-        n, delta = n0, radsum - d @ n0
-        lever_a, lever_b = p["r_a"], p["r_b"]
+        n, delta, levers = n0, radsum - d @ n0, (p["r_a"], p["r_b"])
     else:
         dist = np.sqrt(d @ d)
         n, delta = d / dist, radsum - dist
-        lever_a, lever_b = p["r_a"] - 0.5 * delta, p["r_b"] - 0.5 * delta
-    delta = delta if overlap is None else overlap
+        levers = (p["r_a"] - 0.5 * delta, p["r_b"] - 0.5 * delta)
+    return n, (delta if overlap is None else overlap), levers
+
+
+def _normal_force(p, delta: float, v_n: float) -> float:
+    """F_n on a along n: K delta^p - gamma_n a^s v.n."""
+    depth = abs(delta) ** (p["power"] - 1.0) if p["power"] != 1.0 else 1.0
+    return p["K"] * depth * delta - p["gamma_n"] * _contact_radius_power(p, delta, p["damping_power"]) * v_n
+
+
+def _rates(t, state, n0, p, planar, overlap=None):
+    """d(state)/dt; ``overlap``: the overlap where it is known better than from the centres (_tail)."""
+    _, v_a, v_b, w_a, w_b, xi = state.reshape(6, 3)
+    n, delta, (lever_a, lever_b) = _geometry(state, n0, p, planar, overlap)
     v = v_a - v_b
     v_n = v @ n
     slip = v - v_n * n - np.cross(p["r_a"] * w_a + p["r_b"] * w_b, n)
@@ -85,8 +97,7 @@ def _rates(t, state, n0, p, planar, overlap=None):
     spring = p["kt"] * _contact_radius_power(p, delta, p["spring_power"])
     elastic = xi if p["force_history"] else -spring * xi
     f_t = elastic - p["gamma_t"] * damp * slip
-    depth = abs(delta) ** (p["power"] - 1.0) if p["power"] != 1.0 else 1.0
-    force = (p["K"] * depth * delta - p["gamma_n"] * damp * v_n) * n + f_t
+    force = _normal_force(p, delta, v_n) * n + f_t
     arm = -np.cross(n, f_t)
     history = -spring * slip if p["force_history"] else slip
     if p["rescale"] and v_n > 0.0 and delta > 0.0:  # a shrinks: the history by a_new/a_old (a'/a = delta'/2 delta)
@@ -136,7 +147,7 @@ def start(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, p
     return n0, p, state, v_rel, tau, longest, rtol * speed * min(radsum / speed, 1.0 / fast)
 
 
-def outcome(end, n0, t) -> PairOutcome:
+def outcome(end, t, n0) -> PairOutcome:
     """The outcome from the state (d, v_a, v_b, w_a, w_b, ...) at separation, time t."""
     d_end, v_a, v_b, w_a, w_b = end[:15].reshape(5, 3)
     turn = float(np.arccos(np.clip(d_end @ n0 / np.linalg.norm(d_end), -1.0, 1.0)))
@@ -144,12 +155,14 @@ def outcome(end, n0, t) -> PairOutcome:
 
 
 def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, gamma_n=0.0, gamma_t=0.0,
-          planar=False, rtol=RTOL, **law) -> PairOutcome:
+          planar=False, rtol=RTOL, tensile=True, **law) -> PairOutcome:
     """One pair from first touch (|d| = r_a + r_b, d along the unit vector ``n``) until it separates.
 
     Vectors are 3-sequences in LAMMPS's frame; angular velocities are LAMMPS's omega. ``law``: the
     keys of :data:`HOOKE` for a force or spring on the contact radius (kn is then LAMMPS's, the
-    force kn R_eff^(p - 1) delta^p; kt the spring's k of k a^q; the dashpots gamma a^s).
+    force kn R_eff^(p - 1) delta^p; kt the spring's k of k a^q; the dashpots gamma a^s). ``tensile``
+    False (LAMMPS's ``limit_damping``): where the normal force would turn to pull, it is cut to zero,
+    and with it the friction (the no-cap mu times |F_n|): the spheres part force-free (:func:`free_flight`).
     """
     n0, p, state, _, tau, longest, atol = start(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b,
                                                 kn, kt, planar, rtol, gamma_n=gamma_n, gamma_t=gamma_t, **law)
@@ -165,15 +178,45 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, g
         return gap(y) + depth
 
     separated.terminal, separated.direction = True, 1.0
+    turned = _turned(n0, p, planar) if not tensile and gamma_n > 0.0 else None
     # the start (gap 0, closing) is no upward crossing; the end (or the tail's start) is the first one
     solution = solve_ivp(_rates, (0.0, 20.0 * tau), np.concatenate([state, np.zeros(3)]), method="DOP853",
-                         args=(n0, p, planar), max_step=longest, rtol=rtol, atol=atol, events=separated)
-    if solution.status != 1 or not len(solution.t_events[0]):
+                         args=(n0, p, planar), max_step=longest, rtol=rtol, atol=atol,
+                         events=[separated] + ([turned] if turned else []))
+    fired = [k for k, times in enumerate(solution.t_events) if len(times)]
+    if solution.status != 1 or not fired:
         raise RuntimeError(f"the pair did not separate within 20 contact times: {solution.message}")
-    end, t_end = solution.y_events[0][0], solution.t_events[0][0]
+    end, t_end = solution.y_events[fired[0]][0], solution.t_events[fired[0]][0]
+    if fired[0] == 1:  # the normal force's turn: no force from here
+        return outcome(*free_flight(end, t_end, n0, planar, -gap(end)), n0)
     if radial:
-        end, t_end = _tail(end, t_end, -gap(end), n0, p, planar, rtol, atol)
-    return outcome(end, n0, t_end)
+        end, t_end = _tail(end, t_end, -gap(end), n0, p, planar, rtol, atol, turned)
+    return outcome(end, t_end, n0)
+
+
+def _turned(n0, p, planar):
+    """The event where the normal force falls through zero (``limit_damping`` cuts it there)."""
+    def turned(t, y, *_):
+        n, delta, _ = _geometry(y, n0, p, planar)
+        return _normal_force(p, delta, (y[3:6] - y[6:9]) @ n)
+
+    turned.terminal, turned.direction = True, -1.0
+    return turned
+
+
+def free_flight(state, t: float, n0, planar: bool, delta: float) -> tuple[np.ndarray, float]:
+    """(state, time) where spheres parting force-free from ``state`` (overlap ``delta``) stop touching:
+    each centre moves on at its velocity (the spins kept), so |d + v s| = |d| + delta, a quadratic in s
+    (held fixed, n0: d.n0 grows by delta)."""
+    d, v = state[:3], state[3:6] - state[6:9]
+    if planar:
+        s = delta / (v @ n0)
+    else:
+        c = 2.0 * np.sqrt(d @ d) * delta + delta * delta
+        s = c / (d @ v + np.sqrt((d @ v) ** 2 + (v @ v) * c))
+    end = state.copy()
+    end[:3] = d + v * s
+    return end, t + s
 
 
 #: A law on the contact radius leaves the time for x = sqrt(delta) where its overlap is back to this
@@ -191,9 +234,10 @@ def undamped_depth(p, v_rel, n0, m_star: float) -> float:
     return ((p["power"] + 1.0) * m_star * speed**2 / (2.0 * p["K"])) ** (1.0 / (p["power"] + 1.0))
 
 
-def _tail(state, t: float, delta: float, n0, p, planar, rtol, atol):
+def _tail(state, t: float, delta: float, n0, p, planar, rtol, atol, turned=None):
     """(state, time) at the end of the contact, integrated in x = sqrt(delta) from ``delta`` down: dy/dx =
-    dy/dt 2 x/delta', the time a state of its own."""
+    dy/dt 2 x/delta', the time a state of its own; ``turned``: the normal force's turn, from which the
+    spheres part force-free."""
     def rates(x, y):
         core = y[:-1]
         d, v = core[:3], core[3:6] - core[6:9]
@@ -203,8 +247,19 @@ def _tail(state, t: float, delta: float, n0, p, planar, rtol, atol):
 
     x0 = np.sqrt(delta)
     tail_atol = np.append(np.broadcast_to(atol, state.shape), atol)
+    events = []
+    if turned:
+        def turn(x, y):
+            n = n0 if planar else y[:3] / np.sqrt(y[:3] @ y[:3])
+            return _normal_force(p, x * x, (y[3:6] - y[6:9]) @ n)
+
+        turn.terminal, turn.direction = True, -1.0  # F_n falls through zero as x falls (as time runs)
+        events = [turn]
     solution = solve_ivp(rates, (x0, x0 * TAIL_END), np.append(state, t), method="DOP853", rtol=rtol,
-                         atol=tail_atol)
+                         atol=tail_atol, events=events)
+    if solution.status == 1:  # the turn: from there force-free
+        x, y = solution.t_events[0][0], solution.y_events[0][0]
+        return free_flight(y[:-1], float(y[-1]), n0, planar, x * x)
     if solution.status != 0:
         raise RuntimeError(f"the pair's contact did not end: {solution.message}")
     return solution.y[:-1, -1], float(solution.y[-1, -1])

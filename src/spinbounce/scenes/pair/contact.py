@@ -56,6 +56,11 @@ class PairContact:
         planar theory)."""
         return bool(self.shape)
 
+    @property
+    def tensile(self) -> bool:
+        """Whether the normal force may pull (False with LAMMPS's ``limit_damping``, one of its words)."""
+        return not dict(self.words).get("limit_damping", False)
+
     def reference_law(self) -> dict:
         """What :func:`spinbounce.exact.pair_exact.solve` takes: :meth:`law` with the spring's k as kt
         and the law's shape."""
@@ -76,6 +81,6 @@ SOLVED = 1 << 14
 def _solve(contact: PairContact, pair, planar: bool):
     if not contact.mu:  # no cap, or a cap of zero: no tangential force (the capped solver divides by mu)
         law = contact.reference_law() | ({} if contact.mu is None else {"kt": 0.0, "gamma_t": 0.0})
-        return pair_exact.solve(**pair.vectors(), **pair.properties(), **law, planar=planar)
+        return pair_exact.solve(**pair.vectors(), **pair.properties(), **law, planar=planar, tensile=contact.tensile)
     return pair_capped.solve(**pair.vectors(), **pair.properties(), **contact.reference_law(), mu=contact.mu,
-                             planar=planar)
+                             planar=planar, tensile=contact.tensile)

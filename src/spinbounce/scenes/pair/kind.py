@@ -42,7 +42,7 @@ def scene_of(values: dict) -> str:
 
 
 #: The model's words that choose a pair's law beyond the damping (the deck writes them again).
-LAW_WORDS = ("normal", "youngs_modulus", "poisson_ratio", "tangential", "mindlin_kt")
+LAW_WORDS = ("normal", "youngs_modulus", "poisson_ratio", "tangential", "mindlin_kt", "limit_damping")
 
 
 def pair_contact(model: ContactModel, b: Sphere) -> PairContact:
@@ -51,8 +51,6 @@ def pair_contact(model: ContactModel, b: Sphere) -> PairContact:
     spring or dashpot on the contact radius takes a = sqrt(R_eff delta) (the uncapped reference,
     :mod:`spinbounce.exact.pair_exact`)."""
     shape = _shape(model)
-    if model.limit_damping:
-        raise SceneError("limit_damping", True, "is not covered by the pair's exact reference: leave it out")
     if not model.style.pairs:
         raise SceneError("wall", model.wall, "must be granular with scene = pair (there is no wall; the classic "
                                              "pair style is not covered by the pair's references)")
