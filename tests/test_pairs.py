@@ -280,3 +280,23 @@ def test_a_damped_batch_is_probed_coarser_than_the_fine_rule_within_the_accuracy
     result = run_scene(batch, tmp_path, record=False)
     assert result.step.method == "probe" and result.scene.nsteps < batch.nsteps
     assert len(result.scene.scale_classes[1]) > 1 and result.max_error < 1e-4
+
+
+def test_free_flight_parts_the_spheres_where_the_overlap_is_gone():
+    # limit_damping's end of a contact: from the normal force's turn each centre moves on at its
+    # velocity; the distance must grow by the overlap left (along n0 with the line held), to rounding
+    rng = np.random.default_rng(31)
+    for _ in range(50):
+        n0 = rng.normal(size=3)
+        n0 /= np.linalg.norm(n0)
+        d = rng.uniform(0.5, 2.0) * n0 + rng.normal(scale=0.1, size=3)
+        v_b = rng.normal(size=3)
+        v_a = v_b + rng.uniform(0.1, 2.0) * d / np.linalg.norm(d) + rng.normal(scale=0.5, size=3)
+        state, delta = np.concatenate([d, v_a, v_b, np.zeros(6)]), rng.uniform(1e-6, 0.1)
+        if (v_a - v_b) @ n0 <= 0.0:
+            continue
+        end, t = pair_exact.free_flight(state, 1.0, n0, False, delta)
+        assert np.linalg.norm(end[:3]) == pytest.approx(np.linalg.norm(d) + delta, rel=1e-13) and t > 1.0
+        assert np.array_equal(end[3:], state[3:])  # velocities and spins kept
+        held, _ = pair_exact.free_flight(state, 0.0, n0, True, delta)
+        assert (held[:3] - d) @ n0 == pytest.approx(delta, rel=1e-12)
