@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 from pathlib import Path
 
 import pandas as pd
@@ -162,6 +163,17 @@ def initial_is(**values):
         initial = json.loads(stdout)["initial"]
         for key, value in values.items():
             assert initial[key] == value, initial
+    return check
+
+
+def pair_meets_its_reference(moved: str):
+    """A pair run: LAMMPS within the default accuracy of the pair's exact reference, status ok, and the
+    row ``moved`` changed by the contact (the part of the motion the case is about)."""
+    def check(stdout, folder):
+        error = re.search(r"LAMMPS vs exact: (\S+) \(status ok\)", stdout)
+        assert error and float(error.group(1)) <= LAMMPS_TOLERANCE, stdout
+        row = next(line.split() for line in stdout.splitlines() if line.split()[:1] == [moved])
+        assert abs(float(row[3]) - float(row[1])) > 1e-3, stdout  # exact against initial
     return check
 
 
