@@ -21,7 +21,7 @@ from .lammps.decks import Deck, INLINE_SPHERES, RESULT_TABLE, prepare_run_dir
 from .lammps.runner import RunInfo, run_deck
 from .model.timestep import ACCURACY, StepChoice
 from .records import software, to_json, write_atomic, write_parquet_atomic
-from .stepping import FALLBACK, tune
+from .stepping import FALLBACK, reachable, tune
 
 __all__ = ["ResultError", "RunResult", "SeriesResult", "run_scene", "run_series", "prepare_run_dir", "provenance",
            "write_record", "RESULT_TABLE"]
@@ -104,7 +104,7 @@ def run_scene(scene, out_dir: Path, atoms: str | None = None, record: bool = Tru
     given, (scene, step) = scene, tune(scene, Path(out_dir) / "probe", _probe_errors, probe_states, target)
     deck, deck_path, info, columns, deviation = _run(scene, out_dir, atoms, runner, target)
     fine = given.fallback() if step.method == "probe" else None
-    worst = float(np.max(columns["error"]))
+    worst = float(np.max(np.asarray(columns["error"])[reachable(given)]))  # rows beyond reach err at any step
     if fine is not None and fine.dt < scene.dt and worst > target:
         # the probe's step, chosen on a sample, missed the target on the whole scene: its rule's
         scene, step = fine, replace(step, dt=fine.dt, method=f"{FALLBACK}; the probe's step erred {worst:.2g}",

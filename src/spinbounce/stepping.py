@@ -25,7 +25,8 @@ import numpy as np
 from .errors import SceneError
 from .model.timestep import ACCURACY, SAFETY, StepChoice, mid_step_dt
 
-__all__ = ["StepChoice", "tune", "converge", "extrapolate", "expected_steps", "PROBE_SPHERES", "SAFETY", "FALLBACK"]
+__all__ = ["StepChoice", "tune", "reachable", "converge", "extrapolate", "expected_steps", "PROBE_SPHERES", "SAFETY",
+           "FALLBACK"]
 
 #: States a probe runs: the scene's own, every k-th of them beyond this many.
 PROBE_SPHERES = 32
@@ -57,7 +58,7 @@ def tune(scene, out: Path, run: Callable, probe_states=None, target: float = ACC
         method = "given" if not scene.default_step else "second-order rule"
         return scene, StepChoice(scene.dt, method, target)
     source = probe_states or scene
-    sample = source.rows(np.arange(source.n)[:: max(1, math.ceil(source.n / PROBE_SPHERES))])
+    sample = source.rows(reachable(source)[:: max(1, math.ceil(source.n / PROBE_SPHERES))])
     t_contact = scene.probe_time(sample)
     coarse_steps = sample.first_probe_steps(t_contact)  # the probe states' rule: one per sweep group
     limit = scene.step_limit(t_contact)
@@ -93,6 +94,13 @@ def tune(scene, out: Path, run: Callable, probe_states=None, target: float = ACC
                                           f"{exc.limit}: give dt to run at a step of your choice, each row's "
                                           "error reported") from None
     return tuned, StepChoice(tuned.dt, "probe", target, order, tuple(errors), predicted)
+
+
+def reachable(scene) -> np.ndarray:
+    """The rows a probe measures: all but those no affordable step brings to the target (a state just
+    above its law's jump: :func:`spinbounce.scenes.jump.beyond_reach`), unless that is all of them."""
+    reachable = np.flatnonzero(~scene.beyond_reach())
+    return reachable if reachable.size else np.arange(scene.n)
 
 
 def converge(coarse: tuple[int, float], fine: tuple[int, float], target: float, measure: Callable[[int], float],

@@ -12,7 +12,7 @@ probe (:func:`~spinbounce.stepping.tune`) ask: ``kind``, ``n``, ``dt``, ``nsteps
 ``default_step``; ``render(atoms)``, ``read(info, deck, folder)`` (the checked table's
 columns), ``row_states(columns)`` (what :mod:`spinbounce.checks` measures), ``record(deck)``
 (its parameters for the provenance); ``needs_probe()``, ``probe_time(sample)``,
-``first_probe_steps(t)``, ``step_limit(t)``, ``fallback()``, ``rows(index)`` and
+``first_probe_steps(t)``, ``step_limit(t)``, ``fallback()``, ``beyond_reach()``, ``rows(index)`` and
 ``at_step(dt)``. A time-series scene (``frozen``) answers ``kind``, ``render()``, ``read(...)``,
 ``record()`` and ``max_abs_error(table)`` for :func:`~spinbounce.pipeline.run_series`; two walls
 runs itself (:func:`~spinbounce.scenes.two_walls.run_two_walls`) on the same deck writer and runner.

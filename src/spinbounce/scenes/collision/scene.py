@@ -30,7 +30,7 @@ from ...model.stability import overlap_stretch
 from ...model.timestep import (MAX_STEPS, align_mid_step, check_steps, mode_rate, second_order_dt, steps_per_contact,
                                steps_through)
 from ...lammps.decks import wall_parameters
-from ..jump import near_the_jump, warn_near_the_jump
+from ..jump import beyond_reach, near_the_jump, warn_near_the_jump
 from .time_scale import dashpot, scaled_contact_time
 
 __all__ = ["Collision", "row_states", "HERTZ_STEPS_PER_HALF_PERIOD", "STATE", "STATE_3D", "STATE_ARGS"]
@@ -358,6 +358,10 @@ class Collision:
     def near_the_jump(self) -> np.ndarray:
         """Per state, whether its law's outcome jumps just below it (:func:`spinbounce.scenes.jump.near_the_jump`)."""
         return near_the_jump(self.model, self.initial)
+
+    def beyond_reach(self) -> np.ndarray:
+        """Per state, whether no affordable step reaches the target (:func:`spinbounce.scenes.jump.beyond_reach`)."""
+        return beyond_reach(self.model, self.initial)
 
     def probe_time(self, sample: "Collision") -> float:
         """The contact's length the probe's steps are counted over: the force's, the longest (in

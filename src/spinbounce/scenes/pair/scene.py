@@ -32,7 +32,7 @@ from ...model.contact import ContactModel
 from ...model.parameters import SceneError, by_name
 from ...model.stability import overlap_stretch
 from ...model.timestep import MAX_STEPS, check_steps, steps_per_contact, steps_through
-from ..jump import near_the_jump, warn_near_the_jump
+from ..jump import beyond_reach, near_the_jump, warn_near_the_jump
 from .contact import PairContact, checked as _checked
 from .deck import PAIR_NO_CAP_MU, render_pairs
 
@@ -351,10 +351,18 @@ class PairBatch:
     def near_the_jump(self) -> np.ndarray:
         """Per pair, whether its law's outcome jumps just below it (:func:`spinbounce.scenes.jump.near_the_jump`
         of its equivalent wall at its own v_n and slip speed)."""
+        return self._as_wall(near_the_jump)
+
+    def beyond_reach(self) -> np.ndarray:
+        """Per pair, whether no affordable step reaches the target (:func:`spinbounce.scenes.jump.beyond_reach`)."""
+        return self._as_wall(beyond_reach)
+
+    def _as_wall(self, test) -> np.ndarray:
+        """``test(model, states)`` per pair, of its equivalent wall at its own v_n and slip speed."""
         if self.contact.mu is None:
             return np.zeros(self.n, dtype=bool)
-        return np.array([near_the_jump(p.equivalent_wall(self.contact).replace(mu=self.contact.mu),
-                                       np.array([[p.v_n, p.slip_speed(), 0.0]]))[0] for p in self.pairs])
+        return np.array([test(p.equivalent_wall(self.contact).replace(mu=self.contact.mu),
+                              np.array([[p.v_n, p.slip_speed(), 0.0]]))[0] for p in self.pairs])
 
     def fallback(self) -> "PairBatch":
         """The batch at its fine rule's step, aligned."""
