@@ -207,3 +207,23 @@ def test_a_wall_and_a_pair_collision_run_through_one_pipeline_and_one_record(tmp
     assert set(records[0]) == set(records[1])  # one writer: the same fields, whichever scene
     assert records[0]["scene"] == "collision" and records[1]["scene"] == "pair"
     assert wall.status == pair.status == "ok" and wall.step["method"] == pair.step["method"] == "probe"
+
+
+def test_a_pair_with_limit_damping_has_no_planar_matrix_and_its_planar_column_cuts_the_force_too():
+    # the closed planar theory lets the normal force pull; with limit_damping the planar column is the
+    # exact reference with the line held, so a head-on pair (no turn) has no model error (0.027 when the
+    # column took the closed form's restitution)
+    report = spinbounce.theory(scene="pair", gamma_n=1.0, limit_damping=True)
+    assert report["matrix"] is None and "limit_damping" in report["why_no_matrix"]
+    outcome = spinbounce.theory(v_n=-1.0, scene="pair", gamma_n=1.0, limit_damping=True)["outcome"]
+    assert outcome["planar_error"] < 1e-9
+    assert outcome["exact"]["v_n"] != pytest.approx(spinbounce.theory(v_n=-1.0, scene="pair", gamma_n=1.0)[
+        "outcome"]["exact"]["v_n"], abs=1e-3)  # the cut changes the rebound
+
+
+def test_a_pairs_cached_outcome_cannot_be_changed_by_a_caller():
+    from spinbounce.scenes.pair import Pair, PairContact
+
+    outcome = PairContact(mu=0.3).solve(Pair(v_a=(1.0, 0.0, -1.0)))
+    with pytest.raises(ValueError, match="read-only"):
+        outcome.v_a[0] += 1.0

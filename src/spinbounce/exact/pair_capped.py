@@ -293,6 +293,9 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, m
     normal force and with it the cap cut at their turn, from which the spheres part force-free). A law
     on the contact radius is integrated at a tenth of ``rtol``, as the wall's oracle does: a stick whose
     first trial force starts just inside the cap (0.97 of it) kept 2e-7 at rtol itself, 1e-8 at a tenth."""
+    if not mu > 0.0:
+        raise ValueError(f"mu = {mu!r}: the capped pair reference needs a cap > 0 (mu = 0 is the uncapped "
+                         "reference without a tangential force)")
     if on_contact_radius(law.get("power", 1.0), law.get("spring_power", 0.0), law.get("damping_power", 0.0)):
         rtol = rtol / 10.0
     n0, p, y, v_rel, tau, longest, atol = start(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b,

@@ -149,9 +149,11 @@ def start(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, p
 
 def outcome(end, t, n0) -> PairOutcome:
     """The outcome from the state (d, v_a, v_b, w_a, w_b, ...) at separation, time t."""
-    d_end, v_a, v_b, w_a, w_b = end[:15].reshape(5, 3)
+    d_end, v_a, v_b, w_a, w_b = (np.array(x) for x in end[:15].reshape(5, 3))  # own arrays, read-only: shared
+    for x in (d_end, v_a, v_b, w_a, w_b):  # by every caller of a cached outcome (scenes.pair.contact)
+        x.setflags(write=False)
     turn = float(np.arccos(np.clip(d_end @ n0 / np.linalg.norm(d_end), -1.0, 1.0)))
-    return PairOutcome(v_a=v_a, v_b=v_b, w_a=w_a, w_b=w_b, contact_time=float(t), turn=turn, d_end=d_end.copy())
+    return PairOutcome(v_a=v_a, v_b=v_b, w_a=w_a, w_b=w_b, contact_time=float(t), turn=turn, d_end=d_end)
 
 
 def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, gamma_n=0.0, gamma_t=0.0,

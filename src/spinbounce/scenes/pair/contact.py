@@ -35,7 +35,7 @@ class PairContact:
     damping_coefficients: tuple = ()
     #: The law's shape beyond Hooke's force and linear_history's spring, as (name, value) pairs of
     #: :data:`spinbounce.exact.pair_exact.HOOKE` and the spring's k (of k a^q); and the model's words
-    #: that choose it (normal and its material, tangential, mindlin_kt): the deck writes those.
+    #: that choose it (normal and its material, tangential, mindlin_kt, limit_damping): the deck writes those.
     shape: tuple = ()
     words: tuple = ()
 
@@ -43,7 +43,8 @@ class PairContact:
         checked(self, ("kn", "kt", "gamma_n", "gamma_t", "mu", "damping"))
 
     def law(self) -> dict:
-        """kn, kt, gamma_n and gamma_t, as the uncapped references and the planar theory take them."""
+        """kn, kt, gamma_n and gamma_t, as the uncapped references and the planar theory take them (the
+        planar theory's force may pull: with limit_damping, :attr:`tensile` False, it has no matrix)."""
         return {"kn": self.kn, "kt": self.kt, "gamma_n": self.gamma_n, "gamma_t": self.gamma_t}
 
     @property

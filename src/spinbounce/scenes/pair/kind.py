@@ -23,10 +23,13 @@ from ...exact.wall_law import Law
 from .scene import Pair, PairContact, Sphere
 
 __all__ = ["pair_contact", "sphere_b", "state_b", "pairs_from_states", "wall_frame", "planar_matrix", "planar_Omega",
-           "scene_of", "no_planar_matrix", "CAPPED_NO_MATRIX", "RADIAL_NO_MATRIX"]
+           "scene_of", "no_planar_matrix", "CAPPED_NO_MATRIX", "RADIAL_NO_MATRIX", "LIMITED_NO_MATRIX"]
 
 #: Why a pair with a Coulomb cap has no scattering matrix (theory, the API and fit say it).
 CAPPED_NO_MATRIX = "a capped pair has no matrix: the slides make the outcome depend on the state"
+#: Why a pair whose normal force limit_damping cuts has none here.
+LIMITED_NO_MATRIX = ("limit_damping cuts the pair's normal force at its turn, which the closed planar theory "
+                     "does not: give a state for its exact reference")
 #: Why a pair whose force, spring or dashpot grows with the contact radius has none here.
 RADIAL_NO_MATRIX = ("a pair whose force, spring or dashpot grows with the contact radius has no closed planar "
                     "theory here: give a state for its exact reference")
@@ -72,10 +75,12 @@ def _shape(model: ContactModel) -> tuple:
 
 
 def no_planar_matrix(model: ContactModel) -> str | None:
-    """Why the planar theory gives a's state no matrix with this law (a cap; a law on the contact
-    radius), or None."""
+    """Why the planar theory gives a's state no matrix with this law (a cap; limit_damping with a normal
+    dashpot; a law on the contact radius), or None."""
     if model.mu is not None:
         return CAPPED_NO_MATRIX
+    if model.limit_damping and model.gamma_n > 0.0:
+        return LIMITED_NO_MATRIX
     return RADIAL_NO_MATRIX if _shape(model) else None
 
 

@@ -208,8 +208,7 @@ class PairBatch:
         if self.default_step:
             warn_near_the_jump(models[0], self.near_the_jump())
         else:  # a given step: refused if no run may take it
-            check_steps(float(np.max(self.contact_times)) / dt, "dt", dt, "to end the longest contact",
-                        spheres=2 * len(pairs))
+            check_steps(self.nsteps, "dt", dt, "to end the longest contact", spheres=2 * len(pairs))
 
     @property
     def n(self) -> int:
@@ -359,7 +358,7 @@ class PairBatch:
 
     def _as_wall(self, test) -> np.ndarray:
         """``test(model, states)`` per pair, of its equivalent wall at its own v_n and slip speed."""
-        if self.contact.mu is None:
+        if not self.contact.mu:  # no cap, or a cap of zero: no friction, no jump
             return np.zeros(self.n, dtype=bool)
         return np.array([test(p.equivalent_wall(self.contact).replace(mu=self.contact.mu),
                               np.array([[p.v_n, p.slip_speed(), 0.0]]))[0] for p in self.pairs])

@@ -61,9 +61,11 @@ def pair_table(batch, lammps: dict[str, np.ndarray] | None) -> pd.DataFrame:
     """The batch's table; without LAMMPS's final states, the references alone."""
     pairs = batch.pairs
     props = {k: np.array([p.properties()[k] for p in pairs]) for k in pairs[0].properties()}
-    # the contact time: the planar theory's (Hookean), or each pair's own where it depends on the speed
-    tau = (np.array([o.contact_time for o in batch.exact]) if batch.contact.on_contact_radius
-           else planar.contact_time(props["m_a"], props["m_b"], batch.contact.kn, batch.contact.gamma_n))
+    # the contact time: the planar theory's (Hookean, the force let pull), or each pair's own where it
+    # depends on the speed or limit_damping cuts the force
+    closed = not batch.contact.on_contact_radius and batch.contact.tensile
+    tau = (planar.contact_time(props["m_a"], props["m_b"], batch.contact.kn, batch.contact.gamma_n) if closed
+           else np.array([o.contact_time for o in batch.exact]))
     v_t, v_n = np.array([p.v_t for p in pairs]), np.array([p.v_n for p in pairs])
     columns = {"pair": np.arange(batch.n), **props, "v_n_relative": v_n, "v_t_relative": v_t,
                "speed": np.array([p.speed() for p in pairs]), "tau": tau,
@@ -71,7 +73,7 @@ def pair_table(batch, lammps: dict[str, np.ndarray] | None) -> pd.DataFrame:
                "eps": planar.line_turn(v_t, tau, props["r_a"], props["r_b"]),
                "centrifugal": planar.centrifugal_ratio(v_t, v_n, tau, props["r_a"], props["r_b"]),
                "turn": np.array([o.turn for o in batch.exact]), "time_scale": batch.time_scales}
-    if batch.contact.mu is not None or batch.contact.on_contact_radius:  # no closed form: n held fixed, solved
+    if batch.contact.mu is not None or not closed:  # no closed form: n held fixed, solved
         theory = _outcomes([batch.contact.solve(p, planar=True) for p in pairs])
     else:
         vectors = {k: np.array([p.vectors()[k] for p in pairs]) for k in ("n", "v_a", "v_b", "w_a", "w_b")}
