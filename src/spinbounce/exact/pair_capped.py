@@ -40,7 +40,7 @@ from scipy.optimize import brentq
 
 from . import pair as pair_theory
 
-from .pair_exact import RTOL, PairOutcome, free_flight, outcome, start
+from .pair_exact import RTOL, PairOutcome, contact_radius_power, free_flight, normal_force, outcome, start
 from .pair_exact import undamped_depth as pair_depth
 from .wall_law import on_contact_radius
 
@@ -95,19 +95,15 @@ class _Contact:
         spin = p["r_a"] * w_a + p["r_b"] * w_b
         delta, rate = y[18], -v_n  # the overlap and its rate
         depth = abs(delta) ** (p["power"] - 1.0) if p["power"] != 1.0 else 1.0
-        damp, shrink = self.radius_power(delta, p["damping_power"]), (rate / (2.0 * delta) if delta else 0.0)
-        f_n = p["K"] * depth * delta + p["gamma_n"] * damp * rate
+        damp, shrink = contact_radius_power(p, delta, p["damping_power"]), (rate / (2.0 * delta) if delta else 0.0)
+        f_n = normal_force(p, delta, v_n)
         accel = -(f_n / self.m_star + v_t @ turn)  # delta''
         df_n = p["K"] * p["power"] * depth * rate + p["gamma_n"] * damp * (accel + p["damping_power"] * shrink * rate)
         scale = (0.0 if p["force_history"] else p["spring_power"]) + (1.0 if p["rescale"] and rate < 0.0 else 0.0)
         return {"n": n, "turn": turn, "v": v, "v_n": v_n, "spin": spin, "slip": v_t - np.cross(spin, n),
-                "f_n": f_n, "df_n": df_n, "dist": dist, "levers": levers,
-                "spring": p["kt"] * self.radius_power(delta, p["spring_power"]), "growth": scale * shrink,
+                "f_n": f_n, "df_n": df_n, "levers": levers,
+                "spring": p["kt"] * contact_radius_power(p, delta, p["spring_power"]), "growth": scale * shrink,
                 "dashpot": p["gamma_t"] * damp, "dashpot_rate": p["gamma_t"] * p["damping_power"] * shrink * damp}
-
-    def radius_power(self, delta: float, s: float) -> float:
-        """a^s of the contact radius a = sqrt(R_eff |delta|) (1 for s = 0)."""
-        return 1.0 if s == 0.0 else (self.p["r_eff"] * abs(delta)) ** (s / 2.0)
 
     def accelerations(self, k: dict, f_t: np.ndarray) -> tuple:
         """(v_a', v_b', w_a', w_b') under the normal force and the friction ``f_t`` on a."""

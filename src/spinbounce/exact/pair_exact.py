@@ -32,7 +32,7 @@ from scipy.integrate import solve_ivp
 
 from .wall_law import on_contact_radius
 
-__all__ = ["PairOutcome", "solve", "RTOL", "HOOKE", "longest_step", "start", "outcome", "free_flight"]
+__all__ = ["PairOutcome", "solve", "RTOL", "HOOKE", "longest_step", "start", "outcome", "free_flight", "contact_radius_power", "normal_force"]
 
 #: Relative tolerance of the integration (the absolute one is this times the speeds).
 RTOL = 1e-12
@@ -61,7 +61,7 @@ class PairOutcome:
     d_end: np.ndarray | None = None
 
 
-def _contact_radius_power(p, delta: float, s: float) -> float:
+def contact_radius_power(p, delta: float, s: float) -> float:
     """a^s of the contact radius a = sqrt(R_eff |delta|) (1 for s = 0)."""
     return 1.0 if s == 0.0 else (p["r_eff"] * abs(delta)) ** (s / 2.0)
 
@@ -80,10 +80,10 @@ def _geometry(state, n0, p, planar, overlap=None) -> tuple:
     return n, (delta if overlap is None else overlap), levers
 
 
-def _normal_force(p, delta: float, v_n: float) -> float:
+def normal_force(p, delta: float, v_n: float) -> float:
     """F_n on a along n: K delta^p - gamma_n a^s v.n."""
     depth = abs(delta) ** (p["power"] - 1.0) if p["power"] != 1.0 else 1.0
-    return p["K"] * depth * delta - p["gamma_n"] * _contact_radius_power(p, delta, p["damping_power"]) * v_n
+    return p["K"] * depth * delta - p["gamma_n"] * contact_radius_power(p, delta, p["damping_power"]) * v_n
 
 
 def _rates(t, state, n0, p, planar, overlap=None):
@@ -93,11 +93,11 @@ def _rates(t, state, n0, p, planar, overlap=None):
     v = v_a - v_b
     v_n = v @ n
     slip = v - v_n * n - np.cross(p["r_a"] * w_a + p["r_b"] * w_b, n)
-    damp = _contact_radius_power(p, delta, p["damping_power"])
-    spring = p["kt"] * _contact_radius_power(p, delta, p["spring_power"])
+    damp = contact_radius_power(p, delta, p["damping_power"])
+    spring = p["kt"] * contact_radius_power(p, delta, p["spring_power"])
     elastic = xi if p["force_history"] else -spring * xi
     f_t = elastic - p["gamma_t"] * damp * slip
-    force = _normal_force(p, delta, v_n) * n + f_t
+    force = normal_force(p, delta, v_n) * n + f_t
     arm = -np.cross(n, f_t)
     history = -spring * slip if p["force_history"] else slip
     if p["rescale"] and v_n > 0.0 and delta > 0.0:  # a shrinks: the history by a_new/a_old (a'/a = delta'/2 delta)
@@ -119,7 +119,7 @@ def _scales(p, v_rel, n0, m_star: float) -> tuple[float, float]:
     depth = ((power + 1.0) * m_star * speed**2 / (2.0 * K)) ** (1.0 / (power + 1.0))
     tau = np.pi * np.sqrt(m_star / K) if power == 1.0 else 2.0 * 1.5 * depth / speed
     normal = np.sqrt(K * power * depth ** (power - 1.0) / m_star)
-    spring = p["kt"] * _contact_radius_power(p, depth, p["spring_power"])
+    spring = p["kt"] * contact_radius_power(p, depth, p["spring_power"])
     mobility = 1 / p["m_a"] + 1 / p["m_b"] + p["r_a"] ** 2 / p["i_a"] + p["r_b"] ** 2 / p["i_b"]
     return tau, normal + np.sqrt(spring * mobility)
 
@@ -200,7 +200,7 @@ def _turned(n0, p, planar):
     """The event where the normal force falls through zero (``limit_damping`` cuts it there)."""
     def turned(t, y, *_):
         n, delta, _ = _geometry(y, n0, p, planar)
-        return _normal_force(p, delta, (y[3:6] - y[6:9]) @ n)
+        return normal_force(p, delta, (y[3:6] - y[6:9]) @ n)
 
     turned.terminal, turned.direction = True, -1.0
     return turned
@@ -253,7 +253,7 @@ def _tail(state, t: float, delta: float, n0, p, planar, rtol, atol, turned=None)
     if turned:
         def turn(x, y):
             n = n0 if planar else y[:3] / np.sqrt(y[:3] @ y[:3])
-            return _normal_force(p, x * x, (y[3:6] - y[6:9]) @ n)
+            return normal_force(p, x * x, (y[3:6] - y[6:9]) @ n)
 
         turn.terminal, turn.direction = True, -1.0  # F_n falls through zero as x falls (as time runs)
         events = [turn]
