@@ -104,8 +104,7 @@ def run_scene(scene, out_dir: Path, atoms: str | None = None, record: bool = Tru
     given, (scene, step) = scene, tune(scene, Path(out_dir) / "probe", _probe_errors, probe_states, target)
     deck, deck_path, info, columns, deviation = _run(scene, out_dir, atoms, runner, target)
     fine = given.fallback() if step.method == "probe" else None
-    worst = float(np.max(np.asarray(columns["error"])[reachable(given)]))  # rows beyond reach err at any step
-    if fine is not None and fine.dt < scene.dt and worst > target:
+    if fine is not None and fine.dt < scene.dt and (worst := _worst(columns, given)) > target:
         # the probe's step, chosen on a sample, missed the target on the whole scene: its rule's
         scene, step = fine, replace(step, dt=fine.dt, method=f"{FALLBACK}; the probe's step erred {worst:.2g}",
                                     predicted_error=None)
@@ -119,6 +118,11 @@ def run_scene(scene, out_dir: Path, atoms: str | None = None, record: bool = Tru
                      warnings=list(notes), max_abs_error=deviation, max_error=result.max_error, step=step.record(),
                      status=checks.summary(table["status"]), table=table)
     return result
+
+
+def _worst(columns: dict, scene) -> float:
+    """The largest row error but on rows beyond any affordable step's reach (they err at every step)."""
+    return float(np.max(np.asarray(columns["error"])[reachable(scene)]))
 
 
 def _run(scene, out_dir: Path, atoms, runner, target: float):

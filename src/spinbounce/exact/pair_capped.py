@@ -40,7 +40,8 @@ from scipy.optimize import brentq
 
 from . import pair as pair_theory
 
-from .pair_exact import RTOL, PairOutcome, contact_radius_power, free_flight, normal_force, outcome, start
+from .pair_exact import (RTOL, PairOutcome, contact_radius_power, free_flight, geometry, normal_force, outcome,
+                         start)
 from .pair_exact import undamped_depth as pair_depth
 from .wall_law import on_contact_radius
 
@@ -79,21 +80,14 @@ class _Contact:
 
     def kinematics(self, y) -> dict:
         p = self.p
-        d, v_a, v_b, w_a, w_b = y[:15].reshape(5, 3)
-        radsum = p["r_a"] + p["r_b"]
+        _, v_a, v_b, w_a, w_b = y[:15].reshape(5, 3)
+        n, delta, levers, dist = geometry(y, self.n0, p, self.planar, overlap=y[18])
         v = v_a - v_b
-        if self.planar:
-            n, dist = self.n0, d @ self.n0
-            levers = (p["r_a"], p["r_b"])
-        else:
-            dist = np.sqrt(d @ d)
-            n = d / dist
-            levers = (p["r_a"] - 0.5 * (radsum - dist), p["r_b"] - 0.5 * (radsum - dist))
         v_n = v @ n
         v_t = v - v_n * n
         turn = np.zeros(3) if self.planar else v_t / dist  # n'
         spin = p["r_a"] * w_a + p["r_b"] * w_b
-        delta, rate = y[18], -v_n  # the overlap and its rate
+        rate = -v_n  # the overlap's rate
         depth = abs(delta) ** (p["power"] - 1.0) if p["power"] != 1.0 else 1.0
         damp, shrink = contact_radius_power(p, delta, p["damping_power"]), (rate / (2.0 * delta) if delta else 0.0)
         f_n = normal_force(p, delta, v_n)

@@ -32,11 +32,11 @@ from scipy.integrate import solve_ivp
 
 from .wall_law import on_contact_radius
 
-__all__ = ["PairOutcome", "solve", "RTOL", "HOOKE", "longest_step", "start", "outcome", "free_flight", "contact_radius_power", "normal_force"]
+__all__ = ["PairOutcome", "solve", "RTOL", "HOOKE", "longest_step", "start", "outcome", "free_flight",
+           "contact_radius_power", "geometry", "normal_force"]
 
 #: Relative tolerance of the integration (the absolute one is this times the speeds).
 RTOL = 1e-12
-
 
 
 def longest_step(tau: float, v_rel, n0, radsum: float) -> float:
@@ -66,18 +66,19 @@ def contact_radius_power(p, delta: float, s: float) -> float:
     return 1.0 if s == 0.0 else (p["r_eff"] * abs(delta)) ** (s / 2.0)
 
 
-def _geometry(state, n0, p, planar, overlap=None) -> tuple:
-    """(n, overlap, lever arms) of a state; ``overlap``: where it is known better than from the
-    centres (_tail)."""
+def geometry(state, n0, p, planar, overlap=None) -> tuple:
+    """(n, overlap, lever arms, the centres' distance along n) of a state; ``overlap``: where it is
+    known better than from the centres (_tail, the capped reference's own overlap)."""
     d = state[:3]
     radsum = p["r_a"] + p["r_b"]
     if planar:
-        n, delta, levers = n0, radsum - d @ n0, (p["r_a"], p["r_b"])
+        dist = d @ n0
+        n, levers = n0, (p["r_a"], p["r_b"])
     else:
         dist = np.sqrt(d @ d)
-        n, delta = d / dist, radsum - dist
-        levers = (p["r_a"] - 0.5 * delta, p["r_b"] - 0.5 * delta)
-    return n, (delta if overlap is None else overlap), levers
+        n = d / dist
+        levers = (p["r_a"] - 0.5 * (radsum - dist), p["r_b"] - 0.5 * (radsum - dist))
+    return n, (radsum - dist if overlap is None else overlap), levers, dist
 
 
 def normal_force(p, delta: float, v_n: float) -> float:
@@ -89,7 +90,7 @@ def normal_force(p, delta: float, v_n: float) -> float:
 def _rates(t, state, n0, p, planar, overlap=None):
     """d(state)/dt; ``overlap``: the overlap where it is known better than from the centres (_tail)."""
     _, v_a, v_b, w_a, w_b, xi = state.reshape(6, 3)
-    n, delta, (lever_a, lever_b) = _geometry(state, n0, p, planar, overlap)
+    n, delta, (lever_a, lever_b), _ = geometry(state, n0, p, planar, overlap)
     v = v_a - v_b
     v_n = v @ n
     slip = v - v_n * n - np.cross(p["r_a"] * w_a + p["r_b"] * w_b, n)
@@ -199,7 +200,7 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, g
 def _turned(n0, p, planar):
     """The event where the normal force falls through zero (``limit_damping`` cuts it there)."""
     def turned(t, y, *_):
-        n, delta, _ = _geometry(y, n0, p, planar)
+        n, delta, _, _ = geometry(y, n0, p, planar)
         return normal_force(p, delta, (y[3:6] - y[6:9]) @ n)
 
     turned.terminal, turned.direction = True, -1.0

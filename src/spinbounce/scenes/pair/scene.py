@@ -186,7 +186,7 @@ class PairBatch:
         if not pairs or not all(isinstance(p, Pair) for p in pairs):
             raise SceneError("pairs", self.pairs, "must be one or more Pair")
         object.__setattr__(self, "pairs", pairs)
-        models = [p.equivalent_wall(self.contact) for p in pairs]
+        models = self.walls
         speeds = [abs(p.v_n) for p in pairs]
         if self.dt is None:  # the wall's limits of the default step, for each distinct equivalent contact
             for model in {repr(m): m for m in models}.values():
@@ -213,6 +213,11 @@ class PairBatch:
     @property
     def n(self) -> int:
         return len(self.pairs)
+
+    @cached_property
+    def walls(self) -> tuple[ContactModel, ...]:
+        """Each pair's equivalent wall contact (:meth:`Pair.equivalent_wall`), built once."""
+        return tuple(p.equivalent_wall(self.contact) for p in self.pairs)
 
     @cached_property
     def exact(self) -> tuple:
@@ -323,7 +328,7 @@ class PairBatch:
                                    * (radii[side] if q == "w" else 1.0) for side in "ab" for q in "vw"])
         weights = np.column_stack([np.repeat([[getattr(p, side).m * (getattr(p, side).alpha if q == "w" else 1.0)]
                                               for p in self.pairs], 3, axis=1) for side in "ab" for q in "vw"])
-        overlap = np.array([float(p.equivalent_wall(self.contact).max_overlap(abs(p.v_n))) for p in self.pairs])
+        overlap = np.array([float(w.max_overlap(abs(p.v_n))) for w, p in zip(self.walls, self.pairs, strict=True)])
         return checks.RowStates(initial, states(""), states("_exact"), weights, columns["speed"], overlap,
                                 columns["r_a"] + columns["r_b"])
 
@@ -360,8 +365,8 @@ class PairBatch:
         """``test(model, states)`` per pair, of its equivalent wall at its own v_n and slip speed."""
         if not self.contact.mu:  # no cap, or a cap of zero: no friction, no jump
             return np.zeros(self.n, dtype=bool)
-        return np.array([test(p.equivalent_wall(self.contact).replace(mu=self.contact.mu),
-                              np.array([[p.v_n, p.slip_speed(), 0.0]]))[0] for p in self.pairs])
+        return np.array([test(w.replace(mu=self.contact.mu), np.array([[p.v_n, p.slip_speed(), 0.0]]))[0]
+                         for w, p in zip(self.walls, self.pairs, strict=True)])
 
     def fallback(self) -> "PairBatch":
         """The batch at its fine rule's step, aligned."""
