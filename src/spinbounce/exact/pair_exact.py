@@ -33,7 +33,7 @@ from scipy.integrate import solve_ivp
 from .wall_law import on_contact_radius
 
 __all__ = ["PairOutcome", "solve", "RTOL", "HOOKE", "longest_step", "start", "outcome", "free_flight",
-           "contact_radius_power", "geometry", "normal_force"]
+           "contact_radius_power", "geometry", "normal_force", "pair_scales", "tolerance_scale"]
 
 #: Relative tolerance of the integration (the absolute one is this times the speeds).
 RTOL = 1e-12
@@ -42,9 +42,10 @@ RTOL = 1e-12
 def longest_step(tau: float, v_rel, n0, radsum: float) -> float:
     """The integrator's longest step: an eighth of the shorter of tau and the free-flight overlap
     2 |v.n| (r_a + r_b)/|v|^2, so that no step can carry a grazing pair from touch to separation
-    unseen (the contact's end is found as a sign change between steps)."""
+    unseen (the contact's end is found as a sign change between steps). Vectors (..., 3): one pair or many."""
     v_rel = np.asarray(v_rel, dtype=float)
-    return min(tau, 2.0 * abs(v_rel @ n0) * radsum / (v_rel @ v_rel)) / 8.0
+    closing = np.abs(np.sum(v_rel * n0, axis=-1))
+    return np.minimum(tau, 2.0 * closing * radsum / np.sum(v_rel * v_rel, axis=-1)) / 8.0
 
 
 @dataclass(frozen=True)
@@ -111,11 +112,11 @@ def _rates(t, state, n0, p, planar, overlap=None):
 HOOKE = {"power": 1.0, "spring_power": 0.0, "force_history": False, "rescale": False, "damping_power": 0.0}
 
 
-def _scales(p, v_rel, n0, m_star: float) -> tuple[float, float]:
+def pair_scales(p, v_rel, n0, m_star):
     """(contact time, fastest rate) of the normal motion at the impact speed, undamped: the Hookean
     pi sqrt(m*/kn), or for K delta^p its time over the undamped depth, and the stiffest rates
-    there (the spring k a^q at the deepest a)."""
-    speed = abs(float(v_rel @ n0))
+    there (the spring k a^q at the deepest a). Vectors (..., 3) and coefficients (...): one pair or many."""
+    speed = np.abs(np.sum(v_rel * n0, axis=-1))
     power, K = p["power"], p["K"]
     depth = ((power + 1.0) * m_star * speed**2 / (2.0 * K)) ** (1.0 / (power + 1.0))
     tau = np.pi * np.sqrt(m_star / K) if power == 1.0 else 2.0 * 1.5 * depth / speed
@@ -123,6 +124,17 @@ def _scales(p, v_rel, n0, m_star: float) -> tuple[float, float]:
     spring = p["kt"] * contact_radius_power(p, depth, p["spring_power"])
     mobility = 1 / p["m_a"] + 1 / p["m_b"] + p["r_a"] ** 2 / p["i_a"] + p["r_b"] ** 2 / p["i_b"]
     return tau, normal + np.sqrt(spring * mobility)
+
+
+def tolerance_scale(rtol: float, v_rel, w_a, w_b, radsum, fast):
+    """The absolute tolerance of a pair's state: rtol times its largest speed (relative or the spins'
+    surface speeds), over the shorter of the time to cross r_a + r_b and the fastest rate's time.
+    Vectors (..., 3): one pair or many."""
+    def length(x):
+        return np.sqrt(np.sum(np.square(x), axis=-1))
+
+    speed = np.maximum(length(v_rel), radsum * (length(w_a) + length(w_b)))
+    return rtol * speed * np.minimum(radsum / speed, 1.0 / fast)
 
 
 def start(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, planar, rtol, **law):
@@ -141,11 +153,10 @@ def start(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, p
     v_rel = np.asarray(v_a, dtype=float) - np.asarray(v_b, dtype=float)
     if v_rel @ n0 >= 0.0:
         raise ValueError("the spheres must approach at first touch: (v_a - v_b).n < 0")
-    speed = max(np.linalg.norm(v_rel), radsum * (np.linalg.norm(w_a) + np.linalg.norm(w_b)))
     m_star = m_a * m_b / (m_a + m_b)
-    tau, fast = _scales(p, v_rel, n0, m_star)
+    tau, fast = pair_scales(p, v_rel, n0, m_star)
     longest = tau / 8.0 if planar else longest_step(tau, v_rel, n0, radsum)
-    return n0, p, state, v_rel, tau, longest, rtol * speed * min(radsum / speed, 1.0 / fast)
+    return n0, p, state, v_rel, tau, longest, tolerance_scale(rtol, v_rel, w_a, w_b, radsum, fast)
 
 
 def outcome(end, t, n0) -> PairOutcome:

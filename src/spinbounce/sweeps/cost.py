@@ -6,7 +6,7 @@ A chunk is one serial LAMMPS run of its spheres followed by the theory columns
     seconds = START_SECONDS + PROBE_SECONDS + n * (steps * SPHERE_STEP_SECONDS + CAPPED_THEORY_SECONDS [finite mu])
 
 (a pair chunk: two spheres a collision at the fine rule's steps, plus the pair references'
-PAIR_THEORY_SECONDS or CAPPED_PAIR_THEORY_SECONDS, which dominate),
+PAIR_BATCHED_SECONDS, PAIR_THEORY_SECONDS or CAPPED_PAIR_THEORY_SECONDS),
 
 where ``steps`` is the run's LAMMPS steps per collision (the contact's exit time over the
 model's step, as :attr:`Collision.nsteps` counts them), and it peaks at
@@ -50,8 +50,11 @@ PROBE_SECONDS = 0.3
 #: A pair's references per collision on one core (scenes.pair.table.pair_table: the exact reference
 #: and the planar theory; the capped reference solves both by events), measured on 100
 #: pairs each: 13 ms uncapped, 66 to 89 ms capped; 415 to 450 ms capped in 3-D, where a slide's
-#: direction turns stiffly as the cap closes (40 pairs); with room.
+#: direction turns stiffly as the cap closes (40 pairs); with room. A batch whose references are
+#: solved together (PairContact.batched: Hooke's law, no cap) spends about 0.33 ms a pair on
+#: everything outside LAMMPS (a 20,000-pair sweep, `spinbounce bench`): PAIR_BATCHED_SECONDS, with room.
 PAIR_THEORY_SECONDS = 0.02
+PAIR_BATCHED_SECONDS = 1e-3
 CAPPED_PAIR_THEORY_SECONDS = 0.12
 CAPPED_PAIR_3D_THEORY_SECONDS = 0.6
 #: A pair chunk's probe (stepping.tune): up to five LAMMPS runs of at most
@@ -105,8 +108,9 @@ def _pair_cost(spec, group: int, collisions: int) -> ChunkCost:
     model, dt = spec.model(group)
     fast, _ = spec.normal_speeds()
     b = spec.sphere_b(group)
-    steps = PairBatch(pairs_from_states(model, b, [[-fast, 0.0, 0.0]]), pair_contact(model, b), dt).nsteps
-    theory = PAIR_THEORY_SECONDS
+    contact = pair_contact(model, b)
+    steps = PairBatch(pairs_from_states(model, b, [[-fast, 0.0, 0.0]]), contact, dt).nsteps
+    theory = PAIR_BATCHED_SECONDS if contact.batched else PAIR_THEORY_SECONDS
     if model.mu is not None:
         theory = CAPPED_PAIR_3D_THEORY_SECONDS if spec.is_3d else CAPPED_PAIR_THEORY_SECONDS
     probe = PAIR_PROBE_SECONDS if dt is None else 0.0

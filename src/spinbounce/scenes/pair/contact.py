@@ -4,10 +4,12 @@ integrate."""
 
 from __future__ import annotations
 
-import functools
+from collections import OrderedDict
 from dataclasses import dataclass
 
-from ...exact import pair_capped, pair_exact
+import numpy as np
+
+from ...exact import pair_batch, pair_capped, pair_exact
 from ...model.parameters import by_name
 
 __all__ = ["PairContact", "checked"]
@@ -71,17 +73,42 @@ class PairContact:
     def solve(self, pair, planar: bool = False):
         """The outcome of ``pair`` (a :class:`.scene.Pair`) as LAMMPS integrates it (``planar``: with n held
         fixed), capped or not; solved once per law and pair (a step probe's runs share them)."""
-        return _solve(self, pair, planar)
+        return self.solve_all((pair,), planar)[0]
+
+    def solve_all(self, pairs, planar: bool = False) -> tuple:
+        """:meth:`solve` of each of ``pairs``: those not solved before together where the law allows
+        (:mod:`spinbounce.exact.pair_batch`), else one at a time."""
+        keys = [(self, pair, planar) for pair in pairs]
+        missing = list(dict.fromkeys(key for key in keys if key not in _SOLVED))
+        if missing:
+            fresh = self._solve_many([key[1] for key in missing], planar)
+            for key, result in zip(missing, fresh, strict=True):
+                _SOLVED[key] = result
+            while len(_SOLVED) > SOLVED:
+                _SOLVED.popitem(last=False)
+        return tuple(_SOLVED[key] for key in keys)
+
+    @property
+    def batched(self) -> bool:
+        """Whether a batch's references are solved together (:mod:`spinbounce.exact.pair_batch`): no cap
+        (or a cap of zero) and a law that module takes."""
+        return not self.mu and pair_batch.solvable(self.reference_law(), self.tensile)
+
+    def _solve_many(self, pairs: list, planar: bool) -> list:
+        capped = bool(self.mu)  # a cap of zero: no tangential force (the capped solver divides by mu)
+        law = self.reference_law() | ({"kt": 0.0, "gamma_t": 0.0} if self.mu == 0.0 else {})
+        if self.batched:
+            columns = {k: np.array([p.vectors()[k] for p in pairs]) for k in pairs[0].vectors()}
+            columns |= {k: np.array([p.properties()[k] for p in pairs]) for k in pairs[0].properties()}
+            return pair_batch.solve(**columns, **{k: law[k] for k in self.law()}, planar=planar)
+        if not capped:
+            return [pair_exact.solve(**p.vectors(), **p.properties(), **law, planar=planar, tensile=self.tensile)
+                    for p in pairs]
+        return [pair_capped.solve(**p.vectors(), **p.properties(), **law, mu=self.mu, planar=planar,
+                                  tensile=self.tensile) for p in pairs]
 
 
-#: Outcomes kept: a probe runs the same pairs at up to five steps, each batch asking for their references.
+#: Outcomes kept (oldest dropped first): a probe runs the same pairs at up to five steps, each batch
+#: asking for their references.
 SOLVED = 1 << 14
-
-
-@functools.lru_cache(maxsize=SOLVED)
-def _solve(contact: PairContact, pair, planar: bool):
-    if not contact.mu:  # no cap, or a cap of zero: no tangential force (the capped solver divides by mu)
-        law = contact.reference_law() | ({} if contact.mu is None else {"kt": 0.0, "gamma_t": 0.0})
-        return pair_exact.solve(**pair.vectors(), **pair.properties(), **law, planar=planar, tensile=contact.tensile)
-    return pair_capped.solve(**pair.vectors(), **pair.properties(), **contact.reference_law(), mu=contact.mu,
-                             planar=planar, tensile=contact.tensile)
+_SOLVED: OrderedDict = OrderedDict()

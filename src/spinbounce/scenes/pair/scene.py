@@ -17,6 +17,7 @@ critical damping, the step's stability and resolution.
 
 from __future__ import annotations
 
+import functools
 import math
 import warnings
 from dataclasses import dataclass, field, replace
@@ -115,7 +116,7 @@ class Pair:
     def radsum(self) -> float:
         return self.a.r + self.b.r
 
-    @property
+    @cached_property
     def v_n(self) -> float:
         """Relative normal velocity (v_a - v_b).n: < 0 while approaching."""
         return float(np.dot(np.subtract(self.v_a, self.v_b), self.normal))
@@ -135,14 +136,8 @@ class Pair:
         return {"n": self.normal, "v_a": self.v_a, "v_b": self.v_b, "w_a": self.w_a, "w_b": self.w_b}
 
     def equivalent_wall(self, contact: PairContact) -> ContactModel:
-        """The wall contact with this pair's normal and slip equations (:mod:`exact.pair`): the reduced
-        mass, the equivalent alpha and, for a law on the contact radius, the radius R_eff of
-        a = sqrt(R_eff delta) (else the smaller radius, which the overlap must stay below)."""
-        a, b = self.a, self.b
-        r = a.r * b.r / (a.r + b.r) if contact.on_contact_radius else min(a.r, b.r)
-        return ContactModel(m=planar.reduced_mass(a.m, b.m), r=r,
-                            alpha=planar.equivalent_alpha(a.m, a.alpha, b.m, b.alpha), **contact.law(),
-                            damping=contact.damping, **dict(contact.damping_coefficients), **dict(contact.words))
+        """The wall contact with this pair's normal and slip equations (:func:`equivalent_wall`)."""
+        return equivalent_wall(self.a, self.b, contact)
 
     def slip_speed(self) -> float:
         """|u'(0)|: the contact points' initial relative tangential speed."""
@@ -153,6 +148,18 @@ class Pair:
         """The larger of the impact speed |v_a - v_b| and the initial slip speed |u'(0)|:
         the scale errors are measured in."""
         return max(float(np.linalg.norm(np.subtract(self.v_a, self.v_b))), self.slip_speed())
+
+
+@functools.lru_cache(maxsize=1024)
+def equivalent_wall(a: Sphere, b: Sphere, contact: PairContact) -> ContactModel:
+    """The wall contact with the normal and slip equations of spheres a and b (:mod:`exact.pair`): the
+    reduced mass, the equivalent alpha and, for a law on the contact radius, the radius R_eff of
+    a = sqrt(R_eff delta) (else the smaller radius, which the overlap must stay below). One object per
+    spheres and law: a batch's pairs of the same spheres share it."""
+    r = a.r * b.r / (a.r + b.r) if contact.on_contact_radius else min(a.r, b.r)
+    return ContactModel(m=planar.reduced_mass(a.m, b.m), r=r,
+                        alpha=planar.equivalent_alpha(a.m, a.alpha, b.m, b.alpha), **contact.law(),
+                        damping=contact.damping, **dict(contact.damping_coefficients), **dict(contact.words))
 
 
 def time_scaled(pair: Pair, scale: float) -> Pair:
@@ -186,27 +193,27 @@ class PairBatch:
         if not pairs or not all(isinstance(p, Pair) for p in pairs):
             raise SceneError("pairs", self.pairs, "must be one or more Pair")
         object.__setattr__(self, "pairs", pairs)
-        models = self.walls
-        speeds = [abs(p.v_n) for p in pairs]
         if self.dt is None:  # the wall's limits of the default step, for each distinct equivalent contact
-            for model in {repr(m): m for m in models}.values():
+            for model, _ in self.wall_groups:
                 model.replace(mu=self.contact.mu).check_default_step()
-            dt = min(math.pi / m.fastest_rate(frozen=False, speed=v) / PAIR_STEPS_PER_HALF_PERIOD
-                     for m, v in zip(models, speeds, strict=True))
+            dt = min(math.pi / m.fastest_rate(frozen=False, speed=self.speeds[k]) / PAIR_STEPS_PER_HALF_PERIOD
+                     for m, k in self._fastest())
         else:
             dt = self.dt
-        for k, (pair, model) in enumerate(zip(pairs, models, strict=True)):
-            dt = model.check_dt(dt, frozen=False, speed=abs(pair.v_n))
+        # each check grows with |v_n| (the stiffest rate, the deepest overlap): the fastest pair of each
+        # equivalent contact stands for all of its pairs
+        for model, k in self._fastest():
+            dt = model.check_dt(dt, frozen=False, speed=self.speeds[k])
             # the deepest overlap, stretched by the step as for the wall, must stay below the smaller
             # radius, or the smaller centre would enter the larger sphere
-            reach = float(model.max_overlap(abs(pair.v_n)))
-            reach *= overlap_stretch(model.normal_law.normal_mode(model, abs(pair.v_n))[0], dt)
+            reach = float(model.max_overlap(self.speeds[k]))
+            reach *= overlap_stretch(model.normal_law.normal_mode(model, self.speeds[k])[0], dt)
             if reach >= model.r:
-                raise SceneError(f"pairs[{k}].v_n", pair.v_n, "|v_n| is too large: the overlap would reach "
+                raise SceneError(f"pairs[{k}].v_n", pairs[k].v_n, "|v_n| is too large: the overlap would reach "
                                  f"{reach:.6g} >= the smaller radius {model.r:g}")
         object.__setattr__(self, "dt", dt)
         if self.default_step:
-            warn_near_the_jump(models[0], self.near_the_jump())
+            warn_near_the_jump(self.walls[0], self.near_the_jump())
         else:  # a given step: refused if no run may take it
             check_steps(self.nsteps, "dt", dt, "to end the longest contact", spheres=2 * len(pairs))
 
@@ -220,9 +227,26 @@ class PairBatch:
         return tuple(p.equivalent_wall(self.contact) for p in self.pairs)
 
     @cached_property
+    def wall_groups(self) -> tuple[tuple[ContactModel, np.ndarray], ...]:
+        """The distinct equivalent walls of the batch, each with the indices of its pairs."""
+        groups: dict[int, tuple[ContactModel, list]] = {}
+        for k, wall in enumerate(self.walls):
+            groups.setdefault(id(wall), (wall, []))[1].append(k)
+        return tuple((wall, np.array(index)) for wall, index in groups.values())
+
+    @cached_property
+    def speeds(self) -> np.ndarray:
+        """Each pair's impact speed |v_n|."""
+        return np.array([abs(p.v_n) for p in self.pairs])
+
+    def _fastest(self) -> list[tuple[ContactModel, int]]:
+        """Each distinct equivalent wall with the index of its fastest pair."""
+        return [(wall, int(index[np.argmax(self.speeds[index])])) for wall, index in self.wall_groups]
+
+    @cached_property
     def exact(self) -> tuple:
         """Each pair's exact outcome (:meth:`PairContact.solve`: what LAMMPS integrates)."""
-        return tuple(self.contact.solve(p) for p in self.pairs)
+        return self.contact.solve_all(self.pairs)
 
     @cached_property
     def time_scales(self) -> np.ndarray:
@@ -328,7 +352,9 @@ class PairBatch:
                                    * (radii[side] if q == "w" else 1.0) for side in "ab" for q in "vw"])
         weights = np.column_stack([np.repeat([[getattr(p, side).m * (getattr(p, side).alpha if q == "w" else 1.0)]
                                               for p in self.pairs], 3, axis=1) for side in "ab" for q in "vw"])
-        overlap = np.array([float(w.max_overlap(abs(p.v_n))) for w, p in zip(self.walls, self.pairs, strict=True)])
+        overlap = np.empty(self.n)
+        for wall, index in self.wall_groups:
+            overlap[index] = wall.max_overlap(self.speeds[index])
         return checks.RowStates(initial, states(""), states("_exact"), weights, columns["speed"], overlap,
                                 columns["r_a"] + columns["r_b"])
 
@@ -365,8 +391,11 @@ class PairBatch:
         """``test(model, states)`` per pair, of its equivalent wall at its own v_n and slip speed."""
         if not self.contact.mu:  # no cap, or a cap of zero: no friction, no jump
             return np.zeros(self.n, dtype=bool)
-        return np.array([test(w.replace(mu=self.contact.mu), np.array([[p.v_n, p.slip_speed(), 0.0]]))[0]
-                         for w, p in zip(self.walls, self.pairs, strict=True)])
+        out = np.zeros(self.n, dtype=bool)
+        for wall, index in self.wall_groups:
+            states = np.array([[self.pairs[k].v_n, self.pairs[k].slip_speed(), 0.0] for k in index])
+            out[index] = test(wall.replace(mu=self.contact.mu), states)
+        return out
 
     def fallback(self) -> "PairBatch":
         """The batch at its fine rule's step, aligned."""

@@ -74,7 +74,7 @@ def pair_table(batch, lammps: dict[str, np.ndarray] | None) -> pd.DataFrame:
                "centrifugal": planar.centrifugal_ratio(v_t, v_n, tau, props["r_a"], props["r_b"]),
                "turn": np.array([o.turn for o in batch.exact]), "time_scale": batch.time_scales}
     if batch.contact.mu is not None or not closed:  # no closed form: n held fixed, solved
-        theory = _outcomes([batch.contact.solve(p, planar=True) for p in pairs])
+        theory = _outcomes(batch.contact.solve_all(pairs, planar=True))
     else:
         vectors = {k: np.array([p.vectors()[k] for p in pairs]) for k in ("n", "v_a", "v_b", "w_a", "w_b")}
         predicted = planar.predict(**vectors, **props, **batch.contact.law())

@@ -1,0 +1,210 @@
+"""The uncapped Hookean pair reference for many pairs at once: :func:`spinbounce.exact.pair_exact.solve`
+vectorised over a batch.
+
+The same equations (:func:`.pair_exact._rates`: Hooke's force, linear_history with its normal
+component kept, both velocity dashpots, each sphere's lever arm r - delta/2), the same integrator
+(scipy's DOP853 tableau, its error norm and step control, rtol 1e-12, each pair its own step,
+absolute tolerance and longest step from :func:`.pair_exact.start`'s rules) and the same end (the
+centres' distance back to r_a + r_b). Every pair advances in one numpy array with its own step;
+the contact's end is located inside the step that crosses it by Newton's method on the step's
+length, each trial a DOP853 step from the step's start, so the end state is as accurate as any
+step. Measured against the scipy reference on random pairs (tests/test_pair_batch.py): 1e-9 of the
+speeds at worst, at a few microseconds a pair.
+
+Laws on the contact radius (their rates are singular in time at touch and at the end), a Coulomb cap
+and ``limit_damping`` with a normal dashpot (the normal force's turn) are not taken here:
+:func:`solvable` says which laws are, and callers solve the rest one pair at a time.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.integrate import DOP853
+
+from .pair_exact import HOOKE, RTOL, PairOutcome, longest_step, outcome, pair_scales, tolerance_scale
+
+__all__ = ["solve", "solvable", "CHUNK"]
+
+#: Pairs integrated together: the stages of a chunk stay in the processor's cache.
+CHUNK = 2048
+#: scipy's DOP853: 12 stages, its 5th and 3rd order error estimates (13 entries: the last for the
+#: step's end), and its step-size controller's constants.
+_A, _B, _C, _E3, _E5 = DOP853.A, DOP853.B, DOP853.C, DOP853.E3, DOP853.E5
+_STAGES = DOP853.n_stages
+_EXPONENT = -1.0 / (DOP853.error_estimator_order + 1)
+_SAFETY, _MIN_FACTOR, _MAX_FACTOR = 0.9, 0.2, 10.0
+#: Steps a pair may take before it is declared not to separate (scipy's reference: 20 contact times).
+MAX_STEPS = 100_000
+#: Newton iterations locating a contact's end inside its step; the end is found when the gap is
+#: below END_GAP of r_a + r_b (rounding of the centres' distance) or the bracket below 1e-15 of the step.
+MAX_ITERATIONS = 60
+END_GAP = 4e-16
+
+
+def solvable(law: dict, tensile: bool = True) -> bool:
+    """Whether :func:`solve` takes ``law`` (the keyword arguments of :func:`.pair_exact.solve` beyond
+    the pair): Hooke's shape (:data:`.pair_exact.HOOKE`), and no turn of the normal force to cut."""
+    shape_is_hooke = all(law.get(key, value) == value for key, value in HOOKE.items())
+    return shape_is_hooke and (tensile or law.get("gamma_n", 0.0) == 0.0)
+
+
+def _cross(a, b):
+    """a x b of (3, M) arrays."""
+    return np.stack([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
+
+
+def _rates(y, p, planar: bool):
+    """d(state)/dt of (18, M) states (d, v_a, v_b, w_a, w_b, xi): :func:`.pair_exact._rates` for Hooke's law."""
+    d, v_a, v_b, w_a, w_b, xi = y[0:3], y[3:6], y[6:9], y[9:12], y[12:15], y[15:18]
+    if planar:
+        n = p["n0"]
+        delta = p["radsum"] - np.einsum("im,im->m", d, n)
+        lever_a, lever_b = p["r_a"], p["r_b"]
+    else:
+        dist = np.sqrt(np.einsum("im,im->m", d, d))
+        n = d / dist
+        delta = p["radsum"] - dist
+        lever_a, lever_b = p["r_a"] - 0.5 * delta, p["r_b"] - 0.5 * delta
+    v = v_a - v_b
+    v_n = np.einsum("im,im->m", v, n)
+    slip = v - v_n * n - _cross(p["r_a"] * w_a + p["r_b"] * w_b, n)
+    f_t = -p["kt"] * xi - p["gamma_t"] * slip
+    force = (p["kn"] * delta - p["gamma_n"] * v_n) * n + f_t
+    arm = _cross(f_t, n)
+    return np.concatenate([v, force / p["m_a"], -force / p["m_b"], lever_a * arm / p["i_a"],
+                           lever_b * arm / p["i_b"], slip])
+
+
+def _gap(y, p, planar: bool):
+    d = y[0:3]
+    dist = np.einsum("im,im->m", d, p["n0"]) if planar else np.sqrt(np.einsum("im,im->m", d, d))
+    return dist - p["radsum"]
+
+
+def _step(y, f, h, p, planar: bool):
+    """One DOP853 step of each column: (state at t + h, its rates, the stages)."""
+    stages = np.empty((_STAGES + 1,) + y.shape)
+    stages[0] = f
+    for s in range(1, _STAGES):
+        stages[s] = _rates(y + h * np.tensordot(_A[s, :s], stages[:s], axes=1), p, planar)
+    y_new = y + h * np.tensordot(_B, stages[:_STAGES], axes=1)
+    stages[_STAGES] = _rates(y_new, p, planar)
+    return y_new, stages[_STAGES], stages
+
+
+def _error_norm(stages, h, scale):
+    """scipy DOP853's error norm, per column."""
+    err5 = np.tensordot(_E5, stages, axes=1) / scale
+    err3 = np.tensordot(_E3, stages, axes=1) / scale
+    e5, e3 = np.sum(err5 * err5, axis=0), np.sum(err3 * err3, axis=0)
+    denom = np.sqrt((e5 + 0.01 * e3) * scale.shape[0])
+    return np.divide(np.abs(h) * e5, denom, out=np.zeros_like(e5), where=denom > 0.0)
+
+
+def _subset(p: dict, idx) -> dict:
+    return {k: (v[..., idx] if isinstance(v, np.ndarray) else v) for k, v in p.items()}
+
+
+def _integrate(y, p, longest, atol, planar: bool):
+    """Each column from first touch to the step that carries it past the end: (start of that step,
+    its length, the time there)."""
+    m = y.shape[1]
+    t, h = np.zeros(m), longest / 8.0
+    f = _rates(y, p, planar)
+    rejected = np.zeros(m, dtype=bool)
+    last = (np.empty_like(y), np.empty(m), np.empty(m))
+    active = np.arange(m)
+    for _ in range(MAX_STEPS):
+        if active.size == 0:
+            return last
+        q = _subset(p, active)
+        ya, hs = y[:, active], np.minimum(h[active], longest[active])
+        y_new, f_new, stages = _step(ya, f[:, active], hs, q, planar)
+        scale = atol[active] + np.maximum(np.abs(ya), np.abs(y_new)) * RTOL
+        err = _error_norm(stages, hs, scale)
+        ok = err < 1.0
+        grow = np.where(err == 0.0, _MAX_FACTOR, _SAFETY * np.power(np.where(err == 0.0, 1.0, err), _EXPONENT))
+        factor = np.where(ok, np.minimum(_MAX_FACTOR, grow), np.maximum(_MIN_FACTOR, grow))
+        factor = np.where(ok & rejected[active], np.minimum(1.0, factor), factor)
+        h[active] = hs * factor
+        rejected[active] = ~ok
+        crossed = ok & (_gap(y_new, q, planar) > 0.0)
+        ended = active[crossed]
+        last[0][:, ended], last[1][ended], last[2][ended] = ya[:, crossed], hs[crossed], t[ended]
+        moved = active[ok & ~crossed]
+        y[:, moved], f[:, moved], t[moved] = y_new[:, ok & ~crossed], f_new[:, ok & ~crossed], t[moved] + hs[ok & ~crossed]
+        active = active[~crossed]
+    raise RuntimeError(f"{active.size} pair(s) did not separate within {MAX_STEPS} steps")
+
+
+def _locate_end(y0, h, p, planar: bool):
+    """The state and the time into the step where each column's gap returns to zero: Newton's method on
+    the step's length (the gap's rate is the relative velocity along d/|d|), kept inside the bracket
+    the sign of the gap gives (bisection where Newton would leave it)."""
+    f0 = _rates(y0, p, planar)
+    lo, hi = np.zeros_like(h), h.copy()
+    s = 0.5 * h
+    end, at = y0.copy(), h.copy()
+    todo = np.arange(h.size)
+    for _ in range(MAX_ITERATIONS):
+        if todo.size == 0:
+            return end, at
+        q = _subset(p, todo)
+        y_s = _step(y0[:, todo], f0[:, todo], s[todo], q, planar)[0]
+        g = _gap(y_s, q, planar)
+        end[:, todo], at[todo] = y_s, s[todo]
+        upper = g > 0.0
+        lo[todo], hi[todo] = np.where(upper, lo[todo], s[todo]), np.where(upper, s[todo], hi[todo])
+        newton = s[todo] - g / _gap_rate(y_s, q, planar)
+        inside = (newton > lo[todo]) & (newton < hi[todo])
+        s[todo] = np.where(inside, newton, 0.5 * (lo[todo] + hi[todo]))
+        done = (np.abs(g) <= END_GAP * q["radsum"]) | (hi[todo] - lo[todo] <= 1e-15 * h[todo])
+        todo = todo[~done]
+    raise RuntimeError(f"the end of {todo.size} contact(s) was not located within {MAX_ITERATIONS} iterations")
+
+
+def _gap_rate(y, p, planar: bool):
+    """d(gap)/dt: the relative velocity along n0 (planar) or along d/|d|."""
+    d, v = y[0:3], y[3:6] - y[6:9]
+    if planar:
+        return np.einsum("im,im->m", v, p["n0"])
+    return np.einsum("im,im->m", d, v) / np.sqrt(np.einsum("im,im->m", d, d))
+
+
+def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, gamma_n=0.0, gamma_t=0.0,
+          planar: bool = False) -> list[PairOutcome]:
+    """Each pair from first touch until it separates, as :func:`.pair_exact.solve` with Hooke's law.
+
+    ``n``, ``v_a``, ``v_b``, ``w_a``, ``w_b``: (N, 3) arrays (n need not be unit); the spheres'
+    properties and the law's coefficients: scalars or (N,) arrays."""
+    n = np.atleast_2d(np.asarray(n, dtype=float))
+    count = n.shape[0]
+    columns = {k: np.broadcast_to(np.asarray(v, dtype=float), (count,) if np.ndim(v) < 2 else (count, 3))
+               for k, v in dict(v_a=v_a, v_b=v_b, w_a=w_a, w_b=w_b, m_a=m_a, r_a=r_a, alpha_a=alpha_a, m_b=m_b,
+                                r_b=r_b, alpha_b=alpha_b, kn=kn, kt=kt, gamma_n=gamma_n, gamma_t=gamma_t).items()}
+    out: list[PairOutcome] = []
+    for first in range(0, count, CHUNK):
+        part = slice(first, min(count, first + CHUNK))
+        out.extend(_solve_chunk(n[part], {k: v[part] for k, v in columns.items()}, planar))
+    return out
+
+
+def _solve_chunk(n, c: dict, planar: bool) -> list[PairOutcome]:
+    n0 = n / np.linalg.norm(n, axis=1, keepdims=True)
+    v_rel = c["v_a"] - c["v_b"]
+    if np.any(np.einsum("mi,mi->m", v_rel, n0) >= 0.0):
+        raise ValueError("the spheres must approach at first touch: (v_a - v_b).n < 0")
+    radsum = c["r_a"] + c["r_b"]
+    p = {"n0": n0.T, "radsum": radsum, "r_a": c["r_a"], "r_b": c["r_b"], "m_a": c["m_a"], "m_b": c["m_b"],
+         "i_a": c["alpha_a"] * c["m_a"] * c["r_a"] ** 2, "i_b": c["alpha_b"] * c["m_b"] * c["r_b"] ** 2,
+         "kn": c["kn"], "kt": c["kt"], "gamma_n": c["gamma_n"], "gamma_t": c["gamma_t"],
+         "r_eff": c["r_a"] * c["r_b"] / radsum, "K": c["kn"], **HOOKE}
+    m_star = c["m_a"] * c["m_b"] / (c["m_a"] + c["m_b"])
+    tau, fast = pair_scales(p, v_rel, n0, m_star)
+    longest = tau / 8.0 if planar else longest_step(tau, v_rel, n0, radsum)
+    atol = tolerance_scale(RTOL, v_rel, c["w_a"], c["w_b"], radsum, fast)
+    y = np.concatenate([(radsum[:, None] * n0), c["v_a"], c["v_b"], c["w_a"], c["w_b"], np.zeros_like(n0)],
+                       axis=1).T.copy()
+    start, h, t = _integrate(y, p, longest, atol, planar)
+    end, into = _locate_end(start, h, p, planar)
+    return [outcome(end[:, k], t[k] + into[k], n0[k]) for k in range(n0.shape[0])]
