@@ -17,24 +17,23 @@ critical damping, the step's stability and resolution.
 
 from __future__ import annotations
 
-import functools
 import math
 import warnings
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from functools import cached_property
 
 import numpy as np
 
 from ... import checks
 from ...lammps.decks import ALPHA_NVE_SPHERE
-from ...exact import pair as planar
 from ...errors import PhysicsWarning
 from ...model.contact import ContactModel
-from ...model.parameters import SceneError, by_name
+from ...model.parameters import SceneError
 from ...model.stability import overlap_stretch
 from ...model.timestep import MAX_STEPS, check_steps, steps_per_contact, steps_through
 from ..jump import beyond_reach, near_the_jump, warn_near_the_jump
-from .contact import PairContact, checked as _checked
+from .contact import PairContact
+from .pairs import Pair, Sphere, time_scaled
 from .deck import PAIR_NO_CAP_MU, render_pairs
 
 __all__ = ["Sphere", "PairContact", "Pair", "PairBatch", "ALPHA_NVE_SPHERE", "PAIR_STEPS_PER_HALF_PERIOD",
@@ -55,122 +54,6 @@ CONTACT_MARGIN = 0.05
 START_STEPS = 100
 #: The most time-scale classes (atom types per kind of sphere) of an aligned damped batch.
 SCALE_CLASSES = 32
-
-
-def _vector(name: str, value) -> tuple[float, float, float]:
-    try:
-        arr = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        raise SceneError(name, value, "must be three numbers") from None
-    if arr.shape != (3,):
-        raise SceneError(name, value, "must be three numbers (x, y, z)")
-    if not np.all(np.isfinite(arr)):
-        raise SceneError(name, value, "must be finite")
-    return tuple((arr + 0.0).tolist())
-
-
-@dataclass(frozen=True)
-class Sphere:
-    """One sphere: mass, radius and alpha = I/(m r^2), as declared for the wall's sphere."""
-
-    m: float = by_name("m").default
-    r: float = by_name("r").default
-    alpha: float = by_name("alpha").default
-
-    def __post_init__(self):
-        _checked(self, ("m", "r", "alpha"))
-
-    @property
-    def inertia(self) -> float:
-        return self.alpha * self.m * self.r**2
-
-    @property
-    def rigid(self) -> bool:
-        return self.alpha != ALPHA_NVE_SPHERE
-
-
-@dataclass(frozen=True)
-class Pair:
-    """Two spheres at first touch. ``normal``: from b's centre to a's (normalised here)."""
-
-    a: Sphere = field(default_factory=Sphere)
-    b: Sphere = field(default_factory=Sphere)
-    normal: tuple = (0.0, 0.0, 1.0)
-    v_a: tuple = (1.0, 0.0, -1.0)
-    v_b: tuple = (0.0, 0.0, 0.0)
-    w_a: tuple = (0.0, 0.0, 0.0)
-    w_b: tuple = (0.0, 0.0, 0.0)
-
-    def __post_init__(self):
-        for name in ("normal", "v_a", "v_b", "w_a", "w_b"):
-            object.__setattr__(self, name, _vector(name, getattr(self, name)))
-        length = math.sqrt(sum(x * x for x in self.normal))
-        if length == 0.0:
-            raise SceneError("normal", self.normal, "must not be zero")
-        object.__setattr__(self, "normal", tuple(x / length for x in self.normal))
-        if self.v_n >= 0.0:
-            raise SceneError("v_a - v_b", self.v_n, "must have a negative component along normal "
-                             "(the spheres approach at first touch)")
-
-    @property
-    def radsum(self) -> float:
-        return self.a.r + self.b.r
-
-    @cached_property
-    def v_n(self) -> float:
-        """Relative normal velocity (v_a - v_b).n: < 0 while approaching."""
-        return float(np.dot(np.subtract(self.v_a, self.v_b), self.normal))
-
-    @property
-    def v_t(self) -> float:
-        """Relative tangential speed of the centres: what turns the line of centres."""
-        v = np.subtract(self.v_a, self.v_b)
-        return float(np.linalg.norm(v - self.v_n * np.asarray(self.normal)))
-
-    def properties(self) -> dict:
-        """The sphere properties as :mod:`exact.pair` and :mod:`pair_exact` take them."""
-        return {"m_a": self.a.m, "r_a": self.a.r, "alpha_a": self.a.alpha,
-                "m_b": self.b.m, "r_b": self.b.r, "alpha_b": self.b.alpha}
-
-    def vectors(self) -> dict:
-        return {"n": self.normal, "v_a": self.v_a, "v_b": self.v_b, "w_a": self.w_a, "w_b": self.w_b}
-
-    def equivalent_wall(self, contact: PairContact) -> ContactModel:
-        """The wall contact with this pair's normal and slip equations (:func:`equivalent_wall`)."""
-        return equivalent_wall(self.a, self.b, contact)
-
-    def slip_speed(self) -> float:
-        """|u'(0)|: the contact points' initial relative tangential speed."""
-        slip = planar.slip_rate(np.asarray(self.normal), self.v_a, self.v_b, self.w_a, self.w_b, self.a.r, self.b.r)
-        return float(np.linalg.norm(slip))
-
-    def speed(self) -> float:
-        """The larger of the impact speed |v_a - v_b| and the initial slip speed |u'(0)|:
-        the scale errors are measured in."""
-        return max(float(np.linalg.norm(np.subtract(self.v_a, self.v_b))), self.slip_speed())
-
-
-@functools.lru_cache(maxsize=1024)
-def equivalent_wall(a: Sphere, b: Sphere, contact: PairContact) -> ContactModel:
-    """The wall contact with the normal and slip equations of spheres a and b (:mod:`exact.pair`): the
-    reduced mass, the equivalent alpha and, for a law on the contact radius, the radius R_eff of
-    a = sqrt(R_eff delta) (else the smaller radius, which the overlap must stay below). One object per
-    spheres and law: a batch's pairs of the same spheres share it."""
-    r = a.r * b.r / (a.r + b.r) if contact.on_contact_radius else min(a.r, b.r)
-    return ContactModel(m=planar.reduced_mass(a.m, b.m), r=r,
-                        alpha=planar.equivalent_alpha(a.m, a.alpha, b.m, b.alpha), **contact.law(),
-                        damping=contact.damping, **dict(contact.damping_coefficients), **dict(contact.words))
-
-
-def time_scaled(pair: Pair, scale: float) -> Pair:
-    """The same collision in time units ``scale`` times longer: masses (and so moments of inertia)
-    times scale^2, velocities and spins over scale, same radii, springs and geometry. Every
-    overlap and spring force is the same at the same fraction of the contact, which lasts
-    ``scale`` times longer; the final velocities and spins are the original's over ``scale``.
-    Exact for an undamped contact only (a damping force -eta v would need eta times scale)."""
-    heavier = {side: Sphere(s.m * scale**2, s.r, s.alpha) for side, s in (("a", pair.a), ("b", pair.b))}
-    slower = {k: tuple(np.divide(getattr(pair, k), scale)) for k in ("v_a", "v_b", "w_a", "w_b")}
-    return replace(pair, **heavier, **slower)
 
 
 @dataclass(frozen=True)
