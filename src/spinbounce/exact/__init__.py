@@ -7,6 +7,7 @@
   independent check;
 * :mod:`.classic`: LAMMPS's classic wall as this build implements it;
 * :mod:`.pair`, :mod:`.pair_exact`: two spheres, planar and as LAMMPS integrates them;
+  :mod:`.pair_batch` the Hookean uncapped reference for a whole batch at once;
   :mod:`.pair_capped` with a Coulomb cap (3-D, any law, both dashpots);
 * :mod:`.rigid_body`: the rigid-body sliding impulse and Walton's law.
 
