@@ -314,8 +314,12 @@ def test_steps_reported_for_a_target_reach_it(quick):
 #: The default step is chosen for SAFETY = 1/2 of its target with a constant measured on the
 #: paper's worst state; states whose error has a smaller leading term sit lower (grazing and
 #: high spin: 0.09 of the target; the Hertzian batch, whose fixed resolution bounds a slip of 2,
-#: 0.06). Below a twentieth of the target the default would be spending steps for nothing.
+#: 0.06). Below a twentieth of the target the default would be spending steps for nothing. A damped
+#: default is extrapolated (four runs): its error falls far below the target at a few times the
+#: rule's steps, so it is held to its steps and its own estimate instead.
 DEFAULT_ERROR_FLOOR = 1.0 / 20.0
+#: How many times the rule's steps an extrapolated (damped) default may take (issue 27: 3x).
+EXTRAPOLATED_STEPS = 3.0
 
 
 @pytest.mark.lammps
@@ -329,18 +333,23 @@ def test_the_default_step_reaches_its_target(quick):
     forms = {(c["name"], form) for c in record["cases"] for form in c["expected_order"]
              if form in accuracy.DEFAULT_FORMS}
     assert {(r["case"], r["form"]) for r in defaults} == forms
+    rule = Collision(ContactModel()).nsteps
     for r in defaults:
-        assert DEFAULT_ERROR_FLOOR * r["target"] <= r["error_reached"] <= r["target"], r
+        extrapolated = r["step_method"].startswith("extrapolated")
+        floor = 0.0 if extrapolated else DEFAULT_ERROR_FLOOR * r["target"]
+        assert floor <= r["error_reached"] <= r["target"], r
         assert r["within_target"] and r["worst_status"] == "ok", r
+        if extrapolated:  # cheap, and its estimate bounds its error
+            assert r["steps_per_collision"] <= EXTRAPOLATED_STEPS * rule and r["error_reached"] <= r["estimate"], r
         case = by_case[r["case"]]
         model = ContactModel(**case["model"])
         if r["step_method"] == "second-order rule" and model.normal == "hooke":
             states = np.array(case["states"])
             scene = Collision(model, v_n=states[:, 0], v_t=states[:, 1], omega=states[:, 2] / model.r)
             assert (r["steps_per_collision"], r["dt"]) == (scene.nsteps, scene.dt), r
-    # the probe refines the damped cases well past the rule's step: their error is first order
-    rule = Collision(ContactModel()).nsteps
-    assert all(r["steps_per_collision"] > 4 * rule for r in defaults if r["case"] in ("damped_t", "damped"))
+    # the damped cases (first order in one run) are extrapolated by default
+    assert all(r["step_method"].startswith("extrapolated") for r in defaults
+               if r["case"] in ("damped_t", "damped_n", "damped"))
     # the summary's default columns: present for the forms a default takes, absent on a step
     for row in record["summary"]:
         has_default = row["form"] in accuracy.DEFAULT_FORMS

@@ -198,9 +198,10 @@ def test_a_wall_and_a_pair_collision_run_through_one_pipeline_and_one_record(tmp
         real = getattr(module, name)
         monkeypatch.setattr(module, name, lambda *a, _real=real, _name=name, **k: calls.append(_name) or _real(*a, **k))
     monkeypatch.setattr(pipeline, "tune", stepping.tune)  # the pipeline's own name for the probe
-    wall = spinbounce.collide(v_n=-1.0, v_t=0.5, gamma_n=0.5, out=tmp_path / "wall")
-    pair = spinbounce.collide(v_n=-1.0, v_t=0.5, gamma_n=0.5, scene="pair", out=tmp_path / "pair")
-    # a damped contact is probed in both scenes: the outer run and its probes each check their rows
+    # a capped contact is probed in both scenes (a damped one alone, the wall extrapolates a ladder
+    # of runs): the outer run and its probes each check their rows
+    wall = spinbounce.collide(v_n=-1.0, v_t=0.5, mu=0.3, out=tmp_path / "wall")
+    pair = spinbounce.collide(v_n=-1.0, v_t=0.5, mu=0.3, scene="pair", out=tmp_path / "pair")
     assert calls.count("tune") >= 2 and calls.count("write_record") == 2
     assert calls.count("add_row_checks") >= 2 * 3  # two probes and the run, per scene
     records = [json.loads((tmp_path / kind / "result.json").read_text()) for kind in ("wall", "pair")]

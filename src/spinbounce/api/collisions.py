@@ -213,6 +213,7 @@ def collide(v_n: float = -1.0, v_t: float = 1.0, omega: float = 0.0, v_s: float 
     from ..scenes.collision import Collision
     from ..model.timestep import cost_notice
     from ..stepping import expected_steps
+    from ..extrapolation import default_tolerance
 
     check_run_folder(out, force)
     state = dict(zip(_STATE_NAMES, (v_n, v_t, omega, v_s, omega_s, omega_n), strict=True))
@@ -221,6 +222,8 @@ def collide(v_n: float = -1.0, v_t: float = 1.0, omega: float = 0.0, v_s: float 
         return _collide_pair(pair, contact, state, dt, tolerance, out)
     if tolerance is not None:
         return _collide_to_tolerance(contact, state, tolerance, out, log)
+    if dt is None and default_tolerance(contact) is not None:
+        return _collide_extrapolated(contact, state, default_tolerance(contact), out)
     scene = Collision(contact, dt=dt, **state)
     notice = cost_notice(expected_steps(scene), scene.n)
     if log is not None and notice:
@@ -237,6 +240,41 @@ def collide(v_n: float = -1.0, v_t: float = 1.0, omega: float = 0.0, v_s: float 
                            None if np.isnan(omega) else omega, result.step.record(), result.warnings,
                            str(result.info.deck), None if result.dump is None else str(result.dump),
                            result.info.lammps_version)
+
+
+def _collide_extrapolated(contact: ContactModel, state: dict, target: float, out) -> CollisionReport:
+    """A damped collision at the default accuracy: the ladder's runs extrapolated to dt = 0
+    (:func:`spinbounce.extrapolation.default_tolerance`), reported as one collision whose step record
+    says so (``method`` "extrapolated", the runs, the estimate over the state's size, as ``error``);
+    ``dt``: the finest run's, ``nsteps``: all runs' together."""
+    from .. import checks
+    from ..extrapolation import collide_to_tolerance, collision_frame
+    from ..pipeline import write_record
+    from ..records import lammps_version
+    from ..scenes.collision import Collision
+
+    Collision(contact, **state)  # the default step's checks (a damping too strong to see the end), before a folder
+    out = Path(out) if out is not None else run_folder("collide", {"model": contact.as_record(), **state,
+                                                                    "default_tolerance": target})
+    out_of_plane = {k: v for k, v in state.items() if k in ("v_s", "omega_s", "omega_n") and v}
+    result, scene = collide_to_tolerance(contact, state["v_n"], state["v_t"], state["omega"], target, out,
+                                         **out_of_plane)
+    columns = {name: values.to_numpy() for name, values in collision_frame(result, scene).items()}
+    deviation = checks.add_row_checks(columns, scene.row_states(columns), target)
+    table = pd.DataFrame(columns)
+    row = table.iloc[0]
+    choice = choose.which(contact)
+    step = {"dt": scene.dt, "method": f"extrapolated to dt = 0 from {len(result.levels)} runs", "target": target,
+            "estimate": result.relative_estimate(scene.initial), "observed_order": None, "raw_order": result.order,
+            "levels": result.levels}
+    finest = result.finest  # the record: the finest run's provenance, the extrapolated rows and how
+    write_record(out, finest.info, scene.kind, {**scene.record(finest.deck), "nsteps": result.steps}, dump=None,
+                 warnings=[], max_abs_error=deviation, max_error=float(table["error"].max()), step=step,
+                 status=checks.summary(table["status"]), table=table)
+    return CollisionReport(_state_table(row, scene.state_names, contact.r), choice.name, choice.kind, scene.dt,
+                           result.steps, float(row["error"]), str(row["status"]), out,
+                           float(contact.contact_times(state["v_n"])[0]), contact.Omega, step, (),
+                           str(result.levels[-1]["deck"]), None, lammps_version())
 
 
 @dataclass(frozen=True)

@@ -4,6 +4,7 @@ what each model, the exact solver, the cores, the cluster jobs and two spheres c
 from __future__ import annotations
 
 import argparse
+import math
 
 import os
 from pathlib import Path
@@ -115,10 +116,12 @@ def _print_models(n: int, seed: int, n_pairs: int) -> dict:
         print(f"chunk job ({j['model']}, {j['collisions']} collisions): estimated {j['estimated_seconds']:.2f} s, "
               f"measured {j['measured_seconds']:.2f} s ({j['estimated_over_measured']:.2f}x)")
     steps = default_step_table()
-    print("default step, per case: steps per collision and the error reached (target in brackets)")
+    print("default step, per case: steps per collision, the error reached (target in brackets) and an "
+          "extrapolation's own estimate")
     for row in steps[steps["kind"] != "frozen"].itertuples():
+        estimate = "" if math.isnan(row.estimate) else f" estimate {row.estimate:.2e}"
         print(f"  {row.case:<28}{row.step_method:<22}{row.steps_per_collision:>9}{row.error_reached:>11.2e} "
-              f"({row.target:g})")
+              f"({row.target:g}){estimate}")
     pairs = pair_to_wall_cost(n_pairs)
     print("\n".join(cost_lines(pairs)))
     return {"sweeps": models, "solver_collisions_per_second": solvers, "cores": cores, "chunk_jobs": jobs,

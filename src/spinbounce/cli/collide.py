@@ -33,7 +33,8 @@ def _parser(sub, name: str, help_: str, description: str) -> None:
     step = p.add_mutually_exclusive_group()
     step.add_argument("--dt", type=number, default=None,
                       help="timestep (default: the accuracy rule's step, model/timestep.py, with the contact's "
-                           "end mid-step; damped, Coulomb-capped, Hertzian and pair scenes measure theirs with a "
+                           "end mid-step; a damped wall collision runs four steps extrapolated to dt = 0 instead, "
+                           "extrapolation.py; Coulomb-capped, Hertzian and pair scenes measure theirs with a "
                            "short probe, stepping.py)")
     step.add_argument("--tolerance", type=number, default=None, metavar="TOL",
                       help="ask for an accuracy instead: runs at doubling resolutions, extrapolated to dt = 0 "
@@ -71,8 +72,9 @@ def run(args) -> int:
         print(f"collision: dt = {report.dt:.6g} ({report.nsteps} steps, contact time "
               f"{report.contact_time:.6g}); theory: {report.theory}; {omega_text}")
         _print_states(record, list(report.table.index), label_width=8)
+        estimate = f", estimated {report.step['estimate']:.2e}" if "estimate" in report.step else ""
         print(f"accuracy: |LAMMPS - theory| / |initial state| = {report.error:.2e} "
-              f"(target {report.step['target']:g}; step: {report.step['method']}); status {report.status}")
+              f"(target {report.step['target']:g}; step: {report.step['method']}{estimate}); status {report.status}")
         for w in report.warnings:
             print(f"warning: {w}")
         print(f"deck: {report.deck}\ndump: {report.dump}\nLAMMPS {report.lammps_version}")

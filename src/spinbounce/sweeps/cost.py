@@ -32,6 +32,7 @@ from dataclasses import dataclass
 from ..scenes.collision import Collision
 from ..model.timestep import SPHERE_STEP_SECONDS
 from ..stepping import expected_steps
+from .ladder import tolerance_of
 
 __all__ = ["CostError", "ChunkCost", "JobRequest", "chunk_cost", "job_request", "chunk_requests",
            "check_fits", "largest_chunk_size", "collisions_within"]
@@ -124,11 +125,11 @@ def chunk_cost(spec, group: int, collisions: int) -> ChunkCost:
         return _pair_cost(spec, group, collisions)
     # LAMMPS steps a collision runs for: its slowest sphere's (Hertz: time-scaled, the sweep's
     # T*) or the one contact's, at the step its probe will choose (stepping.expected_steps);
-    # with a tolerance, over the ladder's rungs
+    # with a tolerance (a damped wall's default among them, .ladder), over the ladder's rungs
     fast, slow = spec.normal_speeds()
     model, dt = spec.model(group)
     scene = Collision(model, v_n=[-fast, -slow], v_t=0.0, omega=0.0, dt=dt)
-    if spec.tolerance is None:
+    if tolerance_of(spec, group) is None:
         steps, probe = expected_steps(scene), (PROBE_SECONDS if scene.needs_probe() else 0.0)
     else:
         from ..extrapolation import START_STEPS, collision_rung_dt

@@ -28,6 +28,7 @@ from ..model import parameters
 from ..scenes.collision import Collision, scaled_contact_time
 from ..stepping import PROBE_SPHERES
 from ..exact import choose
+from .ladder import estimate_columns, extrapolates, ladder_columns, tolerance_of
 from .spec import SweepError, SweepSpec, spec_from_dict
 
 __all__ = ["run_sweep", "run_one_chunk", "chunk_table", "chunk_path", "read_results", "run_chunk", "status_counts"]
@@ -64,7 +65,7 @@ def run_chunk(raw: dict, out: str, group: int, chunk: int, start: int, stop: int
         pair_columns, dt, nsteps, loop = pair_chunk(model, spec.sphere_b(group), states, dt, run_dir, probe)
         columns.update(pair_columns)
     else:
-        dt, nsteps, loop = _wall_columns(columns, spec, model, dt, states, probe, run_dir)
+        dt, nsteps, loop = _wall_columns(columns, spec, model, dt, states, probe, run_dir, tolerance_of(spec, group))
     labels = _model_columns(columns, model, n)
     columns["dt"] = np.full(n, dt)  # the group's step; with a tolerance: the finest run's
     columns["nsteps"] = np.full(n, nsteps)  # with a tolerance: all runs' steps together
@@ -79,10 +80,10 @@ def run_chunk(raw: dict, out: str, group: int, chunk: int, start: int, stop: int
 
 
 def _wall_columns(columns: dict, spec: SweepSpec, model, dt, states: np.ndarray, probe: np.ndarray,
-                  run_dir: Path):
+                  run_dir: Path, tolerance: float | None):
     """Run a wall chunk of ``states``, its rows into ``columns``; (dt, steps, LAMMPS loop seconds). A
     time-scaled batch's rows each ran at dt/time_scale in their own time (Collision.row_dt): the
-    ``time_scale`` column."""
+    ``time_scale`` column. ``tolerance``: a ladder of runs extrapolated to it instead (:mod:`.ladder`)."""
     from ..pipeline import run_scene
 
     # at the default step a batch of Hertzian speeds is time-scaled: every chunk of the group and
@@ -94,23 +95,19 @@ def _wall_columns(columns: dict, spec: SweepSpec, model, dt, states: np.ndarray,
                          deck_contact_time=scaled_to,
                          **dict(zip(("v_s", "omega_s", "omega_n"), rows[:, 3:].T, strict=False)))
 
-    scene, n = batch(states), len(states)
-    if spec.tolerance is None:
+    scene = batch(states)
+    if tolerance is None:
         result = run_scene(scene, run_dir, atoms="library", record=False, probe_states=batch(probe))
         columns.update({name: values.to_numpy() for name, values in result.table.drop(columns=["id"]).items()})
         columns["time_scale"] = result.scene.time_scales
+        if extrapolates(spec):  # another group's chunks carry estimates: the same columns here
+            columns.update(estimate_columns(scene.state_names, scene.n))
         return result.scene.dt, result.scene.nsteps, result.info.loop_seconds
     # a ladder of runs per chunk, extrapolated; each row carries its error estimate
-    from ..extrapolation import collide_to_tolerance, collision_frame
-
-    extrapolated, finest = collide_to_tolerance(scene.model, scene.v_n, scene.v_t, scene.omega, spec.tolerance,
-                                                run_dir)
-    columns.update({name: values.to_numpy() for name, values in collision_frame(extrapolated, finest).items()})
-    columns["omega_initial"] = np.asarray(scene.omega)
-    columns["tolerance"] = np.full(n, spec.tolerance)
-    if "status" not in columns:  # its extrapolated rows, checked the same way
-        checks.add_row_checks(columns, scene.row_states(columns))
-    return finest.dt, extrapolated.steps, sum(level["loop_seconds"] for level in extrapolated.levels)
+    laddered, dt, steps, loop = ladder_columns(scene, tolerance, run_dir)
+    columns.update(laddered)
+    columns["time_scale"] = np.ones(scene.n)
+    return dt, steps, loop
 
 
 def _model_columns(columns: dict, model, n: int) -> dict[str, str]:

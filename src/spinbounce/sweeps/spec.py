@@ -324,7 +324,7 @@ def spec_from_dict(raw: dict) -> SweepSpec:
     """Validate a sweep description; every error names the key and its value."""
     seed, chunk_size, tolerance = _check_top(raw)
     groups = _groups(raw.get("model", {}))
-    mode, n, states = _parse_states(raw.get("states"), tolerance)
+    mode, n, states = _parse_states(raw.get("states"))
     spec = SweepSpec(raw=raw, groups=tuple(groups), seed=seed, chunk_size=chunk_size, tolerance=tolerance,
                      mode=mode, n=n, states=states)
     check_physics(spec)  # first: the chunk sizes come from the cost of valid scenes
@@ -336,7 +336,7 @@ def spec_from_dict(raw: dict) -> SweepSpec:
     return spec
 
 
-def _state_keys(states: dict, tolerance) -> list[str]:
+def _state_keys(states: dict) -> list[str]:
     """The sampled keys in column order: the two velocity keys, the spin, then any 3-D keys."""
     if "omega" in states and "r_omega" in states:
         _fail("states.r_omega", states["r_omega"], "give omega or r_omega, not both")
@@ -351,8 +351,6 @@ def _state_keys(states: dict, tolerance) -> list[str]:
                 _fail(f"states.{group[0]}", states.get(group[0]),
                       f"a 3-D sweep needs exactly one of {' or '.join(group)}")
             keys.append(given[0])
-        if tolerance is not None:
-            _fail("tolerance", tolerance, "is for the paper's plane only: a 3-D sweep takes model.dt or the default")
     return keys
 
 
@@ -367,7 +365,7 @@ def _declared_state(key: str, given, values: list[float]) -> list[float]:
     return values
 
 
-def _parse_states(states, tolerance) -> tuple[str, int, dict]:
+def _parse_states(states) -> tuple[str, int, dict]:
     if not isinstance(states, dict):
         _fail("states", states, "a [states] table is required")
     mode = states.get("mode", "random")
@@ -378,7 +376,7 @@ def _parse_states(states, tolerance) -> tuple[str, int, dict]:
         if key not in allowed:
             _fail(f"states.{key}", states[key], f"unknown key for mode {mode!r} (allowed: {', '.join(allowed)})")
     axes = {}
-    for key in _state_keys(states, tolerance):
+    for key in _state_keys(states):
         if key not in states:
             _fail(f"states.{key}", None, "is required")
         values = _numbers(f"states.{key}", states[key])

@@ -19,10 +19,12 @@ import numpy as np
 from ...scenes.collision import Collision, STATE_ARGS
 from ...model.contact import ContactModel
 from ...scenes.frozen import Frozen
+from ... import checks
 from ...checks import STATUSES
 from ...model.timestep import ACCURACY, FROZEN_ACCURACY, mid_step_dt, steps_through
 from ...pipeline import run_scene, run_series
-from ...extrapolation import collision_rung_dt, contact_steps, frozen_rung_dt
+from ...extrapolation import (collision_frame, collision_rung_dt, contact_steps, default_tolerance,
+                              extrapolate_collision, frozen_rung_dt)
 from .cases import ANY, EDGE, FROZEN, FROZEN_T_END, FROZEN_Z, MID, Case
 
 __all__ = ["FULL_LADDER", "QUICK_LADDER", "DEFAULT_FORMS", "ladder", "collision_dt", "frozen_dt", "run_default",
@@ -116,7 +118,10 @@ def run_collision_level(case: Case, dt: float | None, folder: Path, states=None,
     """One batch at ``dt`` (None: the default step): (row, final states). The row holds the
     largest error of each state column against the case's theory, the largest error relative
     to the state's size (the default step's measure, checks.add_row_checks), how the step was
-    chosen, the step LAMMPS ran at, its steps and the seconds."""
+    chosen, the step LAMMPS ran at, its steps and the seconds. A damped case's default is the ladder's
+    runs extrapolated to dt = 0 (:func:`_run_extrapolated`)."""
+    if dt is None and default_tolerance(case.model) is not None:
+        return _run_extrapolated(collision_scene(case, None, states), folder)
     result, wall = _timed(lambda: run_scene(collision_scene(case, dt, states), folder, atoms="library",
                                                 record=False), repeats)
     ran, t = result.scene, result.table
@@ -127,6 +132,27 @@ def run_collision_level(case: Case, dt: float | None, folder: Path, states=None,
     for s in ran.state_names:
         row[f"error_{s}"] = float(np.max(np.abs(t[f"{s}_error"])))
     return row, t[[f"{s}_lammps" for s in ran.state_names]].to_numpy()
+
+
+def _run_extrapolated(scene: Collision, folder: Path):
+    """(row, final states) of ``scene``'s default: its ladder extrapolated to ACCURACY; ``lammps_steps``:
+    all runs' together, ``estimate``: the extrapolation's error estimate over the state's size (as
+    ``relative_error``), beside the measured errors."""
+    target = default_tolerance(scene.model)
+    started = time.perf_counter()
+    result, finest = extrapolate_collision(scene, target, folder)
+    wall = time.perf_counter() - started
+    columns = {name: values.to_numpy() for name, values in collision_frame(result, finest).items()}
+    checks.add_row_checks(columns, finest.row_states(columns), target)
+    loop = sum(level["loop_seconds"] for level in result.levels)
+    row = {"dt": finest.dt, "lammps_steps": result.steps, "resolution": finest.steps_per_half_period,
+           "spheres": finest.n, "step_method": f"extrapolated ({len(result.levels)} runs)",
+           "relative_error": float(np.max(columns["error"])),
+           "worst_status": min(columns["status"], key=STATUSES.index), "loop_seconds": loop,
+           "lammps_seconds": wall, "wall_seconds": wall, "estimate": result.relative_estimate(finest.initial)}
+    for s in finest.state_names:
+        row[f"error_{s}"] = float(np.max(np.abs(columns[f"{s}_error"])))
+    return row, result.values
 
 
 def _run_hertz_mid(case: Case, dt_of_speed, folder: Path, repeats: int) -> dict:
