@@ -351,7 +351,7 @@ def measured_to_tolerance(model: ContactModel, v_n, v_t, omega, tolerance: float
         raise ResultError(f"tolerance = {tolerance:g} not reached: |LAMMPS - theory| = {distance.max():.2g} at "
                           f"dt = {result.scene.dt:.4g}; give a smaller dt or a looser tolerance")
     estimate = np.broadcast_to(distance, final.shape).copy()
-    return Extrapolated(final, estimate, tolerance, 0, levels), result.scene
+    return Extrapolated(final, estimate, tolerance, 0, levels, finest=result), result.scene
 
 
 def frozen_to_tolerance(model: ContactModel, z: float, v_t: float, omega: float, t_end: float,
