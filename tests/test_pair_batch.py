@@ -139,3 +139,19 @@ def test_a_scene_solves_its_batch_together_and_keeps_each_outcome_once():
             < AGREEMENT
         assert law.solve(pair) is outcome  # solved once, then kept
     assert len(pair_contact._SOLVED) <= pair_contact.SOLVED
+
+
+def test_a_batch_larger_than_the_cache_is_answered_whole(monkeypatch):
+    """A batch of more pairs than the cache keeps is returned whole, in order (the cache drops the
+    oldest only after answering)."""
+    from spinbounce.scenes.pair import contact as pair_contact
+    from spinbounce.scenes.pair.scene import Pair, PairContact
+
+    monkeypatch.setattr(pair_contact, "SOLVED", 3)
+    law = PairContact(kn=12.0)
+    pairs = [Pair(v_a=(0.1 * k, 0.0, -1.0)) for k in range(8)]
+    outcomes = law.solve_all(pairs)
+    assert len(outcomes) == 8 and len(pair_contact._SOLVED) == 3
+    for pair, outcome in zip(pairs, outcomes, strict=True):
+        alone = pair_exact.solve(**pair.vectors(), **pair.properties(), **law.reference_law())
+        assert np.allclose(outcome.v_a, alone.v_a, rtol=0.0, atol=AGREEMENT)

@@ -40,6 +40,9 @@ def register(sub) -> None:
     p.add_argument("--n-pairs", type=pair_count, default=200, metavar="N",
                    help=f"impacts LAMMPS's pair-to-wall cost is measured over (1 to {MAX_PAIR_IMPACTS}; "
                         "default %(default)s)")
+    p.add_argument("--quick", action="store_true",
+                   help="only what a user waits for, at small counts (under a minute): each scene's sweep beside "
+                        "the bare engine, the frictionless sweep against it, two workers, start-up, damped steps")
     p.set_defaults(handler=run)
 
 
@@ -58,8 +61,16 @@ def pair_count(text: str) -> int:
 
 
 def run(args) -> int:
-    from ..records import to_json, write_atomic
+    from ..records import to_json, write_atomic, software
+    from ..studies.engine import measure_waits, wait_lines
     from ..studies.speed import measure_speed
+
+    if args.quick:
+        waits = measure_waits(quick=True, seed=args.seed, workers=max(2, args.workers))
+        print("\n".join(wait_lines(waits)))
+        write_atomic(args.out, to_json({"waits": waits, **software()}))
+        print(f"report: {args.out}")
+        return 0
 
     reused = max(args.n_lmp, args.n_inprocess, args.n_needs)
     if reused > args.n_batched:
@@ -83,6 +94,8 @@ def run(args) -> int:
           f"{d['contact_only']['wall_seconds']:.2f} s vs {d['free_flight_and_dump_every_step']['wall_seconds']:.2f} s, "
           f"{d['ratio']:.1f}x")
     report["models"] = _print_models(args.n_models, args.seed, args.n_pairs)
+    report["waits"] = measure_waits(seed=args.seed, workers=max(2, args.workers))
+    print("what a user waits for, beside the bare engine:\n" + "\n".join(wait_lines(report["waits"])))
     write_atomic(args.out, to_json(report))
     print(f"report: {args.out}")
     return 0

@@ -24,9 +24,33 @@ from ..errors import LammpsError
 #: The line of a library-route deck at which the runner creates the atoms.
 LIBRARY_MARKER = "# >>> atoms are created here through the LAMMPS library interface <<<"
 
-__all__ = ["LIBRARY_MARKER", "LammpsError", "RunInfo", "run_deck", "run_deck_lmp", "lammps_version", "lmp_executable", "loop_seconds"]
+__all__ = ["LIBRARY_MARKER", "LammpsError", "RunInfo", "run_deck", "run_deck_lmp", "lammps_version", "lmp_executable",
+           "loop_seconds", "engine_clock"]
 
 LOG_NAME = "log.lammps"
+
+
+class EngineClock:
+    """Seconds spent in LAMMPS by :func:`run_deck` (an instance made, the deck's commands, the atoms
+    passed in and read back: what any script driving the module does) and the runs counted."""
+
+    def __init__(self):
+        self.seconds, self.runs = 0.0, 0
+
+
+_CLOCKS: list[EngineClock] = []
+
+
+@contextlib.contextmanager
+def engine_clock():
+    """An :class:`EngineClock` of the runs in this process while the block runs (``spinbounce bench``:
+    the bare engine's share of a sweep, on the same decks and states, in the same run)."""
+    clock = EngineClock()
+    _CLOCKS.append(clock)
+    try:
+        yield clock
+    finally:
+        _CLOCKS.remove(clock)
 
 
 @dataclass(frozen=True)
@@ -200,9 +224,12 @@ def run_deck(deck: Path, atoms=None) -> RunInfo:
             raise _as_lammps_error(exc, deck) from exc
         finally:
             lmp.close()
+    wall = time.perf_counter() - started
+    for clock in _CLOCKS:
+        clock.seconds, clock.runs = clock.seconds + wall, clock.runs + 1
     log = deck.parent / LOG_NAME
-    return RunInfo(deck=deck, log=log, lammps_version=version, wall_seconds=time.perf_counter() - started,
-                   loop_seconds=loop_seconds(log), initial=initial, final=final)
+    return RunInfo(deck=deck, log=log, lammps_version=version, wall_seconds=wall, loop_seconds=loop_seconds(log),
+                   initial=initial, final=final)
 
 
 def run_deck_lmp(deck: Path, atoms=None) -> RunInfo:

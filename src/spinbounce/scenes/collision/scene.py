@@ -262,7 +262,7 @@ class Collision:
     @property
     def speed(self) -> float:
         """The fastest |v_n|: where a force that grows with the overlap is stiffest."""
-        return max(abs(v) for v in self.v_n)
+        return float(np.max(np.abs(self.v_n)))
 
     @property
     def n(self) -> int:

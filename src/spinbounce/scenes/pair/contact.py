@@ -9,7 +9,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...exact import pair_batch, pair_capped, pair_exact
 from ...model.parameters import by_name
 
 __all__ = ["PairContact", "checked"]
@@ -79,22 +78,29 @@ class PairContact:
         """:meth:`solve` of each of ``pairs``: those not solved before together where the law allows
         (:mod:`spinbounce.exact.pair_batch`), else one at a time."""
         keys = [(self, pair, planar) for pair in pairs]
-        missing = list(dict.fromkeys(key for key in keys if key not in _SOLVED))
+        found = {key: _SOLVED[key] for key in keys if key in _SOLVED}
+        missing = list(dict.fromkeys(key for key in keys if key not in found))
         if missing:
-            fresh = self._solve_many([key[1] for key in missing], planar)
-            for key, result in zip(missing, fresh, strict=True):
-                _SOLVED[key] = result
-            while len(_SOLVED) > SOLVED:
-                _SOLVED.popitem(last=False)
-        return tuple(_SOLVED[key] for key in keys)
+            found.update(zip(missing, self._solve_many([key[1] for key in missing], planar), strict=True))
+        for key in dict.fromkeys(keys):  # kept for the next batch (a probe's runs), oldest dropped first
+            _SOLVED[key] = found[key]
+            _SOLVED.move_to_end(key)
+        while len(_SOLVED) > SOLVED:
+            _SOLVED.popitem(last=False)
+        return tuple(found[key] for key in keys)
 
     @property
     def batched(self) -> bool:
         """Whether a batch's references are solved together (:mod:`spinbounce.exact.pair_batch`): no cap
         (or a cap of zero) and a law that module takes."""
+        from ...exact import pair_batch
+
         return not self.mu and pair_batch.solvable(self.reference_law(), self.tensile)
 
     def _solve_many(self, pairs: list, planar: bool) -> list:
+        # the references (scipy's integrators) are loaded when a pair is solved: a wall's run never is
+        from ...exact import pair_batch, pair_capped, pair_exact
+
         capped = bool(self.mu)  # a cap of zero: no tangential force (the capped solver divides by mu)
         law = self.reference_law() | ({"kt": 0.0, "gamma_t": 0.0} if self.mu == 0.0 else {})
         if self.batched:
@@ -109,6 +115,6 @@ class PairContact:
 
 
 #: Outcomes kept (oldest dropped first): a probe runs the same pairs at up to five steps, each batch
-#: asking for their references.
-SOLVED = 1 << 14
+#: asking for their references; more than a sweep's chunk of pairs (25,000), ~1 kB each.
+SOLVED = 1 << 15
 _SOLVED: OrderedDict = OrderedDict()

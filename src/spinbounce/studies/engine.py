@@ -1,0 +1,168 @@
+"""What a user waits for, beside what LAMMPS itself takes (``spinbounce bench``, ``bench --quick``).
+
+* :func:`scene_sweeps`: one sweep per scene a user runs (the wall, damped, Hertzian and
+  Hertz-Mindlin walls, two free spheres, a Coulomb-capped pair), each end to end on one worker,
+  with the bare engine's seconds on the same decks and states in the same run
+  (:func:`spinbounce.lammps.runner.engine_clock`: LAMMPS's instance, the deck's commands and the
+  atoms in and out, nothing of spinbounce between) and each scene's time per collision over the
+  wall's;
+* :func:`sweep_against_engine`: the frictionless sweep as a user runs it (``spinbounce sweep`` in a
+  process of its own, start-up included) against the bare engine running the same chunks' decks;
+* :func:`help_seconds`: ``spinbounce --help`` and ``spinbounce collide --help`` in a fresh process;
+* :func:`damped_steps`: the damped wall's default against the undamped one, in LAMMPS steps.
+
+These are measurements on a shared machine: each ratio is taken between runs made side by side.
+"""
+
+from __future__ import annotations
+
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+from .speed import MODELS, PLANE, _sweep_process, _timed
+
+__all__ = ["SCENES", "scene_sweeps", "sweep_against_engine", "help_seconds", "damped_steps", "measure_waits",
+           "wait_lines", "ENGINE_SWEEP"]
+
+#: Frictionless collisions the sweep is set beside the bare engine over (full bench, ``--quick``).
+ENGINE_SWEEP = (800_000, 200_000)
+
+#: name: (model, states, collisions in the full bench, collisions in ``bench --quick``). A pair
+#: sweep's fixed costs (its step's probe) need ~20,000 pairs to amortise; the capped pair's
+#: reference is solved one pair at a time (~70 ms): its counts are small.
+SCENES = {
+    "wall": ({}, PLANE, 100_000, 20_000),
+    "damped wall": ({"gamma_t": 1.0}, PLANE, 100_000, 20_000),
+    "Hertzian wall": ({"normal": "hertz"}, {**PLANE, "v_n": [-0.8, -0.1]}, 100_000, 20_000),
+    "Hertz-Mindlin wall": (*MODELS["Hertz-Mindlin"], 100_000, 20_000),
+    "pair": ({"scene": "pair"}, PLANE, 20_000, 20_000),
+    "capped pair": ({"scene": "pair", "mu": 0.3}, PLANE, 500, 60),
+}
+
+
+def _user_spec(n: int, model: dict, states: dict, seed: int):
+    """The sweep a user's ``spinbounce sweep`` builds: its own chunks (the wall's 25,000 spheres, or as
+    many as a pair's references allow)."""
+    from ..sweeps import spec_from_dict
+
+    return spec_from_dict({"seed": seed, **({"model": model} if model else {}), "states": {"n": n, **states}})
+
+
+def _scene_sweep(name: str, n: int, seed: int, root: Path) -> dict:
+    from ..lammps.runner import engine_clock
+    from ..sweeps import read_results, run_sweep
+
+    model, states, *_ = SCENES[name]
+    folder = root / name.replace(" ", "-")
+    with engine_clock() as clock:
+        wall = _timed(lambda: run_sweep(_user_spec(n, model, states, seed), folder, workers=1, log=lambda *_: None))
+    rows = read_results(folder)
+    return {"scene": name, "collisions": n, "wall_seconds": wall, "engine_seconds": clock.seconds,
+            "lammps_runs": clock.runs, "collisions_per_second": n / wall,
+            "engine_collisions_per_second": n / clock.seconds, "outside_engine_share": 1.0 - clock.seconds / wall,
+            "steps_per_collision": int(rows["nsteps"].max()), "max_error": float(rows["error"].max())}
+
+
+def scene_sweeps(quick: bool = False, seed: int = 0) -> list[dict]:
+    """Each of :data:`SCENES` swept end to end on one worker, beside the bare engine's seconds; with
+    each one's time per collision over the wall's (``over_wall``)."""
+    root = Path(tempfile.mkdtemp(prefix="spinbounce-bench-scenes-"))
+    try:
+        out = [_scene_sweep(name, spec[3] if quick else spec[2], seed, root) for name, spec in SCENES.items()]
+    finally:
+        shutil.rmtree(root, ignore_errors=True)
+    wall = out[0]["wall_seconds"] / out[0]["collisions"]
+    for entry in out:
+        entry["over_wall"] = entry["wall_seconds"] / entry["collisions"] / wall
+    return out
+
+
+def sweep_against_engine(n: int, seed: int = 0) -> dict:
+    """The frictionless ``spinbounce sweep --n N --workers 1`` (a process, as a user runs it) and the
+    bare engine running the same chunks' decks on the same states: the engine's wall seconds over
+    LAMMPS's runs alone (its decks written and its spheres prepared beforehand, untimed)."""
+    from ..lammps.decks import prepare_run_dir
+    from ..lammps.runner import run_deck
+    from ..scenes.collision import Collision
+
+    spec = _user_spec(n, *MODELS["frictionless"], seed)
+    with tempfile.TemporaryDirectory(prefix="spinbounce-bench-engine-") as folder:
+        sweep = _sweep_process("--n", n, "--seed", seed, "--workers", 1, "--out", Path(folder) / "sweep")
+        model, dt = spec.model(0)
+        engine = 0.0
+        for group, chunk, start, stop in spec.chunks():
+            states = spec.initial_states(group, start, stop)
+            deck = Collision(model, v_n=states[:, 0], v_t=states[:, 1], omega=states[:, 2], dt=dt).render("library")
+            path = prepare_run_dir(Path(folder) / f"engine-{chunk}", deck)
+            engine += _timed(lambda: run_deck(path, atoms=deck.atoms))
+    return {"collisions": n, "sweep_seconds": sweep, "engine_seconds": engine, "sweep_per_second": n / sweep,
+            "engine_per_second": n / engine, "sweep_over_engine": engine / sweep}
+
+
+def help_seconds(repeats: int = 3) -> dict:
+    """The fastest of ``repeats`` runs of ``spinbounce --help`` and ``spinbounce collide --help``, each a
+    fresh process (what a user waits for before anything is asked)."""
+    out = {}
+    for label, args in (("--help", ["--help"]), ("collide --help", ["collide", "--help"])):
+        times = []
+        for _ in range(repeats):
+            started = time.perf_counter()
+            subprocess.run([sys.executable, "-m", "spinbounce", *args], check=True, capture_output=True)
+            times.append(time.perf_counter() - started)
+        out[label] = min(times)
+    return out
+
+
+def damped_steps() -> dict:
+    """LAMMPS steps of the damped wall's default (the accuracy study's ``damped_t`` case, gamma_t = 1)
+    against the undamped one (``defaults``), both at the default accuracy, with the errors reached."""
+    from .accuracy import default_step_table
+
+    table = default_step_table(["defaults", "damped_t"]).set_index("case")
+    undamped, damped = table.loc["defaults"], table.loc["damped_t"]
+    return {"undamped_steps": int(undamped["steps_per_collision"]), "damped_steps": int(damped["steps_per_collision"]),
+            "ratio": damped["steps_per_collision"] / undamped["steps_per_collision"],
+            "damped_method": damped["step_method"], "damped_error": float(damped["error_reached"]),
+            "damped_estimate": float(damped["estimate"]), "target": float(damped["target"])}
+
+
+def measure_waits(quick: bool = False, seed: int = 0, workers: int = 2) -> dict:
+    """Everything :func:`wait_lines` prints: each scene's sweep beside the engine, the frictionless sweep
+    against the bare engine, ``workers`` workers against one, the help's start-up and the damped steps."""
+    from .speed import parallel_efficiency
+
+    n = ENGINE_SWEEP[1] if quick else ENGINE_SWEEP[0]
+    return {"quick": quick, "scenes": scene_sweeps(quick, seed), "frictionless": sweep_against_engine(n, seed),
+            "cores": parallel_efficiency(n=n, workers=workers, seed=seed), "help_seconds": help_seconds(),
+            "damped": damped_steps()}
+
+
+def wait_lines(report: dict) -> list[str]:
+    """:func:`measure_waits`' report as printed lines, each ratio beside its target (issue 27's)."""
+    lines = [f"{'sweep, one worker':<20}{'collisions':>11}{'coll/s':>10}{'engine coll/s':>15}{'outside LAMMPS':>16}"
+             f"{'time/coll vs wall':>19}{'steps':>7}{'max error':>11}"]
+    for s in report["scenes"]:
+        lines.append(f"{s['scene']:<20}{s['collisions']:>11}{s['collisions_per_second']:>10.0f}"
+                     f"{s['engine_collisions_per_second']:>15.0f}{s['outside_engine_share']:>16.0%}"
+                     f"{s['over_wall']:>18.2f}x{s['steps_per_collision']:>7}{s['max_error']:>11.2e}")
+    by_name = {s["scene"]: s for s in report["scenes"]}
+    lines.append(f"pair / wall per collision: {by_name['pair']['over_wall']:.1f}x (target 8x); capped pair / wall: "
+                 f"{by_name['capped pair']['over_wall']:.0f}x (target 16x)")
+    f = report["frictionless"]
+    lines.append(f"frictionless sweep of {f['collisions']:,} (a process, start-up included): {f['sweep_per_second']:,.0f}/s;"
+                 f" the bare engine on the same chunks: {f['engine_per_second']:,.0f}/s: {f['sweep_over_engine']:.0%} of it"
+                 " (target 85%)")
+    c = report["cores"]
+    lines.append(f"{c['workers']} workers: {c['per_core_at_all']:,.0f}/s per core against {c['per_core_at_one']:,.0f}/s "
+                 f"at one: {c['efficiency']:.0%} of twice one worker (target 90%)")
+    h = report["help_seconds"]
+    lines.append("start-up: " + ", ".join(f"spinbounce {k} {v:.2f} s" for k, v in h.items()) + " (target 0.5 s)")
+    d = report["damped"]
+    lines.append(f"damped wall (gamma_t = 1) at the default accuracy: {d['damped_steps']} steps against "
+                 f"{d['undamped_steps']} undamped: {d['ratio']:.2f}x (target 3x; {d['damped_method']}, error "
+                 f"{d['damped_error']:.1e}, estimate {d['damped_estimate']:.1e}, target {d['target']:g})")
+    return lines
