@@ -103,9 +103,10 @@ def run_scene(scene, out_dir: Path, atoms: str | None = None, record: bool = Tru
     """
     given, (scene, step) = scene, tune(scene, Path(out_dir) / "probe", _probe_errors, probe_states, target)
     deck, deck_path, info, columns, deviation = _run(scene, out_dir, atoms, runner, target)
-    fine = given.fallback() if step.method == "probe" else None
-    if fine is not None and fine.dt < scene.dt and (worst := _worst(columns, given)) > target:
-        # the probe's step, chosen on a sample, missed the target on the whole scene: its rule's
+    # the probe's step, chosen on a sample, may miss the target on the whole scene: then its fine rule
+    worst = _worst(columns, given) if step.method == "probe" else 0.0
+    fine = given.fallback() if worst > target else None
+    if fine is not None and fine.dt < scene.dt:
         scene, step = fine, replace(step, dt=fine.dt, method=f"{FALLBACK}; the probe's step erred {worst:.2g}",
                                     predicted_error=None)
         deck, deck_path, info, columns, deviation = _run(scene, out_dir, atoms, runner, target)

@@ -82,9 +82,10 @@ def tune(scene, out: Path, run: Callable, probe_states=None, target: float = ACC
         raise RuntimeError(f"no probe of {scene.model} finished its contact within {coarse_steps} steps")
     try:
         steps, order, predicted = converge(*pair, target, probe, limit=limit)
-        fine = scene.fallback()
-        if fine is not None and (steps >= limit or predicted > target * SAFETY * CHECK_SLACK):
-            return fine, StepChoice(fine.dt, FALLBACK, target, order, tuple(errors), None)
+        if steps >= limit or predicted > target * SAFETY * CHECK_SLACK:  # the scene's fine rule, if it has one
+            fine = scene.fallback()
+            if fine is not None:
+                return fine, StepChoice(fine.dt, FALLBACK, target, order, tuple(errors), None)
         tuned = scene.at_step(mid_step_dt(t_contact, steps))
     except SceneError as exc:  # the step the target asks for is beyond what one run may take
         if exc.parameter != "dt":

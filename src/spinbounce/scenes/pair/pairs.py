@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import functools
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from functools import cached_property
 
 import numpy as np
@@ -17,10 +17,12 @@ from ...model.contact import ContactModel
 from ...model.parameters import SceneError, by_name
 from .contact import PairContact, checked as _checked
 
-__all__ = ["Sphere", "Pair", "equivalent_wall", "time_scaled"]
+__all__ = ["Sphere", "Pair", "equivalent_wall", "time_scaled", "speeds", "slip_speeds"]
 
 
 def _vector(name: str, value) -> tuple[float, float, float]:
+    if isinstance(value, tuple) and len(value) == 3 and all(isinstance(x, float) and math.isfinite(x) for x in value):
+        return (float(value[0]) + 0.0, float(value[1]) + 0.0, float(value[2]) + 0.0)  # three finite floats already
     try:
         arr = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
@@ -64,6 +66,11 @@ class Pair:
     w_a: tuple = (0.0, 0.0, 0.0)
     w_b: tuple = (0.0, 0.0, 0.0)
 
+    def __hash__(self) -> int:  # hashed often (the references' cache keys): computed once
+        if "_hash" not in self.__dict__:
+            self.__dict__["_hash"] = hash((self.a, self.b, self.normal, self.v_a, self.v_b, self.w_a, self.w_b))
+        return self.__dict__["_hash"]
+
     def __post_init__(self):
         for name in ("normal", "v_a", "v_b", "w_a", "w_b"):
             object.__setattr__(self, name, _vector(name, getattr(self, name)))
@@ -104,13 +111,31 @@ class Pair:
 
     def slip_speed(self) -> float:
         """|u'(0)|: the contact points' initial relative tangential speed."""
-        slip = planar.slip_rate(np.asarray(self.normal), self.v_a, self.v_b, self.w_a, self.w_b, self.a.r, self.b.r)
-        return float(np.linalg.norm(slip))
+        return float(slip_speeds((self,))[0])
 
     def speed(self) -> float:
         """The larger of the impact speed |v_a - v_b| and the initial slip speed |u'(0)|:
         the scale errors are measured in."""
-        return max(float(np.linalg.norm(np.subtract(self.v_a, self.v_b))), self.slip_speed())
+        return float(speeds((self,))[0])
+
+
+def _arrays(pairs) -> dict:
+    """The pairs' vectors as (N, 3) arrays and their radii as (N,) arrays."""
+    out = {k: np.array([getattr(p, k) for p in pairs]) for k in ("normal", "v_a", "v_b", "w_a", "w_b")}
+    return out | {"r_a": np.array([p.a.r for p in pairs]), "r_b": np.array([p.b.r for p in pairs])}
+
+
+def slip_speeds(pairs) -> np.ndarray:
+    """:meth:`Pair.slip_speed` of each of ``pairs``, at once."""
+    x = _arrays(pairs)
+    return np.linalg.norm(planar.slip_rate(x["normal"], x["v_a"], x["v_b"], x["w_a"], x["w_b"], x["r_a"], x["r_b"]),
+                          axis=-1)
+
+
+def speeds(pairs) -> np.ndarray:
+    """:meth:`Pair.speed` of each of ``pairs``, at once."""
+    x = _arrays(pairs)
+    return np.maximum(np.linalg.norm(x["v_a"] - x["v_b"], axis=-1), slip_speeds(pairs))
 
 
 @functools.lru_cache(maxsize=1024)
@@ -130,7 +155,16 @@ def time_scaled(pair: Pair, scale: float) -> Pair:
     times scale^2, velocities and spins over scale, same radii, springs and geometry. Every
     overlap and spring force is the same at the same fraction of the contact, which lasts
     ``scale`` times longer; the final velocities and spins are the original's over ``scale``.
-    Exact for an undamped contact only (a damping force -eta v would need eta times scale)."""
-    heavier = {side: Sphere(s.m * scale**2, s.r, s.alpha) for side, s in (("a", pair.a), ("b", pair.b))}
-    slower = {k: tuple(np.divide(getattr(pair, k), scale)) for k in ("v_a", "v_b", "w_a", "w_b")}
-    return replace(pair, **heavier, **slower)
+    Exact for an undamped contact only (a damping force -eta v would need eta times scale).
+    Built from a checked pair by a positive finite scale, it is not checked again."""
+    heavier = {side: _trusted(Sphere, m=s.m * scale**2, r=s.r, alpha=s.alpha) for side, s in (("a", pair.a), ("b", pair.b))}
+    slower = {k: tuple(x / scale for x in getattr(pair, k)) for k in ("v_a", "v_b", "w_a", "w_b")}
+    return _trusted(Pair, **heavier, normal=pair.normal, **slower)
+
+
+def _trusted(cls, **fields):
+    """A frozen dataclass made from values already checked, without its checks."""
+    out = object.__new__(cls)
+    for name, value in fields.items():
+        object.__setattr__(out, name, value)
+    return out

@@ -33,7 +33,7 @@ from ...model.stability import overlap_stretch
 from ...model.timestep import MAX_STEPS, check_steps, steps_per_contact, steps_through
 from ..jump import beyond_reach, near_the_jump, warn_near_the_jump
 from .contact import PairContact
-from .pairs import Pair, Sphere, time_scaled
+from .pairs import Pair, Sphere, slip_speeds, time_scaled
 from .deck import PAIR_NO_CAP_MU, render_pairs
 
 __all__ = ["Sphere", "PairContact", "Pair", "PairBatch", "ALPHA_NVE_SPHERE", "PAIR_STEPS_PER_HALF_PERIOD",
@@ -276,7 +276,8 @@ class PairBatch:
             return np.zeros(self.n, dtype=bool)
         out = np.zeros(self.n, dtype=bool)
         for wall, index in self.wall_groups:
-            states = np.array([[self.pairs[k].v_n, self.pairs[k].slip_speed(), 0.0] for k in index])
+            chosen = [self.pairs[k] for k in index]
+            states = np.column_stack([[p.v_n for p in chosen], slip_speeds(chosen), np.zeros(len(chosen))])
             out[index] = test(wall.replace(mu=self.contact.mu), states)
         return out
 

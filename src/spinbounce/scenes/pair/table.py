@@ -24,6 +24,7 @@ from ...errors import ResultError
 from ...exact import pair as planar
 from ...lammps.dumps import finite_frames, read_dump
 from .deck import QUANTITIES
+from .pairs import speeds
 
 if TYPE_CHECKING:
     from ...lammps.decks import Deck
@@ -68,7 +69,7 @@ def pair_table(batch, lammps: dict[str, np.ndarray] | None) -> pd.DataFrame:
            else np.array([o.contact_time for o in batch.exact]))
     v_t, v_n = np.array([p.v_t for p in pairs]), np.array([p.v_n for p in pairs])
     columns = {"pair": np.arange(batch.n), **props, "v_n_relative": v_n, "v_t_relative": v_t,
-               "speed": np.array([p.speed() for p in pairs]), "tau": tau,
+               "speed": speeds(pairs), "tau": tau,
                "contact_time": np.array([o.contact_time for o in batch.exact]),
                "eps": planar.line_turn(v_t, tau, props["r_a"], props["r_b"]),
                "centrifugal": planar.centrifugal_ratio(v_t, v_n, tau, props["r_a"], props["r_b"]),
