@@ -54,11 +54,39 @@ def test_bench_refuses_a_batch_smaller_than_the_baselines():
 
 @pytest.mark.slow
 @pytest.mark.lammps
-def test_bench_cli_writes_json(tmp_path, capsys):
+def test_bench_cli_writes_json(tmp_path, capsys, monkeypatch):
+    from spinbounce.studies import engine
+
+    # the full bench's "what a user waits for" runs 800,000 collisions: here its path at small counts
+    monkeypatch.setattr(engine, "ENGINE_SWEEP", (20_000, 20_000))
+    monkeypatch.setattr(engine, "SCENES", {k: (*v[:2], min(v[3], 2000), min(v[3], 2000))
+                                           for k, v in engine.SCENES.items()})
     out = tmp_path / "bench.json"
     assert main(["bench", "--n-lmp", "1", "--n-inprocess", "2", "--n-batched", "500", "--n-needs", "100",
                  "--out", str(out)]) == 0
     report = json.loads(out.read_text())
     assert set(report["ratios"]) == {"batched_over_lmp_process", "batched_over_in_process"}
     assert report["lammps_version"].startswith("2025.7.22")
-    assert "batched / lmp process" in capsys.readouterr().out
+    printed = capsys.readouterr().out
+    assert "batched / lmp process" in printed and "what a user waits for" in printed
+    assert {s["scene"] for s in report["waits"]["scenes"]} == set(engine.SCENES)
+
+
+@pytest.mark.slow
+@pytest.mark.lammps
+def test_bench_quick_prints_every_ratio_with_its_target(tmp_path, capsys):
+    """bench --quick: each scene's sweep beside the bare engine (LAMMPS's own seconds below the sweep's,
+    every row within the default accuracy), the frictionless sweep against the engine, two workers,
+    start-up and the damped steps, each printed beside its target."""
+    out = tmp_path / "bench.json"
+    assert main(["bench", "--quick", "--out", str(out)]) == 0
+    printed = capsys.readouterr().out
+    for line in ("pair / wall per collision", "of it (target 85%)", "of twice one worker (target 90%)",
+                 "(target 0.5 s)", "undamped: "):
+        assert line in printed
+    waits = json.loads(out.read_text())["waits"]
+    assert waits["quick"] and [s["scene"] for s in waits["scenes"]][0] == "wall"
+    for scene in waits["scenes"]:
+        assert 0.0 < scene["engine_seconds"] < scene["wall_seconds"] and scene["lammps_runs"] >= 1
+        assert scene["max_error"] <= 1e-4  # the sweeps it times reach the default accuracy
+    assert waits["damped"]["damped_error"] <= waits["damped"]["damped_estimate"] <= waits["damped"]["target"]
