@@ -173,6 +173,33 @@ def test_sigkill_mid_sweep_then_rerun_completes_exactly(tmp_path):
 
 
 @pytest.mark.lammps
+def test_a_failed_chunk_write_stops_the_sweep_and_a_rerun_completes_it(tmp_path, monkeypatch):
+    """Chunks are written by a thread while the next one runs: a write that fails stops the sweep with
+    its error, the chunks written before it stay, no temporary file is left, and a rerun resumes."""
+    from spinbounce import records
+
+    real, calls = records.write_parquet_atomic, []
+
+    def failing_second(path, table):
+        calls.append(path)
+        if len(calls) == 2:
+            raise OSError("disk full")
+        return real(path, table)
+
+    monkeypatch.setattr(records, "write_parquet_atomic", failing_second)
+    spec = load_spec(write(tmp_path, GOOD))  # six chunks of 300
+    out = tmp_path / "out"
+    with pytest.raises(OSError, match="disk full"):
+        run_sweep(spec, out, workers=1, log=lambda *_: None)
+    written = list((out / "chunks").glob("chunk-*.parquet"))
+    assert 1 <= len(written) < 6 and not list((out / "chunks").glob(".*.tmp"))
+    monkeypatch.setattr(records, "write_parquet_atomic", real)
+    run_sweep(spec, out, workers=1, log=lambda *_: None)
+    rows = read_results(out)
+    assert sorted(zip(rows["group"], rows["index"])) == [(g, k) for g in range(2) for k in range(900)]
+
+
+@pytest.mark.lammps
 def test_chunk_jobs_fill_the_same_dataset_as_a_whole_sweep(tmp_path):
     """A workflow engine runs chunks one by one (--chunk K); together they are the sweep."""
     from spinbounce.sweeps import chunk_table, run_one_chunk

@@ -24,6 +24,7 @@ import numpy as np
 import pandas as pd
 
 from .. import __version__, checks
+from ..records import TEMP_SUFFIX
 from ..model import parameters
 from ..scenes.collision import Collision, scaled_contact_time
 from ..stepping import PROBE_SPHERES
@@ -38,8 +39,10 @@ def chunk_path(out: Path, group: int, chunk: int) -> Path:
     return out / "chunks" / f"chunk-{group:04d}-{chunk:06d}.parquet"
 
 
-def run_chunk(raw: dict, out: str, group: int, chunk: int, start: int, stop: int) -> tuple[int, float, float]:
-    """Run one chunk and write its Parquet file atomically.
+def run_chunk(raw: dict, out: str, group: int, chunk: int, start: int, stop: int,
+              write=None) -> tuple[int, float, float]:
+    """Run one chunk and write its Parquet file atomically (``write(path, table)``: by default
+    :func:`spinbounce.records.write_parquet_atomic`, now).
 
     Returns (collisions, seconds in this call, seconds in LAMMPS's run loop). The wall's
     spheres reach LAMMPS in memory (the library route): no data file to write, no dump to
@@ -75,7 +78,7 @@ def run_chunk(raw: dict, out: str, group: int, chunk: int, start: int, stop: int
         columns["Omega_theory"] = choose.omega_per_sphere(model, states[:, 0])  # NaN where none (Coulomb)
         labels["theory"] = choose.which(model).kind
     labels.update({"scene_hash": spec.digest, "lammps_version": lammps_version(), "spinbounce_version": __version__})
-    write_parquet_atomic(chunk_path(out, group, chunk), _arrow_table(columns, labels))
+    (write or write_parquet_atomic)(chunk_path(out, group, chunk), _arrow_table(columns, labels))
     return stop - start, time.perf_counter() - started, loop
 
 
@@ -220,6 +223,8 @@ def _run_chunks(spec: SweepSpec, out: Path, workers: int | None, log) -> Path:
 
     with _lock(out / ".lock"):
         _claim(out, spec)
+        for stale in (out / "chunks").glob(f".chunk-*{TEMP_SUFFIX}"):  # a killed writer's; no one writes now
+            stale.unlink(missing_ok=True)
         todo = [c for c in spec.chunks() if not chunk_path(out, c[0], c[1]).exists()]
         total = spec.n * len(spec.groups)
         done = total - sum(stop - start for _, _, start, stop in todo)
@@ -229,9 +234,7 @@ def _run_chunks(spec: SweepSpec, out: Path, workers: int | None, log) -> Path:
         bar = tqdm(total=total, initial=done, unit="coll", unit_scale=True, dynamic_ncols=True,
                    disable=not sys.stderr.isatty(), desc="collisions")
         if workers == 1:  # no pool: one process start fewer, and plain tracebacks
-            for c in todo:
-                n, *_ = run_chunk(spec.raw, str(out), *c)
-                bar.update(n)
+            _run_in_turn(spec, out, todo, bar)
         else:
             with concurrent.futures.ProcessPoolExecutor(max_workers=workers, mp_context=_context(),
                                                         initializer=_die_with_parent) as pool:
@@ -246,6 +249,28 @@ def _run_chunks(spec: SweepSpec, out: Path, workers: int | None, log) -> Path:
                     raise
         bar.close()
     return out / "chunks"
+
+
+def _run_in_turn(spec: SweepSpec, out: Path, todo: list, bar) -> None:
+    """The chunks one after the other in this process, each one's file written by a thread while the
+    next one runs (LAMMPS and the Parquet writer both release the GIL); a failed write stops the sweep
+    at the next chunk, and every write has ended when this returns."""
+    from ..records import write_parquet_atomic
+
+    with concurrent.futures.ThreadPoolExecutor(max_workers=1, thread_name_prefix="chunk-writer") as writer:
+        pending: list[concurrent.futures.Future] = []
+
+        def write(path, table):
+            pending.append(writer.submit(write_parquet_atomic, path, table))
+
+        for c in todo:
+            n, *_ = run_chunk(spec.raw, str(out), *c, write=write)
+            for done in [f for f in pending if f.done()]:
+                done.result()  # raises a failed write's error here
+                pending.remove(done)
+            bar.update(n)
+        for f in pending:
+            f.result()
 
 
 def run_one_chunk(spec: SweepSpec, out: Path, k: int, log=print) -> Path:
