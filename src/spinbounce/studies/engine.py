@@ -72,6 +72,8 @@ def scene_sweeps(quick: bool = False, seed: int = 0) -> list[dict]:
     each one's time per collision over the wall's (``over_wall``)."""
     root = Path(tempfile.mkdtemp(prefix="spinbounce-bench-scenes-"))
     try:
+        # untimed: the first sweep in a process also loads LAMMPS and the table code, which no ratio should carry
+        _scene_sweep("wall", 1000, seed, root / "warm-up")
         out = [_scene_sweep(name, spec[3] if quick else spec[2], seed, root) for name, spec in SCENES.items()]
     finally:
         shutil.rmtree(root, ignore_errors=True)
