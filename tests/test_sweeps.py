@@ -200,6 +200,17 @@ def test_a_failed_chunk_write_stops_the_sweep_and_a_rerun_completes_it(tmp_path,
 
 
 @pytest.mark.lammps
+def test_a_sweep_into_a_relative_folder_writes_every_chunk_there(tmp_path, monkeypatch):
+    """Each chunk's file is written by a thread while LAMMPS runs the next chunk in its own folder (the
+    working folder changes): a relative output folder must still receive every chunk."""
+    spec = load_spec(write(tmp_path, GOOD))
+    monkeypatch.chdir(tmp_path)
+    run_sweep(spec, "relative-out", workers=1, log=lambda *_: None)
+    assert len(list((tmp_path / "relative-out" / "chunks").glob("chunk-*.parquet"))) == 6
+    assert len(read_results(tmp_path / "relative-out")) == 1800
+
+
+@pytest.mark.lammps
 def test_chunk_jobs_fill_the_same_dataset_as_a_whole_sweep(tmp_path):
     """A workflow engine runs chunks one by one (--chunk K); together they are the sweep."""
     from spinbounce.sweeps import chunk_table, run_one_chunk

@@ -205,7 +205,8 @@ def collide(v_n: float = -1.0, v_t: float = 1.0, omega: float = 0.0, v_s: float 
     """Bounce one sphere off the wall in LAMMPS and compare it with the theory that applies; with
     ``scene="pair"`` (and ``m_b``, ``r_b``, ``alpha_b``, b's state ``v_n_b`` ... ``omega_n_b``: at rest by
     default) against a free sphere b instead. ``tolerance``: ask for an accuracy instead of a step
-    (:mod:`spinbounce.extrapolation`). ``log(line)``: told, before a long run starts, how long it will
+    (:mod:`spinbounce.extrapolation`); a damped wall collision's default is such a ladder asked for
+    the default accuracy (its ``step`` record says so, with the estimate). ``log(line)``: told, before a long run starts, how long it will
     take, and how a run to a tolerance proceeds. A named ``out`` holding an earlier run is refused
     unless ``force``."""
     from ..pipeline import run_scene

@@ -260,8 +260,8 @@ def _run_in_turn(spec: SweepSpec, out: Path, todo: list, bar) -> None:
     with concurrent.futures.ThreadPoolExecutor(max_workers=1, thread_name_prefix="chunk-writer") as writer:
         pending: list[concurrent.futures.Future] = []
 
-        def write(path, table):
-            pending.append(writer.submit(write_parquet_atomic, path, table))
+        def write(path, table):  # absolute now: a LAMMPS run changes the working folder while the file is written
+            pending.append(writer.submit(write_parquet_atomic, Path(path).absolute(), table))
 
         for c in todo:
             n, *_ = run_chunk(spec.raw, str(out), *c, write=write)
