@@ -44,6 +44,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from . import checks
 from .scenes.collision import Collision, STATE_ARGS
 from .model.contact import ContactModel
 from .scenes.frozen import Frozen
@@ -253,12 +254,11 @@ def default_tolerance(model: ContactModel) -> float | None:
     reaches ACCURACY takes ~18 times the undamped steps (3,247 against 174 at gamma_t = 1); the ladder's
     first four runs, 20 to 160 steps per half-period (~300 steps in all), extrapolate to dt = 0 with an
     estimate far below ACCURACY. Only where the error is smooth in dt (:func:`smooth_in_dt`)."""
-    damped = model.gamma_n > 0.0 or model.gamma_t > 0.0
-    return ACCURACY if damped and smooth_in_dt(model) else None
+    return ACCURACY if (model.gamma_n > 0.0 or model.gamma_t > 0.0) and smooth_in_dt(model) else None
 
 
-#: The exact theories the measured route checks against (exact.coulomb, exact.classic)
-#: are solved to ~1e-9 of the speed: a tolerance below ten times that cannot be told apart.
+#: The exact theories the measured route checks against (exact.coulomb, exact.classic) are solved
+#: to ~1e-9 of the speed: a tolerance below ten times that cannot be told apart.
 MIN_MEASURED_TOLERANCE = 1e-8
 
 
@@ -386,8 +386,9 @@ def frozen_to_tolerance(model: ContactModel, z: float, v_t: float, omega: float,
     return Extrapolated(values, estimate, tol, int(p.min()), levels, t=times[0])
 
 
-def collision_frame(result: Extrapolated, scene: Collision) -> pd.DataFrame:
-    """The extrapolated final states beside the theory, one row per sphere."""
+def collision_frame(result: Extrapolated, scene: Collision, target: float = ACCURACY) -> pd.DataFrame:
+    """The extrapolated final states beside the theory, one row per sphere, checked as a run's rows are
+    (:func:`spinbounce.checks.add_row_checks` against ``target``: error, energy, status)."""
     theory = scene.predicted()
     out = {f"{s}_initial": scene.initial[:, k] for k, s in enumerate(scene.state_names)}
     for k, s in enumerate(scene.state_names):
@@ -395,4 +396,5 @@ def collision_frame(result: Extrapolated, scene: Collision) -> pd.DataFrame:
         out[f"{s}_estimate"] = result.estimate[:, k]
         out[f"{s}_theory"] = theory[:, k]
         out[f"{s}_error"] = result.values[:, k] - theory[:, k]
+    checks.add_row_checks(out, scene.row_states(out), target)
     return pd.DataFrame(out)

@@ -260,10 +260,9 @@ def _collide_extrapolated(contact: ContactModel, state: dict, target: float, out
     out_of_plane = {k: v for k, v in state.items() if k in ("v_s", "omega_s", "omega_n") and v}
     result, scene = collide_to_tolerance(contact, state["v_n"], state["v_t"], state["omega"], target, out,
                                          **out_of_plane)
-    columns = {name: values.to_numpy() for name, values in collision_frame(result, scene).items()}
-    deviation = checks.add_row_checks(columns, scene.row_states(columns), target)
-    table = pd.DataFrame(columns)
+    table = collision_frame(result, scene, target)
     row = table.iloc[0]
+    deviation = float(np.abs(table[[f"{s}_error" for s in scene.state_names]].to_numpy()).max())
     choice = choose.which(contact)
     step = {"dt": scene.dt, "method": f"extrapolated to dt = 0 from {len(result.levels)} runs", "target": target,
             "estimate": result.relative_estimate(scene.initial), "observed_order": None, "raw_order": result.order,

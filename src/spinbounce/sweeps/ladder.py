@@ -9,7 +9,6 @@ from pathlib import Path
 
 import numpy as np
 
-from .. import checks
 from ..extrapolation import collision_frame, default_tolerance, extrapolate_collision
 from ..scenes.collision import Collision
 
@@ -36,7 +35,7 @@ def ladder_columns(scene: Collision, tolerance: float, run_dir: Path) -> tuple[d
     """(columns, the finest run's dt, the steps of all runs, their LAMMPS loop seconds) of ``scene``'s
     rows extrapolated to ``tolerance``: the finest run's table (its raw LAMMPS columns), each state's
     ``_lammps`` and ``_error`` the extrapolated values', ``_estimate`` their error estimates, and the
-    rows checked again as a run's are (error, energy, status)."""
+    rows checked as a run's are (error, energy, status: :func:`~spinbounce.extrapolation.collision_frame`)."""
     result, finest = extrapolate_collision(scene, tolerance, run_dir)
     columns = {name: values.to_numpy() for name, values in result.finest.table.drop(columns=["id"]).items()}
     columns.update({name: values.to_numpy() for name, values in collision_frame(result, finest).items()})
@@ -45,7 +44,6 @@ def ladder_columns(scene: Collision, tolerance: float, run_dir: Path) -> tuple[d
             columns[f"{s[2:]}_lammps"] = columns[f"{s}_lammps"] / scene.model.r
             columns[f"{s[2:]}_error"] = columns[f"{s[2:]}_lammps"] - columns[f"{s[2:]}_theory"]
     columns["tolerance"] = np.full(scene.n, tolerance)
-    checks.add_row_checks(columns, finest.row_states(columns))
     return columns, finest.dt, result.steps, sum(level["loop_seconds"] for level in result.levels)
 
 

@@ -79,18 +79,18 @@ class PairBatch:
         if self.dt is None:  # the wall's limits of the default step, for each distinct equivalent contact
             for model, _ in self.wall_groups:
                 model.replace(mu=self.contact.mu).check_default_step()
-            dt = min(math.pi / m.fastest_rate(frozen=False, speed=self.speeds[k]) / PAIR_STEPS_PER_HALF_PERIOD
+            dt = min(math.pi / m.fastest_rate(frozen=False, speed=self.impact_speeds[k]) / PAIR_STEPS_PER_HALF_PERIOD
                      for m, k in self._fastest())
         else:
             dt = self.dt
         # each check grows with |v_n| (the stiffest rate, the deepest overlap): the fastest pair of each
         # equivalent contact stands for all of its pairs
         for model, k in self._fastest():
-            dt = model.check_dt(dt, frozen=False, speed=self.speeds[k])
+            dt = model.check_dt(dt, frozen=False, speed=self.impact_speeds[k])
             # the deepest overlap, stretched by the step as for the wall, must stay below the smaller
             # radius, or the smaller centre would enter the larger sphere
-            reach = float(model.max_overlap(self.speeds[k]))
-            reach *= overlap_stretch(model.normal_law.normal_mode(model, self.speeds[k])[0], dt)
+            reach = float(model.max_overlap(self.impact_speeds[k]))
+            reach *= overlap_stretch(model.normal_law.normal_mode(model, self.impact_speeds[k])[0], dt)
             if reach >= model.r:
                 raise SceneError(f"pairs[{k}].v_n", pairs[k].v_n, "|v_n| is too large: the overlap would reach "
                                  f"{reach:.6g} >= the smaller radius {model.r:g}")
@@ -118,13 +118,13 @@ class PairBatch:
         return tuple((wall, np.array(index)) for wall, index in groups.values())
 
     @cached_property
-    def speeds(self) -> np.ndarray:
-        """Each pair's impact speed |v_n|."""
+    def impact_speeds(self) -> np.ndarray:
+        """Each pair's impact speed |v_n| (its error's scale is :func:`.pairs.speeds`)."""
         return np.array([abs(p.v_n) for p in self.pairs])
 
     def _fastest(self) -> list[tuple[ContactModel, int]]:
         """Each distinct equivalent wall with the index of its fastest pair."""
-        return [(wall, int(index[np.argmax(self.speeds[index])])) for wall, index in self.wall_groups]
+        return [(wall, int(index[np.argmax(self.impact_speeds[index])])) for wall, index in self.wall_groups]
 
     @cached_property
     def exact(self) -> tuple:
@@ -237,7 +237,7 @@ class PairBatch:
                                               for p in self.pairs], 3, axis=1) for side in "ab" for q in "vw"])
         overlap = np.empty(self.n)
         for wall, index in self.wall_groups:
-            overlap[index] = wall.max_overlap(self.speeds[index])
+            overlap[index] = wall.max_overlap(self.impact_speeds[index])
         return checks.RowStates(initial, states(""), states("_exact"), weights, columns["speed"], overlap,
                                 columns["r_a"] + columns["r_b"])
 

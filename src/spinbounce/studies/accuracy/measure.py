@@ -19,7 +19,6 @@ import numpy as np
 from ...scenes.collision import Collision, STATE_ARGS
 from ...model.contact import ContactModel
 from ...scenes.frozen import Frozen
-from ... import checks
 from ...checks import STATUSES
 from ...model.timestep import ACCURACY, FROZEN_ACCURACY, mid_step_dt, steps_through
 from ...pipeline import run_scene, run_series
@@ -142,8 +141,7 @@ def _run_extrapolated(scene: Collision, folder: Path):
     started = time.perf_counter()
     result, finest = extrapolate_collision(scene, target, folder)
     wall = time.perf_counter() - started
-    columns = {name: values.to_numpy() for name, values in collision_frame(result, finest).items()}
-    checks.add_row_checks(columns, finest.row_states(columns), target)
+    columns = collision_frame(result, finest, target)
     loop = sum(level["loop_seconds"] for level in result.levels)
     row = {"dt": finest.dt, "lammps_steps": result.steps, "resolution": finest.steps_per_half_period,
            "spheres": finest.n, "step_method": f"extrapolated ({len(result.levels)} runs)",
