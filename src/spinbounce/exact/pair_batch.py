@@ -131,8 +131,9 @@ def _integrate(y, p, longest, atol, planar: bool):
         crossed = ok & (_gap(y_new, q, planar) > 0.0)
         ended = active[crossed]
         last[0][:, ended], last[1][ended], last[2][ended] = ya[:, crossed], hs[crossed], t[ended]
-        moved = active[ok & ~crossed]
-        y[:, moved], f[:, moved], t[moved] = y_new[:, ok & ~crossed], f_new[:, ok & ~crossed], t[moved] + hs[ok & ~crossed]
+        stepped = ok & ~crossed
+        moved = active[stepped]
+        y[:, moved], f[:, moved], t[moved] = y_new[:, stepped], f_new[:, stepped], t[moved] + hs[stepped]
         active = active[~crossed]
     raise RuntimeError(f"{active.size} pair(s) did not separate within {MAX_STEPS} steps")
 

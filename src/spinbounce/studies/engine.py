@@ -155,12 +155,12 @@ def wait_lines(report: dict) -> list[str]:
     lines.append(f"pair / wall per collision: {by_name['pair']['over_wall']:.1f}x (target 8x); capped pair / wall: "
                  f"{by_name['capped pair']['over_wall']:.0f}x (target 16x)")
     f = report["frictionless"]
-    lines.append(f"frictionless sweep of {f['collisions']:,} (a process, start-up included): {f['sweep_per_second']:,.0f}/s;"
-                 f" the bare engine on the same chunks: {f['engine_per_second']:,.0f}/s: {f['sweep_over_engine']:.0%} of it"
-                 " (target 85%)")
+    lines.append(f"frictionless sweep of {f['collisions']:,} (a process, start-up included): "
+                 f"{f['sweep_per_second']:,.0f}/s; the bare engine on the same chunks: "
+                 f"{f['engine_per_second']:,.0f}/s: {f['sweep_over_engine']:.0%} of it (target 85%)")
     c = report["cores"]
-    lines.append(f"{c['workers']} workers: {c['per_core_at_all']:,.0f}/s per core against {c['per_core_at_one']:,.0f}/s "
-                 f"at one: {c['efficiency']:.0%} of twice one worker (target 90%)")
+    lines.append(f"{c['workers']} workers: {c['per_core_at_all']:,.0f}/s per core against "
+                 f"{c['per_core_at_one']:,.0f}/s at one: {c['efficiency']:.0%} of twice one worker (target 90%)")
     h = report["help_seconds"]
     lines.append("start-up: " + ", ".join(f"spinbounce {k} {v:.2f} s" for k, v in h.items()) + " (target 0.5 s)")
     d = report["damped"]

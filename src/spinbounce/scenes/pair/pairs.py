@@ -157,7 +157,8 @@ def time_scaled(pair: Pair, scale: float) -> Pair:
     ``scale`` times longer; the final velocities and spins are the original's over ``scale``.
     Exact for an undamped contact only (a damping force -eta v would need eta times scale).
     Built from a checked pair by a positive finite scale, it is not checked again."""
-    heavier = {side: _trusted(Sphere, m=s.m * scale**2, r=s.r, alpha=s.alpha) for side, s in (("a", pair.a), ("b", pair.b))}
+    heavier = {side: _trusted(Sphere, m=s.m * scale**2, r=s.r, alpha=s.alpha)
+               for side, s in (("a", pair.a), ("b", pair.b))}
     slower = {k: tuple(x / scale for x in getattr(pair, k)) for k in ("v_a", "v_b", "w_a", "w_b")}
     return _trusted(Pair, **heavier, normal=pair.normal, **slower)
 
