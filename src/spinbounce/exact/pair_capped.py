@@ -40,8 +40,8 @@ from scipy.optimize import brentq
 
 from . import pair as pair_theory
 
-from .pair_exact import (RTOL, PairOutcome, contact_radius_power, free_flight, geometry, normal_force, outcome,
-                         start)
+from .pair_exact import (RTOL, PairOutcome, contact_radius_power, cross, free_flight, geometry, normal_force,
+                         outcome, start)
 from .pair_exact import undamped_depth as pair_depth
 from .wall_law import on_contact_radius
 
@@ -94,7 +94,7 @@ class _Contact:
         accel = -(f_n / self.m_star + v_t @ turn)  # delta''
         df_n = p["K"] * p["power"] * depth * rate + p["gamma_n"] * damp * (accel + p["damping_power"] * shrink * rate)
         scale = (0.0 if p["force_history"] else p["spring_power"]) + (1.0 if p["rescale"] and rate < 0.0 else 0.0)
-        return {"n": n, "turn": turn, "v": v, "v_n": v_n, "spin": spin, "slip": v_t - np.cross(spin, n),
+        return {"n": n, "turn": turn, "v": v, "v_n": v_n, "spin": spin, "slip": v_t - cross(spin, n),
                 "f_n": f_n, "df_n": df_n, "levers": levers,
                 "spring": p["kt"] * contact_radius_power(p, delta, p["spring_power"]), "growth": scale * shrink,
                 "dashpot": p["gamma_t"] * damp, "dashpot_rate": p["gamma_t"] * p["damping_power"] * shrink * damp}
@@ -103,7 +103,7 @@ class _Contact:
         """(v_a', v_b', w_a', w_b') under the normal force and the friction ``f_t`` on a."""
         p = self.p
         force = k["f_n"] * k["n"] + f_t
-        arm = -np.cross(k["n"], f_t)
+        arm = -cross(k["n"], f_t)
         return (force / p["m_a"], -force / p["m_b"], k["levers"][0] * arm / p["i_a"],
                 k["levers"][1] * arm / p["i_b"])
 
@@ -114,7 +114,7 @@ class _Contact:
         dv = dv_a - dv_b
         dspin = p["r_a"] * dw_a + p["r_b"] * dw_b
         slip_rate = (dv - (dv @ n) * n - (turn @ k["v"]) * n - k["v_n"] * turn  # u''
-                     - np.cross(dspin, n) - np.cross(k["spin"], turn))
+                     - cross(dspin, n) - cross(k["spin"], turn))
         elastic = trial - k["dashpot"] * k["slip"]
         return (k["spring"] * k["slip"] + k["growth"] * elastic - (elastic @ turn) * n
                 + k["dashpot_rate"] * k["slip"] + k["dashpot"] * slip_rate)
@@ -139,7 +139,7 @@ class _Contact:
         if self.sliding:
             s = self.direction(k, y)
             c = self.cap(k)
-            across = np.cross(k["n"], s)
+            across = cross(k["n"], s)
             tail = (-(s @ k["turn"]) * k["n"]
                     + (across @ self.stick_rate(k, c * s)) * across / np.hypot(c, self.turn_floor))
             trial = c * s
