@@ -80,3 +80,40 @@ def test_the_step_table_shows_the_damped_default_within_three_times_the_undamped
         assert table.loc[case, "steps_per_collision"] <= STEP_RATIO * table.loc["defaults", "steps_per_collision"]
         assert table.loc[case, "within_target"]
         assert table.loc[case, "error_reached"] <= table.loc[case, "estimate"] <= table.loc[case, "target"]
+
+
+def test_the_accuracy_asked_of_the_ladder_is_relative_to_the_state(tmp_path):
+    """The default accuracy is 1e-4 of the state's size: a fast state (|v_t| = 30) takes the same four
+    runs as a slow one, not more for an absolute 1e-4."""
+    fast = spinbounce.collide(v_n=-1.0, v_t=30.0, gamma_t=1.0, out=tmp_path / "fast")
+    slow = spinbounce.collide(v_n=-1.0, v_t=0.5, gamma_t=1.0, out=tmp_path / "slow")
+    assert fast.step["method"].startswith("extrapolated") and fast.nsteps == slow.nsteps
+    assert fast.error <= fast.step["estimate"] <= ACCURACY
+
+
+def test_a_ladder_whose_coarse_rung_fails_gives_way_to_one_probed_run(tmp_path):
+    """At |v_t| = 300 the ladder's coarsest rung loses its sphere (LAMMPS's "Lost atoms"): the default is
+    then one probed run, as before there was a ladder, within the accuracy, its rung folders removed."""
+    out = tmp_path / "fast"
+    report = spinbounce.collide(v_n=-1.0, v_t=300.0, gamma_t=1.0, out=out)
+    assert report.step["method"] == "probe" and report.status == "ok" and report.error <= ACCURACY
+    assert not list(out.glob("level-*"))
+    rows = spinbounce.sweep(n=10, v_t=[250.0, 300.0], gamma_t=1.0, out=tmp_path / "sweep", workers=1)
+    assert (rows["status"] == "ok").all() and rows["v_t_estimate"].isna().all()
+
+
+def test_resuming_chunks_written_without_the_estimates_is_refused(tmp_path):
+    """A damped sweep begun before its default carried estimates has chunks without those columns: a
+    resume that would add chunks with them is refused (a dataset reads the first file's columns)."""
+    import pyarrow.parquet as pq
+
+    from spinbounce.errors import SweepError
+
+    out = tmp_path / "sweep"
+    spinbounce.sweep(n=40, gamma_t=[0.0, 1.0], out=out, workers=1)
+    chunks = sorted((out / "chunks").glob("chunk-*.parquet"))
+    old = pq.read_table(chunks[0])
+    pq.write_table(old.drop([c for c in old.column_names if c.endswith("_estimate") or c == "tolerance"]), chunks[0])
+    chunks[-1].unlink()
+    with pytest.raises(SweepError, match="earlier spinbounce"):
+        spinbounce.sweep(n=40, gamma_t=[0.0, 1.0], out=out, workers=1)

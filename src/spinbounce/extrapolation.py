@@ -18,11 +18,9 @@ next. Measured at the paper's defaults with a tolerance of 1e-6: runs at 20, 40 
 steps per half-period, 146 LAMMPS steps in all, give an estimate of 7.9e-7 and a true
 error of 2.0e-7, where one plain run needs ~3,000 steps for the same error.
 
-The ladder does not start from the scenes' default step: that step is chosen for a plain
-run to reach :data:`spinbounce.model.timestep.ACCURACY` on its own (174 steps per contact at
-the paper's defaults), while the extrapolation only needs its rungs in the asymptotic
-regime, which :data:`START_STEPS` already is; at the defaults the whole ladder for 1e-6
-costs fewer steps than one run at the default step.
+The ladder starts at :data:`START_STEPS`, not at the default step (174 steps per contact at the
+paper's defaults, chosen for one plain run to reach ACCURACY): it only needs its rungs in the
+asymptotic regime. A damped wall collision's default is this ladder (:func:`default_tolerance`).
 
 Where the error has no smooth expansion in dt (:func:`smooth_in_dt`), extrapolation gains
 nothing: the tolerance is met by measurement instead (:func:`measured_to_tolerance`), the
@@ -198,14 +196,14 @@ def _extrapolate(values: list[np.ndarray], dts: list[float], p: np.ndarray):
     return best, per_value
 
 
-def _ladder(run_level, tolerance: float, p: np.ndarray, log) -> tuple[np.ndarray, np.ndarray, list[dict]]:
-    """Run levels k = 0, 1, ... until the extrapolations agree to ``tolerance``.
+def _ladder(run_level, tolerance: float, p: np.ndarray, log, scale=1.0) -> tuple[np.ndarray, np.ndarray, list[dict]]:
+    """Run levels k = 0, 1, ... until the extrapolations agree to ``tolerance`` (each row's estimate
+    over its ``scale``: 1, or the size of its initial state).
 
     ``p``: the order of the raw error of each output column (broadcast over rows): 2 for
     an even expansion (remove dt^2: what is left is fourth order), 1 for a damped run
     (remove dt and dt^2: third order). The reported estimate of a row is the largest over
-    its columns.
-    """
+    its columns."""
     p = np.asarray(p)
     values, levels, gaps = [], [], []
     eps = np.finfo(float).eps
@@ -220,7 +218,7 @@ def _ladder(run_level, tolerance: float, p: np.ndarray, log) -> tuple[np.ndarray
         # rounding: each of the finest run's steps may add an ulp of the velocities
         floor = MARGIN * info["nsteps"] * eps * max(1.0, float(np.abs(value).max()))
         estimate = np.maximum(np.broadcast_to(per_value.max(axis=-1, keepdims=True), per_value.shape), floor)
-        gaps.append(float(estimate.max()))
+        gaps.append(float(np.max(estimate.max(axis=-1) / scale)))
         shrinking = len(gaps) < 2 or gaps[-1] < gaps[-2]
         log(f"  level {k}: {info['nsteps']} steps, estimated error {gaps[-1]:.2e}"
             + ("" if shrinking else " (not yet converging)"))
@@ -263,13 +261,13 @@ MIN_MEASURED_TOLERANCE = 1e-8
 
 
 def collide_to_tolerance(model: ContactModel, v_n, v_t, omega, tolerance: float, out_dir: Path,
-                         log=lambda *_: None, **out_of_plane) -> tuple[Extrapolated, Collision]:
-    """Collisions (one sphere or many, as in :class:`Collision`) to a requested accuracy.
+                         log=lambda *_: None, relative: bool = False, **out_of_plane) -> tuple[Extrapolated, Collision]:
+    """Collisions (one sphere or many, as in :class:`Collision`) to a requested accuracy (``relative``:
+    of each row's initial state's size, as the default accuracy; else absolute).
 
     ``out_of_plane``: Collision's 3-D arguments (v_s, omega_s, omega_n), if any. Each
     level's run lives in ``out_dir/level-K``. Returns the extrapolated final states with
-    their estimates, and the finest level's scene (for its initial states and theory).
-    """
+    their estimates, and the finest level's scene (for its initial states and theory)."""
     from .pipeline import run_scene
 
     tol = check_tolerance(tolerance)
@@ -307,18 +305,19 @@ def collide_to_tolerance(model: ContactModel, v_n, v_t, omega, tolerance: float,
         final = result.table[[f"{s}_lammps" for s in names]].to_numpy()
         return final, {"level": k, "dt": scene.dt, "nsteps": scene.nsteps,
                        "run": str(out_dir / f"level-{k}"), "deck": str(result.info.deck),
-                       "loop_seconds": result.info.loop_seconds}
+                       "loop_seconds": result.info.loop_seconds, "lammps_seconds": result.info.wall_seconds}
 
     p = raw_orders(model, len(names))
-    values, estimate, levels = _ladder(run_level, tol, p, log)
+    scale = np.linalg.norm(scene_at(first).initial, axis=1) if relative else 1.0
+    values, estimate, levels = _ladder(run_level, tol, p, log, scale)
     return Extrapolated(values, estimate, tol, int(p.min()), levels, finest=runs[-1]), scenes[-1]
 
 
-def extrapolate_collision(scene: Collision, tolerance: float, out_dir: Path,
-                          log=lambda *_: None) -> tuple[Extrapolated, Collision]:
+def extrapolate_collision(scene: Collision, tolerance: float, out_dir: Path, log=lambda *_: None,
+                          relative: bool = False) -> tuple[Extrapolated, Collision]:
     """:func:`collide_to_tolerance` of a scene's spheres (its model and initial states, not its step)."""
     out_of_plane = {name: getattr(scene, name) for name in STATE_ARGS[3:]} if scene.is_3d else {}
-    return collide_to_tolerance(scene.model, scene.v_n, scene.v_t, scene.omega, tolerance, out_dir, log,
+    return collide_to_tolerance(scene.model, scene.v_n, scene.v_t, scene.omega, tolerance, out_dir, log, relative,
                                 **out_of_plane)
 
 

@@ -223,14 +223,16 @@ def collide(v_n: float = -1.0, v_t: float = 1.0, omega: float = 0.0, v_s: float 
         return _collide_pair(pair, contact, state, dt, tolerance, out)
     if tolerance is not None:
         return _collide_to_tolerance(contact, state, tolerance, out, log)
-    if dt is None and default_tolerance(contact) is not None:
-        return _collide_extrapolated(contact, state, default_tolerance(contact), out)
     scene = Collision(contact, dt=dt, **state)
+    out = Path(out) if out is not None else run_folder("collide", {"model": contact.as_record(), **state,
+                                                                    "dt": scene.dt})
+    if dt is None and default_tolerance(contact) is not None:
+        report = _collide_extrapolated(scene, out, log)
+        if report is not None:  # else a rung failed: one probed run instead
+            return report
     notice = cost_notice(expected_steps(scene), scene.n)
     if log is not None and notice:
         log(notice)
-    out = Path(out) if out is not None else run_folder("collide", {"model": contact.as_record(), **state,
-                                                                    "dt": scene.dt})
     result = run_scene(scene, out)
     scene, row = result.scene, result.table.iloc[0]  # at the step its accuracy needed
     choice = choose.which(scene.model)
@@ -243,37 +245,35 @@ def collide(v_n: float = -1.0, v_t: float = 1.0, omega: float = 0.0, v_s: float 
                            result.info.lammps_version)
 
 
-def _collide_extrapolated(contact: ContactModel, state: dict, target: float, out) -> CollisionReport:
+def _collide_extrapolated(scene, out: Path, log) -> CollisionReport | None:
     """A damped collision at the default accuracy: the ladder's runs extrapolated to dt = 0
-    (:func:`spinbounce.extrapolation.default_tolerance`), reported as one collision whose step record
+    (:func:`spinbounce.sweeps.ladder.extrapolate_default`), reported as one collision whose step record
     says so (``method`` "extrapolated", the runs, the estimate over the state's size, as ``error``);
-    ``dt``: the finest run's, ``nsteps``: all runs' together."""
+    ``dt``: the finest run's, ``nsteps``: all runs' together. None where a rung failed."""
     from .. import checks
-    from ..extrapolation import collide_to_tolerance, collision_frame
+    from ..extrapolation import collision_frame, default_tolerance
     from ..pipeline import write_record
     from ..records import lammps_version
-    from ..scenes.collision import Collision
+    from ..sweeps.ladder import extrapolate_default
 
-    Collision(contact, **state)  # the default step's checks (a damping too strong to see the end), before a folder
-    out = Path(out) if out is not None else run_folder("collide", {"model": contact.as_record(), **state,
-                                                                    "default_tolerance": target})
-    out_of_plane = {k: v for k, v in state.items() if k in ("v_s", "omega_s", "omega_n") and v}
-    result, scene = collide_to_tolerance(contact, state["v_n"], state["v_t"], state["omega"], target, out,
-                                         **out_of_plane)
-    table = collision_frame(result, scene, target)
+    ladder = extrapolate_default(scene, out, log or (lambda *_: None))
+    if ladder is None:
+        return None
+    (result, finest), target, contact = ladder, default_tolerance(scene.model), scene.model
+    table = collision_frame(result, finest, target)
     row = table.iloc[0]
-    deviation = float(np.abs(table[[f"{s}_error" for s in scene.state_names]].to_numpy()).max())
-    choice = choose.which(contact)
-    step = {"dt": scene.dt, "method": f"extrapolated to dt = 0 from {len(result.levels)} runs", "target": target,
-            "estimate": result.relative_estimate(scene.initial), "observed_order": None, "raw_order": result.order,
+    deviation = float(np.abs(table[[f"{s}_error" for s in finest.state_names]].to_numpy()).max())
+    step = {"dt": finest.dt, "method": f"extrapolated to dt = 0 from {len(result.levels)} runs", "target": target,
+            "estimate": result.relative_estimate(finest.initial), "observed_order": None, "raw_order": result.order,
             "levels": result.levels}
-    finest = result.finest  # the record: the finest run's provenance, the extrapolated rows and how
-    write_record(out, finest.info, scene.kind, {**scene.record(finest.deck), "nsteps": result.steps}, dump=None,
+    run = result.finest  # the record: the finest run's provenance, the extrapolated rows and how
+    write_record(out, run.info, finest.kind, {**finest.record(run.deck), "nsteps": result.steps}, dump=None,
                  warnings=[], max_abs_error=deviation, max_error=float(table["error"].max()), step=step,
                  status=checks.summary(table["status"]), table=table)
-    return CollisionReport(_state_table(row, scene.state_names, contact.r), choice.name, choice.kind, scene.dt,
-                           result.steps, float(row["error"]), str(row["status"]), out,
-                           float(contact.contact_times(state["v_n"])[0]), contact.Omega, step, (),
+    v_n = float(scene.v_n[0])
+    return CollisionReport(_state_table(row, finest.state_names, contact.r), choose.which(contact).name,
+                           choose.which(contact).kind, finest.dt, result.steps, float(row["error"]), str(row["status"]),
+                           out, float(contact.contact_times(v_n)[0]), contact.Omega, step, (),
                            str(result.levels[-1]["deck"]), None, lammps_version())
 
 

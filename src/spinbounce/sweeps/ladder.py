@@ -1,18 +1,38 @@
-"""Wall chunks extrapolated to an accuracy: which groups are (:func:`tolerance_of`: the sweep's
-``tolerance``, or a damped wall's default, :func:`spinbounce.extrapolation.default_tolerance`), and
-their rows as a default run's table has them (:func:`ladder_columns`), so that every chunk of a
-sweep has the same columns (:func:`estimate_columns` for the others)."""
+"""Wall collisions extrapolated to an accuracy: a damped wall's default (:func:`extrapolate_default`,
+which gives way to one probed run where a rung fails), which groups of a sweep are extrapolated
+(:func:`tolerance_of`: the sweep's ``tolerance``, or the damped default), and their rows as a default
+run's table has them (:func:`ladder_columns`), so that every chunk of a sweep has the same columns
+(:func:`estimate_columns` for the others)."""
 
 from __future__ import annotations
 
+import shutil
 from pathlib import Path
 
 import numpy as np
 
+from ..errors import LammpsError, ResultError, SceneError
 from ..extrapolation import collision_frame, default_tolerance, extrapolate_collision
 from ..scenes.collision import Collision
 
-__all__ = ["tolerance_of", "extrapolates", "ladder_columns", "estimate_columns"]
+__all__ = ["tolerance_of", "extrapolates", "ladder_columns", "estimate_columns", "extrapolate_default",
+           "LADDER_FAILURES"]
+
+#: What makes a damped default's ladder give way to one probed run: a rung too coarse for LAMMPS (lost
+#: atoms at a tunnelling speed, a contact not ended) or for the scene's own checks.
+LADDER_FAILURES = (LammpsError, ResultError, SceneError)
+
+
+def extrapolate_default(scene: Collision, out_dir: Path, log=lambda *_: None):
+    """``scene``'s damped default (:func:`~spinbounce.extrapolation.default_tolerance`): its ladder
+    extrapolated to ACCURACY of each row's size, as (result, finest scene); or None where a rung fails
+    (:data:`LADDER_FAILURES`), its level folders removed, so that one probed run serves instead."""
+    try:
+        return extrapolate_collision(scene, default_tolerance(scene.model), out_dir, log, relative=True)
+    except LADDER_FAILURES:
+        for level in Path(out_dir).glob("level-*"):
+            shutil.rmtree(level, ignore_errors=True)
+        return None
 
 
 def tolerance_of(spec, group: int) -> float | None:
@@ -31,12 +51,17 @@ def extrapolates(spec) -> bool:
     return any(tolerance_of(spec, g) is not None for g in range(len(spec.groups)))
 
 
-def ladder_columns(scene: Collision, tolerance: float, run_dir: Path) -> tuple[dict, float, int, float]:
+def ladder_columns(scene: Collision, tolerance: float, run_dir: Path,
+                   default: bool = False) -> tuple[dict, float, int, float] | None:
     """(columns, the finest run's dt, the steps of all runs, their LAMMPS loop seconds) of ``scene``'s
     rows extrapolated to ``tolerance``: the finest run's table (its raw LAMMPS columns), each state's
     ``_lammps`` and ``_error`` the extrapolated values', ``_estimate`` their error estimates, and the
-    rows checked as a run's are (error, energy, status: :func:`~spinbounce.extrapolation.collision_frame`)."""
-    result, finest = extrapolate_collision(scene, tolerance, run_dir)
+    rows checked as a run's are (error, energy, status: :func:`~spinbounce.extrapolation.collision_frame`).
+    ``default``: the damped default (:func:`extrapolate_default`): None where one probed run must serve."""
+    ladder = extrapolate_default(scene, run_dir) if default else extrapolate_collision(scene, tolerance, run_dir)
+    if ladder is None:
+        return None
+    result, finest = ladder
     columns = {name: values.to_numpy() for name, values in result.finest.table.drop(columns=["id"]).items()}
     columns.update({name: values.to_numpy() for name, values in collision_frame(result, finest).items()})
     for s in finest.state_names:  # a spin's own column (omega) follows its r omega

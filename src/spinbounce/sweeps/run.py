@@ -99,18 +99,19 @@ def _wall_columns(columns: dict, spec: SweepSpec, model, dt, states: np.ndarray,
                          **dict(zip(("v_s", "omega_s", "omega_n"), rows[:, 3:].T, strict=False)))
 
     scene = batch(states)
-    if tolerance is None:
-        result = run_scene(scene, run_dir, atoms="library", record=False, probe_states=batch(probe))
-        columns.update({name: values.to_numpy() for name, values in result.table.drop(columns=["id"]).items()})
-        columns["time_scale"] = result.scene.time_scales
-        if extrapolates(spec):  # another group's chunks carry estimates: the same columns here
-            columns.update(estimate_columns(scene.state_names, scene.n))
-        return result.scene.dt, result.scene.nsteps, result.info.loop_seconds
-    # a ladder of runs per chunk, extrapolated; each row carries its error estimate
-    laddered, dt, steps, loop = ladder_columns(scene, tolerance, run_dir)
-    columns.update(laddered)
-    columns["time_scale"] = np.ones(scene.n)
-    return dt, steps, loop
+    # a ladder of runs per chunk, extrapolated, each row with its error estimate; a damped default whose
+    # ladder fails (a rung too coarse) is one probed run instead
+    laddered = None if tolerance is None else ladder_columns(scene, tolerance, run_dir, spec.tolerance is None)
+    if laddered is not None:
+        columns.update(laddered[0])
+        columns["time_scale"] = np.ones(scene.n)
+        return laddered[1:]
+    result = run_scene(scene, run_dir, atoms="library", record=False, probe_states=batch(probe))
+    columns.update({name: values.to_numpy() for name, values in result.table.drop(columns=["id"]).items()})
+    columns["time_scale"] = result.scene.time_scales
+    if extrapolates(spec):  # another group's chunks carry estimates: the same columns here
+        columns.update(estimate_columns(scene.state_names, scene.n))
+    return result.scene.dt, result.scene.nsteps, result.info.loop_seconds
 
 
 def _model_columns(columns: dict, model, n: int) -> dict[str, str]:
@@ -178,8 +179,20 @@ def _claim(out: Path, spec: SweepSpec) -> None:
             raise SweepError(
                 f"{out} holds sweep {previous.get('scene_hash')}, not this one ({spec.digest}): use another --out"
             )
+        _check_columns(out, spec)
     else:
         write_atomic(record, to_json({"scene_hash": spec.digest, "spec": spec.raw, "spinbounce_version": __version__}))
+
+
+def _check_columns(out: Path, spec: SweepSpec) -> None:
+    """Refuse to resume into chunks whose columns this version would not write the same (a damped sweep
+    begun before a damped default carried error estimates): a dataset reads the first file's columns."""
+    import pyarrow.parquet as pq
+
+    written = next(iter(sorted((out / "chunks").glob("chunk-*.parquet"))), None)
+    if written is not None and extrapolates(spec) != ("tolerance" in pq.read_schema(written).names):
+        raise SweepError(f"{out} holds chunks of this sweep written by an earlier spinbounce, with other columns "
+                         "(a damped default's estimates): sweep into another --out")
 
 
 def _context():
@@ -263,12 +276,18 @@ def _run_in_turn(spec: SweepSpec, out: Path, todo: list, bar) -> None:
         def write(path, table):  # absolute now: a LAMMPS run changes the working folder while the file is written
             pending.append(writer.submit(write_parquet_atomic, Path(path).absolute(), table))
 
-        for c in todo:
-            n, *_ = run_chunk(spec.raw, str(out), *c, write=write)
-            for done in [f for f in pending if f.done()]:
-                done.result()  # raises a failed write's error here
-                pending.remove(done)
-            bar.update(n)
+        try:
+            for c in todo:
+                n, *_ = run_chunk(spec.raw, str(out), *c, write=write)
+                for done in [f for f in pending if f.done()]:
+                    done.result()  # raises a failed write's error here
+                    pending.remove(done)
+                bar.update(n)
+        except BaseException as exc:  # a write that failed meanwhile is told too, not lost
+            for f in pending:
+                if f.exception() is not None:
+                    exc.add_note(f"a chunk's file was not written either: {f.exception()}")
+            raise
         for f in pending:
             f.result()
 

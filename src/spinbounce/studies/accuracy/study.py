@@ -89,7 +89,8 @@ def policy_table(table: pd.DataFrame) -> pd.DataFrame:
         "steps_per_half_period": rows["resolution"], "dt": rows["dt"], "error_reached": rows["relative_error"],
         "target": rows["target"], "within_target": rows["relative_error"] <= rows["target"],
         "absolute_error": rows["error"], "worst_status": rows["worst_status"],
-        # an extrapolated default's own error estimate (absolute, the largest over its rows); NaN for one run
+        # an extrapolated default's own error estimate (over the state's size, the largest over its rows);
+        # NaN for one run
         "estimate": rows["estimate"] if "estimate" in rows else np.nan})
     return out.reset_index(drop=True)[list(POLICY_COLUMNS)]
 
