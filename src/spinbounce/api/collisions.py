@@ -227,7 +227,7 @@ def collide(v_n: float = -1.0, v_t: float = 1.0, omega: float = 0.0, v_s: float 
     out = Path(out) if out is not None else run_folder("collide", {"model": contact.as_record(), **state,
                                                                     "dt": scene.dt})
     if dt is None and default_tolerance(contact) is not None:
-        report = _collide_extrapolated(scene, out, log)
+        report = _collide_extrapolated(scene, out)
         if report is not None:  # else a rung failed: one probed run instead
             return report
     notice = cost_notice(expected_steps(scene), scene.n)
@@ -245,7 +245,7 @@ def collide(v_n: float = -1.0, v_t: float = 1.0, omega: float = 0.0, v_s: float 
                            result.info.lammps_version)
 
 
-def _collide_extrapolated(scene, out: Path, log) -> CollisionReport | None:
+def _collide_extrapolated(scene, out: Path) -> CollisionReport | None:
     """A damped collision at the default accuracy: the ladder's runs extrapolated to dt = 0
     (:func:`spinbounce.sweeps.ladder.extrapolate_default`), reported as one collision whose step record
     says so (``method`` "extrapolated", the runs, the estimate over the state's size, as ``error``);
@@ -256,7 +256,7 @@ def _collide_extrapolated(scene, out: Path, log) -> CollisionReport | None:
     from ..records import lammps_version
     from ..sweeps.ladder import extrapolate_default
 
-    ladder = extrapolate_default(scene, out, log or (lambda *_: None))
+    ladder = extrapolate_default(scene, out)  # quietly: a level's progress is told for --tolerance runs
     if ladder is None:
         return None
     (result, finest), target, contact = ladder, default_tolerance(scene.model), scene.model

@@ -49,15 +49,15 @@ CAPPED_THEORY_SECONDS = 1e-5
 #: 0.2 s for a finite-mu chunk, `spinbounce bench`).
 PROBE_SECONDS = 0.3
 #: A pair's references per collision on one core (scenes.pair.table.pair_table: the exact reference
-#: and the planar theory; the capped reference solves both by events), measured on 100
-#: pairs each: 13 ms uncapped, 66 to 89 ms capped; 415 to 450 ms capped in 3-D, where a slide's
-#: direction turns stiffly as the cap closes (40 pairs); with room. A batch whose references are
+#: and the planar theory; the capped reference solves both by events), measured on 30 to 100
+#: pairs each: 3 ms uncapped one pair at a time (15 ms Hertz-Mindlin), 29 ms capped (37 at most); 172 ms capped in 3-D,
+#: where a slide's direction turns stiffly as the cap closes; with room. A batch whose references are
 #: solved together (PairContact.batched: Hooke's law, no cap) spends about 0.33 ms a pair on
 #: everything outside LAMMPS (a 20,000-pair sweep, `spinbounce bench`): PAIR_BATCHED_SECONDS, with room.
 PAIR_THEORY_SECONDS = 0.02
 PAIR_BATCHED_SECONDS = 1e-3
-CAPPED_PAIR_THEORY_SECONDS = 0.12
-CAPPED_PAIR_3D_THEORY_SECONDS = 0.6
+CAPPED_PAIR_THEORY_SECONDS = 0.06
+CAPPED_PAIR_3D_THEORY_SECONDS = 0.3
 #: A pair chunk's probe (stepping.tune): up to five LAMMPS runs of at most
 #: PROBE_SPHERES pairs, each at up to the fine rule's steps.
 PAIR_PROBE_SECONDS = 5.0
