@@ -206,9 +206,9 @@ def collide(v_n: float = -1.0, v_t: float = 1.0, omega: float = 0.0, v_s: float 
     ``scene="pair"`` (and ``m_b``, ``r_b``, ``alpha_b``, b's state ``v_n_b`` ... ``omega_n_b``: at rest by
     default) against a free sphere b instead. ``tolerance``: ask for an accuracy instead of a step
     (:mod:`spinbounce.extrapolation`); a damped wall collision's default is such a ladder asked for
-    the default accuracy (its ``step`` record says so, with the estimate). ``log(line)``: told, before a long run starts, how long it will
-    take, and how a run to a tolerance proceeds. A named ``out`` holding an earlier run is refused
-    unless ``force``."""
+    the default accuracy (its ``step`` record says so, with the estimate). ``log(line)``: told, before
+    a long run starts, how long it will take, and how a run to a tolerance proceeds. A named ``out``
+    holding an earlier run is refused unless ``force``."""
     from ..pipeline import run_scene
     from ..records import check_run_folder
     from ..scenes.collision import Collision
@@ -260,6 +260,7 @@ def _collide_extrapolated(scene, out: Path) -> CollisionReport | None:
     if ladder is None:
         return None
     (result, finest), target, contact = ladder, default_tolerance(scene.model), scene.model
+    choice = choose.which(contact)
     table = collision_frame(result, finest, target)
     row = table.iloc[0]
     deviation = float(np.abs(table[[f"{s}_error" for s in finest.state_names]].to_numpy()).max())
@@ -271,10 +272,10 @@ def _collide_extrapolated(scene, out: Path) -> CollisionReport | None:
                  warnings=[], max_abs_error=deviation, max_error=float(table["error"].max()), step=step,
                  status=checks.summary(table["status"]), table=table)
     v_n = float(scene.v_n[0])
-    return CollisionReport(_state_table(row, finest.state_names, contact.r), choose.which(contact).name,
-                           choose.which(contact).kind, finest.dt, result.steps, float(row["error"]), str(row["status"]),
-                           out, float(contact.contact_times(v_n)[0]), contact.Omega, step, (),
-                           str(result.levels[-1]["deck"]), None, lammps_version())
+    return CollisionReport(_state_table(row, finest.state_names, contact.r), choice.name, choice.kind, finest.dt,
+                           result.steps, float(row["error"]), str(row["status"]), out,
+                           float(contact.contact_times(v_n)[0]), contact.Omega, step, (), str(result.levels[-1]["deck"]),
+                           None, lammps_version())
 
 
 @dataclass(frozen=True)
