@@ -161,7 +161,9 @@ def test_frozen_run_ends_on_a_dump_frame():
 
 def test_sequences_must_match_and_scalars_broadcast():
     scene = Collision(ContactModel(), v_n=[-1, -0.5], v_t=0.3, omega=[0, 1])
-    assert scene.v_t == (0.3, 0.3)
+    assert scene.v_t.tolist() == [0.3, 0.3]
+    with pytest.raises(ValueError, match="read-only"):  # a scene's states are its own: immutable
+        scene.v_n[0] = -2.0
     with pytest.raises(SceneError, match="lengths"):
         Collision(ContactModel(), v_n=[-1, -0.5], v_t=[0.3, 0.2, 0.1], omega=0)
     with pytest.raises(SceneError, match="number"):

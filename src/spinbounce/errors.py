@@ -16,9 +16,9 @@ class SceneError(ValueError):
 
     def __init__(self, parameter: str, value, limit: str):
         self.parameter = parameter
-        self.value = value
+        self.value = value.item() if hasattr(value, "item") and getattr(value, "ndim", None) == 0 else value
         self.limit = limit
-        super().__init__(f"{parameter} = {value!r}: {limit}")
+        super().__init__(f"{parameter} = {self.value!r}: {limit}")  # a numpy scalar as the number it is
 
 
 class PhysicsWarning(UserWarning):

@@ -54,7 +54,7 @@ STATE, STATE_3D = PLANE_COLUMNS, SPACE_COLUMNS
 STATE_ARGS = tuple(p.name for p in parameters.STATE)
 
 
-def _as_vector(name: str, value) -> tuple[float, ...]:
+def _as_vector(name: str, value) -> np.ndarray:
     try:
         arr = np.atleast_1d(np.asarray(value, dtype=float))
     except (TypeError, ValueError):
@@ -65,7 +65,9 @@ def _as_vector(name: str, value) -> tuple[float, ...]:
     if bad.size:
         i = int(bad[0])
         raise SceneError(f"{name}[{i}]" if arr.size > 1 else name, float(arr[i]), "must be finite")
-    return tuple((arr + 0.0).tolist())
+    out = arr + 0.0  # a copy of its own (and -0.0 as 0.0), which no one may change
+    out.flags.writeable = False
+    return out
 
 
 def row_states(m: ContactModel, names, columns: dict) -> checks.RowStates:
@@ -78,12 +80,13 @@ def row_states(m: ContactModel, names, columns: dict) -> checks.RowStates:
                             m.max_overlap(np.abs(initial[:, 0])), m.r)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class Collision:
     """Spheres that start touching the wall (centre at z = r) and bounce off it.
 
     ``v_n``, ``v_t`` and ``omega`` are numbers or equal-length sequences (one entry per
     sphere). ``omega`` is the angular velocity, positive anticlockwise (the paper's sign).
+    Each is kept as a read-only float array and what is derived is computed once (compared by identity).
 
     In 3-D, ``v_s`` is the second tangential component (LAMMPS's y), ``omega_s`` the spin
     that rolls the sphere along it (LAMMPS's omega_x: that slip is v_s + r omega_s, the same
@@ -101,13 +104,13 @@ class Collision:
     """
 
     model: ContactModel = field(default_factory=ContactModel)
-    v_n: tuple[float, ...] = (-1.0,)
-    v_t: tuple[float, ...] = (1.0,)
-    omega: tuple[float, ...] = (0.0,)
+    v_n: np.ndarray = (-1.0,)
+    v_t: np.ndarray = (1.0,)
+    omega: np.ndarray = (0.0,)
     dt: float | None = None
-    v_s: tuple[float, ...] = (0.0,)
-    omega_s: tuple[float, ...] = (0.0,)
-    omega_n: tuple[float, ...] = (0.0,)
+    v_s: np.ndarray = (0.0,)
+    omega_s: np.ndarray = (0.0,)
+    omega_n: np.ndarray = (0.0,)
     deck_contact_time: float | None = None
     #: Whether dt came from the default rule (a run may then tune it: spinbounce.stepping).
     default_step: bool = field(init=False, default=False)
@@ -123,14 +126,17 @@ class Collision:
             raise SceneError("/".join(STATE_ARGS), tuple(len(c) for c in columns), "lengths must match")
         n = max(sizes)
         for name, values in zip(STATE_ARGS, columns, strict=True):
-            set_(self, name, values * n if len(values) == 1 else values)
+            if len(values) == 1 and n > 1:
+                values = np.full(n, values[0])
+                values.flags.writeable = False
+            set_(self, name, values)
         vn, m, speed = self.v_n, self.model, self.speed
         if m.style.planar_only and self.is_3d:
             raise SceneError("wall", m.wall, f"the {m.wall} wall's theory is in the paper's plane: give no v_s, "
                                              f"omega_s or omega_n with wall = {m.wall}")
         if self.dt is None:  # once, where the default step is chosen (a probe's scenes carry their dt)
             warn_near_the_jump(self.model, self.near_the_jump())
-        away = np.flatnonzero(np.asarray(vn) >= 0.0)
+        away = np.flatnonzero(vn >= 0.0)
         if away.size:
             i = int(away[0])
             raise SceneError(f"v_n[{i}]" if n > 1 else "v_n", vn[i], "must be < 0 (towards the wall)")
@@ -185,7 +191,7 @@ class Collision:
         |v_n|^(-1/5)): the fastest mode in the deck is the fastest or the slowest sphere's."""
         if not self.time_scaled:
             return [(self.speed, 1.0)]
-        speeds, scales = np.abs(np.asarray(self.v_n)), self.time_scales
+        speeds, scales = np.abs(self.v_n), self.time_scales
         return [(float(speeds[k]), float(scales[k])) for k in (np.argmax(speeds), np.argmin(speeds))]
 
     def deck_modes(self) -> list[tuple[float, float]]:
@@ -236,12 +242,12 @@ class Collision:
         """Whether any sphere runs at a time scale other than 1 (its deck sets masses per sphere)."""
         return bool(np.any(self.time_scales != 1.0))
 
-    @property
+    @cached_property
     def deck_contact_times(self) -> np.ndarray:
         """Each sphere's contact time in the deck: T_i s_i (T* for every sphere of a scaled batch)."""
         return self.model.contact_times(self.v_n) * self.time_scales
 
-    @property
+    @cached_property
     def force_time(self) -> float:
         """When the last contact force ends in the deck (:meth:`NormalLaw.force_times`, in deck time)."""
         m = self.model
@@ -259,7 +265,7 @@ class Collision:
             return self.model.steps_per_half_period(self.dt, frozen=False, speed=self.speed)
         return math.pi / max(mode_rate(w, c) for w, c in self.deck_modes()) / self.dt
 
-    @property
+    @cached_property
     def speed(self) -> float:
         """The fastest |v_n|: where a force that grows with the overlap is stiffest."""
         return float(np.max(np.abs(self.v_n)))
@@ -268,25 +274,27 @@ class Collision:
     def n(self) -> int:
         return len(self.v_n)
 
-    @property
+    @cached_property
     def is_3d(self) -> bool:
         """Whether any sphere moves or spins out of the paper's plane."""
-        return any(any(getattr(self, name)) for name in STATE_ARGS[3:])
+        return any(np.any(getattr(self, name)) for name in STATE_ARGS[3:])
 
     @property
     def state_names(self) -> tuple[str, ...]:
         return STATE_3D if self.is_3d else STATE
 
-    @property
+    @cached_property
     def initial(self) -> np.ndarray:
         """(n, 3) initial states (v_n, v_t, r omega); (n, 6) in 3-D (:data:`STATE_3D`)."""
         r = self.model.r
-        columns = [self.v_n, self.v_t, np.array(self.omega) * r]
+        columns = [self.v_n, self.v_t, self.omega * r]
         if self.is_3d:
-            columns += [self.v_s, np.array(self.omega_s) * r, np.array(self.omega_n) * r]
-        return np.column_stack(columns)
+            columns += [self.v_s, self.omega_s * r, self.omega_n * r]
+        out = np.column_stack(columns)
+        out.flags.writeable = False  # computed once: a caller's change would change the scene
+        return out
 
-    @property
+    @cached_property
     def nsteps(self) -> int:
         """Steps that end the contact: the step after tau, and one more for rounding; with
         strong normal damping more, as the sphere leaves slowly (:data:`EXIT_DELAY`)."""
@@ -364,8 +372,7 @@ class Collision:
         return beyond_reach(self.model, self.initial)
 
     def probe_time(self, sample: "Collision") -> float:
-        """The contact's length the probe's steps are counted over: the force's, the longest (in
-        deck time: the sample carries this scene's :attr:`deck_contact_time`)."""
+        """The contact's length the probe's steps count over: the force's, the longest (in deck time)."""
         return self.force_time
 
     def first_probe_steps(self, t_contact: float) -> int:
@@ -386,7 +393,7 @@ class Collision:
     def rows(self, index) -> "Collision":
         """The scene of the spheres ``index`` only."""
         return Collision(self.model, dt=self.dt, deck_contact_time=self.deck_contact_time,
-                         **{n: np.asarray(getattr(self, n))[index] for n in STATE_ARGS})
+                         **{n: getattr(self, n)[index] for n in STATE_ARGS})
 
     def at_step(self, dt: float) -> "Collision":
         return Collision(self.model, dt=dt, deck_contact_time=self.deck_contact_time,
