@@ -12,7 +12,9 @@ import pandas as pd
 import pytest
 
 from spinbounce.fitting import fit_groups
+from spinbounce import checks
 from spinbounce.sweeps import SweepError, load_spec, read_results, run_sweep
+from spinbounce.sweeps.run import status_counts
 
 GOOD = """
 seed = 4
@@ -87,6 +89,19 @@ def test_sweep_rows_fit_and_determinism(tmp_path):
     cols = ["v_n_initial", "v_t_initial", "r_omega_initial", "v_n_lammps", "v_t_lammps", "r_omega_lammps"]
     pd.testing.assert_frame_equal(rows.sort_values(["group", "index"])[cols].reset_index(drop=True),
                                   again.sort_values(["group", "index"])[cols].reset_index(drop=True))
+
+
+def test_status_counts_read_from_the_files_match_the_rows(tmp_path):
+    # a coarse given step (about 60 steps a contact at the paper's defaults) leaves many rows above 1e-4
+    # and some below: both statuses must be counted, by Arrow from the files, as the rows hold them
+    spec = load_spec(write(tmp_path, GOOD.replace("[model]", "[model]\ndt = 0.0025")))
+    run_sweep(spec, tmp_path / "s", workers=1, log=lambda *_: None)
+    counts = status_counts(tmp_path / "s")
+    expected = read_results(tmp_path / "s")["status"].value_counts().to_dict()
+    assert counts == {name: expected.get(name, 0) for name in checks.STATUSES}
+    assert counts["ok"] and counts["inaccurate"] and sum(counts.values()) == 1800
+    with pytest.raises(ValueError, match="'lost': not one of"):
+        checks.tally({"ok": 3, "lost": 1})
 
 
 POLAR = """

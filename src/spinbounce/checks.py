@@ -19,13 +19,13 @@ columns added to its table are the same for every scene:
 
 from __future__ import annotations
 
-import numpy as np
-
 from dataclasses import dataclass
+
+import numpy as np
 
 from .model.timestep import ACCURACY
 
-__all__ = ["STATUSES", "RESOLVABLE_OVERLAP_ULPS", "RowStates", "add_row_checks", "summary", "notes"]
+__all__ = ["STATUSES", "RESOLVABLE_OVERLAP_ULPS", "RowStates", "add_row_checks", "summary", "tally", "notes"]
 
 #: Row statuses, worst first.
 STATUSES = ("grazing", "energy_gained", "inaccurate", "ok")
@@ -86,6 +86,15 @@ def summary(status) -> dict[str, int]:
     """How many rows have each status (every status listed, zeros included)."""
     values = np.asarray(status, dtype=object)
     return {name: int(np.count_nonzero(values == name)) for name in STATUSES}
+
+
+def tally(counted: dict[str, int]) -> dict[str, int]:
+    """Counts by status, every status listed in :data:`STATUSES`' order (zeros included); a name
+    that is not a status is an error, not a row lost."""
+    unknown = set(counted) - set(STATUSES)
+    if unknown:
+        raise ValueError(f"status {sorted(unknown)[0]!r}: not one of {', '.join(STATUSES)}")
+    return {name: int(counted.get(name, 0)) for name in STATUSES}
 
 
 def notes(status, target: float = ACCURACY) -> list[str]:

@@ -40,7 +40,6 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
-import pandas as pd
 
 from . import checks
 from .scenes.collision import Collision, STATE_ARGS
@@ -385,9 +384,11 @@ def frozen_to_tolerance(model: ContactModel, z: float, v_t: float, omega: float,
     return Extrapolated(values, estimate, tol, int(p.min()), levels, t=times[0])
 
 
-def collision_frame(result: Extrapolated, scene: Collision, target: float = ACCURACY) -> pd.DataFrame:
+def collision_frame(result: Extrapolated, scene: Collision, target: float = ACCURACY):
     """The extrapolated final states beside the theory, one row per sphere, checked as a run's rows are
-    (:func:`spinbounce.checks.add_row_checks` against ``target``: error, energy, status)."""
+    (:func:`spinbounce.checks.add_row_checks` against ``target``: error, energy, status): a DataFrame."""
+    import pandas as pd
+
     theory = scene.predicted()
     out = {f"{s}_initial": scene.initial[:, k] for k, s in enumerate(scene.state_names)}
     for k, s in enumerate(scene.state_names):

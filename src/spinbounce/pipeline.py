@@ -10,10 +10,11 @@ lost spheres and a contact that had not finished are errors, not results.
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from functools import cached_property
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
-import pandas as pd
 
 from . import checks
 from .errors import ResultError
@@ -22,6 +23,9 @@ from .lammps.runner import RunInfo, run_deck
 from .model.timestep import ACCURACY, StepChoice
 from .records import software, to_json, write_atomic, write_parquet_atomic
 from .stepping import FALLBACK, reachable, tune
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 __all__ = ["ResultError", "RunResult", "SeriesResult", "run_scene", "run_series", "prepare_run_dir", "provenance",
            "write_record", "RESULT_TABLE"]
@@ -60,11 +64,12 @@ def write_record(folder: Path, info: RunInfo, kind: str, parameters: dict, **fie
 
 @dataclass(frozen=True)
 class RunResult:
-    """A run of a collision scene: its table (one row per collision, checked), how its step
-    was chosen, and the largest absolute deviation of any row from its reference."""
+    """A run of a collision scene: its checked columns (one row per collision; as a DataFrame:
+    :attr:`table`), how its step was chosen, and the largest absolute deviation of any row from
+    its reference."""
 
     scene: object
-    table: pd.DataFrame
+    columns: dict[str, np.ndarray]
     info: RunInfo
     deck: Deck
     dump: Path | None  # None for a library-route run (no dump)
@@ -72,17 +77,24 @@ class RunResult:
     step: StepChoice
     max_abs_error: float
 
+    @cached_property
+    def table(self) -> pd.DataFrame:
+        """The columns as a DataFrame, made when first asked (a sweep writes the columns as they are)."""
+        import pandas as pd
+
+        return pd.DataFrame(self.columns)
+
     @property
     def max_error(self) -> float:
         """The largest row error (each relative to its row's scale)."""
-        return float(self.table["error"].max())
+        return float(np.max(self.columns["error"]))
 
 
 def _probe_errors(scene, folder: Path) -> np.ndarray:
     """A probe's rows' relative errors (:func:`stepping.tune`): a plain run, nothing recorded;
     inf if the step was too coarse for the run to finish the contact."""
     try:
-        return run_scene(scene, folder, atoms="library", record=False).table["error"].to_numpy()
+        return np.asarray(run_scene(scene, folder, atoms="library", record=False).columns["error"])
     except ResultError as exc:
         if UNFINISHED not in str(exc):
             raise
@@ -102,22 +114,21 @@ def run_scene(scene, out_dir: Path, atoms: str | None = None, record: bool = Tru
     :func:`runner.run_deck_lmp` (the ``lmp`` executable).
     """
     given, (scene, step) = scene, tune(scene, Path(out_dir) / "probe", _probe_errors, probe_states, target)
-    deck, deck_path, info, columns, deviation = _run(scene, out_dir, atoms, runner, target)
+    deck, deck_path, info, columns, deviation = _run(scene, out_dir, atoms, runner, target, record)
     # the probe's step, chosen on a sample, may miss the target on the whole scene: then its fine rule
     worst = _worst(columns, given) if step.method == "probe" else 0.0
     fine = given.fallback() if worst > target else None
     if fine is not None and fine.dt < scene.dt:
         scene, step = fine, replace(step, dt=fine.dt, method=f"{FALLBACK}; the probe's step erred {worst:.2g}",
                                     predicted_error=None)
-        deck, deck_path, info, columns, deviation = _run(scene, out_dir, atoms, runner, target)
-    table = pd.DataFrame(columns)
-    notes = tuple(checks.notes(table["status"], target))
+        deck, deck_path, info, columns, deviation = _run(scene, out_dir, atoms, runner, target, record)
+    notes = tuple(checks.notes(columns["status"], target))
     dump = None if deck.dump is None else deck_path.parent / deck.dump
-    result = RunResult(scene, table, info, deck, dump, notes, step, deviation)
+    result = RunResult(scene, columns, info, deck, dump, notes, step, deviation)
     if record:
         write_record(deck_path.parent, info, scene.kind, scene.record(deck), dump=None if dump is None else str(dump),
                      warnings=list(notes), max_abs_error=deviation, max_error=result.max_error, step=step.record(),
-                     status=checks.summary(table["status"]), table=table)
+                     status=checks.summary(columns["status"]), table=result.table)
     return result
 
 
@@ -126,11 +137,11 @@ def _worst(columns: dict, scene) -> float:
     return float(np.max(np.asarray(columns["error"])[reachable(scene)]))
 
 
-def _run(scene, out_dir: Path, atoms, runner, target: float):
+def _run(scene, out_dir: Path, atoms, runner, target: float, durable: bool = True):
     """One run of ``scene`` in ``out_dir``: (deck, its path, LAMMPS's info, the checked columns, the
-    largest absolute deviation)."""
+    largest absolute deviation). ``durable``: its deck forced to disk (a recorded run)."""
     deck = scene.render(atoms)
-    deck_path = prepare_run_dir(out_dir, deck)
+    deck_path = prepare_run_dir(out_dir, deck, durable)
     info = runner(deck_path, atoms=deck.atoms)
     columns = scene.read(info, deck, deck_path.parent)
     deviation = checks.add_row_checks(columns, scene.row_states(columns), target)

@@ -31,18 +31,20 @@ TEMP_SUFFIX = ".tmp"
 RECORDED_PACKAGES = ("numpy", "scipy", "pandas", "pyarrow", "matplotlib")
 
 
-def write_atomic_with(path: Path, write: Callable[[Path], None]) -> Path:
+def write_atomic_with(path: Path, write: Callable[[Path], None], durable: bool = True) -> Path:
     """Let ``write`` fill a temporary file beside ``path``, then make it ``path`` at once.
 
     The file gets the usual permissions (0644 less the umask); on any error or interrupt
-    the temporary file is removed and ``path`` keeps what it held before.
+    the temporary file is removed and ``path`` keeps what it held before. ``durable``: on disk
+    before it is renamed (a power cut keeps it whole); a scratch file a rerun remakes skips that.
     """
     path = Path(path)
     tmp = path.with_name(f".{path.name}.{os.getpid()}{TEMP_SUFFIX}")
     try:
         write(tmp)
-        with open(tmp, "rb") as handle:
-            os.fsync(handle.fileno())
+        if durable:
+            with open(tmp, "rb") as handle:
+                os.fsync(handle.fileno())
         os.replace(tmp, path)
     except BaseException:
         tmp.unlink(missing_ok=True)
@@ -50,20 +52,19 @@ def write_atomic_with(path: Path, write: Callable[[Path], None]) -> Path:
     return path
 
 
-def write_atomic(path: Path, data: str | bytes) -> Path:
+def write_atomic(path: Path, data: str | bytes, durable: bool = True) -> Path:
     """Write text or bytes to ``path`` atomically (:func:`write_atomic_with`)."""
     write = Path.write_text if isinstance(data, str) else Path.write_bytes
-    return write_atomic_with(path, lambda tmp: write(tmp, data))
+    return write_atomic_with(path, lambda tmp: write(tmp, data), durable)
 
 
 def write_parquet_atomic(path: Path, table) -> Path:
     """``table`` (pandas or Arrow) as Parquet, atomically. Float and integer columns skip
     dictionary encoding: their values are nearly all distinct, and trying costs half the write."""
-    import pandas as pd
     import pyarrow as pa
     import pyarrow.parquet as pq
 
-    if isinstance(table, pd.DataFrame):
+    if not isinstance(table, pa.Table):  # a DataFrame (pandas is not loaded for an Arrow table)
         table = pa.Table.from_pandas(table, preserve_index=False)
     text = [f.name for f in table.schema if not pa.types.is_floating(f.type) and not pa.types.is_integer(f.type)]
     return write_atomic_with(path, lambda tmp: pq.write_table(table, tmp, use_dictionary=text or False))

@@ -5,15 +5,18 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
-import pandas as pd
 
 from ..model import parameters
 from ..model.contact import ContactModel
 from ..exact import choose, linear
 from ..laws.words import expand_contact
 from ..records import run_folder
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 __all__ = ["collide", "theory", "model", "CollisionReport", "PairReport", "ToleranceReport"]
 
@@ -63,6 +66,8 @@ _REPORT_COLUMNS = ("initial", "LAMMPS", "theory", "error")
 
 def _state_table(row, names, r: float) -> pd.DataFrame:
     """One row per state column of a run's row: initial, LAMMPS, theory and error (``attrs["r"]``: r)."""
+    import pandas as pd
+
     table = pd.DataFrame({label: [float(row[f"{s}_{label.lower()}"]) for s in names]
                           for label in _REPORT_COLUMNS}, index=list(names))
     table.attrs["r"] = r
@@ -178,6 +183,8 @@ def _pair_report(row: dict, batch, run_dir, step=None) -> PairReport:
         wall_frame(np.array(pair.v_b), np.array(pair.w_b), pair.b.r)[0].tolist()
     columns = {"initial": initial, **({"LAMMPS": states("")} if run_dir is not None else {}),
                "exact": states("_exact"), "planar": states("_planar")}
+    import pandas as pd
+
     table = pd.DataFrame(columns, index=list(SPACE_COLUMNS) + [f"{s}_b" for s in SPACE_COLUMNS])
     geometry = {k: float(row[k]) for k in _PAIR_GEOMETRY}
     return PairReport(table, batch.dt, batch.nsteps, float(row.get("error", float("nan"))), float(row["planar_error"]),

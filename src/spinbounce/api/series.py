@@ -4,13 +4,16 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
-import pandas as pd
 
 from ..exact import choose
 from ..records import run_folder
 from .collisions import model
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 __all__ = ["frozen", "FrozenReport", "FROZEN_COLUMNS", "FROZEN_SERIES"]
 
@@ -70,6 +73,8 @@ def frozen(z: float = 0.1, v_t: float = 1.0, omega: float = 0.0, t_end: float = 
 
 
 def _frozen_to_tolerance(scene, tolerance: float, out, log) -> tuple[pd.DataFrame, dict, Path]:
+    import pandas as pd
+
     from ..extrapolation import frozen_to_tolerance
     from ..records import software
 

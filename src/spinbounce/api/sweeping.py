@@ -5,11 +5,14 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-import pandas as pd
 
 from ..model import parameters
 from .collisions import _MODEL_NAMES
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 __all__ = ["sweep", "run_sweep", "SweepReport", "fit", "fit_groups"]
 
@@ -86,6 +89,8 @@ def fit_groups(results: str | Path | pd.DataFrame, *, plot: str | Path | None = 
     deviation from its theory. ``selection``: declared parameters (model or scene) and the value a
     group must have (``mu=None``: the uncapped ones). ``plot``: also draw the slip figure there.
     A sweep's folder with no selection and no plot is fitted streamed (memory bounded)."""
+    import pandas as pd
+
     from ..fitting import fit_groups as fit_rows
     from ..fitting import plot_groups
     from ..fitting_stream import fit_dataset
@@ -124,6 +129,8 @@ def fit(results: str | Path | pd.DataFrame, **selection) -> pd.DataFrame:
     """One row per model group: its parameters, regime, per-collision deviation and (where one
     matrix applies) the fitted Omega beside the theory's; ``matrix`` holds the fitted matrix.
     ``selection``: as :func:`fit_groups`'s."""
+    import pandas as pd
+
     return pd.DataFrame([{**_as_columns(g["parameters"]), **{k: v for k, v in g.items() if k != "parameters"}}
                          for g in fit_groups(results, **selection)])
 

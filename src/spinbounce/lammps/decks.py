@@ -239,15 +239,16 @@ def common_context(model: ContactModel, zhi: float) -> dict:
     }
 
 
-def prepare_run_dir(out_dir: Path, deck: Deck) -> Path:
+def prepare_run_dir(out_dir: Path, deck: Deck, durable: bool = True) -> Path:
     """``out_dir`` made ready to run ``deck`` (created, earlier outputs removed, the deck and the
-    files it reads written); the deck's path. Every scene's run goes through it."""
+    files it reads written); the deck's path. Every scene's run goes through it. ``durable``: the
+    files forced to disk (a run that records nothing, a sweep's chunk, is remade if lost)."""
     out_dir = Path(out_dir).resolve()
     out_dir.mkdir(parents=True, exist_ok=True)
     for stale in (DUMP_NAME, "log.lammps", "result.json", RESULT_TABLE):
         (out_dir / stale).unlink(missing_ok=True)
     for name, text in deck.files.items():
-        write_atomic(out_dir / name, text)
+        write_atomic(out_dir / name, text, durable)
     deck_path = out_dir / deck.name
-    write_atomic(deck_path, deck.text)
+    write_atomic(deck_path, deck.text, durable)
     return deck_path

@@ -19,9 +19,9 @@ import shutil
 import sys
 import time
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
-import pandas as pd
 
 from .. import __version__, checks
 from ..records import TEMP_SUFFIX
@@ -32,26 +32,31 @@ from ..exact import choose
 from .ladder import estimate_columns, extrapolates, ladder_columns, tolerance_of
 from .spec import SweepError, SweepSpec, spec_from_dict
 
-__all__ = ["run_sweep", "run_one_chunk", "chunk_table", "chunk_path", "read_results", "run_chunk", "status_counts"]
+if TYPE_CHECKING:
+    import pandas as pd
+
+__all__ = ["run_sweep", "run_one_chunk", "chunk_table", "chunk_path", "read_results", "run_chunk", "write_chunk",
+           "status_counts"]
 
 
 def chunk_path(out: Path, group: int, chunk: int) -> Path:
     return out / "chunks" / f"chunk-{group:04d}-{chunk:06d}.parquet"
 
 
-def run_chunk(raw: dict, out: str, group: int, chunk: int, start: int, stop: int,
+def run_chunk(raw: dict | SweepSpec, out: str, group: int, chunk: int, start: int, stop: int,
               write=None) -> tuple[int, float, float]:
-    """Run one chunk and write its Parquet file atomically (``write(path, table)``: by default
-    :func:`spinbounce.records.write_parquet_atomic`, now).
+    """Run one chunk of the sweep ``raw`` (its description, as a worker process receives it, or the
+    spec itself) and write its Parquet file atomically (``write(path, columns, labels)``: by default
+    :func:`write_chunk`, now).
 
     Returns (collisions, seconds in this call, seconds in LAMMPS's run loop). The wall's
     spheres reach LAMMPS in memory (the library route): no data file to write, no dump to
     parse; a pair scene's chunk is one pair batch (:func:`spinbounce.sweeps.pairs.pair_chunk`).
     """
-    from ..records import lammps_version, write_parquet_atomic
+    from ..records import lammps_version
 
     started = time.perf_counter()
-    spec = spec_from_dict(raw)
+    spec = raw if isinstance(raw, SweepSpec) else _spec_of(raw)
     out = Path(out)
     model, dt = spec.model(group)
     states = spec.initial_states(group, start, stop)
@@ -78,8 +83,25 @@ def run_chunk(raw: dict, out: str, group: int, chunk: int, start: int, stop: int
         columns["Omega_theory"] = choose.omega_per_sphere(model, states[:, 0])  # NaN where none (Coulomb)
         labels["theory"] = choose.which(model).kind
     labels.update({"scene_hash": spec.digest, "lammps_version": lammps_version(), "spinbounce_version": __version__})
-    (write or write_parquet_atomic)(chunk_path(out, group, chunk), _arrow_table(columns, labels))
+    (write or write_chunk)(chunk_path(out, group, chunk), columns, labels)
     return stop - start, time.perf_counter() - started, loop
+
+
+#: The last sweep description a worker process validated, by its JSON text: {text: spec}.
+_PARSED: dict[str, SweepSpec] = {}
+
+
+def _spec_of(raw: dict) -> SweepSpec:
+    """The description's spec, validated once per worker process and sweep (each chunk a worker runs
+    arrives as the same description)."""
+    try:
+        key = json.dumps(raw, sort_keys=True)
+    except TypeError:  # not JSON (an API caller's own objects): validated each time
+        return spec_from_dict(raw)
+    if key not in _PARSED:
+        _PARSED.clear()
+        _PARSED[key] = spec_from_dict(raw)
+    return _PARSED[key]
 
 
 def _wall_columns(columns: dict, spec: SweepSpec, model, dt, states: np.ndarray, probe: np.ndarray,
@@ -107,7 +129,7 @@ def _wall_columns(columns: dict, spec: SweepSpec, model, dt, states: np.ndarray,
         columns["time_scale"] = np.ones(scene.n)
         return laddered[1:]
     result = run_scene(scene, run_dir, atoms="library", record=False, probe_states=batch(probe))
-    columns.update({name: values.to_numpy() for name, values in result.table.drop(columns=["id"]).items()})
+    columns.update({name: np.asarray(values) for name, values in result.columns.items() if name != "id"})
     columns["time_scale"] = result.scene.time_scales
     if extrapolates(spec):  # another group's chunks carry estimates: the same columns here
         columns.update(estimate_columns(scene.state_names, scene.n))
@@ -137,6 +159,13 @@ def _pair_columns(columns: dict, spec: SweepSpec, group: int, model, n: int) -> 
     radial = no_planar_matrix(model.replace(mu=None)) is not None
     columns["Omega_theory"] = np.full(n, np.nan if radial else planar_Omega(model, spec.sphere_b(group)))
     return {"scene": "pair", "theory": "pair_exact"}
+
+
+def write_chunk(path: Path, columns: dict[str, np.ndarray], labels: dict[str, str]) -> Path:
+    """A chunk's columns and labels as its Parquet file, atomically."""
+    from ..records import write_parquet_atomic
+
+    return write_parquet_atomic(path, _arrow_table(columns, labels))
 
 
 def _arrow_table(columns: dict[str, np.ndarray], labels: dict[str, str]):
@@ -265,20 +294,18 @@ def _run_chunks(spec: SweepSpec, out: Path, workers: int | None, log) -> Path:
 
 
 def _run_in_turn(spec: SweepSpec, out: Path, todo: list, bar) -> None:
-    """The chunks one after the other in this process, each one's file written by a thread while the
-    next one runs (LAMMPS and the Parquet writer both release the GIL); a failed write stops the sweep
-    at the next chunk, and every write has ended when this returns."""
-    from ..records import write_parquet_atomic
-
+    """The chunks one after the other in this process, each one's columns made into its file by a
+    thread while the next one runs (LAMMPS and the Parquet writer both release the GIL); a failed
+    write stops the sweep at the next chunk, and every write has ended when this returns."""
     with concurrent.futures.ThreadPoolExecutor(max_workers=1, thread_name_prefix="chunk-writer") as writer:
         pending: list[concurrent.futures.Future] = []
 
-        def write(path, table):  # absolute now: a LAMMPS run changes the working folder while the file is written
-            pending.append(writer.submit(write_parquet_atomic, Path(path).absolute(), table))
+        def write(path, columns, labels):  # absolute now: a LAMMPS run changes the working folder meanwhile
+            pending.append(writer.submit(write_chunk, Path(path).absolute(), columns, labels))
 
         try:
             for c in todo:
-                n, *_ = run_chunk(spec.raw, str(out), *c, write=write)
+                n, *_ = run_chunk(spec, str(out), *c, write=write)
                 for done in [f for f in pending if f.done()]:
                     done.result()  # raises a failed write's error here
                     pending.remove(done)
@@ -325,10 +352,12 @@ def chunk_table(spec: SweepSpec, out: Path | None = None) -> list[dict]:
 
 def status_counts(path: Path) -> dict[str, int]:
     """How many rows of a sweep have each status (reads that one column only)."""
+    import pyarrow.compute as pc
     import pyarrow.dataset as ds
 
     table = ds.dataset(chunk_files(Path(path)), format="parquet").to_table(columns=["status"])
-    return checks.summary(table.column("status").to_numpy(zero_copy_only=False))
+    counted = {c["values"]: c["counts"] for c in pc.value_counts(table.column("status")).to_pylist()}
+    return checks.tally(counted)
 
 
 def chunk_files(path: Path) -> list[Path]:
@@ -354,6 +383,8 @@ def chunk_files(path: Path) -> list[Path]:
 
 def read_results(path: Path) -> pd.DataFrame:
     """A sweep's rows, from its output folder or its ``chunks`` dataset folder."""
+    import pandas as pd
+
     frames = []
     for f in chunk_files(Path(path)):
         try:

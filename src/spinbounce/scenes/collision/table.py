@@ -14,7 +14,6 @@ import numpy as np
 
 from ...errors import ResultError
 from ...lammps.decks import wall_frame
-from ...lammps.dumps import read_dump
 
 if TYPE_CHECKING:
     from ...lammps.decks import Deck
@@ -66,11 +65,14 @@ def read_collision(scene, info: RunInfo, deck: Deck, folder: Path) -> dict:
         source, frames = info.log, {}
         for step, state in ((0, info.initial), (scene.nsteps, info.final)):
             keep = state["type"] == 1
+            keep = slice(None) if keep.all() else keep  # no wall atoms: views, not copies
             frames[step] = {"id": state["id"][keep].astype(np.int64),
                             **{f"{name}{axis}": state[key][keep, k] for key, name in (("x", ""), ("v", "v"),
                                                                                      ("omega", "omega"))
                                for k, axis in enumerate("xyz")}}
     else:
+        from ...lammps.dumps import read_dump  # pandas: loaded only for a dump
+
         source = folder / deck.dump
         frames = {int(step): {name: rows[name].to_numpy() for name in ("id", *FRAME_COLUMNS)}
                   for step, rows in read_dump(source).groupby("step")}
