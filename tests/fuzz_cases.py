@@ -19,7 +19,7 @@ from dataclasses import dataclass
 from typing import Callable
 
 from fuzz_support import (LAMMPS_TOLERANCE, THEORY_TOLERANCE, calibrated, chunks_listed, contact_time,
-                          figure_beside_user_file, frozen_series, gross_slip, initial_is, omega_is,
+                          capped_frozen, figure_beside_user_file, frozen_series, gross_slip, initial_is, omega_is,
                           pair_meets_its_reference, printed, reversed_normal, unchanged_tangential)
 
 @dataclass(frozen=True)
@@ -141,7 +141,8 @@ FLAGS = [
     refused("check-and-regenerate", "references --check --regenerate", "--regenerate", "--check"),
     refused("references-no-mode", "references", "--check", "--regenerate"),
     refused("references-unknown-case", "references --check --case nope", "--case", "nope"),
-    refused("frozen-mu", f"{FROZEN} --mu 0.3", "mu", "0.3"),
+    ok("frozen-mu", f"{FROZEN} --mu 0.3", capped_frozen(0.3, 0.05)),
+    refused("frozen-mu-classic", f"{FROZEN} --mu 0.3 --wall classic", "mu", "0.3", "classic"),
     refused("frozen-missing-z", "frozen --vt 1 --omega 0 --t-end 1 --out f", "--z"),
     refused("calibrate-missing-e", "calibrate --contact-time 1 --beta 0.5 --no-run", "--e"),
     refused("figures-unknown", "figures --only fig9", "--only", "fig9"),

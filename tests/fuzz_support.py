@@ -20,6 +20,7 @@ import math
 import re
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 
 #: An earlier run's result, which no refusal may touch.
@@ -207,6 +208,20 @@ def figure_beside_user_file(name: str, out: str = "spinbounce-figures"):
     def check(stdout, folder):
         assert json.loads((folder / out / f"{name}.json").read_text())["max_deviation_exact"] < 1e-4
         assert (folder / "figout" / "notes.txt").read_text() == "the user's notes\n"
+    return check
+
+
+def capped_frozen(mu: float, overlap: float, kn: float = 10.0, m: float = 1.0, alpha: float = 0.4):
+    """Held under a cap mu kn overlap: every force moves v_t and r omega as alpha : 1 (Eq. 13), and
+    the slip u = v_t + r omega changes no faster than the cap allows, (1 + alpha)/(alpha m) mu F_n,
+    which is reached (the spring alone would exceed it here)."""
+    def check(stdout, folder):
+        table = pd.read_csv(folder / "f" / "frozen.csv")
+        v_t, r_omega = table["v_t"].to_numpy(), table["r_omega"].to_numpy()
+        assert np.abs((v_t - v_t[0]) - alpha * (r_omega - r_omega[0])).max() < 1e-9
+        rate = np.abs(np.diff(v_t + r_omega) / np.diff(table["t"].to_numpy()))
+        limit = (1.0 + alpha) / (alpha * m) * mu * kn * overlap
+        assert rate.max() <= limit * (1.0 + 1e-3) and rate.max() >= limit * 0.99, (rate.max(), limit)
     return check
 
 

@@ -49,7 +49,6 @@ def test_you_meant_line_is_the_granular_deck_line():
     (["--speeds", "0"], "--speeds"),
     (["--normal", "hertz"], "normal"),           # hooke/history is Hookean
     (["--limit-damping"], "limit_damping"),
-    (["--mu", "2e4"], "mu"),                     # the classic form's MU is at most 1e4
 ])
 def test_refusals_are_one_line_naming_the_parameter(argv, named):
     done = spinbounce("classic", *argv)

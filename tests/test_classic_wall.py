@@ -88,7 +88,7 @@ def test_a_3d_state_is_refused_for_the_classic_wall_before_any_run():
         Collision(ContactModel(wall="classic"), v_n=-1.0, v_t=1.0, omega=0.0, v_s=0.5)
 
 
-@pytest.mark.parametrize("params, parameter", [({"normal": "hertz"}, "normal"), ({"mu": 2e4}, "mu"),
+@pytest.mark.parametrize("params, parameter", [({"normal": "hertz"}, "normal"),
                                                ({"limit_damping": True, "gamma_n": 1.0}, "limit_damping")])
 def test_what_the_classic_form_cannot_express_is_refused(params, parameter):
     with pytest.raises(SceneError) as info:
@@ -120,3 +120,13 @@ def test_a_tolerance_below_the_theory_s_own_accuracy_is_refused_before_any_run(t
     except SystemExit as exc:
         code = exc.code
     assert code == 2 and "tolerance" in capsys.readouterr().err and not (tmp_path / "t").exists()
+
+
+def test_a_cap_above_the_classic_forms_largest_runs_at_it_against_its_own_theory():
+    # LAMMPS refuses MU > 1e4 in the classic form: the deck writes 1e4, the theory keeps the mu asked for
+    from spinbounce.exact import choose
+    from spinbounce.lammps.decks import wall_parameters
+
+    model = ContactModel(mu=1e5, wall="classic")
+    assert wall_parameters(model)["mu"] == 1e4 and "mu = 100000 asked for" in wall_parameters(model)["comment"]
+    assert choose.classic_wall(model).mu == 1e5

@@ -115,12 +115,11 @@ def run_scene(scene, out_dir: Path, atoms: str | None = None, record: bool = Tru
     """
     given, (scene, step) = scene, tune(scene, Path(out_dir) / "probe", _probe_errors, probe_states, target)
     deck, deck_path, info, columns, deviation = _run(scene, out_dir, atoms, runner, target, record)
-    # the probe's step, chosen on a sample, may miss the target on the whole scene: then its fine rule
-    worst = _worst(columns, given) if step.method == "probe" else 0.0
-    fine = given.fallback() if worst > target else None
-    if fine is not None and fine.dt < scene.dt:
-        scene, step = fine, replace(step, dt=fine.dt, method=f"{FALLBACK}; the probe's step erred {worst:.2g}",
-                                    predicted_error=None)
+    for attempt in range(RETUNES):  # the probe's step, chosen on a sample, may miss the target on the whole scene
+        finer = _finer(given, scene, step, columns, Path(out_dir) / f"probe-again-{attempt}", target)
+        if finer is None:
+            break
+        scene, step = finer
         deck, deck_path, info, columns, deviation = _run(scene, out_dir, atoms, runner, target, record)
     notes = tuple(checks.notes(columns["status"], target))
     dump = None if deck.dump is None else deck_path.parent / deck.dump
@@ -130,6 +129,30 @@ def run_scene(scene, out_dir: Path, atoms: str | None = None, record: bool = Tru
                      warnings=list(notes), max_abs_error=deviation, max_error=result.max_error, step=step.record(),
                      status=checks.summary(columns["status"]), table=result.table)
     return result
+
+
+#: How often a scene whose probed step missed the target on some rows is probed again on those rows.
+RETUNES = 2
+
+
+def _finer(given, scene, step, columns: dict, out: Path, target: float):
+    """(scene, step) to run again when the probed step erred above ``target`` on rows it could reach: the
+    scene's fine rule if it has one, else the step a probe of the rows that erred asks for; None if none
+    is finer (each row's error is reported either way)."""
+    worst = _worst(columns, given) if step.method.startswith("probe") else 0.0
+    if worst <= target:
+        return None
+    fine = given.fallback()
+    if fine is not None:
+        return (fine, replace(step, dt=fine.dt, method=f"{FALLBACK}; the probe's step erred {worst:.2g}",
+                              predicted_error=None)) if fine.dt < scene.dt else None
+    erred = reachable(given)
+    erred = erred[np.asarray(columns["error"])[erred] > target]
+    again, choice = tune(given, out, _probe_errors, given.rows(erred), target)
+    if again.dt >= scene.dt:
+        return None
+    return again, replace(choice, method=f"probe of the {erred.size} row(s) the first probe's step left above "
+                                         f"{target:g} (it erred {worst:.2g})")
 
 
 def _worst(columns: dict, scene) -> float:

@@ -111,19 +111,22 @@ def converge(coarse: tuple[int, float], fine: tuple[int, float], target: float, 
     Nothing to resolve (the finer probe at rounding): the coarse steps. Else the steps
     :func:`extrapolate` gives; a rough convergence (a cap's switches, a contact-radius spring)
     can miss, so ``measure(steps)`` checks the chosen step on the probe itself, going on from
-    the last two points while it misses, at most MAX_CHECKS times and below ``limit`` steps.
+    the last two points while it misses, at most MAX_CHECKS times and below ``limit`` steps;
+    a step coarser than the finer probe that misses gives way to the finer probe's.
     """
     if fine[1] <= ROUNDING:
         return coarse[0], None, fine[1]
     steps, order = extrapolate(coarse, fine, target)
     predicted = fine[1] * (fine[0] / steps) ** order
-    last = fine
+    last, bound = fine, target * SAFETY * CHECK_SLACK
     for _ in range(MAX_CHECKS):
-        if steps <= last[0] or steps >= limit:
+        if steps == last[0] or steps >= limit:
             break
         measured = measure(steps)
-        if measured <= target * SAFETY * CHECK_SLACK:
+        if measured <= bound:
             return steps, order, measured
+        if steps < last[0]:  # coarser than a point that met SAFETY * target (a rough convergence): that point
+            return last[0], order, last[1]
         previous, last = last, (steps, measured)
         steps, order = extrapolate(previous, last, target)
         predicted = measured * (last[0] / steps) ** order

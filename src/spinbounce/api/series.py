@@ -39,8 +39,10 @@ def frozen(z: float = 0.1, v_t: float = 1.0, omega: float = 0.0, t_end: float = 
            every: int | None = None, tolerance: float | None = None, out: str | Path | None = None,
            force: bool = False, log=None, **model_parameters) -> FrozenReport:
     """Hold one sphere in contact at height ``z`` (v_n = 0) for ``t_end`` and set v_t(t) and
-    omega(t) beside Eq. 10 (its exact damped form with gamma_t). ``tolerance``: an accuracy to
-    reach instead of a step (Richardson extrapolation over halving steps). ``out``: the run folder
+    omega(t) beside Eq. 10 (its exact damped form with gamma_t; with mu, the stick-slip under the
+    constant cap, :mod:`spinbounce.exact.frozen_capped`). ``tolerance``: an accuracy to reach
+    instead of a step (Richardson extrapolation over halving steps; with a cap, the error measured
+    at halving steps). ``out``: the run folder
     (deck, dump, log, ``frozen.csv`` and the record). ``log(line)``: told about long runs and the
     extrapolation's progress. A named ``out`` holding an earlier run is refused unless ``force``."""
     from ..model.timestep import cost_notice
@@ -72,16 +74,22 @@ def frozen(z: float = 0.1, v_t: float = 1.0, omega: float = 0.0, t_end: float = 
     return FrozenReport(table, record, csv, record_path)
 
 
+#: Halvings of the step a capped frozen contact's measured route tries (its error is first order).
+MEASURED_HALVINGS = 12
+
+
 def _frozen_to_tolerance(scene, tolerance: float, out, log) -> tuple[pd.DataFrame, dict, Path]:
     import pandas as pd
 
-    from ..extrapolation import frozen_to_tolerance
+    from ..extrapolation import frozen_to_tolerance, smooth_in_dt
     from ..records import software
 
     m = scene.model
     folder = Path(out) if out is not None else run_folder(
         "frozen", {"model": m.as_record(), "z": scene.z, "v_t": scene.v_t, "omega": scene.omega,
                    "t_end": scene.t_end, "tolerance": tolerance})
+    if not smooth_in_dt(m):
+        return _frozen_measured(scene, tolerance, folder, log or (lambda *_: None))
     result = frozen_to_tolerance(m, scene.z, scene.v_t, scene.omega, scene.t_end, tolerance, folder,
                                  log=log or (lambda *_: None))
     v_t_theory, rw_theory = choose.frozen(m, result.t, scene.v_t, scene.omega * m.r, scene.z)
@@ -95,3 +103,34 @@ def _frozen_to_tolerance(scene, tolerance: float, out, log) -> tuple[pd.DataFram
               "plain_steps_for_same_estimate": result.plain_steps_for(result.max_estimate),
               "levels": result.levels, **software()}
     return table, record, folder
+
+
+def _frozen_measured(scene, tolerance: float, folder: Path, log) -> tuple[pd.DataFrame, dict, Path]:
+    """A frozen contact whose error is not smooth in dt (a cap's stick-slip switches): runs at halving
+    steps until its largest |LAMMPS - theory| (exact: :mod:`spinbounce.exact.frozen_capped`) is at most
+    ``tolerance``; that measured error is its estimate."""
+    from ..extrapolation import check_tolerance
+    from ..pipeline import ResultError, run_series
+    from ..records import software
+    from ..scenes.frozen import Frozen
+
+    tolerance, levels = check_tolerance(tolerance), []
+    for k in range(MEASURED_HALVINGS):
+        level = Frozen(scene.model, z=scene.z, v_t=scene.v_t, omega=scene.omega, t_end=scene.t_end,
+                       dt=scene.dt / 2**k)
+        result = run_series(level, folder / f"level-{k}")
+        levels.append({"level": k, "dt": level.dt, "nsteps": level.nsteps, "run": str(folder / f"level-{k}"),
+                       "max_abs_error": result.max_abs_error})
+        log(f"  level {k}: {level.nsteps} steps, measured error {result.max_abs_error:.2e}")
+        if result.max_abs_error <= tolerance:
+            table = result.table[FROZEN_COLUMNS].assign(estimate=result.max_abs_error)
+            record = {"scene": "frozen", "model": scene.model.as_record(), "z": scene.z, "v_t": scene.v_t,
+                      "omega": scene.omega, "t_end": scene.t_end, "tolerance": tolerance,
+                      "method": "measured: the error against the exact capped theory, at halving steps (a cap's "
+                                "switches leave no smooth expansion in dt to extrapolate)",
+                      "estimate": result.max_abs_error, "max_abs_error": result.max_abs_error,
+                      "steps": sum(v["nsteps"] for v in levels), "rows": len(table),
+                      "plain_steps_for_same_estimate": level.nsteps, "levels": levels, **software()}
+            return table, record, folder
+    raise ResultError(f"tolerance = {tolerance:g} not reached in {MEASURED_HALVINGS} halvings of dt (finest "
+                      f"{levels[-1]['dt']:.3g}, error {levels[-1]['max_abs_error']:.2g}): ask for a looser tolerance")

@@ -353,10 +353,13 @@ def frozen(model, t, v_t0: float, r_omega0: float, z: float | None = None) -> tu
     (the classic wall: with its spring kt sqrt(r (r - z))).
 
     Held at a fixed height the normal force is constant, so neither the normal law nor
-    gamma_n nor limit_damping changes the slip; a Coulomb cap would, and has no theory here.
+    gamma_n nor limit_damping changes the slip; a Coulomb cap is then constant too, mu times that
+    force, and the slip is a spring's stick-slip under it (:mod:`.frozen_capped`).
     """
-    if model.mu is not None:
-        raise NoMatrix(f"mu = {model.mu!r}: the frozen contact's theory (Eq. 10) has no Coulomb cap")
+    if model.mu is not None and (z is None or model.style.tangential_contact_radius):
+        raise NoMatrix(f"mu = {model.mu!r}: the frozen contact's capped theory needs its height z and a wall whose "
+                       "history LAMMPS resets to the cap (the classic form resets it to the capped force over kt "
+                       "alone, not the spring it scales by the contact radius)")
     if model.style.tangential_contact_radius:
         from . import classic
 
@@ -366,4 +369,10 @@ def frozen(model, t, v_t0: float, r_omega0: float, z: float | None = None) -> tu
     kt = model.tangential_law.frozen_stiffness(model, overlap)
     s = model.damping_law.radius_power(model.normal_law)  # a dashpot gamma_t a^s is constant when held
     gamma_t = model.gamma_t * math.sqrt(model.r * overlap) ** s if s and model.gamma_t else model.gamma_t
+    if model.mu is not None:
+        from . import frozen_capped
+
+        law = model.normal_law
+        cap = model.mu * law.wall_constant(model) * overlap**law.power  # mu F_n, constant at a fixed height
+        return frozen_capped.frozen_velocities(t, v_t0, r_omega0, kt, model.m, model.alpha, gamma_t, cap)
     return linear.frozen_velocities(t, v_t0, r_omega0, kt, model.m, model.alpha, gamma_t)

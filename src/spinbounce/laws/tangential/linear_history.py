@@ -18,10 +18,7 @@ KT = Parameter("kt", "linear_history: tangential spring constant on the slip his
                1.0, low=0.0, why="a negative spring would push the slip away", deck="tangential linear_history KT")
 MU = Parameter("mu", "Coulomb friction coefficient, |F_t| <= mu |F_n|; none (or inf; tables hold inf): the paper's "
                "model (no cap)", "1", None, low=0.0, optional=True, none_value=math.inf,
-               why="a friction coefficient is not negative", default_step_high=100.0,
-               default_step_why="above 100 the cap acts only where F_n vanishes, at the contact's ends, and "
-                                "LAMMPS's step converges there too slowly for the default accuracy: give none for "
-                                "no cap, or a dt of your own (each row then reports its error)",
+               why="a friction coefficient is not negative",
                deck="tangential linear_history|mindlin... ... MU (none: 1e12)")
 
 

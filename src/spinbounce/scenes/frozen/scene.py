@@ -1,5 +1,6 @@
 """The frozen contact of Section 3: one sphere held at a fixed height z < r, so v_n = 0 and
-only the slip evolves; checked against Eq. 10 (or its exact damped form, theory.md)."""
+only the slip evolves; checked against Eq. 10 (or its exact damped form, theory.md; with a
+Coulomb cap, a spring's stick-slip under the constant cap, :mod:`spinbounce.exact.frozen_capped`)."""
 
 from __future__ import annotations
 
@@ -45,10 +46,10 @@ class Frozen:
     def __post_init__(self):
         set_ = object.__setattr__
         m = self.model
-        if m.mu is not None:
-            raise SceneError("mu", m.mu, "a frozen contact is checked against Eq. 10, which has no Coulomb cap: "
-                                         "leave mu out (held at a fixed height the cap is constant, so a cap "
-                                         "only adds sliding that no theory here predicts)")
+        if m.mu is not None and m.style.tangential_contact_radius:
+            raise SceneError("mu", m.mu, f"the capped frozen contact is checked against a spring under a constant "
+                                         f"cap, which wall = {m.wall} is not (its form resets the history to the "
+                                         "capped force over kt alone): give wall = granular, or leave mu out")
         z = finite_number("z", self.z)
         if not 0.0 < z < m.r:
             raise SceneError("z", self.z, f"must lie in (0, r) = (0, {m.r:g}) to hold the sphere in contact")
