@@ -18,8 +18,8 @@ import shlex
 from dataclasses import dataclass
 from typing import Callable
 
-from fuzz_support import (LAMMPS_TOLERANCE, THEORY_TOLERANCE, calibrated, chunks_listed, contact_time,
-                          capped_frozen, figure_beside_user_file, frozen_series, gross_slip, initial_is, omega_is,
+from fuzz_support import (LAMMPS_TOLERANCE, THEORY_TOLERANCE, calibrated, capped_frozen, chunks_listed, contact_time,
+                          figure_beside_user_file, frozen_series, gross_slip, initial_is, omega_is, paper_bounce,
                           pair_meets_its_reference, printed, reversed_normal, unchanged_tangential)
 
 @dataclass(frozen=True)
@@ -328,6 +328,30 @@ FOUND_LATER = [
     refused("bench-pairs-fraction", "bench --n-pairs 2.5", "--n-pairs", "2.5"),
     refused("pair-b-state-on-the-wall", "collide --v-n-b 1 --out c", "v_n_b", "scene = pair"),
     refused("pair-b-runs-away", "pair --v-n-b -2 --out p", "v_n - v_n_b", "1.0", "< 0"),
+    # issue 28: every file a command reads, broken, is one line naming it; nothing of the user's replaced
+    refused("sweep-record-truncated", "sweep --n 10 --out swept", "swept/sweep.json", "not valid JSON",
+            files=("sweep-truncated",)),
+    refused("sweep-record-binary", "sweep --n 10 --out swept", "swept/sweep.json", "not text", files=("sweep-binary",)),
+    refused("sweep-record-foreign", "sweep --n 10 --out swept", "swept/sweep.json", "object", files=("sweep-list",)),
+    refused("references-corrupt-manifest", "references --check --dir refs --case defaults", "refs/MANIFEST.json",
+            "not valid JSON", files=("refs-corrupt-manifest",)),
+    refused("references-foreign-manifest", "references --check --dir refs --case defaults", "refs/MANIFEST.json",
+            "object", files=("refs-list-manifest",)),
+    refused("references-table-words", "references --check --dir refs --case defaults", "refs/defaults.csv",
+            "not a number", files=("refs-text-table",)),
+    refused("references-table-ragged", "references --check --dir refs --case defaults", "refs/defaults.csv",
+            "number of fields", files=("refs-ragged-table",)),
+    refused("sweep-into-unrecorded-chunks", "sweep --n 10 --out corrupt", "corrupt", "no sweep record",
+            files=("corrupt",)),
+    refused("fit-plot-over-a-users-file", "fit corrupt --plot user.png", "--plot", "user.png", "--force",
+            files=("corrupt", "user.png")),
+    refused("bench-over-an-earlier-report", "bench --quick", "--out", "bench.json", "--force", files=("bench.json",)),
+    refused("collide-mass-unresolved", f"collide {STATE} --mass 1e-300 --out c", "m = 1e-300", "last place"),
+    refused("collide-vn-unresolved", "collide --vn -1e-20 --vt 0 --omega 0 --out c", "v_n = -1e-20", "last place"),
+    ok("collide-vt-huge", "collide --json --vn -1 --vt 1e6 --omega 0 --out c", paper_bounce(1e6)),
+    ok("collide-vt-huge-sliding", "collide --json --mu 0.1 --vn -1 --vt 1e6 --omega 0 --out c",
+       gross_slip(-1.0, 1e6, 0.1, tolerance=LAMMPS_TOLERANCE)),
+    refused("sweep-vn-unresolved", "sweep --n 10 --vn -1e-20 -1e-21 --out s", "v_n", "last place"),
     refused("sweep-b-state", "sweep --scene pair --n 3 --v-n-b 1 --out s", "--v-n-b", "b at rest", "collide --scene pair"),
     refused("pair-dt-too-fine", "pair --dt 1e-9 --out p", "dt", "1e-09", "limit"),
     refused("pair-on-the-wall", "pair --scene wall --out p", "--scene", "wall", "collide"),

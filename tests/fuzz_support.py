@@ -62,6 +62,27 @@ def _foreign_parquet(folder: Path) -> None:
         chunks / "chunk-0000-000000.parquet")
 
 
+def _sweep_record(content: bytes):
+    """A sweep's output folder whose sweep.json is ``content`` (truncated, corrupt, foreign, binary)."""
+    def write(folder: Path) -> None:
+        (folder / "swept" / "chunks").mkdir(parents=True)
+        (folder / "swept" / "sweep.json").write_bytes(content)
+    return write
+
+
+def _references(manifest: bytes | None = None, table: bytes | None = None):
+    """A copy of the stored references with its manifest or the defaults case's table replaced."""
+    def write(folder: Path) -> None:
+        import shutil
+
+        shutil.copytree(Path(__file__).parent / "reference", folder / "refs")
+        if manifest is not None:
+            (folder / "refs" / "MANIFEST.json").write_bytes(manifest)
+        if table is not None:
+            (folder / "refs" / "defaults.csv").write_bytes(table)
+    return write
+
+
 SCENE_OK = """[model]
 mu = 0.3
 [states]
@@ -95,6 +116,15 @@ MAKERS = {
     "figout-fig2": _text("figout/fig2/notes.txt", "the user's notes\n"),
     "foreign": _foreign_parquet,
     "emptydir": _folder("emptydir"),
+    "sweep-truncated": _sweep_record(b'{"scene_hash": "0123'),
+    "sweep-binary": _sweep_record(b"\xff\xfe\x00\x01"),
+    "sweep-list": _sweep_record(b"[1, 2, 3]"),
+    "refs-corrupt-manifest": _references(manifest=b"{not json"),
+    "refs-list-manifest": _references(manifest=b"[]"),
+    "refs-text-table": _references(table=b"v_n,v_t\n1,x\n"),
+    "refs-ragged-table": _references(table=b"v_n,v_t\n1,2,3\n"),
+    "user.png": _text("user.png", "the user's own image, not to be lost\n"),
+    "bench.json": _text("bench.json", EARLIER),
 }
 
 
@@ -144,6 +174,20 @@ def unchanged_tangential(v_n: float, v_t: float, r_omega: float, tolerance: floa
         final = json.loads(stdout)["theory"]
         assert abs(final["v_n"] + v_n) <= tolerance, final
         assert abs(final["v_t"] - v_t) <= tolerance and abs(final["r_omega"] - r_omega) <= tolerance, final
+    return check
+
+
+def paper_bounce(v_t: float, tolerance: float = 1e-4, kt: float = 1.0, kn: float = 10.0, alpha: float = 0.4):
+    """LAMMPS's final state at v_n = -1, omega = 0 is Eq. 18's, whatever the size of v_t (the matrix is linear):
+    Omega = cos(pi sqrt(kt/kn (1 + alpha)/alpha)) - 1, v_t' = v_t (1 + alpha Omega/(1 + alpha)), r omega' =
+    v_t Omega/(1 + alpha); within the default accuracy of the state's size."""
+    omega = math.cos(math.pi * math.sqrt(kt / kn * (1 + alpha) / alpha)) - 1.0
+
+    def check(stdout, folder):
+        final, size = json.loads(stdout)["lammps"], math.hypot(1.0, v_t)
+        assert abs(final["v_n"] - 1.0) <= tolerance * size, final
+        assert abs(final["v_t"] - v_t * (1 + alpha * omega / (1 + alpha))) <= tolerance * size, final
+        assert abs(final["r_omega"] - v_t * omega / (1 + alpha)) <= tolerance * size, final
     return check
 
 

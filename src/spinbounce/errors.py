@@ -8,7 +8,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-__all__ = ["SceneError", "PhysicsWarning", "NoMatrix", "SweepError", "DumpError", "LammpsError", "ResultError"]
+__all__ = ["SceneError", "PhysicsWarning", "NoMatrix", "SweepError", "FileFault", "DumpError", "LammpsError",
+           "ResultError"]
 
 
 class SceneError(ValueError):
@@ -31,6 +32,11 @@ class NoMatrix(ValueError):
 
 class SweepError(ValueError):
     """A sweep cannot start: a bad scene file, or an output folder that is not ours."""
+
+
+class FileFault(ValueError):
+    """A file a command reads is missing, unreadable, truncated, corrupt or not what it should be:
+    the message names the file and the fault, and nothing has been written."""
 
 
 class DumpError(ValueError):

@@ -140,6 +140,19 @@ RUN_OUTPUTS = ("in.lammps", "log.lammps", "state.dump", "spheres.data", "pairs.d
                "result.parquet", "tolerance.json", "frozen.csv")
 
 
+def check_new_file(path, force: bool, name: str, force_name: str = "force=True") -> None:
+    """Refuse, before anything runs, to replace a file that exists (a user's, or an earlier run's)
+    unless ``force``; and a name that is a folder."""
+    from .errors import SceneError
+
+    if path is None:
+        return
+    if Path(path).is_dir():
+        raise SceneError(name, str(path), "is a folder: give a file name")
+    if Path(path).exists() and not force:
+        raise SceneError(name, str(path), f"exists: give another name, or {force_name} to replace it")
+
+
 def check_run_folder(out, force: bool, name: str = "out", force_name: str = "force=True") -> None:
     """Refuse, before anything runs, a run folder that is a file, or that holds what a run
     writes (an earlier run's outputs, or a user's files of those names) unless ``force``.
@@ -157,3 +170,26 @@ def check_run_folder(out, force: bool, name: str = "out", force_name: str = "for
     if earlier:
         raise SceneError(name, str(out), f"holds an earlier run ({', '.join(earlier)}): give another folder, "
                                          f"or {force_name} to replace it")
+
+
+def read_json(path: Path, what: str) -> dict:
+    """The JSON object in ``path`` (``what`` it is, for the message), or a :class:`FileFault` naming
+    the file and what is wrong with it: unreadable, not text, not JSON (truncated or corrupt), or
+    JSON but not an object."""
+    from .errors import FileFault
+
+    path = Path(path)
+    try:
+        text = path.read_text()
+    except UnicodeDecodeError:
+        raise FileFault(f"{path}: {what} is not text (a JSON file is expected)") from None
+    except OSError as exc:
+        raise FileFault(f"{path}: {what} cannot be read ({exc.strerror or exc})") from None
+    try:
+        value = json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise FileFault(f"{path}: {what} is not valid JSON (truncated or corrupt: {exc.msg} at line "
+                        f"{exc.lineno}, column {exc.colno})") from None
+    if not isinstance(value, dict):
+        raise FileFault(f"{path}: {what} holds JSON, but not the object a {what} is")
+    return value

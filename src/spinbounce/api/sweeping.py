@@ -59,43 +59,60 @@ def run_sweep(spec, out: str | Path, *, workers: int = 1, force: bool = False, l
     return SweepReport(Path(dataset), status_counts(dataset), spec.scene, collisions, seconds)
 
 
-def sweep(n: int, out: str | Path, *, v_n=(-1.5, -0.1), v_t=(-2.0, 2.0), r_omega=(-2.0, 2.0), seed: int = 0,
-          workers: int = 1, dt: float | None = None, force: bool = False, **model_grid) -> pd.DataFrame:
+#: A sweep's default ranges of the states, (low, high): taken for what is not given.
+DEFAULT_STATES = {"v_n": (-1.5, -0.1), "v_t": (-2.0, 2.0), "r_omega": (-2.0, 2.0)}
+
+
+def sweep(n: int, out: str | Path, *, seed: int = 0, workers: int = 1, dt: float | None = None, force: bool = False,
+          **grid) -> pd.DataFrame:
     """Sample ``n`` collisions for every combination of the model values given (a number or a
     list each; ``None`` in ``mu``'s list is the paper's uncapped model) into ``out``; return the rows.
-    ``scene="pair"`` with ``m_b``, ``r_b``, ``alpha_b``: sphere a against a free sphere b at rest.
-    A sweep beyond an hour on one core needs ``force`` (:func:`run_sweep`)."""
+    The states are ranges (low, high), as a scene file's: ``v_n`` and ``v_t``, or ``speed`` and
+    ``angle_deg``; ``omega`` or ``r_omega``; in 3-D ``v_s``, ``omega_s``, ``omega_n`` (or r times them).
+    Defaults: :data:`DEFAULT_STATES`. ``scene="pair"`` with ``m_b``, ``r_b``, ``alpha_b``: sphere a
+    against a free sphere b at rest. A sweep beyond an hour on one core needs ``force`` (:func:`run_sweep`)."""
     from ..sweeps import read_results
+    from ..sweeps.spec import STATE_KEYS, VELOCITY_KEYS
 
+    states = {k: list(grid.pop(k)) for k in STATE_KEYS if k in grid}
     # sphere b's state passes on, to be refused by the spec with the reason
-    unknown = (set(model_grid) - _MODEL_NAMES - {p.name for p in parameters.SCENE + parameters.STATE_B}
-               - {"kt_over_kn", "contact"})
+    scene = {p.name for p in parameters.SCENE + parameters.STATE_B}
+    unknown = set(grid) - _MODEL_NAMES - scene - {"kt_over_kn", "contact"}
     if unknown:
-        raise TypeError(f"unknown model parameter(s) {sorted(unknown)}")
+        raise TypeError(f"unknown parameter(s) {sorted(unknown)}: a sweep takes the states {', '.join(STATE_KEYS)} "
+                        f"(ranges) and the model's parameters {', '.join(sorted(_MODEL_NAMES))}")
+    polar = any(k in states for k in VELOCITY_KEYS["polar"])
+    spun = "omega" in states or "r_omega" in states
+    states = {**{k: list(v) for k, v in DEFAULT_STATES.items() if not (polar and k != "r_omega")
+                 and not (spun and k == "r_omega")}, **states}
     grid = {k: ["none" if v is None else v for v in (vals if isinstance(vals, (list, tuple)) else [vals])]
-            for k, vals in model_grid.items() if not (k == "contact" and vals is None)}
+            for k, vals in grid.items() if not (k == "contact" and vals is None)}
     if dt is not None:
         grid["dt"] = dt
-    raw = {"seed": seed, "states": {"n": n, "v_n": list(v_n), "v_t": list(v_t), "r_omega": list(r_omega)}}
+    raw = {"seed": seed, "states": {"n": n, **states}}
     if grid:
         raw["model"] = grid
     run_sweep(raw, out, workers=workers, force=force)
     return read_results(out)
 
 
-def fit_groups(results: str | Path | pd.DataFrame, *, plot: str | Path | None = None, **selection) -> list[dict]:
+def fit_groups(results: str | Path | pd.DataFrame, *, plot: str | Path | None = None, force: bool = False,
+               **selection) -> list[dict]:
     """The fit of a sweep's groups, one record each (what ``spinbounce fit --json`` prints): where
     one matrix applies the fitted matrix and Omega beside the theory's, else each collision's
     deviation from its theory. ``selection``: declared parameters (model or scene) and the value a
-    group must have (``mu=None``: the uncapped ones). ``plot``: also draw the slip figure there.
+    group must have (``mu=None``: the uncapped ones). ``plot``: also draw the slip figure there (a
+    file that exists is refused unless ``force``).
     A sweep's folder with no selection and no plot is fitted streamed (memory bounded)."""
     import pandas as pd
 
     from ..fitting import fit_groups as fit_rows
+    from ..records import check_new_file
     from ..fitting import plot_groups
     from ..fitting_stream import fit_dataset
     from ..sweeps import read_results
 
+    check_new_file(plot, force, "plot")
     selectable = {p.name for p in parameters.MODEL + parameters.SCENE}
     unknown = sorted(set(selection) - selectable)
     if unknown:

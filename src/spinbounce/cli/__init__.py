@@ -7,7 +7,8 @@ import sys
 import warnings
 
 from .. import __version__
-from ..errors import DumpError, LammpsError, NoMatrix, PhysicsWarning, ResultError, SceneError, SweepError
+from ..errors import (DumpError, FileFault, LammpsError, NoMatrix, PhysicsWarning, ResultError, SceneError,
+                      SweepError)
 from .options import allow_negative_numbers
 from . import (accuracy, bench, benchmarks, calibrate, claims, classic, collide, doctor, figures, fit, frozen, hertz,
                references, reproduce, restitution, sweep, tangential, theory, two_walls)
@@ -66,8 +67,8 @@ def _failure(exc: BaseException, command: str) -> tuple[int, str]:
     if isinstance(exc, KeyboardInterrupt):
         return 130, f"{who}: interrupted\n"
     if isinstance(exc, OSError):
-        where = f" {exc.filename}" if exc.filename else ""
-        return 2, f"{who}: error:{where}: {exc.strerror or exc}\n"
+        where = f" {exc.filename}:" if exc.filename else ""
+        return 2, f"{who}: error:{where} {exc.strerror or exc}\n"
     if isinstance(exc, (LammpsError, ResultError, DumpError)):
         return 1, f"{who}: {type(exc).__name__}: {exc}\n"
     return 2, f"{who}: error: {exc}\n"
@@ -83,7 +84,7 @@ def main(argv: list[str] | None = None) -> int:
     except BrokenPipeError:  # `spinbounce theory | head`: the reader has gone, and that is fine
         sys.stdout = None
         return 0
-    except (KeyboardInterrupt, OSError, SceneError, SweepError, NoMatrix, LammpsError, ResultError,
+    except (KeyboardInterrupt, OSError, SceneError, SweepError, FileFault, NoMatrix, LammpsError, ResultError,
             DumpError) as exc:
         if args.debug:
             raise

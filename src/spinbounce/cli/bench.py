@@ -32,7 +32,8 @@ def register(sub) -> None:
                    help="spheres for the contact-only vs free-flight-and-dump comparison (default %(default)s)")
     p.add_argument("--seed", type=count, default=0, help="random seed of the states (default %(default)s)")
     p.add_argument("--out", type=out_file, default=Path("bench.json"), metavar="FILE",
-                   help="JSON report (default %(default)s)")
+                   help="JSON report (default %(default)s; a file there is kept unless --force)")
+    p.add_argument("--force", action="store_true", help="replace the file --out names if it exists")
     p.add_argument("--keep-runs", type=out_folder, metavar="DIR", help="keep every run's folder here")
     p.add_argument("--n-models", type=positive_count, default=100_000, metavar="N",
                    help="collisions per model sweep (frictionless, mu 2-D and 3-D, Hertz, Hertz-Mindlin) "
@@ -61,10 +62,11 @@ def pair_count(text: str) -> int:
 
 
 def run(args) -> int:
-    from ..records import to_json, write_atomic, software
+    from ..records import check_new_file, to_json, write_atomic, software
     from ..studies.engine import measure_waits, wait_lines
     from ..studies.speed import measure_speed
 
+    check_new_file(args.out, args.force, "--out", "--force")  # before minutes of measuring
     if args.quick:
         waits = measure_waits(quick=True, seed=args.seed, workers=max(2, args.workers))
         print("\n".join(wait_lines(waits)))

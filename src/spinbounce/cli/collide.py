@@ -5,7 +5,7 @@ Parsing and printing only: the work is :func:`spinbounce.api.collide`.
 
 from __future__ import annotations
 
-from .options import (check_run_folder, model_parser, note, number, pair_parsers, print_json,
+from .options import (check_run_folder, model_parser, note, number, pair_parsers, print_json, state_cell,
                       run_folder_flags, state_parser, values_of)
 
 HELP = "bounce one sphere off the wall (or a second free sphere: --scene pair) in LAMMPS against the theory"
@@ -85,8 +85,8 @@ def _print_states(record: dict, names, label_width: int) -> None:
     """The initial, LAMMPS, theory and error rows of a collision report."""
     print(f"{'':{label_width}}" + "".join(f"{_label(n):>16}" for n in names))
     for label in ("initial", "LAMMPS", "theory", "error"):
-        fmt = "{:>16.3e}" if label == "error" else "{:>16.10f}"
-        print(f"{label:{label_width}}" + "".join(fmt.format(record[label.lower()][n]) for n in names))
+        cell = "{:>16.3e}".format if label == "error" else state_cell
+        print(f"{label:{label_width}}" + "".join(cell(record[label.lower()][n]) for n in names))
 
 
 def print_pair_record(record: dict) -> None:

@@ -21,7 +21,8 @@ def register(sub) -> None:
     json_flag(p)
     p.add_argument("--plot", type=_figure_path, metavar="PATH",
                    help="also draw Delta v_t and r Delta omega against the initial slip, per group "
-                        "(Eq. 19), to PATH (.png or .pdf)")
+                        "(Eq. 19), to PATH (.png or .pdf; a file there is kept unless --force)")
+    p.add_argument("--force", action="store_true", help="replace the file --plot names if it exists")
     g = p.add_argument_group("select groups (any model parameter: fit only the groups with that value)")
     for parameter in SELECTABLE:
         kind = {"flag": _flag_value, "choice": str}.get(parameter.kind, optional_number)
@@ -49,8 +50,11 @@ def run(args) -> int:
 
     from .. import api
 
+    from ..records import check_new_file
+
+    check_new_file(args.plot, args.force, "--plot", "--force")
     selection = {p.name: getattr(args, p.name) for p in SELECTABLE if hasattr(args, p.name)}
-    fits = api.fit_groups(args.results, plot=args.plot, **selection)
+    fits = api.fit_groups(args.results, plot=args.plot, force=True, **selection)
     if args.plot:
         print(f"figure: {args.plot}")
     if args.json:

@@ -239,6 +239,11 @@ def note(line: str) -> None:
     print(line, file=sys.stderr, flush=True)
 
 
+def state_cell(value: float) -> str:
+    """A velocity or r omega in a 16-wide column: ten decimals, or in exponent form beyond 1e5."""
+    return f"{value:>16.10f}" if abs(value) < 1e5 else f"{value:>16.8e}"
+
+
 def print_json(value, **options) -> int:
     """``value`` as indented JSON on stdout; 0, the command's exit status."""
     print(json.dumps(value, indent=2, **options))

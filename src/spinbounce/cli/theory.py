@@ -9,7 +9,7 @@ import math
 
 from ..errors import SceneError
 from .collide import print_pair_record
-from .options import json_flag, model_parser, number, pair_parsers, print_json, state_parser, values_of
+from .options import json_flag, model_parser, number, pair_parsers, print_json, state_cell, state_parser, values_of
 
 HELP = ("print the theory that applies to a contact model: its scattering matrix (Eq. 18) and Omega, "
         "or, for a given state, the outcome")
@@ -56,7 +56,7 @@ def run(args) -> int:
         names = list(report["initial"])
         print(f"{'':8}" + "".join(f"{n:>16}" for n in names))
         for label in ("initial", "theory"):
-            print(f"{label:8}" + "".join(f"{report[label][n]:>16.10f}" for n in names))
+            print(f"{label:8}" + "".join(state_cell(report[label][n]) for n in names))
     elif report["matrix"] is None:
         print(f"no single scattering matrix: {report['why_no_matrix']}")
     elif report["theory_kind"] == "mindlin":

@@ -220,10 +220,12 @@ def fix_line(model: ContactModel, group: str = "all") -> str:
     return f"fix wall {group} wall/gran {wall_parameters(model)['style']} zplane 0.0 NULL"
 
 
-def common_context(model: ContactModel, zhi: float) -> dict:
-    """What every wall deck's template reads: the model, the wall's words, the sphere and the box."""
+def common_context(model: ContactModel, zhi: float, reach: float = 0.0) -> dict:
+    """What every wall deck's template reads: the model, the wall's words, the sphere and the box.
+    ``reach``: the farthest any sphere moves along the wall in one step. The box is periodic there,
+    and LAMMPS maps an atom back by one period only: the box is made wider than four steps' reach."""
     rigid = model.alpha != ALPHA_NVE_SPHERE
-    span = 10.0 * model.r
+    span = max(10.0 * model.r, 2.0 * reach)
     return {
         "model": model,
         "wall": wall_parameters(model),

@@ -25,6 +25,12 @@ from .stability import stability_limit
 from .timestep import MIN_STEPS_PER_HALF_PERIOD, mode_rate
 from ..errors import PhysicsWarning
 
+#: The fewest units in the last place of r a contact's deepest overlap may span (LAMMPS's positions
+#: are doubles near r): below, the sphere cannot move far enough to be seen leaving the wall
+#: (measured at the paper's defaults: runs fail from 9 units down, v_n = -3e-15, and end "grazing",
+#: 87% off, at 28). A row above it but below checks.RESOLVABLE_OVERLAP_ULPS runs, status "grazing".
+UNRESOLVED_ULPS = 100.0
+
 __all__ = ["ContactModel", "ContactPhysics", "PhysicsWarning", "NORMAL_LAWS", "ALPHA_SHELL",
            "MIN_STEPS_PER_HALF_PERIOD"]
 
@@ -185,6 +191,25 @@ class ContactPhysics:
     def max_overlap(self, speed) -> np.ndarray:
         """The largest overlap of each contact that starts touching at |v_n| = ``speed``."""
         return self.normal_law.max_overlap(self, speed)
+
+    def check_overlap_resolved(self, v_n) -> None:
+        """Refuse speeds whose deepest overlap spans fewer than UNRESOLVED_ULPS units in the last place
+        of r: LAMMPS's positions (doubles near r) cannot carry it, and the sphere would never leave the
+        wall. Named: v_n if this model's defaults resolve it, else the sphere's or the spring's value."""
+        slowest = float(np.min(np.abs(v_n)))
+        floor = UNRESOLVED_ULPS * float(np.spacing(self.r))
+        if float(self.max_overlap(slowest)) >= floor:
+            return
+        default = type(self)()
+        blamed = next((name for name in ("m", "kn", "r") if getattr(self, name) != getattr(default, name)), "v_n")
+        if float(default.max_overlap(slowest)) < float(np.spacing(default.r)) * UNRESOLVED_ULPS:
+            blamed = "v_n"
+        value = -slowest if blamed == "v_n" else getattr(self, blamed)
+        deepest = float(self.max_overlap(slowest))
+        raise SceneError(blamed, value, f"the deepest overlap at |v_n| = {slowest:.3g} (m = {self.m:g}, "
+                                        f"kn = {self.kn:g}) would be {deepest:.3g}, fewer than "
+                                        f"{UNRESOLVED_ULPS:g} units in the last place of r = {self.r:g}: LAMMPS's "
+                                        "positions cannot resolve it and the sphere would never leave the wall")
 
     # -- numerics --------------------------------------------------------------------
     def modes(self, frozen: bool, speed: float | None = None,

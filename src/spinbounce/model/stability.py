@@ -24,15 +24,23 @@ import numpy as np
 __all__ = ["stability_limit", "overlap_stretch"]
 
 
-@lru_cache(maxsize=1024)
 def stability_limit(w: float, c: float = 0.0, rtol: float = 1e-10) -> float:
     """Largest dt for which the step of x'' + c x' + w^2 x = 0 does not grow.
 
-    Returns math.inf for a mode with neither stiffness nor damping. Cached: a bisection
-    costs ~100 eigenvalue problems, and sweeps ask for the same modes again and again.
+    Returns math.inf for a mode with neither stiffness nor damping. The limit times the mode's
+    rate depends only on the damping ratio: it is found for a mode of unit rate, and scaled, so
+    that no rate (sqrt(kn/m) = 3e150 at m = 1e-300) meets the overflow of its square.
     """
     if w <= 0.0 and c <= 0.0:
         return math.inf
+    rate = max(w, c)
+    return _unit_limit(w / rate, c / rate, rtol) / rate
+
+
+@lru_cache(maxsize=1024)
+def _unit_limit(w: float, c: float, rtol: float) -> float:
+    """:func:`stability_limit` of a mode whose larger rate is 1. Cached: a bisection costs ~100
+    eigenvalue problems, and sweeps ask for the same modes again and again."""
 
     def stable(dt: float) -> bool:
         """Whether the spectral radius of one step's map of (x, v, a) is at most 1 (it is 1 for any

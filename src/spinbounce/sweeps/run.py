@@ -201,16 +201,28 @@ def _claim(out: Path, spec: SweepSpec) -> None:
     """Record the sweep in ``out/sweep.json``, or refuse a folder that holds another sweep."""
     from ..records import to_json, write_atomic
 
+    if not _check_earlier(out, spec):
+        write_atomic(out / "sweep.json",
+                     to_json({"scene_hash": spec.digest, "spec": spec.raw, "spinbounce_version": __version__}))
+
+
+def _check_earlier(out: Path, spec: SweepSpec) -> bool:
+    """Whether ``out`` holds this sweep begun earlier (its record readable, its chunks resumable); a
+    folder holding another sweep, or a broken record or chunk, is refused. Reads only."""
+    from ..records import read_json
+
     record = out / "sweep.json"
-    if record.exists():
-        previous = json.loads(record.read_text())
-        if previous.get("scene_hash") != spec.digest:
-            raise SweepError(
-                f"{out} holds sweep {previous.get('scene_hash')}, not this one ({spec.digest}): use another --out"
-            )
-        _check_columns(out, spec)
-    else:
-        write_atomic(record, to_json({"scene_hash": spec.digest, "spec": spec.raw, "spinbounce_version": __version__}))
+    if not record.exists():
+        if any((out / "chunks").glob("chunk-*.parquet")):
+            raise SweepError(f"{out} holds chunk files but no sweep record (sweep.json): not a sweep this one can "
+                             "resume; use another --out")
+        return False
+    previous = read_json(record, "sweep record")
+    if previous.get("scene_hash") != spec.digest:
+        raise SweepError(f"{out} holds sweep {previous.get('scene_hash')}, not this one ({spec.digest}): "
+                         "use another --out")
+    _check_columns(out, spec)
+    return True
 
 
 def _check_columns(out: Path, spec: SweepSpec) -> None:
@@ -219,7 +231,14 @@ def _check_columns(out: Path, spec: SweepSpec) -> None:
     import pyarrow.parquet as pq
 
     written = next(iter(sorted((out / "chunks").glob("chunk-*.parquet"))), None)
-    if written is not None and extrapolates(spec) != ("tolerance" in pq.read_schema(written).names):
+    if written is None:
+        return
+    try:
+        names = pq.read_schema(written).names
+    except (OSError, ValueError) as exc:  # pyarrow's errors for a corrupt or foreign file
+        raise SweepError(f"{written}: not a readable sweep chunk ({exc}): remove it to run that chunk again, "
+                         "or sweep into another --out") from None
+    if extrapolates(spec) != ("tolerance" in names):
         raise SweepError(f"{out} holds chunks of this sweep written by an earlier spinbounce, with other columns "
                          "(a damped default's estimates): sweep into another --out")
 
@@ -251,6 +270,7 @@ def run_sweep(spec: SweepSpec, out: Path, workers: int | None = None, log=print)
     fails or is stopped before its first chunk is written removes the folder it made."""
     out = Path(out)
     made = not out.exists()
+    _check_earlier(out, spec)  # before anything is written: a broken or foreign folder is left as it was
     (out / "chunks").mkdir(parents=True, exist_ok=True)
     try:
         return _run_chunks(spec, out, workers, log)

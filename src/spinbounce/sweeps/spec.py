@@ -235,11 +235,11 @@ def load_spec(path: Path) -> SweepSpec:
         raw = tomllib.loads(path.read_text())
     except tomllib.TOMLDecodeError as exc:
         raise SweepError(f"{path}: not valid TOML: {exc}") from None
-    except (FileNotFoundError, IsADirectoryError, UnicodeDecodeError, PermissionError) as exc:
+    except (OSError, UnicodeDecodeError) as exc:
         why = {FileNotFoundError: "does not exist", IsADirectoryError: "is a folder, not a TOML file",
                UnicodeDecodeError: "is not text (a TOML file is expected)",
-               PermissionError: "cannot be read (permission denied)"}[type(exc)]
-        raise SweepError(f"scene file {path} {why}") from None
+               PermissionError: "cannot be read (permission denied)"}.get(type(exc))
+        raise SweepError(f"scene file {path} {why or f'cannot be read ({exc.strerror or exc})'}") from None
     return spec_from_dict(raw)
 
 

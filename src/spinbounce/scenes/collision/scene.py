@@ -140,6 +140,7 @@ class Collision:
         if away.size:
             i = int(away[0])
             raise SceneError(f"v_n[{i}]" if n > 1 else "v_n", vn[i], "must be < 0 (towards the wall)")
+        m.check_overlap_resolved(vn)
         reach = float(np.max(m.max_overlap(np.abs(vn))))
         if reach >= m.r:
             raise SceneError(
@@ -367,8 +368,7 @@ class Collision:
         """Per state, whether its law's outcome jumps just below it (:func:`spinbounce.scenes.jump.near_the_jump`)."""
         return near_the_jump(self.model, self.initial)
 
-    def beyond_reach(self) -> np.ndarray:
-        """Per state, whether no affordable step reaches the target (:func:`spinbounce.scenes.jump.beyond_reach`)."""
+    def beyond_reach(self) -> np.ndarray:  # per state, whether no affordable step reaches the target
         return beyond_reach(self.model, self.initial)
 
     def probe_time(self, sample: "Collision") -> float:

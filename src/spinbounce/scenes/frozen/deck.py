@@ -16,7 +16,7 @@ __all__ = ["render_frozen"]
 
 def render_frozen(scene) -> Deck:
     model = scene.model
-    ctx = common_context(model, zhi=4.0 * model.r)
+    ctx = common_context(model, zhi=4.0 * model.r, reach=abs(scene.v_t) * scene.dt)
     ctx.update(
         z=scene.z, vx=scene.v_t, wy=-scene.omega, dt=scene.dt, nsteps=scene.nsteps, every=scene.every
     )

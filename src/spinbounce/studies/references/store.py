@@ -7,7 +7,6 @@ runs (in a temporary folder) against them, which only reads them.
 from __future__ import annotations
 
 import difflib
-import json
 import re
 import tempfile
 from dataclasses import dataclass
@@ -16,7 +15,7 @@ from pathlib import Path
 from ...laws import own
 from ...lammps.decks import ATOM_ROUTES
 from ...model import parameters
-from ...records import json_ready, software, to_json, write_atomic
+from ...records import json_ready, read_json, software, to_json, write_atomic
 from ...scenes.collision.deck import render_collision
 from ...scenes.frozen import Frozen
 from ...scenes.frozen.deck import render_frozen
@@ -137,7 +136,8 @@ def manifest(provenance: dict) -> dict:
 
 
 def read_manifest(directory: Path) -> dict:
-    return json.loads((Path(directory) / MANIFEST).read_text())
+    """The stored references' manifest (a :class:`~spinbounce.errors.FileFault` if it cannot be read)."""
+    return read_json(Path(directory) / MANIFEST, "references manifest")
 
 
 def regenerate(directory: Path = DEFAULT_DIR, progress=None) -> dict:

@@ -12,6 +12,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from ...errors import FileFault
 from ...pipeline import run_scene, run_series
 from ...records import write_atomic
 from .cases import ReferenceCase, Tolerance, tolerances_for
@@ -47,16 +48,25 @@ def write_table(table: pd.DataFrame, path: Path) -> None:
 
 
 def read_table(path: Path) -> pd.DataFrame:
-    """A stored table, every value parsed with ``float`` (exactly what was written)."""
-    with open(path, newline="") as handle:
-        rows = list(csv.reader(handle))
+    """A stored table, every value parsed with ``float`` (exactly what was written); a
+    :class:`~spinbounce.errors.FileFault` naming the file if it is unreadable, empty or corrupt."""
+    try:
+        with open(path, newline="") as handle:
+            rows = list(csv.reader(handle))
+    except UnicodeDecodeError:
+        raise FileFault(f"{path}: reference table is not text (a CSV file is expected)") from None
+    except (OSError, csv.Error) as exc:
+        raise FileFault(f"{path}: reference table cannot be read ({getattr(exc, 'strerror', None) or exc})") from None
     if not rows:
-        raise ValueError(f"{path}: empty reference table")
+        raise FileFault(f"{path}: empty reference table")
     header, body = rows[0], rows[1:]
     bad = [i + 2 for i, row in enumerate(body) if len(row) != len(header)]
     if bad:
-        raise ValueError(f"{path}: line {bad[0]} has a different number of fields than the header")
-    data = np.array([[float(x) for x in row] for row in body], dtype=float).reshape(len(body), len(header))
+        raise FileFault(f"{path}: line {bad[0]} has a different number of fields than the header")
+    try:
+        data = np.array([[float(x) for x in row] for row in body], dtype=float).reshape(len(body), len(header))
+    except ValueError as exc:
+        raise FileFault(f"{path}: a value of the reference table is not a number ({exc})") from None
     return pd.DataFrame(data, columns=header)
 
 
