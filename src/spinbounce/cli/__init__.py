@@ -74,9 +74,19 @@ def _failure(exc: BaseException, command: str) -> tuple[int, str]:
     return 2, f"{who}: error: {exc}\n"
 
 
+def _parse(parser: argparse.ArgumentParser, argv: list[str] | None) -> argparse.Namespace:
+    """The arguments; what no option of the command takes is refused by the command's own parser, so
+    that the message and its hint name the subcommand (spinbounce collide --help)."""
+    args, extra = parser.parse_known_args(argv)
+    if extra:
+        commands = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+        commands.choices[args.command].error(f"unrecognized arguments: {' '.join(extra)}")
+    return args
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
-    args = parser.parse_args(argv)
+    args = _parse(parser, argv)
     warnings.showwarning = _show_warning
     warnings.simplefilter("always", PhysicsWarning)
     try:

@@ -162,7 +162,8 @@ def state_parser(three_d: bool = True, optional: bool = False) -> argparse.Argum
     ``optional``: none has a default (a state that may be left out altogether)."""
     title = "initial state" + (" (3-D: v_s, omega_s, omega_n)" if three_d else "")
     title += " (optional)" if optional else ""
-    return _parent(title, parameters.STATE if three_d else parameters.STATE[:3],
+    title += "; the velocity as --vn and --vt, or --speed and --angle-deg"
+    return _parent(title, (parameters.STATE if three_d else parameters.STATE[:3]) + parameters.POLAR,
                    **({"default": None} if optional else {}))
 
 
@@ -181,10 +182,13 @@ def values_of(args: argparse.Namespace) -> dict:
     values = {}
     contact = getattr(args, "contact", None)
     given = getattr(args, "given_options", set())
-    for parameter in parameters.MODEL + parameters.STATE + parameters.SCENE + parameters.STATE_B:
+    polar = any(getattr(args, p.name, None) is not None for p in parameters.POLAR)
+    for parameter in parameters.MODEL + parameters.STATE + parameters.POLAR + parameters.SCENE + parameters.STATE_B:
         value = getattr(args, parameter.name, None)
         if parameter in parameters.MODEL and contact is not None and parameter.name not in given:
             continue  # a default: --contact sets it, or the model's default applies
+        if polar and parameter.name in ("v_n", "v_t") and parameter.name not in given:
+            continue  # the velocity is --speed and --angle-deg's: a default v_n or v_t is no clash
         if value is not None or parameter in parameters.MODEL:
             values[parameter.name] = value
     return values if contact is None else {**values, "contact": contact}

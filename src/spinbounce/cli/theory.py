@@ -29,14 +29,15 @@ def register(sub) -> None:
 def _keywords(args) -> dict:
     """The API's keywords: the model, the scene and, if given, the state (--r-omega as omega)."""
     values = values_of(args)
-    state = {name: values.pop(name) for name in ("v_n", "v_t", "omega", "v_s", "omega_s", "omega_n")
-             if name in values}
+    state = {name: values.pop(name) for name in ("v_n", "v_t", "omega", "v_s", "omega_s", "omega_n", "speed",
+                                                 "angle_deg") if name in values}
     if args.r_omega is not None:
         if "omega" in state:
             raise SceneError("r_omega", args.r_omega, "give --omega or --r-omega, not both")
         state["omega"] = args.r_omega / values["r"]
-    if state and "v_n" not in state:
-        raise SceneError("v_n", None, "a state needs --vn (and --vt, --omega; they default to 0)")
+    if state and not {"v_n", "speed", "angle_deg"} & state.keys():
+        raise SceneError("v_n", None, "a state needs --vn (and --vt, --omega; they default to 0), or --speed and "
+                                      "--angle-deg")
     return values | state
 
 
@@ -86,8 +87,11 @@ def run(args) -> int:
         with np.printoptions(precision=8, suppress=True, floatmode="fixed"):
             for row in report["matrix"]:
                 print("   ", row)
-        print(f"energy-conserving ratio kt/kn = alpha/(1+alpha) = {report['magic_kt_over_kn']:.10g} "
-              "(Omega = -2)")
+        if damped:  # the magic ratio conserves energy only without dashpots
+            print("energy: the dashpots dissipate it at every kt/kn (no energy-conserving ratio with damping)")
+        else:
+            print(f"energy-conserving ratio kt/kn = alpha/(1+alpha) = {report['magic_kt_over_kn']:.10g} "
+                  "(Omega = -2)")
     return 0
 
 

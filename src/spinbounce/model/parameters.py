@@ -19,7 +19,7 @@ from ..laws import (damping_coefficients, damping_parameter, normal_coefficients
 from ..laws.tangential.linear_history import KT, MU
 from ..laws.tangential.mindlin import MINDLIN_KT
 
-__all__ = ["finite_number", "positive_number", "Parameter", "MODEL", "STATE", "RUN", "SCENE", "STATE_B", "PAIR_SPHERE", "PAIR_ONLY", "ALL",
+__all__ = ["finite_number", "positive_number", "Parameter", "MODEL", "STATE", "POLAR", "velocity_from_polar", "RUN", "SCENE", "STATE_B", "PAIR_SPHERE", "PAIR_ONLY", "ALL",
            "by_name", "SceneError", "markdown_table"]
 
 
@@ -63,6 +63,26 @@ STATE: tuple[Parameter, ...] = (
     Parameter("omega_n", "spin about the wall's normal (3-D, LAMMPS's omega_z)", "1/time", 0.0,
               changes_outcome=False),
 )
+
+#: The velocity by its size and direction instead of v_n and v_t (collide, theory, the API and, as
+#: ranges, a sweep's states): the same names everywhere.
+POLAR: tuple[Parameter, ...] = (
+    Parameter("speed", "impact speed |v| (with angle_deg, instead of v_n and v_t)", "length/time", None, low=0.0,
+              low_open=True, optional=True, why="a sphere at rest never meets the wall", changes_outcome=False,
+              sweepable=False),
+    Parameter("angle_deg", "incidence angle from the wall's normal, in degrees, positive for v_t > 0 (with speed)",
+              "degree", None, low=-90.0, high=90.0, low_open=True, high_open=True, optional=True,
+              why="at 90 degrees or more the sphere never meets the wall", changes_outcome=False, sweepable=False),
+)
+
+
+def velocity_from_polar(speed, angle_deg):
+    """(v_n, v_t) of a sphere arriving at ``speed`` and ``angle_deg`` from the wall's normal (arrays too)."""
+    import numpy as np
+
+    angle = np.radians(angle_deg)
+    return -speed * np.cos(angle), speed * np.sin(angle)
+
 
 #: Sphere b's state at first touch in a pair (default: at rest), in sphere a's frame and sign: the
 #: normal runs along the line of centres from b to a (the wall's normal), the spins are signed as

@@ -195,8 +195,7 @@ class SweepSpec:
                 columns.append(np.random.Generator(bits).uniform(lo, hi, stop - start))
             arr = np.column_stack(columns)
         if "speed" in axes:
-            speed, angle = arr[:, 0], np.radians(arr[:, 1])
-            arr[:, 0], arr[:, 1] = -speed * np.cos(angle), speed * np.sin(angle)
+            arr[:, 0], arr[:, 1] = parameters.velocity_from_polar(arr[:, 0], arr[:, 1])
         for k, key in enumerate(axes):
             if key.startswith("r_"):  # spins given times r
                 arr[:, k] = arr[:, k] / self.groups[group]["r"]
