@@ -9,6 +9,8 @@ own estimate against the true error: an estimate below the error would be a fals
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pandas as pd
 import pytest
@@ -91,15 +93,34 @@ def test_the_accuracy_asked_of_the_ladder_is_relative_to_the_state(tmp_path):
     assert fast.error <= fast.step["estimate"] <= ACCURACY
 
 
-def test_a_ladder_whose_coarse_rung_fails_gives_way_to_one_probed_run(tmp_path):
-    """At |v_t| = 300 the ladder's coarsest rung loses its sphere (LAMMPS's "Lost atoms"): the default is
-    then one probed run, as before there was a ladder, within the accuracy, its rung folders removed."""
+def test_a_ladder_whose_coarse_rung_fails_gives_way_to_one_probed_run(tmp_path, monkeypatch):
+    """A coarsest rung that LAMMPS fails (here made to lose its sphere, as a rung too coarse for its
+    sphere's travel once did): the default is then one probed run, as before there was a ladder, within
+    the accuracy, its rung folders removed."""
+    from spinbounce import pipeline
+    from spinbounce.errors import LammpsError
+
+    run = pipeline._run
+
+    def losing_the_first_rung(scene, out_dir, *args):
+        if Path(out_dir).name == "level-0":
+            raise LammpsError("ERROR: Lost atoms: original 1 current 0", Path(out_dir) / "in.lammps")
+        return run(scene, out_dir, *args)
+
+    monkeypatch.setattr(pipeline, "_run", losing_the_first_rung)
     out = tmp_path / "fast"
-    report = spinbounce.collide(v_n=-1.0, v_t=300.0, gamma_t=1.0, out=out)
+    report = spinbounce.collide(v_n=-1.0, v_t=3.0, gamma_t=1.0, out=out)
     assert report.step["method"] == "probe" and report.status == "ok" and report.error <= ACCURACY
     assert not list(out.glob("level-*"))
-    rows = spinbounce.sweep(n=10, v_t=[250.0, 300.0], gamma_t=1.0, out=tmp_path / "sweep", workers=1)
+    rows = spinbounce.sweep(n=10, v_t=[2.5, 3.0], gamma_t=1.0, out=tmp_path / "sweep", workers=1)
     assert (rows["status"] == "ok").all() and rows["v_t_estimate"].isna().all()
+
+
+def test_a_fast_sliding_sphere_keeps_its_ladder(tmp_path):
+    """At |v_t| = 300 a coarse rung moves the sphere several box widths a step along the wall: the box is
+    made wide enough (LAMMPS maps an atom back by one period only), and the default ladder answers."""
+    report = spinbounce.collide(v_n=-1.0, v_t=300.0, gamma_t=1.0, out=tmp_path / "fast")
+    assert report.step["method"].startswith("extrapolated") and report.status == "ok" and report.error <= ACCURACY
 
 
 def test_resuming_chunks_written_without_the_estimates_is_refused(tmp_path):

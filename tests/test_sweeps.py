@@ -14,7 +14,7 @@ import pytest
 from spinbounce.fitting import fit_groups
 from spinbounce import checks
 from spinbounce.sweeps import SweepError, load_spec, read_results, run_sweep
-from spinbounce.sweeps.run import status_counts
+from spinbounce.sweeps import status_counts
 
 GOOD = """
 seed = 4

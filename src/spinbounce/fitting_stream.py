@@ -43,7 +43,7 @@ def _batches(files, columns, keys):
 
 def fit_dataset(files, names=None) -> list[dict]:
     """:func:`spinbounce.fitting.fit_groups` of the rows in ``files`` (Parquet), streamed."""
-    from .sweeps.run import chunk_files
+    from .sweeps.dataset import chunk_files
 
     files = chunk_files(Path(files)) if not isinstance(files, list) else files
     import pyarrow.parquet as pq

@@ -205,20 +205,6 @@ def _collide_pair(pair: _Pair, contact: ContactModel, state: dict, dt, tolerance
     return _pair_report(result.table.iloc[0].to_dict(), result.scene, out, result.step.record())
 
 
-def _velocity(v_n, v_t, speed, angle_deg, defaults) -> tuple:
-    """(v_n, v_t): as given, or from ``speed`` and ``angle_deg`` (:func:`parameters.velocity_from_polar`),
-    the one way or the other; what is not given takes ``defaults``."""
-    if speed is None and angle_deg is None:
-        return (defaults[0] if v_n is None else v_n), (defaults[1] if v_t is None else v_t)
-    if speed is None or angle_deg is None:
-        missing = "speed" if speed is None else "angle_deg"
-        raise parameters.SceneError(missing, None, "give speed and angle_deg together (or v_n and v_t)")
-    if v_n is not None or v_t is not None:
-        raise parameters.SceneError("speed", speed, "give v_n and v_t, or speed and angle_deg, not both")
-    speed, angle_deg = (p.check(value) for p, value in zip(parameters.POLAR, (speed, angle_deg), strict=True))
-    return tuple(float(x) for x in parameters.velocity_from_polar(speed, angle_deg))
-
-
 def collide(v_n: float | None = None, v_t: float | None = None, omega: float = 0.0, v_s: float = 0.0,
             omega_s: float = 0.0, omega_n: float = 0.0, *, speed: float | None = None, angle_deg: float | None = None,
             dt: float | None = None, tolerance: float | None = None, out: str | Path | None = None,
@@ -239,7 +225,7 @@ def collide(v_n: float | None = None, v_t: float | None = None, omega: float = 0
     from ..extrapolation import default_tolerance
 
     check_run_folder(out, force)
-    v_n, v_t = _velocity(v_n, v_t, speed, angle_deg, (-1.0, 1.0))
+    v_n, v_t = parameters.velocity(v_n, v_t, speed, angle_deg, (-1.0, 1.0))
     state = dict(zip(_STATE_NAMES, (v_n, v_t, omega, v_s, omega_s, omega_n), strict=True))
     contact, pair = _contact_and_pair(model_parameters)
     if pair is not None:
@@ -349,7 +335,7 @@ def theory(v_n: float | None = None, v_t: float | None = None, omega: float = 0.
     ``angle_deg``) the final state of that collision (``theory``), else the scattering matrix and what
     it rests on (or, where none exists, why not). With ``scene="pair"``: the planar pair theory's
     matrix of sphere a (b at rest), or one state's exact and planar outcomes."""
-    v_n, v_t = _velocity(v_n, v_t, speed, angle_deg, (v_n, 0.0))
+    v_n, v_t = parameters.velocity(v_n, v_t, speed, angle_deg, (v_n, 0.0))
     contact, pair = _contact_and_pair(model_parameters)
     state = dict(zip(_STATE_NAMES, (v_n, v_t, omega, v_s, omega_s, omega_n), strict=True))
     if pair is not None:

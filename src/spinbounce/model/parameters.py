@@ -19,7 +19,7 @@ from ..laws import (damping_coefficients, damping_parameter, normal_coefficients
 from ..laws.tangential.linear_history import KT, MU
 from ..laws.tangential.mindlin import MINDLIN_KT
 
-__all__ = ["finite_number", "positive_number", "Parameter", "MODEL", "STATE", "POLAR", "velocity_from_polar", "RUN", "SCENE", "STATE_B", "PAIR_SPHERE", "PAIR_ONLY", "ALL",
+__all__ = ["finite_number", "positive_number", "Parameter", "MODEL", "STATE", "POLAR", "velocity_from_polar", "velocity", "RUN", "SCENE", "STATE_B", "PAIR_SPHERE", "PAIR_ONLY", "ALL",
            "by_name", "SceneError", "markdown_table"]
 
 
@@ -82,6 +82,20 @@ def velocity_from_polar(speed, angle_deg):
 
     angle = np.radians(angle_deg)
     return -speed * np.cos(angle), speed * np.sin(angle)
+
+
+def velocity(v_n, v_t, speed, angle_deg, defaults) -> tuple:
+    """(v_n, v_t): as given, or from ``speed`` and ``angle_deg`` (:func:`velocity_from_polar`),
+    the one way or the other; what is not given takes ``defaults``."""
+    if speed is None and angle_deg is None:
+        return (defaults[0] if v_n is None else v_n), (defaults[1] if v_t is None else v_t)
+    if speed is None or angle_deg is None:
+        missing = "speed" if speed is None else "angle_deg"
+        raise SceneError(missing, None, "give speed and angle_deg together (or v_n and v_t)")
+    if v_n is not None or v_t is not None:
+        raise SceneError("speed", speed, "give v_n and v_t, or speed and angle_deg, not both")
+    speed, angle_deg = (p.check(value) for p, value in zip(POLAR, (speed, angle_deg), strict=True))
+    return tuple(float(x) for x in velocity_from_polar(speed, angle_deg))
 
 
 #: Sphere b's state at first touch in a pair (default: at rest), in sphere a's frame and sign: the

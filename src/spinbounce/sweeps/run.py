@@ -19,11 +19,10 @@ import shutil
 import sys
 import time
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .. import __version__, checks
+from .. import __version__
 from ..records import TEMP_SUFFIX
 from ..model import parameters
 from ..scenes.collision import Collision, scaled_contact_time
@@ -32,11 +31,7 @@ from ..exact import choose
 from .ladder import estimate_columns, extrapolates, ladder_columns, tolerance_of
 from .spec import SweepError, SweepSpec, spec_from_dict
 
-if TYPE_CHECKING:
-    import pandas as pd
-
-__all__ = ["run_sweep", "run_one_chunk", "chunk_table", "chunk_path", "read_results", "run_chunk", "write_chunk",
-           "status_counts"]
+__all__ = ["run_sweep", "run_one_chunk", "chunk_table", "chunk_path", "run_chunk", "write_chunk"]
 
 
 def chunk_path(out: Path, group: int, chunk: int) -> Path:
@@ -368,47 +363,3 @@ def chunk_table(spec: SweepSpec, out: Path | None = None) -> list[dict]:
              "path": str(chunk_path(Path("."), group, chunk)),
              **({} if out is None else {"done": chunk_path(Path(out), group, chunk).exists()})}
             for k, (group, chunk, start, stop) in enumerate(spec.chunks())]
-
-
-def status_counts(path: Path) -> dict[str, int]:
-    """How many rows of a sweep have each status (reads that one column only)."""
-    import pyarrow.compute as pc
-    import pyarrow.dataset as ds
-
-    table = ds.dataset(chunk_files(Path(path)), format="parquet").to_table(columns=["status"])
-    counted = {c["values"]: c["counts"] for c in pc.value_counts(table.column("status")).to_pylist()}
-    return checks.tally(counted)
-
-
-def chunk_files(path: Path) -> list[Path]:
-    """A sweep's chunk files, each checked to be a readable Parquet file of a sweep (from its
-    footer: the rows are not read), or a :class:`SweepError` naming the file. The one check of
-    what ``fit``, its figure and the status counts read."""
-    import pyarrow.parquet as pq
-
-    if (path / "chunks").is_dir():
-        path = path / "chunks"
-    files = sorted(path.glob("chunk-*.parquet")) if path.is_dir() else [path]
-    if not files or not files[0].exists():
-        raise SweepError(f"{path}: no chunk files (a sweep's output folder, or its chunks/ folder, is expected)")
-    for f in files:
-        try:
-            names = pq.read_schema(str(f)).names
-        except (OSError, ValueError) as exc:  # pyarrow's errors for a corrupt or foreign file
-            raise SweepError(f"{f}: not a readable sweep chunk ({exc})") from None
-        if "v_n_initial" not in names:
-            raise SweepError(f"{f}: a Parquet file, but not a spinbounce sweep's (no v_n_initial column)")
-    return files
-
-
-def read_results(path: Path) -> pd.DataFrame:
-    """A sweep's rows, from its output folder or its ``chunks`` dataset folder."""
-    import pandas as pd
-
-    frames = []
-    for f in chunk_files(Path(path)):
-        try:
-            frames.append(pd.read_parquet(f))
-        except (OSError, ValueError) as exc:  # a file whose footer reads and whose rows do not
-            raise SweepError(f"{f}: not a readable sweep chunk ({exc})") from None
-    return pd.concat(frames, ignore_index=True)

@@ -125,7 +125,8 @@ def hard_sphere(runs: Runs) -> Claim:
     slope = _loglog_slope(HARD_STIFFNESS, measured)
     r = ContactModel().r
     c = Claim("hard-sphere", "for a hard sphere-wall interaction tau = 2r/v_n(0)", "Sec. 4 after Eq. 16",
-              2 * r / HARD_SPEED, f"{g(measured[0], 4)} .. {g(measured[-1], 4)} (kn = 10 .. 1e4)",
+              f"2r/v_n(0) = {2 * r / HARD_SPEED:g} (r = {r:g}, v_n(0) = {HARD_SPEED:g}; negative)",
+              f"{g(measured[0], 4)} .. {g(measured[-1], 4)} (kn = 10 .. 1e4)",
               f"-> 0 as kn^{slope:.3f}", runs=names)
     agree = bool(np.all(np.abs(measured - exact) <= HERTZ_STEPS_TOL * steps))
     c.verdict = checked(agree, "ill-posed")
