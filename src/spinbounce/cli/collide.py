@@ -5,8 +5,8 @@ Parsing and printing only: the work is :func:`spinbounce.api.collide`.
 
 from __future__ import annotations
 
-from .options import (check_run_folder, model_parser, note, number, pair_parsers, print_json, state_cell,
-                      run_folder_flags, state_parser, values_of)
+from .options import (check_run_folder, model_parser, note, number, pair_parsers, print_json, run_folder_flags,
+                      shown_path, state_cell, state_parser, values_of)
 
 HELP = "bounce one sphere off the wall (or a second free sphere: --scene pair) in LAMMPS against the theory"
 PAIR_HELP = "collide sphere a with a free sphere b in LAMMPS (pair granular): collide --scene pair"
@@ -66,7 +66,7 @@ def run(args) -> int:
         _print_states(record, list(report.table.index), label_width=10)
         print(f"estimated error {record['estimate']:.2e} ({report.how} from the runs in "
               f"{report.path.parent})")
-        print(f"record: {report.path}")
+        print(f"record: {shown_path(report.path)}")
     else:
         omega_text = f"Omega = {report.Omega:.8g}" if report.Omega is not None else "no single Omega"
         print(f"collision: dt = {report.dt:.6g} ({report.nsteps} steps, contact time "
@@ -77,7 +77,8 @@ def run(args) -> int:
               f"(target {report.step['target']:g}; step: {report.step['method']}{estimate}); status {report.status}")
         for w in report.warnings:
             print(f"warning: {w}")
-        print(f"deck: {report.deck}\ndump: {report.dump}\nLAMMPS {report.lammps_version}")
+        dump = "none (its states passed in memory)" if report.dump is None else shown_path(report.dump)
+        print(f"deck: {shown_path(report.deck)}\ndump: {dump}\nLAMMPS {report.lammps_version}")
     return 0
 
 

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from .options import (check_run_folder, count, model_parser, model_values, note, number, print_json,
-                      run_folder_flags)
+                      run_folder_flags, shown_path)
 
 HELP = "hold a sphere in contact at height z (v_n = 0) and compare v_t(t), omega(t) with Eq. 10"
 
@@ -53,7 +53,7 @@ def run(args) -> int:
         q = r["parameters"]
         print(f"frozen contact: z = {q['z']:g}, dt = {q['dt']:.6g}, {q['nsteps']} steps, t_end = {q['t_end']:.6g}")
         print(f"largest |LAMMPS - theory| in v_t and r*omega: {r['max_abs_error']:.3e}")
-    print(f"wrote {report.csv} ({r['rows']} rows) and {report.record_path}")
+    print(f"wrote {shown_path(report.csv)} ({r['rows']} rows) and {shown_path(report.record_path)}")
     if args.tolerance is None:
-        print(f"deck: {r['deck']}\nLAMMPS {r['lammps_version']}")
+        print(f"deck: {shown_path(r['deck'])}\nLAMMPS {r['lammps_version']}")
     return 0

@@ -243,6 +243,17 @@ def note(line: str) -> None:
     print(line, file=sys.stderr, flush=True)
 
 
+def shown_path(path) -> str:
+    """A file the command made, as the user reads it: relative to the working folder when inside it."""
+    if path is None:
+        return "none"
+    path = Path(path)
+    try:
+        return str(path.resolve().relative_to(Path.cwd().resolve()))
+    except ValueError:
+        return str(path)
+
+
 def state_cell(value: float) -> str:
     """A velocity or r omega in a 16-wide column: ten decimals, or in exponent form beyond 1e5."""
     return f"{value:>16.10f}" if abs(value) < 1e5 else f"{value:>16.8e}"
