@@ -167,6 +167,7 @@ def test_every_figure_is_written_with_its_record(made):
         for key in RECORD_KEYS:
             assert key in on_disk, f"{name}: {key}"
         assert on_disk["files"] == {"png": png.name, "pdf": pdf.name}
+        assert on_disk["units"].startswith("units: LAMMPS lj")  # every figure says its units, in its corner too
         assert 0.0 < on_disk["max_deviation_exact"] < ACCEPTANCE
         for run in on_disk["runs"]:
             assert (out / run["run_dir"] / "in.lammps").is_file()

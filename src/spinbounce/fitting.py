@@ -308,11 +308,22 @@ def fit_groups(rows: pd.DataFrame) -> list[dict]:
     return fits
 
 
+def _group_title(params: dict) -> str:
+    """Every model parameter of a group, by name (LAMMPS lj units), for a panel's title."""
+    import textwrap
+
+    shown = [f"{k} = {v:g}" if isinstance(v, float) else f"{k} = {v}" for k, v in params.items()
+             if k != "dt" and not (isinstance(v, float) and math.isnan(v))]
+    return "\n".join(textwrap.wrap(", ".join(shown), 110))
+
+
 def plot_groups(rows: pd.DataFrame, path: Path) -> Path:
-    """Draw Eq. 19 per model group: LAMMPS's changes (points) and the theory's lines.
+    """Draw Eq. 19 per model group: LAMMPS's changes (points, on top) and the theory's lines (or,
+    with no single Omega, the theory sphere by sphere as rings around them).
 
     One row of two panels per group: Delta v_t and r Delta omega against the initial slip
-    u_dot(0) = v_t(0) + r omega(0). The format follows the suffix (.png or .pdf).
+    u_dot(0) = v_t(0) + r omega(0), in LAMMPS lj units; each title names every model parameter.
+    The format follows the suffix (.png or .pdf).
     """
     # Imported here so that fits, and everything else, work without drawing anything;
     # a bare Figure on the Agg canvas leaves pyplot's global backend alone.
@@ -322,30 +333,31 @@ def plot_groups(rows: pd.DataFrame, path: Path) -> Path:
     path = Path(path)
     keys = [k for k in GROUP_KEYS if k in rows]
     groups = list(rows.groupby(keys, dropna=False, sort=True))
-    fig = Figure(figsize=(8.0, 3.2 * len(groups)), layout="constrained")
+    fig = Figure(figsize=(8.0, 3.6 * len(groups)), layout="constrained")
     FigureCanvasAgg(fig)
-    axes = fig.subplots(len(groups), 2, squeeze=False)
-    for (values, group), (ax_vt, ax_rw) in zip(groups, axes, strict=True):
+    rows_of = np.atleast_1d(fig.subfigures(len(groups), 1))  # one per group, titled by its parameters
+    for (values, group), row in zip(groups, rows_of, strict=True):
+        ax_vt, ax_rw = row.subplots(1, 2)
         params = dict(zip(keys, values, strict=True))
         omegas = group["Omega_theory"].to_numpy()
         one_omega = bool(np.all(omegas == omegas[0]))  # NaN (Coulomb) or several (Hertz): per sphere
-        alpha, big_omega = params["alpha"], float(omegas[0]) if one_omega else math.nan
+        big_omega = float(omegas[0]) if one_omega else math.nan
         c_t, c_r = omega_gains(params)  # Eq. 19's (the pair's with b at rest)
         slip = (group["v_t_initial"] + group["r_omega_initial"]).to_numpy()
         line = np.array([slip.min(), slip.max()])
-        label = (f"$\\alpha$ = {alpha:g}, $k_t/k_n$ = {params['kt'] / params['kn']:g}, "
-                 + (f"$\\Omega$ = {big_omega:.5f}" if one_omega else "no single $\\Omega$"))
+        omega_text = f"$\\Omega$ = {big_omega:.5f}" if one_omega else "no single $\\Omega$"
+        row.suptitle(_group_title(params) + "; " + omega_text, fontsize="x-small")
         for ax, column, slope, name in ((ax_vt, "v_t", c_t * big_omega, r"$\Delta v_t$"),
                                         (ax_rw, "r_omega", c_r * big_omega, r"$r\,\Delta\omega$")):
             change = group[f"{column}_lammps"] - group[f"{column}_initial"]
-            ax.plot(slip, change, ".", ms=2, color="tab:blue", rasterized=True, label="LAMMPS")
-            if math.isnan(slope):  # no single Omega (Coulomb, Hertz): the theory sphere by sphere
+            if math.isnan(slope):  # no single Omega (Coulomb, Hertz): the theory sphere by sphere, ringed
                 expected = group[f"{column}_theory"] - group[f"{column}_initial"]
-                ax.plot(slip, expected, "x", ms=2, color="tab:red", rasterized=True, label="theory")
+                ax.plot(slip, expected, "o", ms=4, mfc="none", mew=0.6, color="tab:red", rasterized=True,
+                        label="theory", zorder=1)
             else:
-                ax.plot(line, slope * line, "-", lw=1, color="tab:red", label="Eq. 19")
-            ax.set(xlabel=r"$\dot u(0)$", ylabel=name, title=label)
-            ax.title.set_fontsize("small")
+                ax.plot(line, slope * line, "-", lw=1, color="tab:red", label="Eq. 19", zorder=1)
+            ax.plot(slip, change, ".", ms=1.5, color="tab:blue", rasterized=True, label="LAMMPS", zorder=2)
+            ax.set(xlabel=r"$\dot u(0)$ [length/time]", ylabel=name + " [length/time]")
         ax_vt.legend(loc="best", fontsize="small")
     path.parent.mkdir(parents=True, exist_ok=True)
     write_atomic_with(path, lambda tmp: fig.savefig(tmp, format=path.suffix.lstrip(".").lower(), dpi=150))

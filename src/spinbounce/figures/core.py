@@ -110,6 +110,20 @@ def new_figure(nrows: int = 1, ncols: int = 1, figsize=None, **subplots):
     return fig, axes
 
 
+#: What every figure's numbers are in, printed in its corner and recorded in its JSON.
+UNITS = "units: LAMMPS lj (mass, length and time as given: m, r, kn; velocities length/time, omega 1/time)"
+
+
+def _note_units(fig) -> None:
+    """:data:`UNITS` in the figure's bottom-left corner, in a strip its layout leaves free."""
+    engine = fig.get_layout_engine()
+    if engine is not None and hasattr(engine, "set") and "rect" in engine.get():
+        engine.set(rect=(0.0, 0.03, 1.0, 0.97))
+    else:
+        fig.subplots_adjust(bottom=max(fig.subplotpars.bottom, 0.12))
+    fig.text(0.003, 0.004, UNITS, ha="left", va="bottom", fontsize=5, color="0.45")
+
+
 def save(fig, out: Path, name: str, metadata: dict, started: float | None = None) -> FigureRecord:
     """Write ``name``.png, ``name``.pdf and ``name``.json into ``out``, each atomically.
 
@@ -120,6 +134,8 @@ def save(fig, out: Path, name: str, metadata: dict, started: float | None = None
     """
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
+    _note_units(fig)
+    metadata = {**metadata, "units": UNITS}
     png, pdf, meta = (out / f"{name}.{ext}" for ext in ("png", "pdf", "json"))
     write_atomic_with(png, lambda tmp: fig.savefig(tmp, format="png", metadata={"Software": None}))
     write_atomic_with(pdf, lambda tmp: fig.savefig(tmp, format="pdf", metadata={"CreationDate": None, "Creator": f"spinbounce {__version__}"}))
