@@ -67,6 +67,11 @@ def test_site_builds_strictly(tmp_path):
     for page in ("reference/cli/index.html", "reference/parameters/index.html", "reference/outputs/index.html",
                  "reference/scene-files/index.html", "reference/api/index.html"):
         assert (tmp_path / "site" / page).is_file(), page
+    # the math is MathML made at build time (docs/mathml.py): it renders offline, nothing is fetched
+    theory = (tmp_path / "site" / "theory" / "index.html").read_text()
+    assert theory.count("<math") > 100 and 'class="arithmatex"' not in theory
+    pages = [p.read_text() for p in (tmp_path / "site").rglob("*.html")]
+    assert not [p for p in pages if "mathjax" in p.lower() or "cdn.jsdelivr" in p]
 
 
 def _pattern(expected: str) -> re.Pattern:
