@@ -266,3 +266,20 @@ def test_chunk_jobs_and_a_whole_sweep_exclude_each_other(tmp_path):
         fcntl.flock(held, fcntl.LOCK_EX | fcntl.LOCK_NB)
         with pytest.raises(SweepError, match="already being run"):
             run_one_chunk(spec, out, 0)
+
+
+def test_workers_get_a_chunk_each_and_a_resume_keeps_the_chunks_begun(tmp_path):
+    # 2,000 collisions fit one default chunk: with two workers the sweep is cut in two, so neither idles;
+    # rerun with one worker, the folder's sweep is the same one (its chunks as begun), and nothing reruns
+    from spinbounce import api
+
+    raw = {"states": {"n": 2000, "v_n": [-1.5, -0.1], "v_t": [-2.0, 2.0], "r_omega": [-2.0, 2.0]}}
+    logged = []
+    api.run_sweep(raw, tmp_path / "s", workers=2, log=logged.append)
+    assert len(list((tmp_path / "s" / "chunks").glob("chunk-*.parquet"))) == 2 and "in 2 chunks" in logged[0]
+    again = []
+    api.run_sweep(raw, tmp_path / "s", workers=1, log=again.append)
+    assert again[0].split(":")[0] == logged[0].split(":")[0] and "2000 of 2000 collisions already done" in again[1]
+    alone = []
+    api.run_sweep(raw, tmp_path / "t", workers=1, log=alone.append)
+    assert "in 1 chunks" in alone[0]  # one worker: the default chunk

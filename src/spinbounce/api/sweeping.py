@@ -41,10 +41,13 @@ def run_sweep(spec, out: str | Path, *, workers: int = 1, force: bool = False, l
     from ..sweeps import run_sweep as run_chunks
     from ..sweeps.cost import sweep_seconds
 
+    from ..sweeps.run import spread_over
+
     if isinstance(spec, (str, Path)):
         spec = load_spec(spec)
     elif isinstance(spec, dict):
         spec = spec_from_dict(spec)
+    spec = spread_over(spec, workers, Path(out))  # chunks enough for the workers; a begun sweep's own
     seconds = sweep_seconds(spec)
     collisions = spec.n * len(spec.groups)
     if seconds > MAX_CORE_HOURS * 3600 and not force:

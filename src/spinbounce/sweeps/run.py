@@ -13,6 +13,7 @@ import concurrent.futures
 import contextlib
 import fcntl
 import json
+import math
 import multiprocessing
 import os
 import shutil
@@ -31,7 +32,7 @@ from ..exact import choose
 from .ladder import estimate_columns, extrapolates, ladder_columns, tolerance_of
 from .spec import SweepError, SweepSpec, spec_from_dict
 
-__all__ = ["run_sweep", "run_one_chunk", "chunk_table", "chunk_path", "run_chunk", "write_chunk"]
+__all__ = ["run_sweep", "run_one_chunk", "chunk_table", "chunk_path", "run_chunk", "write_chunk", "spread_over"]
 
 
 def chunk_path(out: Path, group: int, chunk: int) -> Path:
@@ -332,6 +333,30 @@ def _run_in_turn(spec: SweepSpec, out: Path, todo: list, bar) -> None:
             raise
         for f in pending:
             f.result()
+
+
+def spread_over(spec: SweepSpec, workers: int, out: Path) -> SweepSpec:
+    """The sweep with chunks enough for ``workers`` workers to be busy, where it has fewer and no chunk
+    size was given (each group cut into equal chunks); a sweep begun in ``out`` keeps the chunks it began
+    with, whatever ``workers`` is now (its record's description, when it is this one but for them)."""
+    from ..records import read_json
+
+    if spec.chunk_size is not None:
+        return spec
+    record = Path(out) / "sweep.json"
+    if record.exists():
+        begun = read_json(record, "sweep record").get("spec")
+        if isinstance(begun, dict) and _but_chunking(begun) == _but_chunking(spec.raw):
+            return spec_from_dict(begun)
+        return spec
+    if workers <= 1 or len(spec.chunks()) >= workers:
+        return spec
+    pieces = math.ceil(workers / len(spec.groups))
+    return spec_from_dict({**spec.raw, "chunk_size": min(min(spec.chunk_sizes), math.ceil(spec.n / pieces))})
+
+
+def _but_chunking(raw: dict) -> str:
+    return json.dumps({k: v for k, v in raw.items() if k != "chunk_size"}, sort_keys=True, default=str)
 
 
 def run_one_chunk(spec: SweepSpec, out: Path, k: int, log=print) -> Path:
