@@ -177,17 +177,18 @@ def unchanged_tangential(v_n: float, v_t: float, r_omega: float, tolerance: floa
     return check
 
 
-def paper_bounce(v_t: float, tolerance: float = 1e-4, kt: float = 1.0, kn: float = 10.0, alpha: float = 0.4):
-    """LAMMPS's final state at v_n = -1, omega = 0 is Eq. 18's, whatever the size of v_t (the matrix is linear):
-    Omega = cos(pi sqrt(kt/kn (1 + alpha)/alpha)) - 1, v_t' = v_t (1 + alpha Omega/(1 + alpha)), r omega' =
-    v_t Omega/(1 + alpha); within the default accuracy of the state's size."""
-    omega = math.cos(math.pi * math.sqrt(kt / kn * (1 + alpha) / alpha)) - 1.0
+def paper_bounce(v_t: float, r_omega: float = 0.0, tolerance: float = 1e-4, kt: float = 1.0, kn: float = 10.0,
+                 alpha: float = 0.4):
+    """LAMMPS's final state at v_n = -1 is Eq. 18's, whatever the size of the slip u = v_t + r omega (the
+    matrix is linear): Omega = cos(pi sqrt(kt/kn (1 + alpha)/alpha)) - 1, v_t' = v_t + alpha Omega u/(1 + alpha),
+    r omega' = r omega + Omega u/(1 + alpha); within the default accuracy of the state's size."""
+    omega, slip = math.cos(math.pi * math.sqrt(kt / kn * (1 + alpha) / alpha)) - 1.0, v_t + r_omega
 
     def check(stdout, folder):
-        final, size = json.loads(stdout)["lammps"], math.hypot(1.0, v_t)
+        final, size = json.loads(stdout)["lammps"], math.sqrt(1.0 + v_t**2 + r_omega**2)
         assert abs(final["v_n"] - 1.0) <= tolerance * size, final
-        assert abs(final["v_t"] - v_t * (1 + alpha * omega / (1 + alpha))) <= tolerance * size, final
-        assert abs(final["r_omega"] - v_t * omega / (1 + alpha)) <= tolerance * size, final
+        assert abs(final["v_t"] - (v_t + alpha * omega * slip / (1 + alpha))) <= tolerance * size, final
+        assert abs(final["r_omega"] - (r_omega + omega * slip / (1 + alpha))) <= tolerance * size, final
     return check
 
 

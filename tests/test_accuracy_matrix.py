@@ -141,3 +141,22 @@ def test_out_of_reach_is_refused_before_lammps(name):
 
 def test_the_matrix_has_at_least_forty_cases():
     assert len(ACCEPTED) + len(ACCEPTED_3D) + len(REFUSED) >= 40
+
+
+def test_rows_a_probe_missed_are_probed_again_but_a_sweeps_chunk_keeps_its_groups_step(tmp_path):
+    """mu = 3e4: a probe of the first states may choose a step that other states miss; a scene probed on
+    its own rows is probed again on those that erred and rerun within the target, while a scene given
+    its group's probe states (a sweep's chunk: every chunk of a group shares one step) keeps that step
+    and reports its rows. A grazing row, whose error is double precision's at any step, is not re-probed."""
+    model = ContactModel(mu=3e4)
+    easy = [(-1.0, 0.0, 0.0)] * 4
+    hard = [(-0.05, 3.0, 3.0), (-0.02, 3.0, -3.0), (-0.01, -2.5, 4.0)]
+    scene = Collision(model, **_states(easy + hard, three_d=False))
+    own = run_scene(scene, tmp_path / "own", atoms="library", record=False)
+    assert own.table["error"].max() <= ACCURACY and (own.table["status"] == "ok").all()
+    shared = run_scene(scene, tmp_path / "shared", atoms="library", record=False,
+                       probe_states=Collision(model, **_states(easy, three_d=False)))
+    assert shared.step.method == "probe" and shared.scene.dt >= own.scene.dt
+    grazing = Collision(ContactModel(mu=0.5), **_states([(-1.0, 0.3, 0.0), (-3e-12, 0.0, 0.0)] * 3, three_d=False))
+    result = run_scene(grazing, tmp_path / "grazing", atoms="library", record=False)
+    assert set(result.table["status"]) == {"ok", "grazing"}

@@ -116,7 +116,8 @@ def run_scene(scene, out_dir: Path, atoms: str | None = None, record: bool = Tru
     given, (scene, step) = scene, tune(scene, Path(out_dir) / "probe", _probe_errors, probe_states, target)
     deck, deck_path, info, columns, deviation = _run(scene, out_dir, atoms, runner, target, record)
     for attempt in range(RETUNES):  # the probe's step, chosen on a sample, may miss the target on the whole scene
-        finer = _finer(given, scene, step, columns, Path(out_dir) / f"probe-again-{attempt}", target)
+        folder = Path(out_dir) / f"probe-again-{attempt}"
+        finer = _finer(given, scene, step, columns, folder, target, own_probe=probe_states is None)
         if finer is None:
             break
         scene, step = finer
@@ -135,10 +136,11 @@ def run_scene(scene, out_dir: Path, atoms: str | None = None, record: bool = Tru
 RETUNES = 2
 
 
-def _finer(given, scene, step, columns: dict, out: Path, target: float):
+def _finer(given, scene, step, columns: dict, out: Path, target: float, own_probe: bool = True):
     """(scene, step) to run again when the probed step erred above ``target`` on rows it could reach: the
-    scene's fine rule if it has one, else the step a probe of the rows that erred asks for; None if none
-    is finer (each row's error is reported either way)."""
+    scene's fine rule if it has one, else (``own_probe``: the scene chose its step from its own rows) the
+    step a probe of the rows that erred asks for; None if none is finer (each row's error is reported
+    either way). A sweep's chunk keeps its group's step, which every chunk of the group shares."""
     worst = _worst(columns, given) if step.method.startswith("probe") else 0.0
     if worst <= target:
         return None
@@ -146,7 +148,9 @@ def _finer(given, scene, step, columns: dict, out: Path, target: float):
     if fine is not None:
         return (fine, replace(step, dt=fine.dt, method=f"{FALLBACK}; the probe's step erred {worst:.2g}",
                               predicted_error=None)) if fine.dt < scene.dt else None
-    erred = reachable(given)
+    if not own_probe:
+        return None
+    erred = _resolvable(columns, given)
     erred = erred[np.asarray(columns["error"])[erred] > target]
     again, choice = tune(given, out, _probe_errors, given.rows(erred), target)
     if again.dt >= scene.dt:
@@ -155,9 +159,17 @@ def _finer(given, scene, step, columns: dict, out: Path, target: float):
                                          f"{target:g} (it erred {worst:.2g})")
 
 
+def _resolvable(columns: dict, scene) -> np.ndarray:
+    """The rows a finer step can help: not beyond any affordable step's reach, nor grazing (their error is
+    double precision's, at every step)."""
+    rows = reachable(scene)
+    return rows[np.asarray(columns["status"])[rows] != "grazing"]
+
+
 def _worst(columns: dict, scene) -> float:
-    """The largest row error but on rows beyond any affordable step's reach (they err at every step)."""
-    return float(np.max(np.asarray(columns["error"])[reachable(scene)]))
+    """The largest row error but on rows no finer step helps (:func:`_resolvable`); 0 if there are none."""
+    rows = _resolvable(columns, scene)
+    return float(np.max(np.asarray(columns["error"])[rows])) if rows.size else 0.0
 
 
 def _run(scene, out_dir: Path, atoms, runner, target: float, durable: bool = True):

@@ -22,7 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .errors import SceneError
+from .errors import ResultError, SceneError
 from .model.timestep import ACCURACY, SAFETY, StepChoice, mid_step_dt
 
 __all__ = ["StepChoice", "tune", "reachable", "converge", "extrapolate", "expected_steps", "PROBE_SPHERES", "SAFETY",
@@ -79,7 +79,8 @@ def tune(scene, out: Path, run: Callable, probe_states=None, target: float = ACC
             break
         coarse_steps *= 2
     else:
-        raise RuntimeError(f"no probe of {scene.model} finished its contact within {coarse_steps} steps")
+        raise ResultError(f"no probe of this {scene.kind} scene finished its contact within {coarse_steps} steps "
+                          "(a contact LAMMPS cannot resolve: give a dt of your own, each row's error reported)")
     try:
         steps, order, predicted = converge(*pair, target, probe, limit=limit)
         if steps >= limit or predicted > target * SAFETY * CHECK_SLACK:  # the scene's fine rule, if it has one
@@ -125,6 +126,8 @@ def converge(coarse: tuple[int, float], fine: tuple[int, float], target: float, 
         measured = measure(steps)
         if measured <= bound:
             return steps, order, measured
+        if not math.isfinite(measured):  # that probe did not finish its contact: no trend to follow
+            break
         if steps < last[0]:  # coarser than a point that met SAFETY * target (a rough convergence): that point
             return last[0], order, last[1]
         previous, last = last, (steps, measured)

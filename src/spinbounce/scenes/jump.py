@@ -45,9 +45,14 @@ def near_the_jump(model, initial: np.ndarray) -> np.ndarray:
 
 
 def beyond_reach(model, initial: np.ndarray) -> np.ndarray:
-    """Per initial state, whether it lies between 1 and BEYOND_REACH times its law's jump."""
+    """Per initial state, whether it lies between 1 and BEYOND_REACH times its law's jump, or grazes: its
+    deepest overlap too small for double precision to resolve against r (checks.RESOLVABLE_OVERLAP_ULPS),
+    so that its error is rounding's at any step and a finer one only stalls the slow sphere."""
+    from ..checks import RESOLVABLE_OVERLAP_ULPS
+
+    grazing = model.max_overlap(np.abs(initial[:, 0])) < RESOLVABLE_OVERLAP_ULPS * np.spacing(model.r)
     ratio = _ratio(model, initial)
-    return np.zeros(len(initial), dtype=bool) if ratio is None else (ratio > 1.0) & (ratio < BEYOND_REACH)
+    return grazing if ratio is None else grazing | ((ratio > 1.0) & (ratio < BEYOND_REACH))
 
 
 def warn_near_the_jump(model, near: np.ndarray) -> None:

@@ -370,6 +370,7 @@ def run_one_chunk(spec: SweepSpec, out: Path, k: int, log=print) -> Path:
     if not 0 <= k < len(chunks):
         raise SweepError(f"chunk = {k}: must lie in [0, {len(chunks) - 1}] for this sweep ({len(chunks)} chunks)")
     group, chunk, start, stop = chunks[k]
+    _check_earlier(out, spec)  # before anything is written: a broken or foreign folder is left as it was
     (out / "chunks").mkdir(parents=True, exist_ok=True)
     final = chunk_path(out, group, chunk)
     with _lock(out / ".lock", shared=True, what="a whole sweep is writing into this folder"):

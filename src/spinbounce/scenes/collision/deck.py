@@ -63,7 +63,8 @@ def render_collision(scene, atoms: str | None = None, padding: Padding | None = 
     # room for the lifted start and for the flight away from the wall in the extra time
     fastest = float(np.max(np.abs(v_n)))
     headroom = float(np.max(padding.lift(v_n))) + fastest * (padding.before + padding.after)
-    reach = float(np.max(np.abs(v[:, :2]))) * scene.dt  # along the wall, in one step
+    # along the wall in one step, with all of r omega turned into sliding (a spin can leave as v_t)
+    reach = (float(np.max(np.abs(v[:, :2]))) + model.r * float(np.max(np.abs(w)))) * scene.dt
     ctx = common_context(model, zhi=4.0 * model.r + headroom, reach=reach)
     rigid = ctx["rigid"]
     # a rigid sphere (id k, type 1) holds half its mass, the point at its centre (id n + k, type 2,

@@ -54,6 +54,9 @@ class Frozen:
         if not 0.0 < z < m.r:
             raise SceneError("z", self.z, f"must lie in (0, r) = (0, {m.r:g}) to hold the sphere in contact")
         set_(self, "z", z)
+        if m.mu is not None and m.tangential_law.frozen_stiffness(m, m.r - z) == 0.0:
+            raise SceneError("kt", m.kt, "must be > 0 with a cap (mu) in the frozen contact: LAMMPS resets a "
+                                         "capped history to the force over the spring's stiffness")
         set_(self, "v_t", finite_number("v_t", self.v_t))
         set_(self, "omega", finite_number("omega", self.omega))
         set_(self, "t_end", positive_number("t_end", self.t_end))
