@@ -58,9 +58,6 @@ class Parameter:
     sweepable: bool = True
     changes_outcome: bool = True
     deck: str = ""
-    #: Where the default step's accuracy stops holding (a LAMMPS run beyond it needs a given dt).
-    default_step_high: float | None = None
-    default_step_why: str = ""
     #: Command-line flags besides the name with dashes (``gamma_n`` -> ``--gamma-n``); the first is shown.
     aliases: tuple[str, ...] = ()
     #: What a table holds for none: NaN (no value), or a number that means the same (mu: inf,
@@ -108,12 +105,6 @@ class Parameter:
         else:
             text = "any finite number"
         return text + (" or none" if self.optional else "")
-
-    def check_default_step(self, value) -> None:
-        """Refuse a value beyond which a run at the default step misses the default accuracy."""
-        if self.default_step_high is not None and value is not None and value > self.default_step_high:
-            raise SceneError(self.name, value, f"must be <= {self.default_step_high:g} at the default step "
-                                               f"({self.default_step_why})")
 
     def check(self, value, where: str | None = None):
         """``value`` as this parameter's type, or a :class:`SceneError` naming the limit."""

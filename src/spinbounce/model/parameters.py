@@ -148,7 +148,7 @@ def markdown_table(parameters=MODEL) -> str:
     rows = ["| parameter (flag) | meaning | unit | default | accepted | sweepable |", "|---|---|---|---|---|---|"]
     for p in parameters:
         default = "none" if p.default is None else str(p.default).lower() if p.kind == "flag" else p.default
-        accepted = p.range_text() + (f"; default step up to {p.default_step_high:g}" if p.default_step_high else "")
+        accepted = p.range_text()
         meaning = p.meaning.replace("|", "\\|")  # a table cell may not hold a bare |
         rows.append(f"| `{p.name}` (`{p.flag}`) | {meaning} | {p.unit} | {default} | {accepted} "
                     f"| {'yes' if p.sweepable else 'no'} |")
