@@ -177,13 +177,14 @@ FAULT_OPTIONS = ("--retries", "0", "--slurm-status-command", "squeue", "--latenc
 def faults(tmp_path_factory, site):
     """A finite-mu sweep started with a 1-minute limit per chunk, one chunk cancelled.
 
-    Chunks estimated at 300 s on one core (at least 140 s, as the estimate runs high): chunk 0
-    runs into its limit (SLURM kills it 60 to 90 s after its start), chunk 1 is cancelled
-    while it runs, chunk 2 (10 collisions) completes. Returns the folder, the scene, the
+    Chunks estimated at 600 s on one core (the estimate runs high: a chunk estimated at 300 s took
+    58 s on an idle core once the sweep got faster, inside SLURM's kill window; 600 s takes about
+    twice that): chunk 0 runs into its limit (SLURM kills it 60 to 90 s after its start), chunk 1 is
+    cancelled while it runs, chunk 2 (10 collisions) completes. Returns the folder, the scene, the
     running Snakemake, its output so far and the cancelled job's id.
     """
     workdir = tmp_path_factory.mktemp("faults")
-    size = fault_chunk_size(300.0)
+    size = fault_chunk_size(600.0)
     scene = workdir / "faults.toml"
     scene.write_text(MIXED_SCENE.replace("mu = [0.0, 0.5]", FAULT_MODEL)
                      .replace("chunk_size = 30", f"chunk_size = {size}").replace("n = 60", f"n = {2 * size + 10}"))
