@@ -125,7 +125,7 @@ FAULT_MODEL = "mu = 0.5\nkt = 100000.0"
 
 def fault_chunk_size(seconds: float) -> int:
     """Collisions of the fault sweep's model that the cost estimate puts at ``seconds`` on one
-    core (the estimate runs high by up to 2x: `spinbounce bench`)."""
+    core (the estimate runs high: for this capped model about 5x since this round's faster sweep)."""
     from spinbounce.sweeps.cost import chunk_cost
     from spinbounce.sweeps import spec_from_dict
 
