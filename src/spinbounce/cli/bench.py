@@ -41,6 +41,10 @@ def register(sub) -> None:
     p.add_argument("--n-pairs", type=pair_count, default=200, metavar="N",
                    help=f"impacts LAMMPS's pair-to-wall cost is measured over (1 to {MAX_PAIR_IMPACTS}; "
                         "default %(default)s)")
+    p.add_argument("--n-scenes", type=positive_count, default=None, metavar="N",
+                   help="collisions of each scene's sweep and of the frictionless sweeps set beside the bare "
+                        "engine and across workers (default: 20,000 to 100,000 a scene, 500 capped pairs, and "
+                        "800,000 frictionless; with --quick 100 capped pairs, 20,000 otherwise, 200,000 frictionless)")
     p.add_argument("--quick", action="store_true",
                    help="only what a user waits for, at small counts (under a minute): each scene's sweep beside "
                         "the bare engine, the frictionless sweep against it, two workers, start-up, damped steps")
@@ -68,7 +72,7 @@ def run(args) -> int:
 
     check_new_file(args.out, args.force, "--out", "--force")  # before minutes of measuring
     if args.quick:
-        waits = measure_waits(quick=True, seed=args.seed, workers=max(2, args.workers))
+        waits = measure_waits(quick=True, seed=args.seed, workers=max(2, args.workers), n=args.n_scenes)
         print("\n".join(wait_lines(waits)))
         write_atomic(args.out, to_json({"waits": waits, **software()}))
         print(f"report: {args.out}")
@@ -96,7 +100,7 @@ def run(args) -> int:
           f"{d['contact_only']['wall_seconds']:.2f} s vs {d['free_flight_and_dump_every_step']['wall_seconds']:.2f} s, "
           f"{d['ratio']:.1f}x")
     report["models"] = _print_models(args.n_models, args.seed, args.n_pairs)
-    report["waits"] = measure_waits(seed=args.seed, workers=max(2, args.workers))
+    report["waits"] = measure_waits(seed=args.seed, workers=max(2, args.workers), n=args.n_scenes)
     print("what a user waits for, beside the bare engine:\n" + "\n".join(wait_lines(report["waits"])))
     write_atomic(args.out, to_json(report))
     print(f"report: {args.out}")

@@ -67,14 +67,14 @@ def _scene_sweep(name: str, n: int, seed: int, root: Path) -> dict:
             "steps_per_collision": int(rows["nsteps"].max()), "max_error": float(rows["error"].max())}
 
 
-def scene_sweeps(quick: bool = False, seed: int = 0) -> list[dict]:
-    """Each of :data:`SCENES` swept end to end on one worker, beside the bare engine's seconds; with
-    each one's time per collision over the wall's (``over_wall``)."""
+def scene_sweeps(quick: bool = False, seed: int = 0, n: int | None = None) -> list[dict]:
+    """Each of :data:`SCENES` swept end to end on one worker (``n`` collisions each, or the table's),
+    beside the bare engine's seconds; with each one's time per collision over the wall's (``over_wall``)."""
     root = Path(tempfile.mkdtemp(prefix="spinbounce-bench-scenes-"))
     try:
         # untimed: the first sweep in a process also loads LAMMPS and the table code, which no ratio should carry
-        _scene_sweep("wall", 1000, seed, root / "warm-up")
-        out = [_scene_sweep(name, spec[3] if quick else spec[2], seed, root) for name, spec in SCENES.items()]
+        _scene_sweep("wall", min(n or 1000, 1000), seed, root / "warm-up")
+        out = [_scene_sweep(name, n or (spec[3] if quick else spec[2]), seed, root) for name, spec in SCENES.items()]
     finally:
         shutil.rmtree(root, ignore_errors=True)
     wall = out[0]["wall_seconds"] / out[0]["collisions"]
@@ -132,13 +132,15 @@ def damped_steps() -> dict:
             "damped_estimate": float(damped["estimate"]), "target": float(damped["target"])}
 
 
-def measure_waits(quick: bool = False, seed: int = 0, workers: int = 2) -> dict:
+def measure_waits(quick: bool = False, seed: int = 0, workers: int = 2, n: int | None = None) -> dict:
     """Everything :func:`wait_lines` prints: each scene's sweep beside the engine, the frictionless sweep
-    against the bare engine, ``workers`` workers against one, the help's start-up and the damped steps."""
+    against the bare engine, ``workers`` workers against one, the help's start-up and the damped steps.
+    ``n`` collisions for every sweep, or the counts of :data:`SCENES` and :data:`ENGINE_SWEEP`."""
     from .speed import parallel_efficiency
 
-    n = ENGINE_SWEEP[1] if quick else ENGINE_SWEEP[0]
-    return {"quick": quick, "scenes": scene_sweeps(quick, seed), "frictionless": sweep_against_engine(n, seed),
+    scenes = scene_sweeps(quick, seed, n)
+    n = n or (ENGINE_SWEEP[1] if quick else ENGINE_SWEEP[0])
+    return {"quick": quick, "scenes": scenes, "frictionless": sweep_against_engine(n, seed),
             "cores": parallel_efficiency(n=n, workers=workers, seed=seed), "help_seconds": help_seconds(),
             "damped": damped_steps()}
 
