@@ -18,6 +18,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+import examples
 from spinbounce.records import TEMP_SUFFIX
 from spinbounce.sweeps.cost import chunk_cost, job_request
 from spinbounce.sweeps import load_spec, read_results
@@ -249,3 +250,17 @@ def test_cancelled_and_timed_out_chunks_leave_nothing_and_a_rerun_finishes_them(
     assert len(rows) == spec.n and not rows.duplicated(["group", "index"]).any()
     assert sorted(rows["index"]) == list(range(spec.n))
     assert leftovers(out, scene) == []
+
+
+def test_the_readme_session_on_a_one_node_slurm(tmp_path, site):
+    """workflows/README.md's session on workflows/ci/slurm's cluster, as shown: up, a sweep through
+    sbatch, sacct on its jobs, down. Last in this file, since it stops the cluster (and starts it
+    again after, for whatever runs next)."""
+    if site != {"SPINBOUNCE_SLURM_PARTITION": "ci", "SPINBOUNCE_SLURM_ACCOUNT": "root"}:
+        pytest.skip(f"the README's session runs on workflows/ci/slurm's cluster (partition ci, account root), not {site}")
+    page = examples.Page("workflows/README.md", tmp_path, examples.base_env())
+    try:
+        assert page.run_blocks((WORKFLOW / "README.md").read_text(), {"slurm"}, only=True) == 1
+    finally:
+        subprocess.run([str(WORKFLOW / "ci" / "slurm"), "up"], check=True, capture_output=True, timeout=600)
+    assert (tmp_path / "results" / "mu" / "fit.txt").is_file()

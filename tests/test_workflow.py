@@ -13,6 +13,7 @@ import pandas as pd
 import pytest
 import yaml
 
+import examples
 from spinbounce.cli import main
 from spinbounce.fitting import GROUP_KEYS, plot_groups
 from spinbounce.sweeps.cost import chunk_cost, job_request
@@ -84,6 +85,17 @@ def test_workflow_runs_the_tiny_sweep_end_to_end(tmp_path):
     plan = snakemake(tmp_path, "--cores", "2", "--dry-run")
     assert plan.returncode == 0, plan.stderr[-3000:]
     assert job_counts(plan) == {"chunk": 1, "fit": 1, "figure": 1, "all": 1}
+
+
+@pytest.mark.slow
+@pytest.mark.lammps
+@pytest.mark.workflow
+def test_the_readme_examples_run_as_shown(tmp_path):
+    """workflows/README.md's examples, in order, in one folder: the tiny run on one machine, its files
+    and fit, the SLURM profile's plan and its refusals (the session on a real SLURM is test_slurm's)."""
+    env = {k: v for k, v in examples.base_env().items() if not k.startswith("SPINBOUNCE_SLURM_")}
+    page = examples.Page("workflows/README.md", tmp_path, env)
+    assert page.run_blocks((WORKFLOW / "README.md").read_text(), {"slow"}) == 6
 
 
 @pytest.mark.workflow
