@@ -142,6 +142,7 @@ def _tree(folder: Path) -> list[str]:
 
 def outputs_page() -> str:
     """Run one collision and a 16-sphere sweep now; list their files and columns."""
+    from spinbounce.outputs import MANIFEST
     from spinbounce.sweeps import read_results
 
 
@@ -166,6 +167,13 @@ def outputs_page() -> str:
         "## The sweep table's columns\n", "One row per collision. State names follow "
         "[units and signs](../getting-started/units-and-signs.md); a 3-D sweep adds `v_s`, `r_omega_s` and "
         "`r_omega_n` in each family of columns.\n", *table,
+        "\n## What is never replaced\n",
+        "A run's folder (`collide`, `frozen`, `pair --out`) that holds an earlier run, and a file that "
+        "`fit --plot` or `bench --out` names, are refused unless `--force`. The studies (`figures`, `claims`, "
+        "`accuracy`, `benchmarks`, `hertz`, `reproduce`, ...) write their figures, records and reports into "
+        f"`--out` and keep there `{MANIFEST}`, the names and SHA-256 digests of what they wrote: a rerun "
+        "refreshes its own files, and any other file of the same name (a user's, or one of theirs edited "
+        "since) is refused before anything runs, naming it, unless `--force`.",
     ]) + "\n"
 
 

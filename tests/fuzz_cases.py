@@ -345,6 +345,8 @@ FOUND_LATER = [
             files=("corrupt",)),
     refused("fit-plot-over-a-users-file", "fit corrupt --plot user.png", "--plot", "user.png", "--force",
             files=("corrupt", "user.png")),
+    refused("figures-over-a-users-image", "figures --only fig2 --out figout", "figout/fig2.png",
+            "not written by spinbounce", "--force", files=("figout-fig2.png",)),
     refused("bench-over-an-earlier-report", "bench --quick", "--out", "bench.json", "--force", files=("bench.json",)),
     refused("collide-mass-unresolved", f"collide {STATE} --mass 1e-300 --out c", "m = 1e-300", "last place"),
     refused("collide-vn-unresolved", "collide --vn -1e-20 --vt 0 --omega 0 --out c", "v_n = -1e-20", "last place"),

@@ -125,6 +125,7 @@ MAKERS = {
     "refs-ragged-table": _references(table=b"v_n,v_t\n1,2,3\n"),
     "user.png": _text("user.png", "the user's own image, not to be lost\n"),
     "bench.json": _text("bench.json", EARLIER),
+    "figout-fig2.png": _text("figout/fig2.png", "the user's own image, not to be lost\n"),
 }
 
 

@@ -31,6 +31,15 @@ class Product:
     what: str
     make: Callable[[Path, Path, Callable], dict]
     records: tuple[str, ...]
+    #: its reports beside the records; whether each record comes with a figure (<name>.png, .pdf)
+    reports: tuple[str, ...] = ()
+    drawn: bool = True
+
+    @property
+    def files(self) -> tuple[str, ...]:
+        """Every file it writes into its folder."""
+        kinds = ("png", "pdf", "json") if self.drawn else ("json",)
+        return tuple(f"{name}.{kind}" for name in self.records for kind in kinds) + self.reports
 
 
 def _paper_figures(out, runs, log):
@@ -40,9 +49,9 @@ def _paper_figures(out, runs, log):
 
 
 def _claims(out, runs, log):
-    from .studies.claims import evaluate_claims, write_claims
+    from .studies.claims import make_claims
 
-    _, record = write_claims(evaluate_claims(runs, log=log), out)
+    *_, record = make_claims(out, runs, log=log)
     return {"claims": json.loads(record.read_text())}
 
 
@@ -67,11 +76,13 @@ def _benchmarks(out, runs, log):
 PRODUCTS: tuple[Product, ...] = (
     Product("paper", "spinbounce figures", "the paper's figures 2-7 (fig2 ... fig7)", _paper_figures,
             tuple(f"fig{n}" for n in range(2, 8))),
-    Product("claims", "spinbounce claims", "the claims ledger, CLAIMS.md", _claims, ("claims",)),
+    Product("claims", "spinbounce claims", "the claims ledger, CLAIMS.md", _claims, ("claims",),
+            reports=("CLAIMS.md",), drawn=False),
     Product("benchmarks", "spinbounce benchmarks", "published validation cases, BENCHMARKS.md", _benchmarks,
-            ("benchmarks",)),
+            ("benchmarks",), reports=("BENCHMARKS.md",)),
     Product("hertz", "spinbounce hertz", "Hertzian contact time and scattering, HERTZ.md",
-            _figure("figures.hertz", "make_hertz"), ("hertz",)),
+            _figure("figures.hertz", "make_hertz"), ("hertz",),
+            reports=("HERTZ.md",)),
     Product("mindlin", "spinbounce reproduce --only mindlin", "Omega of LAMMPS's Mindlin springs against Poisson's ratio",
             _figure("figures.mindlin", "make_mindlin"), ("mindlin",)),
     Product("classic", "spinbounce classic --figure", "this build's classic wall against the paper's model",

@@ -89,8 +89,11 @@ def main(argv: list[str] | None = None) -> int:
     args = _parse(parser, argv)
     warnings.showwarning = _show_warning
     warnings.simplefilter("always", PhysicsWarning)
+    from ..outputs import replacing  # numpy comes with it: not before --help
+
     try:
-        return args.handler(args)
+        with replacing(getattr(args, "replace_outputs", False)):
+            return args.handler(args)
     except BrokenPipeError:  # `spinbounce theory | head`: the reader has gone, and that is fine
         sys.stdout = None
         return 0

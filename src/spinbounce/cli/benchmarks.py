@@ -40,13 +40,15 @@ def _pairs(out, as_json: bool) -> int:
     import tempfile
     from pathlib import Path
 
-    from ..records import software, to_json, write_atomic
+    from ..outputs import check_replaceable, write_output
+    from ..records import software, to_json
     from ..studies.validation.pair_cases import PAIR_BENCHMARKS, run_pair_benchmark
 
+    check_replaceable(Path(out) / "pair_benchmarks.json")
     with tempfile.TemporaryDirectory() as scratch:
         records = [run_pair_benchmark(bench, Path(scratch)) for bench in PAIR_BENCHMARKS.values()]
     Path(out).mkdir(parents=True, exist_ok=True)
-    path = write_atomic(Path(out) / "pair_benchmarks.json", to_json({"benchmarks": records, **software()}))
+    path = write_output(Path(out) / "pair_benchmarks.json", to_json({"benchmarks": records, **software()}))
     if as_json:
         return print_json(records, default=float)
     for r in records:

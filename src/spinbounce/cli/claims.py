@@ -18,10 +18,9 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    from ..studies.claims import evaluate_claims, write_claims
+    from ..studies.claims import make_claims
 
     print(f"checking the paper's claims (LAMMPS runs in {args.run_dir}):")
-    claims = evaluate_claims(args.run_dir)
-    md, js = write_claims(claims, args.out)
+    claims, md, js = make_claims(args.out, args.run_dir)
     print(f"claims: {md} and {js}")
     return 1 if any(c.verdict == "unresolved" for c in claims) else 0

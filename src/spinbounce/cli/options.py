@@ -315,6 +315,15 @@ def out_option(p: argparse.ArgumentParser, what: str) -> None:
     p.add_argument("--out", type=out_folder, default=FIGURES_OUT, metavar="DIR",
                    help=f"folder for {what} (default: %(default)s; the repository's stored ones are "
                         "updated only with --out figures)")
+    replace_flag(p)
+
+
+def replace_flag(p: argparse.ArgumentParser) -> None:
+    """--force of a command that writes into --out: replace files there that spinbounce did not write
+    (:mod:`spinbounce.outputs`), which are otherwise refused and kept."""
+    p.add_argument("--force", dest="replace_outputs", action="store_true",
+                   help="replace files in --out that spinbounce did not write, or that were changed since (they "
+                        "are otherwise refused and kept; spinbounce's own earlier outputs are refreshed anyway)")
 
 
 def figure_options(p: argparse.ArgumentParser) -> None:

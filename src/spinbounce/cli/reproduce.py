@@ -8,7 +8,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ..catalogue import LISTED, PRODUCTS, make, product_names
-from .options import name_list, out_folder
+from .options import name_list, out_folder, replace_flag
 
 if TYPE_CHECKING:
     from ..studies.claims import Claim
@@ -42,6 +42,7 @@ def register(sub) -> None:
                         "repository keeps its own in figures/)")
     p.add_argument("--run-dir", type=out_folder, default=Path("spinbounce-runs") / "reproduce", metavar="DIR",
                    help="LAMMPS run folders, one per product (default %(default)s)")
+    replace_flag(p)
     p.add_argument("--only", type=name_list("product", product_names), default=None, metavar="NAME[,NAME...]",
                    help=f"make only these products (from {', '.join(product_names())}); the claims are judged only "
                         "when 'claims' is among them")
@@ -51,11 +52,14 @@ def register(sub) -> None:
 def reproduce(out: Path, run_dir: Path, log=print, only=None) -> Reproduction:
     """Every product of :data:`spinbounce.catalogue.PRODUCTS` (``only``: those named) into ``out``,
     runs under ``run_dir``."""
+    from ..outputs import check_outputs
     from ..studies.claims import Claim
 
     started = time.perf_counter()
     records: dict[str, dict] = {}
-    for product in (p for p in PRODUCTS if only is None or p.name in only):
+    chosen = [p for p in PRODUCTS if only is None or p.name in only]
+    check_outputs(out, [file for product in chosen for file in product.files])  # before any product runs
+    for product in chosen:
         log(f"{product.name}: {product.what} -> {out}/")
         began = time.perf_counter()
         made = make(product, out, run_dir, log=log)

@@ -24,7 +24,8 @@ import pandas as pd
 from .. import __version__
 from ..exact import linear
 from ..pipeline import ResultError, RunResult, SeriesResult, run_scene, run_series, series_record
-from ..records import software, to_json, write_atomic, write_atomic_with
+from ..outputs import check_outputs, write_output, write_output_with
+from ..records import software, to_json, write_atomic
 from ..model.parameters import SceneError
 from ..scenes.collision import Collision
 from ..model.contact import ContactModel
@@ -136,13 +137,14 @@ def save(fig, out: Path, name: str, metadata: dict, started: float | None = None
     out.mkdir(parents=True, exist_ok=True)
     _note_units(fig)
     metadata = {**metadata, "units": UNITS}
-    png, pdf, meta = (out / f"{name}.{ext}" for ext in ("png", "pdf", "json"))
-    write_atomic_with(png, lambda tmp: fig.savefig(tmp, format="png", metadata={"Software": None}))
-    write_atomic_with(pdf, lambda tmp: fig.savefig(tmp, format="pdf", metadata={"CreationDate": None, "Creator": f"spinbounce {__version__}"}))
+    check_outputs(out, figure_files(name))  # all three refused before any is written
+    png, pdf, meta = (out / file for file in figure_files(name))
+    write_output_with(png, lambda tmp: fig.savefig(tmp, format="png", metadata={"Software": None}))
+    write_output_with(pdf, lambda tmp: fig.savefig(tmp, format="pdf", metadata={"CreationDate": None, "Creator": f"spinbounce {__version__}"}))
     if started is not None:
         metadata["runtime_seconds"] = time.perf_counter() - started
     record = {**metadata, "files": {"png": png.name, "pdf": pdf.name}}
-    write_atomic(meta, to_json(record))
+    write_output(meta, to_json(record))
     return FigureRecord(name, png, pdf, meta, record)
 
 
@@ -169,13 +171,20 @@ def default_runs(out: Path, runs: Path | None, name: str) -> Path:
     return folder
 
 
-def make(compute, draw, name: str, out: Path, runs: Path | None) -> FigureRecord:
-    """Run, tabulate (``compute``), draw from the tables only (``draw``) and save.
+def figure_files(name: str) -> tuple[str, str, str]:
+    """The files :func:`save` writes for figure ``name``: its PNG, PDF and JSON record."""
+    return tuple(f"{name}.{ext}" for ext in ("png", "pdf", "json"))
+
+
+def make(compute, draw, name: str, out: Path, runs: Path | None, also: tuple[str, ...] = ()) -> FigureRecord:
+    """Run, tabulate (``compute``), draw from the tables only (``draw``) and save; files of ``out`` it
+    would replace (the figure's, and ``also``) are checked first (:mod:`spinbounce.outputs`).
 
     Drawing and saving both happen inside the style: savefig reads rcParams too.
     """
     import matplotlib.style
 
+    check_outputs(out, figure_files(name) + also)
     started = time.perf_counter()
     data = compute(out, runs)
     with matplotlib.style.context(STYLE):

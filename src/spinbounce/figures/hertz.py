@@ -24,7 +24,7 @@ import pandas as pd
 
 from ..exact import hertz, linear
 from ..pipeline import ResultError, run_scene
-from ..records import write_atomic
+from ..outputs import write_output
 from ..scenes.collision import HERTZ_STEPS_PER_HALF_PERIOD, Collision
 from .hertz_parameters import OMEGA, V_T, HertzParameters
 from .core import (FigureData, FigureRecord, _relative, base_metadata, default_runs, dissipation_columns,
@@ -225,6 +225,6 @@ def make_hertz(out: Path, p: HertzParameters = HertzParameters(), runs: Path | N
             r["run_dir"] = _relative(r["run_dir"], out)
         return data
 
-    record = make(compute, draw_hertz, "hertz", out, runs)
-    write_atomic(Path(out) / "HERTZ.md", hertz_markdown(record.metadata))
+    record = make(compute, draw_hertz, "hertz", out, runs, also=("HERTZ.md",))
+    write_output(Path(out) / "HERTZ.md", hertz_markdown(record.metadata))
     return record

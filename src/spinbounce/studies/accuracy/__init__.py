@@ -50,5 +50,9 @@ __all__ = [
 
 def make_accuracy(out: Path, quick: bool = False, runs: Path | None = None, log=print) -> tuple[Study, dict]:
     """Run the study and write its files: what ``spinbounce accuracy`` does."""
+    from ...figures.core import figure_files
+    from ...outputs import check_outputs
+
+    check_outputs(out, (*figure_files("accuracy"), "ACCURACY.md"))
     study = run_study(quick=quick, runs=runs, log=log)
     return study, write_study(study, out)

@@ -11,7 +11,8 @@ import numpy as np
 import pandas as pd
 
 from ...model.contact import ContactModel
-from ...records import json_ready, write_atomic
+from ...outputs import write_output
+from ...records import json_ready
 from .cases import ANY, EDGE, FROZEN_T_END, MECHANISMS, MID
 from .orders import ERROR_FLOOR, FIT_LEVELS, TARGETS
 from .study import Study
@@ -275,5 +276,5 @@ def write_study(study: Study, out: Path) -> dict[str, Path]:
         fig = draw(study)
         saved = save(fig, out, "accuracy", json_ready(record))
     md = out / "ACCURACY.md"
-    write_atomic(md, markdown(study))
+    write_output(md, markdown(study))
     return {"png": saved.png, "pdf": saved.pdf, "json": saved.json, "markdown": md}

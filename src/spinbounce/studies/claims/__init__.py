@@ -15,12 +15,13 @@ import warnings
 from dataclasses import asdict
 from pathlib import Path
 
-from ...records import software, to_json, write_atomic
+from ...outputs import check_outputs, write_output
+from ...records import software, to_json
 from . import collisions, contact, damping, energy, frozen, nonlinear, pairs
 from .ledger import COLLISION_TOL, FROZEN_TOL, VERDICTS, Claim, Runs, g, verdict
 
 __all__ = ["CLAIMS", "COLLISION_TOL", "FROZEN_TOL", "VERDICTS", "Claim", "counts", "evaluate_claims",
-           "markdown", "verdict", "write_claims"]
+           "markdown", "verdict", "write_claims", "make_claims", "CLAIMS_FILES"]
 
 #: The claims, in the paper's order.
 CLAIMS = (
@@ -83,12 +84,24 @@ def markdown(claims: list[Claim], provenance: dict) -> str:
     return "\n".join(lines) + "\n"
 
 
+#: What :func:`write_claims` writes into its folder.
+CLAIMS_FILES = ("CLAIMS.md", "claims.json")
+
+
+def make_claims(out: Path, runs: Path, log=print) -> tuple[list[Claim], Path, Path]:
+    """Judge the claims (LAMMPS runs in ``runs``) and write :data:`CLAIMS_FILES` into ``out``; a file
+    there that spinbounce did not write is refused before anything runs."""
+    check_outputs(out, CLAIMS_FILES)
+    claims = evaluate_claims(runs, log=log)
+    return claims, *write_claims(claims, out)
+
+
 def write_claims(claims: list[Claim], out: Path) -> tuple[Path, Path]:
     """``CLAIMS.md`` and ``claims.json`` in ``out`` (atomic writes, with the software's provenance)."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     provenance = software()
-    md = write_atomic(out / "CLAIMS.md", markdown(claims, provenance))
-    js = write_atomic(out / "claims.json", to_json({"claims": [asdict(c) for c in claims], "verdicts": counts(claims),
+    md = write_output(out / CLAIMS_FILES[0], markdown(claims, provenance))
+    js = write_output(out / CLAIMS_FILES[1], to_json({"claims": [asdict(c) for c in claims], "verdicts": counts(claims),
                                                     "verdict_meanings": VERDICTS, **provenance}))
     return md, js

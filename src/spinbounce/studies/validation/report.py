@@ -14,7 +14,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ...records import json_ready, software, write_atomic
+from ...outputs import check_outputs, write_output
+from ...records import json_ready, software
 from .cases import select
 from .quantities import QUANTITIES, quantity, restitution, walton
 from .run import ACCEPTANCE, BenchmarkRun, run_benchmark
@@ -294,9 +295,10 @@ def make_benchmarks(out: Path, only: list[str] | None = None, runs: Path | None 
     """
     import matplotlib.style
 
-    from ...figures.core import STYLE, save
+    from ...figures.core import STYLE, figure_files, save
 
     chosen = select(only)
+    check_outputs(out, (*figure_files("benchmarks"), "BENCHMARKS.md"))
     started = time.perf_counter()
     with (nullcontext(runs) if runs is not None else
           tempfile.TemporaryDirectory(prefix="spinbounce-benchmarks-", ignore_cleanup_errors=True)) as root:
@@ -315,5 +317,5 @@ def make_benchmarks(out: Path, only: list[str] | None = None, runs: Path | None 
         fig = draw(results)
         saved = save(fig, out, "benchmarks", body, started)
     md = out / "BENCHMARKS.md"
-    write_atomic(md, markdown(results, meta))
+    write_output(md, markdown(results, meta))
     return results, {"png": saved.png, "pdf": saved.pdf, "json": saved.json, "markdown": md}
