@@ -30,8 +30,8 @@ import tomllib
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
-FENCE = re.compile(r"(?:<!-- example: (?P<kind>\w+) -->\n)?^(?P<indent> *)```(?P<info>[^\n]*)\n(?P<body>.*?)^(?P=indent)```$",
-                   re.M | re.S)
+FENCE = re.compile(r"(?:<!-- example: (?P<kind>\w+) -->\n)?"
+                   r"^(?P<indent> *)```(?P<info>[^\n]*)\n(?P<body>.*?)^(?P=indent)```$", re.M | re.S)
 #: Folders of the repository that examples read (workflows/, tests/reference/), linked into
 #: each page's working folder as if it were the repository's top folder.
 LINKED = ("workflows", "tests")

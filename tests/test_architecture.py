@@ -32,7 +32,7 @@ def _modules() -> dict[str, Path]:
 #: The errors a user sees and the unit of declaration import nothing; the exact references know
 #: nothing else; the contact laws' sub-models declare their coefficients and answer from the
 #: references; the model (parameters, contact law, step rule) only them; the engine (what
-#: decks share, runner, dumps, records, row checks, the step probe) knows no scene; each scene
+#: decks share, runner, dumps, records, the outputs writer, row checks, the step probe) knows no scene; each scene
 #: is a folder on the engine; the pipeline runs any scene; extrapolation is a run mode; sweeps and fits use all of that; studies and figures are made from
 #: sweeps and runs; the API and the catalogue of products call them; the CLI calls the API.
 LAYERS = (
@@ -40,7 +40,7 @@ LAYERS = (
     ("exact",),
     ("laws",),
     ("model",),
-    ("lammps", "records", "checks", "stepping"),
+    ("lammps", "records", "outputs", "checks", "stepping"),
     ("scenes",),
     ("pipeline",),
     ("extrapolation",),
