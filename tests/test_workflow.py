@@ -214,3 +214,11 @@ def test_fit_refuses_a_figure_format_it_cannot_write(capsys, tmp_path):
         main(["fit", str(tmp_path), "--plot", str(tmp_path / "slip.svg")])
     assert info.value.code == 2
     assert ".png or .pdf" in capsys.readouterr().err
+
+
+def test_the_readme_install_is_what_the_tests_install():
+    """workflows/README.md's one command not run as shown, `pip install -e ".[workflow]"`: CI installs
+    ".[test]" (README.md's test command), which must hold every package of the workflow extra."""
+    extras = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["optional-dependencies"]
+    assert 'python -m pip install -e ".[workflow]"' in (WORKFLOW / "README.md").read_text()
+    assert set(extras["workflow"]) <= set(extras["test"])
