@@ -53,21 +53,32 @@ def equivalent_alpha(m_a, alpha_a, m_b, alpha_b):
     return float(inside) if np.ndim(inside) == 0 else inside
 
 
+def _each_distinct(function, *args):
+    """``function`` (of numbers) over ``args`` broadcast together, evaluated once per distinct combination:
+    a batch's thousands of pairs share a few spheres and one law."""
+    arrays = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in args))
+    if arrays[0].size == 0:
+        return np.zeros(arrays[0].shape)
+    distinct, back = np.unique(np.stack([a.ravel() for a in arrays], axis=1), axis=0, return_inverse=True)
+    values = np.array([function(*row) for row in distinct.tolist()], dtype=float)
+    return values[back.ravel()].reshape(arrays[0].shape) + 0.0
+
+
 def contact_time(m_a, m_b, kn, gamma_n=0.0):
     """Eq. 16 with the reduced mass: pi sqrt(m*/kn) (its damped form when gamma_n > 0)."""
-    return np.vectorize(linear.collision_time)(reduced_mass(m_a, m_b), kn, gamma_n) + 0.0
+    return _each_distinct(linear.collision_time, reduced_mass(m_a, m_b), kn, gamma_n)
 
 
 def restitution(m_a, m_b, kn, gamma_n=0.0):
     """Normal restitution of the relative velocity (1 without damping)."""
-    return np.vectorize(linear.restitution)(reduced_mass(m_a, m_b), kn, gamma_n) + 0.0
+    return _each_distinct(linear.restitution, reduced_mass(m_a, m_b), kn, gamma_n)
 
 
 def Omega(m_a, alpha_a, m_b, alpha_b, kn, kt, gamma_t=0.0, gamma_n=0.0):
     """The pair's Omega: the wall's exact Omega of (m*, alpha_eq); cos(pi sqrt((kt/kn) m* K)) - 1
     without damping (Eq. 18's)."""
-    return np.vectorize(linear.Omega_exact)(reduced_mass(m_a, m_b), kn, kt,
-                                            equivalent_alpha(m_a, alpha_a, m_b, alpha_b), gamma_t, gamma_n) + 0.0
+    return _each_distinct(linear.Omega_exact, reduced_mass(m_a, m_b), kn, kt,
+                          equivalent_alpha(m_a, alpha_a, m_b, alpha_b), gamma_t, gamma_n)
 
 
 def _column(x):

@@ -40,29 +40,35 @@ def atom_type(kind: str, scale_class) -> int:
     return 3 * scale_class + {"free": 1, "rigid": 2, "point": 3}[kind]
 
 
+def _spheres(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Per-pair values of spheres a and b, interleaved: one row per sphere, a then b."""
+    return np.stack([a, b], axis=1).reshape(-1, *a.shape[1:])
+
+
 def render_pairs(batch) -> Deck:
     """The batch's deck, with its data file (and bodies file, if any sphere is a rigid body)."""
-    pairs = batch.deck_pairs
-    reach = max(max(abs(x) for x in (*p.v_a, *p.v_b)) for p in batch.pairs)
-    out_speed = max(float(np.max(np.abs(np.concatenate([o.v_a, o.v_b])))) for o in batch.exact)
+    c = batch.columns
+    reach = float(np.max(np.abs(_spheres(c["v_a"], c["v_b"]))))
+    out_speed = float(np.max(np.abs([(*o.v_a, *o.v_b) for o in batch.exact])))
     travel = math.sqrt(3.0) * max(reach, out_speed) * batch.nsteps * batch.dt
-    cell = 4.0 * (max(p.radsum for p in batch.pairs) + travel)
+    cell = 4.0 * (float(np.max(c["r_a"] + c["r_b"])) + travel)
     grid = math.ceil(round(batch.n ** (1.0 / 3.0), 9))
-    # every sphere, pair by pair (a then b), backed off from its first touch by its pair's lead
+    # every sphere, pair by pair (a then b), backed off from its first touch by its pair's lead; each pair
+    # at its time scale s (spinbounce.scenes.pair.pairs.time_scaled: masses times s^2, velocities over s)
     k = np.repeat(np.arange(batch.n), 2)
     centre = (np.column_stack([k % grid, (k // grid) % grid, k // grid**2]) + 0.5) * cell
-    spheres = [sphere for p in pairs for sphere in (p.a, p.b)]
-    place = np.array([r * np.asarray(p.normal) for p in pairs for r in (p.a.r, -p.b.r)])
-    v = np.array([vector for p in pairs for vector in (p.v_a, p.v_b)], dtype=float)
-    w = np.array([vector for p in pairs for vector in (p.w_a, p.w_b)], dtype=float)
+    scale = np.repeat(batch.time_scales, 2)
+    place = _spheres(c["r_a"][:, None] * c["normal"], -c["r_b"][:, None] * c["normal"])
+    v = _spheres(c["v_a"], c["v_b"]) / scale[:, None]
+    w = _spheres(c["w_a"], c["w_b"]) / scale[:, None]
     x = centre + place - np.repeat(batch.lead, 2)[:, None] * v
-    rigid = np.array([sphere.rigid for sphere in spheres])
+    rigid = _spheres(c["rigid_a"], c["rigid_b"]).astype(bool)
     of_class = np.repeat(batch.scale_classes[0], 2)
     # ids: the rigid spheres first, then their centre points in the same order, then the free ones
     nrigid, nfree = int(rigid.sum()), int((~rigid).sum())
     ids = np.empty(2 * batch.n, dtype=np.int64)
     ids[rigid], ids[~rigid] = np.arange(1, nrigid + 1), np.arange(2 * nrigid + 1, 2 * nrigid + nfree + 1)
-    mass, radius = np.array([sphere.m for sphere in spheres]), np.array([sphere.r for sphere in spheres])
+    mass, radius = _spheres(c["m_a"], c["m_b"]) * scale**2, _spheres(c["r_a"], c["r_b"])
     # a rigid sphere holds half its mass, its centre point (no spin of its own) the other half
     held = np.where(rigid, mass / 2, mass)
     atoms = Atoms(np.concatenate([ids, ids[rigid] + nrigid]),
@@ -70,7 +76,7 @@ def render_pairs(batch) -> Deck:
                                   atom_type("point", of_class[rigid])]),
                   np.concatenate([2 * radius, np.zeros(nrigid)]), np.concatenate([held, mass[rigid] / 2]),
                   np.vstack([x, x[rigid]]), np.vstack([v, v[rigid]]), np.vstack([w, np.zeros((nrigid, 3))]))
-    smallest = min(min(p.a.r, p.b.r) for p in batch.pairs)
+    smallest = float(np.min(radius))
     model = batch.pairs[0].equivalent_wall(batch.contact)  # the law's words are the wall's, after the types
     wall = wall_parameters(model)
     if batch.contact.mu is None:
@@ -88,7 +94,7 @@ def render_pairs(batch) -> Deck:
     box = ((0.0, grid * cell),) * 3
     files = {DATA_FILE: data_file(f"sphere pairs for {DECK_NAME}", atoms, 3 * len(scales), box)}
     if nrigid:
-        inertia = np.array([sphere.inertia for sphere in spheres])[rigid]
+        inertia = (_spheres(c["alpha_a"], c["alpha_b"]) * mass * radius**2)[rigid]
         files[BODIES_FILE] = bodies_file(ids[rigid], mass[rigid], x[rigid], inertia, v[rigid], w[rigid])
     text = render_template(
         Path(__file__).parent, "pair.lmp.j2", deck_name=DECK_NAME, npairs=batch.n, grid=grid, cell=cell,

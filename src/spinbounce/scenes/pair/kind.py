@@ -20,6 +20,7 @@ from ...model.contact import ContactModel
 from ...model.parameters import PAIR_ONLY, PAIR_SPHERE, STATE_B, SceneError, by_name
 from ...exact import pair as planar
 from ...exact.wall_law import Law
+from .pairs import along_z
 from .scene import Pair, PairContact, Sphere
 
 __all__ = ["pair_contact", "sphere_b", "state_b", "pairs_from_states", "wall_frame", "planar_matrix", "planar_Omega",
@@ -110,8 +111,7 @@ def pairs_from_states(model: ContactModel, b: Sphere, states: np.ndarray, b_stat
         k = int(leaving[0])
         raise SceneError("v_n - v_n_b", float(full[k, 0] - b_state[0]), "must be < 0: the spheres approach at first "
                                                                        "touch" + (f" (row {k})" if len(full) > 1 else ""))
-    v_b, w_b = lammps_vectors(*b_state)
-    return [Pair(a=a, b=b, v_a=v_a, w_a=w_a, v_b=v_b, w_b=w_b) for v_a, w_a in zip(*lammps_vectors(*full.T))]
+    return along_z(a, b, *lammps_vectors(*full.T), *lammps_vectors(*b_state))
 
 
 def planar_matrix(model: ContactModel, b: Sphere, three_d: bool = False) -> np.ndarray:

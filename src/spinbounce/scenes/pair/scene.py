@@ -33,7 +33,7 @@ from ...model.stability import overlap_stretch
 from ...model.timestep import MAX_STEPS, check_steps, steps_per_contact, steps_through
 from ..jump import beyond_reach, near_the_jump, warn_near_the_jump
 from .contact import PairContact
-from .pairs import Pair, Sphere, slip_speeds, time_scaled
+from .pairs import Pair, Sphere, slip_speeds, time_scaled  # noqa: F401 (time_scaled: exported)
 from .deck import PAIR_NO_CAP_MU, render_pairs
 
 __all__ = ["Sphere", "PairContact", "Pair", "PairBatch", "ALPHA_NVE_SPHERE", "PAIR_STEPS_PER_HALF_PERIOD",
@@ -170,9 +170,15 @@ class PairBatch:
         return index, values[used]
 
     @cached_property
-    def deck_pairs(self) -> tuple:
-        """The pairs as the deck runs them: each at its time scale."""
-        return tuple(p if s == 1.0 else time_scaled(p, float(s)) for p, s in zip(self.pairs, self.time_scales))
+    def columns(self) -> dict[str, np.ndarray]:
+        """The pairs as arrays: per sphere ``x`` of ``a`` and ``b``, its ``m_x``, ``r_x``, ``alpha_x`` and
+        ``rigid_x`` (N,) and its ``v_x`` and ``w_x`` (N, 3); and the ``normal`` (N, 3)."""
+        out = {k: np.array([getattr(p, k) for p in self.pairs], dtype=float).reshape(-1, 3)
+               for k in ("normal", "v_a", "v_b", "w_a", "w_b")}
+        for side in ("a", "b"):
+            spheres = [getattr(p, side) for p in self.pairs]
+            out |= {f"{k}_{side}": np.array([getattr(s, k) for s in spheres]) for k in ("m", "r", "alpha", "rigid")}
+        return out
 
     @cached_property
     def lead(self) -> np.ndarray:
