@@ -143,16 +143,17 @@ def _arrays(pairs) -> dict:
 
 
 def slip_speeds(pairs) -> np.ndarray:
-    """:meth:`Pair.slip_speed` of each of ``pairs``, at once."""
-    x = _arrays(pairs)
+    """:meth:`Pair.slip_speed` of each of ``pairs`` (or of their arrays, as :func:`_arrays` or
+    :attr:`.scene.PairBatch.columns` give them), at once."""
+    x = pairs if isinstance(pairs, dict) else _arrays(pairs)
     return np.linalg.norm(planar.slip_rate(x["normal"], x["v_a"], x["v_b"], x["w_a"], x["w_b"], x["r_a"], x["r_b"]),
                           axis=-1)
 
 
 def speeds(pairs) -> np.ndarray:
-    """:meth:`Pair.speed` of each of ``pairs``, at once."""
-    x = _arrays(pairs)
-    return np.maximum(np.linalg.norm(x["v_a"] - x["v_b"], axis=-1), slip_speeds(pairs))
+    """:meth:`Pair.speed` of each of ``pairs`` (or of their arrays: :func:`slip_speeds`), at once."""
+    x = pairs if isinstance(pairs, dict) else _arrays(pairs)
+    return np.maximum(np.linalg.norm(x["v_a"] - x["v_b"], axis=-1), slip_speeds(x))
 
 
 @functools.lru_cache(maxsize=1024)

@@ -106,8 +106,12 @@ class PairBatch:
 
     @cached_property
     def walls(self) -> tuple[ContactModel, ...]:
-        """Each pair's equivalent wall contact (:meth:`Pair.equivalent_wall`), built once."""
-        return tuple(p.equivalent_wall(self.contact) for p in self.pairs)
+        """Each pair's equivalent wall contact (:meth:`Pair.equivalent_wall`), built once per spheres."""
+        made: dict = {}
+        for p in self.pairs:  # a batch's pairs share a few sphere objects: looked up by identity first
+            if (id(p.a), id(p.b)) not in made:
+                made[id(p.a), id(p.b)] = p.equivalent_wall(self.contact)
+        return tuple(made[id(p.a), id(p.b)] for p in self.pairs)
 
     @cached_property
     def wall_groups(self) -> tuple[tuple[ContactModel, np.ndarray], ...]:
@@ -120,7 +124,8 @@ class PairBatch:
     @cached_property
     def impact_speeds(self) -> np.ndarray:
         """Each pair's impact speed |v_n| (its error's scale is :func:`.pairs.speeds`)."""
-        return np.array([abs(p.v_n) for p in self.pairs])
+        c = self.columns
+        return np.abs(np.einsum("mi,mi->m", c["v_a"] - c["v_b"], c["normal"]))
 
     def _fastest(self) -> list[tuple[ContactModel, int]]:
         """Each distinct equivalent wall with the index of its fastest pair."""
@@ -199,7 +204,7 @@ class PairBatch:
         fraction = ends - np.floor(ends)
         return 0.5 * (1.0 - fraction) * self.dt
 
-    @property
+    @cached_property
     def contact_times(self) -> np.ndarray:
         return np.array([o.contact_time for o in self.exact])
 

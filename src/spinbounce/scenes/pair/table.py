@@ -60,24 +60,26 @@ def _outcomes(outcomes) -> dict[str, np.ndarray]:
 
 def pair_table(batch, lammps: dict[str, np.ndarray] | None) -> pd.DataFrame:
     """The batch's table; without LAMMPS's final states, the references alone."""
-    pairs = batch.pairs
-    props = {k: np.array([p.properties()[k] for p in pairs]) for k in pairs[0].properties()}
+    c = batch.columns
+    props = {f"{k}_{side}": c[f"{k}_{side}"] for side in "ab" for k in ("m", "r", "alpha")}
     # the contact time: the planar theory's (Hookean, the force let pull), or each pair's own where it
     # depends on the speed or limit_damping cuts the force
     closed = not batch.contact.on_contact_radius and batch.contact.tensile
     tau = (planar.contact_time(props["m_a"], props["m_b"], batch.contact.kn, batch.contact.gamma_n) if closed
            else np.array([o.contact_time for o in batch.exact]))
-    v_t, v_n = np.array([p.v_t for p in pairs]), np.array([p.v_n for p in pairs])
+    v = c["v_a"] - c["v_b"]
+    v_n = np.einsum("mi,mi->m", v, c["normal"])
+    v_t = np.linalg.norm(v - v_n[:, None] * c["normal"], axis=1)
     columns = {"pair": np.arange(batch.n), **props, "v_n_relative": v_n, "v_t_relative": v_t,
-               "speed": speeds(pairs), "tau": tau,
+               "speed": speeds(c), "tau": tau,
                "contact_time": np.array([o.contact_time for o in batch.exact]),
                "eps": planar.line_turn(v_t, tau, props["r_a"], props["r_b"]),
                "centrifugal": planar.centrifugal_ratio(v_t, v_n, tau, props["r_a"], props["r_b"]),
                "turn": np.array([o.turn for o in batch.exact]), "time_scale": batch.time_scales}
     if batch.contact.mu is not None or not closed:  # no closed form: n held fixed, solved
-        theory = _outcomes(batch.contact.solve_all(pairs, planar=True))
+        theory = _outcomes(batch.contact.solve_all(batch.pairs, planar=True))
     else:
-        vectors = {k: np.array([p.vectors()[k] for p in pairs]) for k in ("n", "v_a", "v_b", "w_a", "w_b")}
+        vectors = {"n": c["normal"]} | {k: c[k] for k in ("v_a", "v_b", "w_a", "w_b")}
         predicted = planar.predict(**vectors, **props, **batch.contact.law())
         theory = dict(zip(("a_v", "b_v", "a_w", "b_w"), predicted))
     if lammps is not None:
@@ -105,7 +107,7 @@ def read_pairs(batch, deck: Deck, folder: Path) -> dict:
     if at_end != 2 * batch.n:
         raise ResultError(f"{dump}: {at_end} of {2 * batch.n} spheres at the end (lost atoms)")
     states = pair_states(batch, deck.ids, frames, batch.nsteps)
-    gap = np.linalg.norm(states["a_x"] - states["b_x"], axis=1) - np.array([p.radsum for p in batch.pairs])
+    gap = np.linalg.norm(states["a_x"] - states["b_x"], axis=1) - (batch.columns["r_a"] + batch.columns["r_b"])
     if np.any(gap <= 0.0):
         raise ResultError(f"{dump}: pair {int(np.argmin(gap))} still touches after {batch.nsteps} steps: the contact "
                           "had not finished")
