@@ -52,7 +52,7 @@ def read_dump(path: Path) -> pd.DataFrame:
         elif cols != columns:
             raise DumpError(f"{path}:{i + 9}: columns {cols} differ from the first frame's {columns}")
         frame = lines[i + 9 : i + 9 + natoms]
-        if len(frame) != natoms or any(row.startswith("ITEM:") for row in frame):
+        if len(frame) != natoms or "\nITEM:" in "\n" + "\n".join(frame):  # a row of the next frame's header
             raise DumpError(f"{path}: frame at step {step} is missing atoms (truncated file?)")
         body.extend(frame)
         steps.append(step)
@@ -65,8 +65,10 @@ def read_dump(path: Path) -> pd.DataFrame:
     else:
         out = pd.DataFrame({c: pd.Series(dtype=float) for c in columns})
     # NaN where LAMMPS itself wrote nan/inf (a blown-up run) is data; from a short row it is not
-    written_nan = any(("nan" in row.lower()) or ("inf" in row.lower()) for row in body)
-    if out.shape[1] != len(columns) or (out.isna().to_numpy().any() and not written_nan):
+    def written_nan() -> bool:  # looked at only where a value is missing
+        return any(("nan" in row.lower()) or ("inf" in row.lower()) for row in body)
+
+    if out.shape[1] != len(columns) or (out.isna().to_numpy().any() and not written_nan()):
         raise DumpError(f"{path}: rows do not have the {len(columns)} columns {columns}")
     out.insert(0, "step", np.repeat(np.asarray(steps, dtype=np.int64), counts))
     if "id" in out:

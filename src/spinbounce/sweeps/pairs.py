@@ -32,6 +32,7 @@ from ..scenes.pair.kind import pair_contact, pairs_from_states, wall_frame
 from ..scenes.pair.scene import PairBatch, Sphere
 from ..scenes.collision.table import SPINS
 from ..scenes.pair.table import QUANTITIES, pair_states
+from .pair_ladder import applies, ladder_steps, run_ladder
 
 __all__ = ["pair_chunk"]
 
@@ -62,15 +63,26 @@ def pair_chunk(model: ContactModel, b: Sphere, states: np.ndarray, dt: float | N
     a = pairs[0].a
     contact = pair_contact(model, b)
     probe = None if probe_states is None else PairBatch(tuple(pairs_from_states(model, b, probe_states)), contact)
-    result = run_scene(PairBatch(pairs, contact, dt), run_dir, record=False, probe_states=probe)
-    table, batch = result.table, result.scene
+    given = PairBatch(pairs, contact, dt)
+    steps = ladder_steps(probe or given, Path(run_dir) / "ladder-probe") if dt is None and applies(given) else None
+    if steps is None:
+        result = run_scene(given, run_dir, record=False, probe_states=probe)
+        table, run, method, nsteps, loop = result.table, result, result.step.method, result.scene.nsteps, \
+            result.info.loop_seconds
+    else:  # two aligned runs combined (sweeps.pair_ladder): the final states are the combination's
+        ladder = run_ladder(given, steps, run_dir)
+        table, run, method, nsteps = ladder.table, ladder.fine, ladder.method, ladder.nsteps
+        loop = ladder.coarse.info.loop_seconds + ladder.fine.info.loop_seconds
+    batch = run.scene
     requested = wall_frame(np.array([p.v_a for p in pairs]), np.array([p.w_a for p in pairs]), a.r)
     columns = {f"{name}_initial": requested[:, k] for k, name in enumerate(names)}
     columns.update({f"{SPINS[name]}_initial": columns[f"{name}_initial"] / a.r for name in names if name in SPINS})
-    frames = read_dump(result.dump)
-    for when, step in (("lammps_initial", 0), ("lammps", batch.nsteps)):  # a's state and height above b
-        state = pair_states(batch, result.deck.ids, frames, step)
+    frames = read_dump(run.dump)
+    for when, step in (("lammps_initial", 0), ("lammps", batch.nsteps)):  # a's height above b, and its state
+        state = pair_states(batch, run.deck.ids, frames, step)
         height = state["a_x"][:, 2] - state["b_x"][:, 2]
+        if when == "lammps":  # LAMMPS's final state as the run reports it (a ladder's: the combination)
+            state = {q: table[[f"a_{q[-1]}{x}" for x in "xyz"]].to_numpy() for q in ("a_v", "a_w")}
         columns.update(_a_columns(names, when, state["a_v"], state["a_w"], a.r, height))
     for suffix, when in (("_exact", "theory"), ("_planar", "planar")):
         v, w = (table[[f"a_{q}{x}{suffix}" for x in "xyz"]].to_numpy() for q in "vw")
@@ -82,5 +94,5 @@ def pair_chunk(model: ContactModel, b: Sphere, states: np.ndarray, dt: float | N
                 "status", "time_scale"):
         columns[key] = table[key].to_numpy()
     columns.update({q + suffix: table[q + suffix].to_numpy() for q in QUANTITIES for suffix in ("", "_exact", "_planar")})
-    columns["step_method"] = np.full(len(pairs), result.step.method, dtype=object)
-    return columns, batch.dt, batch.nsteps, result.info.loop_seconds
+    columns["step_method"] = np.full(len(pairs), method, dtype=object)
+    return columns, batch.dt, nsteps, loop

@@ -5,7 +5,7 @@ integrate."""
 from __future__ import annotations
 
 from collections import OrderedDict
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 
 import numpy as np
 
@@ -42,6 +42,14 @@ class PairContact:
 
     def __post_init__(self):
         checked(self, ("kn", "kt", "gamma_n", "gamma_t", "mu", "damping"))
+
+    def __hash__(self) -> int:  # in every pair's reference key (solve_all): computed once, not per key
+        if "_hash" not in self.__dict__:
+            self.__dict__["_hash"] = hash(tuple(getattr(self, f.name) for f in fields(self)))
+        return self.__dict__["_hash"]
+
+    def __getstate__(self) -> dict:  # the hash stays behind: a string's differs from process to process
+        return {k: v for k, v in self.__dict__.items() if k != "_hash"}
 
     def law(self) -> dict:
         """kn, kt, gamma_n and gamma_t, as the uncapped references and the planar theory take them (the
@@ -104,8 +112,8 @@ class PairContact:
         capped = bool(self.mu)  # a cap of zero: no tangential force (the capped solver divides by mu)
         law = self.reference_law() | ({"kt": 0.0, "gamma_t": 0.0} if self.mu == 0.0 else {})
         if self.batched:
-            columns = {k: np.array([p.vectors()[k] for p in pairs]) for k in pairs[0].vectors()}
-            columns |= {k: np.array([p.properties()[k] for p in pairs]) for k in pairs[0].properties()}
+            rows = [p.vectors() | p.properties() for p in pairs]
+            columns = {k: np.array([row[k] for row in rows]) for k in rows[0]}
             return pair_batch.solve(**columns, **{k: law[k] for k in self.law()}, planar=planar)
         if not capped:
             return [pair_exact.solve(**p.vectors(), **p.properties(), **law, planar=planar, tensile=self.tensile)

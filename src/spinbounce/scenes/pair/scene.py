@@ -236,16 +236,17 @@ class PairBatch:
     def row_states(self, columns: dict) -> checks.RowStates:
         """Both spheres' velocities and r times spins (LAMMPS's frame): LAMMPS's, the exact
         reference's and the initial ones; errors in units of each pair's speed."""
-        radii = {side: np.array([getattr(p, side).r for p in self.pairs])[:, None] for side in "ab"}
+        c = self.columns
+        radii = {side: c[f"r_{side}"][:, None] for side in "ab"}
 
         def states(suffix: str) -> np.ndarray:
             return np.column_stack([np.column_stack([columns[f"{side}_{q}{x}{suffix}"] for x in "xyz"])
                                     * (radii[side] if q == "w" else 1.0) for side in "ab" for q in "vw"])
 
-        initial = np.column_stack([np.array([getattr(p, f"{q}_{side}") for p in self.pairs])
-                                   * (radii[side] if q == "w" else 1.0) for side in "ab" for q in "vw"])
-        weights = np.column_stack([np.repeat([[getattr(p, side).m * (getattr(p, side).alpha if q == "w" else 1.0)]
-                                              for p in self.pairs], 3, axis=1) for side in "ab" for q in "vw"])
+        initial = np.column_stack([c[f"{q}_{side}"] * (radii[side] if q == "w" else 1.0)
+                                   for side in "ab" for q in "vw"])
+        weights = np.column_stack([np.repeat((c[f"m_{side}"] * (c[f"alpha_{side}"] if q == "w" else 1.0))[:, None], 3,
+                                             axis=1) for side in "ab" for q in "vw"])
         overlap = np.empty(self.n)
         for wall, index in self.wall_groups:
             overlap[index] = wall.max_overlap(self.impact_speeds[index])

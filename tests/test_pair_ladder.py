@@ -1,0 +1,61 @@
+"""A pair sweep's default: two aligned runs combined (sweeps.pair_ladder), within 1e-4 of the exact reference."""
+
+import numpy as np
+import pytest
+
+from spinbounce.exact import pair_exact
+from spinbounce.model.contact import ContactModel
+from spinbounce.scenes.pair.kind import pair_contact, pairs_from_states
+from spinbounce.scenes.pair.scene import PairBatch, Sphere
+from spinbounce.sweeps.pair_ladder import LONGEST, applies, ladder_steps, run_ladder
+from spinbounce.sweeps.pairs import pair_chunk
+
+pytestmark = pytest.mark.lammps
+
+#: The default accuracy: every row's error (|LAMMPS - exact| over the pair's speed) must reach it.
+ACCURACY = 1e-4
+
+
+def _states(n: int, seed: int = 5) -> np.ndarray:
+    rng = np.random.default_rng(seed)
+    return np.column_stack([rng.uniform(-1.5, -0.1, n), rng.uniform(-2.0, 2.0, n), rng.uniform(-4.0, 4.0, n)])
+
+
+def test_a_default_pair_chunk_combines_two_short_runs_within_the_accuracy(tmp_path):
+    model = ContactModel()
+    columns, dt, steps, _ = pair_chunk(model, Sphere(), _states(400), None, tmp_path)
+    assert columns["step_method"][0].startswith("extrapolated")
+    assert np.max(columns["error"]) <= ACCURACY and set(columns["status"]) == {"ok"}
+    # both runs together take fewer steps than one run of the plain rule (~1,400 at these radii)
+    assert steps < 2 * LONGEST
+
+
+def test_the_combination_is_nearer_the_truth_than_either_run(tmp_path):
+    """The combination removes the first-order error: each pair nearer the exact reference (solved here
+    one pair at a time by scipy, not by the batch that checks the rows) than its finer run."""
+    model, b = ContactModel(), Sphere()
+    batch = PairBatch(tuple(pairs_from_states(model, b, _states(60, seed=9))), pair_contact(model, b))
+    ladder = run_ladder(batch, 40, tmp_path)
+    law = batch.contact.law()
+    for k in range(0, batch.n, 6):
+        pair = batch.pairs[k]
+        exact = pair_exact.solve(**pair.vectors(), **pair.properties(), **law)
+        speed = ladder.columns["speed"][k]
+        combined = max(abs(ladder.columns[f"a_v{x}"][k] - exact.v_a[i]) for i, x in enumerate("xyz")) / speed
+        fine = max(abs(ladder.fine.columns[f"a_v{x}"][k] - exact.v_a[i]) for i, x in enumerate("xyz")) / speed
+        assert combined <= ACCURACY and combined < fine
+
+
+@pytest.mark.parametrize("law", [{"gamma_n": 0.5, "gamma_t": 0.5}, {"mu": 0.3}, {"alpha": 0.25}])
+def test_laws_it_was_not_measured_on_keep_the_plain_probe(law):
+    model = ContactModel(**law)
+    b = Sphere(alpha=law.get("alpha", Sphere().alpha))
+    assert not applies(PairBatch(tuple(pairs_from_states(model, b, _states(4))), pair_contact(model, b)))
+
+
+def test_the_probe_doubles_until_its_sample_is_within_half_the_accuracy(tmp_path):
+    model, b = ContactModel(), Sphere()
+    batch = PairBatch(tuple(pairs_from_states(model, b, _states(200, seed=3))), pair_contact(model, b))
+    steps = ladder_steps(batch, tmp_path)
+    assert steps is not None and steps <= LONGEST
+    assert np.max(run_ladder(batch, steps, tmp_path / "check").columns["error"]) <= ACCURACY
