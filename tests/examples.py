@@ -65,14 +65,15 @@ def console(body: str) -> list[tuple[str, str]]:
     pairs: list[list] = []
     going_on = False
     for line in body.splitlines():
+        command = going_on or line.startswith("$ ")
         if going_on:
             pairs[-1][0] += " " + line.strip().removesuffix("\\").strip()
-        elif line.startswith("$ "):
+        elif command:
             pairs.append([line[2:].removesuffix("\\").strip(), []])
         else:
             assert pairs, f"output before any command: {line!r}"
             pairs[-1][1].append(line)
-        going_on = line.endswith("\\")
+        going_on = command and line.endswith("\\")  # an output line may end in a backslash too
     return [(command, "\n".join(lines)) for command, lines in pairs]
 
 
@@ -92,8 +93,8 @@ class Page:
             self.env.update(word.split("=", 1) for word in argv[1:])
             return ""
         if argv[0] != "spinbounce":
-            done = subprocess.run(["bash", "-c", command], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                                  text=True, env={**self.env, "PYTHONUNBUFFERED": "1"}, cwd=self.folder)
+            done = subprocess.run(["bash", "-c", command], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                                  env={**self.env, "PYTHONUNBUFFERED": "1"}, cwd=self.folder, timeout=900)
             return done.stdout
         from spinbounce import cli
 

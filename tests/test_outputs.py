@@ -75,3 +75,15 @@ def test_the_products_list_every_file_the_stored_folder_holds():
     stored = {p.name for p in (Path(__file__).parents[1] / "figures").iterdir() if not p.name.startswith(".")}
     made = {f for p in PRODUCTS for f in p.files} | {*figure_files("accuracy"), "ACCURACY.md"}
     assert made == stored
+
+
+def test_figures_refuse_a_later_figures_file_before_the_first_runs(tmp_path):
+    from spinbounce.cli import main
+
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "fig7.png").write_text("my own picture\n")
+    with pytest.raises(SystemExit) as exited:
+        main(["figures", "--out", str(out)])
+    assert exited.value.code == 2
+    assert [p.name for p in out.iterdir()] == ["fig7.png"]  # fig2 to fig6 never ran: no runs/, no files

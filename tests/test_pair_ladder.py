@@ -56,6 +56,46 @@ def test_laws_it_was_not_measured_on_keep_the_plain_probe(law):
 def test_the_probe_doubles_until_its_sample_is_within_half_the_accuracy(tmp_path):
     model, b = ContactModel(), Sphere()
     batch = PairBatch(tuple(pairs_from_states(model, b, _states(200, seed=3))), pair_contact(model, b))
-    steps = ladder_steps(batch, tmp_path)
-    assert steps is not None and steps <= LONGEST
-    assert np.max(run_ladder(batch, steps, tmp_path / "check").columns["error"]) <= ACCURACY
+    steps, tau = ladder_steps(batch, tmp_path)
+    assert steps <= LONGEST and tau == np.median(batch.contact_times)
+    assert np.max(run_ladder(batch, steps, tmp_path / "check", contact_time=tau).columns["error"]) <= ACCURACY
+
+
+def test_every_chunk_of_a_group_runs_at_the_same_steps(tmp_path):
+    """The step comes from the group's states (the probe), not each chunk's own contact times: one fit
+    group per model group, as a plain probed step gives."""
+    model, b = ContactModel(), Sphere()
+    group = _states(600, seed=11)
+    dts = {pair_chunk(model, b, group[k::3], None, tmp_path / f"chunk{k}", probe_states=group)[1] for k in range(3)}
+    assert len(dts) == 1
+
+
+def test_a_stiff_spring_takes_a_finer_ladder_or_the_probe_not_a_refusal(tmp_path):
+    """kt = 15 (kt/kn 1.5): 40 steps per contact under-resolve its fastest mode, which the step's check
+    refuses; the ladder then starts finer, and the rows still reach the accuracy."""
+    columns, *_ = pair_chunk(ContactModel(kt=15.0), Sphere(), _states(200, seed=2), None, tmp_path)
+    assert np.max(columns["error"]) <= ACCURACY and set(columns["status"]) == {"ok"}
+
+
+def test_a_contact_shorter_than_a_step_keeps_the_finer_run_and_is_never_ok_unmeasured(tmp_path):
+    """Pairs grazing fast past each other end their contact within a step or two, where the two runs give
+    it the same count of steps: no expansion to combine. Their rows keep the finer run's state, every
+    state finite, and a row is 'ok' only where its measured error reaches the accuracy."""
+    rng = np.random.default_rng(1)
+    states = np.column_stack([rng.uniform(-1.5, -0.001, 400), rng.uniform(-5.0, 5.0, 400), rng.uniform(-4, 4, 400)])
+    model, b = ContactModel(), Sphere()
+    batch = PairBatch(tuple(pairs_from_states(model, b, states)), pair_contact(model, b))
+    ladder = run_ladder(batch, 40, tmp_path)
+    assert np.all(np.isfinite(ladder.columns["a_vx"])) and np.all(np.isfinite(ladder.columns["error"]))
+    ok = ladder.columns["status"] == "ok"
+    assert np.all(ladder.columns["error"][ok] <= ACCURACY)
+
+
+def test_a_row_whose_error_is_not_a_number_is_never_ok():
+    from spinbounce.checks import RowStates, add_row_checks
+
+    ones = np.ones((2, 3))
+    final = np.array([[1.0, 1.0, 1.0], [np.nan, 1.0, 1.0]])
+    columns: dict = {}
+    add_row_checks(columns, RowStates(ones, final, ones, ones, np.ones(2), np.ones(2), np.ones(2)))
+    assert list(columns["status"]) == ["ok", "inaccurate"]

@@ -256,8 +256,12 @@ def test_the_readme_session_on_a_one_node_slurm(tmp_path, site):
     """workflows/README.md's session on workflows/ci/slurm's cluster, as shown: up, a sweep through
     sbatch, sacct on its jobs, down. Last in this file, since it stops the cluster (and starts it
     again after, for whatever runs next)."""
-    if site != {"SPINBOUNCE_SLURM_PARTITION": "ci", "SPINBOUNCE_SLURM_ACCOUNT": "root"}:
-        pytest.skip(f"the README's session runs on workflows/ci/slurm's cluster (partition ci, account root), not {site}")
+    conf = Path("/etc/slurm/slurm.conf")
+    ours = conf.is_file() and "# written by spinbounce's workflows/ci/slurm" in conf.read_text()
+    if not ours or site != {"SPINBOUNCE_SLURM_PARTITION": "ci", "SPINBOUNCE_SLURM_ACCOUNT": "root"}:
+        # it stops the cluster: never a SLURM that workflows/ci/slurm did not set up
+        pytest.skip(f"the README's session runs on workflows/ci/slurm's own cluster (partition ci, account root): "
+                    f"{conf} is {'its' if ours else 'not its'}, and the site is {site}")
     page = examples.Page("workflows/README.md", tmp_path, examples.base_env())
     try:
         assert page.run_blocks((WORKFLOW / "README.md").read_text(), {"slurm"}, only=True) == 1

@@ -67,7 +67,7 @@ def add_row_checks(columns: dict, rows: RowStates, target: float = ACCURACY) -> 
     e0, e1 = _energy(rows.weights, rows.initial), _energy(rows.weights, rows.final)
     excess = (e1 - _energy(rows.weights, rows.reference)) / e0
     status = np.full(len(error), "ok", dtype=object)
-    status[error > target] = "inaccurate"
+    status[~(error <= target)] = "inaccurate"  # NaN too: a state no run reached is never ok
     # the most E(final) can move, over E(0), when each component errs by delta: by Cauchy-Schwarz,
     # sum w (x d + d^2/2) <= delta sqrt(W sum w x^2) + W delta^2/2, W = sum w
     delta = np.maximum(error, target) * rows.scale

@@ -61,8 +61,12 @@ def make_figures(out: Path, only: list[str] | None = None, log=print, runs: Path
     A figure whose largest deviation from the exact theory is not below 1e-4, or whose
     runs fail their checks, raises (pipeline.ResultError) rather than being drawn.
     """
+    from ..outputs import check_outputs
+    from .core import figure_files
+
     out = Path(out)
     names = check_names(FIGURES if only is None else only)
+    check_outputs(out, [file for name in names for file in figure_files(name)])  # before any figure runs
     records = []
     for name in names:
         record = figure_function(name)(out, None if runs is None else Path(runs) / name)

@@ -19,7 +19,8 @@ import numpy as np
 from ..model.contact import ContactModel
 from ..records import software
 from ..studies import classic_effect as effect
-from .core import STYLE, FigureRecord, new_figure, save
+from ..outputs import check_outputs
+from .core import STYLE, FigureRecord, figure_files, new_figure, save
 
 __all__ = ["compute", "draw", "make_classic"]
 
@@ -68,6 +69,7 @@ def draw(data: dict):
 def make_classic(out: Path, runs: Path, model: ContactModel | None = None, v_t: float = 1.0,
                  omega: float = 0.0) -> FigureRecord:
     """Compute, draw and save classic.{png,pdf,json} into ``out`` with provenance (LAMMPS runs in ``runs``)."""
+    check_outputs(out, figure_files("classic"))  # before its runs (spinbounce.outputs)
     started = time.perf_counter()
     data = compute((model or ContactModel()).replace(wall="classic"), v_t, omega, runs)
     metadata = {"figure": "classic", "title": "this build's classic wall against the paper's model",

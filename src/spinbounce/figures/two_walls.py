@@ -13,7 +13,8 @@ from ..exact import choose
 from ..model.contact import ContactModel
 from ..records import software
 from ..scenes.two_walls import TwoWalls, run_two_walls, theory_path
-from .core import STYLE, new_figure, save
+from ..outputs import check_outputs
+from .core import STYLE, figure_files, new_figure, save
 
 __all__ = ["make_figure", "figure_tables", "FIGURE_CASES"]
 
@@ -43,6 +44,7 @@ def figure_tables(runs: Path, bounces: int = FIGURE_BOUNCES) -> list[dict]:
 
 def make_figure(out: Path, runs: Path) -> dict:
     """figures/two_walls.png, .pdf, .json: the state's path over many bounces between two walls."""
+    check_outputs(out, figure_files("two_walls"))  # before its runs (spinbounce.outputs)
     started = time.perf_counter()
     cases = figure_tables(runs)
     with matplotlib.style.context(STYLE):

@@ -142,6 +142,10 @@ def fit_kharaz(starts=FIT_STARTS) -> dict:
 
 def make_figure(out: Path, runs: Path, points: int = 44) -> dict:
     """figures/restitution.png, .pdf, .json: the four maps, Kharaz's data and the fitted model."""
+    from ..figures.core import figure_files
+    from ..outputs import check_outputs
+
+    check_outputs(out, figure_files("restitution"))  # before its runs (spinbounce.outputs)
     import matplotlib.style
 
     from ..figures.core import STYLE, new_figure, save

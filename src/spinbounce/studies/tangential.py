@@ -172,6 +172,10 @@ def _draw_deviations(ax, sets: list[dict]) -> None:
 
 def make_figure(out: Path, runs: Path) -> dict:
     """figures/tangential.png, .pdf, .json: beta against the velocity ratio for every set."""
+    from ..figures.core import figure_files
+    from ..outputs import check_outputs
+
+    check_outputs(out, figure_files("tangential"))  # before its runs (spinbounce.outputs)
     import matplotlib.style
 
     from ..figures.core import STYLE, new_figure, save

@@ -35,6 +35,7 @@ import pandas as pd
 
 from .. import checks
 from ..lammps.decks import ALPHA_NVE_SPHERE
+from ..errors import SceneError
 from ..model.timestep import ACCURACY
 from ..pipeline import RunResult, run_scene
 from ..scenes.pair.scene import PairBatch
@@ -48,6 +49,8 @@ START, LONGEST = 40, 640
 MARGIN = 2.0
 #: The probe's sample: every k-th of the group's states beyond this many.
 SAMPLE = 256
+#: A pair whose two runs' steps differ by less than this ratio is not combined (the finer run's state).
+MIN_RATIO = 1.5
 
 
 def applies(batch: PairBatch) -> bool:
@@ -87,27 +90,39 @@ def _contact_time(batch: PairBatch) -> float:
     return float(np.median(batch.contact_times))
 
 
-def run_ladder(batch: PairBatch, steps: int, folder: Path, target: float = ACCURACY) -> Ladder:
-    """``batch`` at ``steps`` and twice as many steps per contact, aligned, combined and checked."""
-    tau = _contact_time(batch)
+def run_ladder(batch: PairBatch, steps: int, folder: Path, target: float = ACCURACY,
+               contact_time: float | None = None) -> Ladder:
+    """``batch`` at ``steps`` and twice as many steps per ``contact_time`` (by default its pairs' median),
+    aligned, combined and checked. A :class:`SceneError` if a rung's step is refused (too coarse)."""
+    tau = _contact_time(batch) if contact_time is None else contact_time
     coarse, fine = (run_scene(PairBatch(batch.pairs, batch.contact, tau / n, aligned=True), Path(folder) / f"n{n}",
                               record=False) for n in (steps, 2 * steps))
-    # each pair's step in its own time is dt over its time scale: r is their ratio, pair by pair
+    # each pair's step in its own time is dt over its time scale: r is their ratio, pair by pair. A contact
+    # shorter than a step or two has r far from 2 (1 when both runs give it the same count): no expansion
+    # to combine, so its row keeps the finer run's state, and its error says how far that is
     r = (coarse.scene.dt / coarse.scene.time_scales) / (fine.scene.dt / fine.scene.time_scales)
-    combined = {q: (r * fine.columns[q] - coarse.columns[q]) / (r - 1.0) for q in QUANTITIES}
+    usable = r > MIN_RATIO
+    combined = {q: np.where(usable, (r * fine.columns[q] - coarse.columns[q]) / np.where(usable, r - 1.0, 1.0),
+                            fine.columns[q]) for q in QUANTITIES}
     columns = {k: v.to_numpy() for k, v in pair_table(fine.scene, combined).items()}
     deviation = checks.add_row_checks(columns, fine.scene.row_states(columns), target)
     return Ladder(columns, coarse, fine, steps, deviation)
 
 
-def ladder_steps(sample: PairBatch, folder: Path, target: float = ACCURACY) -> int | None:
-    """The coarse run's steps per contact that bring the sample (every k-th row, at most :data:`SAMPLE`)
-    below ``target`` / :data:`MARGIN`; None if none up to :data:`LONGEST` does."""
+def ladder_steps(sample: PairBatch, folder: Path, target: float = ACCURACY) -> tuple[int, float] | None:
+    """(the coarse run's steps per contact, the contact time they divide: the median of ``sample``, the
+    group's states) that bring every k-th row of the sample (at most :data:`SAMPLE`) below ``target`` /
+    :data:`MARGIN`; None if none up to :data:`LONGEST` does. Every chunk of the group then runs at the same
+    two steps, as one probed step serves a group."""
+    tau = _contact_time(sample)
     rows = sample.rows(np.arange(0, sample.n, max(1, math.ceil(sample.n / SAMPLE))))
     steps = START
     while steps <= LONGEST:
-        found = run_ladder(rows, steps, Path(folder) / f"probe-{steps}", target)
-        if float(np.max(found.columns["error"])) <= target / MARGIN:
-            return steps
+        try:
+            found = run_ladder(rows, steps, Path(folder) / f"probe-{steps}", target, tau)
+        except SceneError:  # a rung too coarse for the stiffest mode (a large kt): finer
+            found = None
+        if found is not None and float(np.max(found.columns["error"])) <= target / MARGIN:
+            return steps, tau
         steps *= 2
     return None

@@ -32,6 +32,7 @@ from ..scenes.pair.kind import pair_contact, pairs_from_states, wall_frame
 from ..scenes.pair.scene import PairBatch, Sphere
 from ..scenes.collision.table import SPINS
 from ..scenes.pair.table import QUANTITIES, pair_states
+from ..errors import SceneError
 from .pair_ladder import applies, ladder_steps, run_ladder
 
 __all__ = ["pair_chunk"]
@@ -49,6 +50,18 @@ def _a_columns(names, when: str, v: np.ndarray, w: np.ndarray, r: float, height:
     return out
 
 
+def _ladder(given: PairBatch, probe: PairBatch | None, run_dir: Path):
+    """The chunk's two runs combined at the group's probed steps (:mod:`.pair_ladder`), or None where the
+    probe found none, or the chunk's stiffest pair refuses them: then the plain probe runs."""
+    chosen = ladder_steps(probe or given, run_dir / "ladder-probe")
+    if chosen is None:
+        return None
+    try:
+        return run_ladder(given, chosen[0], run_dir, contact_time=chosen[1])
+    except SceneError:
+        return None
+
+
 def pair_chunk(model: ContactModel, b: Sphere, states: np.ndarray, dt: float | None, run_dir: Path,
                probe_states: np.ndarray | None = None) -> tuple[dict, float, int, float]:
     """Run a chunk's pairs in one LAMMPS run; (columns, dt, steps, LAMMPS loop seconds).
@@ -64,13 +77,12 @@ def pair_chunk(model: ContactModel, b: Sphere, states: np.ndarray, dt: float | N
     contact = pair_contact(model, b)
     probe = None if probe_states is None else PairBatch(tuple(pairs_from_states(model, b, probe_states)), contact)
     given = PairBatch(pairs, contact, dt)
-    steps = ladder_steps(probe or given, Path(run_dir) / "ladder-probe") if dt is None and applies(given) else None
-    if steps is None:
+    ladder = _ladder(given, probe, Path(run_dir)) if dt is None and applies(given) else None
+    if ladder is None:
         result = run_scene(given, run_dir, record=False, probe_states=probe)
         table, run, method, nsteps, loop = result.table, result, result.step.method, result.scene.nsteps, \
             result.info.loop_seconds
     else:  # two aligned runs combined (sweeps.pair_ladder): the final states are the combination's
-        ladder = run_ladder(given, steps, run_dir)
         table, run, method, nsteps = ladder.table, ladder.fine, ladder.method, ladder.nsteps
         loop = ladder.coarse.info.loop_seconds + ladder.fine.info.loop_seconds
     batch = run.scene
