@@ -71,6 +71,10 @@ def test_bench_cli_writes_json(tmp_path, capsys):
     assert {s["scene"] for s in waits["scenes"]} == set(engine.SCENES)
     assert {s["collisions"] for s in waits["scenes"]} == {60} == {waits["frictionless"]["collisions"]}
     assert {m["collisions"] for m in report["models"]["sweeps"]} == {200}
+    # the pairs' classes: the sweep's two runs combined take fewer steps than one probed run of the same pairs
+    classes = report["models"]["pairs"]["batches"]
+    combined, plain = classes["default radii, two runs combined"], classes["default radii"]
+    assert combined["pair_steps"] < plain["pair_steps"] and combined["pair_max_error"] <= 1e-4
 
 
 @pytest.mark.slow

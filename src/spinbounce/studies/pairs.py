@@ -23,6 +23,7 @@ from ..pipeline import run_scene
 from ..exact import pair as planar
 from ..exact import pair_exact
 from ..scenes.pair import Pair, PairBatch, PairContact, Sphere
+from ..sweeps.pair_ladder import ladder_steps, run_ladder
 
 __all__ = ["cases", "validity_map", "pair_to_wall_cost", "cost_lines"]
 
@@ -105,8 +106,9 @@ def pair_to_wall_cost(n: int = 200, seed: int = 3, out_dir: Path | None = None) 
     of centres barely turns: where a fit may claim the planar matrix), the same states with the
     default radii 0.5 (eps up to 0.7), undamped and damped, and the 24 hard cases of :func:`cases`
     (repeated); each against the wall batch of its damping, at the step its probe chose
-    (:func:`.stepping.tune_pairs`; the probe's own runs are not counted). Every batch is
-    checked against its reference, so each cost is at the accuracy its rows reach.
+    (:func:`.stepping.tune_pairs`; the probe's own runs are not counted); and the default radii
+    as a sweep runs them, two aligned runs combined (:mod:`spinbounce.sweeps.pair_ladder`: both runs
+    counted). Every batch is checked against its reference, so each cost is at the accuracy its rows reach.
     """
     small, wall_states = _sweep_pairs(n, 5e3, seed)
     default = _sweep_pairs(n, 0.5, seed)[0]
@@ -123,14 +125,26 @@ def pair_to_wall_cost(n: int = 200, seed: int = 3, out_dir: Path | None = None) 
         for name, (pairs, gamma_n) in batches.items():
             pair = run_scene(PairBatch(pairs, PairContact(gamma_n=gamma_n)), where / name.replace(" ", "-").replace(",", ""),
                              record=False)
-            per_pair, per_wall = pair.info.loop_seconds / n, walls[gamma_n].info.loop_seconds / n
-            out["batches"][name] = {
-                "pair_seconds_per_collision": per_pair, "pair_to_wall": per_pair / per_wall,
-                "pair_to_wall_per_step": (per_pair / pair.scene.nsteps) / (per_wall / walls[gamma_n].scene.nsteps),
-                "pair_steps": pair.scene.nsteps, "wall_steps": walls[gamma_n].scene.nsteps,
-                "wall_max_error": walls[gamma_n].max_abs_error, "step": pair.step.record(),
-                "max_eps": float(pair.table["eps"].max()), "pair_max_error": pair.max_error}
+            out["batches"][name] = _against(walls[gamma_n], n, pair.info.loop_seconds, pair.scene.nsteps,
+                                            pair.step.record(), pair.columns)
+        # the default radii as a sweep runs them: two aligned runs combined (spinbounce.sweeps.pair_ladder)
+        batch = PairBatch(default, PairContact())
+        chosen = ladder_steps(batch, where / "ladder-probe")
+        if chosen is not None:
+            ladder = run_ladder(batch, chosen[0], where / "ladder", contact_time=chosen[1])
+            seconds = ladder.coarse.info.loop_seconds + ladder.fine.info.loop_seconds
+            out["batches"]["default radii, two runs combined"] = _against(wall, n, seconds, ladder.nsteps,
+                                                                          {"method": ladder.method}, ladder.columns)
     return out
+
+
+def _against(wall, n: int, seconds: float, steps: int, step: dict, columns: dict) -> dict:
+    """A pair batch's LAMMPS ``seconds`` over ``steps`` beside ``wall``'s, per collision and per step."""
+    per_pair, per_wall = seconds / n, wall.info.loop_seconds / n
+    return {"pair_seconds_per_collision": per_pair, "pair_to_wall": per_pair / per_wall,
+            "pair_to_wall_per_step": (per_pair / steps) / (per_wall / wall.scene.nsteps), "pair_steps": steps,
+            "wall_steps": wall.scene.nsteps, "wall_max_error": wall.max_abs_error, "step": step,
+            "max_eps": float(np.max(columns["eps"])), "pair_max_error": float(np.max(columns["error"]))}
 
 
 def cost_lines(report: dict) -> list[str]:
