@@ -132,9 +132,8 @@ def pair_to_wall_cost(n: int = 200, seed: int = 3, out_dir: Path | None = None) 
         chosen = ladder_steps(batch, where / "ladder-probe")
         if chosen is not None:
             ladder = run_ladder(batch, chosen[0], where / "ladder", contact_time=chosen[1])
-            seconds = ladder.coarse.info.loop_seconds + ladder.fine.info.loop_seconds
-            out["batches"]["default radii, two runs combined"] = _against(wall, n, seconds, ladder.nsteps,
-                                                                          {"method": ladder.method}, ladder.columns)
+            out["batches"]["default radii, two runs combined"] = _against(
+                wall, n, ladder.result.info.loop_seconds, ladder.nsteps, ladder.result.step.record(), ladder.columns)
     return out
 
 

@@ -27,19 +27,18 @@ run: ``error`` and ``status`` say how far each combined row is from the truth.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
-import pandas as pd
 
 from .. import checks
 from ..lammps.decks import ALPHA_NVE_SPHERE
 from ..errors import SceneError
-from ..model.timestep import ACCURACY
+from ..model.timestep import ACCURACY, StepChoice
 from ..pipeline import RunResult, run_scene
 from ..scenes.pair.scene import PairBatch
-from ..scenes.pair.table import QUANTITIES, pair_table
+from ..scenes.pair.table import QUANTITIES
 
 __all__ = ["applies", "ladder_steps", "run_ladder", "Ladder", "START", "LONGEST", "MARGIN"]
 
@@ -63,27 +62,22 @@ def applies(batch: PairBatch) -> bool:
 
 @dataclass(frozen=True)
 class Ladder:
-    """The combined run: its checked ``columns`` (the extrapolated final states as LAMMPS's), its two
-    runs (``coarse``, ``fine``), the coarse run's steps per contact and the largest deviation."""
+    """The combined run as any run's result (``result``: the finer run's scene, deck and dump, the
+    combination's checked columns, both runs' LAMMPS seconds, how its steps were chosen), and its two
+    runs (``coarse``, ``fine``)."""
 
-    columns: dict
+    result: RunResult
     coarse: RunResult
     fine: RunResult
-    steps_per_contact: int
-    deviation: float
 
     @property
-    def table(self) -> pd.DataFrame:
-        return pd.DataFrame(self.columns)
+    def columns(self) -> dict:
+        return self.result.columns
 
     @property
     def nsteps(self) -> int:
+        """LAMMPS steps of both runs."""
         return self.coarse.scene.nsteps + self.fine.scene.nsteps
-
-    @property
-    def method(self) -> str:
-        return (f"extrapolated (2 runs, {self.steps_per_contact} and {2 * self.steps_per_contact} steps per "
-                "contact; spinbounce.sweeps.pair_ladder)")
 
 
 def _contact_time(batch: PairBatch) -> float:
@@ -104,9 +98,14 @@ def run_ladder(batch: PairBatch, steps: int, folder: Path, target: float = ACCUR
     usable = r > MIN_RATIO
     combined = {q: np.where(usable, (r * fine.columns[q] - coarse.columns[q]) / np.where(usable, r - 1.0, 1.0),
                             fine.columns[q]) for q in QUANTITIES}
-    columns = {k: v.to_numpy() for k, v in pair_table(fine.scene, combined).items()}
+    columns = {**fine.columns, **combined}  # the references are the finer run's; the checks are redone
     deviation = checks.add_row_checks(columns, fine.scene.row_states(columns), target)
-    return Ladder(columns, coarse, fine, steps, deviation)
+    step = StepChoice(fine.scene.dt, f"extrapolated (2 runs, {steps} and {2 * steps} steps per contact; "
+                                     "spinbounce.sweeps.pair_ladder)", target)
+    info = replace(fine.info, loop_seconds=coarse.info.loop_seconds + fine.info.loop_seconds)
+    result = RunResult(fine.scene, columns, info, fine.deck, fine.dump, tuple(checks.notes(columns["status"], target)),
+                       step, deviation)
+    return Ladder(result, coarse, fine)
 
 
 def ladder_steps(sample: PairBatch, folder: Path, target: float = ACCURACY) -> tuple[int, float] | None:

@@ -78,14 +78,10 @@ def pair_chunk(model: ContactModel, b: Sphere, states: np.ndarray, dt: float | N
     probe = None if probe_states is None else PairBatch(tuple(pairs_from_states(model, b, probe_states)), contact)
     given = PairBatch(pairs, contact, dt)
     ladder = _ladder(given, probe, Path(run_dir)) if dt is None and applies(given) else None
-    if ladder is None:
-        result = run_scene(given, run_dir, record=False, probe_states=probe)
-        table, run, method, nsteps, loop = result.table, result, result.step.method, result.scene.nsteps, \
-            result.info.loop_seconds
-    else:  # two aligned runs combined (sweeps.pair_ladder): the final states are the combination's
-        table, run, method, nsteps = ladder.table, ladder.fine, ladder.method, ladder.nsteps
-        loop = ladder.coarse.info.loop_seconds + ladder.fine.info.loop_seconds
-    batch = run.scene
+    # two aligned runs combined (sweeps.pair_ladder; the final states are the combination's), or one probed run
+    run = run_scene(given, run_dir, record=False, probe_states=probe) if ladder is None else ladder.result
+    nsteps = run.scene.nsteps if ladder is None else ladder.nsteps
+    table, batch = run.table, run.scene
     requested = wall_frame(np.array([p.v_a for p in pairs]), np.array([p.w_a for p in pairs]), a.r)
     columns = {f"{name}_initial": requested[:, k] for k, name in enumerate(names)}
     columns.update({f"{SPINS[name]}_initial": columns[f"{name}_initial"] / a.r for name in names if name in SPINS})
@@ -106,5 +102,5 @@ def pair_chunk(model: ContactModel, b: Sphere, states: np.ndarray, dt: float | N
                 "status", "time_scale"):
         columns[key] = table[key].to_numpy()
     columns.update({q + suffix: table[q + suffix].to_numpy() for q in QUANTITIES for suffix in ("", "_exact", "_planar")})
-    columns["step_method"] = np.full(len(pairs), method, dtype=object)
-    return columns, batch.dt, nsteps, loop
+    columns["step_method"] = np.full(len(pairs), run.step.method, dtype=object)
+    return columns, batch.dt, nsteps, run.info.loop_seconds
