@@ -23,7 +23,8 @@ from spinbounce.records import TEMP_SUFFIX
 from spinbounce.sweeps.cost import chunk_cost, job_request
 from spinbounce.sweeps import load_spec, read_results
 
-pytestmark = [pytest.mark.slurm, pytest.mark.workflow, pytest.mark.lammps]
+# slow too: minutes of sbatch round trips (CI runs them; the quick default run leaves them)
+pytestmark = [pytest.mark.slurm, pytest.mark.workflow, pytest.mark.lammps, pytest.mark.slow]
 
 ROOT = Path(__file__).resolve().parents[1]
 WORKFLOW = ROOT / "workflows"

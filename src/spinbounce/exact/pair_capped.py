@@ -38,7 +38,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
-from . import pair as pair_theory
+from . import pair_exact
 
 from .pair_exact import (RTOL, PairOutcome, contact_radius_power, cross, free_flight, geometry, normal_force,
                          outcome, start)
@@ -307,8 +307,7 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, m
     y = _first_touch(contact, np.append(y, np.zeros(4)), t)
     # the overlap's tolerance: relative from its first touch on (a law on the contact radius starts at ~1e-12 of it)
     atol = np.concatenate([np.full(15, atol), np.full(3, rtol * contact.force_scale), [rtol * 1e-12 * depth]])
-    damped_time = float(pair_theory.contact_time(m_a, m_b, kn, gamma_n)) if not radial else tau
-    window = 20.0 * (max(contact.tau, damped_time) if np.isfinite(damped_time) else contact.tau)
+    window = float(pair_exact.window(tau, m_a, m_b, kn, gamma_n, radial))
     contact.begin(y)
     for _ in range(MAX_PHASES):
         events = contact.events()

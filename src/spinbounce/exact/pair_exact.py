@@ -25,14 +25,15 @@ the speeds (tests/test_pairs.py compares two tolerances).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 from scipy.integrate import solve_ivp
 
+from . import pair as pair_theory
 from .wall_law import on_contact_radius
 
-__all__ = ["PairOutcome", "solve", "RTOL", "HOOKE", "longest_step", "start", "outcome", "free_flight",
+__all__ = ["PairOutcome", "solve", "RTOL", "HOOKE", "longest_step", "start", "outcome", "free_flight", "window",
            "contact_radius_power", "geometry", "normal_force", "pair_scales", "tolerance_scale", "cross"]
 
 #: Relative tolerance of the integration (the absolute one is this times the speeds).
@@ -48,10 +49,9 @@ def longest_step(tau: float, v_rel, n0, radsum: float) -> float:
     return np.minimum(tau, 2.0 * closing * radsum / np.sum(v_rel * v_rel, axis=-1)) / 8.0
 
 
-@dataclass(frozen=True)
-class PairOutcome:
+class PairOutcome(NamedTuple):
     """Velocities and spins after the contact, its duration, how far n turned (radians) and a's centre
-    less b's at separation (``d_end``)."""
+    less b's at separation (``d_end``). A named tuple: a batch makes tens of thousands of them."""
 
     v_a: np.ndarray
     v_b: np.ndarray
@@ -112,6 +112,26 @@ def _rates(t, state, n0, p, planar, overlap=None):
         history = history - xi * v_n / (2.0 * delta)
     return np.concatenate([v, force / p["m_a"], -force / p["m_b"], lever_a * arm / p["i_a"],
                            lever_b * arm / p["i_b"], history])
+
+
+#: A contact not over within this many of its contact times is not a contact the references end.
+CONTACT_TIMES = 20.0
+
+
+def window(tau, m_a, m_b, kn, gamma_n, radial: bool = False):
+    """How long the references follow a contact before giving it up: CONTACT_TIMES times the longer of
+    its undamped time ``tau`` and, for Hooke's force, the damped one (half a damped period: a nearly
+    critical dashpot's contact lasts many undamped times; an overdamped one has none, and keeps tau's).
+    Scalars or arrays (N,)."""
+    if radial:
+        return CONTACT_TIMES * tau
+    arrays = (np.asarray(x, dtype=float) for x in (tau, m_a, m_b, kn, gamma_n))
+    tau, m_a, m_b, kn, gamma_n = np.broadcast_arrays(*arrays)
+    longer = np.array(tau)
+    under = gamma_n < 2.0 * np.sqrt(pair_theory.reduced_mass(m_a, m_b) * kn)
+    if np.any(under):
+        longer[under] = np.fmax(tau[under], pair_theory.contact_time(m_a[under], m_b[under], kn[under], gamma_n[under]))
+    return CONTACT_TIMES * longer
 
 
 #: The law of :func:`solve` beyond kn, kt and the dashpots: LAMMPS's Hookean force and linear_history.
@@ -200,12 +220,13 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, g
     separated.terminal, separated.direction = True, 1.0
     turned = _turned(n0, p, planar) if not tensile and gamma_n > 0.0 else None
     # the start (gap 0, closing) is no upward crossing; the end (or the tail's start) is the first one
-    solution = solve_ivp(_rates, (0.0, 20.0 * tau), np.concatenate([state, np.zeros(3)]), method="DOP853",
+    bound = float(window(tau, m_a, m_b, kn, gamma_n, radial))
+    solution = solve_ivp(_rates, (0.0, bound), np.concatenate([state, np.zeros(3)]), method="DOP853",
                          args=(n0, p, planar), max_step=longest, rtol=rtol, atol=atol,
                          events=[separated] + ([turned] if turned else []))
     fired = [k for k, times in enumerate(solution.t_events) if len(times)]
     if solution.status != 1 or not fired:
-        raise RuntimeError(f"the pair did not separate within 20 contact times: {solution.message}")
+        raise RuntimeError(f"the pair did not separate within {CONTACT_TIMES:g} contact times: {solution.message}")
     end, t_end = solution.y_events[fired[0]][0], solution.t_events[fired[0]][0]
     if fired[0] == 1:  # the normal force's turn: no force from here
         return outcome(*free_flight(end, t_end, n0, planar, -gap(end)), n0)

@@ -97,7 +97,8 @@ def calibrate_mindlin(t: MindlinTargets) -> ContactModel:
     if excess[k] == 0.0:
         return model_of(grid[k])
     x = brentq(lambda v: achieved(model_of(v))["beta"] - t.beta, grid[k], grid[k + 1], xtol=1e-13, rtol=1e-12)
-    return model_of(x)
+    # to the root's own tolerance: the digits beyond it differ from one scipy release to the next
+    return model_of(float(f"{x:.12g}"))
 
 
 def measure_mindlin(model: ContactModel, out, v_n: float = -1.0) -> dict:

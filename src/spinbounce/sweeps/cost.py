@@ -52,10 +52,11 @@ PROBE_SECONDS = 0.3
 #: and the planar theory; the capped reference solves both by events), measured on 30 to 100
 #: pairs each: 3 ms uncapped one pair at a time (15 ms Hertz-Mindlin), 29 ms capped (37 at most); 172 ms capped in 3-D,
 #: where a slide's direction turns stiffly as the cap closes; with room. A batch whose references are
-#: solved together (PairContact.batched: Hooke's law, no cap) spends about 0.33 ms a pair on
-#: everything outside LAMMPS (a 20,000-pair sweep, `spinbounce bench`): PAIR_BATCHED_SECONDS, with room.
+#: solved together (PairContact.batched: Hooke's law, capped or not) spends about 0.1 ms a pair on
+#: everything outside LAMMPS (a 20,000-pair sweep, `spinbounce bench`; a capped pair in 3-D up to 1 ms,
+#: its reference alone): PAIR_BATCHED_SECONDS, with room.
 PAIR_THEORY_SECONDS = 0.02
-PAIR_BATCHED_SECONDS = 1e-3
+PAIR_BATCHED_SECONDS = 2e-3
 CAPPED_PAIR_THEORY_SECONDS = 0.06
 CAPPED_PAIR_3D_THEORY_SECONDS = 0.3
 #: A pair chunk's probe (stepping.tune): up to five LAMMPS runs of at most
@@ -111,9 +112,12 @@ def _pair_cost(spec, group: int, collisions: int) -> ChunkCost:
     b = spec.sphere_b(group)
     contact = pair_contact(model, b)
     steps = PairBatch(pairs_from_states(model, b, [[-fast, 0.0, 0.0]]), contact, dt).nsteps
-    theory = PAIR_BATCHED_SECONDS if contact.batched else PAIR_THEORY_SECONDS
-    if model.mu is not None:
+    if contact.batched:
+        theory = PAIR_BATCHED_SECONDS
+    elif model.mu is not None:
         theory = CAPPED_PAIR_3D_THEORY_SECONDS if spec.is_3d else CAPPED_PAIR_THEORY_SECONDS
+    else:
+        theory = PAIR_THEORY_SECONDS
     probe = PAIR_PROBE_SECONDS if dt is None else 0.0
     seconds = START_SECONDS + probe + collisions * (2 * steps * SPHERE_STEP_SECONDS + theory)
     return ChunkCost(collisions, steps, seconds, BASE_MB + SCIPY_MB + 2 * collisions * KB_PER_SPHERE / 1024)

@@ -84,7 +84,7 @@ class PairContact:
 
     def solve_all(self, pairs, planar: bool = False) -> tuple:
         """:meth:`solve` of each of ``pairs``: those not solved before together where the law allows
-        (:mod:`spinbounce.exact.pair_batch`), else one at a time."""
+        (:attr:`batched`), else one at a time."""
         keys = [(self, pair, planar) for pair in pairs]
         found = {key: _SOLVED[key] for key in keys if key in _SOLVED}
         missing = list(dict.fromkeys(key for key in keys if key not in found))
@@ -99,27 +99,29 @@ class PairContact:
 
     @property
     def batched(self) -> bool:
-        """Whether a batch's references are solved together (:mod:`spinbounce.exact.pair_batch`): no cap
-        (or a cap of zero) and a law that module takes."""
-        from ...exact import pair_batch
+        """Whether a batch's references are solved together: Hooke's force and linear_history, capped
+        (:mod:`spinbounce.exact.pair_capped_batch`, the normal force never cut) or not
+        (:mod:`spinbounce.exact.pair_batch`)."""
+        from ...exact import pair_batch, pair_capped_batch
 
-        return not self.mu and pair_batch.solvable(self.reference_law(), self.tensile)
+        solver = pair_capped_batch if self.mu else pair_batch
+        return solver.solvable(self.reference_law(), self.tensile)
 
     def _solve_many(self, pairs: list, planar: bool) -> list:
-        # the references (scipy's integrators) are loaded when a pair is solved: a wall's run never is
-        from ...exact import pair_batch, pair_capped, pair_exact
+        # the references (compiled, or scipy's) are loaded when a pair is solved: a wall's run never is
+        from ...exact import pair_batch, pair_capped, pair_capped_batch, pair_exact
 
         capped = bool(self.mu)  # a cap of zero: no tangential force (the capped solver divides by mu)
         law = self.reference_law() | ({"kt": 0.0, "gamma_t": 0.0} if self.mu == 0.0 else {})
+        cap = {"mu": self.mu} if capped else {}
         if self.batched:
             rows = [p.vectors() | p.properties() for p in pairs]
             columns = {k: np.array([row[k] for row in rows]) for k in rows[0]}
-            return pair_batch.solve(**columns, **{k: law[k] for k in self.law()}, planar=planar)
-        if not capped:
-            return [pair_exact.solve(**p.vectors(), **p.properties(), **law, planar=planar, tensile=self.tensile)
-                    for p in pairs]
-        return [pair_capped.solve(**p.vectors(), **p.properties(), **law, mu=self.mu, planar=planar,
-                                  tensile=self.tensile) for p in pairs]
+            solver = pair_capped_batch if capped else pair_batch
+            return solver.solve(**columns, **{k: law[k] for k in self.law()}, **cap, planar=planar)
+        solver = pair_capped if capped else pair_exact
+        return [solver.solve(**p.vectors(), **p.properties(), **law, **cap, planar=planar, tensile=self.tensile)
+                for p in pairs]
 
 
 #: Outcomes kept (oldest dropped first): a probe runs the same pairs at up to five steps, each batch
