@@ -1,7 +1,9 @@
 """Shared fixtures, and the quick default run that leaves the slow tests to SPINBOUNCE_SLOW=1.
 
 Shared fixtures, and the quick default run: tests marked ``slow`` (or that read the
-whole reproduction) run only with SPINBOUNCE_SLOW=1, which ``.ci/run`` sets.
+whole reproduction) run only with SPINBOUNCE_SLOW=1, which ``.ci/run`` sets. Of a LAMMPS test run
+over several cases (``pytest.mark.parametrize``), the quick run takes the first case and leaves the
+others to the slow run: every check runs on one case in minutes, every case in CI.
 """
 
 import os
@@ -20,9 +22,15 @@ def run_slow() -> bool:
 
 def pytest_collection_modifyitems(config, items):
     """Deselect the slow tests unless SPINBOUNCE_SLOW=1, and say so (never silently)."""
+    first_cases = set()
     for item in items:
         if SLOW_FIXTURES & set(getattr(item, "fixturenames", ())):
             item.add_marker(pytest.mark.slow)
+        if hasattr(item, "callspec") and item.get_closest_marker("lammps"):
+            test = (item.module.__name__, item.originalname)
+            if test in first_cases:
+                item.add_marker(pytest.mark.slow)
+            first_cases.add(test)
     if run_slow():
         return
     slow = [item for item in items if item.get_closest_marker("slow")]

@@ -70,6 +70,7 @@ def test_bench_cli_writes_json(tmp_path, capsys):
     waits = report["waits"]
     assert {s["scene"] for s in waits["scenes"]} == set(engine.SCENES)
     assert {s["collisions"] for s in waits["scenes"]} == {60} == {waits["frictionless"]["collisions"]}
+    assert waits["references"]["pairs"] == 60 and waits["references"]["capped_per_second"] > 0.0
     assert {m["collisions"] for m in report["models"]["sweeps"]} == {200}
     # the pairs' classes: the sweep's two runs combined take fewer steps than one probed run of the same pairs
     classes = report["models"]["pairs"]["batches"]
@@ -87,7 +88,7 @@ def test_bench_quick_prints_every_ratio_with_its_target(tmp_path, capsys):
     assert main(["bench", "--quick", "--out", str(out)]) == 0
     printed = capsys.readouterr().out
     for line in ("pair / wall per collision", "of it (target 85%)", "of twice one worker (target 90%)",
-                 "(target 0.5 s)", "undamped: "):
+                 "(target 0.5 s)", "undamped: ", "pairs/s uncapped (target 100,000)"):
         assert line in printed
     waits = json.loads(out.read_text())["waits"]
     assert waits["quick"] and [s["scene"] for s in waits["scenes"]][0] == "wall"

@@ -108,8 +108,8 @@ def run_scene(scene, out_dir: Path, atoms: str | None = None, record: bool = Tru
 
     A scene whose dt is the default first gets the step ``target`` needs
     (:func:`stepping.tune`; ``probe_states``: a scene whose rows to probe with, if not its own).
-    ``atoms``: how a wall deck receives its spheres (:data:`~spinbounce.lammps.decks.ATOM_ROUTES`;
-    a pair deck always reads a data file). With ``record`` the folder gets ``result.json``
+    ``atoms``: how the deck receives its spheres (:data:`~spinbounce.lammps.decks.ATOM_ROUTES`; a
+    pair deck reads a data file, or with "library" receives them in memory, as a sweep's chunks do). With ``record`` the folder gets ``result.json``
     (:func:`write_record`). ``runner``: :func:`runner.run_deck` (in this process) or
     :func:`runner.run_deck_lmp` (the ``lmp`` executable).
     """

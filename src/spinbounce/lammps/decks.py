@@ -160,7 +160,8 @@ class LibraryAtoms:
     Rows are atoms in id order (ids 1..N): the spheres, then (rigid route) their centre
     points. ``omega`` is set on the spheres only; the final state is read back from memory.
     ``mass``: each atom's own mass (LAMMPS's per-atom rmass), for a batch whose spheres differ
-    in mass (a time-scaled one); None: the deck sets the masses per type.
+    in mass (a time-scaled one); None: the deck sets the masses per type. ``radius``: each atom's
+    own radius (a pair batch's spheres and their centre points, 0), set before the masses.
     """
 
     types: np.ndarray  # (N,) int
@@ -168,6 +169,7 @@ class LibraryAtoms:
     v: np.ndarray  # (N, 3)
     omega: np.ndarray  # (N, 3)
     mass: np.ndarray | None = None  # (N,)
+    radius: np.ndarray | None = None  # (N,)
 
 
 @dataclass(frozen=True)

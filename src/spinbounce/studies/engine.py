@@ -9,7 +9,8 @@
 * :func:`sweep_against_engine`: the frictionless sweep as a user runs it (``spinbounce sweep`` in a
   process of its own, start-up included) against the bare engine running the same chunks' decks;
 * :func:`help_seconds`: ``spinbounce --help`` and ``spinbounce collide --help`` in a fresh process;
-* :func:`damped_steps`: the damped wall's default against the undamped one, in LAMMPS steps.
+* :func:`damped_steps`: the damped wall's default against the undamped one, in LAMMPS steps;
+* :func:`reference_rates`: the compiled exact pair references, pairs per second on a sweep's states.
 
 These are measurements on a shared machine: each ratio is taken between runs made side by side.
 """
@@ -25,22 +26,21 @@ from pathlib import Path
 
 from .speed import MODELS, PLANE, _sweep_process, _timed
 
-__all__ = ["SCENES", "scene_sweeps", "sweep_against_engine", "help_seconds", "damped_steps", "measure_waits",
-           "wait_lines", "ENGINE_SWEEP"]
+__all__ = ["SCENES", "scene_sweeps", "sweep_against_engine", "help_seconds", "damped_steps", "reference_rates",
+           "measure_waits", "wait_lines", "ENGINE_SWEEP"]
 
 #: Frictionless collisions the sweep is set beside the bare engine over (full bench, ``--quick``).
 ENGINE_SWEEP = (800_000, 200_000)
 
 #: name: (model, states, collisions in the full bench, collisions in ``bench --quick``). A pair
-#: sweep's fixed costs (its step's probe) need ~20,000 pairs to amortise; the capped pair's
-#: reference is solved one pair at a time (~30 ms): its counts are small.
+#: sweep's fixed costs (its step's probe) need ~20,000 pairs to amortise, the capped pair's too.
 SCENES = {
     "wall": ({}, PLANE, 100_000, 20_000),
     "damped wall": ({"gamma_t": 1.0}, PLANE, 100_000, 20_000),
     "Hertzian wall": ({"normal": "hertz"}, {**PLANE, "v_n": [-0.8, -0.1]}, 100_000, 20_000),
     "Hertz-Mindlin wall": (*MODELS["Hertz-Mindlin"], 100_000, 20_000),
     "pair": ({"scene": "pair"}, PLANE, 20_000, 20_000),
-    "capped pair": ({"scene": "pair", "mu": 0.3}, PLANE, 500, 100),
+    "capped pair": ({"scene": "pair", "mu": 0.3}, PLANE, 20_000, 20_000),
 }
 
 
@@ -132,6 +132,27 @@ def damped_steps() -> dict:
             "damped_estimate": float(damped["estimate"]), "target": float(damped["target"])}
 
 
+def reference_rates(n: int = 20_000, seed: int = 0, mu: float = 0.3) -> dict:
+    """Pairs per second of the compiled exact pair references on one core, uncapped and with a cap ``mu``,
+    on the pair sweep's own ``n`` states (the default spheres; their compiled code loaded beforehand)."""
+    import numpy as np
+
+    from ..exact import pair_batch, pair_capped_batch
+    from ..scenes.pair.kind import pair_contact, pairs_from_states
+
+    spec = _user_spec(n, {"scene": "pair"}, PLANE, seed)
+    model, _ = spec.model(0)
+    b = spec.sphere_b(0)
+    rows = [p.vectors() | p.properties() for p in pairs_from_states(model, b, spec.initial_states(0))]
+    columns = {k: np.array([row[k] for row in rows]) for k in rows[0]}
+    law = pair_contact(model, b).law()
+    out = {"pairs": len(rows), "mu": mu}
+    for name, solve, cap in (("uncapped", pair_batch.solve, {}), ("capped", pair_capped_batch.solve, {"mu": mu})):
+        solve(**{k: v[:2] for k, v in columns.items()}, **law, **cap)  # untimed: loads the compiled code
+        out[f"{name}_per_second"] = len(rows) / _timed(lambda: solve(**columns, **law, **cap))  # noqa: B023
+    return out
+
+
 def measure_waits(quick: bool = False, seed: int = 0, workers: int = 2, n: int | None = None) -> dict:
     """Everything :func:`wait_lines` prints: each scene's sweep beside the engine, the frictionless sweep
     against the bare engine, ``workers`` workers against one, the help's start-up and the damped steps.
@@ -139,8 +160,9 @@ def measure_waits(quick: bool = False, seed: int = 0, workers: int = 2, n: int |
     from .speed import parallel_efficiency
 
     scenes = scene_sweeps(quick, seed, n)
+    references = reference_rates(n or SCENES["pair"][3 if quick else 2], seed)
     n = n or (ENGINE_SWEEP[1] if quick else ENGINE_SWEEP[0])
-    return {"quick": quick, "scenes": scenes, "frictionless": sweep_against_engine(n, seed),
+    return {"quick": quick, "scenes": scenes, "references": references, "frictionless": sweep_against_engine(n, seed),
             "cores": parallel_efficiency(n=n, workers=workers, seed=seed), "help_seconds": help_seconds(),
             "damped": damped_steps()}
 
@@ -156,6 +178,10 @@ def wait_lines(report: dict) -> list[str]:
     by_name = {s["scene"]: s for s in report["scenes"]}
     lines.append(f"pair / wall per collision: {by_name['pair']['over_wall']:.1f}x (target 8x); capped pair / wall: "
                  f"{by_name['capped pair']['over_wall']:.0f}x (target 16x)")
+    r = report["references"]
+    lines.append(f"exact pair references, one core, the pair sweep's {r['pairs']:,} states: "
+                 f"{r['uncapped_per_second']:,.0f} pairs/s uncapped (target 100,000), {r['capped_per_second']:,.0f}/s "
+                 f"with mu = {r['mu']:g} (target 20,000)")
     f = report["frictionless"]
     lines.append(f"frictionless sweep of {f['collisions']:,} (a process, start-up included): "
                  f"{f['sweep_per_second']:,.0f}/s; the bare engine on the same chunks: "

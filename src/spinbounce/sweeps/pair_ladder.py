@@ -90,7 +90,7 @@ def run_ladder(batch: PairBatch, steps: int, folder: Path, target: float = ACCUR
     aligned, combined and checked. A :class:`SceneError` if a rung's step is refused (too coarse)."""
     tau = _contact_time(batch) if contact_time is None else contact_time
     coarse, fine = (run_scene(PairBatch(batch.pairs, batch.contact, tau / n, aligned=True), Path(folder) / f"n{n}",
-                              record=False) for n in (steps, 2 * steps))
+                              atoms="library", record=False) for n in (steps, 2 * steps))
     # each pair's step in its own time is dt over its time scale: r is their ratio, pair by pair. A contact
     # shorter than a step or two has r far from 2 (1 when both runs give it the same count): no expansion
     # to combine, so its row keeps the finer run's state, and its error says how far that is

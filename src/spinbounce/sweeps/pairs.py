@@ -25,13 +25,12 @@ from pathlib import Path
 import numpy as np
 
 from ..exact.choose import PLANE_COLUMNS, SPACE_COLUMNS
-from ..lammps.dumps import read_dump
 from ..model.contact import ContactModel
 from ..pipeline import run_scene
 from ..scenes.pair.kind import pair_contact, pairs_from_states, wall_frame
 from ..scenes.pair.scene import PairBatch, Sphere
 from ..scenes.collision.table import SPINS
-from ..scenes.pair.table import QUANTITIES, pair_states
+from ..scenes.pair.table import QUANTITIES, pair_frames, pair_states
 from ..errors import SceneError
 from .pair_ladder import applies, ladder_steps, run_ladder
 
@@ -79,13 +78,14 @@ def pair_chunk(model: ContactModel, b: Sphere, states: np.ndarray, dt: float | N
     given = PairBatch(pairs, contact, dt)
     ladder = _ladder(given, probe, Path(run_dir)) if dt is None and applies(given) else None
     # two aligned runs combined (sweeps.pair_ladder; the final states are the combination's), or one probed run
-    run = run_scene(given, run_dir, record=False, probe_states=probe) if ladder is None else ladder.result
+    run = (run_scene(given, run_dir, atoms="library", record=False, probe_states=probe) if ladder is None
+           else ladder.result)
     nsteps = run.scene.nsteps if ladder is None else ladder.nsteps
     table, batch = run.table, run.scene
     requested = wall_frame(np.array([p.v_a for p in pairs]), np.array([p.w_a for p in pairs]), a.r)
     columns = {f"{name}_initial": requested[:, k] for k, name in enumerate(names)}
     columns.update({f"{SPINS[name]}_initial": columns[f"{name}_initial"] / a.r for name in names if name in SPINS})
-    frames = read_dump(run.dump)
+    frames = pair_frames(run.info, run.deck, run.info.deck.parent, batch.nsteps)
     for when, step in (("lammps_initial", 0), ("lammps", batch.nsteps)):  # a's height above b, and its state
         state = pair_states(batch, run.deck.ids, frames, step)
         height = state["a_x"][:, 2] - state["b_x"][:, 2]

@@ -16,8 +16,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ...lammps.decks import (BODIES_FILE, DECK_NAME, DUMP_NAME, Atoms, Deck, bodies_file, data_file,
-                             deck_words, render_template, wall_parameters)
+from ...lammps.decks import (BODIES_FILE, DECK_NAME, DUMP_NAME, LIBRARY_MARKER, Atoms, Deck, LibraryAtoms,
+                             bodies_file, data_file, deck_words, render_template, wall_parameters)
 
 __all__ = ["render_pairs", "DECK_NAME", "DUMP_NAME", "DATA_FILE", "BODIES_FILE"]
 
@@ -45,8 +45,17 @@ def _spheres(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.stack([a, b], axis=1).reshape(-1, *a.shape[1:])
 
 
-def render_pairs(batch) -> Deck:
-    """The batch's deck, with its data file (and bodies file, if any sphere is a rigid body)."""
+def _in_memory(atoms: Atoms) -> LibraryAtoms:
+    """The atoms as the library route hands them over: in id order, with their radii and masses."""
+    order = np.argsort(atoms.ids, kind="stable")
+    return LibraryAtoms(types=atoms.types[order], x=atoms.x[order], v=atoms.v[order], omega=atoms.w[order],
+                        mass=atoms.mass[order], radius=atoms.diameter[order] / 2.0)
+
+
+def render_pairs(batch, route: str | None = None) -> Deck:
+    """The batch's deck, with its data file (and bodies file, if any sphere is a rigid body); ``route``
+    "library": its atoms handed over in memory and its states read back from there (no data file and
+    no dump to format and parse: a sweep's chunks), a deck that runs only in process."""
     c = batch.columns
     reach = float(np.max(np.abs(_spheres(c["v_a"], c["v_b"]))))
     out_speed = float(np.max(np.abs([(*o.v_a, *o.v_b) for o in batch.exact])))
@@ -92,7 +101,9 @@ def render_pairs(batch) -> Deck:
                                                                          wall["x_t"], True, wall["mu"]))}
                for c, scale in enumerate(scales)]
     box = ((0.0, grid * cell),) * 3
-    files = {DATA_FILE: data_file(f"sphere pairs for {DECK_NAME}", atoms, 3 * len(scales), box)}
+    library = route == "library"
+    atoms, memory = (None, _in_memory(atoms)) if library else (atoms, None)
+    files = {} if library else {DATA_FILE: data_file(f"sphere pairs for {DECK_NAME}", atoms, 3 * len(scales), box)}
     if nrigid:
         inertia = (_spheres(c["alpha_a"], c["alpha_b"]) * mass * radius**2)[rigid]
         files[BODIES_FILE] = bodies_file(ids[rigid], mass[rigid], x[rigid], inertia, v[rigid], w[rigid])
@@ -101,6 +112,7 @@ def render_pairs(batch) -> Deck:
         nsteps=batch.nsteps, dt=batch.dt, skin=0.2 * smallest, binsize=cell / 2, data_file=DATA_FILE,
         contact=batch.contact, wall=wall, nfree=nfree, nrigid=nrigid, classes=classes,
         types={kind: " ".join(str(atom_type(kind, c)) for c in range(len(scales))) for kind in ("free", "rigid", "point")},
-        bodies_file=BODIES_FILE, dump_name=DUMP_NAME)
-    return Deck(text=text, name=DECK_NAME, dump=DUMP_NAME, rigid=bool(nrigid), files=files,
-                ids=ids.reshape(-1, 2))
+        bodies_file=BODIES_FILE, dump_name=None if library else DUMP_NAME, box=box, ntypes=3 * len(scales),
+        library_marker=LIBRARY_MARKER)
+    return Deck(text=text, name=DECK_NAME, dump=None if library else DUMP_NAME, rigid=bool(nrigid), files=files,
+                ids=ids.reshape(-1, 2), atoms=memory)

@@ -225,13 +225,14 @@ class PairBatch:
     kind = "pair"
 
     def render(self, atoms: str | None = None):
-        """The deck (:func:`.deck.render_pairs`); its atoms always come from a data file."""
-        return render_pairs(self)
+        """The deck (:func:`.deck.render_pairs`): its atoms from a data file, or ``atoms`` "library"
+        (the route a sweep's and a probe's runs take) in memory."""
+        return render_pairs(self, atoms)
 
     def read(self, info, deck, folder) -> dict:
         from .table import read_pairs
 
-        return read_pairs(self, deck, folder)
+        return read_pairs(self, deck, folder, info)
 
     def row_states(self, columns: dict) -> checks.RowStates:
         """Both spheres' velocities and r times spins (LAMMPS's frame): LAMMPS's, the exact

@@ -29,7 +29,7 @@ from .pairs import speeds
 if TYPE_CHECKING:
     from ...lammps.decks import Deck
 
-__all__ = ["pair_table", "pair_states", "read_pairs", "QUANTITIES"]
+__all__ = ["pair_table", "pair_states", "pair_frames", "read_pairs", "QUANTITIES"]
 
 
 def pair_states(batch, ids: np.ndarray, frames: pd.DataFrame, step: int) -> dict[str, np.ndarray]:
@@ -97,10 +97,30 @@ def pair_table(batch, lammps: dict[str, np.ndarray] | None) -> pd.DataFrame:
     return table
 
 
-def read_pairs(batch, deck: Deck, folder: Path) -> dict:
-    """The run's checked table columns: every pair's spheres there, finite, and apart at the end."""
+def _frame(state: dict, step: int) -> pd.DataFrame:
+    """The spheres (not the rigid bodies' centre points: every third atom type) of a state read from
+    LAMMPS's memory, as a dump's frame."""
+    spheres = state["type"] % 3 != 0
+    columns = {"step": np.full(int(spheres.sum()), step, dtype=np.int64), "id": state["id"][spheres].astype(np.int64)}
+    for name, axes in (("x", ("x", "y", "z")), ("v", ("vx", "vy", "vz")), ("omega", ("omegax", "omegay", "omegaz"))):
+        columns.update({axis: state[name][spheres, k] for k, axis in enumerate(axes)})
+    return pd.DataFrame(columns)
+
+
+def pair_frames(info, deck: Deck, folder: Path, nsteps: int) -> pd.DataFrame:
+    """The spheres' frames at steps 0 and ``nsteps``, finite: from LAMMPS's memory (a library-route run,
+    :func:`.deck.render_pairs`) or from the run's dump."""
+    if deck.dump is None:
+        where = Path(folder) / deck.name
+        return finite_frames(pd.concat([_frame(info.initial, 0), _frame(info.final, nsteps)], ignore_index=True), where)
     dump = Path(folder) / deck.dump
-    frames = finite_frames(read_dump(dump), dump)
+    return finite_frames(read_dump(dump), dump)
+
+
+def read_pairs(batch, deck: Deck, folder: Path, info=None) -> dict:
+    """The run's checked table columns: every pair's spheres there, finite, and apart at the end."""
+    frames = pair_frames(info, deck, folder, batch.nsteps)
+    dump = Path(folder) / (deck.dump or deck.name)
     if sorted(frames["step"].unique()) != [0, batch.nsteps]:
         raise ResultError(f"{dump}: expected frames at steps 0 and {batch.nsteps}")
     at_end = int((frames["step"] == batch.nsteps).sum())
