@@ -22,15 +22,11 @@ def run_slow() -> bool:
 
 def pytest_collection_modifyitems(config, items):
     """Deselect the slow tests unless SPINBOUNCE_SLOW=1, and say so (never silently)."""
-    first_cases = set()
     for item in items:
         if SLOW_FIXTURES & set(getattr(item, "fixturenames", ())):
             item.add_marker(pytest.mark.slow)
-        if hasattr(item, "callspec") and item.get_closest_marker("lammps"):
-            test = (item.module.__name__, item.originalname)
-            if test in first_cases:
-                item.add_marker(pytest.mark.slow)
-            first_cases.add(test)
+    if not (config.option.keyword or any("::" in arg for arg in config.args)):  # cases asked for by name all run
+        _first_cases_only(items)
     if run_slow():
         return
     slow = [item for item in items if item.get_closest_marker("slow")]
@@ -38,6 +34,21 @@ def pytest_collection_modifyitems(config, items):
         config.hook.pytest_deselected(items=slow)
         items[:] = [item for item in items if not item.get_closest_marker("slow")]
         config._spinbounce_slow_left = len(slow)
+
+
+def _first_cases_only(items) -> None:
+    """Of each parametrised LAMMPS test (not marked ``every_case``), mark every case but its first quick
+    one slow."""
+    kept = set()
+    for item in items:
+        if not hasattr(item, "callspec") or not item.get_closest_marker("lammps") or item.get_closest_marker("slow"):
+            continue
+        if item.get_closest_marker("every_case"):
+            continue
+        test = (item.module.__name__, item.cls.__name__ if item.cls else "", item.originalname)
+        if test in kept:
+            item.add_marker(pytest.mark.slow)
+        kept.add(test)
 
 
 def pytest_report_header(config):

@@ -58,6 +58,7 @@ def test_site_builds_strictly(tmp_path):
 
 
 @pytest.mark.lammps
+@pytest.mark.every_case  # each session (page) its own check: the quick run keeps them all
 @pytest.mark.parametrize("page", [pytest.param(page, marks=[pytest.mark.slow] if page in SLOW_PAGES else [])
                                   for page in PAGES])
 def test_page_examples(page, tmp_path):

@@ -45,10 +45,11 @@ def test_a_hundred_random_capped_pairs_of_each_kind_agree(kind):
     assert _worst_against_scipy(kind, 100, seed=100 + KINDS.index(kind)) < AGREEMENT
 
 
-def test_it_takes_hookes_law_with_the_force_never_cut():
+def test_it_takes_hookes_law_where_no_normal_force_is_cut():
     assert pair_capped_batch.solvable({"kn": 10.0, "gamma_n": 0.5})
     assert not pair_capped_batch.solvable({"power": 1.5})
-    assert not pair_capped_batch.solvable({"gamma_n": 0.0}, tensile=False)  # limit_damping: scipy's reference
+    assert not pair_capped_batch.solvable({"gamma_n": 0.5}, tensile=False)  # limit_damping cuts F_n's turn: scipy's
+    assert pair_capped_batch.solvable({"gamma_n": 0.0}, tensile=False)  # without a normal dashpot F_n never turns
 
 
 def test_a_cap_of_zero_or_less_is_refused():

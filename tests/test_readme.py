@@ -108,6 +108,7 @@ def _printed(command: str, cwd: Path, shown: list[str], request) -> list[str]:
 
 
 @pytest.mark.lammps
+@pytest.mark.every_case  # each session (page) its own check: the quick run keeps them all
 @pytest.mark.parametrize("session", [
     # the reproduction (minutes) is a slow test: its session reads the whole reproduction
     pytest.param(s, id=s[0][0].split()[1], marks=[pytest.mark.slow] if s[0][0] == "spinbounce reproduce" else [])

@@ -7,12 +7,13 @@
   independent check;
 * :mod:`.classic`: LAMMPS's classic wall as this build implements it;
 * :mod:`.pair`, :mod:`.pair_exact`: two spheres, planar and as LAMMPS integrates them;
-  :mod:`.pair_batch` the Hookean uncapped reference for a whole batch at once;
-  :mod:`.pair_capped` with a Coulomb cap (3-D, any law, both dashpots);
+  :mod:`.pair_capped` with a Coulomb cap (3-D, any law, both dashpots); for Hooke's law
+  :mod:`.pair_batch` (uncapped) and :mod:`.pair_capped_batch` (capped) solve a whole batch
+  in compiled code, on scipy's DOP853 compiled (:mod:`.dop853`, :mod:`.vec3`);
 * :mod:`.rigid_body`: the rigid-body sliding impulse and Walton's law.
 
-The exact references know nothing of LAMMPS, files or the API: they import numpy and scipy
-only. Importing ``spinbounce.exact`` gives :mod:`.linear`'s functions at the top, as the
+The exact references know nothing of LAMMPS, files or the API: they import numpy, scipy and
+(the compiled batches) numba only. Importing ``spinbounce.exact`` gives :mod:`.linear`'s functions at the top, as the
 paper's equations are the ones most code asks for; :mod:`.choose` decides which theory
 applies. The Python API's call for them is the function ``spinbounce.theory(...)``.
 """

@@ -41,8 +41,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import hertz, linear
 from ..errors import NoMatrix, SceneError
+from . import hertz, linear
 
 __all__ = ["Choice", "which", "predict", "outcome", "matrix", "matrices", "omega_per_sphere", "frozen", "NoMatrix",
            "mindlin_theory"]

@@ -6,17 +6,17 @@ spends about a microsecond per pair and step on a batch; compiled, a step of an 
 takes a fraction of that). ``rates(y, p, n0, planar, mode, out)`` is the one right-hand side of the
 pair equations (:mod:`.pair_batch`), ``mode`` the phase of a capped contact (0 where there is no cap).
 
-Compiled once per machine (numba's cache beside this file, or its user cache where that is not
-writable): the first batched pair reference of a fresh install waits a few seconds for it.
+Compiled once per machine and version of these modules (numba's cache, in a folder named by their
+digest: :func:`.vec3.compiled`): the first batched pair reference after an install or an edit waits
+about ten seconds for it.
 """
 
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 from scipy.integrate import DOP853
 
-from .vec3 import FLAGS
+from .vec3 import compiled
 
 __all__ = ["STAGES", "RTOL", "new_scratch", "make_step", "make_dense", "interpolate", "error_norm", "step_factor"]
 
@@ -36,7 +36,7 @@ _SAFETY, _MIN_FACTOR, _MAX_FACTOR = 0.9, 0.2, 10.0
 RTOL = 1e-12
 
 
-@njit(**FLAGS)
+@compiled
 def new_scratch(size):
     """(stages, one state) of scratch for a step and its dense output of a state of ``size`` components."""
     return np.empty((EXTENDED, size)), np.empty(size)
@@ -47,7 +47,7 @@ def make_step(rates):
     stages, scratch, y_new)`` writes the state at t + h into ``y_new``, the stages and the rates there
     (``stages[STAGES]``) into ``stages``."""
 
-    @njit(**FLAGS)
+    @compiled
     def step(y, f, h, p, n0, planar, mode, stages, scratch, y_new):
         # the tableau's nonzero entries written out (no loop over the stages): a third of the time of loops
         size = y.size
@@ -110,7 +110,7 @@ def make_dense(rates):
     scratch, F)`` adds the three extra stages to a step's ``stages`` and writes the interpolant's
     coefficients (INTERPOLATOR_POWER rows) into ``F`` for :func:`interpolate`."""
 
-    @njit(**FLAGS)
+    @compiled
     def dense(y0, y1, h, p, n0, planar, mode, stages, scratch, F):
         size = y0.size
         for e in range(EXTENDED - STAGES - 1):
@@ -139,7 +139,7 @@ def make_dense(rates):
     return dense
 
 
-@njit(**FLAGS)
+@compiled
 def interpolate(F, y0, x, out):
     """The state a fraction ``x`` into a step from ``y0``, from its dense output ``F`` (scipy's
     Dop853DenseOutput)."""
@@ -152,7 +152,7 @@ def interpolate(F, y0, x, out):
         out[i] = acc + y0[i]
 
 
-@njit(**FLAGS)
+@compiled
 def error_norm(stages, h, y, y_new, atol, rtol):
     """scipy DOP853's error norm of one step (its stages, the states at both ends)."""
     size = y.size
@@ -171,7 +171,7 @@ def error_norm(stages, h, y, y_new, atol, rtol):
     return abs(h) * e5 / np.sqrt(denom) if denom > 0.0 else 0.0
 
 
-@njit(**FLAGS)
+@compiled
 def step_factor(err, rejected):
     """scipy's factor for the next step after a step of error norm ``err`` (accepted if below 1; NaN is
     not, and shrinks the step as far as a rejection may), ``rejected``: the step before was."""

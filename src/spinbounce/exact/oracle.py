@@ -39,14 +39,18 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from typing import TYPE_CHECKING
-
+from .oracle_forces import VN as _VN
+from .oracle_forces import A as _A
+from .oracle_forces import D as _D
+from .oracle_forces import Forces
+from .oracle_forces import V as _V
+from .oracle_forces import W as _W
 from .wall_law import Law
-from .oracle_forces import Forces, D as _D, VN as _VN, V as _V, W as _W, A as _A
 
 if TYPE_CHECKING:  # the oracle reads a model's fields; it needs nothing else of model/
     from ..model.contact import ContactModel  # noqa: F401

@@ -23,7 +23,6 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import numpy as np
-from numba import njit
 
 from . import pair_exact
 from .dop853 import (
@@ -38,7 +37,7 @@ from .dop853 import (
     step_factor,
 )
 from .pair_exact import HOOKE, PairOutcome, longest_step, pair_scales, tolerance_scale
-from .vec3 import FLAGS
+from .vec3 import compiled
 
 __all__ = ["solve", "solvable", "Batch", "prepare", "finish"]
 
@@ -66,7 +65,7 @@ def solvable(law: dict, tensile: bool = True) -> bool:
     return shape_is_hooke and (tensile or law.get("gamma_n", 0.0) == 0.0)
 
 
-@njit(**FLAGS)
+@compiled
 def _rates(y, p, n0, planar, mode, out):
     """d(state)/dt of a state (d, v_a, v_b, w_a, w_b, xi) into ``out``: :func:`.pair_exact._rates` for
     Hooke's law (``mode``: unused, no cap), written out in components (no array is made per call)."""
@@ -107,14 +106,14 @@ def _rates(y, p, n0, planar, mode, out):
 _step, _dense = make_step(_rates), make_dense(_rates)
 
 
-@njit(**FLAGS)
+@compiled
 def _gap(y, p, n0, planar):
     if planar:
         return y[0] * n0[0] + y[1] * n0[1] + y[2] * n0[2] - p[RADSUM]
     return np.sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2]) - p[RADSUM]
 
 
-@njit(**FLAGS)
+@compiled
 def _gap_rate(y, n0, planar):
     """d(gap)/dt: the relative velocity along n0 (planar) or along d/|d|."""
     vx, vy, vz = y[3] - y[6], y[4] - y[7], y[5] - y[8]
@@ -123,7 +122,7 @@ def _gap_rate(y, n0, planar):
     return (y[0] * vx + y[1] * vy + y[2] * vz) / np.sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2])
 
 
-@njit(**FLAGS)
+@compiled
 def _locate_end(y0, g0, g1, h, F, p, n0, planar, end):
     """The fraction of the step from ``y0`` (gap ``g0`` < 0 there, ``g1`` >= 0 at its end, dense output
     ``F``) where the gap returns to zero, its state in ``end``: Newton's method on the interpolant (the
@@ -147,7 +146,7 @@ def _locate_end(y0, g0, g1, h, F, p, n0, planar, end):
     return np.nan
 
 
-@njit(**FLAGS)
+@compiled
 def _solve_one(y, p, n0, planar, longest, atol, t_bound, max_steps, end):
     """One pair from first touch (state ``y``, changed) to its end (state into ``end``) within ``max_steps``
     steps: (time, status)."""
@@ -176,7 +175,7 @@ def _solve_one(y, p, n0, planar, longest, atol, t_bound, max_steps, end):
     return t, STUCK
 
 
-@njit(**FLAGS)
+@compiled
 def _solve_all(y, p, n0, planar, longest, atol, t_bound, max_steps):
     """Each row of ``y`` (states at first touch) to its end: (end states, times, statuses)."""
     count = y.shape[0]

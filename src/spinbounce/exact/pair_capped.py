@@ -39,9 +39,17 @@ from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
 from . import pair_exact
-
-from .pair_exact import (RTOL, PairOutcome, contact_radius_power, cross, free_flight, geometry, normal_force,
-                         outcome, start)
+from .pair_exact import (
+    RTOL,
+    PairOutcome,
+    contact_radius_power,
+    cross,
+    free_flight,
+    geometry,
+    normal_force,
+    outcome,
+    start,
+)
 from .pair_exact import undamped_depth as pair_depth
 from .wall_law import on_contact_radius
 

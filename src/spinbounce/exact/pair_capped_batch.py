@@ -10,7 +10,8 @@ inside each step, so that a stick or a slide shorter than a step is not stepped 
 normal dashpot, the normal force's zero; each located on the step's dense output and the integration
 restarted there. Measured against the scipy reference on random pairs (tests/test_pair_capped_batch.py).
 
-Laws on the contact radius, ``limit_damping`` (the normal force's turn cuts the contact) and pairs
+Laws on the contact radius, ``limit_damping`` with a normal dashpot (the normal force's turn cuts the
+contact) and pairs
 this batch cannot carry to their end (more than MAX_PHASES switches, a step shrunk to nothing) are
 solved one at a time by :func:`.pair_capped.solve`: :func:`solvable` says which laws are taken.
 """
@@ -18,7 +19,6 @@ solved one at a time by :func:`.pair_capped.solve`: :func:`solvable` says which 
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 
 from . import pair_capped
 from .dop853 import (
@@ -35,7 +35,7 @@ from .dop853 import (
 from .pair_batch import ENDED, STUCK, finish, prepare
 from .pair_batch import solvable as uncapped_solvable
 from .pair_capped import INTERIOR_SAMPLES, MARGIN, MAX_PHASES, TURN_FLOOR
-from .vec3 import FLAGS, axpy, cross, dot, unit
+from .vec3 import axpy, compiled, cross, dot, unit
 
 __all__ = ["solve", "solvable"]
 
@@ -47,18 +47,21 @@ __all__ = ["solve", "solvable"]
 STICK, SLIDE = 1, 2
 #: The events of a phase: the end of contact, the phase's own end, the normal force's zero.
 SEPARATED, OWN_END, NORMAL_ZERO = 0, 1, 2
-#: As the uncapped batch's (:mod:`.pair_batch`): a pair whose step shrinks below MIN_STEP of its longest,
-#: or still in its phase after MAX_STEPS steps, is left to the scipy reference.
+#: A pair whose step shrinks below MIN_STEP of its longest, or still in one phase after MAX_STEPS steps,
+#: is left to the scipy reference (300 times slower). A slide can take tens of thousands of steps as
+#: its cap closes (31,640 seen on a grazing pair, at 1e-11 of the longest step): the window and
+#: MIN_STEP bound a phase's work, MAX_STEPS only a runaway.
 MIN_STEP = 1e-12
-MAX_STEPS = 20_000
+MAX_STEPS = 1_000_000
 
 
 def solvable(law: dict, tensile: bool = True) -> bool:
-    """Whether :func:`solve` takes ``law``: Hooke's shape, and the normal force never cut (no limit_damping)."""
-    return tensile and uncapped_solvable(law)
+    """Whether :func:`solve` takes ``law``: Hooke's shape, and no turn of the normal force to cut (limit_damping
+    cuts it only where a normal dashpot turns it)."""
+    return uncapped_solvable(law, tensile)
 
 
-@njit(**FLAGS)
+@compiled
 def _kinematics(y, p, n0, planar):
     """(n, n', v, v.n, spin, slip rate, F_n, F_n', lever of a, of b): :meth:`.pair_capped._Contact.kinematics`
     for Hooke's law."""
@@ -82,7 +85,7 @@ def _kinematics(y, p, n0, planar):
     return n, turn, v, v_n, spin, slip, f_n, df_n, lever_a, lever_b
 
 
-@njit(**FLAGS)
+@compiled
 def _stick_rate(k, p, trial):
     """A' while sticking with the trial force ``trial`` (the friction -trial on a)."""
     n, turn, v, v_n, spin, slip, f_n, _, lever_a, lever_b = k
@@ -102,7 +105,7 @@ def _stick_rate(k, p, trial):
             p[KT] * slip[2] - tilt * n[2] + p[GAMMA_T] * slip_rate[2])
 
 
-@njit(**FLAGS)
+@compiled
 def _direction(k, y):
     """A slide's unit s, held in the tangent plane."""
     n = k[0]
@@ -110,19 +113,19 @@ def _direction(k, y):
     return unit(axpy(-dot(a, n), n, a))[0]
 
 
-@njit(**FLAGS)
+@compiled
 def _cap(k, p, side):
     return p[MU] * side * k[6]
 
 
-@njit(**FLAGS)
+@compiled
 def _push(k, p, side, s):
     """How fast sticking would carry A outwards along s with A = c s on the cap, less the cap's rate."""
     c = _cap(k, p, side)
     return dot(s, _stick_rate(k, p, (c * s[0], c * s[1], c * s[2]))) - p[MU] * side * k[7]
 
 
-@njit(**FLAGS)
+@compiled
 def _rates(y, p, n0, planar, mode, out):
     """d(state)/dt of (d, v_a, v_b, w_a, w_b, A or s, overlap) in phase ``mode`` (its sign F_n's side)."""
     k = _kinematics(y, p, n0, planar)
@@ -154,7 +157,7 @@ def _rates(y, p, n0, planar, mode, out):
 _step, _dense = make_step(_rates), make_dense(_rates)
 
 
-@njit(**FLAGS)
+@compiled
 def _event(which, y, p, n0, planar, mode):
     """The value of event ``which`` at ``y``, signed so that it fires rising through zero."""
     if which == SEPARATED:
@@ -168,7 +171,7 @@ def _event(which, y, p, n0, planar, mode):
     return np.sqrt(y[15] ** 2 + y[16] ** 2 + y[17] ** 2) - _cap(k, p, side) - MARGIN * p[FORCE]
 
 
-@njit(**FLAGS)
+@compiled
 def _root(which, y0, F, x0, x1, g0, g1, h, t, p, n0, planar, mode, out):
     """The fraction of the step in (x0, x1] where event ``which`` rises through zero (``g0`` < 0 <= ``g1``),
     on the dense output, to scipy's event tolerance (4 eps in time): Illinois false position."""
@@ -196,7 +199,7 @@ def _root(which, y0, F, x0, x1, g0, g1, h, t, p, n0, planar, mode, out):
     return x1
 
 
-@njit(**FLAGS)
+@compiled
 def _rate_direction(k, p):
     """Where sticking pushes a trial force of zero: the unit A' at A = 0, else the slip's; (direction, found)."""
     rate, size = unit(_stick_rate(k, p, (0.0, 0.0, 0.0)))
@@ -206,7 +209,7 @@ def _rate_direction(k, p):
     return slip, size > 0.0
 
 
-@njit(**FLAGS)
+@compiled
 def _on_cap(y, p, n0, planar, side, s, found):
     """The phase with A on the cap along ``s`` (``found`` False: no direction, stick with A = 0)."""
     k = _kinematics(y, p, n0, planar)
@@ -221,7 +224,7 @@ def _on_cap(y, p, n0, planar, side, s, found):
     return STICK * side
 
 
-@njit(**FLAGS)
+@compiled
 def _begin(y, p, n0, planar):
     """The trial force at first touch (the dashpot's gamma_t u') and the phase it starts in."""
     k = _kinematics(y, p, n0, planar)
@@ -239,7 +242,7 @@ def _begin(y, p, n0, planar):
     return _on_cap(y, p, n0, planar, side, s, found)
 
 
-@njit(**FLAGS)
+@compiled
 def _switch(which, y, p, n0, planar, mode):
     """The phase after event ``which`` (:meth:`.pair_capped._Contact.switch`)."""
     k = _kinematics(y, p, n0, planar)
@@ -259,7 +262,7 @@ def _switch(which, y, p, n0, planar, mode):
     return _on_cap(y, p, n0, planar, side, s, found)
 
 
-@njit(**FLAGS)
+@compiled
 def _first_event(y, y_new, F, h, t, g_start, g_end, events, p, n0, planar, mode, probe):
     """(fraction of the step, event) of the first event inside the step from ``y`` (-1 if none): each event
     where it rises through zero between the step's ends, and the phase's own end also between
@@ -286,7 +289,7 @@ def _first_event(y, y_new, F, h, t, g_start, g_end, events, p, n0, planar, mode,
     return first, which
 
 
-@njit(**FLAGS)
+@compiled
 def _advance(y, f, t, target, h, p, n0, planar, mode, longest, atol, stages, scratch, y_new):
     """``y`` (rates ``f``) at ``t`` integrated to exactly ``target`` under the same error control, the last
     step ending there: the state at an event. Returns the next step's length (NaN if it shrank to nothing)."""
@@ -306,7 +309,7 @@ def _advance(y, f, t, target, h, p, n0, planar, mode, longest, atol, stages, scr
     return h
 
 
-@njit(**FLAGS)
+@compiled
 def _solve_one(y, p, n0, planar, longest, atol, window, max_steps, end):
     """One capped pair from first touch (state ``y``, changed) to its end (state into ``end``): (time, status)."""
     size = y.size
@@ -340,6 +343,7 @@ def _solve_one(y, p, n0, planar, longest, atol, window, max_steps, end):
                     t += x * hs  # sharply as the cap closes, which a step's interpolant misses (1e-8 seen)
                     if h != h:
                         return t, STUCK
+                    h = max(h, hs)  # the next phase starts at the step that found the event, not a sliver
                     break
                 y[:] = y_new
                 f[:] = stages[STAGES]
@@ -356,7 +360,7 @@ def _solve_one(y, p, n0, planar, longest, atol, window, max_steps, end):
     return t, STUCK
 
 
-@njit(**FLAGS)
+@compiled
 def _solve_all(y, p, n0, planar, longest, atol, window, max_steps):
     """Each row of ``y`` (states at first touch) to its end: (end states, times, statuses)."""
     count = y.shape[0]

@@ -2,33 +2,63 @@
 
 from __future__ import annotations
 
+import hashlib
+import os
+from pathlib import Path
+
+import numba
 import numpy as np
 from numba import njit
 
-__all__ = ["FLAGS", "dot", "cross", "axpy", "unit"]
+__all__ = ["FLAGS", "compiled", "dot", "cross", "axpy", "unit", "COMPILED"]
 
 #: The compiled references' numba options: cached on disk, and IEEE arithmetic (a division by zero is
 #: inf or NaN, as numpy's, not an exception).
 FLAGS = dict(cache=True, error_model="numpy")
+#: The modules whose code and constants the compiled references are built from. numba keys a cached
+#: function on its own file only, so an edit to one of the others (the DOP853 step, a constant of the
+#: capped reference) would leave the cache serving the old code: the cache lives in a folder named by
+#: the digest of all of them.
+COMPILED = ("vec3.py", "dop853.py", "pair_exact.py", "pair_batch.py", "pair_capped.py", "pair_capped_batch.py")
 
 
-@njit(**FLAGS)
+def _cache_dir() -> str:
+    here = Path(__file__).parent
+    digest = hashlib.sha256(b"".join((here / name).read_bytes() for name in COMPILED)).hexdigest()[:16]
+    base = numba.config.CACHE_DIR or os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
+    return str(Path(base) / "spinbounce-numba" / digest)
+
+
+_CACHE_DIR = _cache_dir()
+
+
+def compiled(function):
+    """``function`` compiled with :data:`FLAGS`, its cache in the digest's folder (numba reads the folder
+    when a cached function is declared: set for that moment only, the process's own setting kept)."""
+    previous, numba.config.CACHE_DIR = numba.config.CACHE_DIR, _CACHE_DIR
+    try:
+        return njit(**FLAGS)(function)
+    finally:
+        numba.config.CACHE_DIR = previous
+
+
+@compiled
 def dot(a, b):
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 
 
-@njit(**FLAGS)
+@compiled
 def cross(a, b):
     return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
 
 
-@njit(**FLAGS)
+@compiled
 def axpy(c, a, b):
     """c a + b of 3-tuples."""
     return (c * a[0] + b[0], c * a[1] + b[1], c * a[2] + b[2])
 
 
-@njit(**FLAGS)
+@compiled
 def unit(a):
     size = np.sqrt(dot(a, a))
     return (a[0] / size, a[1] / size, a[2] / size), size

