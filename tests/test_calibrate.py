@@ -40,6 +40,7 @@ def random_targets(rng, count):
     return reached, refused
 
 
+@pytest.mark.slow
 def test_the_calibrated_model_meets_its_targets_in_the_exact_theory():
     # the inverse against the forward theory (linear.py): root finding to 1e-14, so 1e-9
     reached, refused = random_targets(np.random.default_rng(3), 120)
@@ -79,6 +80,7 @@ def test_a_cap_with_a_pulling_normal_force_is_refused():
     calibrate(Targets(e=1.0, contact_time=1.0, beta=0.3, mu=0.5))  # undamped: F_n never pulls
 
 
+@pytest.mark.slow
 @pytest.mark.lammps
 def test_lammps_reaches_100_random_targets_within_1e_3(tmp_path):
     reached, _ = random_targets(np.random.default_rng(11), 100)

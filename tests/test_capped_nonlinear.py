@@ -139,6 +139,7 @@ def test_the_oracle_s_answer_does_not_depend_on_where_it_starts(f, monkeypatch):
     assert np.abs(answers[0] - answers[1]).max() <= 1e-9
 
 
+@pytest.mark.slow
 @pytest.mark.lammps
 def test_a_state_just_above_the_jump_is_answered_with_its_error(tmp_path):
     # 1.05 times the threshold: no affordable step reaches 1e-4 (the probe asked for 3.2e8 steps):

@@ -47,6 +47,7 @@ def _against_oracle(model, states):
     return (np.abs(fast - slow).max(axis=1) / speed).max(), [r.pattern for r in results]
 
 
+@pytest.mark.slow  # ten seconds of the oracle; the quick run keeps tests/test_coulomb.py's cases
 @pytest.mark.parametrize("kind, n", [("2-D", 300), ("Hertz", 100)])
 def test_random_models_and_states_agree_with_the_oracle(kind, n):
     # the acceptance sample's kind (studies.solver_speed.random_case), a fresh seed:

@@ -39,6 +39,7 @@ def _mkdocs_available() -> bool:
     return True
 
 
+@pytest.mark.slow  # mkdocs builds the whole site
 def test_site_builds_strictly(tmp_path):
     """Warnings are errors: a broken link, anchor, nav entry or API reference fails the build."""
     if not _mkdocs_available():

@@ -77,6 +77,7 @@ def test_dt_near_the_stability_limit_is_refused_before_lammps(fraction):
         Collision(model, v_n=-0.5, v_t=1.0, omega=0.0, dt=dt)
 
 
+@pytest.mark.slow
 @pytest.mark.lammps
 def test_100000_spheres_in_one_batch(tmp_path):
     rng = np.random.default_rng(8)

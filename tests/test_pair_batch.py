@@ -128,7 +128,8 @@ def test_a_scene_solves_its_batch_together_and_keeps_each_outcome_once():
     law = PairContact(gamma_n=0.2, gamma_t=0.1)
     assert law.batched and PairContact(mu=0.3).batched  # a Hookean cap: exact.pair_capped_batch
     assert not PairContact(words=(("limit_damping", True),), gamma_n=0.2).batched
-    assert not PairContact(mu=0.3, words=(("limit_damping", True),)).batched  # the capped batch never cuts F_n
+    assert not PairContact(mu=0.3, gamma_n=0.2, words=(("limit_damping", True),)).batched  # capped: never cuts F_n
+    assert PairContact(mu=0.3, words=(("limit_damping", True),)).batched  # no normal dashpot: no turn to cut
     rng = np.random.default_rng(3)
     pairs = [Pair(Sphere(), Sphere(m=2.0, r=0.3), normal=(0.2 * rng.normal(), 0.2 * rng.normal(), 1.0),
                   v_a=(0.3 * rng.normal(), 0.3 * rng.normal(), -1.0 - rng.random()), w_a=tuple(rng.normal(size=3)))
@@ -178,6 +179,7 @@ def test_contacts_at_the_edges_end_as_the_scipy_reference_ends_them(name, vector
     assert _deviation(batched, reference, pair) < AGREEMENT
 
 
+@pytest.mark.slow  # each reference follows the pair through its whole window (seconds of scipy)
 def test_a_head_on_pair_that_never_parts_is_refused_by_both_alike():
     """gamma_n 4.47 against the critical 4.472: head-on, the spheres would part at exp(-101) of the speed,
     below the rounding of their distance, so neither reference sees them part within its window; the

@@ -30,11 +30,11 @@ def _worst_against_scipy(kind: str, count: int, seed: int, planar: bool = False)
 
 @pytest.mark.parametrize("kind", KINDS)
 def test_the_compiled_capped_reference_is_the_scipy_reference(kind):
-    assert _worst_against_scipy(kind, 4, seed=KINDS.index(kind)) < AGREEMENT
+    assert _worst_against_scipy(kind, 2, seed=KINDS.index(kind)) < AGREEMENT  # scipy's capped reference: ~1 s a pair
 
 
 def test_with_the_line_of_centres_held_it_is_the_scipy_reference_held():
-    assert _worst_against_scipy("3-D", 4, seed=11, planar=True) < AGREEMENT
+    assert _worst_against_scipy("3-D", 2, seed=11, planar=True) < AGREEMENT
 
 
 @pytest.mark.slow
@@ -60,7 +60,7 @@ def test_a_cap_of_zero_or_less_is_refused():
 def test_pairs_the_batch_gives_up_are_solved_by_the_scipy_reference(monkeypatch):
     """With a phase allowed a single step, every pair is handed to the scipy reference: its outcomes, in order."""
     monkeypatch.setattr(pair_capped_batch, "MAX_STEPS", 1)
-    case = capped_pairs("3-D", 3, seed=21)
+    case = capped_pairs("3-D", 2, seed=21)
     for k, outcome in enumerate(pair_capped_batch.solve(**case)):
         assert _deviation(outcome, pair_capped.solve(**_pair(case, k)), _pair(case, k)) < 1e-14
 

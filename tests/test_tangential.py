@@ -101,6 +101,7 @@ def test_lammps_follows_the_solver_along_the_curve(tmp_path, index):
     assert len(list(tmp_path.glob("in.lammps"))) == 1
 
 
+@pytest.mark.slow
 @pytest.mark.lammps
 def test_the_command_writes_the_figure_and_its_record(tmp_path, capsys):
     assert main(["tangential", "--out", str(tmp_path), "--json"]) == 0
