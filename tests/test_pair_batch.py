@@ -200,3 +200,16 @@ def test_pairs_the_batch_gives_up_are_solved_by_the_scipy_reference(monkeypatch)
     case = random_pairs("3-D", 4, seed=21)
     for k, outcome in enumerate(pair_batch.solve(**case)):
         assert _deviation(outcome, pair_exact.solve(**_pair(case, k)), _pair(case, k)) < 1e-14
+
+
+def test_the_stored_dop853_tableau_is_scipys():
+    """exact/dop853_tableau.json holds scipy's DOP853 coefficients (stored so that a pair sweep need not
+    import scipy.integrate): equal to scipy's own, number for number."""
+    from scipy.integrate import DOP853
+
+    from spinbounce.exact import dop853
+
+    stored = dop853._TABLEAU
+    assert stored["n_stages"] == DOP853.n_stages and stored["error_estimator_order"] == DOP853.error_estimator_order
+    for name in ("A", "B", "E3", "E5", "A_EXTRA", "D"):
+        assert np.array_equal(np.array(stored[name]), getattr(DOP853, name)), name

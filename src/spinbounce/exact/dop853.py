@@ -13,24 +13,29 @@ about ten seconds for it.
 
 from __future__ import annotations
 
+import json
+from pathlib import Path
+
 import numpy as np
-from scipy.integrate import DOP853
 
 from .vec3 import compiled
 
 __all__ = ["STAGES", "RTOL", "new_scratch", "make_step", "make_dense", "interpolate", "error_norm", "step_factor"]
 
-#: scipy's DOP853: 12 stages, its weights, its 5th and 3rd order error estimates (13 entries: the last for
-#: the step's end), and its step-size controller's constants.
-STAGES = DOP853.n_stages
-_A = np.ascontiguousarray(DOP853.A[:STAGES, :STAGES])
-_B = np.ascontiguousarray(DOP853.B)
-_E3, _E5 = np.ascontiguousarray(DOP853.E3), np.ascontiguousarray(DOP853.E5)
+#: scipy's DOP853 tableau (dop853_tableau.json, written from scipy.integrate.DOP853 and held equal to it by
+#: tests/test_pair_batch.py: importing scipy.integrate costs a pair sweep half a second): 12 stages, its
+#: weights, its 5th and 3rd order error estimates (13 entries: the last for the step's end), and its
+#: step-size controller's constants.
+_TABLEAU = json.loads((Path(__file__).parent / "dop853_tableau.json").read_text())
+STAGES = _TABLEAU["n_stages"]
+_A = np.ascontiguousarray(np.array(_TABLEAU["A"])[:STAGES, :STAGES])
+_B = np.array(_TABLEAU["B"])
+_E3, _E5 = np.array(_TABLEAU["E3"]), np.array(_TABLEAU["E5"])
 #: Its dense output: three more stages and the interpolant's coefficients, of order 7 inside a step.
-_A_EXTRA, _D = np.ascontiguousarray(DOP853.A_EXTRA), np.ascontiguousarray(DOP853.D)
+_A_EXTRA, _D = np.array(_TABLEAU["A_EXTRA"]), np.array(_TABLEAU["D"])
 EXTENDED = STAGES + 1 + _A_EXTRA.shape[0]
 INTERPOLATOR_POWER = 7
-_EXPONENT = -1.0 / (DOP853.error_estimator_order + 1)
+_EXPONENT = -1.0 / (_TABLEAU["error_estimator_order"] + 1)
 _SAFETY, _MIN_FACTOR, _MAX_FACTOR = 0.9, 0.2, 10.0
 #: Relative tolerance of the pair references (as :data:`.pair_exact.RTOL`).
 RTOL = 1e-12

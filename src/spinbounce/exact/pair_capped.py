@@ -35,8 +35,6 @@ oracle does the same).
 from __future__ import annotations
 
 import numpy as np
-from scipy.integrate import solve_ivp
-from scipy.optimize import brentq
 
 from . import pair_exact
 from .pair_exact import (
@@ -254,6 +252,10 @@ def _first_event(solution, events) -> tuple[float, int, np.ndarray]:
     as a sign change between its steps; the phase's own switching function (``events[1]``) is
     also sampled at :data:`INTERIOR_SAMPLES` points inside each step, so that a stick or a slide
     shorter than a step is not stepped over."""
+    from scipy.optimize import (
+        brentq,  # here, as solve_ivp in solve: what a compiled batch never needs
+    )
+
     fired = [(ts[0], k) for k, ts in enumerate(solution.t_events) if len(ts)]
     if not fired:
         raise RuntimeError(f"the capped pair did not separate within its window: {solution.message}")
@@ -291,6 +293,8 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, m
     normal force and with it the cap cut at their turn, from which the spheres part force-free). A law
     on the contact radius is integrated at a tenth of ``rtol``, as the wall's oracle does: a stick whose
     first trial force starts just inside the cap (0.97 of it) kept 2e-7 at rtol itself, 1e-8 at a tenth."""
+    from scipy.integrate import solve_ivp
+
     if not mu > 0.0:
         raise ValueError(f"mu = {mu!r}: the capped pair reference needs a cap > 0 (mu = 0 is the uncapped "
                          "reference without a tangential force)")

@@ -28,7 +28,6 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import numpy as np
-from scipy.integrate import solve_ivp
 
 from . import pair as pair_theory
 from .wall_law import on_contact_radius
@@ -204,6 +203,10 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, g
     False (LAMMPS's ``limit_damping``): where the normal force would turn to pull, it is cut to zero,
     and with it the friction (the no-cap mu times |F_n|): the spheres part force-free (:func:`free_flight`).
     """
+    from scipy.integrate import (
+        solve_ivp,  # here: half a second to import, which a compiled batch never needs
+    )
+
     n0, p, state, _, tau, longest, atol = start(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b,
                                                 kn, kt, planar, rtol, gamma_n=gamma_n, gamma_t=gamma_t, **law)
     radial = on_contact_radius(p["power"], p["spring_power"], p["damping_power"])
@@ -279,6 +282,8 @@ def _tail(state, t: float, delta: float, n0, p, planar, rtol, atol, turned=None)
     """(state, time) at the end of the contact, integrated in x = sqrt(delta) from ``delta`` down: dy/dx =
     dy/dt 2 x/delta', the time a state of its own; ``turned``: the normal force's turn, from which the
     spheres part force-free."""
+    from scipy.integrate import solve_ivp
+
     def rates(x, y):
         core = y[:-1]
         d, v = core[:3], core[3:6] - core[6:9]

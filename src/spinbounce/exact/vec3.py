@@ -19,7 +19,8 @@ FLAGS = dict(cache=True, error_model="numpy")
 #: function on its own file only, so an edit to one of the others (the DOP853 step, a constant of the
 #: capped reference) would leave the cache serving the old code: the cache lives in a folder named by
 #: the digest of all of them.
-COMPILED = ("vec3.py", "dop853.py", "pair_exact.py", "pair_batch.py", "pair_capped.py", "pair_capped_batch.py")
+COMPILED = ("vec3.py", "dop853.py", "dop853_tableau.json", "pair_exact.py", "pair_batch.py", "pair_capped.py",
+            "pair_capped_batch.py")
 
 
 def _cache_dir() -> str:

@@ -72,8 +72,10 @@ def scene_sweeps(quick: bool = False, seed: int = 0, n: int | None = None) -> li
     beside the bare engine's seconds; with each one's time per collision over the wall's (``over_wall``)."""
     root = Path(tempfile.mkdtemp(prefix="spinbounce-bench-scenes-"))
     try:
-        # untimed: the first sweep in a process also loads LAMMPS and the table code, which no ratio should carry
-        _scene_sweep("wall", min(n or 1000, 1000), seed, root / "warm-up")
+        # untimed: the first sweep of a kind in a process also loads LAMMPS, the table code and (pairs) the compiled
+        # references, which no ratio should carry (reference_rates reports what that load costs a process)
+        for name in ("wall", "pair", "capped pair"):
+            _scene_sweep(name, min(n or 200, 200), seed, root / "warm-up" / name.replace(" ", "-"))
         out = [_scene_sweep(name, n or (spec[3] if quick else spec[2]), seed, root) for name, spec in SCENES.items()]
     finally:
         shutil.rmtree(root, ignore_errors=True)
@@ -132,6 +134,26 @@ def damped_steps() -> dict:
             "damped_estimate": float(damped["estimate"]), "target": float(damped["target"])}
 
 
+#: A fresh process that solves one pair in compiled code: what it costs beyond starting spinbounce's modules.
+_FIRST_PAIR = ("import numpy as np; from spinbounce.exact import pair_batch; pair_batch.solve(n=[[0, 0, 1.0]], "
+               "v_a=[[0.1, 0, -1.0]], v_b=[[0, 0, 0.0]], w_a=[[0, 0, 0.0]], w_b=[[0, 0, 0.0]], m_a=1.0, r_a=0.5, "
+               "alpha_a=0.4, m_b=1.0, r_b=0.5, alpha_b=0.4, kn=1e4, kt=2e3)")
+
+
+def _load_seconds(repeats: int = 3) -> float:
+    """Seconds a process spends loading the compiled references (numba and its cached code) before its first
+    pair: the fastest of ``repeats`` fresh processes that solve one pair, less the fastest that import spinbounce."""
+    def fastest(code: str) -> float:
+        times = []
+        for _ in range(repeats):
+            started = time.perf_counter()
+            subprocess.run([sys.executable, "-c", code], check=True, capture_output=True)
+            times.append(time.perf_counter() - started)
+        return min(times)
+
+    return fastest(_FIRST_PAIR) - fastest("import spinbounce.exact")
+
+
 def reference_rates(n: int = 20_000, seed: int = 0, mu: float = 0.3) -> dict:
     """Pairs per second of the compiled exact pair references on one core, uncapped and with a cap ``mu``,
     on the pair sweep's own ``n`` states (the default spheres; their compiled code loaded beforehand)."""
@@ -146,7 +168,7 @@ def reference_rates(n: int = 20_000, seed: int = 0, mu: float = 0.3) -> dict:
     rows = [p.vectors() | p.properties() for p in pairs_from_states(model, b, spec.initial_states(0))]
     columns = {k: np.array([row[k] for row in rows]) for k in rows[0]}
     law = pair_contact(model, b).law()
-    out = {"pairs": len(rows), "mu": mu}
+    out = {"pairs": len(rows), "mu": mu, "load_seconds": _load_seconds()}
     for name, solve, cap in (("uncapped", pair_batch.solve, {}), ("capped", pair_capped_batch.solve, {"mu": mu})):
         solve(**{k: v[:2] for k, v in columns.items()}, **law, **cap)  # untimed: loads the compiled code
         out[f"{name}_per_second"] = len(rows) / _timed(lambda: solve(**columns, **law, **cap))  # noqa: B023
@@ -181,7 +203,8 @@ def wait_lines(report: dict) -> list[str]:
     r = report["references"]
     lines.append(f"exact pair references, one core, the pair sweep's {r['pairs']:,} states: "
                  f"{r['uncapped_per_second']:,.0f} pairs/s uncapped (target 100,000), {r['capped_per_second']:,.0f}/s "
-                 f"with mu = {r['mu']:g} (target 20,000)")
+                 f"with mu = {r['mu']:g} (target 20,000); loading them costs a process {r['load_seconds']:.2f} s "
+                 "once (untimed in the sweeps above, as LAMMPS's own load)")
     f = report["frictionless"]
     lines.append(f"frictionless sweep of {f['collisions']:,} (a process, start-up included): "
                  f"{f['sweep_per_second']:,.0f}/s; the bare engine on the same chunks: "
