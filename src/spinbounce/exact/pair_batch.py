@@ -25,12 +25,21 @@ from typing import NamedTuple
 import numpy as np
 
 from . import pair_exact
-from .dop853 import (INTERPOLATOR_POWER, RTOL, STAGES, error_norm, interpolate, make_dense, make_step, new_scratch,
-                     step_factor)
+from .dop853 import (
+    INTERPOLATOR_POWER,
+    RTOL,
+    STAGES,
+    error_norm,
+    interpolate,
+    make_dense,
+    make_step,
+    new_scratch,
+    step_factor,
+)
 from .pair_exact import HOOKE, PairOutcome, longest_step, pair_scales, tolerance_scale
 from .vec3 import compiled
 
-__all__ = ["solve", "solvable", "Batch", "prepare", "finish", "make_batch"]
+__all__ = ["solve", "solvable", "Batch", "prepare", "finish"]
 
 #: A pair not separated within the scipy reference's window (:func:`.pair_exact.window`), whose step
 #: shrinks below MIN_STEP of its longest, or still in contact after MAX_STEPS steps is solved by the
@@ -166,25 +175,17 @@ def _solve_one(y, p, n0, planar, longest, atol, t_bound, max_steps, end):
     return t, STUCK
 
 
-def make_batch(solve_one):
-    """The compiled loop of ``solve_one(y, p, n0, planar, longest, atol, window, max_steps, end) -> (time,
-    status)`` over a batch: ``solve_all(y, p, n0, planar, longest, atol, window, max_steps)`` takes each
-    pair's row of every array (``atol``: one tolerance per component of its state) and returns the end
-    states, times and statuses."""
-
-    @compiled
-    def solve_all(y, p, n0, planar, longest, atol, window, max_steps):
-        count = y.shape[0]
-        ends, times, status = np.empty_like(y), np.empty(count), np.empty(count, dtype=np.int64)
-        for k in range(count):
-            times[k], status[k] = solve_one(y[k].copy(), p[k], n0[k], planar, longest[k], atol[k].copy(), window[k],
-                                            max_steps, ends[k])
-        return ends, times, status
-
-    return solve_all
-
-
-_solve_all = make_batch(_solve_one)
+@compiled
+def _solve_all(y, p, n0, planar, longest, atol, t_bound, max_steps):
+    """Each row of ``y`` (states at first touch) to its end: (end states, times, statuses)."""
+    count = y.shape[0]
+    ends, times, status = np.empty_like(y), np.empty(count), np.empty(count, dtype=np.int64)
+    tolerance = np.empty(y.shape[1])
+    for k in range(count):
+        tolerance[:] = atol[k]
+        times[k], status[k] = _solve_one(y[k].copy(), p[k], n0[k], planar, longest[k], tolerance, t_bound[k],
+                                         max_steps, ends[k])
+    return ends, times, status
 
 
 def _outcomes(end, t, n0) -> list[PairOutcome]:
@@ -271,6 +272,5 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, g
     properties and the law's coefficients: scalars or (N,) arrays."""
     b = prepare(n, planar, v_a=v_a, v_b=v_b, w_a=w_a, w_b=w_b, m_a=m_a, r_a=r_a, alpha_a=alpha_a, m_b=m_b, r_b=r_b,
                 alpha_b=alpha_b, kn=kn, kt=kt, gamma_n=gamma_n, gamma_t=gamma_t)
-    atol = np.repeat(b.atol[:, None], b.y.shape[1], axis=1)
-    ends, times, status = _solve_all(b.y, b.p, b.n0, planar, b.longest, atol, b.window, MAX_STEPS)
+    ends, times, status = _solve_all(b.y, b.p, b.n0, planar, b.longest, b.atol, b.window, MAX_STEPS)
     return finish(b, ends, times, status, pair_exact.solve, planar)

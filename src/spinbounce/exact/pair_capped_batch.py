@@ -21,9 +21,18 @@ from __future__ import annotations
 import numpy as np
 
 from . import pair_capped
-from .dop853 import (INTERPOLATOR_POWER, RTOL, STAGES, error_norm, interpolate, make_dense, make_step, new_scratch,
-                     step_factor)
-from .pair_batch import ENDED, STUCK, finish, make_batch, prepare
+from .dop853 import (
+    INTERPOLATOR_POWER,
+    RTOL,
+    STAGES,
+    error_norm,
+    interpolate,
+    make_dense,
+    make_step,
+    new_scratch,
+    step_factor,
+)
+from .pair_batch import ENDED, STUCK, finish, prepare
 from .pair_batch import solvable as uncapped_solvable
 from .pair_capped import INTERIOR_SAMPLES, MARGIN, MAX_PHASES, TURN_FLOOR
 from .vec3 import axpy, compiled, cross, dot, unit
@@ -351,7 +360,18 @@ def _solve_one(y, p, n0, planar, longest, atol, window, max_steps, end):
     return t, STUCK
 
 
-_solve_all = make_batch(_solve_one)
+@compiled
+def _solve_all(y, p, n0, planar, longest, atol, window, max_steps):
+    """Each row of ``y`` (states at first touch) to its end: (end states, times, statuses)."""
+    count = y.shape[0]
+    ends, times, status = np.empty_like(y), np.empty(count), np.empty(count, dtype=np.int64)
+    tolerance = np.empty(y.shape[1])
+    for k in range(count):
+        tolerance[:15] = atol[k, 0]
+        tolerance[18] = atol[k, 1]
+        times[k], status[k] = _solve_one(y[k].copy(), p[k], n0[k], planar, longest[k], tolerance, window[k],
+                                         max_steps, ends[k])
+    return ends, times, status
 
 
 def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, mu, gamma_n=0.0, gamma_t=0.0,
@@ -367,8 +387,7 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, m
     kn, speed = b.c["kn"], np.abs(b.closing)
     force = b.c["mu"] * speed * np.sqrt(b.m_star * kn)  # pair_capped.solve's scales
     p = np.column_stack([b.p, b.c["mu"], b.m_star, force, 16.0 * kn * np.spacing(b.radsum), TURN_FLOOR * force, b.tau])
+    atol = np.stack([b.atol, RTOL * 1e-12 * speed * np.sqrt(b.m_star / kn)], axis=1)  # the overlap's: of its depth
     y = np.concatenate([b.y, np.zeros((b.y.shape[0], 1))], axis=1)
-    atol = np.repeat(b.atol[:, None], y.shape[1], axis=1)  # A's (15:18) set by each phase
-    atol[:, 18] = RTOL * 1e-12 * speed * np.sqrt(b.m_star / kn)  # the overlap's: of its depth
     ends, times, status = _solve_all(y, p, b.n0, planar, b.longest, atol, b.window, MAX_STEPS)
     return finish(b, ends, times, status, pair_capped.solve, planar)
