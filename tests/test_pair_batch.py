@@ -213,3 +213,18 @@ def test_the_stored_dop853_tableau_is_scipys():
     assert stored["n_stages"] == DOP853.n_stages and stored["error_estimator_order"] == DOP853.error_estimator_order
     for name in ("A", "B", "E3", "E5", "A_EXTRA", "D"):
         assert np.array_equal(np.array(stored[name]), getattr(DOP853, name)), name
+
+
+def test_a_fresh_process_loads_the_compiled_references_from_the_cache():
+    """After one process has compiled them, another finds both batch references in numba's cache: no
+    compiling per process (a closure over a dispatcher, for one, is never found there)."""
+    import subprocess
+    import sys
+
+    code = ("import numpy as np; from spinbounce.exact import pair_batch as b, pair_capped_batch as c\n"
+            "pair = dict(n=[[0, 0, 1.0]], v_a=[[0.1, 0, -1.0]], v_b=[[0, 0, 0.0]], w_a=[[0, 0, 0.0]], w_b=[[0, 0, 0.0]], "
+            "m_a=1.0, r_a=0.5, alpha_a=0.4, m_b=1.0, r_b=0.5, alpha_b=0.4, kn=1e4, kt=2e3)\n"
+            "b.solve(**pair); c.solve(**pair, mu=0.3)\n"
+            "print(sum(b._solve_all.stats.cache_misses.values()) + sum(c._solve_all.stats.cache_misses.values()))")
+    runs = [subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True) for _ in range(2)]
+    assert runs[1].stdout.strip() == "0", runs[1].stdout + runs[1].stderr

@@ -43,8 +43,8 @@ def register(sub) -> None:
                         "default %(default)s)")
     p.add_argument("--n-scenes", type=positive_count, default=None, metavar="N",
                    help="collisions of each scene's sweep and of the frictionless sweeps set beside the bare "
-                        "engine and across workers (default: 20,000 to 100,000 a scene, 500 capped pairs, and "
-                        "800,000 frictionless; with --quick 100 capped pairs, 20,000 otherwise, 200,000 frictionless)")
+                        "engine and across workers (default: 20,000 to 100,000 a scene and 800,000 frictionless; "
+                        "with --quick 20,000 a scene and 200,000 frictionless)")
     p.add_argument("--quick", action="store_true",
                    help="only what a user waits for, at small counts (under a minute): each scene's sweep beside "
                         "the bare engine, the frictionless sweep against it, two workers, start-up, damped steps")

@@ -49,8 +49,8 @@ STICK, SLIDE = 1, 2
 SEPARATED, OWN_END, NORMAL_ZERO = 0, 1, 2
 #: A pair whose step shrinks below MIN_STEP of its longest, or still in one phase after MAX_STEPS steps,
 #: is left to the scipy reference (300 times slower). A slide can take tens of thousands of steps as
-#: its cap closes (31,640 seen on a grazing pair, at 1e-11 of the longest step): the window and
-#: MIN_STEP bound a phase's work, MAX_STEPS only a runaway.
+#: its cap closes (31,640 seen on a grazing pair, at 1e-11 of the longest step), so MAX_STEPS is large:
+#: it stops a runaway phase (MAX_PHASES of them at most) after seconds, not minutes.
 MIN_STEP = 1e-12
 MAX_STEPS = 1_000_000
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import hashlib
 import os
+import tempfile
 from pathlib import Path
 
 import numba
@@ -23,20 +24,40 @@ COMPILED = ("vec3.py", "dop853.py", "dop853_tableau.json", "pair_exact.py", "pai
             "pair_capped_batch.py")
 
 
-def _cache_dir() -> str:
+def _writable(folder: Path) -> bool:
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        with tempfile.TemporaryFile(dir=folder):
+            return True
+    except OSError:
+        return False
+
+
+def _cache_dir() -> str | None:
+    """The digest's folder under the user's cache (numba's own setting, XDG_CACHE_HOME or ~/.cache), else
+    under the system's temporary folder; None if neither can be written (then nothing is cached: numba's
+    fallback, a cache beside each file, would be keyed on that file alone)."""
     here = Path(__file__).parent
     digest = hashlib.sha256(b"".join((here / name).read_bytes() for name in COMPILED)).hexdigest()[:16]
-    base = numba.config.CACHE_DIR or os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
-    return str(Path(base) / "spinbounce-numba" / digest)
+    bases = [numba.config.CACHE_DIR, os.environ.get("XDG_CACHE_HOME"), os.environ.get("HOME") and
+             str(Path(os.environ["HOME"]) / ".cache"), str(Path(tempfile.gettempdir()) / f"spinbounce-{os.getuid()}")]
+    for base in filter(None, bases):
+        folder = Path(base) / "spinbounce-numba" / digest
+        if _writable(folder):
+            return str(folder)
+    return None
 
 
 _CACHE_DIR = _cache_dir()
+if _CACHE_DIR is None:
+    FLAGS["cache"] = False
 
 
 def compiled(function):
     """``function`` compiled with :data:`FLAGS`, its cache in the digest's folder (numba reads the folder
     when a cached function is declared: set for that moment only, the process's own setting kept)."""
-    previous, numba.config.CACHE_DIR = numba.config.CACHE_DIR, _CACHE_DIR
+    previous = numba.config.CACHE_DIR
+    numba.config.CACHE_DIR = _CACHE_DIR or previous
     try:
         return njit(**FLAGS)(function)
     finally:

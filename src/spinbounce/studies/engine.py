@@ -147,11 +147,13 @@ def _load_seconds(repeats: int = 3) -> float:
         times = []
         for _ in range(repeats):
             started = time.perf_counter()
-            subprocess.run([sys.executable, "-c", code], check=True, capture_output=True)
+            done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+            if done.returncode:
+                raise RuntimeError(f"bench: a process loading the pair references failed: {done.stderr.strip()}")
             times.append(time.perf_counter() - started)
         return min(times)
 
-    return fastest(_FIRST_PAIR) - fastest("import spinbounce.exact")
+    return max(0.0, fastest(_FIRST_PAIR) - fastest("import spinbounce.exact"))
 
 
 def reference_rates(n: int = 20_000, seed: int = 0, mu: float = 0.3) -> dict:
