@@ -39,10 +39,11 @@ def test_with_the_line_of_centres_held_it_is_the_scipy_reference_held():
 
 @pytest.mark.slow
 @pytest.mark.parametrize("kind", KINDS)
-def test_a_hundred_random_capped_pairs_of_each_kind_agree(kind):
+def test_random_capped_pairs_of_each_kind_agree(kind):
     """Issue 27's line on a sample CI can afford (scipy's capped reference takes up to a second a pair
-    here); the closing note gives the 2,000 of each kind, measured once."""
-    assert _worst_against_scipy(kind, 100, seed=100 + KINDS.index(kind)) < AGREEMENT
+    here, so 25 of each kind is about two minutes); a larger sample is measured by hand and quoted in
+    the closing notes."""
+    assert _worst_against_scipy(kind, 25, seed=100 + KINDS.index(kind)) < AGREEMENT
 
 
 def test_it_takes_hookes_law_where_no_normal_force_is_cut():
