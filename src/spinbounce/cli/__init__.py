@@ -10,11 +10,11 @@ from .. import __version__
 from ..errors import (DumpError, FileFault, LammpsError, NoMatrix, PhysicsWarning, ResultError, SceneError,
                       SweepError)
 from .options import allow_negative_numbers
-from . import (accuracy, bench, benchmarks, calibrate, claims, classic, collide, doctor, figures, fit, frozen, hertz,
-               references, reproduce, restitution, sweep, tangential, theory, two_walls)
+from . import (accuracy, bench, benchmarks, calibrate, claims, classic, collide, doctor, figures, fit, frozen, gas,
+               hertz, references, reproduce, restitution, sweep, tangential, theory, two_walls)
 
 COMMANDS = (theory, collide, frozen, sweep, fit, bench, accuracy, benchmarks, figures, hertz, claims, reproduce,
-            references, doctor, classic, two_walls, restitution, tangential, calibrate)
+            references, doctor, classic, two_walls, restitution, tangential, calibrate, gas)
 
 
 class OneLineParser(argparse.ArgumentParser):

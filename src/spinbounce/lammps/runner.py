@@ -236,14 +236,17 @@ def run_deck(deck: Path, atoms=None) -> RunInfo:
                    initial=initial, final=final)
 
 
-def run_deck_lmp(deck: Path, atoms=None) -> RunInfo:
+def run_deck_lmp(deck: Path, atoms=None, ranks: int = 1) -> RunInfo:
     """Run ``deck`` with the ``lmp`` executable in a process of its own (what a user's rerun
-    does). Slower than :func:`run_deck` by the process and library start-up."""
+    does), or on ``ranks`` MPI ranks under the mpiexec installed beside it. Slower than
+    :func:`run_deck` by the process and library start-up."""
     if atoms is not None:
         raise ValueError("a library-route deck needs the in-process runner")
     deck = Path(deck).resolve()
     started = time.perf_counter()
-    done = subprocess.run([str(lmp_executable()), "-in", deck.name, "-log", LOG_NAME, "-screen", "none", "-nocite"],
+    lmp = lmp_executable()
+    launcher = [str(lmp.parent / "mpiexec"), "-np", str(int(ranks))] if ranks > 1 else []
+    done = subprocess.run([*launcher, str(lmp), "-in", deck.name, "-log", LOG_NAME, "-screen", "none", "-nocite"],
                           cwd=deck.parent, capture_output=True, text=True)
     log = deck.parent / LOG_NAME
     if done.returncode != 0:

@@ -19,7 +19,7 @@ import numpy as np
 from ...lammps.decks import (BODIES_FILE, DECK_NAME, DUMP_NAME, LIBRARY_MARKER, Atoms, Deck, LibraryAtoms,
                              bodies_file, data_file, deck_words, render_template, wall_parameters)
 
-__all__ = ["render_pairs", "DECK_NAME", "DUMP_NAME", "DATA_FILE", "BODIES_FILE"]
+__all__ = ["render_pairs", "pair_law", "DECK_NAME", "DUMP_NAME", "DATA_FILE", "BODIES_FILE"]
 
 DATA_FILE = "pairs.data"
 #: The final quantities of each sphere the deck reports, in table order (LAMMPS's frame).
@@ -50,6 +50,20 @@ def _in_memory(atoms: Atoms) -> LibraryAtoms:
     order = np.argsort(atoms.ids, kind="stable")
     return LibraryAtoms(types=atoms.types[order], x=atoms.x[order], v=atoms.v[order], omega=atoms.w[order],
                         mass=atoms.mass[order], radius=atoms.diameter[order] / 2.0)
+
+
+def pair_law(pair, contact) -> tuple:
+    """The equivalent wall model of ``pair`` under ``contact`` and the deck's words of its law: the wall's
+    numbers, ``comment`` and ``coefficients``, what follows ``pair_coeff * *`` (the pair's and the gas's decks)."""
+    model = pair.equivalent_wall(contact)  # the law's words are the wall's, after the types
+    wall = wall_parameters(model)
+    if contact.mu is None:
+        wall.update(mu=PAIR_NO_CAP_MU, comment=f"no Coulomb cap: mu = {PAIR_NO_CAP_MU:g} (spinbounce.scenes.pair.deck)")
+    else:
+        wall.update(mu=contact.mu, comment=f"Coulomb cap mu = {contact.mu:g}")
+    wall["coefficients"] = deck_words(model.style.coefficient_terms(model, wall["eta_n"], wall["x_t"], wall["damping"],
+                                                                    wall["mu"]))
+    return model, wall
 
 
 def render_pairs(batch, route: str | None = None) -> Deck:
@@ -86,14 +100,7 @@ def render_pairs(batch, route: str | None = None) -> Deck:
                   np.concatenate([2 * radius, np.zeros(nrigid)]), np.concatenate([held, mass[rigid] / 2]),
                   np.vstack([x, x[rigid]]), np.vstack([v, v[rigid]]), np.vstack([w, np.zeros((nrigid, 3))]))
     smallest = float(np.min(radius))
-    model = batch.pairs[0].equivalent_wall(batch.contact)  # the law's words are the wall's, after the types
-    wall = wall_parameters(model)
-    if batch.contact.mu is None:
-        wall.update(mu=PAIR_NO_CAP_MU, comment=f"no Coulomb cap: mu = {PAIR_NO_CAP_MU:g} (spinbounce.scenes.pair.deck)")
-    else:
-        wall.update(mu=batch.contact.mu, comment=f"Coulomb cap mu = {batch.contact.mu:g}")
-    wall["coefficients"] = deck_words(model.style.coefficient_terms(model, wall["eta_n"], wall["x_t"], wall["damping"],
-                                                                    wall["mu"]))
+    model, wall = pair_law(batch.pairs[0], batch.contact)
     scales = batch.scale_classes[1]
     power = model.damping_law.eta_time_power  # how ETA_N follows each class's time scale
     classes = [{"types": f"{atom_type('free', c)}*{atom_type('point', c)}",

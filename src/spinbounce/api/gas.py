@@ -1,0 +1,129 @@
+"""A gas of frictional spheres from Python: ``gas`` and its report."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import SceneError
+from .collisions import model as make_model
+
+__all__ = ["gas", "GasReport", "GAS_SERIES", "GAS_SPHERE_STEP_SECONDS"]
+
+#: The series a gas run writes into its folder (its record: result.json).
+GAS_SERIES = "gas.csv"
+#: LAMMPS's cost of one sphere's step in a dilute gas on one core (measured here: 1.7e7 to 3.9e7
+#: sphere-steps a second; the slower end, so that an estimate is not short).
+GAS_SPHERE_STEP_SECONDS = 6e-8
+#: Runs estimated longer than this (seconds) need force.
+LONGEST_UNFORCED = 3600.0
+#: The share of the run whose mean ratio is its late (steady) ratio.
+LATE_SHARE = 0.25
+
+
+@dataclass(frozen=True)
+class GasReport:
+    """A gas in LAMMPS beside its theories: ``series`` (time, temperatures, energy, collisions per sphere,
+    and each theory's ratio and energy at the same collisions), ``record`` (parameters, comparisons,
+    accuracy, provenance) and the files they were written to."""
+
+    series: dict
+    record: dict
+    csv: Path
+    record_path: Path
+
+
+def gas(*, spheres: int = 20000, packing: float = 0.05, t_tr: float = 1.0, t_rot: float = 0.0,
+        collisions: float = 20.0, samples: int = 100, seed: int = 1, dt: float | None = None, ranks: int = 1,
+        out: str | Path | None = None, force: bool = False, log=None, **model_parameters) -> GasReport:
+    """Run a gas of ``spheres`` spheres of the model at ``packing`` from T_tr(0) = ``t_tr`` and
+    T_rot(0) = ``t_rot`` for ``collisions`` collisions per sphere (at the starting rate), in this process
+    or (``ranks`` > 1) under ``mpiexec -np ranks``, and set its temperatures beside the theories
+    (:mod:`spinbounce.scenes.gas.predict`). A run estimated beyond an hour needs ``force``; a named
+    ``out`` holding an earlier run is refused unless ``force``."""
+    from ..lammps.decks import prepare_run_dir
+    from ..lammps.runner import run_deck, run_deck_lmp
+    from ..records import check_run_folder, run_folder
+    from ..scenes.gas import GAS, collisions as pair_draws
+    from ..scenes.gas.scene import Gas
+    from ..scenes.gas.deck import render_gas
+
+    check_run_folder(out, force)
+    if isinstance(ranks, bool) or int(ranks) != ranks or ranks < 1:
+        raise SceneError("ranks", ranks, "must be a whole number >= 1")
+    m = make_model(**model_parameters)
+    start = {p.name: p.check(v) for p, v in zip(GAS[2:4], (t_tr, t_rot))}
+    tc = pair_draws.mean_contact_time(m, start["t_tr"], pair_draws.draws(2000, seed))
+    scene = Gas(m, tc, spheres, packing, t_tr, t_rot, collisions, samples, seed, dt)
+    steps = scene.nsteps + scene.settle_steps
+    cost = scene.spheres * steps * GAS_SPHERE_STEP_SECONDS / ranks
+    if cost > LONGEST_UNFORCED and not force:
+        raise SceneError("spheres", scene.spheres, f"and {steps} steps: the run is estimated at {cost / 3600:.2g} "
+                         f"hours on {ranks} core(s), more than one: give force (--force) to run it")
+    folder = Path(out) if out is not None else run_folder("gas", scene.record() | {"ranks": ranks})
+    if log is not None:
+        log(f"gas: {scene.spheres} spheres, {steps} steps of dt = {scene.dt:.4g} (about {cost:.0f} s on {ranks} "
+            "core(s))")
+    deck_path = prepare_run_dir(folder, render_gas(scene))
+    info = run_deck(deck_path) if ranks == 1 else run_deck_lmp(deck_path, ranks=ranks)
+    return _judged(scene, folder, info, ranks, log)
+
+
+def _judged(scene, folder: Path, info, ranks: int, log) -> GasReport:
+    """The run's series beside the theories, written to gas.csv and result.json."""
+    import pandas as pd
+
+    from ..records import software, to_json, write_atomic
+    from ..scenes.gas import predict
+    from ..scenes.gas.table import read_series
+
+    theories, errors, why = predict.theories(scene, folder / "pairs", log)
+    series = read_series(scene, folder, theories["pairs"].contact_time)
+    compared = {name: predict.compare(series, averages, scene) for name, averages in theories.items()}
+    table = dict(series)
+    for name, c in compared.items():
+        table |= {f"{q}_{name}": c[q] for q in ("t_tr", "t_rot", "ratio", "energy")}
+    table["t_enskog_pairs"] = compared["pairs"]["t_enskog"]
+    csv = folder / "gas.csv"
+    write_atomic(csv, pd.DataFrame(table).to_csv(index=False, float_format="%.17g"))
+    record = {"scene": "gas", "parameters": scene.record(), "ranks": ranks, "judged": scene.judged,
+              "lammps": _lammps_summary(series),
+              "theories": {n: _summary(c) | _matrices(theories[n]) for n, c in compared.items()},
+              "no_matrix": why, "accuracy": _accuracy(scene, series, errors), "csv": str(csv),
+              "deck": str(info.deck), "loop_seconds": info.loop_seconds, "wall_seconds": info.wall_seconds,
+              **software()}
+    record_path = folder / "result.json"
+    write_atomic(record_path, to_json(record))
+    return GasReport(table, record, csv, record_path)
+
+
+def _lammps_summary(series: dict) -> dict:
+    late = series["collisions"] >= (1.0 - LATE_SHARE) * series["collisions"][-1]
+    steady = float(np.mean(series["ratio"][late]))
+    from ..scenes.gas.predict import relaxation
+
+    return {"late_ratio": steady, "late_ratio_spread": float(np.std(series["ratio"][late])),
+            "energy_drift": float(series["energy"][-1] / series["energy"][0] - 1.0),
+            "collisions_per_sphere": float(series["collisions"][-1]),
+            "relaxation_collisions": relaxation(series["collisions"], series["ratio"], steady)}
+
+
+def _summary(compared: dict) -> dict:
+    keys = ("max_ratio_difference", "energy_drift", "drift_difference", "steady_ratio", "relaxation_collisions")
+    return {k: compared[k] for k in keys}
+
+
+def _matrices(averages) -> dict:
+    """A theory's L (d(T_tr, T_rot)/dtau = L (T_tr, T_rot)) at the T_tr's it was measured at."""
+    return {"L_at_t_tr": averages.t_tr.tolist(), "L": averages.matrices.tolist()}
+
+
+def _accuracy(scene, series: dict, errors: np.ndarray) -> dict:
+    """How far each number may be from the truth: a temperature's own noise; the pair-level L's
+    standard error carried over the run's collisions (a bound on the theory's drift from it)."""
+    return {"temperature_noise": math.sqrt(2.0 / (3.0 * scene.spheres)),
+            "pair_level_standard_error": float(np.max(errors)),
+            "pair_level_drift_error": float(2.0 * np.max(errors) * series["collisions"][-1])}

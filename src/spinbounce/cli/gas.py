@@ -1,0 +1,67 @@
+"""spinbounce gas: a gas of frictional spheres in LAMMPS, its two temperatures against kinetic theory."""
+
+from __future__ import annotations
+
+from .options import (_parent, check_run_folder, model_parser, model_values, note, number, print_json,
+                      run_folder_flags, shown_path)
+
+HELP = "run a gas of frictional spheres in LAMMPS: T_rot/T_tr and the energy against two-temperature kinetic theory"
+
+
+def _ranks(text: str) -> int:
+    import argparse
+
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r}: give a whole number of MPI ranks >= 1") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"{text!r}: give a whole number of MPI ranks >= 1")
+    return value
+
+
+def register(sub) -> None:
+    from ..scenes.gas import GAS
+
+    p = sub.add_parser("gas", parents=[model_parser(), _parent("gas", GAS)], help=HELP, description=(
+        f"{HELP}, with each collision's energy changes from the paper's matrix and from the project's pair outcomes "
+        "(LAMMPS's own isolated pairs at the gas's step, and the exact references). Writes gas.csv and result.json."))
+    p.add_argument("--kt-over-kn", dest="kt_over_kn", type=number, default=None, metavar="RATIO",
+                   help="instead of --kt: the stiffness ratio kt/kn (2/7 = 0.2857...: the magic ratio of alpha = 2/5)")
+    p.add_argument("--dt", type=number, default=None, help="timestep (default: the mean contact time over 50)")
+    p.add_argument("--ranks", type=_ranks, default=1,
+                   help="MPI ranks: 1 runs LAMMPS in this process; K > 1 runs it under mpiexec -np K (default 1)")
+    run_folder_flags(p, "run folder: the deck, data file, log, gas.csv and result.json (default: "
+                        "spinbounce-runs/gas-<hash>); --force also runs a gas estimated beyond an hour")
+    p.set_defaults(handler=run)
+
+
+def run(args) -> int:
+    from ..api.gas import gas
+    from ..errors import SceneError
+    from ..scenes.gas import GAS
+
+    check_run_folder(args.out, args.force)
+    values = model_values(args)
+    if args.kt_over_kn is not None:
+        if "kt" in getattr(args, "given_options", set()):
+            raise SceneError("kt_over_kn", args.kt_over_kn, "give --kt or --kt-over-kn, not both")
+        values["kt"] = args.kt_over_kn * values["kn"]
+    report = gas(**{p.name: getattr(args, p.name) for p in GAS}, dt=args.dt, ranks=args.ranks, out=args.out,
+                 force=True if args.out is not None else args.force, log=None if args.json else note, **values)
+    r = report.record
+    if args.json:
+        return print_json({"series": report.series, "lammps": r["lammps"], "theories": r["theories"],
+                           "accuracy": r["accuracy"], "no_matrix": r["no_matrix"], "csv": r["csv"],
+                           "record": str(report.record_path), "parameters": r["parameters"],
+                           "lammps_version": r["lammps_version"]})
+    s = r["lammps"]
+    print(f"gas of {r['parameters']['spheres']} spheres: {s['collisions_per_sphere']:.3g} collisions per sphere, "
+          f"late T_rot/T_tr {s['late_ratio']:.4f}, energy drift {100 * s['energy_drift']:+.3f}%")
+    for name, t in r["theories"].items():
+        print(f"  theory {name:<12} largest |ratio difference| {t['max_ratio_difference']:.4f}, steady ratio "
+              f"{t['steady_ratio']:.4f}, energy drift {100 * t['energy_drift']['theory']:+.3f}%")
+    if r["no_matrix"]:
+        print(f"  no matrix theory: {r['no_matrix']}")
+    print(f"wrote {shown_path(report.csv)} and {shown_path(report.record_path)}")
+    return 0

@@ -1,0 +1,33 @@
+"""The gas's own parameters, declared once (the contact law and the spheres' m, r and alpha are the
+model's): light, so that the command line lists them without loading the scene."""
+
+from __future__ import annotations
+
+from ...declaration import Parameter
+
+__all__ = ["GAS", "MIN_SPHERES"]
+
+#: Below this many spheres a temperature's own noise, sqrt(2/(3N)), passes 2.6%.
+MIN_SPHERES = 1000
+
+#: The gas's own parameters (the contact law and the spheres' m, r, alpha are the model's).
+GAS: tuple[Parameter, ...] = (
+    Parameter("spheres", "gas: number of spheres", "1", 20000, low=MIN_SPHERES,
+              why=f"below {MIN_SPHERES} a temperature's noise sqrt(2/(3N)) passes 2.6%", sweepable=False),
+    Parameter("packing", "gas: packing fraction (sphere volume over box volume)", "1", 0.05, low=0.0, low_open=True,
+              high=0.45, why="the starting lattice holds no denser gas without overlaps",
+              why_low="a packing fraction is positive", sweepable=False),
+    Parameter("t_tr", "gas: translational temperature at the start, m <v_x^2>", "energy", 1.0, low=0.0,
+              low_open=True, why="a gas at rest has no collisions", sweepable=False),
+    Parameter("t_rot", "gas: rotational temperature at the start, I <omega_x^2>", "energy", 0.0, low=0.0,
+              why="a temperature is not negative", sweepable=False),
+    Parameter("collisions", "gas: duration, in collisions per sphere at the starting Enskog rate", "1", 20.0,
+              low=0.0, low_open=True, high=1e4, why="a run of more than 1e4 collisions per sphere is not a gas "
+              "study this tool sizes", sweepable=False),
+    Parameter("samples", "gas: times reported", "1", 100, low=2, high=100000,
+              why="a series needs two times, and more than 1e5 rows is a dump", sweepable=False),
+    Parameter("seed", "gas: random seed (placement, velocities, spins)", "1", 1, low=1, high=900000000,
+              why="LAMMPS's seeds are positive 31-bit numbers", sweepable=False),
+)
+
+

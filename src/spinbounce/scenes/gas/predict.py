@@ -1,0 +1,106 @@
+"""A gas's two theories, and how far LAMMPS is from each.
+
+- ``matrix``: the rough-sphere equations (:func:`spinbounce.exact.kinetic.rough_sphere_matrix`) with
+  the restitutions of the paper's planar theory for the pair (e_n and beta of its matrix: the line of
+  centres held, dt -> 0); none for a law without one (a cap, a law on the contact radius).
+- ``pairs``: L measured from LAMMPS's own isolated pair collisions at the gas's step
+  (:mod:`.collisions`), at temperatures spanning the run's: the turning line of centres and the step's
+  errors are in the prediction.
+- ``exact pairs``: the same from the exact pair references (dt -> 0), which separates the two.
+
+Each is compared with LAMMPS at LAMMPS's own collisions per sphere (the theory's clock: its rates per
+collision do not depend on the Enskog rate, which a soft gas meets only to a few per cent).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ...exact import kinetic
+from ...exact import pair as planar
+from ..pair.kind import no_planar_matrix, pair_contact
+from ..pair.pairs import Sphere
+from . import collisions
+
+__all__ = ["restitutions", "matrix_averages", "temperature_grid", "compare", "relaxation", "theories"]
+
+
+def restitutions(model) -> tuple[float, float]:
+    """(e_n, beta) of two of the gas's spheres by the planar theory: a closing unit speed with a unit slip."""
+    sphere = Sphere(model.m, model.r, model.alpha)
+    law = pair_contact(model, sphere).law()
+    n, v_a, zero = np.array([[0.0, 0.0, 1.0]]), np.array([[1.0, 0.0, -1.0]]), np.zeros((1, 3))
+    props = {"m_a": model.m, "r_a": model.r, "alpha_a": model.alpha, "m_b": model.m, "r_b": model.r,
+             "alpha_b": model.alpha}
+    va, vb, wa, wb = planar.predict(n, v_a, zero, zero, zero, **props, **law)
+    u0 = planar.slip_rate(n, v_a, zero, zero, zero, model.r, model.r)[0]
+    u1 = planar.slip_rate(n, va, vb, wa, wb, model.r, model.r)[0]
+    return float((va - vb)[0, 2]), float(-np.dot(u1, u0) / np.dot(u0, u0))  # e_n = -g'_n / g_n with g_n = -1
+
+
+def matrix_averages(model) -> tuple[kinetic.Averages | None, str | None]:
+    """The ``matrix`` theory's L, or None and why the law has none."""
+    why = no_planar_matrix(model)
+    if why is not None:
+        return None, why
+    e_n, beta = restitutions(model)
+    # no contact time: the matrix theory counts no collisions (LAMMPS's count uses the pair references')
+    return kinetic.Averages(np.array([1.0]), kinetic.rough_sphere_matrix(e_n, beta, model.alpha)[None],
+                            np.array([math.nan])), None
+
+
+def temperature_grid(averages: kinetic.Averages, gas, tau_end: float) -> np.ndarray:
+    """T_tr's the pair-level L is measured at: from the range a first evolution (by ``averages``) crosses,
+    one a factor of two apart (at least two; one where T_tr stays within 5%)."""
+    path = kinetic.evolve(averages, gas.t_tr, gas.t_rot, tau_end, gas.packing, gas.sigma, gas.model.m, points=101)
+    low, high = float(path.t_tr.min()), float(path.t_tr.max())
+    if high / low < 1.05:
+        return np.array([gas.t_tr])
+    return np.geomspace(low, high, max(2, 1 + math.ceil(math.log2(high / low))))
+
+
+def relaxation(tau: np.ndarray, ratio: np.ndarray, steady: float, share: float = 0.9) -> float:
+    """The collisions per sphere at which ``ratio`` first reaches ``share`` of ``steady`` (from below;
+    linear between points), or NaN if it does not."""
+    target = share * steady
+    above = np.nonzero(ratio >= target)[0]
+    if len(above) == 0 or above[0] == 0:
+        return float("nan")
+    k = above[0]
+    return float(tau[k - 1] + (target - ratio[k - 1]) * (tau[k] - tau[k - 1]) / (ratio[k] - ratio[k - 1]))
+
+
+def compare(series: dict, averages: kinetic.Averages, gas) -> dict:
+    """One theory from LAMMPS's start, at LAMMPS's collisions per sphere: its series and the differences."""
+    tau = series["collisions"]
+    path = kinetic.evolve(averages, series["t_tr"][0], series["t_rot"][0], float(tau[-1]), gas.packing, gas.sigma,
+                          gas.model.m, points=max(401, 4 * len(tau)))
+    t_tr, t_rot = (np.interp(tau, path.tau, x) for x in (path.t_tr, path.t_rot))
+    energy = 1.5 * (t_tr + t_rot)
+    steady = kinetic.steady_ratio(averages.at(float(t_tr[-1])))
+    drift = {"lammps": float(series["energy"][-1] / series["energy"][0] - 1.0),
+             "theory": float(energy[-1] / energy[0] - 1.0)}
+    return {"t_tr": t_tr, "t_rot": t_rot, "ratio": t_rot / t_tr, "energy": energy * series["energy"][0] / energy[0],
+            "t_enskog": np.interp(tau, path.tau, path.t),
+            "max_ratio_difference": float(np.max(np.abs(series["ratio"] - t_rot / t_tr))),
+            "energy_drift": drift, "drift_difference": drift["lammps"] - drift["theory"],
+            "steady_ratio": steady, "relaxation_collisions": relaxation(path.tau, path.ratio, steady)}
+
+
+def theories(gas, folder, log=None, count: int | None = None) -> tuple[dict, np.ndarray, str | None]:
+    """The gas's theories by name ("pairs", "exact_pairs" and, where the law has one, "matrix": their L), the
+    largest standard error of the pair-level L, and why there is no matrix theory (or None)."""
+    count = collisions.COLLISIONS if count is None else count
+    matrix, why = matrix_averages(gas.model)
+    sample = collisions.draws(count, gas.seed)
+    first = collisions.averages(gas.model, [gas.t_tr], collisions.draws(max(1000, count // 8), gas.seed))["exact"][0]
+    grid = temperature_grid(first, gas, gas.collisions)
+    if log is not None:
+        log(f"pair-level theory: {count} collisions at {len(grid)} temperature(s), in LAMMPS at dt = {gas.dt:.4g}")
+    found = collisions.averages(gas.model, grid, sample, gas.dt, folder)
+    out = {"pairs": found["lammps"][0], "exact_pairs": found["exact"][0]}
+    if matrix is not None:
+        out["matrix"] = matrix
+    return out, found["lammps"][1], why

@@ -1,0 +1,139 @@
+"""The gas scene: N equal spheres in a periodic box, their two temperatures followed in LAMMPS.
+
+The spheres are placed on a jittered cubic lattice (no overlaps), settle for SETTLE collisions per
+sphere under their own law, then start from Maxwellian velocities at T_tr(0) and spins at T_rot(0)
+(every temperature is 2 KE / (3 N)). LAMMPS reports the translational and rotational kinetic
+energies at ``samples`` evenly spaced times, and the open contacts averaged over each interval
+(sampled CONTACT_SAMPLES times a contact), from which the collisions per sphere are counted.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from ...exact import kinetic
+from ...lammps.decks import ALPHA_NVE_SPHERE
+from ...model.contact import ContactModel
+from ...model.parameters import SceneError
+from ...model.timestep import check_steps
+from .parameters import GAS, MIN_SPHERES
+
+__all__ = ["Gas", "GAS", "STEPS_PER_CONTACT", "MIN_SPHERES", "SETTLE", "LATTICE_GAP"]
+
+#: The default step: the mean contact time over this many (the gas's collisions end mid-step at random
+#: phases: LAMMPS's error per collision is first order in dt/t_c, and the pair-level theory carries it).
+STEPS_PER_CONTACT = 50
+#: The coarsest step a gas takes: velocity-Verlet on a contact of t_c needs many steps a contact.
+FEWEST_STEPS_PER_CONTACT = 10
+#: Collisions per sphere run before the start (the lattice melts; each sphere has met others).
+SETTLE = 2.0
+#: The smallest gap between neighbours on the starting lattice, in diameters.
+LATTICE_GAP = 0.02
+#: Open-contact samples per contact time (their time average counts the collisions).
+CONTACT_SAMPLES = 5
+_GAS = {p.name: p for p in GAS}
+
+
+def _whole(name: str, value) -> int:
+    number = _GAS[name].check(value)
+    if number != int(number):
+        raise SceneError(name, value, "must be a whole number")
+    return int(number)
+
+
+@dataclass(frozen=True)
+class Gas:
+    """A gas of ``spheres`` equal spheres (the model's m, r and alpha = 2/5) at ``packing``, from
+    T_tr(0) = ``t_tr`` and T_rot(0) = ``t_rot`` for ``collisions`` collisions per sphere (at the
+    starting Enskog rate). ``dt``: default the mean contact time (``contact_time``, the pair
+    reference's at the start's temperature) over STEPS_PER_CONTACT."""
+
+    model: ContactModel
+    contact_time: float
+    spheres: int = 20000
+    packing: float = 0.05
+    t_tr: float = 1.0
+    t_rot: float = 0.0
+    collisions: float = 20.0
+    samples: int = 100
+    seed: int = 1
+    dt: float | None = None
+    nsteps: int = field(init=False, default=0)
+    interval: int = field(init=False, default=0)
+
+    def __post_init__(self):
+        set_ = object.__setattr__
+        if self.model.alpha != ALPHA_NVE_SPHERE:
+            raise SceneError("alpha", self.model.alpha, f"a gas runs fix nve/sphere: alpha = {ALPHA_NVE_SPHERE} "
+                             "(spheres of another alpha as rigid bodies are not implemented for a gas)")
+        if not self.model.style.pairs:
+            raise SceneError("wall", self.model.wall, "must be granular: a gas's spheres meet through pair granular")
+        for name in ("spheres", "samples", "seed"):
+            set_(self, name, _whole(name, getattr(self, name)))
+        for name in ("packing", "t_tr", "t_rot", "collisions"):
+            set_(self, name, float(_GAS[name].check(getattr(self, name))))
+        self._check_lattice()
+        tc = self.contact_time
+        dt = tc / STEPS_PER_CONTACT if self.dt is None else self.dt
+        if not (math.isfinite(dt) and dt > 0.0):
+            raise SceneError("dt", self.dt, "must be a positive number")
+        coarsest = tc / FEWEST_STEPS_PER_CONTACT
+        if dt > coarsest:
+            raise SceneError("dt", dt, f"is too large for the stiffness: a contact lasts {tc:.6g}, and a gas takes at "
+                             f"least {FEWEST_STEPS_PER_CONTACT} steps a contact (dt <= {coarsest:.6g})")
+        set_(self, "dt", float(dt))
+        every = self.contact_every
+        steps = math.ceil(self.duration / dt)
+        interval = max(every, math.ceil(steps / self.samples / every) * every)
+        set_(self, "interval", interval)
+        set_(self, "nsteps", interval * self.samples)
+        check_steps(self.nsteps + self.settle_steps, "dt", dt, "to run the gas", spheres=self.spheres)
+
+    @property
+    def sigma(self) -> float:
+        return 2.0 * self.model.r
+
+    @property
+    def box(self) -> float:
+        """The periodic box's side."""
+        return (self.spheres * math.pi * self.sigma**3 / (6.0 * self.packing)) ** (1.0 / 3.0)
+
+    @property
+    def lattice_side(self) -> int:
+        return math.ceil(round(self.spheres ** (1.0 / 3.0), 9))
+
+    def _check_lattice(self) -> None:
+        side = self.lattice_side
+        densest = self.spheres * math.pi / (6.0 * side**3 * (1.0 + LATTICE_GAP) ** 3)
+        if self.packing > densest:
+            raise SceneError("packing", self.packing, f"cannot be placed: {self.spheres} spheres on a cubic lattice of "
+                             f"{side}^3 sites need packing <= {densest:.4g} (a gap of {LATTICE_GAP} diameters)")
+
+    def rate(self, t_tr: float) -> float:
+        """The Enskog collision rate per sphere at ``t_tr``."""
+        return float(kinetic.enskog_rate(t_tr, self.packing, self.sigma, self.model.m))
+
+    @property
+    def duration(self) -> float:
+        return self.collisions / self.rate(self.t_tr)
+
+    @property
+    def contact_every(self) -> int:
+        """Steps between open-contact samples."""
+        return max(1, round(self.contact_time / self.dt / CONTACT_SAMPLES)) if self.dt else 1
+
+    @property
+    def settle_steps(self) -> int:
+        return max(1, math.ceil(SETTLE / self.rate(self.t_tr) / self.dt)) if self.dt else 1
+
+    @property
+    def judged(self) -> bool:
+        """Whether binary-collision theory is held to this gas (packing up to kinetic.DILUTE)."""
+        return self.packing <= kinetic.DILUTE
+
+    def record(self) -> dict:
+        return {"model": self.model.as_record(), "spheres": self.spheres, "packing": self.packing, "t_tr": self.t_tr,
+                "t_rot": self.t_rot, "collisions": self.collisions, "samples": self.samples, "seed": self.seed,
+                "dt": self.dt, "contact_time": self.contact_time, "nsteps": self.nsteps, "interval": self.interval,
+                "settle_steps": self.settle_steps, "box": self.box}

@@ -1,0 +1,125 @@
+"""The gas scene: what it refuses, how it places and starts its spheres, a small gas beside its theories.
+
+The acceptance-sized gases are in tests/test_gas_claims.py (slow)."""
+
+from __future__ import annotations
+
+import json
+import math
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from spinbounce.api import model
+from spinbounce.api.gas import gas
+from spinbounce.errors import SceneError
+from spinbounce.scenes.gas.deck import lattice_positions
+from spinbounce.scenes.gas.scene import Gas
+
+MAGIC = {"kn": 1e4, "kt": 1e4 * 2 / 7}
+#: The contact time of the magic law's collisions at T_tr = 1 (about pi sqrt(m/(2 kn)); the scene takes it given).
+T_C = 0.0221
+
+
+def _gas(**given) -> Gas:
+    return Gas(model(**MAGIC), T_C, **given)
+
+
+@pytest.mark.parametrize("given, named", [({"spheres": 999}, "spheres = 999"), ({"spheres": 2000.5}, "whole number"),
+                                          ({"packing": 0.0}, "packing = 0"), ({"packing": 0.5}, "packing = 0.5"),
+                                          ({"t_tr": 0.0}, "t_tr = 0"), ({"t_rot": -1.0}, "t_rot = -1"),
+                                          ({"samples": 1}, "samples = 1"), ({"dt": T_C / 5}, "too large")])
+def test_a_gas_it_cannot_run_is_refused_naming_the_parameter(given, named):
+    with pytest.raises(SceneError, match=named):
+        _gas(**given)
+
+
+def test_a_packing_the_lattice_cannot_hold_is_refused_with_the_densest_it_can():
+    """1001 spheres need an 11^3 lattice: the densest packing with a 2% gap is 1001 pi / (6 11^3 1.02^3)."""
+    densest = 1001 * math.pi / (6 * 11**3 * 1.02**3)
+    with pytest.raises(SceneError, match=f"packing <= {densest:.4g}"):
+        _gas(spheres=1001, packing=densest * 1.01)
+    assert _gas(spheres=1001, packing=densest * 0.99).packing < densest
+
+
+def test_another_alpha_or_the_classic_wall_style_is_refused():
+    with pytest.raises(SceneError, match="alpha"):
+        Gas(model(alpha=0.5, **MAGIC), T_C)
+    with pytest.raises(SceneError, match="granular"):
+        Gas(model(wall="classic", **MAGIC), T_C)
+
+
+@pytest.mark.parametrize("packing", [0.05, 0.3])
+def test_the_spheres_start_apart_and_fill_the_box(packing):
+    scene = _gas(spheres=2000, packing=packing, seed=4)
+    x = lattice_positions(scene)
+    assert x.shape == (2000, 3) and np.all((x > 0.0) & (x < scene.box))
+    d = x[:, None, :] - x[None, :, :]
+    d -= scene.box * np.round(d / scene.box)  # the nearest periodic image
+    distance = np.sqrt((d**2).sum(axis=-1)) + np.eye(len(x)) * 1e9
+    assert distance.min() > scene.sigma * 1.02 - 1e-12
+    assert np.ptp(x, axis=0).min() > 0.8 * scene.box
+
+
+def test_the_step_and_the_reports_follow_the_contact_time():
+    scene = _gas(spheres=2000, samples=10, collisions=5)
+    assert scene.dt == pytest.approx(T_C / 50, rel=1e-14)
+    assert scene.nsteps == 10 * scene.interval and scene.interval % scene.contact_every == 0
+    assert scene.nsteps * scene.dt >= 5 / scene.rate(1.0)
+
+
+@pytest.fixture(scope="module")
+def small_magic_gas(tmp_path_factory):
+    """2,000 spheres at the magic ratio for 4 collisions per sphere (about 10 s)."""
+    from spinbounce.scenes.gas import collisions
+
+    folder = tmp_path_factory.mktemp("gas")
+    saved, collisions.COLLISIONS = collisions.COLLISIONS, 8000
+    try:
+        return gas(spheres=2000, collisions=4, samples=16, out=folder / "run", **MAGIC)
+    finally:
+        collisions.COLLISIONS = saved
+
+
+def test_a_small_gas_starts_where_asked_and_counts_its_collisions(small_magic_gas):
+    """The start is exact (the velocities are drawn, then scaled); LAMMPS's collisions counted from its open
+    contacts run at the Enskog rate within 5% (measured 1-2% at 20,000 spheres; 2,000 spheres' temperatures
+    are noisy to 2%)."""
+    s = small_magic_gas.series
+    assert s["t_tr"][0] == pytest.approx(1.0, abs=1e-12) and s["t_rot"][0] == 0.0
+    assert np.all(np.isfinite(s["energy"])) and np.all(np.diff(s["collisions"]) > 0)
+    enskog = small_magic_gas.series["t_enskog_pairs"]
+    assert enskog[-1] == pytest.approx(s["t"][-1], rel=0.05)
+
+
+def test_a_small_gas_heads_for_equipartition_with_its_theories(small_magic_gas):
+    """The magic ratio's rough spheres share energy: the ratio rises as each theory says. At 2,000 spheres a
+    ratio is noisy to about 3% (two temperatures at sqrt(2/(3N)) each), so 0.08 is the bound here; the
+    acceptance-sized gas (tests/test_gas_claims.py) holds 0.02."""
+    s, record = small_magic_gas.series, small_magic_gas.record
+    assert s["ratio"][-1] > 0.6
+    for name in ("pairs", "exact_pairs", "matrix"):
+        assert record["theories"][name]["max_ratio_difference"] < 0.08
+    assert record["theories"]["matrix"]["energy_drift"]["theory"] == pytest.approx(0.0, abs=1e-12)
+
+
+def test_a_gas_writes_its_series_and_provenance(small_magic_gas):
+    record = json.loads(small_magic_gas.record_path.read_text())
+    assert record["scene"] == "gas" and record["lammps_version"] and record["parameters"]["dt"] > 0
+    assert record["accuracy"]["temperature_noise"] == pytest.approx(math.sqrt(2 / 6000))
+    header = small_magic_gas.csv.read_text().splitlines()[0].split(",")
+    assert {"t", "t_tr", "t_rot", "energy", "collisions", "ratio_pairs", "energy_matrix"} <= set(header)
+
+
+def test_an_hour_long_gas_needs_force(tmp_path):
+    with pytest.raises(SceneError, match="hours"):
+        gas(spheres=200_000, collisions=1000, out=tmp_path / "long", **MAGIC)
+    assert not (tmp_path / "long").exists()
+
+
+def test_the_command_refuses_bad_input_in_one_line(tmp_path):
+    done = subprocess.run([sys.executable, "-m", "spinbounce", "gas", "--packing", "0.7", "--out", str(tmp_path / "x")],
+                          capture_output=True, text=True)
+    assert done.returncode == 2 and done.stderr.count("\n") == 1 and "packing = 0.7" in done.stderr
