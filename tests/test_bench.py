@@ -83,12 +83,12 @@ def test_bench_cli_writes_json(tmp_path, capsys):
 def test_bench_quick_prints_every_ratio_with_its_target(tmp_path, capsys):
     """bench --quick: each scene's sweep beside the bare engine (LAMMPS's own seconds below the sweep's,
     every row within the default accuracy), the frictionless sweep against the engine, two workers,
-    start-up and the damped steps, each printed beside its target."""
+    start-up, the damped steps and the gas deck beside its bare self, each printed beside its target."""
     out = tmp_path / "bench.json"
     assert main(["bench", "--quick", "--out", str(out)]) == 0
     printed = capsys.readouterr().out
     for line in ("pair / wall per collision", "of it (target 85%)", "of twice one worker (target 90%)",
-                 "(target 0.5 s)", "undamped: ", "pairs/s uncapped (target 100,000)"):
+                 "(target 0.5 s)", "undamped: ", "pairs/s uncapped (target 100,000)", "measuring costs"):
         assert line in printed
     waits = json.loads(out.read_text())["waits"]
     assert waits["quick"] and [s["scene"] for s in waits["scenes"]][0] == "wall"
@@ -96,3 +96,4 @@ def test_bench_quick_prints_every_ratio_with_its_target(tmp_path, capsys):
         assert 0.0 < scene["engine_seconds"] < scene["wall_seconds"] and scene["lammps_runs"] >= 1
         assert scene["max_error"] <= 1e-4  # the sweeps it times reach the default accuracy
     assert waits["damped"]["damped_error"] <= waits["damped"]["damped_estimate"] <= waits["damped"]["target"]
+    assert waits["gas"]["sphere_steps_per_second"] > 0.0 and waits["gas"]["bare_sphere_steps_per_second"] > 0.0

@@ -1,7 +1,7 @@
 """spinbounce: LAMMPS reproduction of a frictional sphere's scattering from a flat wall.
 
 The Python API (:mod:`spinbounce.api`, whose docstring shows it at work) is at the top:
-``spinbounce.collide``, ``theory``, ``frozen``, ``sweep`` and ``fit``. Importing the package never
+``spinbounce.collide``, ``theory``, ``frozen``, ``sweep``, ``fit`` and ``gas``. Importing the package never
 imports LAMMPS; only :mod:`spinbounce.lammps.runner` does, when a run starts, and the API's
 modules load on first use.
 """
@@ -14,11 +14,11 @@ try:
 except PackageNotFoundError:  # running from a source tree that is not installed
     __version__ = "0+unknown"
 
-__all__ = ["__version__", "collide", "theory", "frozen", "sweep", "fit", "parameters"]
+__all__ = ["__version__", "collide", "theory", "frozen", "sweep", "fit", "gas", "parameters"]
 
 #: The API's functions. None of them shares its name with a module of the package: importing
 #: a submodule sets the package's attribute of that name, which would hide a function.
-_API = ("collide", "theory", "frozen", "sweep", "fit")
+_API = ("collide", "theory", "frozen", "sweep", "fit", "gas")
 
 
 def __getattr__(name: str):

@@ -95,6 +95,8 @@ PRODUCTS: tuple[Product, ...] = (
             _figure("studies.tangential", "make_figure"), ("tangential",)),
     Product("pair_validity", "spinbounce reproduce --only pair_validity", "where the planar two-sphere theory holds",
             _figure("figures.pairs", "make_pair_validity"), ("pair_validity",)),
+    Product("gas", "spinbounce reproduce --only gas", "T_rot/T_tr of frictional-sphere gases against kinetic theory",
+            _figure("figures.gas", "make_gas"), ("gas",)),
 )
 
 #: Made by a command of their own, not by ``reproduce``: (command, what, why).

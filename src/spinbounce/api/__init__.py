@@ -19,8 +19,9 @@ and spawns them (which does need the guard) once it is.
 """
 
 from .collisions import CollisionReport, PairReport, ToleranceReport, collide, model, theory
+from .gases import gas
 from .series import FrozenReport, frozen
 from .sweeping import SweepReport, fit, fit_groups, run_sweep, sweep
 
-__all__ = ["collide", "theory", "frozen", "sweep", "run_sweep", "fit", "fit_groups", "model", "CollisionReport",
+__all__ = ["collide", "theory", "frozen", "gas", "sweep", "run_sweep", "fit", "fit_groups", "model", "CollisionReport",
            "PairReport", "ToleranceReport", "FrozenReport", "SweepReport"]

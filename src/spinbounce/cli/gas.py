@@ -37,7 +37,7 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    from ..api.gas import gas
+    from ..api import gas
     from ..errors import SceneError
     from ..scenes.gas import GAS
 

@@ -17,6 +17,7 @@ These are measurements on a shared machine: each ratio is taken between runs mad
 
 from __future__ import annotations
 
+import math
 import shutil
 import subprocess
 import sys
@@ -177,6 +178,34 @@ def reference_rates(n: int = 20_000, seed: int = 0, mu: float = 0.3) -> dict:
     return out
 
 
+def gas_rates(quick: bool = False, repeats: int = 2) -> dict:
+    """A magic-ratio gas's deck (packing 0.05, kn = 1e4) run in this process with and without what it measures
+    (the kinetic energies, the open contacts), alternately, the fastest of ``repeats`` each: LAMMPS's
+    sphere-steps a second on one core, and what measuring costs beside the bare deck."""
+    from ..lammps.decks import prepare_run_dir
+    from ..lammps.runner import run_deck
+    from ..scenes.gas import collisions
+    from ..scenes.gas.deck import render_gas
+    from ..model.contact import ContactModel
+    from ..scenes.gas.scene import Gas
+
+    m = ContactModel(kn=1e4, kt=1e4 * 2.0 / 7.0)
+    scene = Gas(m, collisions.mean_contact_time(m, 1.0, collisions.draws(2000, 1)), spheres=2000 if quick else 20000,
+                collisions=2.0 if quick else 4.0, samples=20)
+    seconds = {"bare": math.inf, "measured": math.inf}
+    with tempfile.TemporaryDirectory() as root:
+        for _ in range(repeats):
+            for name in seconds:
+                deck = render_gas(scene, measure=name == "measured")
+                info = run_deck(prepare_run_dir(Path(root) / name, deck, durable=False))
+                seconds[name] = min(seconds[name], info.loop_seconds)
+    sphere_steps = scene.spheres * (scene.nsteps + scene.settle_steps)
+    return {"spheres": scene.spheres, "steps": scene.nsteps + scene.settle_steps,
+            "sphere_steps_per_second": sphere_steps / seconds["measured"],
+            "bare_sphere_steps_per_second": sphere_steps / seconds["bare"],
+            "measuring_share": seconds["measured"] / seconds["bare"] - 1.0}
+
+
 def measure_waits(quick: bool = False, seed: int = 0, workers: int = 2, n: int | None = None) -> dict:
     """Everything :func:`wait_lines` prints: each scene's sweep beside the engine, the frictionless sweep
     against the bare engine, ``workers`` workers against one, the help's start-up and the damped steps.
@@ -188,7 +217,7 @@ def measure_waits(quick: bool = False, seed: int = 0, workers: int = 2, n: int |
     n = n or (ENGINE_SWEEP[1] if quick else ENGINE_SWEEP[0])
     return {"quick": quick, "scenes": scenes, "references": references, "frictionless": sweep_against_engine(n, seed),
             "cores": parallel_efficiency(n=n, workers=workers, seed=seed), "help_seconds": help_seconds(),
-            "damped": damped_steps()}
+            "damped": damped_steps(), "gas": gas_rates(quick)}
 
 
 def wait_lines(report: dict) -> list[str]:
@@ -220,4 +249,8 @@ def wait_lines(report: dict) -> list[str]:
     lines.append(f"damped wall (gamma_t = 1) at the default accuracy: {d['damped_steps']} steps against "
                  f"{d['undamped_steps']} undamped: {d['ratio']:.2f}x (target 3x; {d['damped_method']}, error "
                  f"{d['damped_error']:.1e}, estimate {d['damped_estimate']:.1e}, target {d['target']:g})")
+    g = report["gas"]
+    lines.append(f"gas of {g['spheres']:,} spheres, {g['steps']:,} steps: {g['sphere_steps_per_second']:.3g} "
+                 f"sphere-steps/s on one core, the bare deck {g['bare_sphere_steps_per_second']:.3g}/s: measuring costs "
+                 f"{g['measuring_share']:.1%} (target 10%)")
     return lines

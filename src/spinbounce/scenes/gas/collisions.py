@@ -33,11 +33,8 @@ from ..pair.pairs import Pair, Sphere
 from ..pair.scene import PairBatch
 from ..pair.table import pair_frames, pair_states
 
-__all__ = ["Draws", "draws", "outcomes", "mean_contact_time", "averages_at", "averages", "COLLISIONS"]
+__all__ = ["Draws", "draws", "outcomes", "mean_contact_time", "averages_at", "averages"]
 
-#: Collisions drawn per temperature: the mean energy change per collision, over T_tr, is then known to
-#: about 2e-4 at the magic ratio (its spread there is about 0.04 a collision).
-COLLISIONS = 40000
 
 
 @dataclass(frozen=True)
@@ -124,7 +121,8 @@ def _energy_changes(model, before, after) -> tuple[np.ndarray, np.ndarray]:
 
 def averages_at(model, t_tr: float, sample: Draws, dt: float | None = None, folder: Path | None = None) -> dict:
     """Per route (:func:`outcomes`): L at ``t_tr`` (:mod:`spinbounce.exact.kinetic`) and the standard
-    error of each of its entries; and the mean contact time of the collisions."""
+    errors of its entries (rows 0 and 1) and of its columns' sums (row 2: the energy a collision loses);
+    and the mean contact time of the collisions."""
     g = sample.velocities(t_tr, model.m)
     spins = sample.spin(t_tr, model.inertia)
     runs = {}
@@ -136,9 +134,9 @@ def averages_at(model, t_tr: float, sample: Draws, dt: float | None = None, fold
         changes = {name: np.array(_energy_changes(model, run["before"], run[route])) for name, run in runs.items()}
         still = changes["still"]
         spun = (changes["spun"] + changes["reversed"]) / 2.0 - still
-        found[route] = (np.column_stack([part.mean(axis=1) for part in (still, spun)]) / (3.0 * t_tr),
-                        np.column_stack([part.std(axis=1) / math.sqrt(part.shape[1]) for part in (still, spun)])
-                        / (3.0 * t_tr))
+        parts = [np.vstack([part, part.sum(axis=0)]) for part in (still, spun)]  # rows: tr, rot, their sum
+        found[route] = (np.column_stack([part.mean(axis=1) for part in parts])[:2] / (3.0 * t_tr),
+                        np.column_stack([part.std(axis=1) / math.sqrt(part.shape[1]) for part in parts]) / (3.0 * t_tr))
     return found
 
 

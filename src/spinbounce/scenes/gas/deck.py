@@ -39,7 +39,9 @@ def law_words(gas) -> dict:
     return pair_law(Pair(sphere, sphere), pair_contact(gas.model, sphere))[1]
 
 
-def render_gas(gas) -> Deck:
+def render_gas(gas, measure: bool = True) -> Deck:
+    """The gas's deck and data file; ``measure`` False: the bare deck, which measures nothing (its cost beside
+    the measured one is what the measurement costs: spinbounce bench)."""
     m, n = gas.model, gas.spheres
     x = lattice_positions(gas)
     zeros = np.zeros((n, 3))
@@ -52,5 +54,5 @@ def render_gas(gas) -> Deck:
         law=law_words(gas), dt=gas.dt, settle_steps=gas.settle_steps, settle=SETTLE, seed=gas.seed,
         spin_scale=math.sqrt(m.m * gas.t_rot * 3.0 * n / dof / m.inertia), t_create=gas.t_tr * 3.0 * n / dof,
         interval=gas.interval, contact_every=gas.contact_every, contact_repeat=gas.interval // gas.contact_every,
-        series_file=SERIES_FILE, contacts_file=CONTACTS_FILE, nsteps=gas.nsteps)
+        series_file=SERIES_FILE, contacts_file=CONTACTS_FILE, nsteps=gas.nsteps, measure=measure)
     return Deck(text=text, name=DECK_NAME, dump=None, files=files)

@@ -26,8 +26,13 @@ GAS: tuple[Parameter, ...] = (
               "study this tool sizes", sweepable=False),
     Parameter("samples", "gas: times reported", "1", 100, low=2, high=100000,
               why="a series needs two times, and more than 1e5 rows is a dump", sweepable=False),
-    Parameter("seed", "gas: random seed (placement, velocities, spins)", "1", 1, low=1, high=900000000,
-              why="LAMMPS's seeds are positive 31-bit numbers", sweepable=False),
+    Parameter("seed", "gas: random seed (placement, velocities, spins, the theory's collisions)", "1", 1, low=1,
+              high=900000000, why="LAMMPS's seeds are positive 31-bit numbers", sweepable=False),
+    Parameter("draws", "gas: collisions drawn at each temperature for the pair-level theories (the energy a collision "
+              "loses is then known to about 0.03 T_tr/sqrt(draws), what it moves between translation and rotation to "
+              "0.3 T_tr/sqrt(draws))", "1", 40000, low=1000,
+              high=10_000_000, why="fewer leave the theory's noise above 1e-3 a collision; more than 1e7 do not fit "
+              "one LAMMPS run", sweepable=False),
 )
 
 

@@ -51,14 +51,19 @@ def matrix_averages(model) -> tuple[kinetic.Averages | None, str | None]:
                             np.array([math.nan])), None
 
 
+#: The most temperatures L is measured at (a gas cooling a hundredfold: factors of 3.2 apart; L changes with the
+#: speed through the turning angle, a few per cent of itself over that range).
+MAX_TEMPERATURES = 5
+
+
 def temperature_grid(averages: kinetic.Averages, gas, tau_end: float) -> np.ndarray:
     """T_tr's the pair-level L is measured at: from the range a first evolution (by ``averages``) crosses,
-    one a factor of two apart (at least two; one where T_tr stays within 5%)."""
+    one a factor of two apart (at least two, at most MAX_TEMPERATURES; one where T_tr stays within 5%)."""
     path = kinetic.evolve(averages, gas.t_tr, gas.t_rot, tau_end, gas.packing, gas.sigma, gas.model.m, points=101)
     low, high = float(path.t_tr.min()), float(path.t_tr.max())
     if high / low < 1.05:
         return np.array([gas.t_tr])
-    return np.geomspace(low, high, max(2, 1 + math.ceil(math.log2(high / low))))
+    return np.geomspace(low, high, min(MAX_TEMPERATURES, max(2, 1 + math.ceil(math.log2(high / low)))))
 
 
 def relaxation(tau: np.ndarray, ratio: np.ndarray, steady: float, share: float = 0.9) -> float:
@@ -89,10 +94,10 @@ def compare(series: dict, averages: kinetic.Averages, gas) -> dict:
             "steady_ratio": steady, "relaxation_collisions": relaxation(path.tau, path.ratio, steady)}
 
 
-def theories(gas, folder, log=None, count: int | None = None) -> tuple[dict, np.ndarray, str | None]:
+def theories(gas, folder, log=None) -> tuple[dict, np.ndarray, str | None]:
     """The gas's theories by name ("pairs", "exact_pairs" and, where the law has one, "matrix": their L), the
     largest standard error of the pair-level L, and why there is no matrix theory (or None)."""
-    count = collisions.COLLISIONS if count is None else count
+    count = gas.draws
     matrix, why = matrix_averages(gas.model)
     sample = collisions.draws(count, gas.seed)
     first = collisions.averages(gas.model, [gas.t_tr], collisions.draws(max(1000, count // 8), gas.seed))["exact"][0]

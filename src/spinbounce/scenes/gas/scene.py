@@ -30,6 +30,10 @@ FEWEST_STEPS_PER_CONTACT = 10
 SETTLE = 2.0
 #: The smallest gap between neighbours on the starting lattice, in diameters.
 LATTICE_GAP = 0.02
+#: The fastest collision a gas is sized for, in units of its closing speed's scale sqrt(2 T_tr / m) (a gas of
+#: 10^7 collisions meets one beyond about 5.7), and the deepest overlap it may press, over the radius.
+HOTTEST = 6.0
+DEEPEST = 0.25
 #: Open-contact samples per contact time (their time average counts the collisions).
 CONTACT_SAMPLES = 5
 _GAS = {p.name: p for p in GAS}
@@ -58,6 +62,7 @@ class Gas:
     collisions: float = 20.0
     samples: int = 100
     seed: int = 1
+    draws: int = 40000
     dt: float | None = None
     nsteps: int = field(init=False, default=0)
     interval: int = field(init=False, default=0)
@@ -69,11 +74,12 @@ class Gas:
                              "(spheres of another alpha as rigid bodies are not implemented for a gas)")
         if not self.model.style.pairs:
             raise SceneError("wall", self.model.wall, "must be granular: a gas's spheres meet through pair granular")
-        for name in ("spheres", "samples", "seed"):
+        for name in ("spheres", "samples", "seed", "draws"):
             set_(self, name, _whole(name, getattr(self, name)))
         for name in ("packing", "t_tr", "t_rot", "collisions"):
             set_(self, name, float(_GAS[name].check(getattr(self, name))))
         self._check_lattice()
+        self._check_overlap()
         tc = self.contact_time
         dt = tc / STEPS_PER_CONTACT if self.dt is None else self.dt
         if not (math.isfinite(dt) and dt > 0.0):
@@ -110,6 +116,25 @@ class Gas:
             raise SceneError("packing", self.packing, f"cannot be placed: {self.spheres} spheres on a cubic lattice of "
                              f"{side}^3 sites need packing <= {densest:.4g} (a gap of {LATTICE_GAP} diameters)")
 
+    def _check_overlap(self) -> None:
+        """The gas's fastest collisions (closing at HOTTEST times the scale of |g.n|) must not press the
+        spheres together by more than DEEPEST of a radius: the contact law, and the pair theory's runs,
+        hold for small overlaps."""
+        from ..pair.kind import pair_contact
+        from ..pair.pairs import Sphere, equivalent_wall
+
+        m = self.model
+        sphere = Sphere(m.m, m.r, m.alpha)
+        wall = equivalent_wall(sphere, sphere, pair_contact(m, sphere))
+        fastest = HOTTEST * math.sqrt(2.0 * self.t_tr / m.m)
+        depth = float(wall.max_overlap(fastest))
+        if depth >= DEEPEST * m.r:
+            factor = (depth / (DEEPEST * m.r)) ** 2  # a Hookean overlap grows as v / sqrt(kn)
+            raise SceneError("t_tr", self.t_tr, f"is too hot for the contact's stiffness: its fastest collisions "
+                             f"(closing at {fastest:.3g}) would overlap by {depth:.3g}, more than {DEEPEST} of the "
+                             f"radius {m.r:g} (with Hooke's spring: kn >= {m.kn * factor:.3g} or t_tr <= "
+                             f"{self.t_tr / factor:.3g})")
+
     def rate(self, t_tr: float) -> float:
         """The Enskog collision rate per sphere at ``t_tr``."""
         return float(kinetic.enskog_rate(t_tr, self.packing, self.sigma, self.model.m))
@@ -135,5 +160,6 @@ class Gas:
     def record(self) -> dict:
         return {"model": self.model.as_record(), "spheres": self.spheres, "packing": self.packing, "t_tr": self.t_tr,
                 "t_rot": self.t_rot, "collisions": self.collisions, "samples": self.samples, "seed": self.seed,
+                "draws": self.draws,
                 "dt": self.dt, "contact_time": self.contact_time, "nsteps": self.nsteps, "interval": self.interval,
                 "settle_steps": self.settle_steps, "box": self.box}

@@ -17,7 +17,7 @@ from pathlib import Path
 
 from ...outputs import check_outputs, write_output
 from ...records import software, to_json
-from . import collisions, contact, damping, energy, frozen, nonlinear, pairs
+from . import collisions, contact, damping, energy, frozen, gas, nonlinear, pairs
 from .ledger import COLLISION_TOL, FROZEN_TOL, VERDICTS, Claim, Runs, g, verdict
 
 __all__ = ["CLAIMS", "COLLISION_TOL", "FROZEN_TOL", "VERDICTS", "Claim", "counts", "evaluate_claims",
@@ -31,7 +31,8 @@ CLAIMS = (
     collisions.rough_no_spin, collisions.rough_no_slide, collisions.reflection_angle, damping.eq22,
     frozen.decay_rate, damping.rapid_damping_rolls, damping.eq23_matrix, damping.rolling_vs_rough,
     energy.no_slip_no_loss, energy.friction_less_dissipation, collisions.classic_wall_is_eq1,
-    pairs.equal_alpha, nonlinear.hertz_special_speed, nonlinear.mindlin_every_speed,
+    pairs.equal_alpha, nonlinear.hertz_special_speed, nonlinear.mindlin_every_speed, gas.magic_gas_equipartition,
+    gas.magic_gas_energy,
 )
 
 

@@ -1,4 +1,5 @@
-"""A gas of frictional spheres from Python: ``gas`` and its report."""
+"""Run a gas and judge it: LAMMPS's series beside the theories, written with its record (the API's
+``spinbounce.gas``, the gas figure and the gas claims all run through :func:`run_gas`)."""
 
 from __future__ import annotations
 
@@ -8,10 +9,19 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import SceneError
-from .collisions import model as make_model
+from ...errors import SceneError
+from ...lammps.decks import prepare_run_dir
+from ...lammps.runner import run_deck, run_deck_lmp
+from ...model.contact import ContactModel
+from ...records import check_run_folder, run_folder, software, to_json, write_atomic
+from . import collisions as pair_draws
+from . import predict
+from .deck import render_gas
+from .parameters import GAS
+from .scene import Gas
+from .table import read_series
 
-__all__ = ["gas", "GasReport", "GAS_SERIES", "GAS_SPHERE_STEP_SECONDS"]
+__all__ = ["run_gas", "GasReport", "GAS_SERIES", "GAS_SPHERE_STEP_SECONDS"]
 
 #: The series a gas run writes into its folder (its record: result.json).
 GAS_SERIES = "gas.csv"
@@ -36,28 +46,20 @@ class GasReport:
     record_path: Path
 
 
-def gas(*, spheres: int = 20000, packing: float = 0.05, t_tr: float = 1.0, t_rot: float = 0.0,
-        collisions: float = 20.0, samples: int = 100, seed: int = 1, dt: float | None = None, ranks: int = 1,
-        out: str | Path | None = None, force: bool = False, log=None, **model_parameters) -> GasReport:
-    """Run a gas of ``spheres`` spheres of the model at ``packing`` from T_tr(0) = ``t_tr`` and
+def run_gas(m: ContactModel, *, spheres: int = 20000, packing: float = 0.05, t_tr: float = 1.0, t_rot: float = 0.0,
+            collisions: float = 20.0, samples: int = 100, seed: int = 1, draws: int = 40000, dt: float | None = None,
+            ranks: int = 1, out: str | Path | None = None, force: bool = False, log=None) -> GasReport:
+    """Run a gas of ``spheres`` spheres of model ``m`` at ``packing`` from T_tr(0) = ``t_tr`` and
     T_rot(0) = ``t_rot`` for ``collisions`` collisions per sphere (at the starting rate), in this process
     or (``ranks`` > 1) under ``mpiexec -np ranks``, and set its temperatures beside the theories
     (:mod:`spinbounce.scenes.gas.predict`). A run estimated beyond an hour needs ``force``; a named
     ``out`` holding an earlier run is refused unless ``force``."""
-    from ..lammps.decks import prepare_run_dir
-    from ..lammps.runner import run_deck, run_deck_lmp
-    from ..records import check_run_folder, run_folder
-    from ..scenes.gas import GAS, collisions as pair_draws
-    from ..scenes.gas.scene import Gas
-    from ..scenes.gas.deck import render_gas
-
     check_run_folder(out, force)
     if isinstance(ranks, bool) or int(ranks) != ranks or ranks < 1:
         raise SceneError("ranks", ranks, "must be a whole number >= 1")
-    m = make_model(**model_parameters)
     start = {p.name: p.check(v) for p, v in zip(GAS[2:4], (t_tr, t_rot))}
     tc = pair_draws.mean_contact_time(m, start["t_tr"], pair_draws.draws(2000, seed))
-    scene = Gas(m, tc, spheres, packing, t_tr, t_rot, collisions, samples, seed, dt)
+    scene = Gas(m, tc, spheres, packing, t_tr, t_rot, collisions, samples, seed, draws, dt)
     steps = scene.nsteps + scene.settle_steps
     cost = scene.spheres * steps * GAS_SPHERE_STEP_SECONDS / ranks
     if cost > LONGEST_UNFORCED and not force:
@@ -75,10 +77,6 @@ def gas(*, spheres: int = 20000, packing: float = 0.05, t_tr: float = 1.0, t_rot
 def _judged(scene, folder: Path, info, ranks: int, log) -> GasReport:
     """The run's series beside the theories, written to gas.csv and result.json."""
     import pandas as pd
-
-    from ..records import software, to_json, write_atomic
-    from ..scenes.gas import predict
-    from ..scenes.gas.table import read_series
 
     theories, errors, why = predict.theories(scene, folder / "pairs", log)
     series = read_series(scene, folder, theories["pairs"].contact_time)
@@ -103,12 +101,10 @@ def _judged(scene, folder: Path, info, ranks: int, log) -> GasReport:
 def _lammps_summary(series: dict) -> dict:
     late = series["collisions"] >= (1.0 - LATE_SHARE) * series["collisions"][-1]
     steady = float(np.mean(series["ratio"][late]))
-    from ..scenes.gas.predict import relaxation
-
     return {"late_ratio": steady, "late_ratio_spread": float(np.std(series["ratio"][late])),
             "energy_drift": float(series["energy"][-1] / series["energy"][0] - 1.0),
             "collisions_per_sphere": float(series["collisions"][-1]),
-            "relaxation_collisions": relaxation(series["collisions"], series["ratio"], steady)}
+            "relaxation_collisions": predict.relaxation(series["collisions"], series["ratio"], steady)}
 
 
 def _summary(compared: dict) -> dict:
@@ -122,8 +118,10 @@ def _matrices(averages) -> dict:
 
 
 def _accuracy(scene, series: dict, errors: np.ndarray) -> dict:
-    """How far each number may be from the truth: a temperature's own noise; the pair-level L's
-    standard error carried over the run's collisions (a bound on the theory's drift from it)."""
+    """How far each number may be from the truth: a temperature's own noise (sqrt(2/(3N)) of it); the
+    pair-level L's standard errors, the largest of its entries and of its columns' sums, and the latter
+    carried over the run's collisions (the standard error of the theory's energy drift, at most)."""
     return {"temperature_noise": math.sqrt(2.0 / (3.0 * scene.spheres)),
-            "pair_level_standard_error": float(np.max(errors)),
-            "pair_level_drift_error": float(2.0 * np.max(errors) * series["collisions"][-1])}
+            "pair_level_standard_error": float(np.max(errors[:2])),
+            "pair_level_energy_standard_error": float(np.max(errors[2])),
+            "pair_level_drift_standard_error": float(np.max(errors[2]) * series["collisions"][-1] * 2.0 / 3.0)}
