@@ -33,8 +33,8 @@ def _rule_average(m, count: int, seed: int) -> np.ndarray:
 
 @pytest.mark.parametrize("law", [{"kt": 1e4 * 2 / 7}, {"kt": 1e3}, {"kt": 2e3, "gamma_n": 5.0, "gamma_t": 3.0}])
 def test_the_closed_form_is_the_rough_sphere_rule_averaged_over_drawn_collisions(law):
-    """Two derivations that share nothing but the rule: the closed form (A, B, C of eta) and the draws (the
-    collision-weighted closing speed, Maxwellian spins). 200,000 draws give each entry to about 1e-3 of its
+    """Two derivations that share only the collision rule and the energy bookkeeping: the closed form (A, B, C of
+    eta) and the average over draws (the collision-weighted closing speed, Maxwellian spins). 200,000 draws give each entry to about 1e-3 of its
     size (measured spread); 6e-3 is six of those."""
     m = model(kn=1e4, **law)
     e_n, beta = predict.restitutions(m)
@@ -88,3 +88,15 @@ def test_drawn_collisions_close_at_the_collision_weighted_speed():
     assert np.mean(closing) == pytest.approx(math.sqrt(math.pi * 1.5 / 2.0), rel=5e-3)
     assert np.mean(closing**2) == pytest.approx(4 * 1.5 / 2.0, rel=5e-3)
     assert np.var(g[:, 0]) == pytest.approx(2 * 1.5 / 2.0, rel=5e-3)
+
+
+def test_the_exact_pairs_of_a_cold_gas_are_the_rough_spheres_of_the_planar_theory():
+    """collisions.averages_at by the exact pair references: at T_tr = 1e-6 the line of centres turns by about 1e-5
+    rad in a contact, so L is the planar rule's closed form, to the draws' noise (6,000 draws: about 1.5% of an
+    entry; 5% is three of those)."""
+    m = model(kn=1e4, kt=1e3)
+    found = collisions.averages_at(m, 1e-6, collisions.draws(6000, seed=9))
+    closed = kinetic.rough_sphere_matrix(*predict.restitutions(m), m.alpha)
+    assert np.max(np.abs(found["exact"][0] - closed)) < 0.05 * np.max(np.abs(closed))
+    # the contact time is the reference's, located on its step's dense output: to about 1e-5 of itself
+    assert found["contact_time"] == pytest.approx(math.pi * math.sqrt(0.5 / 1e4), rel=1e-4)

@@ -137,7 +137,8 @@ def run_folder(kind: str, parameters: dict) -> Path:
 #: What a run writes into its folder: a folder holding any of them holds an earlier run (or a
 #: file of the user's of that name), which is not replaced unless asked.
 RUN_OUTPUTS = ("in.lammps", "log.lammps", "state.dump", "spheres.data", "pairs.data", "bodies.txt", "result.json",
-               "result.parquet", "tolerance.json", "frozen.csv")
+               "result.parquet", "tolerance.json", "frozen.csv", "gas.csv", "gas.data", "gas.energies", "gas.contacts",
+               "pairs")
 
 
 def check_new_file(path, force: bool, name: str, force_name: str = "force=True") -> None:

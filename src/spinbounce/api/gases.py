@@ -5,14 +5,16 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from ..scenes.gas.parameters import DEFAULT
 from .collisions import model as make_model
 
 __all__ = ["gas"]
 
 
-def gas(*, spheres: int = 20000, packing: float = 0.05, t_tr: float = 1.0, t_rot: float = 0.0,
-        collisions: float = 20.0, samples: int = 100, seed: int = 1, draws: int = 40000, dt: float | None = None,
-        ranks: int = 1, out: str | Path | None = None, force: bool = False, log=None, **model_parameters):
+def gas(*, spheres: int = DEFAULT["spheres"], packing: float = DEFAULT["packing"], t_tr: float = DEFAULT["t_tr"],
+        t_rot: float = DEFAULT["t_rot"], collisions: float = DEFAULT["collisions"], samples: int = DEFAULT["samples"],
+        seed: int = DEFAULT["seed"], draws: int = DEFAULT["draws"], dt: float | None = None, ranks: int = 1,
+        out: str | Path | None = None, force: bool = False, log=None, **model_parameters):
     """Run a gas of ``spheres`` spheres of the model (the declared parameters, any law of the registry, a cap
     included) at ``packing`` from T_tr(0) = ``t_tr`` and T_rot(0) = ``t_rot`` for ``collisions`` collisions
     per sphere (at the starting rate), in this process or (``ranks`` > 1) under ``mpiexec -np ranks``, beside

@@ -38,23 +38,30 @@ def register(sub) -> None:
 
 def run(args) -> int:
     from ..api import gas
+    from ..api import model as make_model
     from ..errors import SceneError
+    from ..exact.kinetic import DILUTE
+    from ..records import json_ready
     from ..scenes.gas import GAS
 
     check_run_folder(args.out, args.force)
     values = model_values(args)
     if args.kt_over_kn is not None:
-        if "kt" in getattr(args, "given_options", set()):
-            raise SceneError("kt_over_kn", args.kt_over_kn, "give --kt or --kt-over-kn, not both")
+        if "kt" in getattr(args, "given_options", set()) or args.contact is not None:
+            raise SceneError("kt_over_kn", args.kt_over_kn, "give the tangential spring once: --kt, --contact or "
+                             "--kt-over-kn")
+        if make_model(**values).normal_law.contact_radius:  # kn is then not a spring constant
+            raise SceneError("kt_over_kn", args.kt_over_kn, f"is a ratio of Hookean springs; with normal = "
+                             f"{values['normal']} kn is not a spring constant: give --kt")
         values["kt"] = args.kt_over_kn * values["kn"]
     report = gas(**{p.name: getattr(args, p.name) for p in GAS}, dt=args.dt, ranks=args.ranks, out=args.out,
-                 force=True if args.out is not None else args.force, log=None if args.json else note, **values)
+                 force=args.force, log=None if args.json else note, **values)
     r = report.record
     if args.json:
-        return print_json({"series": report.series, "lammps": r["lammps"], "theories": r["theories"],
+        return print_json(json_ready({"series": report.series, "lammps": r["lammps"], "theories": r["theories"],
                            "accuracy": r["accuracy"], "no_matrix": r["no_matrix"], "csv": r["csv"],
                            "record": str(report.record_path), "parameters": r["parameters"],
-                           "lammps_version": r["lammps_version"]})
+                           "lammps_version": r["lammps_version"]}))
     s = r["lammps"]
     print(f"gas of {r['parameters']['spheres']} spheres: {s['collisions_per_sphere']:.3g} collisions per sphere, "
           f"late T_rot/T_tr {s['late_ratio']:.4f}, energy drift {100 * s['energy_drift']:+.3f}%")
@@ -63,5 +70,8 @@ def run(args) -> int:
               f"{t['steady_ratio']:.4f}, energy drift {100 * t['energy_drift']['theory']:+.3f}%")
     if r["no_matrix"]:
         print(f"  no matrix theory: {r['no_matrix']}")
+    if not r["judged"]:
+        print(f"  packing {r['parameters']['packing']:g} is above {DILUTE}: binary-collision theory is shown, not "
+              "held to this gas")
     print(f"wrote {shown_path(report.csv)} and {shown_path(report.record_path)}")
     return 0

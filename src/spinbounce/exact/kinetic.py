@@ -121,10 +121,14 @@ def evolve(averages: Averages, t_tr0: float, t_rot0: float, tau_end: float, pack
 
 
 def steady_ratio(matrix: np.ndarray) -> float:
-    """The ratio T_rot/T_tr that L keeps: d(T_rot/T_tr)/dtau = 0, the root of
-    L01 r^2 + (L00 - L11) r - L10 = 0 that is positive."""
+    """The ratio T_rot/T_tr that L keeps: d(T_rot/T_tr)/dtau = 0, the positive root of
+    L01 r^2 + (L00 - L11) r - L10 = 0 (NaN where translation and rotation do not exchange energy)."""
     (l00, l01), (l10, l11) = matrix
-    if abs(l01) < 1e-300:
-        return l10 / (l00 - l11)
-    disc = math.sqrt((l00 - l11) ** 2 + 4.0 * l01 * l10)
-    return (-(l00 - l11) + disc) / (2.0 * l01)
+    scale = float(np.max(np.abs(matrix)))
+    if scale == 0.0 or (abs(l01) <= 1e-12 * scale and abs(l10) <= 1e-12 * scale):
+        return math.nan
+    if abs(l01) <= 1e-12 * scale:  # no energy back from rotation: the linear equation
+        return l10 / (l00 - l11) if l00 != l11 else math.nan
+    roots = np.roots([l01, l00 - l11, -l10])
+    positive = [float(r.real) for r in roots if abs(r.imag) <= 1e-12 * abs(r) and r.real > 0.0]
+    return min(positive) if positive else math.nan

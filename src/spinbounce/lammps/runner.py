@@ -25,7 +25,7 @@ from ..errors import LammpsError
 LIBRARY_MARKER = "# >>> atoms are created here through the LAMMPS library interface <<<"
 
 __all__ = ["LIBRARY_MARKER", "LammpsError", "RunInfo", "run_deck", "run_deck_lmp", "lammps_version", "lmp_executable",
-           "loop_seconds", "engine_clock"]
+           "loop_seconds", "loop_times", "engine_clock"]
 
 LOG_NAME = "log.lammps"
 
@@ -144,13 +144,18 @@ def _as_lammps_error(exc: Exception, deck: Path) -> LammpsError:
 _LOOP_RE = re.compile(r"^Loop time of ([-+0-9.eE]+)", re.MULTILINE)
 
 
+def loop_times(log: Path) -> list[float]:
+    """The "Loop time" of each run of a LAMMPS log, in order (none if there is no log)."""
+    try:
+        return [float(x) for x in _LOOP_RE.findall(Path(log).read_text())]
+    except FileNotFoundError:
+        return []
+
+
 def loop_seconds(log: Path) -> float:
     """Sum of the "Loop time" lines of a LAMMPS log (nan if it has none)."""
-    try:
-        found = _LOOP_RE.findall(Path(log).read_text())
-    except FileNotFoundError:
-        return float("nan")
-    return sum(float(x) for x in found) if found else float("nan")
+    found = loop_times(log)
+    return sum(found) if found else float("nan")
 
 
 def _read_state(lmp) -> dict:

@@ -5,15 +5,19 @@ from __future__ import annotations
 
 from ...declaration import Parameter
 
-__all__ = ["GAS", "MIN_SPHERES"]
+__all__ = ["GAS", "MIN_SPHERES", "DEFAULT"]
 
 #: Below this many spheres a temperature's own noise, sqrt(2/(3N)), passes 2.6%.
 MIN_SPHERES = 1000
+#: Above this the starting lattice and the data file outgrow one machine's memory.
+MAX_SPHERES = 100_000_000
 
 #: The gas's own parameters (the contact law and the spheres' m, r, alpha are the model's).
 GAS: tuple[Parameter, ...] = (
-    Parameter("spheres", "gas: number of spheres", "1", 20000, low=MIN_SPHERES,
-              why=f"below {MIN_SPHERES} a temperature's noise sqrt(2/(3N)) passes 2.6%", sweepable=False),
+    Parameter("spheres", "gas: number of spheres", "1", 20000, low=MIN_SPHERES, high=MAX_SPHERES,
+              why_low=f"below {MIN_SPHERES} a temperature's noise sqrt(2/(3N)) passes 2.6%",
+              why="the starting lattice and data file are built in this process's memory (5 GB at 1e8)",
+              sweepable=False),
     Parameter("packing", "gas: packing fraction (sphere volume over box volume)", "1", 0.05, low=0.0, low_open=True,
               high=0.45, why="the starting lattice holds no denser gas without overlaps",
               why_low="a packing fraction is positive", sweepable=False),
@@ -23,7 +27,7 @@ GAS: tuple[Parameter, ...] = (
               why="a temperature is not negative", sweepable=False),
     Parameter("collisions", "gas: duration, in collisions per sphere at the starting Enskog rate", "1", 20.0,
               low=0.0, low_open=True, high=1e4, why="a run of more than 1e4 collisions per sphere is not a gas "
-              "study this tool sizes", sweepable=False),
+              "study this tool sizes", why_low="a run has a length", sweepable=False),
     Parameter("samples", "gas: times reported", "1", 100, low=2, high=100000,
               why="a series needs two times, and more than 1e5 rows is a dump", sweepable=False),
     Parameter("seed", "gas: random seed (placement, velocities, spins, the theory's collisions)", "1", 1, low=1,
@@ -31,8 +35,9 @@ GAS: tuple[Parameter, ...] = (
     Parameter("draws", "gas: collisions drawn at each temperature for the pair-level theories (the energy a collision "
               "loses is then known to about 0.03 T_tr/sqrt(draws), what it moves between translation and rotation to "
               "0.3 T_tr/sqrt(draws))", "1", 40000, low=1000,
-              high=10_000_000, why="fewer leave the theory's noise above 1e-3 a collision; more than 1e7 do not fit "
-              "one LAMMPS run", sweepable=False),
+              high=1_000_000, why_low="fewer leave the theory's noise above 1e-3 a collision",
+              why="each draw is a Python object in three LAMMPS pair runs: 1e6 takes about 5 minutes", sweepable=False),
 )
 
-
+#: Each gas parameter's declared default, by name (the scene, the run and the API take these).
+DEFAULT = {p.name: p.default for p in GAS}
