@@ -6,6 +6,7 @@ skipped, except under CI=true, where a missing cluster is a failure.
 """
 
 import getpass
+import json
 import os
 import re
 import shutil
@@ -251,6 +252,35 @@ def test_cancelled_and_timed_out_chunks_leave_nothing_and_a_rerun_finishes_them(
     assert len(rows) == spec.n and not rows.duplicated(["group", "index"]).any()
     assert sorted(rows["index"]) == list(range(spec.n))
     assert leftovers(out, scene) == []
+
+
+def test_a_gas_runs_as_one_job_on_two_ranks(tmp_path, site):
+    """workflows/Gasfile through sbatch: one job with two tasks, `spinbounce gas --ranks 2` inside it (LAMMPS
+    under mpiexec -np 2 in the allocation), the gas's series and record in its folder; the same gas on one
+    rank, here, starts from the same state (every draw from the atom ids) and agrees to 1e-10 after its
+    four collisions per sphere (tests/test_gas.py)."""
+    env = dict(os.environ, **site)
+    env["PATH"] = str(Path(sys.executable).parent) + os.pathsep + env.get("PATH", "")
+    gas = "gas={spheres: 2000, kn: 10000, kt: 2857.1428571428573, collisions: 2, samples: 8, draws: 2000}"
+    done = subprocess.run(["timeout", "-k", "30", "400", sys.executable, "-m", "snakemake", "--snakefile",
+                           str(WORKFLOW / "Gasfile"), "--directory", str(tmp_path), "--profile",
+                           str(WORKFLOW / "profiles" / "slurm"), "--config", "out=gas", "ranks=2", gas,
+                           "--slurm-init-seconds-before-status-checks", "1"], capture_output=True, text=True, env=env)
+    text = done.stdout + done.stderr
+    assert done.returncode == 0 and "steps (100%) done" in text, text[-4000:]
+    job = submitted(text)["gas"]
+    assert states([job]) == {job: "COMPLETED"}
+    tasks = subprocess.run(["sacct", "-n", "-X", "-P", "-o", "NTasks,AllocCPUS", "-j", job], capture_output=True,
+                           text=True, check=True).stdout.split()[0]
+    assert tasks.split("|")[1] == "2", tasks
+    record = json.loads((tmp_path / "gas" / "result.json").read_text())
+    assert record["ranks"] == 2 and record["parameters"]["spheres"] == 2000
+    from spinbounce.api import gas as run_gas
+
+    alone = run_gas(spheres=2000, kn=1e4, kt=1e4 * 2 / 7, collisions=2, samples=8, draws=2000, out=tmp_path / "one")
+    cluster = pd.read_csv(tmp_path / "gas" / "gas.csv")
+    for q in ("t_tr", "t_rot", "energy"):
+        assert np.max(np.abs(cluster[q].to_numpy() - alone.series[q])) < 1e-10
 
 
 def test_the_readme_session_on_a_one_node_slurm(tmp_path, site):

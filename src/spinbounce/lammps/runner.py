@@ -241,6 +241,16 @@ def run_deck(deck: Path, atoms=None) -> RunInfo:
                    initial=initial, final=final)
 
 
+def _launch_here() -> list[str]:
+    """mpiexec's launcher: inside a one-node SLURM job, its ranks are forked here (MPICH's own launcher
+    would start them through srun, a second job step that waits for the first, the job's, to end);
+    elsewhere (no job, or a job on several nodes) MPICH chooses."""
+    import os
+
+    nodes = os.environ.get("SLURM_NNODES") or os.environ.get("SLURM_JOB_NUM_NODES")
+    return ["-launcher", "fork"] if nodes == "1" else []
+
+
 def run_deck_lmp(deck: Path, atoms=None, ranks: int = 1) -> RunInfo:
     """Run ``deck`` with the ``lmp`` executable in a process of its own (what a user's rerun
     does), or on ``ranks`` MPI ranks under the mpiexec installed beside it. Slower than
@@ -250,7 +260,7 @@ def run_deck_lmp(deck: Path, atoms=None, ranks: int = 1) -> RunInfo:
     deck = Path(deck).resolve()
     started = time.perf_counter()
     lmp = lmp_executable()
-    launcher = [str(lmp.parent / "mpiexec"), "-np", str(int(ranks))] if ranks > 1 else []
+    launcher = [str(lmp.parent / "mpiexec"), *_launch_here(), "-np", str(int(ranks))] if ranks > 1 else []
     done = subprocess.run([*launcher, str(lmp), "-in", deck.name, "-log", LOG_NAME, "-screen", "none", "-nocite"],
                           cwd=deck.parent, capture_output=True, text=True)
     log = deck.parent / LOG_NAME

@@ -178,11 +178,12 @@ def reference_rates(n: int = 20_000, seed: int = 0, mu: float = 0.3) -> dict:
     return out
 
 
-def gas_rates(quick: bool = False, repeats: int = 3) -> dict:
+def gas_rates(quick: bool = False, repeats: int = 3, spheres: int | None = None) -> dict:
     """A magic-ratio gas's deck (packing 0.05, kn = 1e4) run in this process with and without what it measures
     (the kinetic energies, the open contacts), alternately, the fastest of ``repeats`` each: LAMMPS's
     sphere-steps a second on one core over the measured run (the settling before it, alike in both, left
-    out), and what measuring costs beside the bare deck."""
+    out), and what measuring costs beside the bare deck. ``spheres``: the gas's size (default 5,000 quick,
+    20,000 in full)."""
     from ..lammps.decks import prepare_run_dir
     from ..lammps.runner import loop_times, run_deck
     from ..scenes.gas import collisions
@@ -191,7 +192,8 @@ def gas_rates(quick: bool = False, repeats: int = 3) -> dict:
     from ..scenes.gas.scene import Gas
 
     m = ContactModel(kn=1e4, kt=1e4 * 2.0 / 7.0)
-    scene = Gas(m, collisions.mean_contact_time(m, 1.0, collisions.draws(2000, 1)), spheres=5000 if quick else 20000,
+    spheres = spheres or (5000 if quick else 20000)
+    scene = Gas(m, collisions.mean_contact_time(m, 1.0, collisions.draws(2000, 1)), spheres=spheres,
                 collisions=4.0 if quick else 8.0, samples=20)
     seconds = {"bare": math.inf, "measured": math.inf}
     with tempfile.TemporaryDirectory() as root:
@@ -209,16 +211,18 @@ def gas_rates(quick: bool = False, repeats: int = 3) -> dict:
 
 def measure_waits(quick: bool = False, seed: int = 0, workers: int = 2, n: int | None = None) -> dict:
     """Everything :func:`wait_lines` prints: each scene's sweep beside the engine, the frictionless sweep
-    against the bare engine, ``workers`` workers against one, the help's start-up and the damped steps.
-    ``n`` collisions for every sweep, or the counts of :data:`SCENES` and :data:`ENGINE_SWEEP`."""
+    against the bare engine, ``workers`` workers against one, the help's start-up, the damped steps and the
+    gas deck beside its bare self. ``n`` collisions for every sweep (and as many spheres for the gas, 1,000
+    to 20,000), or the counts of :data:`SCENES` and :data:`ENGINE_SWEEP`."""
     from .speed import parallel_efficiency
 
     scenes = scene_sweeps(quick, seed, n)
     references = reference_rates(n or SCENES["pair"][3 if quick else 2], seed)
+    gas = gas_rates(quick, spheres=None if n is None else min(max(n, 1000), 20000))  # a given count sizes it too
     n = n or (ENGINE_SWEEP[1] if quick else ENGINE_SWEEP[0])
     return {"quick": quick, "scenes": scenes, "references": references, "frictionless": sweep_against_engine(n, seed),
             "cores": parallel_efficiency(n=n, workers=workers, seed=seed), "help_seconds": help_seconds(),
-            "damped": damped_steps(), "gas": gas_rates(quick)}
+            "damped": damped_steps(), "gas": gas}
 
 
 def wait_lines(report: dict) -> list[str]:
