@@ -152,3 +152,23 @@ def test_a_short_run_with_many_samples_reports_every_one():
     """One contact sample an interval would make LAMMPS's fix ave/time report step 0 as well: two at least."""
     scene = _gas(spheres=2000, collisions=0.01, samples=50)
     assert scene.interval >= 2 * scene.contact_every and scene.interval % scene.contact_every == 0
+
+
+def test_a_rerun_stopped_after_lammps_leaves_no_earlier_series_beside_its_deck(tmp_path, monkeypatch):
+    """With --force into an earlier run's folder: its gas.csv and result.json go before LAMMPS runs, so an
+    interrupt before the new series is written leaves neither (nothing claims the old series is this run's)."""
+    from spinbounce.scenes.gas import run
+
+    folder = tmp_path / "rerun"
+    folder.mkdir()
+    (folder / "gas.csv").write_text("t,t_tr\n0,1\n")
+    (folder / "result.json").write_text("{}")
+
+    def interrupted(*_args, **_kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(run, "_judged", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        gas(spheres=1000, collisions=0.2, samples=2, draws=1000, out=folder, force=True, **MAGIC)
+    assert not (folder / "gas.csv").exists() and not (folder / "result.json").exists()
+    assert (folder / "gas.energies").exists()  # LAMMPS did run

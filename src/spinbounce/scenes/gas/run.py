@@ -77,6 +77,7 @@ def run_gas(m: ContactModel, *, spheres: int = DEFAULT["spheres"], packing: floa
         log(f"gas: {scene.spheres} spheres, {steps} steps of dt = {scene.dt:.4g}, the theory from {scene.draws} draws "
             f"(about {cost:.0f} s in all on {ranks} rank(s))")
     deck_path = prepare_run_dir(folder, render_gas(scene))
+    (folder / GAS_SERIES).unlink(missing_ok=True)  # an earlier run's series never stands beside this run's deck
     info = run_deck(deck_path) if ranks == 1 else run_deck_lmp(deck_path, ranks=ranks)
     return _judged(scene, folder, info, ranks, log)
 
