@@ -12,7 +12,7 @@ from ...lammps.decks import DECK_NAME, Atoms, Deck, data_file, render_template
 from ..pair.deck import pair_law
 from ..pair.pairs import Pair, Sphere
 from ..pair.kind import pair_contact
-from .scene import LATTICE_GAP, SETTLE
+from .scene import BURN, LATTICE_GAP, SETTLE
 
 __all__ = ["render_gas", "SERIES_FILE", "CONTACTS_FILE", "DATA_FILE"]
 
@@ -52,6 +52,7 @@ def render_gas(gas, measure: bool = True) -> Deck:
         Path(__file__).parent, "gas.lmp.j2", deck_name=DECK_NAME, n=n, packing=gas.packing, box=gas.box,
         t_tr=gas.t_tr, t_rot=gas.t_rot, skin=0.2 * gas.sigma, sigma=gas.sigma, mass=m.m, data_file=DATA_FILE,
         law=law_words(gas), dt=gas.dt, settle_steps=gas.settle_steps, settle=SETTLE, seed=gas.seed,
+        burn_steps=gas.burn_steps, burn=BURN,
         spin_scale=math.sqrt(m.m * gas.t_rot * 3.0 * n / dof / m.inertia), t_create=gas.t_tr * 3.0 * n / dof,
         interval=gas.interval, contact_every=gas.contact_every, contact_repeat=gas.interval // gas.contact_every,
         series_file=SERIES_FILE, contacts_file=CONTACTS_FILE, nsteps=gas.nsteps, measure=measure)
