@@ -32,6 +32,8 @@ from ..pair.kind import pair_contact
 from ..pair.pairs import Pair, Sphere
 from ..pair.scene import PairBatch
 from ..pair.table import pair_frames, pair_states
+from . import rule
+from .encounters import Crowd
 
 __all__ = ["Draws", "draws", "outcomes", "mean_contact_time", "averages_at", "averages"]
 
@@ -119,32 +121,63 @@ def _energy_changes(model, before, after) -> tuple[np.ndarray, np.ndarray]:
     return d_tr, d_rot
 
 
-def averages_at(model, t_tr: float, sample: Draws, dt: float | None = None, folder: Path | None = None) -> dict:
+def averages_at(model, t_tr: float, sample: Draws, dt: float | None = None, folder: Path | None = None,
+                crowd: Crowd | None = None) -> dict:
     """Per route (:func:`outcomes`): L at ``t_tr`` (:mod:`spinbounce.exact.kinetic`) and the standard
     errors of its entries (rows 0 and 1) and of its columns' sums (row 2: the energy a collision loses);
-    and the mean contact time of the collisions."""
+    and the mean contact time of the collisions. With a ``crowd`` (and a ``folder``), each route's L
+    holds the gas's overlapping contacts too (:mod:`.encounters`: LAMMPS's at ``dt``, in either route),
+    and "overlaps" their share alone. Where the law has the planar rule (:mod:`.rule`), each outcome's
+    energy change is taken less the rule's, whose exact mean is added back: the same mean, with the
+    variance of the small difference."""
     g = sample.velocities(t_tr, model.m)
+    scale = math.sqrt(t_tr / model.inertia)
     spins = sample.spin(t_tr, model.inertia)
     runs = {}
     for name, w in (("still", np.zeros_like(spins)), ("spun", spins), ("reversed", -spins)):
         runs[name] = outcomes(model, g, w, dt, sample.phase, None if folder is None else Path(folder) / name)
         runs[name]["before"] = (g, w)
     found = {"contact_time": float(np.mean(runs["still"]["contact_time"]))}
+    crowded = None
+    if crowd is not None and folder is not None:
+        crowded = _columns(crowd.excess(model, t_tr, {"still": 0.0, "spun": scale, "reversed": -scale}, dt,
+                                        Path(folder) / "encounters"))
+    control = None
+    if rule.has_rule(model):  # each collision's change by the planar rule, whose mean is known exactly
+        control = {name: np.array(_energy_changes(model, run["before"], rule.outcomes(model, *run["before"])))
+                   for name, run in runs.items()}
     for route in ("exact", "lammps") if folder is not None else ("exact",):
         changes = {name: np.array(_energy_changes(model, run["before"], run[route])) for name, run in runs.items()}
-        still = changes["still"]
-        spun = (changes["spun"] + changes["reversed"]) / 2.0 - still
-        parts = [np.vstack([part, part.sum(axis=0)]) for part in (still, spun)]  # rows: tr, rot, their sum
-        found[route] = (np.column_stack([part.mean(axis=1) for part in parts])[:2] / (3.0 * t_tr),
-                        np.column_stack([part.std(axis=1) / math.sqrt(part.shape[1]) for part in parts]) / (3.0 * t_tr))
+        if control is not None:
+            changes = {name: change - control[name] for name, change in changes.items()}
+        mean, error = _columns(changes)
+        if control is not None:
+            mean = mean + rule.mean_changes(model, t_tr)
+        if crowded is not None:  # independent draws: their means add, and their variances
+            mean, error = mean + crowded[0], np.hypot(error, crowded[1])
+        found[route] = (mean[:2] / (3.0 * t_tr), error / (3.0 * t_tr))
+    if crowded is not None:  # the overlaps' own share, as a record
+        found["overlaps"] = (crowded[0][:2] / (3.0 * t_tr), crowded[1] / (3.0 * t_tr))
     return found
 
 
-def averages(model, temperatures, sample: Draws, dt: float | None = None, folder: Path | None = None) -> dict:
+def _columns(changes: dict) -> tuple[np.ndarray, np.ndarray]:
+    """From each collision's energy changes (rows tr and rot) with spins none, drawn and reversed: the mean
+    energy change of L's two columns (rows tr, rot and their sum; the part odd in the spins cancels) and
+    their standard errors."""
+    still = changes["still"]
+    spun = (changes["spun"] + changes["reversed"]) / 2.0 - still
+    parts = [np.vstack([part, part.sum(axis=0)]) for part in (still, spun)]  # rows: tr, rot, their sum
+    return (np.column_stack([part.mean(axis=1) for part in parts]),
+            np.column_stack([part.std(axis=1) / math.sqrt(part.shape[1]) for part in parts]))
+
+
+def averages(model, temperatures, sample: Draws, dt: float | None = None, folder: Path | None = None,
+             crowd: Crowd | None = None) -> dict:
     """Per route: :class:`kinetic.Averages` at each of ``temperatures`` (T_tr) and the largest standard
     error of its L."""
     temperatures = np.sort(np.atleast_1d(np.asarray(temperatures, dtype=float)))
-    found = [averages_at(model, t, sample, dt, None if folder is None else Path(folder) / f"T{k}")
+    found = [averages_at(model, t, sample, dt, None if folder is None else Path(folder) / f"T{k}", crowd)
              for k, t in enumerate(temperatures)]
     times = np.array([f["contact_time"] for f in found])
     return {route: (kinetic.Averages(temperatures, np.array([f[route][0] for f in found]), times),

@@ -5,8 +5,10 @@
   centres held, dt -> 0); none for a law without one (a cap, a law on the contact radius).
 - ``pairs``: L measured from LAMMPS's own isolated pair collisions at the gas's step
   (:mod:`.collisions`), at temperatures spanning the run's: the turning line of centres and the step's
-  errors are in the prediction.
-- ``exact pairs``: the same from the exact pair references (dt -> 0), which separates the two.
+  errors are in the prediction; and what the gas's overlapping contacts add (:mod:`.encounters`: three
+  spheres at a time in LAMMPS, at the gas's packing).
+- ``exact pairs``: the same with the pairs from the exact pair references (dt -> 0), which separates the
+  two (the overlapping contacts are LAMMPS's in both: there is no exact three-sphere reference).
 
 Each is compared with LAMMPS at LAMMPS's own collisions per sphere (the theory's clock: its rates per
 collision do not depend on the Enskog rate, which a soft gas meets only to a few per cent).
@@ -19,25 +21,11 @@ import math
 import numpy as np
 
 from ...exact import kinetic
-from ...exact import pair as planar
-from ..pair.kind import no_planar_matrix, pair_contact
-from ..pair.pairs import Sphere
-from . import collisions
+from ..pair.kind import no_planar_matrix
+from . import collisions, encounters
+from .rule import restitutions
 
 __all__ = ["restitutions", "matrix_averages", "temperature_grid", "compare", "relaxation", "theories"]
-
-
-def restitutions(model) -> tuple[float, float]:
-    """(e_n, beta) of two of the gas's spheres by the planar theory: a closing unit speed with a unit slip."""
-    sphere = Sphere(model.m, model.r, model.alpha)
-    law = pair_contact(model, sphere).law()
-    n, v_a, zero = np.array([[0.0, 0.0, 1.0]]), np.array([[1.0, 0.0, -1.0]]), np.zeros((1, 3))
-    props = {"m_a": model.m, "r_a": model.r, "alpha_a": model.alpha, "m_b": model.m, "r_b": model.r,
-             "alpha_b": model.alpha}
-    va, vb, wa, wb = planar.predict(n, v_a, zero, zero, zero, **props, **law)
-    u0 = planar.slip_rate(n, v_a, zero, zero, zero, model.r, model.r)[0]
-    u1 = planar.slip_rate(n, va, vb, wa, wb, model.r, model.r)[0]
-    return float((va - vb)[0, 2]), float(-np.dot(u1, u0) / np.dot(u0, u0))  # e_n = -g'_n / g_n with g_n = -1
 
 
 def matrix_averages(model) -> tuple[kinetic.Averages | None, str | None]:
@@ -94,18 +82,21 @@ def compare(series: dict, averages: kinetic.Averages, gas) -> dict:
             "steady_ratio": steady, "relaxation_collisions": relaxation(path.tau, path.ratio, steady)}
 
 
-def theories(gas, folder, log=None) -> tuple[dict, np.ndarray, str | None]:
+def theories(gas, folder, log=None) -> tuple[dict, np.ndarray, str | None, kinetic.Averages]:
     """The gas's theories by name ("pairs", "exact_pairs" and, where the law has one, "matrix": their L), the
-    largest standard error of the pair-level L, and why there is no matrix theory (or None)."""
+    largest standard error of the pair-level L, why there is no matrix theory (or None), and the overlapping
+    contacts' share of the pair-level L."""
     count = gas.draws
     matrix, why = matrix_averages(gas.model)
     sample = collisions.draws(count, gas.seed)
     first = collisions.averages(gas.model, [gas.t_tr], collisions.draws(max(1000, count // 8), gas.seed))["exact"][0]
     grid = temperature_grid(first, gas, gas.collisions)
     if log is not None:
-        log(f"pair-level theory: {count} collisions at {len(grid)} temperature(s), in LAMMPS at dt = {gas.dt:.4g}")
-    found = collisions.averages(gas.model, grid, sample, gas.dt, folder)
+        log(f"pair-level theory: {count} collisions and {encounters.encounter_count(count)} three-sphere encounters at "
+            f"{len(grid)} temperature(s), in LAMMPS at dt = {gas.dt:.4g}")
+    crowd = encounters.Crowd(gas.packing, encounters.encounter_draws(encounters.encounter_count(count), gas.seed))
+    found = collisions.averages(gas.model, grid, sample, gas.dt, folder, crowd)
     out = {"pairs": found["lammps"][0], "exact_pairs": found["exact"][0]}
     if matrix is not None:
         out["matrix"] = matrix
-    return out, found["lammps"][1], why
+    return out, found["lammps"][1], why, found["overlaps"][0]

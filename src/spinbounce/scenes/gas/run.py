@@ -30,8 +30,9 @@ GAS_SERIES = "gas.csv"
 #: sphere-steps a second; the slower end, so that an estimate is not short).
 GAS_SPHERE_STEP_SECONDS = 6e-8
 #: The pair-level theory's cost of one drawn collision at one temperature: three runs (still, spun, reversed),
-#: each an exact reference and a LAMMPS pair (measured about 45 us in all; rounded up).
-THEORY_SECONDS_PER_DRAW = 6e-5
+#: each an exact reference and a LAMMPS pair (measured about 45 us in all), and a quarter of an encounter's
+#: three variants of seven spheres in LAMMPS (about 130 us each); rounded up.
+THEORY_SECONDS_PER_DRAW = 1e-4
 #: Runs estimated longer than this (seconds) need force.
 LONGEST_UNFORCED = 3600.0
 #: The share of the run whose mean ratio is its late (steady) ratio.
@@ -66,7 +67,7 @@ def run_gas(m: ContactModel, *, spheres: int = DEFAULT["spheres"], packing: floa
     values = Gas(m, None, spheres, packing, t_tr, t_rot, collisions, samples, seed, draws)  # checked, not yet run
     tc = pair_draws.mean_contact_time(m, values.t_tr, pair_draws.draws(2000, values.seed))
     scene = Gas(m, tc, spheres, packing, t_tr, t_rot, collisions, samples, seed, draws, dt)
-    steps = scene.nsteps + scene.settle_steps
+    steps = scene.nsteps + scene.settle_steps + scene.burn_steps
     cost = scene.spheres * steps * GAS_SPHERE_STEP_SECONDS / min(ranks, os.cpu_count() or 1) + theory_seconds(scene)
     if cost > LONGEST_UNFORCED and not force:
         raise SceneError("spheres", scene.spheres, f"with {steps} steps and {scene.draws} draws for the theory: the run "
@@ -91,7 +92,7 @@ def _judged(scene, folder: Path, info, ranks: int, log) -> GasReport:
     """The run's series beside the theories, written to gas.csv and result.json."""
     import pandas as pd
 
-    theories, errors, why = predict.theories(scene, folder / "pairs", log)
+    theories, errors, why, overlaps = predict.theories(scene, folder / "pairs", log)
     series = read_series(scene, folder, theories["pairs"].contact_time)
     compared = {name: predict.compare(series, averages, scene) for name, averages in theories.items()}
     table = dict(series)
@@ -103,7 +104,8 @@ def _judged(scene, folder: Path, info, ranks: int, log) -> GasReport:
     record = {"scene": "gas", "parameters": scene.record(), "ranks": ranks, "judged": scene.judged,
               "lammps": _lammps_summary(series),
               "theories": {n: _summary(c) | _matrices(theories[n]) for n, c in compared.items()},
-              "no_matrix": why, "accuracy": _accuracy(scene, series, errors), "csv": str(csv),
+              "overlaps": _matrices(overlaps), "no_matrix": why, "accuracy": _accuracy(scene, series, errors),
+              "csv": str(csv),
               "deck": str(info.deck), "loop_seconds": info.loop_seconds, "wall_seconds": info.wall_seconds,
               **software()}
     record_path = folder / "result.json"
