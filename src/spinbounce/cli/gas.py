@@ -59,7 +59,8 @@ def run(args) -> int:
     r = report.record
     if args.json:
         return print_json(json_ready({"series": report.series, "lammps": r["lammps"], "theories": r["theories"],
-                           "accuracy": r["accuracy"], "no_matrix": r["no_matrix"], "csv": r["csv"],
+                           "overlaps": r["overlaps"], "accuracy": r["accuracy"], "no_matrix": r["no_matrix"],
+                           "csv": r["csv"],
                            "record": str(report.record_path), "parameters": r["parameters"],
                            "lammps_version": r["lammps_version"]}))
     s = r["lammps"]
@@ -68,6 +69,8 @@ def run(args) -> int:
     for name, t in r["theories"].items():
         print(f"  theory {name:<12} largest |ratio difference| {t['max_ratio_difference']:.4f}, steady ratio "
               f"{t['steady_ratio']:.4f}, energy drift {100 * t['energy_drift']['theory']:+.3f}%")
+    print(f"  of the pair-level drift, the overlapping contacts' (a sphere meeting a third while it touches a second): "
+          f"{100 * r['overlaps']['energy_drift']:+.3f}%")
     if r["no_matrix"]:
         print(f"  no matrix theory: {r['no_matrix']}")
     if not r["judged"]:

@@ -88,13 +88,15 @@ def make_gas(out: Path, runs: Path, log=print) -> FigureRecord:
         fig = _draw(cases, curve)
         metadata = {"figure": "gas", "title": "T_rot/T_tr of gases of frictional spheres", "gas": FIGURE_GAS,
                     "theory": "spinbounce.exact.kinetic with L from the matrix, the exact pair references and "
-                              "LAMMPS's isolated pairs (spinbounce.scenes.gas.predict)",
+                              "LAMMPS's isolated pairs, these two with the overlapping contacts "
+                              "(spinbounce.scenes.gas.predict)",
                     "steady_ratio_curve": {"kt_over_kn": CURVE, "matrix": curve}, "software": software(),
                     "cases": [{"kt_over_kn": c["kt_over_kn"], "lammps": c["record"]["lammps"],
                                "theories": {n: {k: v for k, v in t.items() if k in ("max_ratio_difference",
                                                                                     "energy_drift", "steady_ratio",
                                                                                     "relaxation_collisions")}
                                             for n, t in c["record"]["theories"].items()},
-                               "accuracy": c["record"]["accuracy"], "dt": c["record"]["parameters"]["dt"],
+                               "overlaps": c["record"]["overlaps"], "accuracy": c["record"]["accuracy"],
+                               "dt": c["record"]["parameters"]["dt"],
                                "run": str(Path(c["record"]["csv"]).parent)} for c in cases]}
         return save(fig, out, "gas", metadata, started)

@@ -44,11 +44,14 @@ def matrix_averages(model) -> tuple[kinetic.Averages | None, str | None]:
 MAX_TEMPERATURES = 5
 
 
-def temperature_grid(averages: kinetic.Averages, gas, tau_end: float) -> np.ndarray:
-    """T_tr's the pair-level L is measured at: from the range a first evolution (by ``averages``) crosses,
-    one a factor of two apart (at least two, at most MAX_TEMPERATURES; one where T_tr stays within 5%)."""
-    path = kinetic.evolve(averages, gas.t_tr, gas.t_rot, tau_end, gas.packing, gas.sigma, gas.model.m, points=101)
-    low, high = float(path.t_tr.min()), float(path.t_tr.max())
+def temperature_grid(averages: kinetic.Averages, gas) -> np.ndarray:
+    """T_tr's the pair-level L is measured at: from the range a first evolution (by ``averages``) crosses in the
+    run's time (its collisions slow as it cools: the nominal count at the starting rate overshoots them), one a
+    factor of two apart (at least two, at most MAX_TEMPERATURES; one where T_tr stays within 5%)."""
+    path = kinetic.evolve(averages, gas.t_tr, gas.t_rot, gas.collisions, gas.packing, gas.sigma, gas.model.m,
+                          points=401)
+    within = path.t <= gas.nsteps * gas.dt if gas.dt else np.ones_like(path.t, dtype=bool)
+    low, high = float(path.t_tr[within].min()), float(path.t_tr[within].max())
     if high / low < 1.05:
         return np.array([gas.t_tr])
     return np.geomspace(low, high, min(MAX_TEMPERATURES, max(2, 1 + math.ceil(math.log2(high / low)))))
@@ -90,7 +93,7 @@ def theories(gas, folder, log=None) -> tuple[dict, np.ndarray, str | None, kinet
     matrix, why = matrix_averages(gas.model)
     sample = collisions.draws(count, gas.seed)
     first = collisions.averages(gas.model, [gas.t_tr], collisions.draws(max(1000, count // 8), gas.seed))["exact"][0]
-    grid = temperature_grid(first, gas, gas.collisions)
+    grid = temperature_grid(first, gas)
     if log is not None:
         log(f"pair-level theory: {count} collisions and {encounters.encounter_count(count)} three-sphere encounters at "
             f"{len(grid)} temperature(s), in LAMMPS at dt = {gas.dt:.4g}")
