@@ -3,8 +3,9 @@
 At a packing phi a sphere sometimes meets a second partner while it still touches the first: about
 2 omega t_c of a gas's collisions overlap another (omega the collision rate, t_c a contact's time).
 Binary-collision theory counts each as an isolated collision; where the contact law almost conserves
-energy pairwise (the paper's magic ratio), the overlaps are most of what the gas loses, at a rate that
-grows as phi t_c. This module measures their share of the matrix L of :mod:`spinbounce.exact.kinetic`.
+energy pairwise (the paper's magic ratio), the overlaps lose more than the pairs (at packing 0.05,
+kn = 1e4 and T_rot = T_tr, more than twice), at a rate that grows as phi t_c. This module measures
+their share of the matrix L of :mod:`spinbounce.exact.kinetic`.
 
 An encounter: sphere A touches B at time 0 (a collision drawn as :mod:`.collisions` draws them) and a
 third sphere C at time s. C's velocity is Maxwellian and its line of centres n_C uniform; each draw is
@@ -14,15 +15,18 @@ pairs' mean by
 
     omega J,   J = < w_C (2 S) dE(s) > / <w>,   <w> = sqrt(T_tr / (pi m)),
 
-s uniform in (-S, S), dE the excess: the three spheres' energy change less those of A with B alone
-and A with C alone (common draws), zero where the contacts do not overlap (s outside (-t_AC, t_AB),
-the isolated contacts' times) or cannot happen (B and C would start overlapping). Each unordered
+S = max(t_AB, t_AC) the longer of the two isolated contacts' times (per draw), s uniform in (-S, S),
+dE the excess: the three spheres' energy change less those of A with B alone and A with C alone
+(common draws), zero where the contacts do not overlap (s outside (-t_AC, t_AB)) or cannot happen
+(B and C would start overlapping). Each unordered
 overlap is met from both of its collisions, and a sphere's energy change is half its collision's, so
 omega J adds to a collision's mean energy change exactly as a pair's own dE does.
 
 LAMMPS runs every encounter at the gas's step, each alone in its cell, in three cells: A, B and C;
-A and B; A and C. B and C never touch (``neigh_modify exclude``): a meeting of theirs after both
-leave A is another collision of the gas, which the binary theory already counts.
+A and B; A and C. B and C never touch (``neigh_modify exclude``): the encounter is A's two
+contacts. A meeting of B and C after both leave A is another collision of the gas, which the binary
+theory counts; in about 2% of the kept draws they would come within a diameter while one still
+touches A, a four-contact event left out.
 """
 
 from __future__ import annotations
@@ -78,10 +82,12 @@ class EncounterDraws:
 
 
 def encounter_count(draws: int) -> int:
-    """Encounters drawn beside a theory's ``draws`` collisions: a quarter (at least 1,000). Their share of a
-    collision's energy change is a small part of it (a tenth where pairs lose most, most of it at the magic
-    ratio), and each costs about seven spheres' runs: a quarter keeps their standard error near the pairs'."""
-    return max(1000, draws // 4)
+    """Encounters drawn beside a theory's ``draws`` collisions: half as many (at least 1,000). Each costs about
+    seven spheres' runs in three variants (130 us here, three times a pair's); with the planar rule as the
+    pairs' control variate their standard error is still the larger part of the theory's (with a quarter as
+    many, 10,000 beside 40,000 draws, the theory's drift over 12 collisions at the magic ratio, packing 0.05,
+    had a standard error of 0.11 points)."""
+    return max(1000, draws // 2)
 
 
 def encounter_draws(count: int, seed: int) -> EncounterDraws:
@@ -99,7 +105,7 @@ def _unit(a: np.ndarray) -> np.ndarray:
 class Placements:
     """The encounters kept at one temperature (``kept``: their indices among the draws): the three spheres'
     positions and velocities at the run's start ((k, 3, 3): encounter, sphere A B C, axis), each one's
-    ``weight`` w_C 2S / <w>, and the window S."""
+    ``weight`` w_C 2S / <w>, and the longest window S (what a run must cover)."""
 
     kept: np.ndarray
     x: np.ndarray
@@ -125,15 +131,15 @@ def placements(model, t_tr: float, sample: EncounterDraws, dt: float) -> Placeme
     meets = w_c > 0.0
     t_ac = np.zeros_like(w_c)
     t_ac[meets] = wall.contact_times(w_c[meets])
-    window = float(max(t_ab.max(), t_ac.max()))
+    window = np.maximum(t_ab, t_ac)  # per draw: one slow contact (Hertz: t_c grows as w^-1/5) widens no other
     s = sample.offset * window
     start = np.minimum(0.0, s) - sample.phase * dt
     x_a, x_b = v_a * start[:, None], sigma * n1 + v_b * start[:, None]
     x_c = v_a * s[:, None] + sigma * n2 + v_c * (start - s)[:, None]
     kept = np.nonzero(meets & (s > -t_ac) & (s < t_ab) & (np.linalg.norm(x_b - x_c, axis=1) > sigma))[0]
-    weight = w_c[kept] * 2.0 * window / math.sqrt(t_tr / (math.pi * m))
+    weight = w_c[kept] * 2.0 * window[kept] / math.sqrt(t_tr / (math.pi * m))
     return Placements(kept, np.stack([x_a, x_b, x_c], axis=1)[kept], np.stack([v_a, v_b, v_c], axis=1)[kept],
-                      weight, window)
+                      weight, float(window[kept].max(initial=0.0)))
 
 
 @dataclass(frozen=True)
@@ -149,6 +155,8 @@ class Crowd:
         encounter's omega w_C 2S dE / <w> ((2, count): translational and rotational; zero where none
         is kept): averaged over the draws, what the overlaps add to a collision's mean energy change."""
         placed = placements(model, t_tr, self.sample, dt)
+        if len(placed.kept) == 0:  # nothing can overlap: nothing to add
+            return {name: np.zeros((2, self.sample.count)) for name in spins}
         omega = float(kinetic.enskog_rate(t_tr, self.packing, 2.0 * model.r, model.m))
         spin = {name: scale * self.sample.spins[placed.kept].reshape(-1, 3, 3) for name, scale in spins.items()}
         changes = _run(model, placed, spin, dt, folder)

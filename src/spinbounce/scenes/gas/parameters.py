@@ -32,12 +32,12 @@ GAS: tuple[Parameter, ...] = (
               why="a series needs two times, and more than 1e5 rows is a dump", sweepable=False),
     Parameter("seed", "gas: random seed (placement, velocities, spins, the theory's collisions)", "1", 1, low=1,
               high=900000000, why="LAMMPS's seeds are positive 31-bit numbers", sweepable=False),
-    Parameter("draws", "gas: collisions drawn at each temperature for the pair-level theories, and a quarter as many "
+    Parameter("draws", "gas: collisions drawn at each temperature for the pair-level theories, and half as many "
               "three-sphere encounters (what a collision loses, and moves between translation and rotation, is then "
               "known to about 0.04 T_tr/sqrt(draws); the move to 0.3 T_tr/sqrt(draws) for a law without the planar "
               "rule, a cap)", "1", 40000, low=1000,
               high=1_000_000, why_low="fewer leave the theory's noise above 1e-3 a collision",
-              why="each draw is a Python object in three LAMMPS pair runs: 1e6 takes about 5 minutes", sweepable=False),
+              why="each draw is a Python object in three LAMMPS pair runs: 1e6 takes about 10 minutes", sweepable=False),
 )
 
 #: Each gas parameter's declared default, by name (the scene, the run and the API take these).

@@ -48,8 +48,10 @@ def temperature_grid(averages: kinetic.Averages, gas) -> np.ndarray:
     """T_tr's the pair-level L is measured at: from the range a first evolution (by ``averages``) crosses in the
     run's time (its collisions slow as it cools: the nominal count at the starting rate overshoots them), one a
     factor of two apart (at least two, at most MAX_TEMPERATURES; one where T_tr stays within 5%)."""
-    path = kinetic.evolve(averages, gas.t_tr, gas.t_rot, gas.collisions, gas.packing, gas.sigma, gas.model.m,
-                          points=401)
+    # a gas heating (T_rot(0) > T_tr(0)) meets more collisions than the nominal: at most as many more as its
+    # rate grows, to T_tr = T_tr(0) + T_rot(0)
+    most = gas.collisions * math.sqrt((gas.t_tr + gas.t_rot) / gas.t_tr)
+    path = kinetic.evolve(averages, gas.t_tr, gas.t_rot, most, gas.packing, gas.sigma, gas.model.m, points=401)
     within = path.t <= gas.nsteps * gas.dt if gas.dt else np.ones_like(path.t, dtype=bool)
     low, high = float(path.t_tr[within].min()), float(path.t_tr[within].max())
     if high / low < 1.05:

@@ -31,9 +31,9 @@ GAS_SERIES = "gas.csv"
 #: sphere-steps a second; the slower end, so that an estimate is not short).
 GAS_SPHERE_STEP_SECONDS = 6e-8
 #: The pair-level theory's cost of one drawn collision at one temperature: three runs (still, spun, reversed),
-#: each an exact reference and a LAMMPS pair (measured about 45 us in all), and a quarter of an encounter's
-#: three variants of seven spheres in LAMMPS (about 130 us each); rounded up.
-THEORY_SECONDS_PER_DRAW = 1e-4
+#: each an exact reference and a LAMMPS pair (measured about 45 us in all), and half an encounter's three
+#: variants of seven spheres in LAMMPS (about 130 us each); rounded up.
+THEORY_SECONDS_PER_DRAW = 1.2e-4
 #: Runs estimated longer than this (seconds) need force.
 LONGEST_UNFORCED = 3600.0
 #: The share of the run whose mean ratio is its late (steady) ratio.

@@ -51,8 +51,9 @@ def magic_gas_equipartition(runs: Runs) -> Claim:
               theory, runs=["gas-magic"])
     c.verdict = verdict(1.0, late, theory, EQUIPARTITION_TOL, EQUIPARTITION_TOL)
     lam, theories = record["lammps"], record["theories"]
-    c.evidence = (f"{GAS_CLAIM['spheres']} spheres at packing {GAS_CLAIM['packing']}, kn = {GAS_CLAIM['kn']:g}, from "
-                  f"T_rot = 0: T_rot/T_tr over the last quarter of {lam['collisions_per_sphere']:.3g} collisions per "
+    c.evidence = (f"{GAS_CLAIM['spheres']} spheres at packing {GAS_CLAIM['packing']}, kn = {GAS_CLAIM['kn']:g}, "
+                  f"drawn at T_rot = 0: T_rot/T_tr over the last quarter of {lam['collisions_per_sphere']:.3g} "
+                  "collisions per "
                   f"sphere {late:.4f} (spread {lam['late_ratio_spread']:.4f}); the steady ratio of the exact pair "
                   f"references' theory {theory:.4f} (a pair's line of centres turns, so its restitution is not quite "
                   f"the wall's), of LAMMPS's isolated pairs at the gas's step {theories['pairs']['steady_ratio']:.4f}; "
@@ -68,7 +69,7 @@ def magic_gas_energy(runs: Runs) -> Claim:
     # judged against the pairs at the gas's own step: a collision's error at the step is the isolated pairs' (the
     # exact references are dt -> 0, which this gas is not; both are in the evidence)
     c = Claim("gas-energy", "molecular dynamics of magic-ratio spheres conserves energy", "Conclusions", 0.0, lam,
-              pairs, runs=["gas-magic"])
+              f"{pairs:.6g} (pair-level, at the gas's step; dt -> 0: {exact:.6g})", runs=["gas-magic"])
     error = record["accuracy"]["pair_level_drift_standard_error"]  # both routes draw the same collisions
     c.verdict = verdict(0.0, lam, pairs, DRIFT_TOL, DRIFT_TOL + 2.0 * error, approx_tol=APPROXIMATE_DRIFT)
     c.evidence = (f"the gas's kinetic energy changes by {100 * lam:+.3f}% over "
