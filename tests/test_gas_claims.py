@@ -38,8 +38,8 @@ def figure(reproduction):
 def test_the_magic_gas_reaches_equipartition_and_loses_what_its_pairs_and_overlaps_lose(claims, claimed):
     """Issue 29's gas. Equipartition within 0.01 (its line; the late ratio's own noise is about 0.5%). The energy:
     the claim's verdict is approximate (the paper's conservation does not hold; LAMMPS and the pair-level theory
-    at the gas's step agree within 0.2 percentage points and two standard errors: three runs measured 0.21, 0.07
-    and 0.19 apart), and both lose energy."""
+    at the gas's step agree within 0.2 percentage points and two standard errors: three runs measured 0.29, 0.11
+    and 0.12 apart), and both lose energy."""
     assert claims["gas-equipartition"]["lammps"] == pytest.approx(1.0, abs=0.01)
     assert claims["gas-equipartition"]["verdict"] == "reproduced"
     energy = claims["gas-energy"]
@@ -62,8 +62,8 @@ def test_the_overlapping_contacts_are_half_a_dense_magic_gas_s_loss(claimed, fig
     """At packing 0.05 and kn = 1e4 a sphere meets a third while it touches a second in about 3% of its
     collisions, and at the magic ratio those overlaps lose more than the isolated pairs (docs/how-to/gas.md).
     Without them the pair-level theory would miss LAMMPS's drift by more than its tolerance: in the claims' gas
-    (measured: share -1.07 points of -2.18) and in the figure's magic gas (5,000 spheres over 22 collisions,
-    share -1.8 of -3.2), which with them is held within 0.5 points and two standard errors (its drift's noise
+    (measured: share -0.99 points of -2.11) and in the figure's magic gas (5,000 spheres over 22 collisions,
+    share -1.9 of -3.3), which with them is held within 0.5 points and two standard errors (its drift's noise
     is larger than 20,000 spheres')."""
     for record in (claimed, figure[round(2 / 7, 4)]):
         error = record["accuracy"]["pair_level_drift_standard_error"]

@@ -87,10 +87,10 @@ def compare(series: dict, averages: kinetic.Averages, gas) -> dict:
             "steady_ratio": steady, "relaxation_collisions": relaxation(path.tau, path.ratio, steady)}
 
 
-def theories(gas, folder, log=None) -> tuple[dict, np.ndarray, str | None, kinetic.Averages]:
+def theories(gas, folder, log=None) -> tuple[dict, np.ndarray, str | None, tuple]:
     """The gas's theories by name ("pairs", "exact_pairs" and, where the law has one, "matrix": their L), the
     largest standard error of the pair-level L, why there is no matrix theory (or None), and the overlapping
-    contacts' share of the pair-level L."""
+    contacts' share of the pair-level L with its largest standard errors."""
     count = gas.draws
     matrix, why = matrix_averages(gas.model)
     sample = collisions.draws(count, gas.seed)
@@ -104,4 +104,4 @@ def theories(gas, folder, log=None) -> tuple[dict, np.ndarray, str | None, kinet
     out = {"pairs": found["lammps"][0], "exact_pairs": found["exact"][0]}
     if matrix is not None:
         out["matrix"] = matrix
-    return out, found["lammps"][1], why, found["overlaps"][0]
+    return out, found["lammps"][1], why, found["overlaps"]

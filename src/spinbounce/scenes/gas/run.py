@@ -129,12 +129,15 @@ def _summary(compared: dict) -> dict:
     return {k: compared[k] for k in keys}
 
 
-def _overlaps(series: dict, scene, pairs, overlaps, compared: dict) -> dict:
+def _overlaps(series: dict, scene, pairs, overlaps: tuple, compared: dict) -> dict:
     """The overlapping contacts' share of the pair-level L, and of its energy drift over the run (the drift less
-    that of the isolated pairs alone)."""
-    alone = Averages(pairs.t_tr, pairs.matrices - overlaps.matrices, pairs.contact_times)
+    that of the isolated pairs alone), with the latter's standard error (the largest of an energy change's,
+    carried over the run's collisions)."""
+    share, errors = overlaps
+    alone = Averages(pairs.t_tr, pairs.matrices - share.matrices, pairs.contact_times)
     drift = compared["energy_drift"]["theory"] - predict.compare(series, alone, scene)["energy_drift"]["theory"]
-    return _matrices(overlaps) | {"energy_drift": drift}
+    return _matrices(share) | {"energy_drift": drift,
+                               "energy_drift_standard_error": float(np.max(errors[2]) * series["collisions"][-1])}
 
 
 def _matrices(averages) -> dict:
