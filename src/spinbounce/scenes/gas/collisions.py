@@ -28,8 +28,8 @@ import numpy as np
 from ...exact import kinetic
 from ...lammps.decks import prepare_run_dir
 from ...lammps.runner import run_deck
-from ..pair.kind import pair_contact
-from ..pair.pairs import Pair, Sphere
+from ..pair.kind import equal_pair
+from ..pair.pairs import Pair
 from ..pair.scene import PairBatch
 from ..pair.table import pair_frames, pair_states
 from . import rule
@@ -78,9 +78,9 @@ class _PhasedBatch(PairBatch):
 
 
 def _pairs(model, velocities, spins) -> tuple:
-    sphere = Sphere(model.m, model.r, model.alpha)
+    sphere, contact = equal_pair(model)
     return tuple(Pair(sphere, sphere, (0.0, 0.0, 1.0), tuple(v), (0.0, 0.0, 0.0), tuple(w[:3]), tuple(w[3:]))
-                 for v, w in zip(velocities.tolist(), spins.tolist())), pair_contact(model, sphere)
+                 for v, w in zip(velocities.tolist(), spins.tolist())), contact
 
 
 def _exact(outcomes) -> tuple[np.ndarray, np.ndarray]:

@@ -10,8 +10,8 @@ import numpy as np
 
 from ...lammps.decks import DECK_NAME, Atoms, Deck, data_file, render_template
 from ..pair.deck import pair_law
-from ..pair.pairs import Pair, Sphere
-from ..pair.kind import pair_contact
+from ..pair.pairs import Pair
+from ..pair.kind import equal_pair
 from .scene import BURN, LATTICE_GAP, SETTLE
 
 __all__ = ["render_gas", "SERIES_FILE", "CONTACTS_FILE", "DATA_FILE"]
@@ -33,10 +33,10 @@ def lattice_positions(gas) -> np.ndarray:
     return (cells + 0.5) * spacing + rng.uniform(-room, room, size=(gas.spheres, 3))
 
 
-def law_words(gas) -> dict:
-    """The pair law of two of the gas's spheres (the pair deck's words: :func:`..pair.deck.pair_law`)."""
-    sphere = Sphere(gas.model.m, gas.model.r, gas.model.alpha)
-    return pair_law(Pair(sphere, sphere), pair_contact(gas.model, sphere))[1]
+def law_words(model) -> dict:
+    """The pair law of two of a gas's spheres (the pair deck's words: :func:`..pair.deck.pair_law`)."""
+    sphere, contact = equal_pair(model)
+    return pair_law(Pair(sphere, sphere), contact)[1]
 
 
 def render_gas(gas, measure: bool = True) -> Deck:
@@ -51,7 +51,7 @@ def render_gas(gas, measure: bool = True) -> Deck:
     text = render_template(
         Path(__file__).parent, "gas.lmp.j2", deck_name=DECK_NAME, n=n, packing=gas.packing, box=gas.box,
         t_tr=gas.t_tr, t_rot=gas.t_rot, skin=0.2 * gas.sigma, sigma=gas.sigma, mass=m.m, data_file=DATA_FILE,
-        law=law_words(gas), dt=gas.dt, settle_steps=gas.settle_steps, settle=SETTLE, seed=gas.seed,
+        law=law_words(gas.model), dt=gas.dt, settle_steps=gas.settle_steps, settle=SETTLE, seed=gas.seed,
         burn_steps=gas.burn_steps, burn=BURN,
         spin_scale=math.sqrt(m.m * gas.t_rot * 3.0 * n / dof / m.inertia), t_create=gas.t_tr * 3.0 * n / dof,
         interval=gas.interval, contact_every=gas.contact_every, contact_repeat=gas.interval // gas.contact_every,

@@ -41,9 +41,9 @@ from ...errors import ResultError
 from ...exact import kinetic
 from ...lammps.decks import DECK_NAME, Deck, LibraryAtoms, prepare_run_dir, render_template
 from ...lammps.runner import LIBRARY_MARKER, run_deck
-from ..pair.deck import pair_law
-from ..pair.kind import pair_contact
-from ..pair.pairs import Pair, Sphere, equivalent_wall
+from ..pair.kind import equal_pair
+from ..pair.pairs import equivalent_wall
+from .deck import law_words
 
 __all__ = ["EncounterDraws", "encounter_draws", "encounter_count", "Crowd", "placements", "CELL"]
 
@@ -125,8 +125,8 @@ def placements(model, t_tr: float, sample: EncounterDraws, dt: float) -> Placeme
     centre = math.sqrt(t_tr / (2.0 * m)) * sample.centre
     v_a, v_b, v_c = centre + g / 2.0, centre - g / 2.0, math.sqrt(t_tr / m) * sample.third
     w_c = np.maximum(0.0, np.sum((v_a - v_c) * n2, axis=1))
-    sphere = Sphere(model.m, model.r, model.alpha)
-    wall = equivalent_wall(sphere, sphere, pair_contact(model, sphere))
+    sphere, contact = equal_pair(model)
+    wall = equivalent_wall(sphere, sphere, contact)
     t_ab = wall.contact_times(np.sum(g * n1, axis=1))
     meets = w_c > 0.0
     t_ac = np.zeros_like(w_c)
@@ -192,11 +192,10 @@ def _run(model, placed: Placements, spin: dict, dt: float, folder: Path) -> dict
     atoms, cells, box = _cells(placed, spin, 2.0 * model.r)
     n = len(cells)
     atoms = LibraryAtoms(atoms.types, atoms.x, atoms.v, atoms.omega, np.full(n, model.m), np.full(n, model.r))
-    sphere = Sphere(model.m, model.r, model.alpha)
     nsteps = math.ceil(RUN_WINDOWS * placed.window / dt) + 1
     text = render_template(Path(__file__).parent, "encounters.lmp.j2", deck_name=DECK_NAME, count=k, box=box,
                            cell=CELL * 2.0 * model.r, skin=0.2 * model.r, binsize=CELL * model.r, marker=LIBRARY_MARKER,
-                           dt=dt, nsteps=nsteps, law=pair_law(Pair(sphere, sphere), pair_contact(model, sphere))[1])
+                           dt=dt, nsteps=nsteps, law=law_words(model))
     deck = Deck(text=text, name=DECK_NAME, dump=None, atoms=atoms)
     info = run_deck(prepare_run_dir(folder, deck, durable=False), atoms)
     unfinished = np.zeros(len(spin) * len(KINDS) * k, dtype=bool)

@@ -12,17 +12,15 @@ import numpy as np
 
 from ...exact import kinetic
 from ...exact import pair as planar
-from ..pair.kind import no_planar_matrix, pair_contact
-from ..pair.pairs import Sphere
+from ..pair.kind import equal_pair, no_planar_matrix
 
 __all__ = ["restitutions", "has_rule", "outcomes", "mean_changes"]
 
 
 def _law(model) -> dict:
-    sphere = Sphere(model.m, model.r, model.alpha)
     props = {"m_a": model.m, "r_a": model.r, "alpha_a": model.alpha, "m_b": model.m, "r_b": model.r,
              "alpha_b": model.alpha}
-    return props | pair_contact(model, sphere).law()
+    return props | equal_pair(model)[1].law()
 
 
 def has_rule(model) -> bool:

@@ -133,12 +133,12 @@ class Gas:
         """The gas's fastest collisions (closing at HOTTEST times the scale of |g.n| at T_tr + T_rot) must not press the
         spheres together by more than DEEPEST of a radius: the contact law, and the pair theory's runs,
         hold for small overlaps."""
-        from ..pair.kind import pair_contact
-        from ..pair.pairs import Sphere, equivalent_wall
+        from ..pair.kind import equal_pair
+        from ..pair.pairs import equivalent_wall
 
         m = self.model
-        sphere = Sphere(m.m, m.r, m.alpha)
-        wall = equivalent_wall(sphere, sphere, pair_contact(m, sphere))
+        sphere, contact = equal_pair(m)
+        wall = equivalent_wall(sphere, sphere, contact)
         hottest = self.t_tr + self.t_rot  # the most T_tr can reach, were rotation to give all its energy back
         fastest = HOTTEST * math.sqrt(2.0 * hottest / m.m)
         depth = float(wall.max_overlap(fastest))

@@ -49,6 +49,12 @@ def scene_of(values: dict) -> str:
 LAW_WORDS = ("normal", "youngs_modulus", "poisson_ratio", "tangential", "mindlin_kt", "limit_damping")
 
 
+def equal_pair(model: ContactModel) -> tuple[Sphere, PairContact]:
+    """Two equal spheres of the model (its m, r and alpha) and their contact under its law (a gas's pairs)."""
+    sphere = Sphere(model.m, model.r, model.alpha)
+    return sphere, pair_contact(model, sphere)
+
+
 def pair_contact(model: ContactModel, b: Sphere) -> PairContact:
     """The pair deck's contact law from a contact model against sphere ``b``, or why the pair
     cannot run it. Its dashpots are the damping's in the pair's effective mass m b/(m + b); a force,
