@@ -116,6 +116,10 @@ def test_a_gas_writes_its_series_and_provenance(small_magic_gas):
     record = json.loads(small_magic_gas.record_path.read_text())
     assert record["scene"] == "gas" and record["lammps_version"] and record["parameters"]["dt"] > 0
     assert record["accuracy"]["temperature_noise"] == pytest.approx(math.sqrt(2 / 6000))
+    closure = record["closure"]  # the closure's error, carried by every theory: none for elastic rough spheres
+    assert closure["steady_ratio_closed_form"] == pytest.approx(1.0, abs=1e-12) and closure["closure_error"] == 0.0
+    for theory in record["theories"].values():
+        assert theory["steady_ratio_boltzmann"] == pytest.approx(theory["steady_ratio"] + closure["closure_error"])
     header = small_magic_gas.csv.read_text().splitlines()[0].split(",")
     assert {"t", "t_tr", "t_rot", "energy", "collisions", "ratio_pairs", "energy_matrix"} <= set(header)
 

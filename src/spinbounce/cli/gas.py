@@ -59,8 +59,8 @@ def run(args) -> int:
     r = report.record
     if args.json:
         return print_json(json_ready({"series": report.series, "lammps": r["lammps"], "theories": r["theories"],
-                           "overlaps": r["overlaps"], "accuracy": r["accuracy"], "no_matrix": r["no_matrix"],
-                           "csv": r["csv"],
+                           "overlaps": r["overlaps"], "closure": r["closure"], "accuracy": r["accuracy"],
+                           "no_matrix": r["no_matrix"], "csv": r["csv"],
                            "record": str(report.record_path), "parameters": r["parameters"],
                            "lammps_version": r["lammps_version"]}))
     s = r["lammps"]
@@ -71,6 +71,14 @@ def run(args) -> int:
               f"{t['steady_ratio']:.4f}, energy drift {100 * t['energy_drift']['theory']:+.3f}%")
     print(f"  of the pair-level drift, the overlapping contacts' (a sphere meeting a third while it touches a second): "
           f"{100 * r['overlaps']['energy_drift']:+.3f}%")
+    if r["closure"] and r["closure"]["method"] != "DSMC":
+        print(f"  the closure's error: {r['closure']['method']}")
+    elif r["closure"]:
+        c = r["closure"]
+        print(f"  beyond the two-temperature closure (DSMC of the planar rule): steady ratio "
+              f"{c['steady_ratio_dsmc']:.4f} +/- {c['standard_error']:.4f} against its closed form's "
+              f"{c['steady_ratio_closed_form']:.4f}; the pair-level steady ratio with it "
+              f"{r['theories']['pairs']['steady_ratio_boltzmann']:.4f}")
     if r["no_matrix"]:
         print(f"  no matrix theory: {r['no_matrix']}")
     if not r["judged"]:

@@ -14,10 +14,10 @@ from .core import STYLE, FigureRecord, new_figure, save
 
 __all__ = ["make_gas", "CASES", "FIGURE_GAS"]
 
-#: The figure's gases: packing, stiffness and size (each run's accuracy is in its record); kt/kn per case. 30
+#: The figure's gases: packing, stiffness and size (each run's accuracy is in its record); kt/kn per case. 60
 #: collisions per sphere at the starting rate: a cooling gas (kt/kn = 0.1 loses most of its energy) meets
-#: about 20, past its steady ratio.
-FIGURE_GAS = {"spheres": 5000, "packing": 0.05, "kn": 1e4, "collisions": 30.0, "samples": 60, "draws": 10000}
+#: about 22, its last quarter steady (it reaches 90% of its steady ratio after about 10).
+FIGURE_GAS = {"spheres": 5000, "packing": 0.05, "kn": 1e4, "collisions": 60.0, "samples": 80, "draws": 10000}
 #: kt/kn of each case: the magic ratio alpha/(1 + alpha) of alpha = 2/5, and a soft and a stiff spring.
 CASES = (2.0 / 7.0, 0.1, 0.6)
 #: kt/kn where the steady-ratio curves are drawn.
@@ -61,12 +61,14 @@ def _draw(cases: list[dict], curve: np.ndarray):
         theory = case["record"]["theories"]
         steady_ax.plot(case["kt_over_kn"], case["record"]["lammps"]["late_ratio"], "o", color=colour, mfc="none")
         steady_ax.plot(case["kt_over_kn"], theory["pairs"]["steady_ratio"], "x", color=colour)
+        if theory["pairs"]["steady_ratio_boltzmann"] is not None:
+            steady_ax.plot(case["kt_over_kn"], theory["pairs"]["steady_ratio_boltzmann"], "+", color=colour, ms=9)
     steady_ax.plot(CURVE, curve, "-", color="0.3", lw=0.8, label="matrix theory")
     steady_ax.axvline(2.0 / 7.0, color="0.7", lw=0.5)
     ratio_ax.set(xlabel="collisions per sphere (LAMMPS's, from its open contacts)", ylabel="T_rot / T_tr",
                  title="(a) circles LAMMPS, lines pair-level theory, dashes matrix theory")
     steady_ax.set(xlabel="kt/kn", ylabel="steady T_rot / T_tr",
-                  title="(b) circles LAMMPS (last quarter), crosses pair-level")
+                  title="(b) circles LAMMPS (last quarter), x pair-level, + with the closure's error")
     energy_ax.set(xlabel="collisions per sphere", ylabel="kinetic energy / its start",
                   title="(c) circles LAMMPS, lines pair-level theory")
     ratio_ax.legend(fontsize=7, loc="lower right")
@@ -94,9 +96,11 @@ def make_gas(out: Path, runs: Path, log=print) -> FigureRecord:
                     "cases": [{"kt_over_kn": c["kt_over_kn"], "lammps": c["record"]["lammps"],
                                "theories": {n: {k: v for k, v in t.items() if k in ("max_ratio_difference",
                                                                                     "energy_drift", "steady_ratio",
-                                                                                    "relaxation_collisions")}
+                                                                                    "relaxation_collisions",
+                                                                                    "steady_ratio_boltzmann")}
                                             for n, t in c["record"]["theories"].items()},
-                               "overlaps": c["record"]["overlaps"], "accuracy": c["record"]["accuracy"],
+                               "overlaps": c["record"]["overlaps"], "closure": c["record"]["closure"],
+                               "accuracy": c["record"]["accuracy"],
                                "dt": c["record"]["parameters"]["dt"],
                                "run": str(Path(c["record"]["csv"]).parent)} for c in cases]}
         return save(fig, out, "gas", metadata, started)

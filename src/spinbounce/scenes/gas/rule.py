@@ -14,10 +14,11 @@ from ...exact import kinetic
 from ...exact import pair as planar
 from ..pair.kind import equal_pair, no_planar_matrix
 
-__all__ = ["restitutions", "has_rule", "outcomes", "mean_changes"]
+__all__ = ["restitutions", "has_rule", "outcomes", "mean_changes", "pair_law"]
 
 
-def _law(model) -> dict:
+def pair_law(model) -> dict:
+    """The planar rule's keyword arguments for two of the gas's equal spheres (:func:`.pair.predict`)."""
     props = {"m_a": model.m, "r_a": model.r, "alpha_a": model.alpha, "m_b": model.m, "r_b": model.r,
              "alpha_b": model.alpha}
     return props | equal_pair(model)[1].law()
@@ -32,7 +33,7 @@ def outcomes(model, g: np.ndarray, spins: np.ndarray) -> tuple[np.ndarray, np.nd
     """Each collision's relative velocity g' and spins (w_a', w_b') by the rule, from g = v_a - v_b ((count,
     3)) and the spins ((count, 6)), the line of centres n = +z."""
     n, zero = np.tile([0.0, 0.0, 1.0], (len(g), 1)), np.zeros_like(g)
-    va, vb, wa, wb = planar.predict(n, g, zero, spins[:, :3], spins[:, 3:], **_law(model))
+    va, vb, wa, wb = planar.predict(n, g, zero, spins[:, :3], spins[:, 3:], **pair_law(model))
     return va - vb, np.hstack([wa, wb])
 
 

@@ -17,7 +17,7 @@ from ...lammps.runner import run_deck, run_deck_lmp
 from ...model.contact import ContactModel
 from ...records import check_run_folder, run_folder, software, to_json, write_atomic
 from . import collisions as pair_draws
-from . import predict
+from . import closure, predict
 from .deck import render_gas
 from .parameters import DEFAULT
 from .scene import Gas
@@ -94,6 +94,7 @@ def _judged(scene, folder: Path, info, ranks: int, log) -> GasReport:
     import pandas as pd
 
     theories, errors, why, overlaps = predict.theories(scene, folder / "pairs", log)
+    beyond = closure.boltzmann(scene.model, scene.seed, log)
     series = read_series(scene, folder, theories["pairs"].contact_time)
     compared = {name: predict.compare(series, averages, scene) for name, averages in theories.items()}
     table = dict(series)
@@ -104,7 +105,8 @@ def _judged(scene, folder: Path, info, ranks: int, log) -> GasReport:
     write_atomic(csv, pd.DataFrame(table).to_csv(index=False, float_format="%.17g"))
     record = {"scene": "gas", "parameters": scene.record(), "ranks": ranks, "judged": scene.judged,
               "lammps": _lammps_summary(series),
-              "theories": {n: _summary(c) | _matrices(theories[n]) for n, c in compared.items()},
+              "theories": {n: _summary(c, beyond) | _matrices(theories[n]) for n, c in compared.items()},
+              "closure": beyond,
               "overlaps": _overlaps(series, scene, theories["pairs"], overlaps, compared["pairs"]),
               "no_matrix": why, "accuracy": _accuracy(scene, series, errors),
               "csv": str(csv),
@@ -124,9 +126,12 @@ def _lammps_summary(series: dict) -> dict:
             "relaxation_collisions": predict.relaxation(series["collisions"], series["ratio"], steady)}
 
 
-def _summary(compared: dict) -> dict:
+def _summary(compared: dict, beyond: dict | None) -> dict:
+    """A theory's comparison with LAMMPS, and its steady ratio with the closure's error (:mod:`.closure`; None
+    where the law has no planar rule)."""
     keys = ("max_ratio_difference", "energy_drift", "drift_difference", "steady_ratio", "relaxation_collisions")
-    return {k: compared[k] for k in keys}
+    boltzmann = None if beyond is None else compared["steady_ratio"] + beyond["closure_error"]
+    return {k: compared[k] for k in keys} | {"steady_ratio_boltzmann": boltzmann}
 
 
 def _overlaps(series: dict, scene, pairs, overlaps: tuple, compared: dict) -> dict:

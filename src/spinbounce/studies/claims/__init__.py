@@ -32,7 +32,7 @@ CLAIMS = (
     frozen.decay_rate, damping.rapid_damping_rolls, damping.eq23_matrix, damping.rolling_vs_rough,
     energy.no_slip_no_loss, energy.friction_less_dissipation, collisions.classic_wall_is_eq1,
     pairs.equal_alpha, nonlinear.hertz_special_speed, nonlinear.mindlin_every_speed, gas.magic_gas_equipartition,
-    gas.magic_gas_energy,
+    gas.magic_gas_energy, gas.soft_gas_steady_ratio, gas.soft_gas_relaxation,
 )
 
 
