@@ -120,6 +120,13 @@ def test_a_gas_writes_its_series_and_provenance(small_magic_gas):
     assert closure["steady_ratio_closed_form"] == pytest.approx(1.0, abs=1e-12) and closure["closure_error"] == 0.0
     for theory in record["theories"].values():
         assert theory["steady_ratio_boltzmann"] == pytest.approx(theory["steady_ratio"] + closure["closure_error"])
+    drift = record["closure_drift"]  # the pairs' own: the pair-level theories carry it, the matrix (lossless) not
+    for name in ("pairs", "exact_pairs"):
+        theory = record["theories"][name]
+        assert theory["energy_drift_boltzmann"] == pytest.approx(theory["energy_drift"]["theory"]
+                                                                 + drift["dsmc_less_equations"], abs=1e-15)
+    assert record["theories"]["matrix"]["energy_drift_boltzmann"] is None
+    assert drift["collisions_per_sphere"] == pytest.approx(small_magic_gas.series["collisions"][-1])
     header = small_magic_gas.csv.read_text().splitlines()[0].split(",")
     assert {"t", "t_tr", "t_rot", "energy", "collisions", "ratio_pairs", "energy_matrix"} <= set(header)
 

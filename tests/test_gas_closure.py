@@ -7,7 +7,7 @@ import pytest
 
 from spinbounce.api import model
 from spinbounce.exact import kinetic
-from spinbounce.scenes.gas import closure, rule
+from spinbounce.scenes.gas import closure, collisions, rule
 
 MAGIC = model(kn=1e4, kt=1e4 * 2 / 7)
 SOFT = model(kn=1e4, kt=1e3)
@@ -64,3 +64,33 @@ def test_a_seed_gives_the_same_answer_and_another_seed_another_draw():
                          ids=["capped: no planar rule", "frictionless: no exchange"])
 def test_no_closure_error_where_the_rule_has_nothing_to_say(law):
     assert closure.boltzmann(model(**law), seed=0) is None
+
+
+def test_the_exact_pairs_gas_loses_what_the_equations_say_while_it_is_maxwellian():
+    """DSMC with the exact pair references, magic ratio, kn = 1e4, from T_rot = 0: over its first half collision
+    per sphere the gas is still nearly Maxwellian, so its energy follows the two-temperature equations with the
+    same pairs (20,000 drawn collisions at two temperatures): each run against them at its own samples, the mean
+    of four seeds. A collision's loss is heavy-tailed, so a run's loss over a third of a collision (about 0.16%)
+    is noisy to about 0.5e-4 (four seeds), their mean to 0.25e-4, and the equations' to 0.3e-4 there: 1e-4.
+    Then the spins spread unevenly and the two part: by two collisions DSMC loses about 12% less (0.1 points),
+    more than three of the equations' standard errors (their per-collision error times the collisions)."""
+    e, errors = collisions.averages(MAGIC, [0.9, 1.0], collisions.draws(20000, 0))["exact"]
+    path = kinetic.evolve(e, 1.0, 0.0, 2.0, 0.05, 1.0, 1.0)
+    differences, later = [], []
+    for seed in range(4):
+        found = closure.pair_path(MAGIC, 1.0, 0.0, 2.0, seed=seed)
+        lost = found.energy / found.energy[0] - 1.0
+        gap = lost - (np.interp(found.tau, path.tau, path.energy) / path.energy[0] - 1.0)
+        differences.append(gap[1:3])
+        later.append(gap[-1] / found.tau[-1])
+        assert lost[1] < -0.001
+    assert np.max(np.abs(np.mean(differences, axis=0))) < 1e-4
+    # a relative drift's standard error per collision is about L's energy column's (T_tr + T_rot = 1 here)
+    assert np.mean(later) > 3.0 * float(np.max(errors[2]))
+
+
+def test_frictionless_elastic_pairs_keep_the_gas_s_energy_and_capped_ones_have_no_compiled_path():
+    found = closure.pair_path(model(kn=1e4, kt=0.0), 1.0, 0.5, 1.0, seed=0, spheres=2000)
+    assert np.all(np.abs(found.energy / found.energy[0] - 1.0) < 1e-9)
+    assert found.ratio[-1] == pytest.approx(found.ratio[0], rel=1e-9)  # no tangential force: every spin kept
+    assert closure.pair_path(model(kn=1e4, kt=2e3, mu=0.3), 1.0, 0.5, 1.0, seed=0) is None

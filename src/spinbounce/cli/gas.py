@@ -59,7 +59,8 @@ def run(args) -> int:
     r = report.record
     if args.json:
         return print_json(json_ready({"series": report.series, "lammps": r["lammps"], "theories": r["theories"],
-                           "overlaps": r["overlaps"], "closure": r["closure"], "accuracy": r["accuracy"],
+                           "overlaps": r["overlaps"], "closure": r["closure"], "closure_drift": r["closure_drift"],
+                           "accuracy": r["accuracy"],
                            "no_matrix": r["no_matrix"], "csv": r["csv"],
                            "record": str(report.record_path), "parameters": r["parameters"],
                            "lammps_version": r["lammps_version"]}))
@@ -71,6 +72,11 @@ def run(args) -> int:
               f"{t['steady_ratio']:.4f}, energy drift {100 * t['energy_drift']['theory']:+.3f}%")
     print(f"  of the pair-level drift, the overlapping contacts' (a sphere meeting a third while it touches a second): "
           f"{100 * r['overlaps']['energy_drift']:+.3f}%")
+    if r["closure_drift"]:
+        d = r["closure_drift"]
+        print(f"  the isolated pairs' drift by DSMC of the exact pairs (no closure) "
+              f"{100 * d['energy_drift_dsmc']:+.3f}%, by the equations {100 * d['energy_drift_equations']:+.3f}%; the pair-level drift with DSMC's "
+              f"{100 * r['theories']['pairs']['energy_drift_boltzmann']:+.3f}%")
     if r["closure"] and r["closure"]["method"] != "DSMC":
         print(f"  the closure's error: {r['closure']['method']}")
     elif r["closure"]:

@@ -12,10 +12,16 @@ rule's closed form is the closure's error; the pair-level theories' steady ratio
 (``steady_ratio_boltzmann``: their own plus that difference; the rule is their control variate already, and
 their collisions differ from it by a few per cent).
 
-Measured with 20,000 spheres at kt/kn = 0.1 (undamped Hooke, alpha = 2/5): 0.5577 +/- 0.0007 against the
-closed form's 0.5732. At the magic ratio (elastic rough spheres) the gas's equilibrium is Maxwellian at
-T_rot = T_tr: the closure is exact there, and DSMC finds 1 within its noise (tests/test_gas_closure.py).
+Measured with 20,000 spheres at kt/kn = 0.1 (undamped Hooke, alpha = 2/5): 0.5597 +/- 0.0010 against the
+closed form's 0.5732 (six seeds spread by 0.001). At the magic ratio (elastic rough spheres) the gas's
+equilibrium is Maxwellian at T_rot = T_tr: the closure is exact there, and DSMC finds 1 within its noise
+(tests/test_gas_closure.py).
 The rule is linear in the velocities, so the gas is rescaled as it cools (the ratio does not change).
+
+:func:`pair_path` runs the same DSMC with the exact pair references' outcomes (the line of centres turning):
+the isolated pairs' energy drift over a run with no closure and little noise (a collision's loss is heavy-tailed,
+so drawn collisions average it slowly; four seeds of 20,000 spheres over 12 collisions agree to 0.025 points),
+which replaces the two-temperature equations' part in the pair-level drifts (:mod:`.run`).
 """
 
 from __future__ import annotations
@@ -26,6 +32,7 @@ import numpy as np
 
 from ...exact import kinetic
 from ...exact import pair as planar
+from ..pair.kind import equal_pair
 from . import rule
 
 __all__ = ["boltzmann", "simulate", "relaxation_rate", "SPHERES"]
@@ -57,16 +64,20 @@ def relaxation_rate(matrix: np.ndarray, steady: float) -> float:
     return abs(l11 - l00 - 2.0 * l01 * steady)
 
 
-def simulate(model, collisions: float, ratio0: float, seed: int, spheres: int = SPHERES) -> tuple:
-    """DSMC of ``spheres`` spheres colliding by the planar rule of ``model`` for ``collisions`` collisions per
-    sphere from Maxwellian velocities and spins at T_rot/T_tr = ``ratio0``: (collisions per sphere, T_rot/T_tr)
-    at SAMPLES_PER_COLLISION samples a collision per sphere."""
+def _dsmc(collide, m: float, inertia: float, t_tr: float, t_rot: float, collisions: float, seed: int, spheres: int,
+          rescale: bool) -> tuple:
+    """DSMC of ``spheres`` spheres from Maxwellian velocities at ``t_tr`` and spins at ``t_rot`` for ``collisions``
+    collisions per sphere, each pair's outcome by ``collide(n, v_a, v_b, w_a, w_b)`` (n from b to a at first
+    touch): (collisions per sphere, T_tr, T_rot) at SAMPLES_PER_COLLISION samples a collision per sphere (and
+    at the start). ``rescale``: the gas is brought back to unit energy at each sample (a rule linear in the
+    velocities: the ratio is unchanged, and a long cooling run does not underflow)."""
     rng = np.random.default_rng([seed, 7])
-    law, inertia = rule.pair_law(model), model.alpha * model.m * model.r**2
-    v = rng.standard_normal((spheres, 3)) * math.sqrt(1.0 / model.m)
+    v = rng.standard_normal((spheres, 3))
     v -= v.mean(axis=0)
-    w = rng.standard_normal((spheres, 3)) * math.sqrt(ratio0 / inertia)
-    half, done, taus, ratios = spheres // 2, 0, [], []
+    v *= math.sqrt(t_tr / (m * np.mean(v * v)))  # the sample at exactly the asked temperatures
+    w = rng.standard_normal((spheres, 3))
+    w *= math.sqrt(t_rot / (inertia * np.mean(w * w)))
+    half, done, samples = spheres // 2, 0, [(0.0, m * np.mean(v * v), inertia * np.mean(w * w))]
     while 2.0 * done / spheres < collisions:
         order = rng.permutation(spheres)
         a, b = order[:half], order[half:2 * half]
@@ -76,17 +87,53 @@ def simulate(model, collisions: float, ratio0: float, seed: int, spheres: int = 
         bound = 2.0 * math.sqrt(float(np.max(np.einsum("ij,ij->i", v, v))))  # no |g| exceeds it
         kept = rng.random(half) * bound < closing
         a, b, n = a[kept], b[kept], n[kept]
-        v[a], v[b], w[a], w[b] = planar.predict(n, v[a], v[b], w[a], w[b], **law)
+        v[a], v[b], w[a], w[b] = collide(n, v[a], v[b], w[a], w[b])
         before, done = done, done + int(kept.sum())
         if math.floor(2.0 * done * SAMPLES_PER_COLLISION / spheres) > math.floor(2.0 * before
                                                                                  * SAMPLES_PER_COLLISION / spheres):
-            t_tr, t_rot = model.m * np.mean(v * v), inertia * np.mean(w * w)
-            taus.append(2.0 * done / spheres)
-            ratios.append(t_rot / t_tr)
-            scale = 1.0 / math.sqrt(t_tr + t_rot)  # the rule is linear: a cooled gas rescaled is the same gas
-            v *= scale
-            w *= scale
-    return np.array(taus), np.array(ratios)
+            samples.append((2.0 * done / spheres, m * np.mean(v * v), inertia * np.mean(w * w)))
+            if rescale:
+                scale = 1.0 / math.sqrt(samples[-1][1] + samples[-1][2])
+                v *= scale
+                w *= scale
+    return tuple(np.array(x) for x in zip(*samples, strict=True))
+
+
+def simulate(model, collisions: float, ratio0: float, seed: int, spheres: int = SPHERES) -> tuple:
+    """DSMC of ``spheres`` spheres colliding by the planar rule of ``model`` for ``collisions`` collisions per
+    sphere from Maxwellian velocities and spins at T_rot/T_tr = ``ratio0``: (collisions per sphere, T_rot/T_tr)
+    at SAMPLES_PER_COLLISION samples a collision per sphere (the start left out)."""
+    law = rule.pair_law(model)
+
+    def collide(n, v_a, v_b, w_a, w_b):
+        return planar.predict(n, v_a, v_b, w_a, w_b, **law)
+
+    tau, t_tr, t_rot = _dsmc(collide, model.m, model.inertia, 1.0, ratio0, collisions, seed, spheres, rescale=True)
+    return tau[1:], (t_rot / t_tr)[1:]
+
+
+def pair_path(model, t_tr: float, t_rot: float, collisions: float, seed: int, log=None, spheres: int = SPHERES):
+    """DSMC with the exact pair references' outcomes (:mod:`spinbounce.exact.pair_batch`: the line of centres
+    turns, each collision loses what it loses) from T_tr = ``t_tr``, T_rot = ``t_rot``, for ``collisions``
+    collisions per sphere: :class:`~spinbounce.exact.kinetic.Evolution` (its time NaN: DSMC counts collisions),
+    or None where the compiled references do not take the law (``log`` told of a run)."""
+    from ...exact import pair_batch
+
+    law = equal_pair(model)[1].law()
+    if not (rule.has_rule(model) and pair_batch.solvable(law)):  # a cap, a law on the contact radius
+        return None
+    if log is not None:
+        log(f"the isolated pairs' drift without the closure: DSMC of the exact pairs, {spheres} spheres over "
+            f"{collisions:.3g} collisions per sphere")
+    sphere = {"m_a": model.m, "r_a": model.r, "alpha_a": model.alpha, "m_b": model.m, "r_b": model.r,
+              "alpha_b": model.alpha}
+
+    def collide(n, v_a, v_b, w_a, w_b):
+        found = pair_batch.solve(n, v_a, v_b, w_a, w_b, **sphere, **law)
+        return tuple(np.array([getattr(o, k) for o in found]) for k in ("v_a", "v_b", "w_a", "w_b"))
+
+    tau, t_tr, t_rot = _dsmc(collide, model.m, model.inertia, t_tr, t_rot, collisions, seed, spheres, rescale=False)
+    return kinetic.Evolution(tau, np.full_like(tau, np.nan), t_tr, t_rot)
 
 
 def boltzmann(model, seed: int, log=None) -> dict | None:
