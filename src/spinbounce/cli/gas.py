@@ -75,11 +75,13 @@ def run(args) -> int:
     if r["closure_drift"]:
         d = r["closure_drift"]
         print(f"  the isolated pairs' drift by DSMC of the exact pairs (no closure) "
-              f"{100 * d['energy_drift_dsmc']:+.3f}%, by the equations {100 * d['energy_drift_equations']:+.3f}%; the pair-level drift with DSMC's "
-              f"{100 * r['theories']['pairs']['energy_drift_boltzmann']:+.3f}%")
-    if r["closure"] and r["closure"]["method"] != "DSMC":
+              f"{100 * d['energy_drift_dsmc']:+.3f}%, by the equations {100 * d['energy_drift_equations']:+.3f}%; "
+              f"the pair-level drift with DSMC's {100 * r['theories']['pairs']['energy_drift_boltzmann']:+.3f}%")
+    if r["closure"] is None:
+        print("  no closure's error: the law has no planar rule (a cap, a law on the contact radius) for DSMC")
+    elif r["closure"]["method"] != "DSMC":
         print(f"  the closure's error: {r['closure']['method']}")
-    elif r["closure"]:
+    else:
         c = r["closure"]
         print(f"  beyond the two-temperature closure (DSMC of the planar rule): steady ratio "
               f"{c['steady_ratio_dsmc']:.4f} +/- {c['standard_error']:.4f} against its closed form's "

@@ -16,7 +16,7 @@ __all__ = ["make_gas", "CASES", "FIGURE_GAS"]
 
 #: The figure's gases: packing, stiffness and size (each run's accuracy is in its record); kt/kn per case. 60
 #: collisions per sphere at the starting rate: a cooling gas (kt/kn = 0.1 loses most of its energy) meets
-#: about 22, its last quarter steady (it reaches 90% of its steady ratio after about 10).
+#: about 22, its last quarter within about 1% of its steady ratio (it reaches 90% of it after about 10).
 FIGURE_GAS = {"spheres": 5000, "packing": 0.05, "kn": 1e4, "collisions": 60.0, "samples": 80, "draws": 10000}
 #: kt/kn of each case: the magic ratio alpha/(1 + alpha) of alpha = 2/5, and a soft and a stiff spring.
 CASES = (2.0 / 7.0, 0.1, 0.6)

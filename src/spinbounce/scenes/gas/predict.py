@@ -25,7 +25,16 @@ from ..pair.kind import no_planar_matrix
 from . import collisions, encounters
 from .rule import restitutions
 
-__all__ = ["restitutions", "matrix_averages", "temperature_grid", "compare", "relaxation", "theories"]
+__all__ = ["restitutions", "matrix_averages", "temperature_grid", "compare", "relaxation", "theories", "late_mean",
+           "LATE_SHARE"]
+
+#: The share of a run whose mean ratio is its late ratio (LAMMPS's and each theory's, over the same samples).
+LATE_SHARE = 0.25
+
+
+def late_mean(tau: np.ndarray, ratio: np.ndarray) -> float:
+    """The mean of ``ratio`` over the samples in the last LATE_SHARE of the collisions ``tau``."""
+    return float(np.mean(ratio[tau >= (1.0 - LATE_SHARE) * tau[-1]]))
 
 
 def matrix_averages(model) -> tuple[kinetic.Averages | None, str | None]:
@@ -78,13 +87,14 @@ def compare(series: dict, averages: kinetic.Averages, gas) -> dict:
     t_tr, t_rot = (np.interp(tau, path.tau, x) for x in (path.t_tr, path.t_rot))
     energy = 1.5 * (t_tr + t_rot)
     steady = kinetic.steady_ratio(averages.at(float(t_tr[-1])))
+    late = late_mean(tau, t_rot / t_tr)  # over LAMMPS's late samples: a run may end short of the fixed point
     drift = {"lammps": float(series["energy"][-1] / series["energy"][0] - 1.0),
              "theory": float(energy[-1] / energy[0] - 1.0)}
     return {"t_tr": t_tr, "t_rot": t_rot, "ratio": t_rot / t_tr, "energy": energy * series["energy"][0] / energy[0],
             "t_enskog": np.interp(tau, path.tau, path.t),
             "max_ratio_difference": float(np.max(np.abs(series["ratio"] - t_rot / t_tr))),
             "energy_drift": drift, "drift_difference": drift["lammps"] - drift["theory"],
-            "steady_ratio": steady, "relaxation_collisions": relaxation(path.tau, path.ratio, steady)}
+            "steady_ratio": steady, "late_ratio": late, "relaxation_collisions": relaxation(path.tau, path.ratio, late)}
 
 
 def theories(gas, folder, log=None) -> tuple[dict, np.ndarray, str | None, tuple]:

@@ -36,8 +36,6 @@ GAS_SPHERE_STEP_SECONDS = 6e-8
 THEORY_SECONDS_PER_DRAW = 1.2e-4
 #: Runs estimated longer than this (seconds) need force.
 LONGEST_UNFORCED = 3600.0
-#: The share of the run whose mean ratio is its late (steady) ratio.
-LATE_SHARE = 0.25
 
 
 @dataclass(frozen=True)
@@ -120,8 +118,8 @@ def _judged(scene, folder: Path, info, ranks: int, log) -> GasReport:
 
 
 def _lammps_summary(series: dict) -> dict:
-    late = series["collisions"] >= (1.0 - LATE_SHARE) * series["collisions"][-1]
-    steady = float(np.mean(series["ratio"][late]))
+    late = series["collisions"] >= (1.0 - predict.LATE_SHARE) * series["collisions"][-1]
+    steady = predict.late_mean(series["collisions"], series["ratio"])
     return {"late_ratio": steady, "late_ratio_spread": float(np.std(series["ratio"][late])),
             "energy_drift": float(series["energy"][-1] / series["energy"][0] - 1.0),
             "collisions_per_sphere": float(series["collisions"][-1]),
@@ -129,14 +127,19 @@ def _lammps_summary(series: dict) -> dict:
 
 
 def _summary(compared: dict, beyond: dict | None, drift: dict | None) -> dict:
-    """A theory's comparison with LAMMPS, its steady ratio with the closure's error, and its energy drift with its
+    """A theory's comparison with LAMMPS, its steady and late ratios with the closure's error (the late one over
+    LAMMPS's late samples: a cooling run may end a little short of the fixed point), and its energy drift with its
     isolated pairs' part by DSMC (:mod:`.closure`, :func:`_drift_closure`; None where the law has no planar rule,
     or no compiled pair reference; the drift's only for the pair-level theories: the matrix conserves energy
     whatever the distribution)."""
-    keys = ("max_ratio_difference", "energy_drift", "drift_difference", "steady_ratio", "relaxation_collisions")
-    steady = None if beyond is None else compared["steady_ratio"] + beyond["closure_error"]
+    keys = ("max_ratio_difference", "energy_drift", "drift_difference", "steady_ratio", "late_ratio",
+            "relaxation_collisions")
+    error = None if beyond is None else beyond["closure_error"]
     energy = None if drift is None else compared["energy_drift"]["theory"] + drift["dsmc_less_equations"]
-    return {k: compared[k] for k in keys} | {"steady_ratio_boltzmann": steady, "energy_drift_boltzmann": energy}
+    return {k: compared[k] for k in keys} | {
+        "steady_ratio_boltzmann": None if error is None else compared["steady_ratio"] + error,
+        "late_ratio_boltzmann": None if error is None else compared["late_ratio"] + error,
+        "energy_drift_boltzmann": energy}
 
 
 def _drift_closure(scene, series: dict, exact: Averages, share: Averages, log) -> dict | None:
