@@ -26,15 +26,20 @@ from . import collisions, encounters
 from .rule import restitutions
 
 __all__ = ["restitutions", "matrix_averages", "temperature_grid", "compare", "relaxation", "theories", "late_mean",
-           "LATE_SHARE"]
+           "late_samples", "LATE_SHARE"]
 
 #: The share of a run whose mean ratio is its late ratio (LAMMPS's and each theory's, over the same samples).
 LATE_SHARE = 0.25
 
 
+def late_samples(tau: np.ndarray) -> np.ndarray:
+    """Which samples at collisions per sphere ``tau`` are in the run's last LATE_SHARE."""
+    return tau >= (1.0 - LATE_SHARE) * tau[-1]
+
+
 def late_mean(tau: np.ndarray, ratio: np.ndarray) -> float:
     """The mean of ``ratio`` over the samples in the last LATE_SHARE of the collisions ``tau``."""
-    return float(np.mean(ratio[tau >= (1.0 - LATE_SHARE) * tau[-1]]))
+    return float(np.mean(ratio[late_samples(tau)]))
 
 
 def matrix_averages(model) -> tuple[kinetic.Averages | None, str | None]:
