@@ -198,3 +198,32 @@ def test_a_rerun_stopped_after_lammps_leaves_no_earlier_series_beside_its_deck(t
         gas(spheres=1000, collisions=0.2, samples=2, draws=1000, out=folder, force=True, **MAGIC)
     assert not (folder / "gas.csv").exists() and not (folder / "result.json").exists()
     assert (folder / "gas.energies").exists()  # LAMMPS did run
+
+
+def test_late_ratio_and_relaxation_are_read_alike_from_any_series():
+    """LAMMPS's series and each theory's are read by the same rules: the late ratio is the mean over the last
+    quarter of the collisions, and relaxation the first crossing of 90% of a target from below (linear between
+    samples: 0.01 on this grid); a ratio that starts above it has none."""
+    from spinbounce.scenes.gas import predict
+
+    tau = np.linspace(0.0, 20.0, 81)
+    ratio = 0.5 * (1.0 - np.exp(-tau / 4.0))
+    late = predict.late_mean(tau, ratio)
+    assert predict.late_samples(tau).sum() == 21 and late == pytest.approx(np.mean(ratio[tau >= 15.0]), rel=1e-15)
+    assert predict.relaxation(tau, ratio, late) == pytest.approx(-4.0 * math.log(1.0 - 1.8 * late), abs=0.01)
+    assert math.isnan(predict.relaxation(tau, 1.0 - ratio, 0.5))
+
+
+def test_the_closure_s_error_is_added_to_a_late_ratio_only_near_its_fixed_point():
+    """The closure's error is a steady state's: a theory's late ratio more than NEAR_STEADY from its fixed point
+    (a short run still relaxing) carries none; its fixed point always does."""
+    from spinbounce.scenes.gas.run import NEAR_STEADY, _summary
+
+    base = {"max_ratio_difference": 0.0, "energy_drift": {"theory": -0.01}, "drift_difference": 0.0,
+            "relaxation_collisions": 5.0, "relaxation_collisions_late": 4.8, "steady_ratio": 0.5}
+    beyond, drift = {"closure_error": -0.01}, {"dsmc_less_equations": 0.001}
+    near = _summary(base | {"late_ratio": 0.5 * (1.0 - NEAR_STEADY / 2.0)}, beyond, drift)
+    far = _summary(base | {"late_ratio": 0.3}, beyond, drift)
+    assert near["late_ratio_boltzmann"] == pytest.approx(0.5 * (1.0 - NEAR_STEADY / 2.0) - 0.01)
+    assert far["late_ratio_boltzmann"] is None and far["steady_ratio_boltzmann"] == pytest.approx(0.49)
+    assert far["energy_drift_boltzmann"] == pytest.approx(-0.009)

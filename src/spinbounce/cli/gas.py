@@ -43,6 +43,7 @@ def run(args) -> int:
     from ..exact.kinetic import DILUTE
     from ..records import json_ready
     from ..scenes.gas import GAS
+    from ..scenes.gas.closure import absent as closure_absent
 
     check_run_folder(args.out, args.force)
     values = model_values(args)
@@ -78,7 +79,7 @@ def run(args) -> int:
               f"{100 * d['energy_drift_dsmc']:+.3f}%, by the equations {100 * d['energy_drift_equations']:+.3f}%; "
               f"the pair-level drift with DSMC's {100 * r['theories']['pairs']['energy_drift_boltzmann']:+.3f}%")
     if r["closure"] is None:
-        print("  no closure's error: the law has no planar rule (a cap, a law on the contact radius) for DSMC")
+        print(f"  no closure's error: {closure_absent(make_model(**values))}")
     elif r["closure"]["method"] != "DSMC":
         print(f"  the closure's error: {r['closure']['method']}")
     else:

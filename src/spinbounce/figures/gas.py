@@ -97,7 +97,8 @@ def make_gas(out: Path, runs: Path, log=print) -> FigureRecord:
                                "theories": {n: {k: v for k, v in t.items() if k in ("max_ratio_difference",
                                                                                     "energy_drift", "steady_ratio",
                                                                                     "relaxation_collisions",
-                                                                                    "steady_ratio_boltzmann")}
+                                                                                    "steady_ratio_boltzmann",
+                                                                                    "late_ratio")}
                                             for n, t in c["record"]["theories"].items()},
                                "overlaps": c["record"]["overlaps"], "closure": c["record"]["closure"],
                                "accuracy": c["record"]["accuracy"],

@@ -35,7 +35,7 @@ from ...exact import pair as planar
 from ..pair.kind import equal_pair
 from . import rule
 
-__all__ = ["boltzmann", "simulate", "relaxation_rate", "SPHERES"]
+__all__ = ["boltzmann", "absent", "simulate", "pair_path", "relaxation_rate", "SPHERES"]
 
 #: DSMC's spheres: the steady ratio's standard error is about 1e-3 with 20,000 (a sample's own noise
 #: sqrt(4/(3N)) of the ratio, averaged over the window's independent stretches).
@@ -98,6 +98,8 @@ def _dsmc(collide, m: float, inertia: float, t_tr: float, t_rot: float, collisio
                 scale = 1.0 / math.sqrt(samples[-1][1] + samples[-1][2])
                 v *= scale
                 w *= scale
+    if samples[-1][0] < 2.0 * done / spheres:  # the run's end, past its last quarter-collision mark
+        samples.append((2.0 * done / spheres, m * np.mean(v * v), inertia * np.mean(w * w)))
     return tuple(np.array(x) for x in zip(*samples, strict=True))
 
 
@@ -136,6 +138,13 @@ def pair_path(model, t_tr: float, t_rot: float, collisions: float, seed: int, lo
 
     tau, t_tr, t_rot = _dsmc(collide, model.m, model.inertia, t_tr, t_rot, collisions, seed, spheres, rescale=False)
     return kinetic.Evolution(tau, np.full_like(tau, np.nan), t_tr, t_rot)
+
+
+def absent(model) -> str:
+    """Why :func:`boltzmann` gives ``model`` no closure's error."""
+    if not rule.has_rule(model):
+        return "the law has no planar rule (a cap, a law on the contact radius) for DSMC"
+    return "its collisions move no energy between translation and rotation"
 
 
 def boltzmann(model, seed: int, log=None) -> dict | None:

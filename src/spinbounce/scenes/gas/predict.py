@@ -92,14 +92,16 @@ def compare(series: dict, averages: kinetic.Averages, gas) -> dict:
     t_tr, t_rot = (np.interp(tau, path.tau, x) for x in (path.t_tr, path.t_rot))
     energy = 1.5 * (t_tr + t_rot)
     steady = kinetic.steady_ratio(averages.at(float(t_tr[-1])))
-    late = late_mean(tau, t_rot / t_tr)  # over LAMMPS's late samples: a run may end short of the fixed point
+    late = late_mean(tau, t_rot / t_tr)  # over LAMMPS's late samples, as LAMMPS's: a run may end short of the fixed
+    # point, so its late ratio and the time to 90% of it are what compare with LAMMPS's like with like
     drift = {"lammps": float(series["energy"][-1] / series["energy"][0] - 1.0),
              "theory": float(energy[-1] / energy[0] - 1.0)}
     return {"t_tr": t_tr, "t_rot": t_rot, "ratio": t_rot / t_tr, "energy": energy * series["energy"][0] / energy[0],
             "t_enskog": np.interp(tau, path.tau, path.t),
             "max_ratio_difference": float(np.max(np.abs(series["ratio"] - t_rot / t_tr))),
             "energy_drift": drift, "drift_difference": drift["lammps"] - drift["theory"],
-            "steady_ratio": steady, "late_ratio": late, "relaxation_collisions": relaxation(path.tau, path.ratio, late)}
+            "steady_ratio": steady, "relaxation_collisions": relaxation(path.tau, path.ratio, steady),
+            "late_ratio": late, "relaxation_collisions_late": relaxation(path.tau, path.ratio, late)}
 
 
 def theories(gas, folder, log=None) -> tuple[dict, np.ndarray, str | None, tuple]:
