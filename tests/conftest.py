@@ -4,6 +4,10 @@ Shared fixtures, and the quick default run: tests marked ``slow`` (or that read 
 whole reproduction) run only with SPINBOUNCE_SLOW=1, which ``.ci/run`` sets. Of a LAMMPS test run
 over several cases (``pytest.mark.parametrize``), the quick run takes the first case and leaves the
 others to the slow run: every check runs on one case in minutes, every case in CI.
+
+The tests run on every core (pytest-xdist, ``-n auto`` in pyproject.toml; ``-n 0`` runs them in one
+process). Tests that share a session's product, or the one SLURM, go to one worker together
+(:data:`WORKER_GROUPS`), so that nothing is made twice and no two SLURM sessions queue behind each other.
 """
 
 import os
@@ -14,6 +18,9 @@ import pytest
 SLOW_SWITCH = "SPINBOUNCE_SLOW"
 #: Fixtures that make a slow product once per session: a test that uses one is slow too.
 SLOW_FIXTURES = {"reproduction"}
+#: xdist groups (``--dist loadgroup``): the tests that read the reproduction, and those that use SLURM.
+WORKER_GROUPS = {"reproduction": lambda item: bool(SLOW_FIXTURES & set(getattr(item, "fixturenames", ()))),
+                 "slurm": lambda item: item.get_closest_marker("slurm") is not None}
 
 
 def run_slow() -> bool:
@@ -25,6 +32,9 @@ def pytest_collection_modifyitems(config, items):
     for item in items:
         if SLOW_FIXTURES & set(getattr(item, "fixturenames", ())):
             item.add_marker(pytest.mark.slow)
+        for group, member in WORKER_GROUPS.items():
+            if member(item):
+                item.add_marker(pytest.mark.xdist_group(group))
     if not (config.option.keyword or any("::" in arg for arg in config.args)):  # cases asked for by name all run
         _first_cases_only(items)
     if run_slow():
@@ -34,6 +44,15 @@ def pytest_collection_modifyitems(config, items):
         config.hook.pytest_deselected(items=slow)
         items[:] = [item for item in items if not item.get_closest_marker("slow")]
         config._spinbounce_slow_left = len(slow)
+        if hasattr(config, "workeroutput"):  # an xdist worker: the controller reports it
+            config.workeroutput["slow_left"] = len(slow)
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_testnodedown(node, error):
+    """xdist's controller: every worker collects every test, so each counts the same slow tests left out."""
+    left = getattr(node, "workeroutput", {}).get("slow_left", 0)
+    node.config._spinbounce_slow_left = max(left, getattr(node.config, "_spinbounce_slow_left", 0))
 
 
 def _first_cases_only(items) -> None:
