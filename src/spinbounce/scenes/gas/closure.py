@@ -32,7 +32,6 @@ import numpy as np
 
 from ...exact import kinetic
 from ...exact import pair as planar
-from ..pair.kind import equal_pair
 from . import rule
 
 __all__ = ["boltzmann", "absent", "simulate", "pair_path", "relaxation_rate", "SPHERES"]
@@ -77,7 +76,12 @@ def _dsmc(collide, m: float, inertia: float, t_tr: float, t_rot: float, collisio
     v *= math.sqrt(t_tr / (m * np.mean(v * v)))  # the sample at exactly the asked temperatures
     w = rng.standard_normal((spheres, 3))
     w *= math.sqrt(t_rot / (inertia * np.mean(w * w)))
-    half, done, samples = spheres // 2, 0, [(0.0, m * np.mean(v * v), inertia * np.mean(w * w))]
+    half, done = spheres // 2, 0
+
+    def sample():
+        return 2.0 * done / spheres, m * np.mean(v * v), inertia * np.mean(w * w)
+
+    samples = [sample()]
     while 2.0 * done / spheres < collisions:
         order = rng.permutation(spheres)
         a, b = order[:half], order[half:2 * half]
@@ -93,13 +97,13 @@ def _dsmc(collide, m: float, inertia: float, t_tr: float, t_rot: float, collisio
         before, done = done, done + int(kept.sum())
         if math.floor(2.0 * done * SAMPLES_PER_COLLISION / spheres) > math.floor(2.0 * before
                                                                                  * SAMPLES_PER_COLLISION / spheres):
-            samples.append((2.0 * done / spheres, m * np.mean(v * v), inertia * np.mean(w * w)))
+            samples.append(sample())
             if rescale:
                 scale = 1.0 / math.sqrt(samples[-1][1] + samples[-1][2])
                 v *= scale
                 w *= scale
     if samples[-1][0] < 2.0 * done / spheres:  # the run's end, past its last quarter-collision mark
-        samples.append((2.0 * done / spheres, m * np.mean(v * v), inertia * np.mean(w * w)))
+        samples.append(sample())
     return tuple(np.array(x) for x in zip(*samples, strict=True))
 
 
@@ -125,26 +129,37 @@ def pair_path(model, t_tr: float, t_rot: float, collisions: float, seed: int, lo
 
     if not rule.has_rule(model):  # a cap, a law on the contact radius: what is left is Hooke's, which it takes
         return None
-    law = equal_pair(model)[1].law()
+    law = rule.pair_law(model)
     if log is not None:
         log(f"the isolated pairs' drift without the closure: DSMC of the exact pairs, {spheres} spheres over "
             f"{collisions:.3g} collisions per sphere")
-    sphere = {"m_a": model.m, "r_a": model.r, "alpha_a": model.alpha, "m_b": model.m, "r_b": model.r,
-              "alpha_b": model.alpha}
 
     def collide(n, v_a, v_b, w_a, w_b):
-        found = pair_batch.solve(n, v_a, v_b, w_a, w_b, **sphere, **law)
+        found = pair_batch.solve(n, v_a, v_b, w_a, w_b, **law)
         return tuple(np.array([getattr(o, k) for o in found]) for k in ("v_a", "v_b", "w_a", "w_b"))
 
     tau, t_tr, t_rot = _dsmc(collide, model.m, model.inertia, t_tr, t_rot, collisions, seed, spheres, rescale=False)
     return kinetic.Evolution(tau, np.full_like(tau, np.nan), t_tr, t_rot)
 
 
-def absent(model) -> str:
-    """Why :func:`boltzmann` gives ``model`` no closure's error."""
+def _closed_form(model) -> tuple | str:
+    """The planar rule's (e_n, beta, closed-form steady ratio, relaxation rate), or why ``model`` has no
+    closure's error to measure."""
     if not rule.has_rule(model):
         return "the law has no planar rule (a cap, a law on the contact radius) for DSMC"
-    return "its collisions move no energy between translation and rotation"
+    e_n, beta = rule.restitutions(model)
+    matrix = kinetic.rough_sphere_matrix(e_n, beta, model.alpha)
+    closed = kinetic.steady_ratio(matrix)
+    rate = relaxation_rate(matrix, closed) if math.isfinite(closed) else 0.0
+    if rate == 0.0:
+        return "its collisions move no energy between translation and rotation"
+    return e_n, beta, closed, rate
+
+
+def absent(model) -> str | None:
+    """Why :func:`boltzmann` gives ``model`` no closure's error (None: it gives one)."""
+    found = _closed_form(model)
+    return found if isinstance(found, str) else None
 
 
 def boltzmann(model, seed: int, log=None) -> dict | None:
@@ -153,14 +168,10 @@ def boltzmann(model, seed: int, log=None) -> dict | None:
     exact; ``log`` told of a DSMC run; a slow exchange settles and averages for fewer relaxation times than asked,
     within MOST_COLLISIONS, and the record says how many); None where the law has no planar rule (a cap,
     a law on the contact radius) or its collisions move no energy between translation and rotation."""
-    if not rule.has_rule(model):
+    found = _closed_form(model)
+    if isinstance(found, str):
         return None
-    e_n, beta = rule.restitutions(model)
-    matrix = kinetic.rough_sphere_matrix(e_n, beta, model.alpha)
-    closed = kinetic.steady_ratio(matrix)
-    rate = relaxation_rate(matrix, closed) if math.isfinite(closed) else 0.0
-    if rate == 0.0:
-        return None
+    e_n, beta, closed, rate = found
     if abs(e_n - 1.0) <= ELASTIC and abs(beta - 1.0) <= ELASTIC:  # equilibrium: Maxwellian at T_rot = T_tr
         return {"steady_ratio_dsmc": closed, "steady_ratio_closed_form": closed, "closure_error": 0.0,
                 "standard_error": 0.0, "spheres": 0, "collisions_per_sphere": 0.0, "settled_collisions": 0.0,
