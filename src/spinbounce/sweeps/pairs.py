@@ -32,7 +32,7 @@ from ..scenes.pair.scene import PairBatch, Sphere
 from ..scenes.collision.table import SPINS
 from ..scenes.pair.table import QUANTITIES, pair_frames, pair_states
 from ..errors import SceneError
-from .pair_ladder import applies, ladder_steps, run_ladder
+from .pair_ladder import LONGEST, applies, ladder_steps, run_ladder
 
 __all__ = ["pair_chunk"]
 
@@ -49,38 +49,73 @@ def _a_columns(names, when: str, v: np.ndarray, w: np.ndarray, r: float, height:
     return out
 
 
+#: Rows a chunk's combined runs leave beyond the accuracy run again, alone, at doubling steps per contact up to
+#: this many (their contacts have a large error constant: a kt/kn of 0.5 leaves about 1 row in 80 so): each row's
+#: ``nsteps`` then counts its own extra runs, and ``step_method`` says at what steps it ended.
+FINEST = 16 * LONGEST
+
+
 def _ladder(given: PairBatch, probe: PairBatch | None, run_dir: Path):
-    """The chunk's two runs combined at the group's probed steps (:mod:`.pair_ladder`), or None where the
-    probe found none, or the chunk's stiffest pair refuses them: then the plain probe runs."""
+    """The chunk's two runs combined at the group's probed steps (:mod:`.pair_ladder`) and those steps, or None
+    where the probe found none, or the chunk's stiffest pair refuses them: then the plain probe runs."""
     chosen = ladder_steps(probe or given, run_dir / "ladder-probe")
     if chosen is None:
         return None
     try:
-        return run_ladder(given, chosen[0], run_dir, contact_time=chosen[1])
+        return run_ladder(given, chosen[0], run_dir, contact_time=chosen[1]), chosen
     except SceneError:
         return None
 
 
 def pair_chunk(model: ContactModel, b: Sphere, states: np.ndarray, dt: float | None, run_dir: Path,
-               probe_states: np.ndarray | None = None) -> tuple[dict, float, int, float]:
-    """Run a chunk's pairs in one LAMMPS run; (columns, dt, steps, LAMMPS loop seconds).
+               probe_states: np.ndarray | None = None) -> tuple[dict, np.ndarray, np.ndarray, float]:
+    """Run a chunk's pairs in one LAMMPS run; (columns, each row's dt and steps, LAMMPS loop seconds).
 
     ``states``: (n, 3) or (n, 6) rows of (v_n, v_t, omega[, v_s, omega_s, omega_n]), as a
     wall sweep's chunk gets them (angular velocities); ``probe_states``: the group's states
     a default step is probed with (the same for every chunk: one step per group), by
-    default the chunk's own.
+    default the chunk's own. A combined chunk's rows beyond the accuracy run again (:data:`FINEST`).
     """
     names = SPACE_COLUMNS if states.shape[1] == 6 else PLANE_COLUMNS
     pairs = pairs_from_states(model, b, states)
-    a = pairs[0].a
     contact = pair_contact(model, b)
     probe = None if probe_states is None else PairBatch(tuple(pairs_from_states(model, b, probe_states)), contact)
     given = PairBatch(pairs, contact, dt)
     ladder = _ladder(given, probe, Path(run_dir)) if dt is None and applies(given) else None
-    # two aligned runs combined (sweeps.pair_ladder; the final states are the combination's), or one probed run
-    run = (run_scene(given, run_dir, atoms="library", record=False, probe_states=probe) if ladder is None
-           else ladder.result)
-    nsteps = run.scene.nsteps if ladder is None else ladder.nsteps
+    if ladder is None:  # one probed run
+        run = run_scene(given, run_dir, atoms="library", record=False, probe_states=probe)
+        return (_columns(run, pairs, names), np.full(len(pairs), run.scene.dt), np.full(len(pairs), run.scene.nsteps),
+                run.info.loop_seconds)
+    # two aligned runs combined (sweeps.pair_ladder; the final states are the combination's)
+    (combined, (steps, tau)), n = ladder, len(pairs)
+    columns, dts, nsteps = _columns(combined.result, pairs, names), np.full(n, combined.result.scene.dt), np.full(
+        n, combined.nsteps)
+    loop = _refine(given, columns, dts, nsteps, steps, tau, Path(run_dir), names)
+    return columns, dts, nsteps, combined.result.info.loop_seconds + loop
+
+
+def _refine(given: PairBatch, columns: dict, dts, nsteps, steps: int, tau: float, run_dir: Path, names) -> float:
+    """Run the rows of ``columns`` beyond the accuracy again at doubling steps per contact (up to :data:`FINEST`),
+    each row's columns, step and steps (its runs, all counted) replaced in place; LAMMPS's loop seconds."""
+    loop, bad = 0.0, np.flatnonzero(columns["status"] == "inaccurate")
+    if bad.size:  # writable copies (a table's columns may be views of read-only buffers), words of any length
+        columns.update({k: np.array(v, dtype=object if v.dtype.kind == "U" else v.dtype) for k, v in columns.items()})
+    while bad.size and 2 * steps <= FINEST:
+        steps *= 2
+        rows = given.rows(bad)
+        again = run_ladder(rows, steps, run_dir / f"refine-{steps}", contact_time=tau)
+        for key, value in _columns(again.result, rows.pairs, names).items():
+            columns[key][bad] = value
+        dts[bad], nsteps[bad] = again.result.scene.dt, nsteps[bad] + again.nsteps
+        loop += again.result.info.loop_seconds
+        bad = bad[columns["status"][bad] == "inaccurate"]
+    return loop
+
+
+def _columns(run, pairs, names) -> dict:
+    """A run's columns of sphere a (the wall sweep's), both spheres' states and references, geometry and
+    checks (the module's text)."""
+    a = pairs[0].a
     table, batch = run.table, run.scene
     requested = wall_frame(np.array([p.v_a for p in pairs]), np.array([p.w_a for p in pairs]), a.r)
     columns = {f"{name}_initial": requested[:, k] for k, name in enumerate(names)}
@@ -103,4 +138,4 @@ def pair_chunk(model: ContactModel, b: Sphere, states: np.ndarray, dt: float | N
         columns[key] = table[key].to_numpy()
     columns.update({q + suffix: table[q + suffix].to_numpy() for q in QUANTITIES for suffix in ("", "_exact", "_planar")})
     columns["step_method"] = np.full(len(pairs), run.step.method, dtype=object)
-    return columns, batch.dt, nsteps, run.info.loop_seconds
+    return columns
