@@ -4,8 +4,8 @@
   Hertz-Mindlin walls, two free spheres, a Coulomb-capped pair), each end to end on one worker,
   with the bare engine's seconds on the same decks and states in the same run
   (:func:`spinbounce.lammps.runner.engine_clock`: LAMMPS's instance, the deck's commands and the
-  atoms in and out, nothing of spinbounce between) and each scene's time per collision over the
-  wall's;
+  atoms in and out, nothing of spinbounce between), each scene's time per collision over the
+  wall's and its mean LAMMPS steps a collision (a pair row run again finer counts all its runs);
 * :func:`sweep_against_engine`: the frictionless sweep as a user runs it (``spinbounce sweep`` in a
   process of its own, start-up included) against the bare engine running the same chunks' decks;
 * :func:`help_seconds`: ``spinbounce --help`` and ``spinbounce collide --help`` in a fresh process;
@@ -65,7 +65,7 @@ def _scene_sweep(name: str, n: int, seed: int, root: Path) -> dict:
     return {"scene": name, "collisions": n, "wall_seconds": wall, "engine_seconds": clock.seconds,
             "lammps_runs": clock.runs, "collisions_per_second": n / wall,
             "engine_collisions_per_second": n / clock.seconds, "outside_engine_share": 1.0 - clock.seconds / wall,
-            "steps_per_collision": int(rows["nsteps"].max()), "max_error": float(rows["error"].max())}
+            "steps_per_collision": round(float(rows["nsteps"].mean())), "max_error": float(rows["error"].max())}
 
 
 def scene_sweeps(quick: bool = False, seed: int = 0, n: int | None = None) -> list[dict]:
