@@ -147,6 +147,19 @@ def wait_until_running(job: str, seconds: float = 60) -> None:
     pytest.fail(f"job {job} did not start within {seconds} s")
 
 
+def wait_until_idle(seconds: float = 300) -> None:
+    """Until the cluster runs no job and its node is idle: an earlier test's jobs (a timed-out chunk, a finished
+    job's clean-up) may still hold it, and the README's session starts on an idle cluster."""
+    deadline, jobs, node = time.monotonic() + seconds, "", ""
+    while time.monotonic() < deadline:
+        jobs = subprocess.run(["squeue", "-h", "-o", "%i %j %T"], capture_output=True, text=True).stdout.strip()
+        node = subprocess.run(["sinfo", "-h", "-o", "%T"], capture_output=True, text=True).stdout.strip()
+        if not jobs and node == "idle":
+            return
+        time.sleep(1.0)
+    pytest.fail(f"the cluster is still busy after {seconds:.0f} s: jobs {jobs!r}, node {node!r}")
+
+
 def wait_for_submission(process: subprocess.Popen, name: str, log: list[str], seconds: float = 60) -> str:
     """Read Snakemake's output until it reports the job of ``name`` submitted; its job id."""
     deadline = time.monotonic() + seconds
@@ -293,6 +306,7 @@ def test_the_readme_session_on_a_one_node_slurm(tmp_path, site):
         # it stops the cluster: never a SLURM that workflows/ci/slurm did not set up
         pytest.skip(f"the README's session runs on workflows/ci/slurm's own cluster (partition ci, account root): "
                     f"{conf} is {'its' if ours else 'not its'}, and the site is {site}")
+    wait_until_idle()
     page = examples.Page("workflows/README.md", tmp_path, examples.base_env())
     try:
         assert page.run_blocks((WORKFLOW / "README.md").read_text(), {"slurm"}, only=True) == 1
