@@ -27,6 +27,7 @@ def run_slow() -> bool:
     return os.environ.get(SLOW_SWITCH) == "1"
 
 
+@pytest.hookimpl(tryfirst=True)  # before xdist reads the groups into the test ids
 def pytest_collection_modifyitems(config, items):
     """Deselect the slow tests unless SPINBOUNCE_SLOW=1, and say so (never silently)."""
     for item in items:

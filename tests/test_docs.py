@@ -29,6 +29,9 @@ PAGES = sorted(p.relative_to(DOCS).as_posix() for p in DOCS.rglob("*.md"))
 #: Pages whose quick examples still take seconds of LAMMPS (measured 6 s and 5 s): slow tests.
 SLOW_PAGES = {"how-to/pair.md", "how-to/two-walls.md"}
 RUN_SLOW = os.environ.get("SPINBOUNCE_SLOW") == "1"
+#: The page whose slow example is `spinbounce reproduce`: checked against the session's one reproduction
+#: (conftest.reproduction) by test_the_reproduce_tutorial_prints_the_sessions_reproduction, not run again.
+REPRODUCED = "tutorials/reproduce.md"
 
 
 def _mkdocs_available() -> bool:
@@ -63,8 +66,22 @@ def test_site_builds_strictly(tmp_path):
 @pytest.mark.parametrize("page", [pytest.param(page, marks=[pytest.mark.slow] if page in SLOW_PAGES else [])
                                   for page in PAGES])
 def test_page_examples(page, tmp_path):
-    kinds = {"slow"} if RUN_SLOW else set()
+    kinds = {"slow"} if RUN_SLOW and page != REPRODUCED else set()
     examples.Page(page, tmp_path, examples.base_env()).run_blocks((DOCS / page).read_text(), kinds)
+
+
+@pytest.mark.lammps
+def test_the_reproduce_tutorial_prints_the_sessions_reproduction(reproduction, tmp_path):
+    """The tutorial's `spinbounce reproduce --out paper --run-dir paper-runs` is what the command's own function
+    printed in the session's reproduction (its log, then its summary), its folders named as the page names them:
+    the four minutes are spent once."""
+    from spinbounce.cli.reproduce import summary
+
+    made, lines = reproduction
+    shown = "\n".join([*lines, *summary(made)]).replace(str(made.out), "paper")
+    page = examples.Page(REPRODUCED, tmp_path, examples.base_env())
+    page.substitutes["spinbounce reproduce --out paper --run-dir paper-runs"] = shown
+    assert page.run_blocks((DOCS / REPRODUCED).read_text(), {"slow"}, only=True) == 1
 
 
 def test_generated_scene_file_example_is_valid():
