@@ -68,6 +68,28 @@ def test_the_capped_reference_with_n_held_is_the_walls_exact_stick_slip_solution
         assert np.abs(got - want).max() < SOLVER_AGREEMENT * pair.speed()
 
 
+@pytest.mark.parametrize("planar", [True, False], ids=["planar", "3-D"])
+def test_a_batchs_planar_columns_are_the_held_pair_reference(planar):
+    """The table's planar theory of a capped batch (its equivalent walls' exact stick-slip solutions, turned back
+    into both spheres' states: exact/pair.from_wall) is the pair reference with its line held, to the references'
+    own accuracy: unequal spheres, dashpots, 3-D (kn = 100: a batch refuses overlaps beyond the smaller radius)."""
+    from spinbounce.scenes.pair.table import pair_table
+
+    rng = np.random.default_rng(21 if planar else 22)
+    for _ in range(6):
+        pairs = [_random_pair(rng, planar)[0] for _ in range(5)]
+        contact = PairContact(100.0, rng.uniform(5.0, 90.0), rng.choice([0.0, 2.0]), rng.choice([0.0, 4.0]),
+                              mu=10 ** rng.uniform(-2, 1))
+        table = pair_table(PairBatch(tuple(pairs), contact), None)
+        for k, pair in enumerate(pairs):
+            held = contact.solve(pair, planar=True)
+            for side, r in (("a", pair.a.r), ("b", pair.b.r)):
+                got = [table[[f"{side}_{q}{x}_planar" for x in "xyz"]].to_numpy()[k] for q in "vw"]
+                want = (getattr(held, f"v_{side}"), getattr(held, f"w_{side}"))
+                worst = max(np.abs(got[0] - want[0]).max(), r * np.abs(got[1] - want[1]).max())
+                assert worst < SOLVER_AGREEMENT * pair.speed()
+
+
 def test_a_cap_never_reached_with_n_held_is_the_uncapped_reference():
     # mu = 1e12: the contact sticks but for its last 1e-13 of overlap, where the vanishing cap
     # always wins (at mu = 1e6 that end slide moves the outcome by 2.5e-9, which the reference

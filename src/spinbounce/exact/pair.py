@@ -33,6 +33,7 @@ import numpy as np
 from . import linear
 
 __all__ = ["reduced_mass", "slip_mobility", "equivalent_alpha", "contact_time", "restitution", "Omega",
+           "tangent_frame", "wall_states", "from_wall",
            "slip_rate", "predict", "angular_momentum_about_contact", "line_turn", "centrifugal_ratio"]
 
 
@@ -116,6 +117,45 @@ def predict(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt,
     w_a1 = np.asarray(w_a, dtype=float) - lever / _column(alpha_a * m_a * r_a)
     w_b1 = np.asarray(w_b, dtype=float) - lever / _column(alpha_b * m_b * r_b)
     return v_a1, v_b1, w_a1, w_b1
+
+
+def tangent_frame(n):
+    """Unit t and s = n x t across each unit ``n`` ((P, 3)): t along n x e, e the axis least along n."""
+    n = np.atleast_2d(np.asarray(n, dtype=float))
+    axis = np.eye(3)[np.argmin(np.abs(n), axis=1)]
+    t = np.cross(n, axis)
+    t /= np.linalg.norm(t, axis=1, keepdims=True)
+    return t, np.cross(n, t)
+
+
+def wall_states(n, v_a, v_b, w_a, w_b, r_a, r_b):
+    """The equivalent wall's initial (v_n, v_t, r omega, v_s, r omega_s, r omega_n) of each pair ((P, 6)): the
+    relative velocity along n, t and s (:func:`tangent_frame`), r omega = u' - v along t and s (u' the slip rate:
+    u' = v_t + r omega, the wall's), and no spin about n (the line held, nothing turns it)."""
+    n = np.atleast_2d(np.asarray(n, dtype=float))
+    t, s = tangent_frame(n)
+    v = np.asarray(v_a, dtype=float) - np.asarray(v_b, dtype=float)
+    spin = slip_rate(n, v_a, v_b, w_a, w_b, r_a, r_b) - v
+    along = [np.sum(x * y, axis=-1) for x, y in ((v, n), (v, t), (spin, t), (v, s), (spin, s))]
+    return np.column_stack([*along, np.zeros(len(n))])
+
+
+def from_wall(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, final):
+    """Final (v_a, v_b, w_a, w_b) ((P, 3) each) of pairs whose line of centres is held, from their equivalent
+    wall's final states ``final`` ((P, 5) or (P, 6) rows of v_n, v_t, r omega, v_s, r omega_s: what the wall's
+    exact solver, a cap included, gives for :func:`wall_states`): the impulse on a, m* (v' - v), and its
+    torques at the contact point, as :func:`predict` applies them."""
+    n = np.atleast_2d(np.asarray(n, dtype=float))
+    t, s = tangent_frame(n)
+    final = np.asarray(final, dtype=float)
+    v = np.asarray(v_a, dtype=float) - np.asarray(v_b, dtype=float)
+    v_final = _column(final[:, 0]) * n + _column(final[:, 1]) * t + _column(final[:, 3]) * s
+    impulse = _column(reduced_mass(m_a, m_b)) * (v_final - v)
+    lever = np.cross(n, impulse)  # torque impulse on a: (-r_a n) x P = -r_a lever; on b the same sign
+    return (np.asarray(v_a, dtype=float) + impulse / _column(m_a),
+            np.asarray(v_b, dtype=float) - impulse / _column(m_b),
+            np.asarray(w_a, dtype=float) - lever / _column(alpha_a * m_a * r_a),
+            np.asarray(w_b, dtype=float) - lever / _column(alpha_b * m_b * r_b))
 
 
 def angular_momentum_about_contact(n, v, w, m, r, alpha, side):
