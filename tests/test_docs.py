@@ -71,17 +71,27 @@ def test_page_examples(page, tmp_path):
 
 
 @pytest.mark.lammps
-def test_the_reproduce_tutorial_prints_the_sessions_reproduction(reproduction, tmp_path):
-    """The tutorial's `spinbounce reproduce --out paper --run-dir paper-runs` is what the command's own function
-    printed in the session's reproduction (its log, then its summary), its folders named as the page names them:
-    the four minutes are spent once."""
-    from spinbounce.cli.reproduce import summary
+def test_the_reproduce_tutorial_prints_the_sessions_reproduction(reproduction, tmp_path, monkeypatch):
+    """The tutorial's `spinbounce reproduce --out paper --run-dir paper-runs` through the command (its options
+    parsed, its summary printed), its products the session's one reproduction (conftest.reproduction: its log
+    replayed, its folder named as the page names it): the four minutes are spent once."""
+    import dataclasses
+
+    from spinbounce.cli import reproduce as reproduce_cli
 
     made, lines = reproduction
-    shown = "\n".join([*lines, *summary(made)]).replace(str(made.out), "paper")
+    asked = []
+
+    def replay(out, run_dir, only=None):
+        asked.append((out, run_dir, only))
+        for line in lines:
+            print(line.replace(str(made.out), str(out)))
+        return dataclasses.replace(made, out=out, claims_md=out / made.claims_md.name)
+
+    monkeypatch.setattr(reproduce_cli, "reproduce", replay)
     page = examples.Page(REPRODUCED, tmp_path, examples.base_env())
-    page.substitutes["spinbounce reproduce --out paper --run-dir paper-runs"] = shown
     assert page.run_blocks((DOCS / REPRODUCED).read_text(), {"slow"}, only=True) == 1
+    assert asked == [(Path("paper"), Path("paper-runs"), None)]
 
 
 def test_generated_scene_file_example_is_valid():

@@ -85,10 +85,23 @@ def test_a_row_the_combination_leaves_beyond_the_accuracy_runs_again_finer(tmp_p
     """The hard row runs again alone at doubling steps until it reaches the accuracy; its steps count every run."""
     model, b, easy = ContactModel(kt=5.0), Sphere(), _states(40, seed=8)
     states = np.vstack([easy, HARD_ROW])
-    columns, dts, steps, _ = pair_chunk(model, b, states, None, tmp_path, probe_states=easy)
+    columns, dt, steps, _ = pair_chunk(model, b, states, None, tmp_path, probe_states=easy)
     assert np.max(columns["error"]) <= ACCURACY and set(columns["status"]) == {"ok"}
-    assert steps[-1] > np.max(steps[:-1]) and dts[-1] < np.min(dts[:-1])
+    assert steps[-1] > np.max(steps[:-1]) and np.isscalar(dt)  # the group's one dt: a fit groups rows by it
     assert columns["step_method"][-1] != columns["step_method"][0]
+
+
+def test_a_sweep_with_a_row_run_again_fits_as_one_group(tmp_path):
+    """The row run again keeps its group's dt (a fit groups rows by it) and says its own steps: one fit group."""
+    from spinbounce.fitting import fit_groups
+    from spinbounce.sweeps import read_results, run_sweep, spec_from_dict
+
+    spec = spec_from_dict({"seed": 1, "model": {"scene": "pair", "kt": 5.0}, "chunk_size": 400,
+                           "states": {"n": 400, "v_n": [-1.5, -0.2], "v_t": [-1.0, 1.0], "r_omega": [-4.0, 4.0]}})
+    rows = read_results(run_sweep(spec, tmp_path / "sweep", workers=1, log=lambda *_: None))
+    assert rows["step_method"].nunique() > 1 and rows["nsteps"].nunique() > 1  # a row ran again, finer
+    assert set(rows["status"]) == {"ok"} and rows["dt"].nunique() == 1
+    assert len(fit_groups(rows)) == 1
 
 
 def test_a_row_still_beyond_the_accuracy_at_the_finest_steps_says_so(tmp_path, monkeypatch):
@@ -111,8 +124,7 @@ def test_every_chunk_of_a_group_runs_at_the_same_steps(tmp_path):
     group per model group, as a plain probed step gives."""
     model, b = ContactModel(), Sphere()
     group = _states(600, seed=11)
-    dts = {float(dt) for k in range(3)
-           for dt in pair_chunk(model, b, group[k::3], None, tmp_path / f"chunk{k}", probe_states=group)[1]}
+    dts = {pair_chunk(model, b, group[k::3], None, tmp_path / f"chunk{k}", probe_states=group)[1] for k in range(3)}
     assert len(dts) == 1
 
 

@@ -51,7 +51,8 @@ def _a_columns(names, when: str, v: np.ndarray, w: np.ndarray, r: float, height:
 
 #: Rows a chunk's combined runs leave beyond the accuracy run again, alone, at doubling steps per contact up to
 #: this many (their contacts have a large error constant: a kt/kn of 0.5 leaves about 1 row in 80 so): each row's
-#: ``nsteps`` then counts its own extra runs, and ``step_method`` says at what steps it ended.
+#: ``nsteps`` then counts its own extra runs, and ``step_method`` says at what steps per contact it ended (its
+#: ``dt`` stays the group's, by which a fit groups its rows).
 FINEST = 16 * LONGEST
 
 
@@ -68,8 +69,8 @@ def _ladder(given: PairBatch, probe: PairBatch | None, run_dir: Path):
 
 
 def pair_chunk(model: ContactModel, b: Sphere, states: np.ndarray, dt: float | None, run_dir: Path,
-               probe_states: np.ndarray | None = None) -> tuple[dict, np.ndarray, np.ndarray, float]:
-    """Run a chunk's pairs in one LAMMPS run; (columns, each row's dt and steps, LAMMPS loop seconds).
+               probe_states: np.ndarray | None = None) -> tuple[dict, float, np.ndarray, float]:
+    """Run a chunk's pairs in one LAMMPS run; (columns, the group's dt, each row's steps, LAMMPS loop seconds).
 
     ``states``: (n, 3) or (n, 6) rows of (v_n, v_t, omega[, v_s, omega_s, omega_n]), as a
     wall sweep's chunk gets them (angular velocities); ``probe_states``: the group's states
@@ -84,19 +85,18 @@ def pair_chunk(model: ContactModel, b: Sphere, states: np.ndarray, dt: float | N
     ladder = _ladder(given, probe, Path(run_dir)) if dt is None and applies(given) else None
     if ladder is None:  # one probed run
         run = run_scene(given, run_dir, atoms="library", record=False, probe_states=probe)
-        return (_columns(run, pairs, names), np.full(len(pairs), run.scene.dt), np.full(len(pairs), run.scene.nsteps),
-                run.info.loop_seconds)
+        return _columns(run, pairs, names), run.scene.dt, np.full(len(pairs), run.scene.nsteps), run.info.loop_seconds
     # two aligned runs combined (sweeps.pair_ladder; the final states are the combination's)
     (combined, (steps, tau)), n = ladder, len(pairs)
-    columns, dts, nsteps = _columns(combined.result, pairs, names), np.full(n, combined.result.scene.dt), np.full(
-        n, combined.nsteps)
-    loop = _refine(given, columns, dts, nsteps, steps, tau, Path(run_dir), names)
-    return columns, dts, nsteps, combined.result.info.loop_seconds + loop
+    columns, nsteps = _columns(combined.result, pairs, names), np.full(n, combined.nsteps)
+    loop = _refine(given, columns, nsteps, steps, tau, Path(run_dir), names)
+    return columns, combined.result.scene.dt, nsteps, combined.result.info.loop_seconds + loop
 
 
-def _refine(given: PairBatch, columns: dict, dts, nsteps, steps: int, tau: float, run_dir: Path, names) -> float:
+def _refine(given: PairBatch, columns: dict, nsteps, steps: int, tau: float, run_dir: Path, names) -> float:
     """Run the rows of ``columns`` beyond the accuracy again at doubling steps per contact (up to :data:`FINEST`),
-    each row's columns, step and steps (its runs, all counted) replaced in place; LAMMPS's loop seconds."""
+    each row's columns and steps (its runs, all counted) replaced in place, its ``step_method`` naming the steps it
+    ended at (its ``dt`` stays the group's: a fit groups rows by it); LAMMPS's loop seconds."""
     loop, bad = 0.0, np.flatnonzero(columns["status"] == "inaccurate")
     if bad.size:  # writable copies (a table's columns may be views of read-only buffers), words of any length
         columns.update({k: np.array(v, dtype=object if v.dtype.kind == "U" else v.dtype) for k, v in columns.items()})
@@ -106,7 +106,7 @@ def _refine(given: PairBatch, columns: dict, dts, nsteps, steps: int, tau: float
         again = run_ladder(rows, steps, run_dir / f"refine-{steps}", contact_time=tau)
         for key, value in _columns(again.result, rows.pairs, names).items():
             columns[key][bad] = value
-        dts[bad], nsteps[bad] = again.result.scene.dt, nsteps[bad] + again.nsteps
+        nsteps[bad] += again.nsteps
         loop += again.result.info.loop_seconds
         bad = bad[columns["status"][bad] == "inaccurate"]
     return loop

@@ -71,8 +71,7 @@ def run_chunk(raw: dict | SweepSpec, out: str, group: int, chunk: int, start: in
     else:
         dt, nsteps, loop = _wall_columns(columns, spec, model, dt, states, probe, run_dir, tolerance_of(spec, group))
     labels = _model_columns(columns, model, n)
-    # the group's step (a pair row run again beyond the accuracy: its own); with a tolerance: the finest run's
-    columns["dt"] = np.full(n, dt)
+    columns["dt"] = np.full(n, dt)  # the group's step; with a tolerance: the finest run's
     columns["nsteps"] = np.full(n, nsteps)  # with a tolerance or a pair's ladder: all of the row's runs' steps
     if spec.scene == "pair":
         labels.update(_pair_columns(columns, spec, group, model, n))
