@@ -97,6 +97,7 @@ def _marks(case: Case):
 
 
 @pytest.mark.slow
+@pytest.mark.xdist_group("fuzz")  # one worker: `outcomes` runs every case at once, once
 @pytest.mark.parametrize("case", [pytest.param(c, id=c.id, marks=_marks(c)) for c in CASES])
 def test_invocation(case: Case, outcomes):
     got, folder = outcomes[case.id]
