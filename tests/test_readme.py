@@ -110,8 +110,10 @@ def _printed(command: str, cwd: Path, shown: list[str], request) -> list[str]:
 @pytest.mark.lammps
 @pytest.mark.every_case  # each session (page) its own check: the quick run keeps them all
 @pytest.mark.parametrize("session", [
-    # the reproduction (minutes) is a slow test: its session reads the whole reproduction
-    pytest.param(s, id=s[0][0].split()[1], marks=[pytest.mark.slow] if s[0][0] == "spinbounce reproduce" else [])
+    # the reproduction (minutes) is a slow test: its session reads the whole reproduction (asked for by name, so
+    # it joins the reproduction's worker by its mark: conftest.WORKER_GROUPS sees fixtures a test names)
+    pytest.param(s, id=s[0][0].split()[1], marks=[pytest.mark.slow, pytest.mark.xdist_group("reproduction")]
+                 if s[0][0] == "spinbounce reproduce" else [])
     for s in SESSIONS])
 def test_every_command_prints_what_the_readme_shows(session, tmp_path, request):
     for command, shown in session:
