@@ -91,6 +91,21 @@ def test_a_row_the_combination_leaves_beyond_the_accuracy_runs_again_finer(tmp_p
     assert columns["step_method"][-1] != columns["step_method"][0]
 
 
+#: A damped pair (gamma_t = 0.5, kt/kn = 0.5) the plain probed step leaves beyond the accuracy: 2.4e-4 at the
+#: fine rule's 19,530 steps, in a 1,000-pair sweep where every other row reached it.
+HARD_DAMPED_ROW = (-0.49115533532146105, -1.9234749857254512, -2.430232865364802)
+
+
+def test_a_plain_runs_row_beyond_the_accuracy_runs_again_at_a_finer_step(tmp_path):
+    """Damped pairs keep one probed run (no smooth expansion to combine); a row it leaves beyond the accuracy runs
+    again alone at a quarter of the step (first order: a quarter of the error), until it reaches it."""
+    model, b, easy = ContactModel(kt=5.0, gamma_t=0.5), Sphere(), _states(40, seed=8)
+    columns, dt, steps, _ = pair_chunk(model, b, np.vstack([easy, HARD_DAMPED_ROW]), None, tmp_path,
+                                       probe_states=easy)
+    assert np.max(columns["error"]) <= ACCURACY and set(columns["status"]) == {"ok"}
+    assert columns["step_method"][-1].startswith("run again alone") and steps[-1] > np.max(steps[:-1])
+
+
 def test_a_sweep_with_a_row_run_again_fits_as_one_group(tmp_path):
     """The row run again keeps its group's dt (a fit groups rows by it) and says its own steps: one fit group."""
     from spinbounce.fitting import fit_groups

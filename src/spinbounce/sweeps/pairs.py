@@ -49,11 +49,14 @@ def _a_columns(names, when: str, v: np.ndarray, w: np.ndarray, r: float, height:
     return out
 
 
-#: Rows a chunk's combined runs leave beyond the accuracy run again, alone, at doubling steps per contact up to
-#: this many (their contacts have a large error constant: a kt/kn of 0.5 leaves about 1 row in 80 so): each row's
-#: ``nsteps`` then counts its own extra runs, and ``step_method`` says at what steps per contact it ended (its
-#: ``dt`` stays the group's, by which a fit groups its rows).
+#: Rows a chunk's runs leave beyond the accuracy run again, alone, finer (their contacts have a large error
+#: constant: a kt/kn of 0.5 leaves about 1 row in 80 so): a combined chunk's at doubling steps per contact up to
+#: FINEST, a plain run's at a quarter of its step, at most PLAIN_REFINEMENTS times (its error is first order), but
+#: not a row beyond any affordable step's reach (a state just above its law's jump: it is flagged as it is). Each
+#: row's ``nsteps`` then counts its own runs too, and ``step_method`` says what it ended at (its ``dt`` stays the
+#: group's, by which a fit groups its rows). A step the user gave is not refined.
 FINEST = 16 * LONGEST
+PLAIN_REFINEMENTS = 3
 
 
 def _ladder(given: PairBatch, probe: PairBatch | None, run_dir: Path):
@@ -75,39 +78,61 @@ def pair_chunk(model: ContactModel, b: Sphere, states: np.ndarray, dt: float | N
     ``states``: (n, 3) or (n, 6) rows of (v_n, v_t, omega[, v_s, omega_s, omega_n]), as a
     wall sweep's chunk gets them (angular velocities); ``probe_states``: the group's states
     a default step is probed with (the same for every chunk: one step per group), by
-    default the chunk's own. A combined chunk's rows beyond the accuracy run again (:data:`FINEST`).
+    default the chunk's own. At the default step, rows beyond the accuracy run again (:data:`FINEST`).
     """
     names = SPACE_COLUMNS if states.shape[1] == 6 else PLANE_COLUMNS
     pairs = pairs_from_states(model, b, states)
     contact = pair_contact(model, b)
     probe = None if probe_states is None else PairBatch(tuple(pairs_from_states(model, b, probe_states)), contact)
     given = PairBatch(pairs, contact, dt)
-    ladder = _ladder(given, probe, Path(run_dir)) if dt is None and applies(given) else None
+    folder = Path(run_dir)
+    ladder = _ladder(given, probe, folder) if dt is None and applies(given) else None
     if ladder is None:  # one probed run
         run = run_scene(given, run_dir, atoms="library", record=False, probe_states=probe)
-        return _columns(run, pairs, names), run.scene.dt, np.full(len(pairs), run.scene.nsteps), run.info.loop_seconds
+        columns, nsteps = _columns(run, pairs, names), np.full(len(pairs), run.scene.nsteps)
+
+        def plain(rows, level):
+            finer = run.scene.dt / 4**level
+            again = run_scene(PairBatch(rows.pairs, contact, finer), folder / f"refine-{level}", atoms="library",
+                              record=False)
+            return again, again.scene.nsteps, f"run again alone at dt = {finer:.6g} (the chunk's step left it " \
+                                              f"beyond the accuracy)"
+
+        levels = PLAIN_REFINEMENTS if dt is None else 0
+        return columns, run.scene.dt, nsteps, run.info.loop_seconds + _refine(given, columns, nsteps, plain, levels,
+                                                                               names)
     # two aligned runs combined (sweeps.pair_ladder; the final states are the combination's)
     (combined, (steps, tau)), n = ladder, len(pairs)
     columns, nsteps = _columns(combined.result, pairs, names), np.full(n, combined.nsteps)
-    loop = _refine(given, columns, nsteps, steps, tau, Path(run_dir), names)
-    return columns, combined.result.scene.dt, nsteps, combined.result.info.loop_seconds + loop
+
+    def finer_ladder(rows, level):
+        again = run_ladder(rows, steps * 2**level, folder / f"refine-{level}", contact_time=tau)
+        return again.result, again.nsteps, again.result.step.method
+
+    levels = int(np.log2(FINEST // steps)) if steps <= FINEST else 0
+    return columns, combined.result.scene.dt, nsteps, combined.result.info.loop_seconds + _refine(
+        given, columns, nsteps, finer_ladder, levels, names)
 
 
-def _refine(given: PairBatch, columns: dict, nsteps, steps: int, tau: float, run_dir: Path, names) -> float:
-    """Run the rows of ``columns`` beyond the accuracy again at doubling steps per contact (up to :data:`FINEST`),
-    each row's columns and steps (its runs, all counted) replaced in place, its ``step_method`` naming the steps it
-    ended at (its ``dt`` stays the group's: a fit groups rows by it); LAMMPS's loop seconds."""
+def _refine(given: PairBatch, columns: dict, nsteps, again, levels: int, names) -> float:
+    """Run the rows of ``columns`` beyond the accuracy (but beyond no affordable step's reach) again,
+    ``again(rows, level)`` (its run, its steps and what it ran at) at level 1 to ``levels`` until each reaches it;
+    each row's columns, steps (its runs, all counted) and ``step_method`` replaced in place (its ``dt`` stays the
+    group's: a fit groups rows by it); LAMMPS's loop seconds."""
     loop, bad = 0.0, np.flatnonzero(columns["status"] == "inaccurate")
     if bad.size:  # writable copies (a table's columns may be views of read-only buffers), words of any length
         columns.update({k: np.array(v, dtype=object if v.dtype.kind == "U" else v.dtype) for k, v in columns.items()})
-    while bad.size and 2 * steps <= FINEST:
-        steps *= 2
+        bad = bad[~given.beyond_reach()[bad]]
+    for level in range(1, levels + 1):
+        if not bad.size:
+            break
         rows = given.rows(bad)
-        again = run_ladder(rows, steps, run_dir / f"refine-{steps}", contact_time=tau)
-        for key, value in _columns(again.result, rows.pairs, names).items():
+        run, steps, method = again(rows, level)
+        for key, value in _columns(run, rows.pairs, names).items():
             columns[key][bad] = value
-        nsteps[bad] += again.nsteps
-        loop += again.result.info.loop_seconds
+        columns["step_method"][bad] = method
+        nsteps[bad] += steps
+        loop += run.info.loop_seconds
         bad = bad[columns["status"][bad] == "inaccurate"]
     return loop
 
