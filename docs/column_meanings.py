@@ -40,10 +40,11 @@ OTHER = {
     "status": "ok, inaccurate (error above the target), energy_gained or grazing (overlap too small to resolve)",
     "dt": "the timestep the group ran at (a pair sweep: the batch's deck step; with a tolerance: the finest "
           "run's); a time-scaled row's own step is dt/time_scale; a pair row its chunk's runs left beyond the "
-          "accuracy ran again finer, at the steps per contact its step_method names",
+          "accuracy ran again finer, at the steps per contact or the dt its step_method names",
     "time_scale": "how many times slower the row ran in the deck (a time-scaled Hertzian batch: s_i = T*/T_i, "
                   "its contact stretched to the batch's longest; an aligned pair batch: the pair's own; its "
-                  "own step was dt/time_scale; 1 otherwise)",
+                  "own step was dt/time_scale (a pair row run again finer: finer, as its step_method says); 1 "
+                  "otherwise)",
     "nsteps": "LAMMPS steps (with a tolerance or a pair sweep's two runs: all runs' together, a pair row run "
               "again finer counting its own runs too)",
     "tolerance": "the accuracy asked for (sweeps with a tolerance only)",

@@ -92,18 +92,27 @@ def test_a_row_the_combination_leaves_beyond_the_accuracy_runs_again_finer(tmp_p
 
 
 #: A damped pair (gamma_t = 0.5, kt/kn = 0.5) the plain probed step leaves beyond the accuracy: 2.4e-4 at the
-#: fine rule's 19,530 steps, in a 1,000-pair sweep where every other row reached it.
+#: fine rule's 19,530 steps in a 1,000-pair sweep (seed 9) where every other row reached it, 7.8e-5 at a quarter;
+#: here, probed on 40 other rows, 3.2e-4 at 13,601 steps.
 HARD_DAMPED_ROW = (-0.49115533532146105, -1.9234749857254512, -2.430232865364802)
 
 
 def test_a_plain_runs_row_beyond_the_accuracy_runs_again_at_a_finer_step(tmp_path):
     """Damped pairs keep one probed run (no smooth expansion to combine); a row it leaves beyond the accuracy runs
-    again alone at a quarter of the step (first order: a quarter of the error), until it reaches it."""
+    again alone, aligned as the chunk ran, at a quarter of the step (first order), until it reaches it."""
     model, b, easy = ContactModel(kt=5.0, gamma_t=0.5), Sphere(), _states(40, seed=8)
     columns, dt, steps, _ = pair_chunk(model, b, np.vstack([easy, HARD_DAMPED_ROW]), None, tmp_path,
                                        probe_states=easy)
     assert np.max(columns["error"]) <= ACCURACY and set(columns["status"]) == {"ok"}
     assert columns["step_method"][-1].startswith("run again alone") and steps[-1] > np.max(steps[:-1])
+
+
+def test_runs_again_stop_at_their_budget_and_leave_the_rows_flagged(tmp_path, monkeypatch):
+    """REFINE_BUDGET bounds what the runs again may cost: with none, the hard row keeps its chunk's answer, flagged."""
+    monkeypatch.setattr("spinbounce.sweeps.pairs.REFINE_BUDGET", 0.0)
+    model, b, easy = ContactModel(kt=5.0, gamma_t=0.5), Sphere(), _states(40, seed=8)
+    columns, _, steps, _ = pair_chunk(model, b, np.vstack([easy, HARD_DAMPED_ROW]), None, tmp_path, probe_states=easy)
+    assert columns["status"][-1] == "inaccurate" and len(set(steps)) == 1
 
 
 def test_a_sweep_with_a_row_run_again_fits_as_one_group(tmp_path):

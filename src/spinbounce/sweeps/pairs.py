@@ -51,12 +51,15 @@ def _a_columns(names, when: str, v: np.ndarray, w: np.ndarray, r: float, height:
 
 #: Rows a chunk's runs leave beyond the accuracy run again, alone, finer (their contacts have a large error
 #: constant: a kt/kn of 0.5 leaves about 1 row in 80 so): a combined chunk's at doubling steps per contact up to
-#: FINEST, a plain run's at a quarter of its step, at most PLAIN_REFINEMENTS times (its error is first order), but
-#: not a row beyond any affordable step's reach (a state just above its law's jump: it is flagged as it is). Each
-#: row's ``nsteps`` then counts its own runs too, and ``step_method`` says what it ended at (its ``dt`` stays the
-#: group's, by which a fit groups its rows). A step the user gave is not refined.
+#: FINEST, a plain run's at a quarter of its step (aligned as it was), at most PLAIN_REFINEMENTS times (its error is
+#: first order), but not a row beyond any affordable step's reach (a state just above its law's jump: it is flagged
+#: as it is), and within REFINE_BUDGET: all the runs again may take at most that share of the chunk's own LAMMPS
+#: pair-steps (a chunk left mostly beyond the accuracy has the wrong step for its group, and says so in its rows).
+#: Each row's ``nsteps`` then counts its own runs too, and ``step_method`` says what it ended at (its ``dt`` stays
+#: the group's, by which a fit groups its rows). A step the user gave is not refined.
 FINEST = 16 * LONGEST
 PLAIN_REFINEMENTS = 3
+REFINE_BUDGET = 1.0
 
 
 def _ladder(given: PairBatch, probe: PairBatch | None, run_dir: Path):
@@ -93,14 +96,13 @@ def pair_chunk(model: ContactModel, b: Sphere, states: np.ndarray, dt: float | N
 
         def plain(rows, level):
             finer = run.scene.dt / 4**level
-            again = run_scene(PairBatch(rows.pairs, contact, finer), folder / f"refine-{level}", atoms="library",
-                              record=False)
+            again = run_scene(rows.at_step(finer), folder / f"refine-{level}", atoms="library", record=False)
             return again, again.scene.nsteps, f"run again alone at dt = {finer:.6g} (the chunk's step left it " \
                                               f"beyond the accuracy)"
 
         levels = PLAIN_REFINEMENTS if dt is None else 0
-        return columns, run.scene.dt, nsteps, run.info.loop_seconds + _refine(given, columns, nsteps, plain, levels,
-                                                                               names)
+        return columns, run.scene.dt, nsteps, run.info.loop_seconds + _refine(
+            given, columns, nsteps, plain, lambda level: run.scene.nsteps * 4**level, levels, names)
     # two aligned runs combined (sweeps.pair_ladder; the final states are the combination's)
     (combined, (steps, tau)), n = ladder, len(pairs)
     columns, nsteps = _columns(combined.result, pairs, names), np.full(n, combined.nsteps)
@@ -111,23 +113,31 @@ def pair_chunk(model: ContactModel, b: Sphere, states: np.ndarray, dt: float | N
 
     levels = int(np.log2(FINEST // steps)) if steps <= FINEST else 0
     return columns, combined.result.scene.dt, nsteps, combined.result.info.loop_seconds + _refine(
-        given, columns, nsteps, finer_ladder, levels, names)
+        given, columns, nsteps, finer_ladder, lambda level: combined.nsteps * 2**level, levels, names)
 
 
-def _refine(given: PairBatch, columns: dict, nsteps, again, levels: int, names) -> float:
+def _refine(given: PairBatch, columns: dict, nsteps, again, cost, levels: int, names) -> float:
     """Run the rows of ``columns`` beyond the accuracy (but beyond no affordable step's reach) again,
-    ``again(rows, level)`` (its run, its steps and what it ran at) at level 1 to ``levels`` until each reaches it;
-    each row's columns, steps (its runs, all counted) and ``step_method`` replaced in place (its ``dt`` stays the
-    group's: a fit groups rows by it); LAMMPS's loop seconds."""
+    ``again(rows, level)`` (its run, its steps and what it ran at; ``cost(level)``: about its steps a row) at level
+    1 to ``levels`` until each reaches it, within :data:`REFINE_BUDGET`; each row's columns, steps (its runs, all
+    counted) and ``step_method`` replaced in place (its ``dt`` stays the group's: a fit groups rows by it);
+    LAMMPS's loop seconds."""
     loop, bad = 0.0, np.flatnonzero(columns["status"] == "inaccurate")
     if bad.size:  # writable copies (a table's columns may be views of read-only buffers), words of any length
         columns.update({k: np.array(v, dtype=object if v.dtype.kind == "U" else v.dtype) for k, v in columns.items()})
         bad = bad[~given.beyond_reach()[bad]]
+    budget = REFINE_BUDGET * float(np.sum(nsteps))  # pair-steps the runs again may take, all together
     for level in range(1, levels + 1):
         if not bad.size:
             break
+        budget -= cost(level) * bad.size
+        if budget < 0.0:  # too many rows to run again: the chunk's own answer stands, its rows flagged
+            break
         rows = given.rows(bad)
-        run, steps, method = again(rows, level)
+        try:
+            run, steps, method = again(rows, level)
+        except SceneError:  # a step this fine is refused (its run too long): the rows stay as they are, flagged
+            break
         for key, value in _columns(run, rows.pairs, names).items():
             columns[key][bad] = value
         columns["step_method"][bad] = method
