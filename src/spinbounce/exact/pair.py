@@ -110,13 +110,17 @@ def predict(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt,
     K = slip_mobility(m_a, r_a, alpha_a, m_b, r_b, alpha_b)
     omega = Omega(m_a, alpha_a, m_b, alpha_b, kn, kt, gamma_t, gamma_n)
     tangential_impulse = _column(omega / K) * slip_rate(n, v_a, v_b, w_a, w_b, r_a, r_b)
-    impulse = normal_impulse + tangential_impulse
-    lever = np.cross(n, tangential_impulse)  # torque impulse on a: (-r_a n) x P_t = -r_a lever
-    v_a1 = np.asarray(v_a, dtype=float) + impulse / _column(m_a)
-    v_b1 = np.asarray(v_b, dtype=float) - impulse / _column(m_b)
-    w_a1 = np.asarray(w_a, dtype=float) - lever / _column(alpha_a * m_a * r_a)
-    w_b1 = np.asarray(w_b, dtype=float) - lever / _column(alpha_b * m_b * r_b)
-    return v_a1, v_b1, w_a1, w_b1
+    return _applied(normal_impulse + tangential_impulse, np.cross(n, tangential_impulse), v_a, v_b, w_a, w_b, m_a,
+                    r_a, alpha_a, m_b, r_b, alpha_b)
+
+
+def _applied(impulse, lever, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b):
+    """(v_a, v_b, w_a, w_b) after the contact's ``impulse`` on a (minus it on b), ``lever`` = n x its tangential
+    part: the torque impulse on a is (-r_a n) x P = -r_a lever, on b (r_b n) x (-P) = -r_b lever."""
+    return (np.asarray(v_a, dtype=float) + impulse / _column(m_a),
+            np.asarray(v_b, dtype=float) - impulse / _column(m_b),
+            np.asarray(w_a, dtype=float) - lever / _column(alpha_a * m_a * r_a),
+            np.asarray(w_b, dtype=float) - lever / _column(alpha_b * m_b * r_b))
 
 
 def tangent_frame(n):
@@ -151,11 +155,7 @@ def from_wall(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, final
     v = np.asarray(v_a, dtype=float) - np.asarray(v_b, dtype=float)
     v_final = _column(final[:, 0]) * n + _column(final[:, 1]) * t + _column(final[:, 3]) * s
     impulse = _column(reduced_mass(m_a, m_b)) * (v_final - v)
-    lever = np.cross(n, impulse)  # torque impulse on a: (-r_a n) x P = -r_a lever; on b the same sign
-    return (np.asarray(v_a, dtype=float) + impulse / _column(m_a),
-            np.asarray(v_b, dtype=float) - impulse / _column(m_b),
-            np.asarray(w_a, dtype=float) - lever / _column(alpha_a * m_a * r_a),
-            np.asarray(w_b, dtype=float) - lever / _column(alpha_b * m_b * r_b))
+    return _applied(impulse, np.cross(n, impulse), v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b)
 
 
 def angular_momentum_about_contact(n, v, w, m, r, alpha, side):

@@ -59,8 +59,9 @@ def _outcomes(outcomes) -> dict[str, np.ndarray]:
             for side in "ab" for q in "vw"}
 
 
-def _held(batch) -> dict[str, np.ndarray]:
-    """Each pair's outcome with its line of centres held: its equivalent wall's (:func:`.pair.from_wall`) where
+def _held(batch, props: dict) -> dict[str, np.ndarray]:
+    """Each pair's outcome with its line of centres held (``props``: the spheres' columns, as :func:`pair_table`
+    has them): its equivalent wall's (:func:`.pair.from_wall`) where
     that wall's theory is the exact stick-slip solver (Hooke's law and a cap: measured within 1.2e-12 of the
     speed of the held pair reference, tests/test_pairs_capped.py, at a fraction of its cost), else the pair
     reference held (:meth:`.PairContact.solve_all`)."""
@@ -71,9 +72,9 @@ def _held(batch) -> dict[str, np.ndarray]:
     out = {k: np.empty((batch.n, 3)) for k in ("a_v", "b_v", "a_w", "b_w")}
     for wall, index in walls:
         vectors = [c[k][index] for k in ("normal", "v_a", "v_b", "w_a", "w_b")]
-        props = {f"{k}_{side}": c[f"{k}_{side}"][index] for side in "ab" for k in ("m", "r", "alpha")}
-        final = choose.predict(wall, planar.wall_states(*vectors, props["r_a"], props["r_b"]))
-        for key, value in zip(("a_v", "b_v", "a_w", "b_w"), planar.from_wall(*vectors, **props, final=final),
+        spheres = {k: v[index] for k, v in props.items()}
+        final = choose.predict(wall, planar.wall_states(*vectors, spheres["r_a"], spheres["r_b"]))
+        for key, value in zip(("a_v", "b_v", "a_w", "b_w"), planar.from_wall(*vectors, **spheres, final=final),
                               strict=True):
             out[key][index] = value
     return out
@@ -98,7 +99,7 @@ def pair_table(batch, lammps: dict[str, np.ndarray] | None) -> pd.DataFrame:
                "centrifugal": planar.centrifugal_ratio(v_t, v_n, tau, props["r_a"], props["r_b"]),
                "turn": np.array([o.turn for o in batch.exact]), "time_scale": batch.time_scales}
     if batch.contact.mu is not None or not closed:  # no closed form: n held fixed, solved
-        theory = _held(batch)
+        theory = _held(batch, props)
     else:
         vectors = {"n": c["normal"]} | {k: c[k] for k in ("v_a", "v_b", "w_a", "w_b")}
         predicted = planar.predict(**vectors, **props, **batch.contact.law())
