@@ -195,13 +195,15 @@ def energy_noise(energy: np.ndarray) -> float:
 
 
 def _accuracy(scene, series: dict, errors: np.ndarray) -> dict:
-    """How far each number may be from the truth: a temperature's own noise (sqrt(2/(3N)) of it); the kinetic
+    """How far each number may be from the truth: a temperature's own noise (sqrt(2/(3N)) of it); the count of
+    collisions per sphere's relative noise (the open contacts are sampled, not tallied); the kinetic
     energy's noise a sample (a drift's between two seeds is larger: 0.18 points at 20,000 spheres, kn = 1e4,
     packing 0.05, the early collisions' doing); the pair-level L's standard errors, the largest of its entries
     and of its columns' sums, and the latter carried over the run's collisions (the standard error of the
     theory's energy drift, at most)."""
     return {"temperature_noise": math.sqrt(2.0 / (3.0 * scene.spheres)),
             "energy_sample_noise": energy_noise(series["energy"]),
+            "collisions_noise": scene.collisions_noise(float(series["collisions"][-1])),
             "pair_level_standard_error": float(np.max(errors[:2])),
             "pair_level_energy_standard_error": float(np.max(errors[2])),
             "pair_level_drift_standard_error": float(np.max(errors[2]) * series["collisions"][-1])}

@@ -7,8 +7,8 @@ contacts open at the draw end first (their springs, loaded before it, lose energ
 gas would), so the series starts from what the gas then has: its energy within a few 1e-3 of the
 asked, its ratio moved on by 0.05 collisions (0.013 for the magic ratio from T_rot = 0). LAMMPS
 reports the translational and rotational kinetic energies at ``samples`` evenly spaced times, and the
-open contacts averaged over each interval (sampled CONTACT_SAMPLES times a contact), from which the
-collisions per sphere are counted.
+open contacts averaged over each interval (sampled once every 1/CONTACT_SAMPLES contact times), from which
+the collisions per sphere are counted.
 """
 
 from __future__ import annotations
@@ -41,10 +41,11 @@ LATTICE_GAP = 0.02
 #: 10^7 collisions meets one beyond about 5.7), and the deepest overlap it may press, over the radius.
 HOTTEST = 6.0
 DEEPEST = 0.25
-#: Open-contact samples per contact time (their time average counts the collisions). One: a contact of t_c
-#: sampled every t_c is seen once, so the count is as good as a tally, and LAMMPS's contact/atom (a
-#: neighbour list of its own at each sample) costs 7% of a 2,000-sphere run (19% at five a contact; bench).
-CONTACT_SAMPLES = 1
+#: Open-contact samples per contact time (their time average counts the collisions). Each sample is a
+#: neighbour-list build of LAMMPS's contact/atom, about ten steps' cost at 20,000 spheres: once a contact time
+#: it cost 11 to 15% of the run (bench), once in three 4 to 6%. A contact is then seen by one sample in three,
+#: so the count carries a noise (``collisions_noise``: 0.4% of 15 collisions per sphere of 20,000 spheres).
+CONTACT_SAMPLES = 1.0 / 3.0
 _GAS = {p.name: p for p in GAS}
 
 
@@ -161,6 +162,15 @@ class Gas:
     def contact_every(self) -> int:
         """Steps between open-contact samples."""
         return max(1, round(self.contact_time / self.dt / CONTACT_SAMPLES)) if self.dt else 1
+
+    def collisions_noise(self, collisions: float) -> float:
+        """The relative standard error of ``collisions`` per sphere counted from the open-contact samples: a
+        contact of the mean contact time t_c, sampled every P, is seen floor(t_c/P) times or once more, so each
+        adds (P/t_c)^2 f (1 - f) to the count's variance (f the fractional part of t_c/P; none when P = t_c)."""
+        seen = self.contact_time / (self.contact_every * self.dt)
+        part = seen - math.floor(seen)
+        contacts = collisions * self.spheres / 2.0
+        return math.sqrt(part * (1.0 - part) / contacts) / seen if contacts > 0 else math.nan
 
     @property
     def settle_steps(self) -> int:
