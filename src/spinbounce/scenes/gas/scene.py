@@ -42,8 +42,8 @@ LATTICE_GAP = 0.02
 HOTTEST = 6.0
 DEEPEST = 0.25
 #: Open-contact samples per contact time (their time average counts the collisions). Each sample is a
-#: neighbour-list build of LAMMPS's contact/atom, about ten steps' cost at 20,000 spheres: once a contact time
-#: it cost 11 to 15% of the run (bench), once in three 4 to 6%. A contact is then seen by one sample in three,
+#: neighbour-list build of LAMMPS's contact/atom, about six steps' cost at 20,000 spheres: once a contact time
+#: it cost 11 to 15% of the run (bench), once in three 1 to 4%. A contact is then seen by one sample in three,
 #: so the count carries a noise (``collisions_noise``: 0.4% of 15 collisions per sphere of 20,000 spheres).
 CONTACT_SAMPLES = 1.0 / 3.0
 _GAS = {p.name: p for p in GAS}
