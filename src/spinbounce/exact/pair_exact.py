@@ -10,7 +10,9 @@ overlap delta = r_a + r_b - |d|, in contact while |d| < r_a + r_b:
 * tangential force on a: F_t = -kt xi - gamma_t u', where the history xi obeys xi' = u'.
   LAMMPS rotates xi back into the tangent plane only when |xi.n| kt > 1e-10 mu F_n; with
   the no-cap mu = 1e12 that never happens (LAMMPS_FACTS section 12), so xi keeps the
-  normal component the turning of n gives it, and F_t carries it;
+  normal component the turning of n gives it, and F_t carries it. A law that projects its
+  history at every step (``projected``: this build's linear_history_classic) keeps it in the
+  tangent plane instead: xi' = u' - (xi.n') n;
 * torque on a and on b: -(r - delta/2) n x F_t, with each sphere's own r (the slip uses
   r, the torque the distance to the middle of the overlap);
 * b feels minus a's force; the history is dropped when the contact ends.
@@ -96,7 +98,7 @@ def normal_force(p, delta: float, v_n: float) -> float:
 def _rates(t, state, n0, p, planar, overlap=None):
     """d(state)/dt; ``overlap``: the overlap where it is known better than from the centres (_tail)."""
     _, v_a, v_b, w_a, w_b, xi = state.reshape(6, 3)
-    n, delta, (lever_a, lever_b), _ = geometry(state, n0, p, planar, overlap)
+    n, delta, (lever_a, lever_b), dist = geometry(state, n0, p, planar, overlap)
     v = v_a - v_b
     v_n = v @ n
     slip = v - v_n * n - cross(p["r_a"] * w_a + p["r_b"] * w_b, n)
@@ -109,6 +111,8 @@ def _rates(t, state, n0, p, planar, overlap=None):
     history = -spring * slip if p["force_history"] else slip
     if p["rescale"] and v_n > 0.0 and delta > 0.0:  # a shrinks: the history by a_new/a_old (a'/a = delta'/2 delta)
         history = history - xi * v_n / (2.0 * delta)
+    if p["projected"] and not planar:  # kept in the tangent plane as n turns (n' = (v - v_n n)/|d|)
+        history = history - (xi @ (v - v_n * n)) / dist * n
     return np.concatenate([v, force / p["m_a"], -force / p["m_b"], lever_a * arm / p["i_a"],
                            lever_b * arm / p["i_b"], history])
 
@@ -134,7 +138,8 @@ def window(tau, m_a, m_b, kn, gamma_n, radial: bool = False):
 
 
 #: The law of :func:`solve` beyond kn, kt and the dashpots: LAMMPS's Hookean force and linear_history.
-HOOKE = {"power": 1.0, "spring_power": 0.0, "force_history": False, "rescale": False, "damping_power": 0.0}
+HOOKE = {"power": 1.0, "spring_power": 0.0, "force_history": False, "rescale": False, "damping_power": 0.0,
+         "projected": False}
 
 
 def pair_scales(p, v_rel, n0, m_star):
@@ -217,25 +222,44 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, g
         d = y[:3]
         return (d @ n0 if planar else np.sqrt(d @ d)) - (r_a + r_b)
 
-    def separated(t, y, *_):
-        return gap(y) + depth
-
-    separated.terminal, separated.direction = True, 1.0
     turned = _turned(n0, p, planar) if not tensile and gamma_n > 0.0 else None
-    # the start (gap 0, closing) is no upward crossing; the end (or the tail's start) is the first one
     bound = float(window(tau, m_a, m_b, kn, gamma_n, radial))
-    solution = solve_ivp(_rates, (0.0, bound), np.concatenate([state, np.zeros(3)]), method="DOP853",
-                         args=(n0, p, planar), max_step=longest, rtol=rtol, atol=atol,
-                         events=[separated] + ([turned] if turned else []))
-    fired = [k for k, times in enumerate(solution.t_events) if len(times)]
-    if solution.status != 1 or not fired:
-        raise RuntimeError(f"the pair did not separate within {CONTACT_TIMES:g} contact times: {solution.message}")
-    end, t_end = solution.y_events[fired[0]][0], solution.t_events[fired[0]][0]
-    if fired[0] == 1:  # the normal force's turn: no force from here
+
+    def follow(depth: float):
+        """The contact until the overlap falls back to ``depth`` (the tail's start), or parts before it ever
+        got that deep (a grazing pair), or the normal force turns: (solution, which event, state, time)."""
+        def separated(t, y, *_):
+            return gap(y) + depth
+
+        def parted(t, y, *_):
+            return gap(y)
+
+        separated.terminal = parted.terminal = True
+        separated.direction = parted.direction = 1.0
+        # the start (gap 0, closing) is no upward crossing; the end (or the tail's start) is the first one
+        events = [separated] + ([parted] if depth > 0.0 else []) + ([turned] if turned else [])
+        solution = solve_ivp(_rates, (0.0, bound), np.concatenate([state, np.zeros(3)]), method="DOP853",
+                             args=(n0, p, planar), max_step=longest, rtol=rtol, atol=atol, events=events)
+        fired = [k for k, times in enumerate(solution.t_events) if len(times)]
+        if solution.status != 1 or not fired:
+            raise RuntimeError(f"the pair did not separate within {CONTACT_TIMES:g} contact times: {solution.message}")
+        k = fired[0]
+        return solution, events[k].__name__, solution.y_events[k][0], solution.t_events[k][0]
+
+    solution, which, end, t_end = follow(depth)
+    if which == "parted":  # never as deep as the tail's start (a grazing pair): again, the tail from half its depth
+        solution, which, end, t_end = follow(TAIL_START * float(np.max(-_gaps(solution.y, n0, planar, r_a + r_b))))
+    if which == "turned":  # the normal force's turn: no force from here
         return outcome(*free_flight(end, t_end, n0, planar, -gap(end)), n0)
-    if radial:
+    if radial and which == "separated":
         end, t_end = _tail(end, t_end, -gap(end), n0, p, planar, rtol, atol, turned)
     return outcome(end, t_end, n0)
+
+
+def _gaps(states: np.ndarray, n0, planar: bool, radsum: float) -> np.ndarray:
+    """|d| - (r_a + r_b) of each column of ``states`` (the integrator's steps)."""
+    d = states[:3]
+    return (n0 @ d if planar else np.sqrt(np.sum(d * d, axis=0))) - radsum
 
 
 def _turned(n0, p, planar):
@@ -264,10 +288,12 @@ def free_flight(state, t: float, n0, planar: bool, delta: float) -> tuple[np.nda
 
 
 #: A law on the contact radius leaves the time for x = sqrt(delta) where its overlap is back to this
-#: fraction of the undamped depth, and ends where x is TAIL_END of its value there: its rates, a'/a
-#: and a^s, are singular in time at the exit and regular in x (the wall's exact.contact_phases does
-#: the same), the overlap there x^2 (not the centres' distance less r_a + r_b, which rounding
-#: blurs by ~1e-16 (r_a + r_b)). What is left beyond, ~ 1e-12 of the speed, is left.
+#: fraction of the undamped depth at its closing speed (a grazing pair that never gets that deep: of the
+#: depth it reaches, integrated again from first touch), and ends where x is TAIL_END of its value
+#: there: its rates, a'/a and a^s, are singular in time at the exit and regular in x (the wall's
+#: exact.contact_phases does the same), the overlap there x^2 (not the centres' distance less
+#: r_a + r_b, which rounding blurs by ~1e-16 (r_a + r_b)). What is left beyond, ~ 1e-12 of the
+#: speed, is left.
 TAIL_START = 0.5
 TAIL_END = 1e-6
 

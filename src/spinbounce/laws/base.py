@@ -253,6 +253,10 @@ class TangentialLaw:
     #: Its cap resets the history by kt alone (this build's classic spring): with a cap its
     #: reference is :mod:`spinbounce.exact.classic`.
     classic_cap: bool = False
+    #: LAMMPS projects its history onto the tangent plane at every step, capped or not (this build's
+    #: classic spring); the others turn it only near the cap (|xi.n| k > 1e-10 mu F_n), which the no-cap
+    #: mu never is. Between two spheres the line of centres turns, so their references differ.
+    turns_history: bool = False
     #: (force, rescale): its history is the elastic force (``/force``), not a displacement; it is
     #: rescaled by a_new/a_old while the contact radius shrinks (``_rescale``).
     variant: tuple[bool, bool] = (False, False)

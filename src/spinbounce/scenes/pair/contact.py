@@ -9,6 +9,7 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
+from ...errors import ResultError
 from ...model.parameters import by_name
 
 __all__ = ["PairContact", "checked"]
@@ -120,8 +121,15 @@ class PairContact:
             solver = pair_capped_batch if capped else pair_batch
             return solver.solve(**columns, **{k: law[k] for k in self.law()}, **cap, planar=planar)
         solver = pair_capped if capped else pair_exact
-        return [solver.solve(**p.vectors(), **p.properties(), **law, **cap, planar=planar, tensile=self.tensile)
-                for p in pairs]
+        return [_solved(solver, p, law | cap, planar, self.tensile) for p in pairs]
+
+
+def _solved(solver, pair, law: dict, planar: bool, tensile: bool):
+    """One pair by a scipy reference; its failure (a contact it cannot end, chattering) a one-line error."""
+    try:
+        return solver.solve(**pair.vectors(), **pair.properties(), **law, planar=planar, tensile=tensile)
+    except RuntimeError as exc:
+        raise ResultError(f"the exact pair reference gives no outcome for this pair: {exc}") from None
 
 
 #: Outcomes kept (oldest dropped first): a probe runs the same pairs at up to five steps, each batch
