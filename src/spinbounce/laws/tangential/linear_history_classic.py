@@ -21,7 +21,8 @@ from __future__ import annotations
 
 from ...declaration import Parameter
 from ...errors import SceneError
-from ..base import NormalLaw
+from ..base import DampingLaw, NormalLaw
+from ..damping import damping_law
 from ..normal import normal_law
 from .linear_history import KT, MU
 from .mindlin import RadiusSpring
@@ -45,6 +46,11 @@ class LinearHistoryClassic(RadiusSpring):
             raise SceneError("mu", values["mu"], f"must be none with tangential = {self.keyword} and normal = "
                                                  f"{normal.keyword}: its cap resets the history by kt alone, "
                                                  "which no reference here follows with a Hertzian force")
+        damping = damping_law(values.get("damping", DampingLaw.default_keyword))
+        if values.get("mu") is not None and damping.radius_power(normal) != 0.0:
+            raise SceneError("mu", values["mu"], f"must be none with tangential = {self.keyword} and damping = "
+                                                 f"{damping.keyword}: its cap resets the history by kt alone, which "
+                                                 "no reference here follows with dashpots on the contact radius")
         if values.get("mu") is not None and values.get("limit_damping"):
             raise SceneError("limit_damping", True, f"is not covered by the capped reference of tangential = "
                                                     f"{self.keyword} (exact.classic): leave it out")
