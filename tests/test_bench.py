@@ -70,6 +70,7 @@ def test_bench_cli_writes_json(tmp_path, capsys):
     waits = report["waits"]
     assert {s["scene"] for s in waits["scenes"]} == set(engine.SCENES)
     assert {s["collisions"] for s in waits["scenes"]} == {60} == {waits["frictionless"]["collisions"]}
+    assert waits["frictionless"]["repeats"] == 2  # the full bench's sweep and engine each the faster of two
     assert waits["gas"]["spheres"] == 1000  # the smallest gas, for a count of 60
     assert waits["references"]["pairs"] == 60 and waits["references"]["capped_per_second"] > 0.0
     assert {m["collisions"] for m in report["models"]["sweeps"]} == {200}
