@@ -70,6 +70,8 @@ def test_the_step_and_the_reports_follow_the_contact_time():
     assert scene.dt == pytest.approx(T_C / 50, rel=1e-14)
     assert scene.nsteps == 10 * scene.interval and scene.interval % scene.contact_every == 0
     assert scene.nsteps * scene.dt >= 5 / scene.rate(1.0)
+    # the intervals are whole contact times: the run overshoots its collisions by less than one a sample
+    assert scene.nsteps - scene.samples * scene.contact_steps < 5 / scene.rate(1.0) / scene.dt
 
 
 @pytest.fixture(scope="module")
@@ -142,11 +144,12 @@ def test_the_sampled_collision_count_is_within_its_noise_of_a_tally(small_magic_
     deck = (folder / "in.lammps").read_text()
     line = next(x for x in deck.splitlines() if x.startswith("fix") and " open " in x)
     every, repeat, interval = (int(x) for x in line.split()[4:7])
-    tally = every // 3  # CONTACT_SAMPLES = 1/3: every is three contact times
+    parameters = small_magic_gas.record["parameters"]
+    tally = round(parameters["contact_time"] / parameters["dt"])  # a contact time: the interval is whole ones
     shutil.copy(folder / "gas.data", tmp_path / "gas.data")
     (tmp_path / "in.lammps").write_text(deck.replace(line, line.replace(f"{every} {repeat} {interval}",
                                                                     f"{tally} {interval // tally} {interval}")))
-    assert interval % tally == 0 and tally * 3 == every
+    assert interval % tally == 0 and every == 3 * tally
     run_deck(tmp_path / "in.lammps")
     sampled, tallied = (np.loadtxt(f / "gas.contacts", ndmin=2)[:, 1].sum() for f in (folder, tmp_path))
     noise = small_magic_gas.record["accuracy"]["collisions_noise"]

@@ -182,10 +182,18 @@ def test_the_classic_springs_pair_reference_keeps_its_history_in_the_tangent_pla
         assert difference > apart if apart else difference < 1e-12
 
 
-def test_a_capped_classic_spring_between_two_spheres_is_refused_with_the_reason():
+def test_a_capped_classic_spring_between_two_spheres_or_with_radial_dashpots_is_refused_with_the_reason():
     model = ContactModel(m=1.0, r=0.5, mu=0.3, **UNCAPPED["hooke linear_history_classic"])
-    with pytest.raises(SceneError, match="mu = 0.3: must be none with tangential = linear_history_classic and scene"):
+    with pytest.raises(SceneError, match="mu = 0.3: must be none with tangential = linear_history_classic between"):
         pair_contact(model, B)
+    # against a wall it runs, with constant dashpots; with dashpots on the contact radius the classic cap's
+    # reference (constant dashpots) is refused: LAMMPS gave v_n' = 1.094 where it said 0.316
+    assert ContactModel(m=1.0, r=0.5, mu=0.3, damping="tsuji", e_n=0.8, kn=50.0, kt=20.0,
+                        tangential="linear_history_classic").mu == 0.3
+    with pytest.raises(SceneError, match="mu = 0.3: must be none with tangential = linear_history_classic and "
+                                         "damping = viscoelastic"):
+        ContactModel(m=1.0, r=0.5, mu=0.3, damping="viscoelastic", gamma_n_per_mass_radius=2.0, kn=50.0, kt=20.0,
+                     tangential="linear_history_classic")
 
 
 #: Grazing pairs (closing slowly, sliding past fast) on the contact radius, each as a, its spins and b's state
@@ -208,8 +216,8 @@ def test_a_grazing_pair_shallower_than_the_tail_s_start_ends_when_the_spheres_pa
     """A law on the contact radius ends in x = sqrt(delta) from half its undamped depth at the closing speed;
     these grazing pairs never get that deep. The reference followed the first past its end, the spring
     pulling at a negative overlap, and set LAMMPS 0.14 away; the second raised. Both now end where the
-    spheres part (within half a contact time), the tail started from half the depth reached: LAMMPS at
-    the default step within 1e-4."""
+    spheres part (0.47 and 0.43 of Hooke's contact time), the tail started from half the depth reached:
+    LAMMPS at the default step within 1e-4."""
     law, a, b_state = GRAZING[name]
     model = ContactModel(m=1.0, r=0.5, **law)
     b = Sphere(1.0, 0.5, 0.4)

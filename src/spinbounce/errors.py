@@ -55,4 +55,5 @@ class LammpsError(RuntimeError):
 
 
 class ResultError(RuntimeError):
-    """LAMMPS finished but its output cannot be trusted (NaN, lost spheres, contact not over)."""
+    """LAMMPS finished but its output cannot be trusted (NaN, lost spheres, contact not over), or the exact
+    reference it is judged against gives no outcome."""

@@ -241,19 +241,23 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, g
         solution = solve_ivp(_rates, (0.0, bound), np.concatenate([state, np.zeros(3)]), method="DOP853",
                              args=(n0, p, planar), max_step=longest, rtol=rtol, atol=atol, events=events)
         fired = [k for k, times in enumerate(solution.t_events) if len(times)]
+        if solution.status == -1 and depth > 0.0:  # (a grazing pair's end, its a'/a singular in time)
+            return solution, "failed", None, None
+        if solution.status == -1:
+            raise RuntimeError(f"the pair's integration failed: {solution.message}")
         if solution.status != 1 or not fired:
-            if depth > 0.0 and solution.y.shape[1] > 1:  # (a grazing pair's end, its a'/a singular in time)
-                return solution, "failed", None, None
-            raise RuntimeError(f"the pair did not separate within {CONTACT_TIMES:g} contact times: {solution.message}")
+            raise RuntimeError(f"the pair did not separate within {CONTACT_TIMES:g} contact times")
         k = fired[0]
         return solution, events[k].__name__, solution.y_events[k][0], solution.t_events[k][0]
 
     solution, which, end, t_end = follow(depth)
     if which in ("parted", "failed"):  # never as deep as the tail's start (a grazing pair): the tail from half
-        reached = float(np.max(-_gaps(solution.y, n0, planar, r_a + r_b)))  # the depth it reached, if any
-        solution, which, end, t_end = follow(TAIL_START * reached if reached > 0.0 else 0.0)
+        reached = float(np.max(-_gaps(solution.y, n0, planar, r_a + r_b)))  # the depth it reached
+        if not reached > 0.0:
+            raise RuntimeError(f"the pair's integration failed at first touch: {solution.message}")
+        solution, which, end, t_end = follow(TAIL_START * reached)
         if which == "failed":
-            raise RuntimeError(f"the pair did not separate within {CONTACT_TIMES:g} contact times: {solution.message}")
+            raise RuntimeError(f"the pair's integration failed before it parted: {solution.message}")
     if which == "turned":  # the normal force's turn: no force from here
         return outcome(*free_flight(end, t_end, n0, planar, -gap(end)), n0)
     if radial and which == "separated":

@@ -264,14 +264,17 @@ def _sweep_process(*args) -> float:
 
 def parallel_efficiency(n: int = 100_000, workers: int = 2, seed: int = 0) -> dict:
     """Collisions per second per core of a frictionless ``spinbounce sweep --n N`` (a process of its
-    own, its default chunks, as a user runs it) at one worker and at ``workers``. The same chunks at
-    both: one chunk per worker would set a run of N spheres beside runs of N/workers, which LAMMPS
-    runs at another rate per sphere (its arrays outgrow the cache: 100,000-sphere chunks run 13%
-    slower than the default 25,000)."""
+    own) at one worker and at ``workers``, on the same chunks at both: the default ones (as a user's
+    sweep runs them), or N/workers where that is fewer (each worker has one). One chunk per worker at
+    both would set a run of N spheres beside runs of N/workers, which LAMMPS runs at another rate per
+    sphere (its arrays outgrow the cache: 100,000-sphere chunks run 13% slower than 25,000)."""
+    from ..sweeps import DEFAULT_CHUNK
+
     rates, walls = {}, {}
+    chunk = min(DEFAULT_CHUNK, max(1, -(-n // workers)))
     with tempfile.TemporaryDirectory(prefix="spinbounce-bench-cores-") as folder:
         for count in (1, workers):
-            walls[count] = _sweep_process("--n", n, "--seed", seed, "--workers", count,
+            walls[count] = _sweep_process("--n", n, "--seed", seed, "--chunk-size", chunk, "--workers", count,
                                           "--out", Path(folder) / f"w{count}")
             rates[count] = n / walls[count] / count
     return {"workers": workers, "per_core_at_one": rates[1], "per_core_at_all": rates[workers],

@@ -5,9 +5,10 @@ This build sets its ``contact_radius_flag``: the spring is kt a on the slip hist
 sqrt(R delta), the equations of ``mindlin`` with k_t = kt (measured: LAMMPS's outcomes of the
 two are bit-identical against a wall without a cap). Its cap differs: it resets the history by kt
 alone, not kt a (``exact.classic``'s sawtooth and slide). So against a wall without a cap its
-reference is :mod:`spinbounce.exact.mindlin`, with a cap :mod:`spinbounce.exact.classic` (Hookean
-force only; with the Hertzian force and a cap it is refused). ``--wall classic`` is the same
-sub-model in its fixed assembly (``hooke/history``).
+reference is :mod:`spinbounce.exact.mindlin`, with a cap :mod:`spinbounce.exact.classic` (Hooke's
+force and constant dashpots only; with the Hertzian force or dashpots on the contact radius and a
+cap it is refused). ``--wall classic`` is the same sub-model in its fixed assembly
+(``hooke/history``).
 
 Between two spheres it differs from ``mindlin`` without a cap too: it projects its history onto the
 tangent plane at every step (:attr:`turns_history`), where ``mindlin`` under the no-cap mu never

@@ -43,8 +43,9 @@ HOTTEST = 6.0
 DEEPEST = 0.25
 #: Open-contact samples per contact time (their time average counts the collisions). Each sample is a
 #: neighbour-list build of LAMMPS's contact/atom, about six steps' cost at 20,000 spheres: once a contact time
-#: it cost 11 to 15% of the run (bench), once in three 1 to 4%. A contact is then seen by one sample in three,
-#: so the count carries a noise (``collisions_noise``: 0.4% of 15 collisions per sphere of 20,000 spheres).
+#: it cost 11 to 15% of the run (bench), once in three 1 to 4%. A contact is then seen with a chance of one in
+#: three, so the count carries a noise (``collisions_noise``: 0.4% of 15 collisions per sphere of 20,000 spheres).
+#: The interval is whole contact times, so the period is the nearest that splits it (t_c when it is 3 t_c).
 CONTACT_SAMPLES = 1.0 / 3.0
 _GAS = {p.name: p for p in GAS}
 
@@ -102,9 +103,10 @@ class Gas:
             raise SceneError("dt", dt, f"is too large for the stiffness: a contact lasts {tc:.6g}, and a gas takes at "
                              f"least {FEWEST_STEPS_PER_CONTACT} steps a contact (dt <= {coarsest:.6g})")
         set_(self, "dt", float(dt))
-        every = self.contact_every
+        every = self.contact_steps
         steps = math.ceil(self.duration / dt)
-        # at least two contact samples an interval: with one, LAMMPS's fix ave/time also reports step 0
+        # whole contact times, at least two: the open contacts are sampled at least twice an interval (with
+        # one, LAMMPS's fix ave/time also reports step 0)
         interval = max(2 * every, math.ceil(steps / self.samples / every) * every)
         set_(self, "interval", interval)
         set_(self, "nsteps", interval * self.samples)
@@ -159,9 +161,17 @@ class Gas:
         return self.collisions / self.rate(self.t_tr)
 
     @property
+    def contact_steps(self) -> int:
+        """A contact time in whole steps."""
+        return max(1, round(self.contact_time / self.dt)) if self.dt else 1
+
+    @property
     def contact_every(self) -> int:
-        """Steps between open-contact samples."""
-        return max(1, round(self.contact_time / self.dt / CONTACT_SAMPLES)) if self.dt else 1
+        """Steps between open-contact samples: the interval (whole contact times) split into the number of
+        samples, at least two, nearest to one every 1/CONTACT_SAMPLES contact times."""
+        whole = self.interval // self.contact_steps
+        count = min((k for k in range(2, whole + 1) if whole % k == 0), key=lambda k: abs(k - whole * CONTACT_SAMPLES))
+        return self.interval // count
 
     def collisions_noise(self, collisions: float) -> float:
         """The relative standard error of ``collisions`` per sphere counted from the open-contact samples: a

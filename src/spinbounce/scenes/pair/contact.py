@@ -109,6 +109,12 @@ class PairContact:
         return solver.solvable(self.reference_law(), self.tensile)
 
     def _solve_many(self, pairs: list, planar: bool) -> list:
+        try:
+            return self._references(pairs, planar)
+        except RuntimeError as exc:  # a scipy reference's failure (a contact it cannot end, chattering)
+            raise ResultError(f"the exact pair reference gives no outcome: {exc}") from None
+
+    def _references(self, pairs: list, planar: bool) -> list:
         # the references (compiled, or scipy's) are loaded when a pair is solved: a wall's run never is
         from ...exact import pair_batch, pair_capped, pair_capped_batch, pair_exact
 
@@ -121,15 +127,15 @@ class PairContact:
             solver = pair_capped_batch if capped else pair_batch
             return solver.solve(**columns, **{k: law[k] for k in self.law()}, **cap, planar=planar)
         solver = pair_capped if capped else pair_exact
-        return [_solved(solver, p, law | cap, planar, self.tensile) for p in pairs]
+        return [_solved(solver, k, p, law | cap, planar, self.tensile) for k, p in enumerate(pairs)]
 
 
-def _solved(solver, pair, law: dict, planar: bool, tensile: bool):
-    """One pair by a scipy reference; its failure (a contact it cannot end, chattering) a one-line error."""
+def _solved(solver, k: int, pair, law: dict, planar: bool, tensile: bool):
+    """Pair ``k`` of a batch by a scipy reference; its failure names the pair."""
     try:
         return solver.solve(**pair.vectors(), **pair.properties(), **law, planar=planar, tensile=tensile)
     except RuntimeError as exc:
-        raise ResultError(f"the exact pair reference gives no outcome for this pair: {exc}") from None
+        raise RuntimeError(f"the batch's pair {k} (row {k} of those solved together): {exc}") from None
 
 
 #: Outcomes kept (oldest dropped first): a probe runs the same pairs at up to five steps, each batch

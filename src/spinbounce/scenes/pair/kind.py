@@ -65,8 +65,9 @@ def pair_contact(model: ContactModel, b: Sphere) -> PairContact:
         raise SceneError("wall", model.wall, "must be granular with scene = pair (there is no wall; the classic "
                                              "pair style is not covered by the pair's references)")
     if model.mu is not None and model.tangential_law.classic_cap:
-        raise SceneError("mu", model.mu, f"must be none with tangential = {model.tangential} and scene = pair: its "
-                                         "cap resets the history by kt alone, which no pair reference here follows")
+        raise SceneError("mu", model.mu, f"must be none with tangential = {model.tangential} between two spheres "
+                                         "(scene = pair, a gas): its cap resets the history by kt alone, which no "
+                                         "pair reference here follows")
     damping = model.damping_law
     gamma_n, gamma_t = damping.contact_dashpots(model, model.m * b.m / (model.m + b.m))
     own = tuple((p.name, getattr(model, p.name)) for p in damping.coefficients) if damping.derived else ()
