@@ -66,8 +66,9 @@ def run(args) -> int:
                            "record": str(report.record_path), "parameters": r["parameters"],
                            "lammps_version": r["lammps_version"]}))
     s = r["lammps"]
-    print(f"gas of {r['parameters']['spheres']} spheres: {s['collisions_per_sphere']:.3g} collisions per sphere, "
-          f"late T_rot/T_tr {s['late_ratio']:.4f}, energy drift {100 * s['energy_drift']:+.3f}%")
+    print(f"gas of {r['parameters']['spheres']} spheres: {s['collisions_per_sphere']:.3g} collisions per sphere "
+          f"(counted to {100 * r['accuracy']['collisions_noise']:.1f}%), late T_rot/T_tr {s['late_ratio']:.4f}, "
+          f"energy drift {100 * s['energy_drift']:+.3f}%")
     for name, t in r["theories"].items():
         print(f"  theory {name:<12} largest |ratio difference| {t['max_ratio_difference']:.4f}, steady ratio "
               f"{t['steady_ratio']:.4f}, energy drift {100 * t['energy_drift']['theory']:+.3f}%")
