@@ -30,7 +30,7 @@ from ...model.stability import overlap_stretch
 from ...model.timestep import (MAX_STEPS, align_mid_step, check_steps, mode_rate, second_order_dt, steps_per_contact,
                                steps_through)
 from ...lammps.decks import wall_parameters
-from ..jump import beyond_reach, near_the_jump, warn_near_the_jump
+from ..jump import beyond_reach, near_the_jump, slow_start, warn_slow_start
 from .time_scale import dashpot, scaled_contact_time
 
 __all__ = ["Collision", "row_states", "HERTZ_STEPS_PER_HALF_PERIOD", "STATE", "STATE_3D", "STATE_ARGS"]
@@ -135,7 +135,7 @@ class Collision:
             raise SceneError("wall", m.wall, f"the {m.wall} wall's theory is in the paper's plane: give no v_s, "
                                              f"omega_s or omega_n with wall = {m.wall}")
         if self.dt is None:  # once, where the default step is chosen (a probe's scenes carry their dt)
-            warn_near_the_jump(self.model, self.near_the_jump())
+            warn_slow_start(self.model, slow_start(self.model, self.initial))
         away = np.flatnonzero(vn >= 0.0)
         if away.size:
             i = int(away[0])

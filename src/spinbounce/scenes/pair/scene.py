@@ -31,7 +31,7 @@ from ...model.contact import ContactModel
 from ...model.parameters import SceneError
 from ...model.stability import overlap_stretch
 from ...model.timestep import MAX_STEPS, check_steps, steps_per_contact, steps_through
-from ..jump import beyond_reach, near_the_jump, warn_near_the_jump
+from ..jump import beyond_reach, near_the_jump, slow_start, warn_slow_start
 from .contact import PairContact
 from .pairs import Pair, Sphere, slip_speeds, time_scaled  # noqa: F401 (time_scaled: exported)
 from .deck import PAIR_NO_CAP_MU, render_pairs
@@ -96,7 +96,7 @@ class PairBatch:
                                  f"{reach:.6g} >= the smaller radius {model.r:g}")
         object.__setattr__(self, "dt", dt)
         if self.default_step:
-            warn_near_the_jump(self.walls[0], self.near_the_jump())
+            warn_slow_start(self.walls[0], self.slow_start())
         else:  # a given step: refused if no run may take it
             check_steps(self.nsteps, "dt", dt, "to end the longest contact", spheres=2 * len(pairs))
 
@@ -271,8 +271,13 @@ class PairBatch:
 
     def step_limit(self, t_contact: float) -> int:
         """The fine rule's steps per contact: a probe that needs as many keeps the fine rule; with a pair
-        near its law's jump (:meth:`near_the_jump`), where the rule falls short, a quarter of a run's limit."""
-        return MAX_STEPS // 4 if np.any(self.near_the_jump()) else steps_per_contact(t_contact, self.dt)
+        LAMMPS converges to slowly (:meth:`slow_start`), where the rule falls short, a quarter of a run's limit."""
+        return MAX_STEPS // 4 if np.any(self.slow_start()) else steps_per_contact(t_contact, self.dt)
+
+    def slow_start(self) -> np.ndarray:
+        """Per pair, whether LAMMPS converges to it slowly from its first step (:func:`spinbounce.scenes.jump.
+        slow_start` of its equivalent wall at its own v_n and slip speed)."""
+        return self._as_wall(slow_start)
 
     def near_the_jump(self) -> np.ndarray:
         """Per pair, whether its law's outcome jumps just below it (:func:`spinbounce.scenes.jump.near_the_jump`
