@@ -11,6 +11,7 @@ on the contact radius pushes along the slip once the first trial force exceeds t
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -175,3 +176,17 @@ def test_a_3d_capped_mindlin_state_is_answered():
                                                    [-1.0, 0.5, 0.0, 0.4, -0.1, 0.2]]))
     assert flat[:3] == pytest.approx(choose.predict(model, np.array([[-1.0, 0.5, 0.0]]))[0], abs=1e-9)
     assert math.hypot(turned[3], turned[4]) > 0.0 and turned[5] == pytest.approx(0.2, abs=1e-15)
+
+
+def test_a_wall_state_above_the_cap_of_a_law_whose_dashpots_grow_as_its_spring_is_warned_of_as_it_is_run():
+    # viscoelastic beside mindlin: LAMMPS converges as sqrt(dt) above the cap (docs: Hertz-Mindlin). A single state
+    # is probed; a batch of several speeds keeps its rule (not time-aligned), and the warning says which
+    model = ContactModel(m=1.0, r=0.5, mu=0.3, kn=12.9, damping="viscoelastic", gamma_n_per_mass_radius=4.2, x_t=0.8,
+                         tangential="mindlin", mindlin_kt=15.6)
+    with pytest.warns(PhysicsWarning, match="the step is probed"):
+        assert Collision(model, v_n=np.array([-0.5]), v_t=np.array([2.0]), omega=np.zeros(1)).needs_probe()
+    with pytest.warns(PhysicsWarning, match="keeps its rule's step"):
+        assert not Collision(model, v_n=np.array([-0.5, -1.0]), v_t=np.full(2, 2.0), omega=np.zeros(2)).needs_probe()
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", PhysicsWarning)  # below the cap: nothing to warn of
+        Collision(model, v_n=np.array([-0.5]), v_t=np.array([0.1]), omega=np.zeros(1))

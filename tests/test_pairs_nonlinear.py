@@ -23,7 +23,6 @@ from spinbounce.lammps.decks import wall_frame
 from spinbounce.model.contact import ContactModel
 from spinbounce.pipeline import run_scene
 from spinbounce.scenes.pair.kind import pair_contact, pairs_from_states
-from spinbounce.scenes.pair import scene as pair_scene
 from spinbounce.scenes.pair.scene import PairBatch, Sphere
 
 #: One law of each shape: the Hertzian force and each Mindlin history, every damping model's
@@ -301,23 +300,22 @@ def test_a_pair_whose_dashpots_grow_as_its_spring_meets_the_accuracy_above_its_c
 
 
 @pytest.mark.lammps
-def test_a_capped_pair_the_fine_rule_leaves_short_is_probed_past_it(tmp_path, monkeypatch):
+def test_a_capped_pair_the_fine_rule_leaves_short_is_probed_past_it(tmp_path):
     # a helper's pair: at the fine rule 1.04e-4 (first order, as its probes measured), probed past the rule
-    # 6.4e-5 at 1.7 times its steps; with the probe held to the rule, it falls back to the rule and misses
+    # 6.4e-5 at 1.7 times its steps; with the probe held to the rule (a sweep's chunk), it falls back to the rule and misses
     model = ContactModel(m=1.0, r=0.5, mu=0.877, kn=11.906, damping="tsuji", e_n=0.6875, x_t=0.841,
                          tangential="mindlin/force", mindlin_kt=20.29)
     b = Sphere(1.0, 0.5, 0.4)
 
-    def run(folder):
+    def run(folder, **reach):
         batch = PairBatch(pairs_from_states(model, b, [[-0.578, -0.841, -0.715]], [0.157, -0.358, -0.917]),
-                          pair_contact(model, b))
+                          pair_contact(model, b), **reach)
         result = run_scene(batch, tmp_path / folder, record=False)
         return result.table, result.scene.nsteps
 
     (table, steps) = run("probed")
     assert table["status"][0] == "ok" and table["error"][0] <= 1e-4
-    monkeypatch.setattr(pair_scene, "RULE_REACH", 1)
-    held, held_steps = run("held")
+    held, held_steps = run("held", rule_reach=1)  # as a sweep's chunk
     assert held["error"][0] > 1e-4 and held_steps < steps
 
 

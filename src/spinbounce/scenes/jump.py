@@ -42,9 +42,7 @@ def _ratio(model, initial: np.ndarray, law: Law) -> np.ndarray | None:
 def near_the_jump(model, initial: np.ndarray) -> np.ndarray:
     """Per initial state (rows of (v_n, v_t, r omega[, v_s, r omega_s, r omega_n])), whether its
     first trial force is between 1 and NEAR_THE_JUMP times the cap, under a law that jumps there."""
-    law = Law.of(model)
-    ratio = _ratio(model, initial, law) if law.first_touch_runaway else None
-    return np.zeros(len(initial), dtype=bool) if ratio is None else (ratio > 1.0) & (ratio < NEAR_THE_JUMP)
+    return slow_start(model, initial) & Law.of(model).first_touch_runaway
 
 
 def slow_start(model, initial: np.ndarray) -> np.ndarray:
@@ -53,10 +51,10 @@ def slow_start(model, initial: np.ndarray) -> np.ndarray:
     (no jump, but LAMMPS's first step sets the history on the cap and it converges as sqrt(dt) from there:
     :attr:`.wall_law.Law.first_touch_on_cap`). Such states are warned of and probed finer."""
     law = Law.of(model)
-    if law.first_touch_runaway:
-        return near_the_jump(model, initial)
     ratio = _ratio(model, initial, law)
-    return np.zeros(len(initial), dtype=bool) if ratio is None else ratio > 1.0
+    if ratio is None:
+        return np.zeros(len(initial), dtype=bool)
+    return (ratio > 1.0) & (ratio < (NEAR_THE_JUMP if law.first_touch_runaway else np.inf))
 
 
 def beyond_reach(model, initial: np.ndarray) -> np.ndarray:
@@ -71,9 +69,9 @@ def beyond_reach(model, initial: np.ndarray) -> np.ndarray:
     return grazing if ratio is None else grazing | ((ratio > 1.0) & (ratio < BEYOND_REACH))
 
 
-def warn_slow_start(model, slow: np.ndarray) -> None:
+def warn_slow_start(model, slow: np.ndarray, probed: bool = True) -> None:
     """One PhysicsWarning naming how many states LAMMPS converges to slowly (:func:`slow_start`), why,
-    and what a run does with them."""
+    and what a run does with them (``probed``: whether the scene probes its step)."""
     rows = np.flatnonzero(slow)
     if not rows.size:
         return
@@ -87,5 +85,6 @@ def warn_slow_start(model, slow: np.ndarray) -> None:
         why = (f"above the cap mu |v_n|: with tangential = {model.tangential} and dashpots that grow as its spring "
                f"(damping = {model.damping}) LAMMPS's first step sets the history on the cap and converges from "
                "there as sqrt(dt)")
-    warnings.warn(first + why + " (docs: Hertz-Mindlin, with a Coulomb cap): the step is probed and each row's "
-                  "error reported", PhysicsWarning, stacklevel=4)
+    does = ("the step is probed and each row's error reported" if probed else "this batch of several speeds keeps "
+            "its rule's step, each row's error reported (a finer one: --tolerance, or a dt of your own)")
+    warnings.warn(first + why + " (docs: Hertz-Mindlin, with a Coulomb cap): " + does, PhysicsWarning, stacklevel=4)

@@ -87,7 +87,7 @@ def pair_chunk(model: ContactModel, b: Sphere, states: np.ndarray, dt: float | N
     pairs = pairs_from_states(model, b, states)
     contact = pair_contact(model, b)
     probe = None if probe_states is None else PairBatch(tuple(pairs_from_states(model, b, probe_states)), contact)
-    given = PairBatch(pairs, contact, dt)
+    given = PairBatch(pairs, contact, dt, rule_reach=1)  # rows beyond the accuracy run again below
     folder = Path(run_dir)
     ladder = _ladder(given, probe, folder) if dt is None and applies(given) else None
     if ladder is None:  # one probed run

@@ -135,7 +135,7 @@ class Collision:
             raise SceneError("wall", m.wall, f"the {m.wall} wall's theory is in the paper's plane: give no v_s, "
                                              f"omega_s or omega_n with wall = {m.wall}")
         if self.dt is None:  # once, where the default step is chosen (a probe's scenes carry their dt)
-            warn_slow_start(self.model, slow_start(self.model, self.initial))
+            warn_slow_start(self.model, slow_start(self.model, self.initial), probed=self.needs_probe())
         away = np.flatnonzero(vn >= 0.0)
         if away.size:
             i = int(away[0])

@@ -66,12 +66,15 @@ class PairBatch:
     per half-period of the fastest mode of any pair (``default_step``: a run probes for a
     coarser one, :func:`spinbounce.stepping.tune`); a given dt must keep every pair stable.
     ``aligned``: each pair runs at its own time scale (:attr:`time_scales`; a damped batch's
-    from a few classes), what the probed step assumes; off, every pair runs at ``dt``."""
+    from a few classes), what the probed step assumes; off, every pair runs at ``dt``. ``rule_reach``: how
+    many times its fine rule's steps a probe may take it to (:meth:`step_limit`; a sweep's chunk, whose rows
+    beyond the accuracy run again alone and whose job was sized at the rule, 1)."""
 
     pairs: tuple = (Pair(),)
     contact: PairContact = field(default_factory=PairContact)
     dt: float | None = None
     aligned: bool = False
+    rule_reach: int = RULE_REACH
     default_step: bool = field(init=False)
 
     def __post_init__(self):
@@ -274,10 +277,11 @@ class PairBatch:
         return START_STEPS
 
     def step_limit(self, t_contact: float) -> int:
-        """RULE_REACH times the fine rule's steps per contact: a probe that needs as many keeps the fine rule; with
-        a pair LAMMPS converges to slowly (:meth:`slow_start`), where the rule falls short, a quarter of a run's
-        limit."""
-        return MAX_STEPS // 4 if np.any(self.slow_start()) else RULE_REACH * steps_per_contact(t_contact, self.dt)
+        """``rule_reach`` times the fine rule's steps per contact: a probe that needs as many keeps the fine rule;
+        with a pair LAMMPS converges to slowly (:meth:`slow_start`), where the rule falls short, a quarter of a
+        run's limit."""
+        reach = self.rule_reach * steps_per_contact(t_contact, self.dt)
+        return MAX_STEPS // 4 if np.any(self.slow_start()) else reach
 
     def slow_start(self) -> np.ndarray:
         """Per pair, whether LAMMPS converges to it slowly from its first step (:func:`spinbounce.scenes.jump.
