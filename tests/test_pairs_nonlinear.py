@@ -299,6 +299,22 @@ def test_a_pair_whose_dashpots_grow_as_its_spring_meets_the_accuracy_above_its_c
     assert table["status"][0] == "ok" and table["error"][0] <= 1e-4
 
 
+@pytest.mark.slow
+@pytest.mark.lammps
+def test_a_pair_whose_probe_asks_just_past_its_limit_is_run_at_the_limit(tmp_path):
+    # a helper's pair (viscoelastic beside mindlin, above the cap): LAMMPS converges as sqrt(dt), and the probe
+    # asked for 27M steps a contact against its limit of 25M, so it fell back to the rule: 1.3e-3 at 8,040
+    # steps. Measured at the limit (stepping.LIMIT_REACH): 5.1e-5 at 26M steps, 23 s
+    model = ContactModel(m=1.0, r=0.5, mu=0.2992, kn=72.37, damping="viscoelastic", gamma_n_per_mass_radius=6.945,
+                         x_t=0.4826, tangential="mindlin", mindlin_kt=152.1)
+    b = Sphere(1.0, 0.5, 0.4)
+    with pytest.warns(PhysicsWarning, match="sqrt"):
+        batch = PairBatch(pairs_from_states(model, b, [[-1.0341, 0.8882, -0.6387]], [-0.2, 0.0, 0.0]),
+                          pair_contact(model, b))
+    result = run_scene(batch, tmp_path, record=False)
+    assert result.table["status"][0] == "ok" and result.table["error"][0] <= 1e-4
+
+
 @pytest.mark.lammps
 def test_a_capped_pair_the_fine_rule_leaves_short_is_probed_past_it(tmp_path):
     # a helper's pair: at the fine rule 1.04e-4 (first order, as its probes measured), probed past the rule

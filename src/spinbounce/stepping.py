@@ -41,6 +41,10 @@ MAX_CHECKS = 4
 CHECK_SLACK = 1.5
 ORDER_FLOOR = 0.5
 MAX_GROWTH = 64
+#: An extrapolation past the scene's limit by at most this factor is checked with one run at the limit:
+#: its floor on the order and SAFETY make it ask for more than the target needs (a pair that converges
+#: as sqrt(dt) asked for 27M steps a contact against a limit of 25M, and 8M met 1e-4).
+LIMIT_REACH = 4
 #: The method recorded when a probe could not do better than the scene's fine rule.
 FALLBACK = "the rule (the probe could not reach the target coarser, or within a run's steps)"
 
@@ -83,7 +87,7 @@ def tune(scene, out: Path, run: Callable, probe_states=None, target: float = ACC
                           "(a contact LAMMPS cannot resolve: give a dt of your own, each row's error reported)")
     try:
         steps, order, predicted = converge(*pair, target, probe, limit=limit)
-        if steps >= limit or predicted > target * SAFETY * CHECK_SLACK:  # the scene's fine rule, if it has one
+        if steps > limit or predicted > target * SAFETY * CHECK_SLACK:  # the scene's fine rule, if it has one
             fine = scene.fallback()
             if fine is not None:
                 return fine, StepChoice(fine.dt, FALLBACK, target, order, tuple(errors), None)
@@ -112,8 +116,9 @@ def converge(coarse: tuple[int, float], fine: tuple[int, float], target: float, 
     Nothing to resolve (the finer probe at rounding): the coarse steps. Else the steps
     :func:`extrapolate` gives; a rough convergence (a cap's switches, a contact-radius spring)
     can miss, so ``measure(steps)`` checks the chosen step on the probe itself, going on from
-    the last two points while it misses, at most MAX_CHECKS times and below ``limit`` steps;
-    a step coarser than the finer probe that misses gives way to the finer probe's.
+    the last two points while it misses, at most MAX_CHECKS times and up to ``limit`` steps (a
+    step asked for past it by at most LIMIT_REACH is measured at the limit); a step coarser than
+    the finer probe that misses gives way to the finer probe's.
     """
     if fine[1] <= ROUNDING:
         return coarse[0], None, fine[1]
@@ -121,7 +126,9 @@ def converge(coarse: tuple[int, float], fine: tuple[int, float], target: float, 
     predicted = fine[1] * (fine[0] / steps) ** order
     last, bound = fine, target * SAFETY * CHECK_SLACK
     for _ in range(MAX_CHECKS):
-        if steps == last[0] or steps >= limit:
+        if steps >= limit and steps <= LIMIT_REACH * limit and last[0] < limit:
+            steps = int(limit)  # a close call: the limit itself is measured
+        if steps == last[0] or steps > limit:
             break
         measured = measure(steps)
         if measured <= bound:
