@@ -28,7 +28,7 @@ NEAR_THE_JUMP = 2.0
 BEYOND_REACH = 1.2
 
 
-def _ratio(model, initial: np.ndarray, law: Law) -> np.ndarray | None:
+def _ratio(initial: np.ndarray, law: Law) -> np.ndarray | None:
     """Each state's first trial force over the cap, or None under a law that never starts on its cap
     (:attr:`.wall_law.Law.first_touch_on_cap`)."""
     if not law.first_touch_on_cap:
@@ -51,7 +51,7 @@ def slow_start(model, initial: np.ndarray) -> np.ndarray:
     (no jump, but LAMMPS's first step sets the history on the cap and it converges as sqrt(dt) from there:
     :attr:`.wall_law.Law.first_touch_on_cap`). Such states are warned of and probed finer."""
     law = Law.of(model)
-    ratio = _ratio(model, initial, law)
+    ratio = _ratio(initial, law)
     if ratio is None:
         return np.zeros(len(initial), dtype=bool)
     return (ratio > 1.0) & (ratio < (NEAR_THE_JUMP if law.first_touch_runaway else np.inf))
@@ -65,7 +65,7 @@ def beyond_reach(model, initial: np.ndarray) -> np.ndarray:
 
     grazing = model.max_overlap(np.abs(initial[:, 0])) < RESOLVABLE_OVERLAP_ULPS * np.spacing(model.r)
     law = Law.of(model)
-    ratio = _ratio(model, initial, law) if law.first_touch_runaway else None
+    ratio = _ratio(initial, law) if law.first_touch_runaway else None
     return grazing if ratio is None else grazing | ((ratio > 1.0) & (ratio < BEYOND_REACH))
 
 
