@@ -113,7 +113,7 @@ def _print_models(n: int, seed: int, n_pairs: int) -> dict:
     from ..studies.pairs import cost_lines, pair_to_wall_cost
     from ..studies.accuracy import default_step_table
     from ..studies.solver_speed import measure_throughput
-    from ..studies.speed import chunk_jobs, measure_models, parallel_efficiency
+    from ..studies.speed import chunk_jobs, core_line, measure_models, parallel_efficiency
 
     models = measure_models(n=n, seed=seed)["models"]
     print(f"{'sweep (one core)':<18}{'collisions':>11}{'coll/s':>10}{'time/coll vs frictionless':>27}"
@@ -128,8 +128,7 @@ def _print_models(n: int, seed: int, n_pairs: int) -> dict:
     solvers = {"2-D": measure_throughput(n=100_000), "3-D": measure_throughput(n=100_000, three_d=True)}
     print("exact Coulomb solver alone: " + ", ".join(f"{k} {v:,.0f} collisions/s" for k, v in solvers.items()))
     cores = parallel_efficiency(n=n, workers=os.cpu_count() or 1, seed=seed)
-    print(f"frictionless sweep per core: {cores['per_core_at_one']:,.0f}/s at 1 worker, "
-          f"{cores['per_core_at_all']:,.0f}/s at {cores['workers']} ({cores['efficiency']:.0%})")
+    print("frictionless sweep, " + core_line(cores))
     jobs = chunk_jobs(n=min(n, 20_000), seed=seed)
     for j in jobs:
         print(f"chunk job ({j['model']}, {j['collisions']} collisions): estimated {j['estimated_seconds']:.2f} s, "

@@ -29,7 +29,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .. import __version__
-from ..records import write_atomic
+from ..records import arrow_table, write_atomic
 from .runner import LIBRARY_MARKER
 
 if TYPE_CHECKING:
@@ -73,7 +73,7 @@ def table(columns: list[np.ndarray]) -> str:
     import pyarrow as pa
     import pyarrow.csv as pacsv
 
-    arrays = pa.table({f"c{i}": np.asarray(c) for i, c in enumerate(columns)})
+    arrays = arrow_table({f"c{i}": np.asarray(c) for i, c in enumerate(columns)})
     sink = pa.BufferOutputStream()
     pacsv.write_csv(arrays, sink, pacsv.WriteOptions(include_header=False, delimiter=" ", quoting_style="none"))
     return sink.getvalue().to_pybytes().decode()

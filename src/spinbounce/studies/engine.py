@@ -25,7 +25,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from .speed import MODELS, PLANE, _sweep_process, _timed
+from .speed import MODELS, PLANE, _sweep_process, _timed, core_line
 
 __all__ = ["SCENES", "scene_sweeps", "sweep_against_engine", "help_seconds", "damped_steps", "reference_rates",
            "measure_waits", "wait_lines", "ENGINE_SWEEP"]
@@ -226,7 +226,8 @@ def measure_waits(quick: bool = False, seed: int = 0, workers: int = 2, n: int |
     n = n or (ENGINE_SWEEP[1] if quick else ENGINE_SWEEP[0])
     frictionless = sweep_against_engine(n, seed, repeats=1 if quick else 2)
     return {"quick": quick, "scenes": scenes, "references": references, "frictionless": frictionless,
-            "cores": parallel_efficiency(n=n, workers=workers, seed=seed), "help_seconds": help_seconds(),
+            "cores": parallel_efficiency(n=n, workers=workers, seed=seed, repeats=1 if quick else 2),
+            "help_seconds": help_seconds(),
             "damped": damped_steps(), "gas": gas}
 
 
@@ -252,8 +253,7 @@ def wait_lines(report: dict) -> list[str]:
                  f"{f['sweep_per_second']:,.0f}/s; the bare engine on the same chunks: "
                  f"{f['engine_per_second']:,.0f}/s: {f['sweep_over_engine']:.0%} of it (target 85%)")
     c = report["cores"]
-    lines.append(f"{c['workers']} workers, the same chunks: {c['per_core_at_all']:,.0f}/s per core against "
-                 f"{c['per_core_at_one']:,.0f}/s at one: {c['efficiency']:.0%} of twice one worker (target 90%)")
+    lines.append(core_line(c))
     h = report["help_seconds"]
     lines.append("start-up: " + ", ".join(f"spinbounce {k} {v:.2f} s" for k, v in h.items()) + " (target 0.5 s)")
     d = report["damped"]

@@ -38,7 +38,7 @@ from pathlib import Path
 import numpy as np
 
 __all__ = ["measure_speed", "scene_needs", "SPEED_DEFAULTS", "MODELS", "measure_models",
-           "parallel_efficiency", "chunk_jobs"]
+           "parallel_efficiency", "core_line", "chunk_jobs"]
 
 #: Collisions per method by default: enough for each to run a few seconds.
 SPEED_DEFAULTS = {"n_lmp": 30, "n_inprocess": 300, "n_batched": 200_000}
@@ -256,29 +256,52 @@ def measure_models(n: int = 100_000, seed: int = 0, keep: Path | None = None, lo
     return {"models": out}
 
 
-def _sweep_process(*args) -> float:
-    """Seconds of ``spinbounce sweep ARGS`` in a process of its own, as a user runs it."""
+def _sweep_process(*args, cpus: set[int] | None = None) -> float:
+    """Seconds of ``spinbounce sweep ARGS`` in a process of its own, as a user runs it; on the CPUs
+    ``cpus`` alone (its workers and threads too), or on any."""
+    pin = None if cpus is None else (lambda: os.sched_setaffinity(0, cpus))
     return _timed(lambda: subprocess.run([sys.executable, "-m", "spinbounce.cli", "sweep", *map(str, args)],
-                                         check=True, capture_output=True))
+                                         check=True, capture_output=True, preexec_fn=pin))
 
 
-def parallel_efficiency(n: int = 100_000, workers: int = 2, seed: int = 0) -> dict:
+def _first_cpus(count: int) -> set[int] | None:
+    """The first ``count`` CPUs this process may run on; None where it may run on fewer (or cannot tell)."""
+    allowed = sorted(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else []
+    return set(allowed[:count]) if len(allowed) >= count else None
+
+
+def parallel_efficiency(n: int = 100_000, workers: int = 2, seed: int = 0, repeats: int = 1) -> dict:
     """Collisions per second per core of a frictionless ``spinbounce sweep --n N`` (a process of its
-    own) at one worker and at ``workers``, on the same chunks at both: the default ones (as a user's
-    sweep runs them), or N/workers where that is fewer (each worker has one). One chunk per worker at
-    both would set a run of N spheres beside runs of N/workers, which LAMMPS runs at another rate per
-    sphere (its arrays outgrow the cache: 100,000-sphere chunks run 13% slower than 25,000)."""
+    own): one worker on one CPU against ``workers`` workers on as many (each the faster of ``repeats``
+    runs), and one worker free to use every CPU, as a user's ``--workers 1`` runs: it writes its files
+    on a thread, which then runs on a second core beside LAMMPS. All on the same chunks: the default
+    ones (as a user's sweep runs them), or N/workers where that is fewer (each worker has one). One
+    chunk per worker would set a run of N spheres beside runs of N/workers, which LAMMPS runs at
+    another rate per sphere (its arrays outgrow the cache: 100,000-sphere chunks run 13% slower)."""
     from ..sweeps import DEFAULT_CHUNK
 
-    rates, walls = {}, {}
     chunk = min(DEFAULT_CHUNK, max(1, -(-n // workers)))
+    runs = {"one": (1, _first_cpus(1)), "all": (workers, _first_cpus(workers)), "free": (1, None)}
+    walls = {}
     with tempfile.TemporaryDirectory(prefix="spinbounce-bench-cores-") as folder:
-        for count in (1, workers):
-            walls[count] = _sweep_process("--n", n, "--seed", seed, "--chunk-size", chunk, "--workers", count,
-                                          "--out", Path(folder) / f"w{count}")
-            rates[count] = n / walls[count] / count
-    return {"workers": workers, "per_core_at_one": rates[1], "per_core_at_all": rates[workers],
-            "efficiency": rates[workers] / rates[1], "wall_seconds": walls}
+        for name, (count, cpus) in runs.items():
+            walls[name] = min(_sweep_process("--n", n, "--seed", seed, "--chunk-size", chunk, "--workers", count,
+                                             "--out", Path(folder) / f"{name}{k}", cpus=cpus) for k in range(repeats))
+    rates = {name: n / walls[name] / runs[name][0] for name in runs}
+    return {"workers": workers, "pinned": runs["all"][1] is not None, "per_core_at_one": rates["one"],
+            "per_core_at_all": rates["all"], "efficiency": rates["all"] / rates["one"],
+            "one_worker_free": rates["free"], "efficiency_against_free": rates["all"] / rates["free"],
+            "repeats": repeats, "wall_seconds": walls}
+
+
+def core_line(c: dict) -> str:
+    """:func:`parallel_efficiency`'s report as a printed line (the target is issue 27's)."""
+    cores = f"on {c['workers']} cores" if c["pinned"] else "(not pinned: fewer CPUs than workers here)"
+    best = "" if c["repeats"] == 1 else f", each the faster of {c['repeats']} runs"
+    return (f"{c['workers']} workers {cores}, the same chunks{best}: {c['per_core_at_all']:,.0f}/s per core against "
+            f"{c['per_core_at_one']:,.0f}/s for one worker on one core: {c['efficiency']:.0%} of twice one worker "
+            f"(target 90%); one worker free to write its files on a second core: {c['one_worker_free']:,.0f}/s "
+            f"({c['efficiency_against_free']:.0%})")
 
 
 def chunk_jobs(n: int = 20_000, seed: int = 0) -> list[dict]:

@@ -20,12 +20,19 @@ __all__ = ["chunk_files", "read_results", "status_counts"]
 
 
 def status_counts(path: Path) -> dict[str, int]:
-    """How many rows of a sweep have each status (reads that one column only)."""
-    import pyarrow.compute as pc
-    import pyarrow.dataset as ds
+    """How many rows of a sweep have each status (reads that one column only, file by file, as its
+    dictionary: a dataset reader would cost more to load than to count a million rows)."""
+    import numpy as np
+    import pyarrow.parquet as pq
 
-    table = ds.dataset(chunk_files(Path(path)), format="parquet").to_table(columns=["status"])
-    counted = {c["values"]: c["counts"] for c in pc.value_counts(table.column("status")).to_pylist()}
+    counted: dict[str, int] = {}
+    for f in chunk_files(Path(path)):
+        for column in pq.ParquetFile(f, read_dictionary=["status"]).read(columns=["status"]).column("status").chunks:
+            indices = column.indices  # its buffer read directly: to_numpy would load pandas (0.2 s)
+            codes = np.frombuffer(indices.buffers()[1], dtype=str(indices.type))[indices.offset:][:len(indices)]
+            tally = np.bincount(codes, minlength=len(column.dictionary))
+            for name, n in zip(column.dictionary.to_pylist(), tally.tolist(), strict=True):
+                counted[name] = counted.get(name, 0) + n
     return checks.tally(counted)
 
 

@@ -159,20 +159,9 @@ def _pair_columns(columns: dict, spec: SweepSpec, group: int, model, n: int) -> 
 
 def write_chunk(path: Path, columns: dict[str, np.ndarray], labels: dict[str, str]) -> Path:
     """A chunk's columns and labels as its Parquet file, atomically."""
-    from ..records import write_parquet_atomic
+    from ..records import arrow_table, write_parquet_atomic
 
-    return write_parquet_atomic(path, _arrow_table(columns, labels))
-
-
-def _arrow_table(columns: dict[str, np.ndarray], labels: dict[str, str]):
-    """Numeric columns as they are, and constant text labels dictionary-encoded (one copy)."""
-    import pyarrow as pa
-
-    n = len(columns["index"])
-    arrays = {name: pa.array(values) for name, values in columns.items()}
-    for name, text in labels.items():
-        arrays[name] = pa.DictionaryArray.from_arrays(pa.array(np.zeros(n, dtype=np.int32)), pa.array([text]))
-    return pa.table(arrays)
+    return write_parquet_atomic(path, arrow_table(columns, labels))
 
 
 @contextlib.contextmanager
