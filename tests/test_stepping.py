@@ -1,8 +1,11 @@
-"""The probe's convergence (stepping.converge) near a scene's step limit, on a made-up error law."""
+"""The probe's convergence (stepping.converge) near a scene's step limit, and its fallback, on a made-up error law."""
 
 from __future__ import annotations
 
-from spinbounce.stepping import LIMIT_REACH, converge
+import numpy as np
+
+from spinbounce.model.timestep import mid_step_dt
+from spinbounce.stepping import FALLBACK, FINEST_PROBED, LIMIT_REACH, converge, tune
 
 
 def _sqrt_law(measured: list):
@@ -31,3 +34,52 @@ def test_a_step_asked_for_far_past_the_limit_is_not_run():
     limit = 100_000
     steps, _, _ = converge((100, measure(100)), (200, measure(200)), 1e-4, measure, limit=limit)
     assert steps > LIMIT_REACH * limit and max(measured) < limit
+
+
+class _Scene:
+    """A made-up scene of one row whose error falls as sqrt(dt) (0.1 sqrt(dt / t_contact)), its fine rule at
+    ``rule_steps`` a contact and its limit at ``limit`` steps a contact: what :func:`tune` asks of a scene."""
+
+    kind, default_step, n = "made-up", True, 1
+
+    def __init__(self, rule_steps: int, limit: int, dt: float = 0.01):
+        self.rule_steps, self.limit, self.dt = rule_steps, limit, dt
+
+    def needs_probe(self):
+        return True
+
+    def beyond_reach(self):
+        return np.zeros(1, dtype=bool)
+
+    def rows(self, _):
+        return self
+
+    def probe_time(self, _):
+        return 1.0
+
+    def first_probe_steps(self, _):
+        return 100
+
+    def step_limit(self, _):
+        return self.limit
+
+    def at_step(self, dt):
+        return _Scene(self.rule_steps, self.limit, dt)
+
+    def fallback(self):
+        return _Scene(self.rule_steps, self.limit, mid_step_dt(1.0, self.rule_steps))
+
+
+def _sqrt_run(scene, _folder):
+    return np.array([0.1 * scene.dt**0.5])
+
+
+def test_a_probe_cut_short_by_its_limit_keeps_its_best_point_where_it_is_finer_than_the_rule(tmp_path):
+    # the target asks for ~4M steps, past 4 times the limit of 50,000; the probe measured up to 12,800 steps
+    # (8.8e-4), finer than the rule's 1,000 (3.2e-3): the scene runs at its best point, not at the rule
+    scene, choice = tune(_Scene(rule_steps=1000, limit=50_000), tmp_path, _sqrt_run)
+    assert choice.method == FINEST_PROBED and choice.predicted_error == min(choice.probe_errors)
+    assert scene.dt == choice.dt < mid_step_dt(1.0, 1000) and _sqrt_run(scene, None)[0] < 0.1 * (1 / 1000) ** 0.5
+    # a rule finer than every point the probe measured is kept
+    scene, choice = tune(_Scene(rule_steps=100_000, limit=50_000), tmp_path, _sqrt_run)
+    assert choice.method == FALLBACK and scene.dt == mid_step_dt(1.0, 100_000)

@@ -18,6 +18,7 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Callable
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -26,7 +27,7 @@ from .errors import ResultError, SceneError
 from .model.timestep import ACCURACY, SAFETY, StepChoice, mid_step_dt
 
 __all__ = ["StepChoice", "tune", "reachable", "converge", "extrapolate", "expected_steps", "PROBE_SPHERES", "SAFETY",
-           "FALLBACK"]
+           "FALLBACK", "FINEST_PROBED"]
 
 #: States a probe runs: the scene's own, every k-th of them beyond this many.
 PROBE_SPHERES = 32
@@ -47,6 +48,8 @@ MAX_GROWTH = 64
 LIMIT_REACH = 4
 #: The method recorded when a probe could not do better than the scene's fine rule.
 FALLBACK = "the rule (the probe could not reach the target coarser, or within a run's steps)"
+#: The method recorded when the target was beyond the probe's reach and its best point finer than the rule.
+FINEST_PROBED = "probe: its least error within a run's steps (the target was beyond them; finer than the rule)"
 
 
 def tune(scene, out: Path, run: Callable, probe_states=None, target: float = ACCURACY):
@@ -67,11 +70,13 @@ def tune(scene, out: Path, run: Callable, probe_states=None, target: float = ACC
     coarse_steps = sample.first_probe_steps(t_contact)  # the probe states' rule: one per sweep group
     limit = scene.step_limit(t_contact)
     errors: list[float] = []
+    points: list[tuple[int, float]] = []  # every probe's (steps, error), for a fallback
     folders = itertools.count()
 
     def probe(steps: int) -> float:
         folder = Path(out) / f"probe-{next(folders)}"
         errors.append(float(np.max(run(sample.at_step(mid_step_dt(t_contact, steps)), folder))))
+        points.append((steps, errors[-1]))
         return errors[-1]
 
     # a step too coarse to see the contact end (a slow exit: strong normal damping) counts as
@@ -90,7 +95,8 @@ def tune(scene, out: Path, run: Callable, probe_states=None, target: float = ACC
         if steps > limit or predicted > target * SAFETY * CHECK_SLACK:  # the scene's fine rule, if it has one
             fine = scene.fallback()
             if fine is not None:
-                return fine, StepChoice(fine.dt, FALLBACK, target, order, tuple(errors), None)
+                return _fallback(scene, fine, t_contact, limit, points, StepChoice(fine.dt, FALLBACK, target, order,
+                                                                                   tuple(errors), None))
         tuned = scene.at_step(mid_step_dt(t_contact, steps))
     except SceneError as exc:  # the step the target asks for is beyond what one run may take
         if exc.parameter != "dt":
@@ -100,6 +106,18 @@ def tune(scene, out: Path, run: Callable, probe_states=None, target: float = ACC
                                           f"{exc.limit}: give dt to run at a step of your choice, each row's "
                                           "error reported") from None
     return tuned, StepChoice(tuned.dt, "probe", target, order, tuple(errors), predicted)
+
+
+def _fallback(scene, fine, t_contact: float, limit: float, points: list[tuple[int, float]], choice: StepChoice):
+    """The scene at its fine rule (``fine``, ``choice``), or at the probe's point of least error within ``limit``
+    where that is finer than the rule: a probe cut short by the limit has measured better than the rule guesses."""
+    within = [point for point in points if point[0] <= limit and math.isfinite(point[1])]
+    if within:
+        steps, error = min(within, key=lambda point: (point[1], -point[0]))
+        if mid_step_dt(t_contact, steps) < fine.dt:
+            best = scene.at_step(mid_step_dt(t_contact, steps))
+            return best, replace(choice, dt=best.dt, method=FINEST_PROBED, predicted_error=error)
+    return fine, choice
 
 
 def reachable(scene) -> np.ndarray:
