@@ -72,9 +72,9 @@ def test_bench_cli_writes_json(tmp_path, capsys):
     assert {s["scene"] for s in waits["scenes"]} == set(engine.SCENES)
     assert {s["collisions"] for s in waits["scenes"]} == {60} == {waits["frictionless"]["collisions"]}
     assert waits["frictionless"]["repeats"] == 2  # the full bench's sweep and engine each the faster of two
-    # workers against one, each on as many CPUs (one worker free to use more beside them)
+    # workers against one, each on as many CPUs (one worker free to use more beside them), the fastest of three
     cores = waits["cores"]
-    assert cores["repeats"] == 2 and set(cores["wall_seconds"]) == {"one", "all", "free"}
+    assert cores["repeats"] == 3 and set(cores["wall_seconds"]) == {"one", "all", "free"}
     assert cores["pinned"] == (len(os.sched_getaffinity(0)) >= cores["workers"])
     assert waits["gas"]["spheres"] == 1000  # the smallest gas, for a count of 60
     assert waits["references"]["pairs"] == 60 and waits["references"]["capped_per_second"] > 0.0

@@ -93,10 +93,9 @@ def _arrow_array(values: np.ndarray):
     import pyarrow as pa
 
     if values.dtype.kind in "OU":
-        texts = values.tolist()
-        if all(type(t) is str for t in texts):  # text, one value a row (a status)
-            return _arrow_text(texts)
-        return pa.array(values)  # anything else pyarrow reads as it can
+        if values.dtype.kind == "O" and not all(type(t) is str for t in values.tolist()):
+            return pa.array(values)  # not text: pyarrow reads it as it can
+        return _arrow_text(values)  # text, one value a row (a status)
     if values.dtype == bool:  # Arrow's booleans are bits
         bits = np.packbits(values, bitorder="little")
         return pa.Array.from_buffers(pa.bool_(), len(values), [None, pa.py_buffer(bits)])
@@ -104,13 +103,20 @@ def _arrow_array(values: np.ndarray):
     return pa.Array.from_buffers(pa.from_numpy_dtype(values.dtype), len(values), [None, pa.py_buffer(values)])
 
 
-def _arrow_text(texts: list[str]):
+def _arrow_text(texts) -> object:
+    """Text values as an Arrow string array: their UTF-8 bytes end to end, and where each ends."""
     import pyarrow as pa
 
-    encoded = [t.encode() for t in texts]
-    offsets = np.concatenate([[0], np.cumsum([len(e) for e in encoded])]).astype(np.int32)
-    buffers = [None, pa.py_buffer(offsets), pa.py_buffer(b"".join(encoded))]
-    return pa.Array.from_buffers(pa.string(), len(texts), buffers)
+    try:
+        encoded = np.asarray(texts, dtype=object).astype("S")  # ASCII, at numpy's speed
+    except UnicodeEncodeError:
+        encoded = np.array([t.encode() for t in texts], dtype=object).astype("S")
+    width = max(encoded.dtype.itemsize, 1)
+    lengths = np.char.str_len(encoded) if encoded.size else np.zeros(0, dtype=np.int64)
+    offsets = np.zeros(len(encoded) + 1, dtype=np.int32)
+    np.cumsum(lengths, out=offsets[1:])
+    data = encoded.view(np.uint8).reshape(-1, width)[np.arange(width) < lengths[:, None]].tobytes()
+    return pa.Array.from_buffers(pa.string(), len(encoded), [None, pa.py_buffer(offsets), pa.py_buffer(data)])
 
 
 def json_ready(value):

@@ -226,7 +226,7 @@ def measure_waits(quick: bool = False, seed: int = 0, workers: int = 2, n: int |
     n = n or (ENGINE_SWEEP[1] if quick else ENGINE_SWEEP[0])
     frictionless = sweep_against_engine(n, seed, repeats=1 if quick else 2)
     return {"quick": quick, "scenes": scenes, "references": references, "frictionless": frictionless,
-            "cores": parallel_efficiency(n=n, workers=workers, seed=seed, repeats=1 if quick else 2),
+            "cores": parallel_efficiency(n=n, workers=workers, seed=seed, repeats=1 if quick else 3),
             "help_seconds": help_seconds(),
             "damped": damped_steps(), "gas": gas}
 
