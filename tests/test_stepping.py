@@ -80,6 +80,9 @@ def test_a_probe_cut_short_by_its_limit_keeps_its_best_point_where_it_is_finer_t
     scene, choice = tune(_Scene(rule_steps=1000, limit=50_000), tmp_path, _sqrt_run)
     assert choice.method == FINEST_PROBED and choice.predicted_error == min(choice.probe_errors)
     assert scene.dt == choice.dt < mid_step_dt(1.0, 1000) and _sqrt_run(scene, None)[0] < 0.1 * (1 / 1000) ** 0.5
+    # a point only as fine as the rule (a limit at the rule's own steps, as a sweep's pair chunk has) is not kept
+    scene, choice = tune(_Scene(rule_steps=12_800, limit=12_800), tmp_path, _sqrt_run)
+    assert choice.method == FALLBACK and max(choice.probe_errors) > min(choice.probe_errors) > 0.0
     # a rule finer than every point the probe measured is kept
     scene, choice = tune(_Scene(rule_steps=100_000, limit=50_000), tmp_path, _sqrt_run)
     assert choice.method == FALLBACK and scene.dt == mid_step_dt(1.0, 100_000)

@@ -102,6 +102,13 @@ def test_status_counts_read_from_the_files_match_the_rows(tmp_path):
     assert counts["ok"] and counts["inaccurate"] and sum(counts.values()) == 1800
     with pytest.raises(ValueError, match="'lost': not one of"):
         checks.tally({"ok": 3, "lost": 1})
+    # a chunk with rows but no status is refused by name, not counted as another status
+    from spinbounce.records import arrow_table, write_parquet_atomic
+
+    chunk = sorted((tmp_path / "s" / "chunks").glob("chunk-*.parquet"))[0]
+    write_parquet_atomic(chunk, arrow_table({"v_n_initial": np.zeros(2), "status": np.array(["ok", None])}))
+    with pytest.raises(SweepError, match=f"{chunk.name}: 1 row"):
+        status_counts(tmp_path / "s")
 
 
 def test_chunk_tables_are_what_pyarrow_makes_and_a_writer_loads_no_pandas(tmp_path):
@@ -120,6 +127,10 @@ def test_chunk_tables_are_what_pyarrow_makes_and_a_writer_loads_no_pandas(tmp_pa
     table = arrow_table(columns, {"theory": "paper"})
     assert table.drop_columns("x").equals(expected.drop_columns("x")) and table.schema == expected.schema
     assert np.array_equal(table["x"].to_numpy(), columns["x"], equal_nan=True)  # NaN is no equal of itself
+    # what has no buffer of its own to share is pyarrow's to read, as before: a masked column's nulls, 2-D refused
+    assert arrow_table({"m": np.ma.masked_array([1.0, 2.0], mask=[False, True])})["m"].null_count == 1
+    with pytest.raises(pa.ArrowInvalid):
+        arrow_table({"two_d": np.zeros((3, 2))})
     script = ("import sys; import numpy as np; from pathlib import Path\n"
               "from spinbounce.records import arrow_table, write_parquet_atomic\n"
               "from spinbounce.sweeps import status_counts\n"

@@ -83,18 +83,22 @@ def arrow_table(columns: dict[str, np.ndarray], labels: dict[str, str] | None = 
     import pyarrow as pa
 
     n = len(next(iter(columns.values()))) if columns else 0
-    arrays = {name: _arrow_array(np.asarray(values)) for name, values in columns.items()}
+    arrays = {name: _arrow_array(np.asanyarray(values)) for name, values in columns.items()}
     for name, text in (labels or {}).items():
         arrays[name] = pa.DictionaryArray.from_arrays(_arrow_array(np.zeros(n, dtype=np.int32)), _arrow_text([text]))
     return pa.Table.from_arrays(list(arrays.values()), names=list(arrays))
 
 
 def _arrow_array(values: np.ndarray):
+    """One column: numbers and booleans from their buffers, text from its bytes; anything else (a masked,
+    dated, 2-D or bytes column, text with a NUL) as pyarrow reads it."""
     import pyarrow as pa
 
+    if values.ndim != 1 or isinstance(values, np.ma.MaskedArray) or values.dtype.kind not in "fiubOU":
+        return pa.array(values)
     if values.dtype.kind in "OU":
-        if values.dtype.kind == "O" and not all(type(t) is str for t in values.tolist()):
-            return pa.array(values)  # not text: pyarrow reads it as it can
+        if not all(type(t) is str and "\x00" not in t for t in values.tolist()):
+            return pa.array(values)
         return _arrow_text(values)  # text, one value a row (a status)
     if values.dtype == bool:  # Arrow's booleans are bits
         bits = np.packbits(values, bitorder="little")

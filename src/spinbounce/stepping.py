@@ -48,8 +48,11 @@ MAX_GROWTH = 64
 LIMIT_REACH = 4
 #: The method recorded when a probe could not do better than the scene's fine rule.
 FALLBACK = "the rule (the probe could not reach the target coarser, or within a run's steps)"
+#: How much finer than the rule a probe's point must be to be kept instead of it (a point at a limit of the
+#: rule's own steps differs from the rule only by its alignment mid-step).
+FINER = 1.01
 #: The method recorded when the target was beyond the probe's reach and its best point finer than the rule.
-FINEST_PROBED = "probe: its least error within a run's steps (the target was beyond them; finer than the rule)"
+FINEST_PROBED = "probe: its least error within a run's steps, finer than the rule (the target asked for more)"
 
 
 def tune(scene, out: Path, run: Callable, probe_states=None, target: float = ACCURACY):
@@ -114,7 +117,7 @@ def _fallback(scene, fine, t_contact: float, limit: float, points: list[tuple[in
     within = [point for point in points if point[0] <= limit and math.isfinite(point[1])]
     if within:
         steps, error = min(within, key=lambda point: (point[1], -point[0]))
-        if mid_step_dt(t_contact, steps) < fine.dt:
+        if steps > FINER * t_contact / fine.dt:  # finer than the rule, not only by alignment mid-step
             best = scene.at_step(mid_step_dt(t_contact, steps))
             return best, replace(choice, dt=best.dt, method=FINEST_PROBED, predicted_error=error)
     return fine, choice

@@ -20,6 +20,7 @@ v_y, omega_s is omega_x (slip v_y + r omega_x) and omega_n is omega_z (:func:`la
 
 from __future__ import annotations
 
+import hashlib
 import math
 from dataclasses import dataclass, field
 from functools import lru_cache
@@ -126,35 +127,45 @@ def bodies_file(ids: np.ndarray, mass: np.ndarray, x: np.ndarray, inertia: np.nd
     return f"{n}\n" + table(columns)
 
 
+#: The templates' delimiters and whitespace rules (in the bytecode cache's file names: a cached template
+#: compiled under other rules is not read).
+_OPTIONS = dict(block_start_string="<%", block_end_string="%>", variable_start_string="<<", variable_end_string=">>",
+               comment_start_string="<#", comment_end_string="#>", trim_blocks=True, lstrip_blocks=True,
+               keep_trailing_newline=True, autoescape=False)
+_OPTIONS_DIGEST = hashlib.sha1(repr(sorted(_OPTIONS.items())).encode()).hexdigest()[:12]
+
+
 @lru_cache(maxsize=None)
 def _environment(folder: str):
     import jinja2  # when a deck is rendered, not when a scene is built
 
-    env = jinja2.Environment(
-        loader=jinja2.FileSystemLoader(folder),
-        undefined=jinja2.StrictUndefined,
-        block_start_string="<%",
-        block_end_string="%>",
-        variable_start_string="<<",
-        variable_end_string=">>",
-        comment_start_string="<#",
-        comment_end_string="#>",
-        trim_blocks=True,
-        lstrip_blocks=True,
-        keep_trailing_newline=True,
-        autoescape=False,
-        bytecode_cache=_bytecode_cache(jinja2),
-    )
+    env = jinja2.Environment(loader=jinja2.FileSystemLoader(folder), undefined=jinja2.StrictUndefined,
+                             bytecode_cache=_bytecode_cache(jinja2), **_OPTIONS)
     env.filters["num"] = deck_number
     return env
 
 
 def _bytecode_cache(jinja2):
-    """Compiled templates kept between processes in jinja's own per-user cache (checked against each
-    template's source): a sweep, and each of its workers, skips 40 ms of compiling. None where the
-    system's temporary folder cannot hold it."""
+    """Compiled templates kept between processes in jinja's own per-user cache folder (its files checked
+    against each template's source, named by this version and the environment's delimiters): a sweep, and
+    each of its workers, skips 40 ms of compiling. A cache that cannot be read or written is passed by (the
+    template compiled as without one); none where the system's temporary folder cannot hold it."""
+
+    class Cache(jinja2.FileSystemBytecodeCache):
+        def load_bytecode(self, bucket):
+            try:
+                super().load_bytecode(bucket)
+            except OSError:
+                pass
+
+        def dump_bytecode(self, bucket):
+            try:
+                super().dump_bytecode(bucket)
+            except OSError:  # a full disk, or a folder removed by a cleaner meanwhile
+                pass
+
     try:
-        return jinja2.FileSystemBytecodeCache()
+        return Cache(pattern=f"__spinbounce_{__version__}_{_OPTIONS_DIGEST}_%s.cache")
     except (OSError, RuntimeError):  # jinja's errors for a cache folder it cannot make or trust
         return None
 

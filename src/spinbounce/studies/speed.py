@@ -256,16 +256,23 @@ def measure_models(n: int = 100_000, seed: int = 0, keep: Path | None = None, lo
     return {"models": out}
 
 
+#: A process that confines itself to the CPUs of its first argument, then becomes the command after it (set in
+#: the child itself: a parent's preexec_fn is unsafe beside the threads a bench has started by then).
+_ON_CPUS = ("import os, sys; os.sched_setaffinity(0, {int(c) for c in sys.argv[1].split(',')}); "
+            "os.execv(sys.executable, [sys.executable, *sys.argv[2:]])")
+
+
 def _sweep_process(*args, cpus: set[int] | None = None) -> float:
     """Seconds of ``spinbounce sweep ARGS`` in a process of its own, as a user runs it; on the CPUs
     ``cpus`` alone (its workers and threads too), or on any."""
-    pin = None if cpus is None else (lambda: os.sched_setaffinity(0, cpus))
-    return _timed(lambda: subprocess.run([sys.executable, "-m", "spinbounce.cli", "sweep", *map(str, args)],
-                                         check=True, capture_output=True, preexec_fn=pin))
+    on = [] if cpus is None else ["-c", _ON_CPUS, ",".join(map(str, sorted(cpus)))]
+    return _timed(lambda: subprocess.run([sys.executable, *on, "-m", "spinbounce.cli", "sweep", *map(str, args)],
+                                         check=True, capture_output=True))
 
 
 def _first_cpus(count: int) -> set[int] | None:
-    """The first ``count`` CPUs this process may run on; None where it may run on fewer (or cannot tell)."""
+    """The first ``count`` CPUs this process may run on (logical CPUs: two may share a core); None where it may
+    run on fewer, or where the system cannot confine a process to some."""
     allowed = sorted(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else []
     return set(allowed[:count]) if len(allowed) >= count else None
 
@@ -281,7 +288,9 @@ def parallel_efficiency(n: int = 100_000, workers: int = 2, seed: int = 0, repea
     from ..sweeps import DEFAULT_CHUNK
 
     chunk = min(DEFAULT_CHUNK, max(1, -(-n // workers)))
-    runs = {"one": (1, _first_cpus(1)), "all": (workers, _first_cpus(workers)), "free": (1, None)}
+    every = _first_cpus(len(os.sched_getaffinity(0))) if hasattr(os, "sched_getaffinity") else None
+    # the free worker through the same confining start as the others (on every CPU), for the same start-up
+    runs = {"one": (1, _first_cpus(1)), "all": (workers, _first_cpus(workers)), "free": (1, every)}
     walls = {}
     with tempfile.TemporaryDirectory(prefix="spinbounce-bench-cores-") as folder:
         for name, (count, cpus) in runs.items():
@@ -296,11 +305,13 @@ def parallel_efficiency(n: int = 100_000, workers: int = 2, seed: int = 0, repea
 
 def core_line(c: dict) -> str:
     """:func:`parallel_efficiency`'s report as a printed line (the target is issue 27's)."""
-    cores = f"on {c['workers']} cores" if c["pinned"] else "(not pinned: fewer CPUs than workers here)"
+    w = c["workers"]
+    cpus = f"on {w} CPUs" if c["pinned"] else "(not confined: fewer CPUs than workers here, or no way to)"
     best = "" if c["repeats"] == 1 else f", each the faster of {c['repeats']} runs"
-    return (f"{c['workers']} workers {cores}, the same chunks{best}: {c['per_core_at_all']:,.0f}/s per core against "
-            f"{c['per_core_at_one']:,.0f}/s for one worker on one core: {c['efficiency']:.0%} of twice one worker "
-            f"(target 90%); one worker free to write its files on a second core: {c['one_worker_free']:,.0f}/s "
+    times = "twice" if w == 2 else f"{w} times"
+    return (f"{w} workers {cpus}, the same chunks{best}: {c['per_core_at_all']:,.0f}/s per CPU against "
+            f"{c['per_core_at_one']:,.0f}/s for one worker on one CPU: {c['efficiency']:.0%} of {times} one worker "
+            f"(target 90%); one worker free to write its files on a second CPU: {c['one_worker_free']:,.0f}/s "
             f"({c['efficiency_against_free']:.0%})")
 
 

@@ -28,6 +28,8 @@ def status_counts(path: Path) -> dict[str, int]:
     counted: dict[str, int] = {}
     for f in chunk_files(Path(path)):
         for column in pq.ParquetFile(f, read_dictionary=["status"]).read(columns=["status"]).column("status").chunks:
+            if column.null_count:
+                raise SweepError(f"{f}: {column.null_count} row(s) without a status: not a chunk a sweep wrote")
             indices = column.indices  # its buffer read directly: to_numpy would load pandas (0.2 s)
             codes = np.frombuffer(indices.buffers()[1], dtype=str(indices.type))[indices.offset:][:len(indices)]
             tally = np.bincount(codes, minlength=len(column.dictionary))
