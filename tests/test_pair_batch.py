@@ -159,6 +159,41 @@ def test_a_batch_larger_than_the_cache_is_answered_whole(monkeypatch):
         assert np.allclose(outcome.v_a, alone.v_a, rtol=0.0, atol=AGREEMENT)
 
 
+def test_a_batch_of_the_same_pairs_at_another_step_shares_what_its_step_does_not_change():
+    """A batch's outcomes, equivalent walls and columns depend on its pairs and law alone: a batch of the same
+    tuple of pairs at another step (a probe's, a ladder's) takes them as they are (no pair looked up again);
+    equal pairs in another tuple are solved to the same outcomes; shared columns cannot be changed in place."""
+    from spinbounce.scenes.pair.scene import Pair, PairBatch, PairContact
+
+    law = PairContact(kn=14.0)
+    pairs = tuple(Pair(v_a=(0.1 * k, 0.05, -1.0)) for k in range(6))
+    batch = PairBatch(pairs, law)
+    finer = batch.at_step(batch.dt / 3)
+    assert finer.exact is batch.exact and finer.walls is batch.walls and finer.columns is batch.columns
+    def finals(b):
+        return np.array([[*o.v_a, *o.v_b, *o.w_a, *o.w_b] for o in b.exact])
+
+    again = PairBatch(tuple(Pair(v_a=(0.1 * k, 0.05, -1.0)) for k in range(6)), law)
+    assert again.exact is not batch.exact and np.array_equal(finals(again), finals(batch))
+    assert not np.array_equal(finals(PairBatch(pairs, PairContact(kn=15.0))), finals(batch))  # another law: anew
+    with pytest.raises(ValueError, match="read-only"):
+        batch.columns["v_a"][0, 0] = 1.0
+
+
+def test_a_law_of_one_value_per_batch_is_evaluated_once_and_as_each_distinct_value():
+    """exact.pair's functions of the spheres and law (contact time, restitution, Omega): a batch whose
+    spheres and law are all alike takes one evaluation, broadcast; a mixed one is each distinct value's."""
+    from spinbounce.exact import pair as planar
+
+    one = planar.contact_time(np.ones(4), 2.0, 10.0, np.zeros(4))
+    assert one.shape == (4,) and np.all(one == planar.contact_time(1.0, 2.0, 10.0, 0.0))
+    m_b = np.array([1.0, 2.0, 1.0, 3.0])
+    mixed = planar.restitution(1.0, m_b, 10.0, 0.3)
+    assert np.array_equal(mixed, [planar.restitution(1.0, m, 10.0, 0.3) for m in m_b])
+    assert np.array_equal(planar.Omega(1.0, 0.4, m_b, 0.4, 10.0, 1.0),
+                          [planar.Omega(1.0, 0.4, m, 0.4, 10.0, 1.0) for m in m_b])
+
+
 @pytest.mark.parametrize("name, vectors, law", [
     # the overlap never exceeds rounding: the contact ends within a step of its start
     ("a sub-rounding graze", {"v_a": [1.0, 0.3, -1e-11]}, {}),

@@ -60,6 +60,9 @@ def _each_distinct(function, *args):
     arrays = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in args))
     if arrays[0].size == 0:
         return np.zeros(arrays[0].shape)
+    firsts = [a.flat[0] for a in arrays]
+    if all(np.array_equal(a, np.broadcast_to(f, a.shape), equal_nan=True) for a, f in zip(arrays, firsts, strict=True)):
+        return np.full(arrays[0].shape, float(function(*map(float, firsts)))) + 0.0  # one combination: no sort
     distinct, back = np.unique(np.stack([a.ravel() for a in arrays], axis=1), axis=0, return_inverse=True)
     values = np.array([function(*row) for row in distinct.tolist()], dtype=float)
     return values[back.ravel()].reshape(arrays[0].shape) + 0.0

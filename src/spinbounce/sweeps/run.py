@@ -12,6 +12,7 @@ from __future__ import annotations
 import concurrent.futures
 import contextlib
 import fcntl
+import gc
 import json
 import math
 import multiprocessing
@@ -49,9 +50,28 @@ def run_chunk(raw: dict | SweepSpec, out: str, group: int, chunk: int, start: in
     spheres reach LAMMPS in memory (the library route): no data file to write, no dump to
     parse; a pair scene's chunk is one pair batch (:func:`spinbounce.sweeps.pairs.pair_chunk`).
     """
+    started = time.perf_counter()
+    with _no_cycle_collection():
+        return _run_chunk(raw, out, group, chunk, start, stop, write, started)
+
+
+@contextlib.contextmanager
+def _no_cycle_collection():
+    """Python's cycle collector held off for a chunk: a chunk builds tens of thousands of small objects that
+    live until it ends (a pair chunk's pairs, their keys and outcomes), and the collector would scan the whole
+    heap again and again meanwhile (0.2 to 0.4 s of a 20,000-pair chunk's 1.4 s). It runs as usual after."""
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if enabled:
+            gc.enable()
+
+
+def _run_chunk(raw, out: str, group: int, chunk: int, start: int, stop: int, write, started: float):
     from ..records import lammps_version
 
-    started = time.perf_counter()
     spec = raw if isinstance(raw, SweepSpec) else _spec_of(raw)
     out = Path(out)
     model, dt = spec.model(group)

@@ -72,7 +72,7 @@ def render_pairs(batch, route: str | None = None) -> Deck:
     no dump to format and parse: a sweep's chunks), a deck that runs only in process."""
     c = batch.columns
     reach = float(np.max(np.abs(_spheres(c["v_a"], c["v_b"]))))
-    out_speed = float(np.max(np.abs([(*o.v_a, *o.v_b) for o in batch.exact])))
+    out_speed = max(float(np.max(np.abs(np.array([getattr(o, v) for o in batch.exact])))) for v in ("v_a", "v_b"))
     travel = math.sqrt(3.0) * max(reach, out_speed) * batch.nsteps * batch.dt
     cell = 4.0 * (float(np.max(c["r_a"] + c["r_b"])) + travel)
     grid = math.ceil(round(batch.n ** (1.0 / 3.0), 9))

@@ -60,6 +60,21 @@ SCALE_CLASSES = 32
 RULE_REACH = 16
 
 
+#: What a batch computes of its pairs and law alone, whatever its step, by name: (pairs, contact, value) of the
+#: last batch that computed it (a batch at another step, of the same tuple of pairs, takes it from there).
+_LAST: dict[str, tuple] = {}
+
+
+def _shared(batch: "PairBatch", name: str, compute):
+    """``compute()`` of ``batch``, or the same value of the last batch of the same pairs and law."""
+    last = _LAST.get(name)
+    if last is not None and last[0] is batch.pairs and last[1] == batch.contact:
+        return last[2]
+    value = compute()
+    _LAST[name] = (batch.pairs, batch.contact, value)
+    return value
+
+
 @dataclass(frozen=True)
 class PairBatch:
     """Pairs run together, each in its own cell. ``dt = None``: PAIR_STEPS_PER_HALF_PERIOD steps
@@ -113,7 +128,11 @@ class PairBatch:
 
     @cached_property
     def walls(self) -> tuple[ContactModel, ...]:
-        """Each pair's equivalent wall contact (:meth:`Pair.equivalent_wall`), built once per spheres."""
+        """Each pair's equivalent wall contact (:meth:`Pair.equivalent_wall`), built once per spheres (and
+        shared by the batches of the same pairs and law: a probe's and a ladder's at their steps)."""
+        return _shared(self, "walls", self._walls)
+
+    def _walls(self) -> tuple[ContactModel, ...]:
         made: dict = {}
         for p in self.pairs:  # a batch's pairs share a few sphere objects: looked up by identity first
             if (id(p.a), id(p.b)) not in made:
@@ -123,6 +142,9 @@ class PairBatch:
     @cached_property
     def wall_groups(self) -> tuple[tuple[ContactModel, np.ndarray], ...]:
         """The distinct equivalent walls of the batch, each with the indices of its pairs."""
+        return _shared(self, "wall_groups", self._wall_groups)
+
+    def _wall_groups(self) -> tuple[tuple[ContactModel, np.ndarray], ...]:
         groups: dict[int, tuple[ContactModel, list]] = {}
         for k, wall in enumerate(self.walls):
             groups.setdefault(id(wall), (wall, []))[1].append(k)
@@ -185,11 +207,16 @@ class PairBatch:
     def columns(self) -> dict[str, np.ndarray]:
         """The pairs as arrays: per sphere ``x`` of ``a`` and ``b``, its ``m_x``, ``r_x``, ``alpha_x`` and
         ``rigid_x`` (N,) and its ``v_x`` and ``w_x`` (N, 3); and the ``normal`` (N, 3)."""
+        return _shared(self, "columns", self._columns)
+
+    def _columns(self) -> dict[str, np.ndarray]:
         out = {k: np.array([getattr(p, k) for p in self.pairs], dtype=float).reshape(-1, 3)
                for k in ("normal", "v_a", "v_b", "w_a", "w_b")}
         for side in ("a", "b"):
             spheres = [getattr(p, side) for p in self.pairs]
             out |= {f"{k}_{side}": np.array([getattr(s, k) for s in spheres]) for k in ("m", "r", "alpha", "rigid")}
+        for values in out.values():  # shared with the batches of the same pairs (_shared): never changed in place
+            values.setflags(write=False)
         return out
 
     @cached_property
