@@ -89,6 +89,7 @@ class PairContact:
         a probe's, a ladder's runs) is answered whole, without looking up each pair."""
         last = _LAST.get((self, planar))
         if last is not None and last[0] is pairs:
+            _LAST[self, planar] = _LAST.pop((self, planar))  # the most recently used, dropped last
             return last[1]
         out = self._solve_each(pairs, planar)
         if isinstance(pairs, tuple):  # kept with the tuple itself, so that its identity stays its own
@@ -155,6 +156,7 @@ def _solved(solver, k: int, pair, law: dict, planar: bool, tensile: bool):
 #: asking for their references; more than a sweep's chunk of pairs (25,000), ~1 kB each.
 SOLVED = 1 << 15
 _SOLVED: OrderedDict = OrderedDict()
-#: The last tuple of pairs solved whole, by law and planarity, with its outcomes (for the LAST laws used last).
-LAST = 4
+#: The last tuple of pairs solved whole, by law and planarity, with its outcomes (for the LAST laws used last: a
+#: chunk's batches ask again within the chunk; each entry holds up to a chunk's outcomes, ~1 kB a pair).
+LAST = 2
 _LAST: dict = {}
