@@ -7,10 +7,9 @@ from __future__ import annotations
 from collections import OrderedDict
 from dataclasses import dataclass, fields
 
-import numpy as np
-
 from ...errors import ResultError
 from ...model.parameters import by_name
+from .columns import pair_columns
 
 __all__ = ["PairContact", "checked"]
 
@@ -136,8 +135,9 @@ class PairContact:
         law = self.reference_law() | ({"kt": 0.0, "gamma_t": 0.0} if self.mu == 0.0 else {})
         cap = {"mu": self.mu} if capped else {}
         if self.batched:
-            rows = [p.vectors() | p.properties() for p in pairs]
-            columns = {k: np.array([row[k] for row in rows]) for k in rows[0]}
+            c = pair_columns(pairs)
+            names = ("v_a", "v_b", "w_a", "w_b", "m_a", "r_a", "alpha_a", "m_b", "r_b", "alpha_b")
+            columns = {"n": c["normal"]} | {k: c[k] for k in names}
             solver = pair_capped_batch if capped else pair_batch
             return solver.solve(**columns, **{k: law[k] for k in self.law()}, **cap, planar=planar)
         solver = pair_capped if capped else pair_exact

@@ -15,6 +15,7 @@ from ...exact import pair as planar
 from ...lammps.decks import ALPHA_NVE_SPHERE
 from ...model.contact import ContactModel
 from ...model.parameters import SceneError, by_name
+from .columns import pair_columns
 from .contact import PairContact, checked as _checked
 
 __all__ = ["Sphere", "Pair", "equivalent_wall", "time_scaled", "speeds", "slip_speeds", "along_z"]
@@ -136,23 +137,17 @@ def along_z(a: Sphere, b: Sphere, v_a: np.ndarray, w_a: np.ndarray, v_b, w_b) ->
     return [_trusted(Pair, **shared, v_a=tuple(va), w_a=tuple(wa)) for va, wa in zip(v_a.tolist(), w_a.tolist())]
 
 
-def _arrays(pairs) -> dict:
-    """The pairs' vectors as (N, 3) arrays and their radii as (N,) arrays."""
-    out = {k: np.array([getattr(p, k) for p in pairs]) for k in ("normal", "v_a", "v_b", "w_a", "w_b")}
-    return out | {"r_a": np.array([p.a.r for p in pairs]), "r_b": np.array([p.b.r for p in pairs])}
-
-
 def slip_speeds(pairs) -> np.ndarray:
     """:meth:`Pair.slip_speed` of each of ``pairs`` (or of their arrays, as :func:`_arrays` or
     :attr:`.scene.PairBatch.columns` give them), at once."""
-    x = pairs if isinstance(pairs, dict) else _arrays(pairs)
+    x = pairs if isinstance(pairs, dict) else pair_columns(pairs)
     return np.linalg.norm(planar.slip_rate(x["normal"], x["v_a"], x["v_b"], x["w_a"], x["w_b"], x["r_a"], x["r_b"]),
                           axis=-1)
 
 
 def speeds(pairs) -> np.ndarray:
     """:meth:`Pair.speed` of each of ``pairs`` (or of their arrays: :func:`slip_speeds`), at once."""
-    x = pairs if isinstance(pairs, dict) else _arrays(pairs)
+    x = pairs if isinstance(pairs, dict) else pair_columns(pairs)
     return np.maximum(np.linalg.norm(x["v_a"] - x["v_b"], axis=-1), slip_speeds(x))
 
 

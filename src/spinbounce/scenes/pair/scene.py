@@ -33,6 +33,7 @@ from ...model.stability import overlap_stretch
 from ...model.timestep import MAX_STEPS, check_steps, steps_per_contact, steps_through
 from ..jump import beyond_reach, near_the_jump, slow_start, warn_slow_start
 from .contact import PairContact
+from .columns import pair_columns
 from .pairs import Pair, Sphere, slip_speeds, time_scaled  # noqa: F401 (time_scaled: exported)
 from .deck import PAIR_NO_CAP_MU, render_pairs
 
@@ -210,11 +211,7 @@ class PairBatch:
         return _shared(self, "columns", self._columns)
 
     def _columns(self) -> dict[str, np.ndarray]:
-        out = {k: np.array([getattr(p, k) for p in self.pairs], dtype=float).reshape(-1, 3)
-               for k in ("normal", "v_a", "v_b", "w_a", "w_b")}
-        for side in ("a", "b"):
-            spheres = [getattr(p, side) for p in self.pairs]
-            out |= {f"{k}_{side}": np.array([getattr(s, k) for s in spheres]) for k in ("m", "r", "alpha", "rigid")}
+        out = pair_columns(self.pairs)
         for values in out.values():  # shared with the batches of the same pairs (_shared): never changed in place
             values.setflags(write=False)
         return out
