@@ -84,21 +84,7 @@ class PairContact:
 
     def solve_all(self, pairs, planar: bool = False) -> tuple:
         """:meth:`solve` of each of ``pairs``: those not solved before together where the law allows
-        (:attr:`batched`), else one at a time. The same tuple of pairs asked again (a batch at another step:
-        a probe's, a ladder's runs) is answered whole, without looking up each pair."""
-        last = _LAST.get((self, planar))
-        if last is not None and last[0] is pairs:
-            _LAST[self, planar] = _LAST.pop((self, planar))  # the most recently used, dropped last
-            return last[1]
-        out = self._solve_each(pairs, planar)
-        if isinstance(pairs, tuple):  # kept with the tuple itself, so that its identity stays its own
-            _LAST.pop((self, planar), None)
-            _LAST[self, planar] = (pairs, out)
-            while len(_LAST) > LAST:
-                _LAST.pop(next(iter(_LAST)))
-        return out
-
-    def _solve_each(self, pairs, planar: bool) -> tuple:
+        (:attr:`batched`), else one at a time."""
         keys = [(self, pair, planar) for pair in pairs]
         found = {key: _SOLVED[key] for key in keys if key in _SOLVED}
         missing = list(dict.fromkeys(key for key in keys if key not in found))
@@ -156,7 +142,3 @@ def _solved(solver, k: int, pair, law: dict, planar: bool, tensile: bool):
 #: asking for their references; more than a sweep's chunk of pairs (25,000), ~1 kB each.
 SOLVED = 1 << 15
 _SOLVED: OrderedDict = OrderedDict()
-#: The last tuple of pairs solved whole, by law and planarity, with its outcomes (for the LAST laws used last: a
-#: chunk's batches ask again within the chunk; each entry holds up to a chunk's outcomes, ~1 kB a pair).
-LAST = 2
-_LAST: dict = {}

@@ -138,7 +138,7 @@ def along_z(a: Sphere, b: Sphere, v_a: np.ndarray, w_a: np.ndarray, v_b, w_b) ->
 
 
 def slip_speeds(pairs) -> np.ndarray:
-    """:meth:`Pair.slip_speed` of each of ``pairs`` (or of their arrays, as :func:`_arrays` or
+    """:meth:`Pair.slip_speed` of each of ``pairs`` (or of their arrays, as :func:`.columns.pair_columns` and
     :attr:`.scene.PairBatch.columns` give them), at once."""
     x = pairs if isinstance(pairs, dict) else pair_columns(pairs)
     return np.linalg.norm(planar.slip_rate(x["normal"], x["v_a"], x["v_b"], x["w_a"], x["w_b"], x["r_a"], x["r_b"]),

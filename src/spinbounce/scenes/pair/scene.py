@@ -62,17 +62,22 @@ RULE_REACH = 16
 
 
 #: What a batch computes of its pairs and law alone, whatever its step, by name: (pairs, contact, value) of the
-#: last batch that computed it (a batch at another step, of the same tuple of pairs, takes it from there).
-_LAST: dict[str, tuple] = {}
+#: last SHARED batches that computed it (a batch at another step, of the same tuple of pairs, takes it from there:
+#: a chunk's probe and its runs alternate). Each holds up to a chunk's outcomes, ~1 kB a pair.
+SHARED = 2
+_LAST: dict[str, list[tuple]] = {}
 
 
 def _shared(batch: "PairBatch", name: str, compute):
-    """``compute()`` of ``batch``, or the same value of the last batch of the same pairs and law."""
-    last = _LAST.get(name)
-    if last is not None and last[0] is batch.pairs and last[1] == batch.contact:
-        return last[2]
+    """``compute()`` of ``batch``, or the same value of a recent batch of the same pairs and law."""
+    recent = _LAST.setdefault(name, [])
+    for k, (pairs, contact, value) in enumerate(recent):
+        if pairs is batch.pairs and contact == batch.contact:
+            recent.append(recent.pop(k))  # the most recently used, dropped last
+            return value
     value = compute()
-    _LAST[name] = (batch.pairs, batch.contact, value)
+    recent.append((batch.pairs, batch.contact, value))
+    del recent[:-SHARED]
     return value
 
 
@@ -164,7 +169,12 @@ class PairBatch:
     @cached_property
     def exact(self) -> tuple:
         """Each pair's exact outcome (:meth:`PairContact.solve`: what LAMMPS integrates)."""
-        return self.contact.solve_all(self.pairs)
+        return _shared(self, "exact", lambda: self.contact.solve_all(self.pairs))
+
+    @cached_property
+    def held(self) -> tuple:
+        """Each pair's exact outcome with its line of centres held (:meth:`PairContact.solve`, planar)."""
+        return _shared(self, "held", lambda: self.contact.solve_all(self.pairs, planar=True))
 
     @cached_property
     def time_scales(self) -> np.ndarray:

@@ -67,7 +67,7 @@ def _held(batch, props: dict) -> dict[str, np.ndarray]:
     reference held (:meth:`.PairContact.solve_all`)."""
     walls = [(wall.replace(mu=batch.contact.mu), index) for wall, index in batch.wall_groups]
     if not all(choose.which(wall).kind == "coulomb" for wall, _ in walls):
-        return _outcomes(batch.contact.solve_all(batch.pairs, planar=True))
+        return _outcomes(batch.held)
     c = batch.columns
     out = {k: np.empty((batch.n, 3)) for k in ("a_v", "b_v", "a_w", "b_w")}
     for wall, index in walls:
