@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 from converged import converged
-from spinbounce.errors import PhysicsWarning
+from spinbounce.errors import NoMatrix, PhysicsWarning
 from spinbounce.exact import choose, contact_phases, oracle
 from spinbounce.exact.wall_law import Law
 from spinbounce.model.contact import ContactModel
@@ -28,7 +28,14 @@ from test_damped_nonlinear import ASSEMBLIES as DAMPED, MATERIAL
 VARIANTS = ("mindlin", "mindlin/force", "mindlin_rescale", "mindlin_rescale/force")
 #: Each damping sub-model with a cap, on the Hertzian and Hookean forces, with each kind of spring
 #: (test_damped_nonlinear's, the restitution dashpot with a tangential one), and Hertz-Mindlin undamped.
-ASSEMBLIES = {name: law for name, law in DAMPED.items() if name != "hooke linear_history_classic"}
+ASSEMBLIES = dict(DAMPED)
+#: The classic spring's cap (its history reset by kt alone: exact.oracle_classic) with a Hertzian force and
+#: dashpots on the contact radius, which exact.classic (the plane, Hooke, constant dashpots) does not reach.
+ASSEMBLIES["hertz viscoelastic linear_history_classic"] = {"normal": "hertz", "kn": 1000.0, "kt": 400.0,
+                                                           "damping": "viscoelastic", "gamma_n_per_mass_radius": 2.0,
+                                                           "x_t": 0.5, "tangential": "linear_history_classic"}
+ASSEMBLIES["hooke viscoelastic linear_history_classic"] = {**DAMPED["hooke viscoelastic"],
+                                                           "tangential": "linear_history_classic"}
 ASSEMBLIES["hertz coeff_restitution mindlin_rescale"] = {**DAMPED["hertz coeff_restitution mindlin_rescale"],
                                                          "x_t": 0.3}
 ASSEMBLIES["hertz-mindlin undamped"] = {**MATERIAL, "tangential": "mindlin_rescale"}
@@ -44,15 +51,27 @@ BAND = (1.0, 1.2)
 
 
 def _random_states(rng, n: int, model: ContactModel) -> np.ndarray:
-    """Random 3-D states, those in the jump's band (BAND) of a law that has one drawn again."""
+    """Random 3-D states, those in the jump's band (BAND) of a law that has one drawn again, and those
+    a classic cap's reference refuses (no dt -> 0 limit: tests/test_classic_cap.py)."""
     law, out = Law.of(model), []
     while len(out) < n:
         s = np.array([-rng.uniform(0.2, 1.2), *rng.uniform(-1.0, 1.0, 2), *rng.uniform(-0.5, 0.5, 2),
                       rng.uniform(-1.0, 1.0)])
         ratio = law.threshold_ratio(s[0], math.hypot(s[1] + s[2], s[3] + s[4]))
-        if not (law.first_touch_runaway and BAND[0] < ratio < BAND[1]):
-            out.append(s)
+        if law.first_touch_runaway and BAND[0] < ratio < BAND[1]:
+            continue
+        if law.classic_cap and not _has_limit(model, s):
+            continue
+        out.append(s)
     return np.array(out)
+
+
+def _has_limit(model: ContactModel, state) -> bool:
+    try:
+        choose.predict(model, state[None, :])
+    except NoMatrix:
+        return False
+    return True
 
 
 @pytest.mark.parametrize("variant", VARIANTS)
@@ -103,6 +122,7 @@ def test_lammps_at_the_default_step_meets_the_reference(name, mu, extra, tmp_pat
     ("hertz tsuji mindlin", None, (-0.8, 0.6, -0.3)),  # no cap: limit_damping (mu None here)
     ("hooke viscoelastic", None, (-0.8, 0.6, -0.3)),
     ("hooke mindlin tangential dashpot", 0.3, (-0.8, 0.6, -0.3)),  # slides along the slip at first (1.6e-8)
+    ("hooke viscoelastic linear_history_classic", 0.3, (-1.0, 0.5, 0.1)),  # the classic cap, slide and teeth
 ])
 def test_converged_lammps_meets_the_reference(name, mu, state, tmp_path):
     # dt halved until the change is below 1e-7 (measured: LAMMPS within 5e-8 to 8e-8 of the

@@ -288,10 +288,11 @@ def test_the_classic_spring_at_the_default_step_meets_the_reference(law, tmp_pat
     assert (result.table["status"] == "ok").all() and result.table["error"].max() <= 1e-4
 
 
-def test_the_capped_classic_spring_is_refused_with_the_hertzian_force():
-    with pytest.raises(SceneError) as info:
-        ContactModel(tangential="linear_history_classic", normal="hertz", mu=0.3)
-    assert info.value.parameter == "mu"
+def test_the_capped_classic_spring_with_the_hertzian_force_has_the_oracle_s_reference():
+    # once refused; now exact.oracle with the classic cap (tests/test_classic_cap.py, test_capped_nonlinear.py)
+    model = ContactModel(tangential="linear_history_classic", normal="hertz", kn=5000.0, mu=0.3)
+    assert choose.which(model).kind == "classic_wall"
+    assert np.isfinite(choose.predict(model, np.array([[-1.0, 0.5, 0.1]]))).all()
 
 
 def test_a_hookean_capped_contact_that_slides_almost_at_once_has_a_reference(tmp_path):

@@ -212,18 +212,15 @@ def test_the_classic_springs_pair_reference_keeps_its_history_in_the_tangent_pla
         assert difference > apart if apart else difference < 1e-12
 
 
-def test_a_capped_classic_spring_between_two_spheres_or_with_radial_dashpots_is_refused_with_the_reason():
+def test_a_capped_classic_spring_between_two_spheres_is_refused_with_the_reason():
     model = ContactModel(m=1.0, r=0.5, mu=0.3, **UNCAPPED["hooke linear_history_classic"])
     with pytest.raises(SceneError, match="mu = 0.3: must be none with tangential = linear_history_classic between"):
         pair_contact(model, B)
-    # against a wall it runs, with constant dashpots; with dashpots on the contact radius the classic cap's
-    # reference (constant dashpots) is refused: LAMMPS gave v_n' = 1.094 where it said 0.316
-    assert ContactModel(m=1.0, r=0.5, mu=0.3, damping="tsuji", e_n=0.8, kn=50.0, kt=20.0,
-                        tangential="linear_history_classic").mu == 0.3
-    with pytest.raises(SceneError, match="mu = 0.3: must be none with tangential = linear_history_classic and "
-                                         "damping = viscoelastic"):
-        ContactModel(m=1.0, r=0.5, mu=0.3, damping="viscoelastic", gamma_n_per_mass_radius=2.0, kn=50.0, kt=20.0,
-                     tangential="linear_history_classic")
+    # against a wall it runs, with constant dashpots and with dashpots on the contact radius (exact.oracle's
+    # classic cap, tests/test_classic_cap.py)
+    for damping in ({"damping": "tsuji", "e_n": 0.8}, {"damping": "viscoelastic", "gamma_n_per_mass_radius": 2.0}):
+        assert ContactModel(m=1.0, r=0.5, mu=0.3, kn=50.0, kt=20.0, tangential="linear_history_classic",
+                            **damping).mu == 0.3
 
 
 #: Grazing pairs (closing slowly, sliding past fast) on the contact radius, each as a, its spins and b's state

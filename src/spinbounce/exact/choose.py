@@ -70,7 +70,8 @@ def which(model) -> Choice:
                       "and on the length unit: give a state (v_n, v_t, omega) for its outcome")
     if model.mu is not None and model.tangential_law.classic_cap:
         return Choice("classic_wall", "the classic wall's spring as this LAMMPS build integrates it (kt sqrt(r delta), "
-                                      "its cap reset by kt alone; exact.classic)",
+                                      "its cap reset by kt alone; exact.classic in the plane with Hooke's force and "
+                                      "constant dashpots, else exact.oracle)",
                       f"with mu = {model.mu!r} the contact sticks and slides in turn: give a state (v_n, v_t, omega) "
                       "for its outcome")
     if (model.mu is not None and (model.tangential_law.contact_radius or damped_nonlinear(model))
@@ -136,6 +137,11 @@ def _capped_nonlinear(model, initial) -> np.ndarray:
         from . import contact_phases
 
         return contact_phases.bounce_many(contact_phases.Law.of(model), initial)[:, :3]
+    return _oracle(model, initial)
+
+
+def _oracle(model, initial) -> np.ndarray:
+    """Final states from exact.oracle, one state at a time."""
     from . import oracle
 
     r = model.r
@@ -289,12 +295,7 @@ def predict(model, initial) -> np.ndarray:
     width = initial.shape[1]
     kind = which(model).kind
     if kind == "classic_wall":
-        from . import classic
-
-        if width != 3:
-            raise NoMatrix("the classic wall's theory is in the paper's plane: give no v_s, omega_s or omega_n")
-        wall = classic_wall(model)
-        return np.array([classic.bounce(wall, *state).final for state in initial])
+        return _classic(model, initial)
     if kind == "capped_nonlinear":
         return _capped_nonlinear(model, initial)
     if kind == "coulomb":  # the exact batched solver; the scipy oracle is its independent check
@@ -332,6 +333,23 @@ def outcome(model, v_n: float, v_t: float = 0.0, omega: float = 0.0, v_s: float 
         raise NoMatrix(f"v_n = {v_n!r}: a collision needs v_n < 0 (towards the wall)")
     final = predict(model, np.array([initial]))[0]
     return dict(zip(names, map(float, initial), strict=True)), dict(zip(names, map(float, final), strict=True))
+
+
+def _classic(model, initial) -> np.ndarray:
+    """The classic spring's final states: exact.classic where it reaches (the paper's plane, Hooke's force,
+    constant dashpots, a tensile normal force), else exact.oracle with the classic cap (:mod:`.oracle_classic`)."""
+    from . import classic
+
+    fixed = model.style.tangential_contact_radius  # the classic wall's fixed assembly (its own coefficients)
+    reach = (not model.normal_law.contact_radius and model.damping_law.radius_power(model.normal_law) == 0.0
+             and not model.limit_damping)
+    if initial.shape[1] == 3 and (fixed or reach):
+        wall = classic_wall(model)
+        return np.array([classic.bounce(wall, *state).final for state in initial])
+    if fixed:
+        raise NoMatrix("the classic wall's theory is in the paper's plane: give no v_s, omega_s or omega_n "
+                       "(or its spring inside granular: --wall granular --tangential linear_history_classic)")
+    return _oracle(model, initial)
 
 
 def classic_wall(model):

@@ -44,12 +44,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from .oracle_forces import VN as _VN
-from .oracle_forces import A as _A
-from .oracle_forces import D as _D
-from .oracle_forces import Forces
-from .oracle_forces import V as _V
-from .oracle_forces import W as _W
+from . import oracle_classic
+from .oracle_forces import A as _A, D as _D, V as _V, VN as _VN, W as _W, Forces
 from .wall_law import Law
 
 if TYPE_CHECKING:  # the oracle reads a model's fields; it needs nothing else of model/
@@ -116,7 +112,7 @@ class OracleResult:
 class _Contact:
     """Forces and their rates for one model, in the paper's variables."""
 
-    def __init__(self, model: ContactModel):
+    def __init__(self, model: ContactModel, hold: float = oracle_classic.NEAR_ONE):
         if model.mu is None:
             raise ValueError("the oracle models LAMMPS's Coulomb cap: give a finite mu "
                              "(theory.scattering_matrix is exact without one)")
@@ -125,6 +121,8 @@ class _Contact:
         self.m, self.r, self.alpha, self.mu = law.m, law.r, law.alpha, law.mu
         self.gn = law.c_n  # the normal dashpot's prefactor: gamma_n a^s
         self.tensile = not model.limit_damping
+        self.classic = law.classic_cap  # the cap resets the history by k alone (oracle_classic)
+        self.hold, self.slide_ends = hold, 0  # a classic slide's hold; how many ended
         self.nonlinear = self.forces.nonlinear
         self.slip_mass = self.forces.slip_mass
         # set per collision (bounce): a force and a rate of force negligible against the
@@ -196,6 +194,8 @@ class _Contact:
         elif phase == "slip":
             def to_stick(t, y):
                 c, dc = self.cap(y)
+                if self.classic:
+                    return oracle_classic.slide_margin(self.forces, y, c, self.hold)
                 return self.push(y, self.slide_direction(y), c) - dc + self.floor_rate
 
             def cap_gone(t, y):
@@ -247,6 +247,9 @@ class _Contact:
             return "coast"
         if name == "to_slip":
             return self.on_cap(y, cap, dcap)
+        if self.classic:  # to_stick: the slide's end resets the history as any capped step does
+            self.slide_ends += 1
+            return oracle_classic.after_cap(self.forces, y, cap)
         y[_A] = cap * y[_A]  # to_stick: A rides the cap along s
         return "stick"
 
@@ -266,12 +269,10 @@ class _Contact:
         slip opposes s) that an explicit method cannot follow; but q' is linear in q, so
         the slide integrates log |q| (its rate -kt p / c a mere quadrature) and keeps q's
         sign, which never changes. s stays a unit vector, and a slip exactly along s
-        (q = 0) stays so. (LSODA on s stopped in 1 of 7 random 3-D contacts; BDF and
-        Radau, their Jacobian stale as c changes by decades, let s drift off the slip by
-        up to 1 rad.)
+        (q = 0) stays so (LSODA, BDF and Radau on s failed or let s drift off the slip).
         """
         atol = ATOL
-        if phase == "slip" and (y[3] or y[5] or y[7]):
+        if phase == "slip" and (y[3] or y[5] or y[7]) and not self.classic:  # a classic slide's s stays put
             s = y[_A]
             across = float(s[0] * (y[5] + y[3]) - s[1] * (y[4] + y[2]))  # q = u' . (-s_y, s_x)
             y = np.concatenate([y[:_THETA], [math.atan2(s[1], s[0]),
@@ -312,8 +313,7 @@ class _Contact:
         normal dashpot, or without one starting at zero), A is set on the cap and the history to the
         elastic part c - gamma_t |u'|, against the slip. Sticking, that part grows as a^q (R = q a'/a),
         faster than the cap, and reaches the cap's far side within a time proportional to the start
-        (measured: 1e5 starts at 1.04 times the threshold): as the start goes to zero the contact
-        slides from first touch with the friction along the slip. So it starts so here.
+        (measured: 1e5 starts at 1.04 times the threshold), so it starts sliding here.
         """
         phase = self.start(y)
         if self.law.first_touch_runaway and phase == "stick" and math.hypot(*y[_A]) >= self.cap(y)[0] * (1.0 - 1e-12):
@@ -323,7 +323,10 @@ class _Contact:
 
     def on_cap(self, y, c: float, dc: float) -> str:
         """With A on the cap c (rising at dc), or just past it: slide if sticking would
-        push A outwards faster than the cap grows, else stick with A on the cap."""
+        push A outwards faster than the cap grows, else stick with A on the cap (the classic cap:
+        :func:`.oracle_classic.after_cap`)."""
+        if self.classic:
+            return oracle_classic.after_cap(self.forces, y, c)
         # s: the direction of A, else of the slip, else t
         vec = next((v for v in (y[_A], y[_V] + y[_W]) if math.hypot(*v) > 0.0), None)
         s = np.array([1.0, 0.0]) if vec is None else vec / math.hypot(*vec)
@@ -339,11 +342,19 @@ def bounce(model: ContactModel, v_n: float, v_t: float = 0.0, omega: float = 0.0
     """One sphere that starts touching the wall (delta = 0) with velocity v_n < 0.
 
     ``omega`` (paper's sign) couples with ``v_t``, ``omega_s`` with ``v_s``, and
-    ``omega_n`` is the spin about the wall's normal.
+    ``omega_n`` is the spin about the wall's normal (a classic cap: :mod:`.oracle_classic`).
     """
     if not v_n < 0.0:
         raise ValueError(f"v_n = {v_n!r}: must be < 0 (towards the wall)")
-    c = _Contact(model)
+    state, c = (v_n, v_t, omega, v_s, omega_s, omega_n), _Contact(model)
+    result = _bounce(c, model, *state) if not c.classic or oracle_classic.check_radius(model, v_n) else None
+    if c.slide_ends:
+        oracle_classic.check_limit(result, lambda hold: _bounce(_Contact(model, hold), model, *state))
+    return result
+
+
+def _bounce(c: _Contact, model, v_n: float, v_t: float, omega: float, v_s: float, omega_s: float,
+            omega_n: float) -> OracleResult:
     tau = float(model.contact_times(v_n)[0])
     # a slide whose cap has shrunk below 1e-12 of its typical value (mu m |v_n| / tau)
     # coasts to the exit or to the tensile turn with no tangential force
@@ -360,7 +371,7 @@ def bounce(model: ContactModel, v_n: float, v_t: float = 0.0, omega: float = 0.0
     nfev = 0
     # a generous horizon: the contact must end well within it (checked below)
     horizon = 50.0 * tau
-    for _ in range(MAX_SWITCHES):
+    for _ in range(limit := oracle_classic.MAX_SWITCHES if c.classic else MAX_SWITCHES):
         events = c.events(phase)
         sol = c.integrate(phase, events, y, t, horizon, tau)
         nfev += sol.nfev
@@ -375,7 +386,7 @@ def bounce(model: ContactModel, v_n: float, v_t: float = 0.0, omega: float = 0.0
         phase = c.switch(events[hit].__name__, y, phase)
         regimes.append((t, phase))
     else:
-        raise RuntimeError(f"oracle: more than {MAX_SWITCHES} regime switches (chattering)")
+        raise RuntimeError(f"oracle: more than {limit} regime switches (chattering)")
     final = np.array([y[_VN], y[_V][0], y[_W][0], y[_V][1], y[_W][1], r * omega_n])
     return OracleResult(initial, final, t, tuple(regimes), nfev)
 

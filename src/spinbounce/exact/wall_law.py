@@ -42,6 +42,9 @@ class Law:
     damping_power: float = 0.0
     #: The normal force may pull (False: limit_damping cuts it at zero, and the sphere coasts out).
     tensile: bool = True
+    #: The cap resets the history by k alone, not k a^q (this build's ``linear_history_classic``):
+    #: the next trial force is a^q of the cap plus (1 - a^q) of the dashpot's (:mod:`.oracle_classic`).
+    classic_cap: bool = False
 
     @property
     def on_contact_radius(self) -> bool:
@@ -57,7 +60,8 @@ class Law:
         history) the outcome is smooth in the state, but every state above 1 converges so: r omega's
         error 7.3e-3, 2.4e-3 and 7.5e-4 at dt = 3e-4, 3e-5 and 3e-6 (Hooke, x_t |u'| = 2 mu |v_n|, and
         as much at 5 times); with s < q it jumps (:attr:`first_touch_runaway`)."""
-        return (not self.force_history and self.spring_power > 0.0 and self.spring_power >= self.damping_power
+        return (not self.force_history and not self.classic_cap and self.spring_power > 0.0
+                and self.spring_power >= self.damping_power
                 and self.c_t > 0.0 and math.isfinite(self.mu))
 
     @property
@@ -90,4 +94,5 @@ class Law:
                    spring_power=1.0 if tangential.contact_radius else 0.0, force_history=force, rescale=rescale,
                    mu=math.inf if normal_only or model.mu is None else model.mu, c_n=model.gamma_n,
                    c_t=0.0 if normal_only else model.gamma_t, damping_power=model.damping_law.radius_power(normal),
-                   tensile=not model.limit_damping)
+                   tensile=not model.limit_damping,
+                   classic_cap=tangential.classic_cap and not normal_only and model.mu is not None)

@@ -5,9 +5,10 @@ This build sets its ``contact_radius_flag``: the spring is kt a on the slip hist
 sqrt(R delta), the equations of ``mindlin`` with k_t = kt (measured: LAMMPS's outcomes of the
 two are bit-identical against a wall without a cap). Its cap differs: it resets the history by kt
 alone, not kt a (``exact.classic``'s sawtooth and slide). So against a wall without a cap its
-reference is :mod:`spinbounce.exact.mindlin`, with a cap :mod:`spinbounce.exact.classic` (Hooke's
-force and constant dashpots only; with the Hertzian force or dashpots on the contact radius and a
-cap it is refused). ``--wall classic`` is the same sub-model in its fixed assembly
+reference is :mod:`spinbounce.exact.mindlin`, with a cap :mod:`spinbounce.exact.classic` in the plane
+with Hooke's force and constant dashpots, else the oracle with the classic cap
+(:mod:`spinbounce.exact.oracle_classic`: 3-D, any force and dashpot, ``limit_damping``; a state whose
+outcome has no dt -> 0 limit is refused there). ``--wall classic`` is the same sub-model in its fixed assembly
 (``hooke/history``).
 
 Between two spheres it differs from ``mindlin`` without a cap too: it projects its history onto the
@@ -20,11 +21,6 @@ between two spheres it is refused: no pair reference follows its reset.
 
 from __future__ import annotations
 
-from ...declaration import Parameter
-from ...errors import SceneError
-from ..base import DampingLaw, NormalLaw
-from ..damping import damping_law
-from ..normal import normal_law
 from .linear_history import KT, MU
 from .mindlin import RadiusSpring
 
@@ -39,23 +35,6 @@ class LinearHistoryClassic(RadiusSpring):
     turns_history = True
     #: (force, rescale): a displacement history, never rescaled (mindlin's equations).
     variant = (False, False)
-
-    def settle(self, values: dict, foreign: tuple[Parameter, ...]) -> dict:
-        super().settle(values, foreign)
-        normal = normal_law(values.get("normal", NormalLaw.default_keyword))
-        if values.get("mu") is not None and normal.contact_radius:
-            raise SceneError("mu", values["mu"], f"must be none with tangential = {self.keyword} and normal = "
-                                                 f"{normal.keyword}: its cap resets the history by kt alone, "
-                                                 "which no reference here follows with a Hertzian force")
-        damping = damping_law(values.get("damping", DampingLaw.default_keyword))
-        if values.get("mu") is not None and damping.radius_power(normal) != 0.0:
-            raise SceneError("mu", values["mu"], f"must be none with tangential = {self.keyword} and damping = "
-                                                 f"{damping.keyword}: its cap resets the history by kt alone, which "
-                                                 "no reference here follows with dashpots on the contact radius")
-        if values.get("mu") is not None and values.get("limit_damping"):
-            raise SceneError("limit_damping", True, f"is not covered by the capped reference of tangential = "
-                                                    f"{self.keyword} (exact.classic): leave it out")
-        return {}
 
     def stiffness(self, model) -> float:
         return model.kt

@@ -1,0 +1,75 @@
+"""The classic spring's cap (linear_history_classic, its history reset by kt alone) in the wall's oracle: 3-D, any law.
+
+exact.oracle_classic carries the cap's reset into the oracle (3-D, the Hertzian force, dashpots on the contact
+radius, limit_damping). Where both reach (the paper's plane, Hooke's force, constant dashpots) it meets
+exact.classic, written apart (in the phase of the normal motion, the history as its state). LAMMPS against it:
+tests/test_capped_nonlinear.py (the default step on random 3-D states; a converged run).
+"""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from spinbounce.cli import main
+from spinbounce.errors import NoMatrix
+from spinbounce.exact import choose, classic, oracle
+from spinbounce.model.contact import ContactModel
+
+
+@pytest.mark.parametrize("dashpots", [{}, {"gamma_n": 1.0, "gamma_t": 0.5}, {"gamma_t": 2.0}, {"gamma_n": 2.0}])
+@pytest.mark.parametrize("mu", [0.05, 0.3, 1.0])
+def test_the_oracle_meets_the_classic_wall_s_theory_in_the_plane(dashpots, mu):
+    # both at rtol 1e-12; measured 9.7e-10 apart at worst over 72 random states (sawtooth, slides, tensile
+    # turns): 3e-9 of the state's size
+    model = ContactModel(tangential="linear_history_classic", mu=mu, **dashpots)
+    wall, rng = choose.classic_wall(model), np.random.default_rng(int(mu * 100) + len(dashpots))
+    for _ in range(3):
+        state = np.array([-rng.uniform(0.3, 2.0), rng.uniform(-2.0, 2.0), rng.uniform(-2.0, 2.0)])
+        try:
+            expected = classic.bounce(wall, *state).final
+        except ValueError:  # exact.classic's own limits (a spring that outruns a tensile turn's cap)
+            continue
+        final = oracle.bounce(model, state[0], state[1], state[2] / model.r).final[:3]
+        assert final == pytest.approx(expected, abs=3e-9 * np.abs(state).max())
+
+
+def test_a_3d_state_of_the_plane_s_law_keeps_the_plane_s_outcome_when_turned():
+    # the wall is the same in every tangent direction: a planar state turned by 0.7 rad gives the turned outcome
+    model = ContactModel(tangential="linear_history_classic", mu=0.3, gamma_n=1.0, gamma_t=0.5)
+    plane = choose.predict(model, np.array([[-0.9, 0.6, -0.2]]))[0]
+    c, s = np.cos(0.7), np.sin(0.7)
+    turned = choose.predict(model, np.array([[-0.9, 0.6 * c, -0.2 * c, 0.6 * s, -0.2 * s, 0.0]]))[0]
+    assert turned == pytest.approx([plane[0], plane[1] * c, plane[2] * c, plane[1] * s, plane[2] * s, 0.0], abs=3e-9)
+
+
+def test_a_state_whose_teeth_after_a_slide_set_its_outcome_is_refused_with_the_spread():
+    # a Hertzian viscoelastic contact that slides from first touch and saw-tooths from 1e-3 of its contact
+    # time: LAMMPS gave r omega = -0.438, -0.425, -0.439 and -0.499 at dt = 1e-5 ... 1.6e-7 (no limit)
+    model = ContactModel(tangential="linear_history_classic", mu=0.3, normal="hertz", kn=1000.0, kt=400.0,
+                         damping="viscoelastic", gamma_n_per_mass_radius=2.0, x_t=0.5)
+    with pytest.raises(NoMatrix, match="no dt -> 0 limit"):
+        choose.predict(model, np.array([[-0.6062, 0.27952, 0.28249]]))
+    # a state of the same law that slides and whose teeth do not carry their phase is answered
+    assert np.isfinite(choose.predict(model, np.array([[-1.0088, 0.4782, -0.7516, 0.1026, 0.1761, -0.6784]]))).all()
+
+
+def test_a_contact_radius_of_one_length_unit_is_refused():
+    model = ContactModel(tangential="linear_history_classic", mu=0.3, normal="hertz", r=20.0, m=1.0, kn=10.0,
+                         gamma_t=0.5)
+    with pytest.raises(NoMatrix, match=r"sqrt\(r delta\) = .* >= 1"):
+        choose.predict(model, np.array([[-3.0, 0.5, 0.2, 0.1, 0.0, 0.0]]))
+
+
+@pytest.mark.parametrize("flags", [["--normal", "hertz", "--kn", "1e4"],
+                                   ["--damping", "viscoelastic", "--gamma-n-per-mass-radius", "1"],
+                                   ["--limit-damping", "--gamma-n", "1"], ["--vs", "0.5", "--gamma-t", "0.5"]])
+def test_what_was_refused_for_want_of_a_reference_is_answered(flags, capsys):
+    argv = ["theory", "--tangential", "linear_history_classic", "--mu", "0.3", "--vn", "-1", "--vt", "0.5",
+            "--omega", "0.2", "--json", *flags]
+    assert main(argv) == 0
+    report = json.loads(capsys.readouterr().out)
+    assert report["theory_kind"] == "classic_wall" and report["theory"].keys() == report["initial"].keys()
+    assert all(np.isfinite(list(report["theory"].values()))) and report["theory"]["v_n"] > 0.0
