@@ -175,12 +175,13 @@ def test_one_timestep_rule():
 
 
 def test_one_place_decides_which_theory_applies():
-    # predictions come from exact/choose.py; the solvers behind it are imported elsewhere
-    # only to measure them (solver_speed) or, for the published benchmarks, as the
-    # independent oracle whose regime patterns the report shows
+    # predictions come from exact/choose.py (exact/per_state.py runs the solver it chose a state at a
+    # time); the solvers behind it are imported elsewhere only to measure them (solver_speed) or, for
+    # the published benchmarks, as the independent oracle whose regime patterns the report shows
     solvers = _files_matching(r"import [\w ,]*\b(oracle|coulomb)\b")
     assert "exact/choose.py" in solvers
-    assert solvers <= {"exact/choose.py", "studies/solver_speed.py", "studies/validation/run.py"}, solvers
+    assert solvers <= {"exact/choose.py", "exact/per_state.py", "studies/solver_speed.py",
+                       "studies/validation/run.py"}, solvers
 
 
 def test_every_test_module_says_in_one_line_what_it_holds():

@@ -14,9 +14,11 @@ import numpy as np
 import pytest
 
 from spinbounce.cli import main
-from spinbounce.errors import NoMatrix
-from spinbounce.exact import choose, classic, oracle
+from spinbounce.errors import NoMatrix, PhysicsWarning
+from spinbounce.exact import choose, classic, oracle, per_state
 from spinbounce.model.contact import ContactModel
+from spinbounce.pipeline import run_scene
+from spinbounce.scenes.collision import Collision
 
 
 @pytest.mark.parametrize("dashpots", [{}, {"gamma_n": 1.0, "gamma_t": 0.5}, {"gamma_t": 2.0}, {"gamma_n": 2.0}])
@@ -25,7 +27,7 @@ def test_the_oracle_meets_the_classic_wall_s_theory_in_the_plane(dashpots, mu):
     # both at rtol 1e-12; measured 9.7e-10 apart at worst over 72 random states (sawtooth, slides, tensile
     # turns): 3e-9 of the state's size
     model = ContactModel(tangential="linear_history_classic", mu=mu, **dashpots)
-    wall, rng = choose.classic_wall(model), np.random.default_rng(int(mu * 100) + len(dashpots))
+    wall, rng = per_state.classic_wall(model), np.random.default_rng(int(mu * 100) + len(dashpots))
     for _ in range(3):
         state = np.array([-rng.uniform(0.3, 2.0), rng.uniform(-2.0, 2.0), rng.uniform(-2.0, 2.0)])
         try:
@@ -73,3 +75,19 @@ def test_what_was_refused_for_want_of_a_reference_is_answered(flags, capsys):
     report = json.loads(capsys.readouterr().out)
     assert report["theory_kind"] == "classic_wall" and report["theory"].keys() == report["initial"].keys()
     assert all(np.isfinite(list(report["theory"].values()))) and report["theory"]["v_n"] > 0.0
+
+
+@pytest.mark.lammps
+def test_a_run_reports_a_state_without_a_limit_as_no_limit_and_the_others_as_usual(tmp_path):
+    # the refused state above beside one that has a limit, in one batch: LAMMPS runs both, the first row has no
+    # reference (NaN, status no_limit, warned of), the second is held to the default accuracy as ever
+    model = ContactModel(tangential="linear_history_classic", mu=0.3, normal="hertz", kn=1000.0, kt=400.0,
+                         damping="viscoelastic", gamma_n_per_mass_radius=2.0, x_t=0.5)
+    states = np.array([[-0.6062, 0.27952, 0.28249, 0.0, 0.0, 0.0],
+                       [-1.0088, 0.4782, -0.7516, 0.1026, 0.1761, -0.6784]])
+    scene = Collision(model, v_n=states[:, 0], v_t=states[:, 1], omega=states[:, 2] / model.r, v_s=states[:, 3],
+                      omega_s=states[:, 4] / model.r, omega_n=states[:, 5] / model.r)
+    with pytest.warns(PhysicsWarning, match="1 of 2 state"):
+        table = run_scene(scene, tmp_path, record=False).table
+    assert list(table["status"]) == ["no_limit", "ok"] and table["error"].iloc[1] <= 1e-4
+    assert np.isnan(table["error"].iloc[0])

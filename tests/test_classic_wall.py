@@ -15,6 +15,7 @@ import pandas as pd
 import pytest
 
 from spinbounce.cli import main
+from spinbounce.exact import per_state
 from spinbounce.model.contact import ContactModel
 from spinbounce.model.parameters import SceneError
 from spinbounce.scenes.collision import Collision
@@ -124,9 +125,8 @@ def test_a_tolerance_below_the_theory_s_own_accuracy_is_refused_before_any_run(t
 
 def test_a_cap_above_the_classic_forms_largest_runs_at_it_against_its_own_theory():
     # LAMMPS refuses MU > 1e4 in the classic form: the deck writes 1e4, the theory keeps the mu asked for
-    from spinbounce.exact import choose
     from spinbounce.lammps.decks import wall_parameters
 
     model = ContactModel(mu=1e5, wall="classic")
     assert wall_parameters(model)["mu"] == 1e4 and "mu = 100000 asked for" in wall_parameters(model)["comment"]
-    assert choose.classic_wall(model).mu == 1e5
+    assert per_state.classic_wall(model).mu == 1e5

@@ -28,7 +28,7 @@ from .model.timestep import ACCURACY
 __all__ = ["STATUSES", "RESOLVABLE_OVERLAP_ULPS", "RowStates", "add_row_checks", "summary", "tally", "notes"]
 
 #: Row statuses, worst first.
-STATUSES = ("grazing", "energy_gained", "inaccurate", "ok")
+STATUSES = ("grazing", "no_limit", "energy_gained", "inaccurate", "ok")
 #: The largest overlap must span this many units in the last place of the length it is
 #: measured against (the radius; a pair's sum of radii): positions are doubles near it, so an
 #: overlap of N ulps is resolved to 1/N (measured: v_n = -1e-11 at the paper's defaults, an
@@ -68,6 +68,7 @@ def add_row_checks(columns: dict, rows: RowStates, target: float = ACCURACY) -> 
     excess = (e1 - _energy(rows.weights, rows.reference)) / e0
     status = np.full(len(error), "ok", dtype=object)
     status[~(error <= target)] = "inaccurate"  # NaN too: a state no run reached is never ok
+    status[np.isnan(rows.reference).any(axis=1)] = "no_limit"  # LAMMPS has no dt -> 0 limit here: no reference
     # the most E(final) can move, over E(0), when each component errs by delta: by Cauchy-Schwarz,
     # sum w (x d + d^2/2) <= delta sqrt(W sum w x^2) + W delta^2/2, W = sum w
     delta = np.maximum(error, target) * rows.scale
@@ -102,6 +103,8 @@ def notes(status, target: float = ACCURACY) -> list[str]:
     counts = summary(status)
     total = sum(counts.values())
     why = {"grazing": "the impact is too slow for the overlap to be resolved in double precision",
+           "no_limit": "LAMMPS's outcome has no dt -> 0 limit for these states, so there is no reference "
+                       "(its warning names the first)",
            "energy_gained": "LAMMPS ended with more kinetic energy than the theory allows",
            "inaccurate": f"the deviation from the theory exceeds the target {target:g}"}
     return [f"{counts[name]} of {total} row(s) {name}: {why[name]}" for name in STATUSES[:-1] if counts[name]]

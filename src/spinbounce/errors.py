@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-__all__ = ["SceneError", "PhysicsWarning", "NoMatrix", "SweepError", "FileFault", "DumpError", "LammpsError",
+__all__ = ["SceneError", "PhysicsWarning", "NoMatrix", "NoLimit", "SweepError", "FileFault", "DumpError", "LammpsError",
            "ResultError"]
 
 
@@ -28,6 +28,10 @@ class PhysicsWarning(UserWarning):
 
 class NoMatrix(ValueError):
     """No single scattering matrix describes this model's collisions; the reason says why."""
+
+
+class NoLimit(NoMatrix):
+    """LAMMPS's outcome of this state has no dt -> 0 limit, so no reference can be given; the reason says why."""
 
 
 class SweepError(ValueError):

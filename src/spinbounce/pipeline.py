@@ -91,10 +91,12 @@ class RunResult:
 
 
 def _probe_errors(scene, folder: Path) -> np.ndarray:
-    """A probe's rows' relative errors (:func:`stepping.tune`): a plain run, nothing recorded;
-    inf if the step was too coarse for the run to finish the contact."""
+    """A probe's rows' relative errors (:func:`stepping.tune`): a plain run, nothing recorded; inf if the
+    step was too coarse for the run to finish the contact; rows without a limit (no reference) left out."""
     try:
-        return np.asarray(run_scene(scene, folder, atoms="library", record=False).columns["error"])
+        columns = run_scene(scene, folder, atoms="library", record=False).columns
+        measured = np.asarray(columns["status"]) != "no_limit"  # no reference, no error: the others decide
+        return np.asarray(columns["error"])[measured] if measured.any() else np.zeros(1)
     except ResultError as exc:
         if UNFINISHED not in str(exc):
             raise
@@ -161,9 +163,9 @@ def _finer(given, scene, step, columns: dict, out: Path, target: float, own_prob
 
 def _resolvable(columns: dict, scene) -> np.ndarray:
     """The rows a finer step can help: not beyond any affordable step's reach, nor grazing (their error is
-    double precision's, at every step)."""
+    double precision's, at every step), nor without a limit (no reference)."""
     rows = reachable(scene)
-    return rows[np.asarray(columns["status"])[rows] != "grazing"]
+    return rows[~np.isin(np.asarray(columns["status"])[rows], ("grazing", "no_limit"))]
 
 
 def _worst(columns: dict, scene) -> float:

@@ -52,7 +52,7 @@ def register(sub) -> None:
     p.add_argument("--force", action="store_true",
                    help=f"run a sweep estimated at more than {MAX_CORE_HOURS:g} core-hour(s) on this machine anyway")
     p.add_argument("--strict", action="store_true",
-                   help="exit with status 1 if any row is not 'ok' (grazing, energy_gained or inaccurate)")
+                   help="exit with status 1 if any row is not 'ok' (grazing, no_limit, energy_gained or inaccurate)")
     g = p.add_argument_group("states, from flags (instead of a scene file)")
     g.add_argument("--n", type=count, default=None, help="number of sampled collisions")
     g.add_argument("--seed", type=count, default=None, help="random seed (default 0)")

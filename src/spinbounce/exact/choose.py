@@ -42,7 +42,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import NoMatrix, SceneError
-from . import hertz, linear
+from . import hertz, linear, per_state
 
 __all__ = ["Choice", "which", "predict", "outcome", "matrix", "matrices", "omega_per_sphere", "frozen", "NoMatrix",
            "mindlin_theory"]
@@ -137,19 +137,7 @@ def _capped_nonlinear(model, initial) -> np.ndarray:
         from . import contact_phases
 
         return contact_phases.bounce_many(contact_phases.Law.of(model), initial)[:, :3]
-    return _oracle(model, initial)
-
-
-def _oracle(model, initial) -> np.ndarray:
-    """Final states from exact.oracle, one state at a time."""
-    from . import oracle
-
-    r = model.r
-    spins = initial[:, [2, 4, 5]] / r if initial.shape[1] == 6 else np.column_stack([initial[:, 2] / r,
-                                                                                      np.zeros((len(initial), 2))])
-    v_s = initial[:, 3] if initial.shape[1] == 6 else None
-    return oracle.bounce_many(model, initial[:, 0], initial[:, 1], spins[:, 0], v_s, spins[:, 1],
-                              spins[:, 2])[:, :initial.shape[1]]
+    return per_state.oracle(model, initial)
 
 
 def _damped_matrices(model, v_n) -> np.ndarray:
@@ -289,13 +277,15 @@ def omega_per_sphere(model, v_n) -> np.ndarray:
     return np.full(v_n.shape, _omega(model))
 
 
-def predict(model, initial) -> np.ndarray:
-    """Final states for the initial states ``initial`` ((n, 3) or (n, 6)), from the theory that applies."""
+def predict(model, initial, limitless: str = "raise") -> np.ndarray:
+    """Final states for the initial states ``initial`` ((n, 3) or (n, 6)), from the theory that applies.
+    A state whose LAMMPS outcome has no dt -> 0 limit (:class:`~spinbounce.errors.NoLimit`) is refused, or
+    with ``limitless="nan"`` given as NaN, their number warned of (a scene's rows: status ``no_limit``)."""
     initial = np.atleast_2d(np.asarray(initial, dtype=float))
     width = initial.shape[1]
     kind = which(model).kind
     if kind == "classic_wall":
-        return _classic(model, initial)
+        return _classic(model, initial, limitless)
     if kind == "capped_nonlinear":
         return _capped_nonlinear(model, initial)
     if kind == "coulomb":  # the exact batched solver; the scipy oracle is its independent check
@@ -335,35 +325,18 @@ def outcome(model, v_n: float, v_t: float = 0.0, omega: float = 0.0, v_s: float 
     return dict(zip(names, map(float, initial), strict=True)), dict(zip(names, map(float, final), strict=True))
 
 
-def _classic(model, initial) -> np.ndarray:
+def _classic(model, initial, limitless: str) -> np.ndarray:
     """The classic spring's final states: exact.classic where it reaches (the paper's plane, Hooke's force,
     constant dashpots, a tensile normal force), else exact.oracle with the classic cap (:mod:`.oracle_classic`)."""
-    from . import classic
-
     fixed = model.style.tangential_contact_radius  # the classic wall's fixed assembly (its own coefficients)
     reach = (not model.normal_law.contact_radius and model.damping_law.radius_power(model.normal_law) == 0.0
              and not model.limit_damping)
     if initial.shape[1] == 3 and (fixed or reach):
-        wall = classic_wall(model)
-        return np.array([classic.bounce(wall, *state).final for state in initial])
+        return per_state.classic(model, initial)
     if fixed:
         raise NoMatrix("the classic wall's theory is in the paper's plane: give no v_s, omega_s or omega_n "
                        "(or its spring inside granular: --wall granular --tangential linear_history_classic)")
-    return _oracle(model, initial)
-
-
-def classic_wall(model):
-    """The classic wall's own parameters, as its style gives them to the deck (its dashpots are
-    rates gamma/m, its cap at most 1e4: :class:`spinbounce.laws.styles.Classic`); or, for the
-    classic spring inside ``granular`` (``linear_history_classic``), the model's own."""
-    from . import classic
-
-    if model.style.tangential_contact_radius:
-        values = model.style.coefficients(model)
-    else:
-        values = {"kn": model.kn, "kt": model.kt, "gamma_n": model.gamma_n / model.m,
-                  "gamma_t": model.gamma_t / model.m, "mu": model.mu}
-    return classic.ClassicWall(**values, alpha=model.alpha, r=model.r, m=model.m)
+    return per_state.oracle(model, initial, limitless)
 
 
 def frozen(model, t, v_t0: float, r_omega0: float, z: float | None = None) -> tuple[np.ndarray, np.ndarray]:

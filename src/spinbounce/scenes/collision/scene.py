@@ -311,8 +311,8 @@ class Collision:
         """Final states from the theory, shaped like :attr:`initial`: the scattering matrix
         (Eq. 18 with the exact damped Omega; its 6x6 block form in 3-D; one per sphere for a
         Hertzian wall, whose Omega depends on v_n), or with a finite mu the Coulomb oracle
-        (:mod:`oracle`), sphere by sphere."""
-        return choose.predict(self.model, self.initial)
+        (:mod:`oracle`), sphere by sphere; NaN for a state whose LAMMPS outcome has no limit."""
+        return choose.predict(self.model, self.initial, limitless="nan")
 
     # --- what the pipeline and the step probe ask of every scene (spinbounce.scenes) ---
 
