@@ -91,3 +91,10 @@ def test_a_run_reports_a_state_without_a_limit_as_no_limit_and_the_others_as_usu
         table = run_scene(scene, tmp_path, record=False).table
     assert list(table["status"]) == ["no_limit", "ok"] and table["error"].iloc[1] <= 1e-4
     assert np.isnan(table["error"].iloc[0])
+
+
+def test_a_gas_with_the_classic_cap_is_refused_with_the_reason(capsys):
+    # its pair-level theory averages every collision's outcome, and some have no limit
+    with pytest.raises(SystemExit):
+        main(["gas", "--tangential", "linear_history_classic", "--mu", "0.3", "--spheres", "1000"])
+    assert "mu = 0.3: must be none with tangential = linear_history_classic in a gas" in capsys.readouterr().err

@@ -349,7 +349,7 @@ def bounce(model: ContactModel, v_n: float, v_t: float = 0.0, omega: float = 0.0
     state, c = (v_n, v_t, omega, v_s, omega_s, omega_n), _Contact(model)
     result = _bounce(c, model, *state) if not c.classic or oracle_classic.check_radius(model, v_n) else None
     if c.slide_ends:
-        oracle_classic.check_limit(result, lambda hold: _bounce(_Contact(model, hold), model, *state))
+        oracle_classic.check_wall(result, lambda hold: _bounce(_Contact(model, hold), model, *state))
     return result
 
 

@@ -1,9 +1,9 @@
 """The capped Hookean pair reference for many pairs at once: :func:`spinbounce.exact.pair_capped.solve`
 compiled (numba) for Hooke's force and linear_history, each pair on its own.
 
-The same equations (:class:`.pair_capped._Contact`: the history turned with n, the trial force
+The same equations (:class:`.pair_capped_phases.Contact`: the history turned with n, the trial force
 A = E + gamma_t u' as a state while sticking and its unit direction s on the cap while sliding, the
-overlap a state of its own), the same phases and switches (:meth:`~.pair_capped._Contact.begin`,
+overlap a state of its own), the same phases and switches (:meth:`~.pair_capped_phases.Contact.begin`,
 ``on_cap``, ``switch``), the same integrator (scipy's DOP853 at rtol 1e-12, :mod:`.dop853`) and
 the same events: the end of contact, the phase's own end (also sampled at INTERIOR_SAMPLES points
 inside each step, so that a stick or a slide shorter than a step is not stepped over) and, with a
@@ -34,7 +34,8 @@ from .dop853 import (
 )
 from .pair_batch import ENDED, STUCK, finish, prepare
 from .pair_batch import solvable as uncapped_solvable
-from .pair_capped import INTERIOR_SAMPLES, MARGIN, MAX_PHASES, TURN_FLOOR
+from .pair_capped import INTERIOR_SAMPLES, MAX_PHASES
+from .pair_capped_phases import MARGIN, TURN_FLOOR
 from .vec3 import axpy, compiled, cross, dot, unit
 
 __all__ = ["solve", "solvable"]
@@ -63,7 +64,7 @@ def solvable(law: dict, tensile: bool = True) -> bool:
 
 @compiled
 def _kinematics(y, p, n0, planar):
-    """(n, n', v, v.n, spin, slip rate, F_n, F_n', lever of a, of b): :meth:`.pair_capped._Contact.kinematics`
+    """(n, n', v, v.n, spin, slip rate, F_n, F_n', lever of a, of b): :meth:`.pair_capped_phases.Contact.kinematics`
     for Hooke's law."""
     d = (y[0], y[1], y[2])
     if planar:
@@ -244,7 +245,7 @@ def _begin(y, p, n0, planar):
 
 @compiled
 def _switch(which, y, p, n0, planar, mode):
-    """The phase after event ``which`` (:meth:`.pair_capped._Contact.switch`)."""
+    """The phase after event ``which`` (:meth:`.pair_capped_phases.Contact.switch`)."""
     k = _kinematics(y, p, n0, planar)
     side = 1 if mode > 0 else -1
     if which == OWN_END and abs(mode) == STICK:  # the stick reached the cap: slide along A

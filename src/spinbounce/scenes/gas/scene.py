@@ -86,6 +86,11 @@ class Gas:
                              "(spheres of another alpha as rigid bodies are not implemented for a gas)")
         if not self.model.style.pairs:
             raise SceneError("wall", self.model.wall, "must be granular: a gas's spheres meet through pair granular")
+        if self.model.mu is not None and self.model.tangential_law.classic_cap:
+            raise SceneError("mu", self.model.mu, f"must be none with tangential = {self.model.tangential} in a gas: "
+                             "its cap (reset by kt alone) leaves some collisions without a dt -> 0 limit "
+                             "(exact.oracle_classic), so the pair-level theory, an average over every "
+                             "collision's outcome, has none")
         for name in ("spheres", "samples", "seed", "draws"):
             set_(self, name, _whole(name, getattr(self, name)))
         for name in ("packing", "t_tr", "t_rot", "collisions"):

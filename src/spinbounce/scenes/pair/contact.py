@@ -4,10 +4,13 @@ integrate."""
 
 from __future__ import annotations
 
+import warnings
 from collections import OrderedDict
 from dataclasses import dataclass, fields
 
-from ...errors import ResultError
+import numpy as np
+
+from ...errors import NoLimit, PhysicsWarning, ResultError
 from ...model.parameters import by_name
 from .columns import pair_columns
 
@@ -127,13 +130,26 @@ class PairContact:
             solver = pair_capped_batch if capped else pair_batch
             return solver.solve(**columns, **{k: law[k] for k in self.law()}, **cap, planar=planar)
         solver = pair_capped if capped else pair_exact
-        return [_solved(solver, k, p, law | cap, planar, self.tensile) for k, p in enumerate(pairs)]
+        limitless: list[str] = []
+        out = [_solved(solver, k, p, law | cap, planar, self.tensile, limitless) for k, p in enumerate(pairs)]
+        if limitless:
+            held = "the held line of centres' reference (its _planar columns NaN)" if planar else \
+                "no reference (status no_limit)"
+            warnings.warn(f"{len(limitless)} of {len(pairs)} pair(s) have {held}, the first: {limitless[0]}",
+                          PhysicsWarning, stacklevel=4)
+        return out
 
 
-def _solved(solver, k: int, pair, law: dict, planar: bool, tensile: bool):
-    """Pair ``k`` of a batch by a scipy reference; its failure names the pair."""
+def _solved(solver, k: int, pair, law: dict, planar: bool, tensile: bool, limitless: list):
+    """Pair ``k`` of a batch by a scipy reference; its failure names the pair. A pair whose LAMMPS outcome has
+    no dt -> 0 limit (:class:`.NoLimit`) gets NaN velocities and spins (its contact time and turn hold), its
+    reason kept in ``limitless``."""
     try:
         return solver.solve(**pair.vectors(), **pair.properties(), **law, planar=planar, tensile=tensile)
+    except NoLimit as exc:
+        limitless.append(f"pair {k}: {exc}")
+        nan = np.full(3, np.nan)
+        return exc.outcome._replace(v_a=nan, v_b=nan, w_a=nan, w_b=nan)
     except RuntimeError as exc:
         raise RuntimeError(f"the batch's pair {k} (row {k} of those solved together): {exc}") from None
 

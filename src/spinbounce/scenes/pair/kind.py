@@ -64,10 +64,6 @@ def pair_contact(model: ContactModel, b: Sphere) -> PairContact:
     if not model.style.pairs:
         raise SceneError("wall", model.wall, "must be granular with scene = pair (there is no wall; the classic "
                                              "pair style is not covered by the pair's references)")
-    if model.mu is not None and model.tangential_law.classic_cap:
-        raise SceneError("mu", model.mu, f"must be none with tangential = {model.tangential} between two spheres "
-                                         "(scene = pair, a gas): its cap resets the history by kt alone, which no "
-                                         "pair reference here follows")
     damping = model.damping_law
     gamma_n, gamma_t = damping.contact_dashpots(model, model.m * b.m / (model.m + b.m))
     own = tuple((p.name, getattr(model, p.name)) for p in damping.coefficients) if damping.derived else ()
@@ -82,7 +78,8 @@ def _shape(model: ContactModel) -> tuple:
     if not law.on_contact_radius and not projected:
         return ()
     return (("power", law.power), ("spring_power", law.spring_power), ("force_history", law.force_history),
-            ("rescale", law.rescale), ("damping_power", law.damping_power), ("k", law.k), ("projected", projected))
+            ("rescale", law.rescale), ("damping_power", law.damping_power), ("k", law.k), ("projected", projected)) + (
+        (("classic_cap", True),) if law.classic_cap else ())  # a cap reset by k alone (exact.pair_capped_phases)
 
 
 def no_planar_matrix(model: ContactModel) -> str | None:

@@ -1,0 +1,246 @@
+"""The equations of two free spheres in contact under a Coulomb cap, phase by phase: what
+:mod:`.pair_capped` integrates (the module's docstring says what LAMMPS does and how it is followed).
+
+:class:`Contact` holds a pair's rates and switching functions while it sticks (the trial force A a
+state) or slides (A's unit s on the cap), and what each switch leaves; :class:`ClassicContact` is
+``linear_history_classic``'s cap, whose reset by k alone makes it saw-tooth (:mod:`.oracle_classic`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .pair_exact import contact_radius_power, cross, geometry, normal_force
+from .oracle_classic import ZENO
+
+__all__ = ["Contact", "ClassicContact", "MARGIN", "TURN_FLOOR"]
+
+#: A switch must be passed by this fraction of the cap's scale (as in the wall's oracle).
+MARGIN = 1e-12
+#: Below this fraction of the cap's scale a slide turns s no faster than at it (the wall's oracle's
+#: TURN_FLOOR): near the cap's zeros s' ~ 1/c would grow without bound; the slower turn only bends
+#: a force that small.
+TURN_FLOOR = 1e-8
+
+
+def _unit(x: np.ndarray) -> np.ndarray | None:
+    size = np.linalg.norm(x)
+    return x / size if size > 0.0 else None
+
+
+class Contact:
+    """The pair's equations in one phase (``sliding`` or not); y[15:18] is A sticking, s sliding, and
+    y[18] the overlap delta, a state of its own (delta' = -v.n): from the centres' distance, rounding
+    would blur it by ~1e-16 (r_a + r_b), more than a law on the contact radius starts with."""
+
+    def __init__(self, p: dict, n0: np.ndarray, planar: bool):
+        self.p, self.n0, self.planar = p, n0, planar
+        self.m_star = p["m_a"] * p["m_b"] / (p["m_a"] + p["m_b"])
+        self.sliding, self.f_side = False, 1.0
+
+    def kinematics(self, y) -> dict:
+        p = self.p
+        _, v_a, v_b, w_a, w_b = y[:15].reshape(5, 3)
+        n, delta, levers, dist = geometry(y, self.n0, p, self.planar, overlap=y[18])
+        v = v_a - v_b
+        v_n = v @ n
+        v_t = v - v_n * n
+        turn = np.zeros(3) if self.planar else v_t / dist  # n'
+        spin = p["r_a"] * w_a + p["r_b"] * w_b
+        rate = -v_n  # the overlap's rate
+        depth = abs(delta) ** (p["power"] - 1.0) if p["power"] != 1.0 else 1.0
+        damp, shrink = contact_radius_power(p, delta, p["damping_power"]), (rate / (2.0 * delta) if delta else 0.0)
+        f_n = normal_force(p, delta, v_n)
+        accel = -(f_n / self.m_star + v_t @ turn)  # delta''
+        df_n = p["K"] * p["power"] * depth * rate + p["gamma_n"] * damp * (accel + p["damping_power"] * shrink * rate)
+        scale = (0.0 if p["force_history"] else p["spring_power"]) + (1.0 if p["rescale"] and rate < 0.0 else 0.0)
+        return {"n": n, "turn": turn, "v": v, "v_n": v_n, "spin": spin, "slip": v_t - cross(spin, n),
+                "f_n": f_n, "df_n": df_n, "levers": levers,
+                "spring": p["kt"] * contact_radius_power(p, delta, p["spring_power"]), "growth": scale * shrink,
+                "dashpot": p["gamma_t"] * damp, "dashpot_rate": p["gamma_t"] * p["damping_power"] * shrink * damp}
+
+    def accelerations(self, k: dict, f_t: np.ndarray) -> tuple:
+        """(v_a', v_b', w_a', w_b') under the normal force and the friction ``f_t`` on a."""
+        p = self.p
+        force = k["f_n"] * k["n"] + f_t
+        arm = -cross(k["n"], f_t)
+        return (force / p["m_a"], -force / p["m_b"], k["levers"][0] * arm / p["i_a"],
+                k["levers"][1] * arm / p["i_b"])
+
+    def stick_rate(self, k: dict, trial: np.ndarray) -> np.ndarray:
+        """A' while sticking with the trial force ``trial`` (the friction -trial)."""
+        p, n, turn = self.p, k["n"], k["turn"]
+        dv_a, dv_b, dw_a, dw_b = self.accelerations(k, -trial)
+        dv = dv_a - dv_b
+        dspin = p["r_a"] * dw_a + p["r_b"] * dw_b
+        slip_rate = (dv - (dv @ n) * n - (turn @ k["v"]) * n - k["v_n"] * turn  # u''
+                     - cross(dspin, n) - cross(k["spin"], turn))
+        elastic = trial - k["dashpot"] * k["slip"]
+        return (k["spring"] * k["slip"] + k["growth"] * elastic - (elastic @ turn) * n
+                + k["dashpot_rate"] * k["slip"] + k["dashpot"] * slip_rate)
+
+    def cap(self, k: dict) -> float:
+        """mu |F_n|, with |F_n| taken as F_n on the phase's side (``f_side``): a phase ends where F_n
+        changes sign, and beyond the end of contact the cap keeps falling below zero instead of
+        growing back, so that no switch is crossed twice within one step of the integrator."""
+        return self.p["mu"] * self.f_side * k["f_n"]
+
+    def cap_rate(self, k: dict) -> float:
+        """d(mu |F_n|)/dt on the phase's side."""
+        return self.p["mu"] * self.f_side * k["df_n"]
+
+    def direction(self, k: dict, y) -> np.ndarray:
+        """A slide's unit s, held in the tangent plane (its drift off it is the integrator's)."""
+        s = y[15:18] - (y[15:18] @ k["n"]) * k["n"]
+        return s / np.linalg.norm(s)
+
+    def rates(self, _t, y):
+        k = self.kinematics(y)
+        if self.sliding:
+            s = self.direction(k, y)
+            c = self.cap(k)
+            across = cross(k["n"], s)
+            tail = (-(s @ k["turn"]) * k["n"]
+                    + (across @ self.stick_rate(k, c * s)) * across / np.hypot(c, self.turn_floor))
+            trial = c * s
+        else:
+            trial = y[15:18]
+            tail = self.stick_rate(k, trial)
+        return np.concatenate([k["v"], *self.accelerations(k, -trial), tail, [-k["v_n"]]])
+
+    def stick_ends(self, _t, y) -> float:
+        k = self.kinematics(y)
+        return np.linalg.norm(y[15:18]) - self.cap(k) - MARGIN * self.force_scale
+
+    def push(self, k: dict, s: np.ndarray) -> float:
+        """How fast sticking would carry A outwards along s with A = c s on the cap, less the cap's rate."""
+        return s @ self.stick_rate(k, self.cap(k) * s) - self.cap_rate(k)
+
+    def slide_ends(self, _t, y) -> float:
+        k = self.kinematics(y)
+        return self.push(k, self.direction(k, y)) + MARGIN * self.force_scale / self.tau
+
+    def normal_force(self, _t, y) -> float:
+        """F_n on the side it started the phase on: falls through 0 when F_n changes sign."""
+        return self.f_side * self.kinematics(y)["f_n"]
+
+    def deepest(self, _t, y) -> float:
+        """The overlap's rate: a rescale starts where it falls through 0 (a kink in A')."""
+        return -self.kinematics(y)["v_n"]
+
+    def separated(self, _t, y) -> float:
+        return self.last - y[18]
+
+    def on_cap(self, y, s: np.ndarray | None) -> None:
+        """With A on the cap along s (or just past it): slide if sticking would push A outwards faster
+        than the cap grows, else stick with A = c s (no s, no slip: stick with A = 0)."""
+        k = self.kinematics(y)
+        if s is None:
+            self.sliding, y[15:18] = False, 0.0
+        elif self.push(k, s) > 0.0:
+            self.sliding, y[15:18] = True, s
+        else:
+            self.sliding, y[15:18] = False, self.cap(k) * s
+
+    def begin(self, y) -> None:
+        """The phase at first touch: sticking if A is inside the cap, else as :meth:`on_cap` along A
+        (or the slip). A displacement history on a^q with a dashpot a^s, s < q, whose first trial
+        force is beyond the cap slides along the slip from the start (the wall oracle's
+        ``first_phase``, :attr:`.wall_law.Law.first_touch_runaway`)."""
+        k = self.kinematics(y)  # F_n's side: at first touch (to rounding) the side it moves to
+        self.f_side = np.sign(k["f_n"] if abs(k["f_n"]) > self.f_rounding else k["df_n"]) or 1.0
+        trial = y[15:18]
+        if np.linalg.norm(trial) < self.cap(k) - MARGIN * self.force_scale:
+            self.sliding = False
+            return
+        s = _unit(trial)
+        self.on_cap(y, s if s is not None else self.rate_direction(k))
+        if self.runaway and not self.sliding and s is not None:
+            self.sliding, y[15:18] = True, -s
+
+    def switch(self, y, which: str) -> None:
+        """The phase after the event ``which``: a stick that reached the cap slides along A, a slide
+        whose cap outgrew it sticks on the cap (deciding again from y could undo the switch, the
+        event's root found only to ~1e-15 s); at F_n's zero the cap restarts from zero on the side F_n
+        moves to, whatever the sign of the residue the root leaves."""
+        k = self.kinematics(y)
+        if which == "deepest":
+            self.unloading = True
+        elif which == "stick_ends":
+            self.sliding, y[15:18] = True, y[15:18] / np.linalg.norm(y[15:18])
+        elif which == "slide_ends":
+            self.sliding, y[15:18] = False, self.cap(k) * self.direction(k, y)
+        else:  # normal_force: A is on or inside a cap of zero, and leaves it the way sticking pushes it
+            self.f_side = np.sign(k["df_n"]) or -self.f_side
+            self.on_cap(y, self.rate_direction(k))
+
+    def rate_direction(self, k: dict) -> np.ndarray | None:
+        """Where sticking pushes a trial force of zero (the cap's zero, first touch): the unit A'
+        at A = 0, else the slip's (None if neither has one). A slide's s would turn there at an
+        infinite rate (s' ~ 1/c), whatever it was before."""
+        rate = _unit(self.stick_rate(k, np.zeros(3)))
+        return rate if rate is not None else _unit(k["slip"])
+
+    def events(self) -> list:
+        """End of contact, the phase's own end, and (with damping) the normal force's zero, (with a
+        rescale) the deepest point; each stops the integration, which restarts there."""
+        out = [_event(self.separated, 1.0), _event(self.slide_ends, -1.0) if self.sliding
+               else _event(self.stick_ends, 1.0)]
+        if self.p["gamma_n"] > 0.0:
+            out.append(_event(self.normal_force, -1.0))
+        if self.p["rescale"] and not self.unloading:
+            out.append(_event(self.deepest, -1.0))
+        return out
+
+
+class ClassicContact(Contact):
+    """``linear_history_classic``'s cap, its history reset by k alone (:mod:`.oracle_classic`, the wall's): the
+    next trial force A+ = f c s + (1 - f) gamma_t a^s u', f = a^q; a slide is along the slip while
+    gamma_t a^s |u'| >= c. ``zeno``: a stick capped again within ZENO tau of a slide's end (:func:`solve`)."""
+
+    def __init__(self, p: dict, n0: np.ndarray, planar: bool, hold: float):
+        super().__init__(p, n0, planar)
+        self.hold, self.zeno, self.now, self.slide_end = hold, False, 0.0, -np.inf
+
+    def direction(self, k: dict, y) -> np.ndarray:
+        slip = _unit(k["slip"])
+        return slip if slip is not None else super().direction(k, y)
+
+    def rates(self, t, y):
+        if not self.sliding:
+            return super().rates(t, y)
+        k = self.kinematics(y)
+        friction = -self.cap(k) * self.direction(k, y)
+        return np.concatenate([k["v"], *self.accelerations(k, friction), np.zeros(3), [-k["v_n"]]])
+
+    def slide_ends(self, _t, y) -> float:
+        k = self.kinematics(y)
+        drag, c = k["dashpot"] * np.linalg.norm(k["slip"]), self.cap(k)
+        return drag - c + self.hold * (c + abs(drag))
+
+    def on_cap(self, y, s: np.ndarray | None) -> None:
+        """The capped step's reset along s (the trial force's unit): stick from A+, or slide along the slip."""
+        k = self.kinematics(y)
+        c, f = self.cap(k), (k["spring"] / self.p["kt"] if self.p["kt"] else 0.0)
+        after = f * c * (np.zeros(3) if s is None else s) + (1.0 - f) * k["dashpot"] * k["slip"]
+        speed = np.linalg.norm(k["slip"])
+        self.sliding = not (np.linalg.norm(after) < c or k["dashpot"] * speed == 0.0)
+        y[15:18] = k["slip"] / speed if self.sliding else after
+
+    def switch(self, y, which: str) -> None:
+        if which == "stick_ends":
+            self.zeno = self.zeno or self.now - self.slide_end < ZENO * self.tau
+            self.on_cap(y, _unit(y[15:18]))
+        elif which == "slide_ends":
+            self.slide_end = self.now
+            self.on_cap(y, self.direction(self.kinematics(y), y))
+        else:
+            super().switch(y, which)
+
+
+def _event(function, direction: float):
+    def event(t, y):
+        return function(t, y)
+
+    event.terminal, event.direction, event.__name__ = True, direction, function.__name__
+    return event
