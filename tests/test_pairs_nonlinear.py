@@ -39,7 +39,8 @@ LAWS = {
                                                           e_n=0.7, tangential="mindlin_rescale/force",
                                                           mindlin_kt=300.0, x_t=0.3),
 }
-#: The classic spring, which projects its history at every step (capped: CAPPED below). Its line of centres turns 0.21 rad here: the projected history moves a's state 2.1e-3
+#: The classic spring, which projects its history at every step (capped: CAPPED below). Its line of centres
+#: turns 0.21 rad here: the projected history moves a's state 2.1e-3
 #: from mindlin's reference with the same k.
 UNCAPPED = {"hooke linear_history_classic": dict(kn=50.0, kt=20.0, tangential="linear_history_classic",
                                                  gamma_n=0.5)}

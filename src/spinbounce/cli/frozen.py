@@ -37,12 +37,13 @@ def run(args) -> int:
                         out=args.out, force=True, **model_values(args),
                         log=None if args.json else (print if args.tolerance is not None else note))
     r = report.record
+    laddered = "levels" in r  # to a tolerance: asked for, or the default accuracy measured (a classic cap)
     if args.json:
-        return print_json(r if args.tolerance is not None else
+        return print_json(r if laddered else
                           {"csv": r["csv"], "record": str(report.record_path), "rows": r["rows"],
                            "max_abs_error": r["max_abs_error"], "dt": r["parameters"]["dt"],
                            "deck": r["deck"], "lammps_version": r["lammps_version"]})
-    if args.tolerance is not None:
+    if laddered:
         print(f"frozen contact to tolerance {r['tolerance']:g}: {len(r['levels'])} runs, {r['steps']} LAMMPS "
               f"steps (one plain run would need ~{r['plain_steps_for_same_estimate']:.0f})")
         if "method" in r:  # measured, not extrapolated (a capped contact)
@@ -54,6 +55,6 @@ def run(args) -> int:
         print(f"frozen contact: z = {q['z']:g}, dt = {q['dt']:.6g}, {q['nsteps']} steps, t_end = {q['t_end']:.6g}")
         print(f"largest |LAMMPS - theory| in v_t and r*omega: {r['max_abs_error']:.3e}")
     print(f"wrote {shown_path(report.csv)} ({r['rows']} rows) and {shown_path(report.record_path)}")
-    if args.tolerance is None:
+    if not laddered:
         print(f"deck: {shown_path(r['deck'])}\nLAMMPS {r['lammps_version']}")
     return 0

@@ -333,9 +333,9 @@ def _classic(model, initial, limitless: str) -> np.ndarray:
              and not model.limit_damping)
     if initial.shape[1] == 3 and (fixed or reach):
         return per_state.classic(model, initial)
-    if fixed:
-        raise NoMatrix("the classic wall's theory is in the paper's plane: give no v_s, omega_s or omega_n "
-                       "(or its spring inside granular: --wall granular --tangential linear_history_classic)")
+    if fixed:  # in 3-D: the same sub-models inside granular, the classic form's cap (mu none: its largest, 1e4)
+        model = model.replace(wall="granular", tangential="linear_history_classic",
+                              mu=model.style.coefficients(model)["mu"])
     return per_state.oracle(model, initial, limitless)
 
 
@@ -348,9 +348,9 @@ def frozen(model, t, v_t0: float, r_omega0: float, z: float | None = None) -> tu
     force, and the slip is a spring's stick-slip under it (:mod:`.frozen_capped`).
     """
     if model.mu is not None and (z is None or model.style.tangential_contact_radius):
-        raise NoMatrix(f"mu = {model.mu!r}: the frozen contact's capped theory needs its height z and a wall whose "
-                       "history LAMMPS resets to the cap (the classic form resets it to the capped force over kt "
-                       "alone, not the spring it scales by the contact radius)")
+        raise NoMatrix(f"mu = {model.mu!r}: the frozen contact's capped theory needs its height z, and is not "
+                       "written for the classic form's own coefficients (its spring inside granular is: "
+                       "--wall granular --tangential linear_history_classic)")
     if model.style.tangential_contact_radius:
         from . import classic
 
@@ -365,5 +365,6 @@ def frozen(model, t, v_t0: float, r_omega0: float, z: float | None = None) -> tu
 
         law = model.normal_law
         cap = model.mu * law.wall_constant(model) * overlap**law.power  # mu F_n, constant at a fixed height
-        return frozen_capped.frozen_velocities(t, v_t0, r_omega0, kt, model.m, model.alpha, gamma_t, cap)
+        reset = model.tangential_law.stiffness(model) if model.tangential_law.classic_cap else None  # kt alone
+        return frozen_capped.frozen_velocities(t, v_t0, r_omega0, kt, model.m, model.alpha, gamma_t, cap, reset)
     return linear.frozen_velocities(t, v_t0, r_omega0, kt, model.m, model.alpha, gamma_t)

@@ -13,6 +13,11 @@ It sticks again once the unconstrained force would fall back inside the cap:
 s (kt u + gamma_t u') < 0, that is s u < gamma_t K F_c/kt (u = 0 without a dashpot). An
 undamped spring then oscillates with the cap as its amplitude and never slips again.
 
+``linear_history_classic`` (``reset``: this build's classic spring, kt a on the history, reset by kt
+alone) leaves the history at (s F_c - gamma_t u)/kt instead, so the force after a capped step is
+f s F_c + (1 - f) gamma_t u with f = a: it sticks again at once below the cap (a sawtooth), or slides
+while gamma_t |u| >= F_c (:mod:`.oracle_classic`, whose Zeno point after a slide it checks the same way).
+
 Stick phases are integrated (scipy's DOP853 at rtol 1e-12, the cap an event), slip phases are
 exact straight lines. Every force acts on v_t and r omega in the ratio alpha : 1 (Eq. 13), so
 v_t = v_t0 + alpha/(1 + alpha) (u - u0) and r omega = r omega0 + (u - u0)/(1 + alpha).
@@ -22,6 +27,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .oracle_classic import NEAR_ONE, ZENO, check_limit
+
 __all__ = ["frozen_velocities", "slip"]
 
 #: Most stick-slip switches followed (an undamped spring touches its cap twice a period).
@@ -29,32 +36,53 @@ MAX_SWITCHES = 100_000
 
 
 def frozen_velocities(t, v_t0: float, r_omega0: float, kt: float, m: float, alpha: float, gamma_t: float,
-                      cap: float) -> tuple[np.ndarray, np.ndarray]:
-    """(v_t(t), r omega(t)) of the frozen contact with the force capped at ``cap`` = mu F_n."""
-    u0 = float(v_t0) + float(r_omega0)
-    delta = slip(np.asarray(t, dtype=float), u0, kt, (1.0 + alpha) / (alpha * m), gamma_t, cap) - u0
+                      cap: float, reset: float | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """(v_t(t), r omega(t)) of the frozen contact with the force capped at ``cap`` = mu F_n (``reset``: the
+    classic spring's k alone, which the history is reset by; :class:`.NoLimit` where its teeth after a slide
+    set the outcome)."""
+    u0, t, K = float(v_t0) + float(r_omega0), np.asarray(t, dtype=float), (1.0 + alpha) / (alpha * m)
+    zeno: list[bool] = []
+    found = slip(t, u0, kt, K, gamma_t, cap, reset, NEAR_ONE, zeno)
+    if zeno:
+        check_limit(found, lambda hold: slip(t, u0, kt, K, gamma_t, cap, reset, hold), max(abs(u0), 1e-300),
+                    f"the frozen contact from u = {u0:.6g}")
+    delta = found - u0
     return v_t0 + alpha / (1.0 + alpha) * delta, r_omega0 + delta / (1.0 + alpha)
 
 
-def slip(t: np.ndarray, u0: float, kt: float, K: float, gamma_t: float, cap: float) -> np.ndarray:
-    """The slip u at the times ``t`` (>= 0), from u0 with an unstretched spring."""
+def slip(t: np.ndarray, u0: float, kt: float, K: float, gamma_t: float, cap: float, reset: float | None = None,
+         hold: float = NEAR_ONE, zeno: list | None = None) -> np.ndarray:
+    """The slip u at the times ``t`` (>= 0), from u0 with an unstretched spring (``reset``, ``hold``: a classic
+    spring's k, and how far its slide is held on; ``zeno`` gets an entry where a stick after a slide is capped
+    again at once)."""
     out = np.full(t.shape, np.nan)
     if cap == 0.0:  # no force at all
         return np.full(t.shape, u0)
-    t_end, start, xi, u = float(np.max(t, initial=0.0)), 0.0, 0.0, u0
+    classic = reset is not None and reset != kt
+    reset = kt if reset is None else reset
+    t_end, start, xi, u, slid = float(np.max(t, initial=0.0)), 0.0, 0.0, u0, -np.inf
+    period = 2.0 * np.pi / np.sqrt(K * kt)
     for _ in range(MAX_SWITCHES):
         force = kt * xi + gamma_t * u
-        if abs(force) > cap:  # beyond the cap (a dashpot's force at first touch): the history is reset to it
-            xi, force = (np.sign(force) * cap - gamma_t * u) / kt, np.sign(force) * cap
-        if abs(force) >= cap * (1.0 - 1e-12) and np.sign(force) * u > gamma_t * K * cap / kt:  # slipping
-            s = float(np.sign(force))
-            stop = start + (s * u - gamma_t * K * cap / kt) / (K * cap)
+        # beyond the cap (a dashpot's force at first touch), or for the classic spring on it: the history is reset
+        if abs(force) > cap or classic and abs(force) >= cap * (1.0 - 1e-12):
+            xi = (np.sign(force) * cap - gamma_t * u) / reset
+            # the cap itself; the classic spring's f cap + (1 - f) gamma_t u
+            force = kt * xi + gamma_t * u if classic else np.sign(force) * cap
+        s = float(np.sign(force))
+        # a slide ends where sticking would no longer push the force out (the classic spring: where its dashpot
+        # alone falls below the cap, held on by ``hold``)
+        floor = cap * (1.0 - hold) / gamma_t if classic and gamma_t else gamma_t * K * cap / kt
+        if abs(force) >= cap * (1.0 - 1e-12) and s * u > floor:  # slipping
+            stop = start + (s * u - floor) / (K * cap)
             inside = (t >= start) & (t <= stop)
             out[inside] = u - s * K * cap * (t[inside] - start)
             u = u - s * K * cap * (min(stop, t_end) - start)
-            xi, start = (s * cap - gamma_t * u) / kt, stop
+            xi, start, slid = (s * cap - gamma_t * u) / reset, stop, stop
         else:
             start, xi, u = _stick(t, out, start, xi, u, kt, K, gamma_t, cap, t_end)
+            if zeno is not None and classic and start - slid < ZENO * period:
+                zeno.append(True)
         if start >= t_end:
             return out
     raise RuntimeError(f"more than {MAX_SWITCHES} stick-slip switches before t = {t_end:g}")

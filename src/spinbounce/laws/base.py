@@ -308,8 +308,6 @@ class Style:
     #: The tangential spring grows with the contact radius (kt sqrt(r delta)), so its exact theory
     #: is :mod:`spinbounce.exact.classic`, and Omega depends on v_n.
     tangential_contact_radius: bool = False
-    #: Its exact theory holds in the paper's plane only (no v_s, omega_s, omega_n).
-    planar_only: bool = False
     #: Without a cap, a collision's error is smooth in dt, so Richardson extrapolation applies.
     smooth_in_dt: bool = True
     #: Two free spheres can run this law against the pair references.

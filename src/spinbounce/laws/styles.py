@@ -64,7 +64,6 @@ class Classic(Style):
     keyword = "classic"
     summary = "wall/gran hooke/history, whose tangential spring this LAMMPS build scales by the contact radius"
     tangential_contact_radius = True
-    planar_only = True
     # measured: at tolerance 1e-6 the ladder's estimate was 1.0e-6 where the error was 2.1e-6;
     # its spring kt sqrt(r delta) has an infinite slope at contact
     smooth_in_dt = False

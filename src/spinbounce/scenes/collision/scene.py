@@ -131,9 +131,6 @@ class Collision:
                 values.flags.writeable = False
             set_(self, name, values)
         vn, m, speed = self.v_n, self.model, self.speed
-        if m.style.planar_only and self.is_3d:
-            raise SceneError("wall", m.wall, f"the {m.wall} wall's theory is in the paper's plane: give no v_s, "
-                                             f"omega_s or omega_n with wall = {m.wall}")
         if self.dt is None:  # once, where the default step is chosen (a probe's scenes carry their dt)
             warn_slow_start(self.model, slow_start(self.model, self.initial), probed=self.needs_probe())
         away = np.flatnonzero(vn >= 0.0)
