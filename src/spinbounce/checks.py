@@ -80,7 +80,8 @@ def add_row_checks(columns: dict, rows: RowStates, target: float = ACCURACY) -> 
     columns["error"] = error
     columns["energy_excess"] = excess
     columns["status"] = status
-    return float(deviation.max())
+    measured = deviation[~np.isnan(rows.reference).any(axis=1)]  # rows without a reference have no deviation
+    return float(measured.max()) if measured.size else float("nan")
 
 
 def summary(status) -> dict[str, int]:

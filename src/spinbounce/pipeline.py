@@ -86,8 +86,10 @@ class RunResult:
 
     @property
     def max_error(self) -> float:
-        """The largest row error (each relative to its row's scale)."""
-        return float(np.max(self.columns["error"]))
+        """The largest row error (each relative to its row's scale), but of rows without a reference (no_limit);
+        NaN if every row is one."""
+        errors = np.asarray(self.columns["error"])[np.asarray(self.columns["status"]) != "no_limit"]
+        return float(np.max(errors)) if errors.size else float("nan")
 
 
 def _probe_errors(scene, folder: Path) -> np.ndarray:

@@ -153,7 +153,21 @@ def to_json(record: dict) -> str:
             return str(value)
         raise TypeError(f"cannot write {type(value).__name__} to JSON")
 
-    return json.dumps(record, indent=2, default=plain) + "\n"
+    return json.dumps(json_safe(record), indent=2, default=plain) + "\n"
+
+
+def json_safe(value):
+    """``value`` with every float that is not finite (NaN: a row without a reference) as None: JSON has no NaN,
+    and a reader's parser (JavaScript's, jq's) refuses or rewrites it."""
+    if isinstance(value, dict):
+        return {key: json_safe(item) for key, item in value.items()}
+    if isinstance(value, list | tuple):
+        return [json_safe(item) for item in value]
+    if isinstance(value, np.ndarray):
+        return json_safe(value.tolist())
+    if isinstance(value, float | np.floating) and not math.isfinite(value):
+        return None
+    return value
 
 
 def lammps_version() -> str:

@@ -261,7 +261,9 @@ def state_cell(value: float) -> str:
 
 def print_json(value, **options) -> int:
     """``value`` as indented JSON on stdout; 0, the command's exit status."""
-    print(json.dumps(value, indent=2, **options))
+    from ..records import json_safe
+
+    print(json.dumps(json_safe(value), indent=2, **options))
     return 0
 
 

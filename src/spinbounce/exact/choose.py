@@ -326,12 +326,15 @@ def outcome(model, v_n: float, v_t: float = 0.0, omega: float = 0.0, v_s: float 
 
 
 def _classic(model, initial, limitless: str) -> np.ndarray:
-    """The classic spring's final states: exact.classic where it reaches (the paper's plane, Hooke's force,
-    constant dashpots, a tensile normal force), else exact.oracle with the classic cap (:mod:`.oracle_classic`)."""
+    """The classic spring's final states: exact.oracle with the classic cap (:mod:`.oracle_classic`, which refuses
+    a state without a dt -> 0 limit), or exact.classic where the contact radius reaches one length unit, which
+    only it follows (the paper's plane, Hooke's force, constant dashpots, a tensile normal force)."""
+    from .oracle_classic import reaches_one
+
     fixed = model.style.tangential_contact_radius  # the classic wall's fixed assembly (its own coefficients)
     reach = (not model.normal_law.contact_radius and model.damping_law.radius_power(model.normal_law) == 0.0
              and not model.limit_damping)
-    if initial.shape[1] == 3 and (fixed or reach):
+    if initial.shape[1] == 3 and (fixed or reach) and (model.mu is None or reaches_one(model, initial[:, 0])):
         return per_state.classic(model, initial)
     if fixed:  # in 3-D: the same sub-models inside granular, the classic form's cap (mu none: its largest, 1e4)
         model = model.replace(wall="granular", tangential="linear_history_classic",

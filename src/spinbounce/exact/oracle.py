@@ -59,25 +59,20 @@ ATOL = 1.0e-14
 #: A 3-D slide's absolute tolerance on log |u'_perp|: a relative 1e-3 of a slip across s
 #: that starts at rounding level (the history starts at zero, so A is along u' at first touch).
 LOG_ACROSS_ATOL = 1.0e-3
-#: Below this fraction of its typical size (mu m |v_n| / tau) a 3-D slide's cap turns s no
-#: faster than at it. Where the slip opposes s (the cap shrinking fast), u'_perp grows at
-#: kt |p| / c: unchecked, rounding would grow by 1e12 before the cap's end and turn s at a
-#: rate no step can follow. The slower turn only bends a force that small, through an angle
-#: the size of u'_perp / |u'|.
+#: Below this fraction of its typical size (mu m |v_n| / tau) a 3-D slide's cap turns s no faster than
+#: at it. Where the slip opposes s, u'_perp grows at kt |p| / c: unchecked, rounding would grow 1e12-fold
+#: and turn s faster than any step; the slower turn bends a force that small by about u'_perp / |u'|.
 TURN_FLOOR = 1.0e-8
-#: A contact whose force, spring or dashpot grows with the contact radius a = sqrt(r delta)
-#: starts this many contact times after first touch, where a > 0: at a = 0 the rates of a^s
-#: are infinite. What the first stretch would have done is there in closed form to its
-#: leading order (:meth:`_Contact.first_touch`), the rest ~ 1e-12 of the speed.
+#: A contact whose force, spring or dashpot grows with the contact radius a = sqrt(r delta) starts this
+#: many contact times after first touch (at a = 0 the rates of a^s are infinite); what the first stretch
+#: would have done is there to its leading order (:meth:`_Contact.first_touch`), the rest ~ 1e-12.
 FIRST_TOUCH = 1.0e-12
-#: Such a contact ends where its overlap is back to this fraction of the undamped largest: its
-#: forces ~ a^s vanish there with infinite rates (a radius dashpot's after a tensile turn can hold
-#: a stick to the exit), and what they would still do, ~ (1e-12)^(1 + s/2) of the speed, is left.
+#: Such a contact ends where its overlap is back to this fraction of the undamped largest: its forces
+#: ~ a^s vanish there with infinite rates; what they would still do, ~ (1e-12)^(1 + s/2), is left.
 LAST_OVERLAP = 1.0e-12
 #: More regime switches than this in one contact mean the regimes chatter: refuse.
 MAX_SWITCHES = 200
-#: Events are found from sign changes between steps; a cap on the step (in contact
-#: times) keeps an event function from crossing zero twice within one step unseen.
+#: A cap on the step (in contact times): no event function crosses zero twice within one step unseen.
 MIN_STEPS_PER_CONTACT = 64
 
 # state layout (oracle_forces): delta, v_n, v (2), w = r*omega (2), A or s (2)
@@ -112,7 +107,7 @@ class OracleResult:
 class _Contact:
     """Forces and their rates for one model, in the paper's variables."""
 
-    def __init__(self, model: ContactModel, hold: float = oracle_classic.NEAR_ONE):
+    def __init__(self, model: ContactModel, cut: float = 1.0):
         if model.mu is None:
             raise ValueError("the oracle models LAMMPS's Coulomb cap: give a finite mu "
                              "(theory.scattering_matrix is exact without one)")
@@ -122,7 +117,7 @@ class _Contact:
         self.gn = law.c_n  # the normal dashpot's prefactor: gamma_n a^s
         self.tensile = not model.limit_damping
         self.classic = law.classic_cap  # the cap resets the history by k alone (oracle_classic)
-        self.hold, self.slide_ends = hold, 0  # a classic slide's hold; how many ended
+        self.cut, self.zeno, self.now, self.last_cap = cut, False, 0.0, -math.inf  # oracle_classic.tooth
         self.nonlinear = self.forces.nonlinear
         self.slip_mass = self.forces.slip_mass
         # set per collision (bounce): a force and a rate of force negligible against the
@@ -195,7 +190,7 @@ class _Contact:
             def to_stick(t, y):
                 c, dc = self.cap(y)
                 if self.classic:
-                    return oracle_classic.slide_margin(self.forces, y, c, self.hold)
+                    return oracle_classic.slide_margin(self.forces, y, c, self.cut, self.floor)
                 return self.push(y, self.slide_direction(y), c) - dc + self.floor_rate
 
             def cap_gone(t, y):
@@ -247,9 +242,8 @@ class _Contact:
             return "coast"
         if name == "to_slip":
             return self.on_cap(y, cap, dcap)
-        if self.classic:  # to_stick: the slide's end resets the history as any capped step does
-            self.slide_ends += 1
-            return oracle_classic.after_cap(self.forces, y, cap)
+        if self.classic:  # to_stick: the slide's end resets the history as any capped step does, and sticks
+            return oracle_classic.after_slide(self, y, cap)
         y[_A] = cap * y[_A]  # to_stick: A rides the cap along s
         return "stick"
 
@@ -326,7 +320,7 @@ class _Contact:
         push A outwards faster than the cap grows, else stick with A on the cap (the classic cap:
         :func:`.oracle_classic.after_cap`)."""
         if self.classic:
-            return oracle_classic.after_cap(self.forces, y, c)
+            return oracle_classic.tooth(self, y, c)
         # s: the direction of A, else of the slip, else t
         vec = next((v for v in (y[_A], y[_V] + y[_W]) if math.hypot(*v) > 0.0), None)
         s = np.array([1.0, 0.0]) if vec is None else vec / math.hypot(*vec)
@@ -347,10 +341,15 @@ def bounce(model: ContactModel, v_n: float, v_t: float = 0.0, omega: float = 0.0
     if not v_n < 0.0:
         raise ValueError(f"v_n = {v_n!r}: must be < 0 (towards the wall)")
     state, c = (v_n, v_t, omega, v_s, omega_s, omega_n), _Contact(model)
-    result = _bounce(c, model, *state) if not c.classic or oracle_classic.check_radius(model, v_n) else None
-    if c.slide_ends:
-        oracle_classic.check_wall(result, lambda hold: _bounce(_Contact(model, hold), model, *state))
-    return result
+    if c.classic:
+        return oracle_classic.bounce(model, state, lambda cut: _classic(model, state, cut))
+    return _bounce(c, model, *state)
+
+
+def _classic(model, state, cut: float) -> tuple[OracleResult, bool]:
+    """A classic cap's result with its cuts scaled by ``cut``, and whether it met a Zeno point."""
+    c = _Contact(model, cut)
+    return _bounce(c, model, *state), c.zeno
 
 
 def _bounce(c: _Contact, model, v_n: float, v_t: float, omega: float, v_s: float, omega_s: float,
@@ -358,12 +357,12 @@ def _bounce(c: _Contact, model, v_n: float, v_t: float, omega: float, v_s: float
     tau = float(model.contact_times(v_n)[0])
     # a slide whose cap has shrunk below 1e-12 of its typical value (mu m |v_n| / tau)
     # coasts to the exit or to the tensile turn with no tangential force
-    c.floor = 1e-12 * (model.mu * model.m * abs(v_n) / tau or 1.0)
+    c.floor, c.tau = 1e-12 * c.cut * (model.mu * model.m * abs(v_n) / tau or 1.0), tau
     c.floor_rate = c.floor / tau
     c.turn_floor = TURN_FLOOR * c.floor / 1e-12
     r = model.r
     initial = np.array([v_n, v_t, r * omega, v_s, r * omega_s, r * omega_n])
-    t = FIRST_TOUCH * tau if c.nonlinear else 0.0
+    t = FIRST_TOUCH * c.cut * tau if c.nonlinear else 0.0
     c.exit_overlap = LAST_OVERLAP * float(model.max_overlap(abs(v_n))) if c.nonlinear else 0.0
     y = c.forces.first_touch(initial, t)
     phase = c.first_phase(y)
@@ -383,6 +382,7 @@ def _bounce(c: _Contact, model, v_n: float, v_t: float, omega: float, v_s: float
         y = np.concatenate([y[:_THETA], c.slide_direction(y)])  # 8 slots (a 3-D slide's angle back to s)
         if hit == 0 or (y[_D] <= c.exit_overlap and y[_VN] > 0.0):  # exit (a switch can fall on it)
             break
+        c.now = t
         phase = c.switch(events[hit].__name__, y, phase)
         regimes.append((t, phase))
     else:

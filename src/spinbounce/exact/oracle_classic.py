@@ -17,17 +17,20 @@ below one length unit, as every contact of a sphere of radius 0.5 and unit speed
   at once, and the contact slides with F_t = -C s for as long as gamma_t |u'| >= C. u'' is then along
   s, so s stays put. At the slide's end the contact sticks from A+, just inside the cap.
 
-As the slide's margin closes, the teeth that follow it (when sticking pushes A out faster than the cap
-grows) shrink towards zero: a Zeno point, each tooth a fixed factor longer than the one before. Their
-phase after it is set by how the first tooth is cut: here by holding the slide on by NEAR_ONE of its
-scale, in LAMMPS by the step. Where the teeth grow large quickly that phase carries into the outcome,
-which then has no dt -> 0 limit (measured: a Hertzian viscoelastic contact whose slide ends at 1e-3 of
-its contact time gave r omega = -0.438, -0.425, -0.439, -0.499 and -0.333 at dt = 1e-5 to 3.9e-8, in
-LAMMPS and in a replica of its steps alike; Hooke's force with constant dashpots converged at first
-order in every state tried). :func:`check_limit` moves the cut through a factor of ten and refuses a
-state whose outcome moves by more than LIMIT_SPREAD, the 1e-6 of the state a reference is held to against
-converged LAMMPS. A contact radius of one length unit or more is refused (:func:`check_radius`):
-there |A+| >= C whatever the slip does and s moves away from u' (``exact.classic`` covers it in the plane,
+Teeth can start from zero size: where a slide ends (its margin closes), where the cap restarts from
+zero at a tensile turn, and at first touch where the spring outgrows a Hertzian cap (both ~ t^1.5). Each
+tooth is then a fixed factor longer than the one before (a Zeno point), and their phase after it is set
+by how the first one is cut: here by the reference's own cuts (the slide held on by NEAR_ONE of its
+scale, the floor of a switch, the start FIRST_TOUCH after first touch), in LAMMPS by the step. Where the
+teeth grow large quickly that phase carries into the outcome, which then has no dt -> 0 limit (measured:
+a Hertzian viscoelastic contact whose slide ends at 1e-3 of its contact time gave r omega = -0.438,
+-0.425, -0.439, -0.499 and -0.333 at dt = 1e-5 to 3.9e-8, in LAMMPS and in a replica of its steps
+alike; an undamped Hertzian one erred 4e-4 to 7e-3 at halving steps). A contact with a tooth shorter
+than ZENO of its contact time (:func:`tooth`) is solved again with every cut moved by a factor up to
+ten (:func:`check_limit`), and refused if its outcome moves by more than LIMIT_SPREAD, the 1e-6 of the
+state a reference is held to against converged LAMMPS. A contact radius of one length unit or more is
+refused (:func:`check_radius`): there |A+| >= C whatever the slip does and s moves away from u'
+(``exact.classic`` covers it in the plane,
 with Hooke's force).
 """
 
@@ -42,15 +45,16 @@ from .oracle_forces import A as _A
 from .oracle_forces import V as _V
 from .oracle_forces import W as _W
 
-__all__ = ["after_cap", "slide_margin", "check_radius", "check_wall", "check_limit", "zeno", "NEAR_ONE", "MAX_SWITCHES"]
+__all__ = ["after_cap", "after_slide", "tooth", "slide_margin", "bounce", "reaches_one", "check_radius", "check_limit",
+           "NEAR_ONE", "MAX_SWITCHES"]
 
 #: The slide is held on by this fraction of its scale C + gamma_t |u'| (the teeth's Zeno point).
 NEAR_ONE = 1.0e-10
-#: Where the cut is moved to (times NEAR_ONE), and how far the outcome may move with it (of the state's
+#: Where the cuts are moved to (factors), and how far the outcome may move with them (of the state's
 #: size): the bar a reference is held to against converged LAMMPS (its own accuracy elsewhere is ~1e-9).
-HOLDS = (2.2, 4.7, 10.0)
+CUTS = (2.2, 4.7, 10.0)
 LIMIT_SPREAD = 1.0e-6
-#: A stick after a slide capped again within this fraction of the contact time starts the teeth's Zeno point.
+#: A tooth shorter than this fraction of the contact time marks a Zeno point (teeth from zero size).
 ZENO = 1.0e-6
 #: The sawtooth can take many teeth: more regime switches than this in one contact are refused.
 MAX_SWITCHES = 20000
@@ -78,11 +82,53 @@ def after_cap(forces, y, cap: float) -> str:
     return "slip"
 
 
-def slide_margin(forces, y, cap: float, hold: float = NEAR_ONE) -> float:
-    """> 0 while the slide goes on: gamma_t |u'| - C, held on by ``hold`` of C + gamma_t |u'|."""
+def slide_margin(forces, y, cap: float, cut: float = 1.0, floor: float = 0.0) -> float:
+    """> 0 while the slide goes on: gamma_t |u'| - C, held on by ``cut`` NEAR_ONE of C + gamma_t |u'| and by
+    ``floor`` (a switch's margin), so that the reset at its end leaves the trial force inside the cap."""
     _, dashpot = factors(forces, y)
     drag = dashpot * float(np.dot(y[_A], y[_V] + y[_W]))  # s is the slip's unit: u'.s = |u'|
-    return drag - cap + hold * (cap + abs(drag))
+    return drag - cap + cut * NEAR_ONE * (cap + abs(drag)) + floor
+
+
+def tooth(contact, y, cap: float) -> str:
+    """A stick that reached the cap: the reset (:func:`after_cap`), a Zeno point noted where it comes within
+    ZENO of the contact time (``contact.tau``) of the last cap or slide's end (``contact.now``, ``last_cap``)."""
+    contact.zeno = contact.zeno or contact.now - contact.last_cap < ZENO * contact.tau
+    contact.last_cap = contact.now
+    return after_cap(contact.forces, y, cap)
+
+
+def after_slide(contact, y, cap: float) -> str:
+    """The slide's end: the reset along s, then a stick from A+ (inside the cap by the slide's margin)."""
+    f, dashpot = factors(contact.forces, y)
+    contact.last_cap = contact.now
+    y[_A] = f * cap * y[_A] + (1.0 - f) * dashpot * (y[_V] + y[_W])
+    return "stick"
+
+
+def bounce(model, state, again):
+    """The oracle's result of ``state`` (v_n, v_t, omega, v_s, omega_s, omega_n) with the classic cap, ``again(cut)``
+    solving it with its cuts scaled by ``cut``: refused beyond the contact radius's reach (:func:`check_radius`),
+    where its outcome has no limit (:func:`check_limit`), and where its sawtooth outruns MAX_SWITCHES."""
+    check_radius(model, state[0])
+    try:
+        contact_result = again(1.0)
+    except RuntimeError as exc:
+        raise NoMatrix(f"v_n = {float(state[0])!r}: with linear_history_classic's cap the contact saw-tooths "
+                       f"through more than {MAX_SWITCHES} teeth (a small mu: {model.mu!r}), beyond the oracle's reach "
+                       f"({exc})") from None
+    result, zeno = contact_result
+    if zeno:
+        initial = result.initial
+        v_n, v_t, r_omega = initial[:3]
+        check_limit(result.final, lambda cut: again(cut)[0].final, float(np.max(np.abs(initial))),
+                    f"state (v_n, v_t, r omega) = ({v_n:.6g}, {v_t:.6g}, {r_omega:.6g})")
+    return result
+
+
+def reaches_one(model, v_n) -> bool:
+    """Whether the contact radius of any of the states ``v_n`` reaches one length unit (see the module)."""
+    return math.sqrt(model.r * float(np.max(model.max_overlap(np.abs(np.atleast_1d(v_n)))))) >= 1.0
 
 
 def check_radius(model, v_n) -> bool:
@@ -97,28 +143,12 @@ def check_radius(model, v_n) -> bool:
     return True
 
 
-def zeno(regimes, t_exit: float) -> bool:
-    """Whether a slide ends into teeth that start from zero size: the stick after it is capped again within
-    ZENO of the contact time (a tooth of the sawtooth proper takes a finite part of it)."""
-    return any(a[1] == "slip" and b[1] == "stick" and c[0] - b[0] < ZENO * t_exit
-               for a, b, c in zip(regimes, regimes[1:], regimes[2:]))
-
-
-def check_wall(result, again) -> None:
-    """:func:`check_limit` of a wall's oracle result (``again(hold)``: the result with the slide held on by
-    ``hold``), where a slide ended into teeth from zero size (:func:`zeno`)."""
-    if zeno(result.regimes, result.t_exit):
-        v_n, v_t, r_omega = result.initial[:3]
-        check_limit(result.final, lambda hold: again(hold).final, float(np.max(np.abs(result.initial))),
-                    f"state (v_n, v_t, r omega) = ({v_n:.6g}, {v_t:.6g}, {r_omega:.6g})")
-
-
 def check_limit(final: np.ndarray, again, scale: float, what: str) -> None:
-    """Refuse (:class:`.NoLimit`) an outcome ``final`` that moves with where the teeth after a slide are cut
-    (``again(hold)``: the outcome with the slide held on by ``hold``): its LAMMPS outcome has no dt -> 0 limit.
+    """Refuse (:class:`.NoLimit`) an outcome ``final`` that moves with where its teeth from zero size are cut
+    (``again(cut)``: the outcome with its cuts scaled by ``cut``): its LAMMPS outcome has no dt -> 0 limit.
     ``scale``: the state's size; ``what``: the state, named in the refusal."""
-    spread = max(float(np.max(np.abs(again(NEAR_ONE * factor) - final))) for factor in HOLDS) / scale
+    spread = max(float(np.max(np.abs(again(factor) - final))) for factor in CUTS) / scale
     if spread > LIMIT_SPREAD:
-        raise NoLimit(f"{what}: with linear_history_classic's cap the contact slides, then saw-tooths from the "
-                      f"slide's end, whose teeth's phase moves the outcome by {spread:.2g} of the state: LAMMPS's "
-                      "outcome has no dt -> 0 limit here")
+        raise NoLimit(f"{what}: with linear_history_classic's cap the contact saw-tooths from teeth of zero size "
+                      f"(after a slide, a tensile turn or first touch), whose phase moves the outcome by {spread:.2g} "
+                      "of the state: LAMMPS's outcome has no dt -> 0 limit here")

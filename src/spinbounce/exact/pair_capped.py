@@ -36,7 +36,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import NoLimit
+from ..errors import NoLimit, NoMatrix
 from . import pair_exact
 from .pair_exact import (
     RTOL,
@@ -46,7 +46,7 @@ from .pair_exact import (
     start,
 )
 from .pair_exact import undamped_depth as pair_depth
-from .oracle_classic import MAX_SWITCHES, NEAR_ONE, check_limit
+from .oracle_classic import MAX_SWITCHES, check_limit
 from .pair_capped_phases import TURN_FLOOR, ClassicContact, Contact
 from .wall_law import on_contact_radius
 
@@ -109,11 +109,14 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, m
     args = (n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, mu, gamma_n, gamma_t, planar, rtol,
             tensile)
     found, zeno = _solve(*args, **law)
-    if zeno:
-        scale = max(np.abs(np.concatenate([v_a, v_b, r_a * np.asarray(w_a), r_b * np.asarray(w_b)])).max(), 1e-300)
+    if zeno:  # velocities and r times spins, over the largest of the relative velocity and r times the spins
+
+        def state(o) -> np.ndarray:
+            return np.concatenate([o[0], o[1], r_a * np.asarray(o[2]), r_b * np.asarray(o[3])])
+
+        scale = max(np.linalg.norm(np.subtract(v_a, v_b)), r_a * np.linalg.norm(w_a), r_b * np.linalg.norm(w_b))
         try:
-            check_limit(np.concatenate(found[:4]), lambda hold: np.concatenate(_solve(*args, hold=hold, **law)[0][:4]),
-                        scale, "this pair")
+            check_limit(state(found), lambda cut: state(_solve(*args, cut=cut, **law)[0]), scale, "this pair")
         except NoLimit as refused:
             refused.outcome = found
             raise
@@ -121,7 +124,7 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, m
 
 
 def _solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, mu, gamma_n, gamma_t, planar, rtol,
-           tensile, hold=NEAR_ONE, classic_cap=False, **law) -> tuple[PairOutcome, bool]:
+           tensile, cut=1.0, classic_cap=False, **law) -> tuple[PairOutcome, bool]:
     """One capped pair from first touch until it separates (arguments as :func:`.pair_exact.solve`,
     ``law`` its keys of :data:`.pair_exact.HOOKE`; ``tensile`` False: LAMMPS's ``limit_damping``, the
     normal force and with it the cap cut at their turn, from which the spheres part force-free). A law
@@ -136,13 +139,16 @@ def _solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, 
         rtol = rtol / 10.0
     n0, p, y, v_rel, tau, longest, atol = start(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b,
                                                 kn, kt, planar, rtol, mu=mu, gamma_n=gamma_n, gamma_t=gamma_t, **law)
-    contact = ClassicContact(p, n0, planar, hold) if classic_cap else Contact(p, n0, planar)
+    contact = ClassicContact(p, n0, planar, cut) if classic_cap else Contact(p, n0, planar)
     contact.tau, contact.unloading = tau, False
     radial = on_contact_radius(p["power"], p["spring_power"], p["damping_power"])
     contact.runaway = (not p["force_history"] and p["spring_power"] > p["damping_power"] and gamma_t > 0.0
                        and not classic_cap)
     m_star, speed = contact.m_star, abs(v_rel @ n0)
     depth = pair_depth(p, v_rel, n0, m_star)
+    if classic_cap and np.sqrt(p["r_eff"] * depth) >= 1.0:  # where the classic cap has no reference (oracle_classic)
+        raise NoMatrix(f"the contact radius sqrt(R_eff delta) reaches {np.sqrt(p['r_eff'] * depth):.4g} >= 1, where "
+                       "linear_history_classic's cap keeps the force on the cap whatever the slip does")
     stiffness = p["K"] * p["power"] * depth ** (p["power"] - 1.0)  # kn for the Hookean force
     contact.f_rounding = 16.0 * stiffness * np.spacing(r_a + r_b)
     contact.force_scale = mu * speed * np.sqrt(m_star * stiffness)
@@ -150,7 +156,7 @@ def _solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, 
     # a law on the contact radius starts a hair after first touch and ends a hair before the overlap
     # does, where a's rates are infinite (what the ends would do, ~ (1e-10)^(1 + s/2) of the speed, is left)
     contact.last = LAST_OVERLAP * depth if radial else 0.0
-    t = FIRST_TOUCH * tau if radial else 0.0
+    t = FIRST_TOUCH * cut * tau if radial else 0.0
     y = _first_touch(contact, np.append(y, np.zeros(4)), t)
     # the overlap's tolerance: relative from its first touch on (a law on the contact radius starts at ~1e-12 of it)
     # and a stick's trial force's: of its size at first touch there (~ a, sqrt(FIRST_TOUCH) of the force's scale).

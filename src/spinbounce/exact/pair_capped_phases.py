@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from .pair_exact import contact_radius_power, cross, geometry, normal_force
-from .oracle_classic import ZENO
+from .oracle_classic import NEAR_ONE, ZENO
 
 __all__ = ["Contact", "ClassicContact", "MARGIN", "TURN_FLOOR"]
 
@@ -196,11 +196,12 @@ class Contact:
 class ClassicContact(Contact):
     """``linear_history_classic``'s cap, its history reset by k alone (:mod:`.oracle_classic`, the wall's): the
     next trial force A+ = f c s + (1 - f) gamma_t a^s u', f = a^q; a slide is along the slip while
-    gamma_t a^s |u'| >= c. ``zeno``: a stick capped again within ZENO tau of a slide's end (:func:`solve`)."""
+    gamma_t a^s |u'| >= c. ``zeno``: a tooth shorter than ZENO tau (teeth from zero size, :func:`.solve`);
+    ``cut`` scales the slide's hold and the cap's margin."""
 
-    def __init__(self, p: dict, n0: np.ndarray, planar: bool, hold: float):
+    def __init__(self, p: dict, n0: np.ndarray, planar: bool, cut: float):
         super().__init__(p, n0, planar)
-        self.hold, self.zeno, self.now, self.slide_end = hold, False, 0.0, -np.inf
+        self.cut, self.zeno, self.now, self.last_cap = cut, False, 0.0, -np.inf
 
     def direction(self, k: dict, y) -> np.ndarray:
         slip = _unit(k["slip"])
@@ -213,27 +214,36 @@ class ClassicContact(Contact):
         friction = -self.cap(k) * self.direction(k, y)
         return np.concatenate([k["v"], *self.accelerations(k, friction), np.zeros(3), [-k["v_n"]]])
 
+    def stick_ends(self, _t, y) -> float:
+        k = self.kinematics(y)
+        return np.linalg.norm(y[15:18]) - self.cap(k) - self.cut * MARGIN * self.force_scale
+
     def slide_ends(self, _t, y) -> float:
+        """> 0 while the dashpot's force alone exceeds the cap, held on a little (the wall's slide_margin)."""
         k = self.kinematics(y)
         drag, c = k["dashpot"] * np.linalg.norm(k["slip"]), self.cap(k)
-        return drag - c + self.hold * (c + abs(drag))
+        return drag - c + self.cut * (NEAR_ONE * (c + abs(drag)) + MARGIN * self.force_scale)
+
+    def _reset(self, k: dict, s: np.ndarray | None) -> np.ndarray:
+        f = k["spring"] / self.p["kt"] if self.p["kt"] else 0.0
+        return f * self.cap(k) * (np.zeros(3) if s is None else s) + (1.0 - f) * k["dashpot"] * k["slip"]
 
     def on_cap(self, y, s: np.ndarray | None) -> None:
         """The capped step's reset along s (the trial force's unit): stick from A+, or slide along the slip."""
         k = self.kinematics(y)
-        c, f = self.cap(k), (k["spring"] / self.p["kt"] if self.p["kt"] else 0.0)
-        after = f * c * (np.zeros(3) if s is None else s) + (1.0 - f) * k["dashpot"] * k["slip"]
-        speed = np.linalg.norm(k["slip"])
-        self.sliding = not (np.linalg.norm(after) < c or k["dashpot"] * speed == 0.0)
+        after, speed = self._reset(k, s), np.linalg.norm(k["slip"])
+        self.sliding = not (np.linalg.norm(after) < self.cap(k) or k["dashpot"] * speed == 0.0)
         y[15:18] = k["slip"] / speed if self.sliding else after
 
     def switch(self, y, which: str) -> None:
+        if which in ("stick_ends", "slide_ends"):
+            self.zeno = self.zeno or which == "stick_ends" and self.now - self.last_cap < ZENO * self.tau
+            self.last_cap = self.now
         if which == "stick_ends":
-            self.zeno = self.zeno or self.now - self.slide_end < ZENO * self.tau
             self.on_cap(y, _unit(y[15:18]))
-        elif which == "slide_ends":
-            self.slide_end = self.now
-            self.on_cap(y, self.direction(self.kinematics(y), y))
+        elif which == "slide_ends":  # the reset along the slip, then a stick from inside the cap
+            k = self.kinematics(y)
+            self.sliding, y[15:18] = False, self._reset(k, self.direction(k, y))
         else:
             super().switch(y, which)
 

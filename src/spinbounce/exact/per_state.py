@@ -6,40 +6,57 @@ with their number warned of) and the classic wall's theory.
 from __future__ import annotations
 
 import warnings
+from collections import OrderedDict
 
 import numpy as np
 
 from ..errors import NoLimit, PhysicsWarning
 
-__all__ = ["oracle", "classic", "classic_wall"]
+__all__ = ["oracle", "classic", "classic_wall", "KEPT"]
 
 
 def oracle(model, initial, limitless: str = "raise") -> np.ndarray:
-    """Final states from exact.oracle, one state at a time (``limitless``: :func:`.choose.predict`'s)."""
-    from . import oracle as by_oracle
-
-    if limitless == "nan":
-        return _limitless_nan(lambda state: oracle(model, state[None, :]), initial)
-    r = model.r
-    spins = initial[:, [2, 4, 5]] / r if initial.shape[1] == 6 else np.column_stack([initial[:, 2] / r,
-                                                                                      np.zeros((len(initial), 2))])
-    v_s = initial[:, 3] if initial.shape[1] == 6 else None
-    return by_oracle.bounce_many(model, initial[:, 0], initial[:, 1], spins[:, 0], v_s, spins[:, 1],
-                                 spins[:, 2])[:, :initial.shape[1]]
-
-
-def _limitless_nan(one, initial) -> np.ndarray:
-    """``one(state)`` for each state, NaN where it has no limit (:class:`NoLimit`), their number warned of."""
-    out, refused = np.full(initial.shape, np.nan), []
+    """Final states from exact.oracle, one state at a time (``limitless``: :func:`.choose.predict`'s), each kept
+    for the next batch that asks (a step probe's runs ask for the same states again, :data:`KEPT`)."""
+    out, refused, fresh = np.empty(initial.shape), [], 0
     for k, state in enumerate(initial):
-        try:
-            out[k] = one(state)[0]
-        except NoLimit as exc:
-            refused.append(str(exc))
-    if refused:
+        key = (model, state.tobytes())
+        if key not in _KEPT:
+            _KEPT[key], fresh = _one(model, state), fresh + 1
+        _KEPT.move_to_end(key)
+        found = _KEPT[key]
+        if isinstance(found, str):  # no limit: its reason
+            if limitless != "nan":
+                raise NoLimit(found)
+            out[k] = np.nan
+            refused.append(found)
+        else:
+            out[k] = found
+    while len(_KEPT) > KEPT:
+        _KEPT.popitem(last=False)
+    if refused and fresh:  # told once, where first found
         warnings.warn(f"{len(refused)} of {len(initial)} state(s) have no reference (status no_limit), the first: "
                       f"{refused[0]}", PhysicsWarning, stacklevel=3)
     return out
+
+
+def _one(model, state):
+    """One state's final state by exact.oracle, or the reason it has no limit."""
+    from . import oracle as by_oracle
+
+    r = model.r
+    spins = state[[2, 4, 5]] / r if state.size == 6 else (state[2] / r, 0.0, 0.0)
+    try:
+        final = by_oracle.bounce(model, state[0], state[1], spins[0], v_s=state[3] if state.size == 6 else 0.0,
+                                 omega_s=spins[1], omega_n=spins[2]).final
+    except NoLimit as exc:
+        return str(exc)
+    return final[:state.size]
+
+
+#: States kept (oldest dropped first): a probe runs the same states at up to five steps.
+KEPT = 4096
+_KEPT: OrderedDict = OrderedDict()
 
 
 def classic(model, initial) -> np.ndarray:

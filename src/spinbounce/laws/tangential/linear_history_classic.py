@@ -16,7 +16,7 @@ tangent plane at every step (:attr:`turns_history`), where ``mindlin`` under the
 does, so the pair reference turns the history with the line of centres (measured: LAMMPS's pair at
 kn = 20, whose line of centres turns 0.41 rad, stays 2.6e-3 from ``mindlin``'s reference at any step,
 and comes within 8e-6, 3.7e-6 and 5e-7 of this one at dt = 1e-4, 2.5e-5 and 6.25e-6). With a cap
-between two spheres it is refused: no pair reference follows its reset.
+between two spheres it has the same reset (:mod:`spinbounce.exact.pair_capped_phases`).
 """
 
 from __future__ import annotations
