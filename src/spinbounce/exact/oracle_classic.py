@@ -114,6 +114,8 @@ def bounce(model, state, again):
     try:
         contact_result = again(1.0)
     except RuntimeError as exc:
+        if "regime switches" not in str(exc):
+            raise
         raise NoMatrix(f"v_n = {float(state[0])!r}: with linear_history_classic's cap the contact saw-tooths "
                        f"through more than {MAX_SWITCHES} teeth (a small mu: {model.mu!r}), beyond the oracle's reach "
                        f"({exc})") from None
@@ -126,16 +128,20 @@ def bounce(model, state, again):
     return result
 
 
+def _radius(model, v_n) -> float:
+    """The largest contact radius sqrt(r delta) of the states ``v_n``."""
+    return math.sqrt(model.r * float(np.max(model.max_overlap(np.abs(np.atleast_1d(v_n))))))
+
+
 def reaches_one(model, v_n) -> bool:
     """Whether the contact radius of any of the states ``v_n`` reaches one length unit (see the module)."""
-    return math.sqrt(model.r * float(np.max(model.max_overlap(np.abs(np.atleast_1d(v_n)))))) >= 1.0
+    return _radius(model, v_n) >= 1.0
 
 
 def check_radius(model, v_n) -> bool:
     """Refuse a state whose contact radius reaches one length unit (f = a^q >= 1: see the module); True
     if it does not."""
-    depth = float(np.max(model.max_overlap(np.abs(np.atleast_1d(v_n)))))
-    radius = math.sqrt(model.r * depth)
+    radius = _radius(model, v_n)
     if radius >= 1.0:
         raise NoMatrix(f"v_n = {float(np.min(v_n))!r}: the contact radius reaches sqrt(r delta) = {radius:.4g} >= 1, "
                        "where linear_history_classic's cap (reset by kt alone) keeps the force on the cap whatever the "
