@@ -44,7 +44,7 @@ def frozen_velocities(t, v_t0: float, r_omega0: float, kt: float, m: float, alph
     zeno: list[bool] = []
     found = slip(t, u0, kt, K, gamma_t, cap, reset, NEAR_ONE, zeno)
     if zeno:
-        check_limit(found, lambda hold: slip(t, u0, kt, K, gamma_t, cap, reset, hold), max(abs(u0), 1e-300),
+        check_limit(found, lambda cut: slip(t, u0, kt, K, gamma_t, cap, reset, NEAR_ONE * cut), max(abs(u0), 1e-300),
                     f"the frozen contact from u = {u0:.6g}")
     delta = found - u0
     return v_t0 + alpha / (1.0 + alpha) * delta, r_omega0 + delta / (1.0 + alpha)
