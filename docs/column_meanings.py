@@ -37,7 +37,8 @@ OTHER = {
     "energy_gain": "(E_final - E_initial)/E_initial, from LAMMPS (negative: energy lost)",
     "error": "largest |LAMMPS - theory| over the state columns, over the size of the initial state",
     "energy_excess": "kinetic energy LAMMPS ended with beyond the theory's, over E(0)",
-    "status": "ok, inaccurate (error above the target), energy_gained or grazing (overlap too small to resolve)",
+    "status": "ok, inaccurate (error above the target), energy_gained, grazing (overlap too small to resolve) or "
+              "no_limit (LAMMPS has no dt -> 0 limit: no reference, error NaN)",
     "dt": "the timestep the group ran at (a pair sweep: the batch's deck step; with a tolerance: the finest "
           "run's); a time-scaled row's own step is dt/time_scale; a pair row its chunk's runs left beyond the "
           "accuracy ran again finer, at the steps per contact or the dt its step_method names",
