@@ -13,7 +13,7 @@ It sticks again once the unconstrained force would fall back inside the cap:
 s (kt u + gamma_t u') < 0, that is s u < gamma_t K F_c/kt (u = 0 without a dashpot). An
 undamped spring then oscillates with the cap as its amplitude and never slips again.
 
-``linear_history_classic`` (``reset``: this build's classic spring, kt a on the history, reset by kt
+``linear_history_classic`` (``reset_k``: this build's classic spring, kt a on the history, reset by kt
 alone) leaves the history at (s F_c - gamma_t u)/kt instead, so the force after a capped step is
 f s F_c + (1 - f) gamma_t u with f = a: it sticks again at once below the cap (a sawtooth), or slides
 while gamma_t |u| >= F_c (:mod:`.oracle_classic`, whose Zeno point after a slide it checks the same way).
@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .oracle_classic import NEAR_ONE, ZENO, check_limit
+from .oracle_classic import NEAR_ONE, check_limit, is_zeno, reset
 
 __all__ = ["frozen_velocities", "slip"]
 
@@ -36,39 +36,38 @@ MAX_SWITCHES = 100_000
 
 
 def frozen_velocities(t, v_t0: float, r_omega0: float, kt: float, m: float, alpha: float, gamma_t: float,
-                      cap: float, reset: float | None = None) -> tuple[np.ndarray, np.ndarray]:
-    """(v_t(t), r omega(t)) of the frozen contact with the force capped at ``cap`` = mu F_n (``reset``: the
+                      cap: float, reset_k: float | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """(v_t(t), r omega(t)) of the frozen contact with the force capped at ``cap`` = mu F_n (``reset_k``: the
     classic spring's k alone, which the history is reset by; :class:`.NoLimit` where its teeth after a slide
     set the outcome)."""
     u0, t, K = float(v_t0) + float(r_omega0), np.asarray(t, dtype=float), (1.0 + alpha) / (alpha * m)
     zeno: list[bool] = []
-    found = slip(t, u0, kt, K, gamma_t, cap, reset, NEAR_ONE, zeno)
+    found = slip(t, u0, kt, K, gamma_t, cap, reset_k, NEAR_ONE, zeno)
     if zeno:
-        check_limit(found, lambda cut: slip(t, u0, kt, K, gamma_t, cap, reset, NEAR_ONE * cut), max(abs(u0), 1e-300),
+        check_limit(found, lambda cut: slip(t, u0, kt, K, gamma_t, cap, reset_k, NEAR_ONE * cut), max(abs(u0), 1e-300),
                     f"the frozen contact from u = {u0:.6g}")
     delta = found - u0
     return v_t0 + alpha / (1.0 + alpha) * delta, r_omega0 + delta / (1.0 + alpha)
 
 
-def slip(t: np.ndarray, u0: float, kt: float, K: float, gamma_t: float, cap: float, reset: float | None = None,
+def slip(t: np.ndarray, u0: float, kt: float, K: float, gamma_t: float, cap: float, reset_k: float | None = None,
          hold: float = NEAR_ONE, zeno: list | None = None) -> np.ndarray:
-    """The slip u at the times ``t`` (>= 0), from u0 with an unstretched spring (``reset``, ``hold``: a classic
+    """The slip u at the times ``t`` (>= 0), from u0 with an unstretched spring (``reset_k``, ``hold``: a classic
     spring's k, and how far its slide is held on; ``zeno`` gets an entry where a stick after a slide is capped
     again at once)."""
     out = np.full(t.shape, np.nan)
     if cap == 0.0:  # no force at all
         return np.full(t.shape, u0)
-    classic = reset is not None and reset != kt
-    reset = kt if reset is None else reset
+    classic = reset_k is not None and reset_k != kt
+    f = 1.0 if reset_k is None else kt / reset_k  # the classic spring's a (1: the plain cap)
     t_end, start, xi, u, slid = float(np.max(t, initial=0.0)), 0.0, 0.0, u0, -np.inf
     period = 2.0 * np.pi / np.sqrt(K * kt)
     for _ in range(MAX_SWITCHES):
         force = kt * xi + gamma_t * u
         # beyond the cap (a dashpot's force at first touch), or for the classic spring on it: the history is reset
         if abs(force) > cap or classic and abs(force) >= cap * (1.0 - 1e-12):
-            xi = (np.sign(force) * cap - gamma_t * u) / reset
-            # the cap itself; the classic spring's f cap + (1 - f) gamma_t u
-            force = kt * xi + gamma_t * u if classic else np.sign(force) * cap
+            force = reset(f, cap, np.sign(force), gamma_t * u)
+            xi = (force - gamma_t * u) / kt
         s = float(np.sign(force))
         # a slide ends where sticking would no longer push the force out (the classic spring: where its dashpot
         # alone falls below the cap, held on by ``hold``)
@@ -78,10 +77,10 @@ def slip(t: np.ndarray, u0: float, kt: float, K: float, gamma_t: float, cap: flo
             inside = (t >= start) & (t <= stop)
             out[inside] = u - s * K * cap * (t[inside] - start)
             u = u - s * K * cap * (min(stop, t_end) - start)
-            xi, start, slid = (s * cap - gamma_t * u) / reset, stop, stop
+            xi, start, slid = (reset(f, cap, s, gamma_t * u) - gamma_t * u) / kt, stop, stop
         else:
             start, xi, u = _stick(t, out, start, xi, u, kt, K, gamma_t, cap, t_end)
-            if zeno is not None and classic and start - slid < ZENO * period:
+            if zeno is not None and classic and is_zeno(start, slid, period):
                 zeno.append(True)
         if start >= t_end:
             return out

@@ -45,7 +45,7 @@ from .oracle_forces import A as _A
 from .oracle_forces import V as _V
 from .oracle_forces import W as _W
 
-__all__ = ["after_cap", "after_slide", "tooth", "slide_margin", "bounce", "reaches_one", "check_radius", "check_limit",
+__all__ = ["reset", "slides", "is_zeno", "note_cap", "after_cap", "after_slide", "tooth", "slide_margin", "bounce", "reaches_one", "check_radius", "check_limit",
            "NEAR_ONE", "MAX_SWITCHES"]
 
 #: The slide is held on by this fraction of its scale C + gamma_t |u'| (the teeth's Zeno point).
@@ -66,19 +66,39 @@ def factors(forces, y) -> tuple[float, float]:
     return forces.radius_power(y, law.spring_power)[0], law.c_t * forces.radius_power(y, law.damping_power)[0]
 
 
+def reset(f: float, cap: float, s, drag):
+    """The trial force after a capped step (a vector or a number): A+ = f C s + (1 - f) gamma_t u', the force
+    C s with its history divided by k alone (f = a^q; f = 1 is the plain cap); ``drag``: gamma_t u'."""
+    return f * cap * s + (1.0 - f) * drag
+
+
+def slides(after, cap: float, drag) -> bool:
+    """Whether the contact slides after a capped step: A+ stays on the cap and a dashpot holds it there."""
+    return bool(np.linalg.norm(after) >= cap and np.any(drag))
+
+
+def is_zeno(now: float, last: float, tau: float) -> bool:
+    """Whether a tooth reached the cap within ZENO of the contact time ``tau`` of the last cap or slide's end."""
+    return now - last < ZENO * tau
+
+
+def note_cap(contact, tooth: bool) -> None:
+    """Note a cap reached (``tooth``) or a slide's end at ``contact.now``: ``contact.zeno`` set at a Zeno point."""
+    contact.zeno = contact.zeno or tooth and is_zeno(contact.now, contact.last_cap, contact.tau)
+    contact.last_cap = contact.now
+
+
 def after_cap(forces, y, cap: float) -> str:
     """The regime once the trial force y[A] is capped at ``cap``; puts y[A] to the next trial force A+
     (sticking) or to the slide's unit s = u'/|u'| (sliding)."""
     f, dashpot = factors(forces, y)
     slip = y[_V] + y[_W]
     size = math.hypot(*y[_A])
-    s = y[_A] / size if size > 0.0 else np.zeros(2)
-    after = f * cap * s + (1.0 - f) * dashpot * slip
-    speed = math.hypot(*slip)
-    if math.hypot(*after) < cap or dashpot * speed == 0.0:
+    after = reset(f, cap, y[_A] / size if size > 0.0 else np.zeros(2), dashpot * slip)
+    if not slides(after, cap, dashpot * slip):
         y[_A] = after
         return "stick"
-    y[_A] = slip / speed
+    y[_A] = slip / math.hypot(*slip)
     return "slip"
 
 
@@ -91,18 +111,16 @@ def slide_margin(forces, y, cap: float, cut: float = 1.0, floor: float = 0.0) ->
 
 
 def tooth(contact, y, cap: float) -> str:
-    """A stick that reached the cap: the reset (:func:`after_cap`), a Zeno point noted where it comes within
-    ZENO of the contact time (``contact.tau``) of the last cap or slide's end (``contact.now``, ``last_cap``)."""
-    contact.zeno = contact.zeno or contact.now - contact.last_cap < ZENO * contact.tau
-    contact.last_cap = contact.now
+    """A stick that reached the cap: the reset (:func:`after_cap`), a Zeno point noted (:func:`note_cap`)."""
+    note_cap(contact, True)
     return after_cap(contact.forces, y, cap)
 
 
 def after_slide(contact, y, cap: float) -> str:
     """The slide's end: the reset along s, then a stick from A+ (inside the cap by the slide's margin)."""
     f, dashpot = factors(contact.forces, y)
-    contact.last_cap = contact.now
-    y[_A] = f * cap * y[_A] + (1.0 - f) * dashpot * (y[_V] + y[_W])
+    note_cap(contact, False)
+    y[_A] = reset(f, cap, y[_A], dashpot * (y[_V] + y[_W]))
     return "stick"
 
 

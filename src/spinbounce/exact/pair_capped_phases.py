@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from .pair_exact import contact_radius_power, cross, geometry, normal_force
-from .oracle_classic import NEAR_ONE, ZENO
+from .oracle_classic import NEAR_ONE, note_cap, reset, slides
 
 __all__ = ["Contact", "ClassicContact", "MARGIN", "TURN_FLOOR"]
 
@@ -226,19 +226,18 @@ class ClassicContact(Contact):
 
     def _reset(self, k: dict, s: np.ndarray | None) -> np.ndarray:
         f = k["spring"] / self.p["kt"] if self.p["kt"] else 0.0
-        return f * self.cap(k) * (np.zeros(3) if s is None else s) + (1.0 - f) * k["dashpot"] * k["slip"]
+        return reset(f, self.cap(k), np.zeros(3) if s is None else s, k["dashpot"] * k["slip"])
 
     def on_cap(self, y, s: np.ndarray | None) -> None:
         """The capped step's reset along s (the trial force's unit): stick from A+, or slide along the slip."""
         k = self.kinematics(y)
-        after, speed = self._reset(k, s), np.linalg.norm(k["slip"])
-        self.sliding = not (np.linalg.norm(after) < self.cap(k) or k["dashpot"] * speed == 0.0)
-        y[15:18] = k["slip"] / speed if self.sliding else after
+        after = self._reset(k, s)
+        self.sliding = slides(after, self.cap(k), k["dashpot"] * k["slip"])
+        y[15:18] = k["slip"] / np.linalg.norm(k["slip"]) if self.sliding else after
 
     def switch(self, y, which: str) -> None:
         if which in ("stick_ends", "slide_ends"):
-            self.zeno = self.zeno or which == "stick_ends" and self.now - self.last_cap < ZENO * self.tau
-            self.last_cap = self.now
+            note_cap(self, which == "stick_ends")
         if which == "stick_ends":
             self.on_cap(y, _unit(y[15:18]))
         elif which == "slide_ends":  # the reset along the slip, then a stick from inside the cap
