@@ -148,13 +148,15 @@ def make_dense(rates):
 def interpolate(F, y0, x, out):
     """The state a fraction ``x`` into a step from ``y0``, from its dense output ``F`` (scipy's
     Dop853DenseOutput)."""
-    last = F.shape[0] - 1
-    for i in range(y0.size):
-        acc = 0.0
-        for k in range(last, -1, -1):
-            acc += F[k, i]
-            acc *= x if (last - k) % 2 == 0 else 1.0 - x
-        out[i] = acc + y0[i]
+    last, size = F.shape[0] - 1, y0.size
+    for i in range(size):
+        out[i] = 0.0
+    for k in range(last, -1, -1):  # each component's Horner sum in scipy's order, all components at once
+        factor = x if (last - k) % 2 == 0 else 1.0 - x
+        for i in range(size):
+            out[i] = (out[i] + F[k, i]) * factor
+    for i in range(size):
+        out[i] += y0[i]
 
 
 @compiled
