@@ -13,6 +13,7 @@ import json
 import numpy as np
 import pytest
 
+from spinbounce import stepping
 from spinbounce.cli import main
 from spinbounce.errors import NoLimit, NoMatrix, PhysicsWarning
 from spinbounce.exact import choose, classic, oracle, per_state
@@ -163,6 +164,9 @@ def test_a_state_without_a_reference_writes_valid_json(capsys, tmp_path):
 
     report = json.loads(capsys.readouterr().out, parse_constant=refuse)
     assert report["status"] == "no_limit" and report["theory"]["v_n"] is None
+    # nothing to measure the probe's errors against: none is claimed (they were recorded as 0 before)
+    assert report["step"]["method"] == stepping.UNMEASURED and report["step"]["probe_errors"] == [None, None]
+    assert report["step"]["predicted_error"] is None
 
 
 @pytest.mark.slow

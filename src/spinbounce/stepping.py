@@ -27,7 +27,7 @@ from .errors import ResultError, SceneError
 from .model.timestep import ACCURACY, SAFETY, StepChoice, mid_step_dt
 
 __all__ = ["StepChoice", "tune", "reachable", "converge", "extrapolate", "expected_steps", "PROBE_SPHERES", "SAFETY",
-           "FALLBACK", "FINEST_PROBED"]
+           "FALLBACK", "FINEST_PROBED", "UNMEASURED"]
 
 #: States a probe runs: the scene's own, every k-th of them beyond this many.
 PROBE_SPHERES = 32
@@ -51,6 +51,10 @@ FALLBACK = "the rule (the probe could not reach the target coarser, or within a 
 #: How much finer than the rule a probe's point must be to be kept instead of it (a point at a limit of the
 #: rule's own steps differs from the rule only by its alignment mid-step).
 FINER = 1.01
+#: The method recorded when no probed row has a reference (LAMMPS has no dt -> 0 limit on any: status no_limit):
+#: the probe's finer step is kept, its error unmeasured (NaN); rows that have one are checked, and probed again
+#: where they err (:func:`spinbounce.pipeline.run_scene`).
+UNMEASURED = "probe: no probed row has a reference (status no_limit), the finer probe's step kept, its error unmeasured"
 #: The method recorded when the target was beyond the probe's reach and its best point finer than the rule.
 FINEST_PROBED = "probe: its least error within a run's steps, finer than the rule (the target asked for more)"
 
@@ -87,6 +91,9 @@ def tune(scene, out: Path, run: Callable, probe_states=None, target: float = ACC
     for _ in range(MAX_REFINEMENTS):
         errors.clear()
         pair = [(coarse_steps, probe(coarse_steps)), (2 * coarse_steps, probe(2 * coarse_steps))]
+        if any(math.isnan(e) for _, e in pair):  # nothing to measure an error against: no step is chosen from one
+            tuned = scene.at_step(mid_step_dt(t_contact, 2 * coarse_steps))
+            return tuned, StepChoice(tuned.dt, UNMEASURED, target, None, tuple(errors), None)
         if all(math.isfinite(e) for _, e in pair):
             break
         coarse_steps *= 2
