@@ -11,8 +11,7 @@ normal dashpot, the normal force's zero; each located on the step's dense output
 restarted there. Measured against the scipy reference on random pairs (tests/test_pair_capped_batch.py).
 
 Laws on the contact radius, ``limit_damping`` with a normal dashpot (the normal force's turn cuts the
-contact) and pairs
-this batch cannot carry to their end (more than MAX_PHASES switches, a step shrunk to nothing) are
+contact) and pairs this batch cannot carry to their end (more than MAX_PHASES switches, a step shrunk to nothing) are
 solved one at a time by :func:`.pair_capped.solve`: :func:`solvable` says which laws are taken.
 """
 
@@ -163,25 +162,13 @@ def _event(which, y, p, n0, planar, mode):
     """The value of event ``which`` at ``y``, signed so that it fires rising through zero."""
     if which == SEPARATED:
         return -y[18]
+    k = _kinematics(y, p, n0, planar)
     side = 1.0 if mode > 0 else -1.0
     if which == NORMAL_ZERO:  # F_n falls through zero on its side
-        return -side * _normal_force(y, p, n0, planar)
+        return -side * k[6]
     if abs(mode) == SLIDE:  # the slide ends where its push falls through the margin
-        k = _kinematics(y, p, n0, planar)
         return -(_push(k, p, side, _direction(k, y)) + MARGIN * p[FORCE] / p[TAU])
-    cap = p[MU] * side * _normal_force(y, p, n0, planar)
-    return np.sqrt(y[15] ** 2 + y[16] ** 2 + y[17] ** 2) - cap - MARGIN * p[FORCE]
-
-
-@compiled
-def _normal_force(y, p, n0, planar):
-    """F_n at ``y`` alone (:func:`_kinematics`' seventh, without the rest: the events sample it inside each step)."""
-    v = (y[3] - y[6], y[4] - y[7], y[5] - y[8])
-    if planar:
-        v_n = dot(v, n0)
-    else:
-        v_n = (y[0] * v[0] + y[1] * v[1] + y[2] * v[2]) / np.sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2])
-    return p[KN] * y[18] - p[GAMMA_N] * v_n
+    return np.sqrt(y[15] ** 2 + y[16] ** 2 + y[17] ** 2) - _cap(k, p, side) - MARGIN * p[FORCE]
 
 
 @compiled
