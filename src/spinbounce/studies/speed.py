@@ -277,8 +277,7 @@ def _first_cpus(count: int) -> set[int] | None:
     return set(allowed[:count]) if len(allowed) >= count else None
 
 
-#: A process that runs one deck (its path the first argument) with no spinbounce code in the timing, and prints
-#: LAMMPS's seconds.
+#: A process that runs one deck (its path the first argument) and prints LAMMPS's seconds, nothing else timed.
 _BARE_DECK = ("import sys, time; from spinbounce.lammps.runner import run_deck; "
               "started = time.perf_counter(); run_deck(sys.argv[1]); print(time.perf_counter() - started)")
 
@@ -289,6 +288,7 @@ def engine_ceiling(workers: int = 2, seed: int = 0, repeats: int = 1) -> dict | 
     processes at once, each on a CPU of its own (each the fastest of ``repeats``). Its ``efficiency`` (their mean
     per-process rate over the lone one's) is the ceiling any sweep's workers reach here: two CPUs of a shared
     machine can share a memory bus, a cache or a physical core. None where processes cannot be confined."""
+    from ..lammps.decks import prepare_run_dir
     from ..scenes.collision import Collision
     from ..sweeps import DEFAULT_CHUNK
 
@@ -301,8 +301,6 @@ def engine_ceiling(workers: int = 2, seed: int = 0, repeats: int = 1) -> dict | 
     deck = Collision(model, v_n=states[:, 0], v_t=states[:, 1], omega=states[:, 2], dt=dt).render("data_file")
     lone, together = float("inf"), float("inf")
     with tempfile.TemporaryDirectory(prefix="spinbounce-bench-ceiling-") as folder:
-        from ..lammps.decks import prepare_run_dir
-
         paths = [prepare_run_dir(Path(folder) / f"deck{k}", deck, durable=False) for k in range(workers)]
         for _ in range(repeats):
             lone = min(lone, _bare_runs(paths[:1], sorted(cpus)[:1])[0])
