@@ -5,7 +5,8 @@ from __future__ import annotations
 
 from .options import json_flag, name_list, note, out_folder, out_option, print_json
 
-HELP = "run the published sphere-wall benchmarks (Chung & Ooi Tests 4-6, Thornton's linear law) and report"
+HELP = ("run the published sphere-wall benchmarks (Chung & Ooi Tests 4-6, Thornton's linear and Hertzian laws) and "
+        "report")
 
 
 def _benchmark_names() -> list[str]:
@@ -24,7 +25,7 @@ def register(sub) -> None:
     out_option(p, "the report, the JSON record and the figure")
     p.add_argument("--only", type=name_list("benchmark", _benchmark_names), default=None, metavar="NAME,...",
                    help="run only these benchmarks (comma-separated): chung-ooi-4, chung-ooi-5, chung-ooi-6, "
-                        "thornton-linear")
+                        "thornton-linear, thornton-hertz-mindlin")
     p.add_argument("--runs", type=out_folder, default=None, metavar="DIR",
                    help="keep every LAMMPS run's folder here (default: a temporary folder, removed)")
     p.add_argument("--pairs", action="store_true",

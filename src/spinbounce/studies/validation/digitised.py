@@ -89,6 +89,15 @@ THORNTON_SPIN = {
                 "Thornton (Kratos)")
     for e, (psi1, spin) in _THORNTON_SPIN_POINTS.items()
 }
+#: Thornton's Psi2 against Psi1 at e = 0.5, Hertzian law (the same file's first block).
+THORNTON_PSI2_HERTZIAN = Measured(
+    "psi2",
+    (0.20444444444444465, 1.137777777777778, 2.3288888888888897, 3.5466666666666686, 4.831111111111112,
+     5.760000000000003, 6.195555555555558, 6.3688888888888915, 7.675555555555557, 9.315555555555559),
+    (0.01819759305905322, 0.03679541001958997, -0.03599776098516738, -0.5999832073887514,
+     -0.7578183599216359, -0.7675566750629743, -0.6417492303386529, -0.5914259725720705,
+     0.7179862860341433, 2.3547495102155045),
+    f"{KRATOS_T10}bench_10_norm_reb_tang_e_050.dat ('#Hertzian, e = 0.50')", "Thornton, Hertzian (Kratos)")
 #: Thornton's Psi2 against Psi1 at e = 0.5, linear law.
 THORNTON_PSI2_LINEAR = Measured(
     "psi2",
