@@ -18,9 +18,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .vec3 import compiled
+from .vec3 import compiled, kernel
 
-__all__ = ["STAGES", "RTOL", "new_scratch", "make_step", "make_dense", "interpolate", "error_norm", "step_factor"]
+__all__ = ["STAGES", "RTOL", "new_scratch", "make_step", "make_dense", "accept", "interpolate", "error_norm", "step_factor"]
 
 #: scipy's DOP853 tableau (dop853_tableau.json, written from scipy.integrate.DOP853 and held equal to it by
 #: tests/test_pair_batch.py: importing scipy.integrate costs a pair sweep half a second): 12 stages, its
@@ -52,11 +52,12 @@ def make_step(rates):
     stages, scratch, y_new)`` writes the state at t + h into ``y_new``, the stages and the rates there
     (``stages[STAGES]``) into ``stages``."""
 
-    @compiled
+    @kernel
     def step(y, f, h, p, n0, planar, mode, stages, scratch, y_new):
         # the tableau's nonzero entries written out (no loop over the stages): a third of the time of loops
         size = y.size
-        stages[0, :] = f
+        for i in range(size):
+            stages[0, i] = f[i]
         for i in range(size):
             scratch[i] = y[i] + h * (_A[1, 0] * stages[0, i])
         rates(scratch, p, n0, planar, mode, stages[1])
@@ -115,12 +116,13 @@ def make_dense(rates):
     scratch, F)`` adds the three extra stages to a step's ``stages`` and writes the interpolant's
     coefficients (INTERPOLATOR_POWER rows) into ``F`` for :func:`interpolate`."""
 
-    @compiled
+    @kernel
     def dense(y0, y1, h, p, n0, planar, mode, stages, scratch, F):
         size = y0.size
         for e in range(EXTENDED - STAGES - 1):
             s = STAGES + 1 + e
-            scratch[:] = y0
+            for i in range(size):
+                scratch[i] = y0[i]
             for j in range(s):
                 c = h * _A_EXTRA[e, j]
                 if c != 0.0:
@@ -144,7 +146,15 @@ def make_dense(rates):
     return dense
 
 
-@compiled
+@kernel
+def accept(y, f, y_new, stages):
+    """An accepted step's end made the next one's start: ``y`` = ``y_new``, ``f`` = the rates there."""
+    for i in range(y.size):
+        y[i] = y_new[i]
+        f[i] = stages[STAGES, i]
+
+
+@kernel
 def interpolate(F, y0, x, out):
     """The state a fraction ``x`` into a step from ``y0``, from its dense output ``F`` (scipy's
     Dop853DenseOutput)."""
@@ -159,7 +169,7 @@ def interpolate(F, y0, x, out):
         out[i] += y0[i]
 
 
-@compiled
+@kernel
 def error_norm(stages, h, y, y_new, atol, rtol):
     """scipy DOP853's error norm of one step (its stages, the states at both ends)."""
     size = y.size
@@ -178,7 +188,7 @@ def error_norm(stages, h, y, y_new, atol, rtol):
     return abs(h) * e5 / np.sqrt(denom) if denom > 0.0 else 0.0
 
 
-@compiled
+@kernel
 def step_factor(err, rejected):
     """scipy's factor for the next step after a step of error norm ``err`` (accepted if below 1; NaN is
     not, and shrinks the step as far as a rejection may), ``rejected``: the step before was."""

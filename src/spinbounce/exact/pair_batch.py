@@ -7,9 +7,10 @@ component kept, both velocity dashpots, each sphere's lever arm r - delta/2), th
 1e-12, each pair its own step, absolute tolerance and longest step from :func:`.pair_exact.start`'s
 rules; the first step an eighth of the longest, where scipy picks its own) and the same end (the
 centres' distance back to r_a + r_b, located on the step's dense output as scipy's event is). Each
-pair is integrated on its own in compiled code: no numpy call per step. Measured against the scipy
+pair is integrated on its own in compiled code: no numpy call per step, and no reference count in the
+step and the rates (:func:`.vec3.kernel`: they took half the time). Measured against the scipy
 reference on random pairs (tests/test_pair_batch.py): within 1e-11 of the speeds typically, always
-within 1e-9; about 10 microseconds a pair of a sweep (13.7 steps), 14 for random 3-D pairs (18.6). A
+within 1e-9; a sweep's pair takes 13.7 steps, a random 3-D pair 18.6 (``spinbounce bench``: pairs/s). A
 pair the batch cannot carry to its end (its window, :func:`.pair_exact.window`) is handed to the scipy
 reference.
 
@@ -27,8 +28,8 @@ import numpy as np
 from . import pair_exact
 from .dop853 import (
     INTERPOLATOR_POWER,
+    accept,
     RTOL,
-    STAGES,
     error_norm,
     interpolate,
     make_dense,
@@ -37,7 +38,7 @@ from .dop853 import (
     step_factor,
 )
 from .pair_exact import HOOKE, PairOutcome, longest_step, pair_scales, tolerance_scale
-from .vec3 import compiled
+from .vec3 import compiled, kernel
 
 __all__ = ["solve", "solvable", "Batch", "prepare", "finish"]
 
@@ -65,7 +66,7 @@ def solvable(law: dict, tensile: bool = True) -> bool:
     return shape_is_hooke and (tensile or law.get("gamma_n", 0.0) == 0.0)
 
 
-@compiled
+@kernel
 def _rates(y, p, n0, planar, mode, out):
     """d(state)/dt of a state (d, v_a, v_b, w_a, w_b, xi) into ``out``: :func:`.pair_exact._rates` for
     Hooke's law (``mode``: unused, no cap), written out in components (no array is made per call)."""
@@ -106,14 +107,14 @@ def _rates(y, p, n0, planar, mode, out):
 _step, _dense = make_step(_rates), make_dense(_rates)
 
 
-@compiled
+@kernel
 def _gap(y, p, n0, planar):
     if planar:
         return y[0] * n0[0] + y[1] * n0[1] + y[2] * n0[2] - p[RADSUM]
     return np.sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2]) - p[RADSUM]
 
 
-@compiled
+@kernel
 def _gap_rate(y, n0, planar):
     """d(gap)/dt: the relative velocity along n0 (planar) or along d/|d|."""
     vx, vy, vz = y[3] - y[6], y[4] - y[7], y[5] - y[8]
@@ -122,7 +123,7 @@ def _gap_rate(y, n0, planar):
     return (y[0] * vx + y[1] * vy + y[2] * vz) / np.sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2])
 
 
-@compiled
+@kernel
 def _locate_end(y0, g0, g1, h, F, p, n0, planar, end):
     """The fraction of the step from ``y0`` (gap ``g0`` < 0 there, ``g1`` >= 0 at its end, dense output
     ``F``) where the gap returns to zero, its state in ``end``: Newton's method on the interpolant (the
@@ -167,8 +168,7 @@ def _solve_one(y, p, n0, planar, longest, atol, t_bound, max_steps, end):
                 _dense(y, y_new, hs, p, n0, planar, 0, stages, scratch, F)
                 into = _locate_end(y, _gap(y, p, n0, planar), g, hs, F, p, n0, planar, end)
                 return t + into * hs, (ENDED if into == into else STUCK)
-            y[:] = y_new
-            f[:] = stages[STAGES]
+            accept(y, f, y_new, stages)
             t += hs
         if t > t_bound or h < MIN_STEP * longest:
             return t, STUCK

@@ -22,8 +22,8 @@ import numpy as np
 from . import pair_capped
 from .dop853 import (
     INTERPOLATOR_POWER,
+    accept,
     RTOL,
-    STAGES,
     error_norm,
     interpolate,
     make_dense,
@@ -35,7 +35,7 @@ from .pair_batch import ENDED, STUCK, finish, prepare
 from .pair_batch import solvable as uncapped_solvable
 from .pair_capped import INTERIOR_SAMPLES, MAX_PHASES
 from .pair_capped_phases import MARGIN, TURN_FLOOR
-from .vec3 import axpy, compiled, cross, dot, unit
+from .vec3 import axpy, compiled, cross, dot, kernel, unit
 
 __all__ = ["solve", "solvable"]
 
@@ -61,7 +61,7 @@ def solvable(law: dict, tensile: bool = True) -> bool:
     return uncapped_solvable(law, tensile)
 
 
-@compiled
+@kernel
 def _kinematics(y, p, n0, planar):
     """(n, n', v, v.n, spin, slip rate, F_n, F_n', lever of a, of b): :meth:`.pair_capped_phases.Contact.kinematics`
     for Hooke's law."""
@@ -85,7 +85,7 @@ def _kinematics(y, p, n0, planar):
     return n, turn, v, v_n, spin, slip, f_n, df_n, lever_a, lever_b
 
 
-@compiled
+@kernel
 def _stick_rate(k, p, trial):
     """A' while sticking with the trial force ``trial`` (the friction -trial on a)."""
     n, turn, v, v_n, spin, slip, f_n, _, lever_a, lever_b = k
@@ -105,7 +105,7 @@ def _stick_rate(k, p, trial):
             p[KT] * slip[2] - tilt * n[2] + p[GAMMA_T] * slip_rate[2])
 
 
-@compiled
+@kernel
 def _direction(k, y):
     """A slide's unit s, held in the tangent plane."""
     n = k[0]
@@ -113,19 +113,19 @@ def _direction(k, y):
     return unit(axpy(-dot(a, n), n, a))[0]
 
 
-@compiled
+@kernel
 def _cap(k, p, side):
     return p[MU] * side * k[6]
 
 
-@compiled
+@kernel
 def _push(k, p, side, s):
     """How fast sticking would carry A outwards along s with A = c s on the cap, less the cap's rate."""
     c = _cap(k, p, side)
     return dot(s, _stick_rate(k, p, (c * s[0], c * s[1], c * s[2]))) - p[MU] * side * k[7]
 
 
-@compiled
+@kernel
 def _rates(y, p, n0, planar, mode, out):
     """d(state)/dt of (d, v_a, v_b, w_a, w_b, A or s, overlap) in phase ``mode`` (its sign F_n's side)."""
     k = _kinematics(y, p, n0, planar)
@@ -157,7 +157,7 @@ def _rates(y, p, n0, planar, mode, out):
 _step, _dense = make_step(_rates), make_dense(_rates)
 
 
-@compiled
+@kernel
 def _event(which, y, p, n0, planar, mode):
     """The value of event ``which`` at ``y``, signed so that it fires rising through zero."""
     if which == SEPARATED:
@@ -171,7 +171,7 @@ def _event(which, y, p, n0, planar, mode):
     return np.sqrt(y[15] ** 2 + y[16] ** 2 + y[17] ** 2) - _cap(k, p, side) - MARGIN * p[FORCE]
 
 
-@compiled
+@kernel
 def _root(which, y0, F, x0, x1, g0, g1, h, t, p, n0, planar, mode, out):
     """The fraction of the step in (x0, x1] where event ``which`` rises through zero (``g0`` < 0 <= ``g1``),
     on the dense output, to scipy's event tolerance (4 eps in time): Illinois false position."""
@@ -199,7 +199,7 @@ def _root(which, y0, F, x0, x1, g0, g1, h, t, p, n0, planar, mode, out):
     return x1
 
 
-@compiled
+@kernel
 def _rate_direction(k, p):
     """Where sticking pushes a trial force of zero: the unit A' at A = 0, else the slip's; (direction, found)."""
     rate, size = unit(_stick_rate(k, p, (0.0, 0.0, 0.0)))
@@ -209,12 +209,12 @@ def _rate_direction(k, p):
     return slip, size > 0.0
 
 
-@compiled
+@kernel
 def _on_cap(y, p, n0, planar, side, s, found):
     """The phase with A on the cap along ``s`` (``found`` False: no direction, stick with A = 0)."""
     k = _kinematics(y, p, n0, planar)
     if not found:
-        y[15:18] = 0.0
+        y[15], y[16], y[17] = 0.0, 0.0, 0.0
         return STICK * side
     if _push(k, p, side, s) > 0.0:
         y[15], y[16], y[17] = s
@@ -224,7 +224,7 @@ def _on_cap(y, p, n0, planar, side, s, found):
     return STICK * side
 
 
-@compiled
+@kernel
 def _begin(y, p, n0, planar):
     """The trial force at first touch (the dashpot's gamma_t u') and the phase it starts in."""
     k = _kinematics(y, p, n0, planar)
@@ -242,14 +242,14 @@ def _begin(y, p, n0, planar):
     return _on_cap(y, p, n0, planar, side, s, found)
 
 
-@compiled
+@kernel
 def _switch(which, y, p, n0, planar, mode):
     """The phase after event ``which`` (:meth:`.pair_capped_phases.Contact.switch`)."""
     k = _kinematics(y, p, n0, planar)
     side = 1 if mode > 0 else -1
     if which == OWN_END and abs(mode) == STICK:  # the stick reached the cap: slide along A
         size = np.sqrt(y[15] ** 2 + y[16] ** 2 + y[17] ** 2)
-        y[15:18] /= size
+        y[15], y[16], y[17] = y[15] / size, y[16] / size, y[17] / size
         return SLIDE * side
     if which == OWN_END:  # the cap outgrew the slide: stick on it
         s = _direction(k, y)
@@ -262,7 +262,7 @@ def _switch(which, y, p, n0, planar, mode):
     return _on_cap(y, p, n0, planar, side, s, found)
 
 
-@compiled
+@kernel
 def _first_event(y, y_new, F, h, t, g_start, g_end, events, p, n0, planar, mode, probe):
     """(fraction of the step, event) of the first event inside the step from ``y`` (-1 if none): each event
     where it rises through zero between the step's ends, and the phase's own end also between
@@ -289,7 +289,7 @@ def _first_event(y, y_new, F, h, t, g_start, g_end, events, p, n0, planar, mode,
     return first, which
 
 
-@compiled
+@kernel
 def _advance(y, f, t, target, h, p, n0, planar, mode, longest, atol, stages, scratch, y_new):
     """``y`` (rates ``f``) at ``t`` integrated to exactly ``target`` under the same error control, the last
     step ending there: the state at an event. Returns the next step's length (NaN if it shrank to nothing)."""
@@ -301,8 +301,7 @@ def _advance(y, f, t, target, h, p, n0, planar, mode, longest, atol, stages, scr
         h = hs * step_factor(err, rejected)
         rejected = not err < 1.0
         if not rejected:
-            y[:] = y_new
-            f[:] = stages[STAGES]
+            accept(y, f, y_new, stages)
             t = target if hs == target - t else t + hs
         elif h < MIN_STEP * longest:
             return np.nan
@@ -345,8 +344,7 @@ def _solve_one(y, p, n0, planar, longest, atol, window, max_steps, end):
                         return t, STUCK
                     h = max(h, hs)  # the next phase starts at the step that found the event, not a sliver
                     break
-                y[:] = y_new
-                f[:] = stages[STAGES]
+                accept(y, f, y_new, stages)
                 g_start[:] = g_end
                 t += hs
             if t > bound or h < MIN_STEP * longest:

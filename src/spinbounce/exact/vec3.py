@@ -11,7 +11,7 @@ import numba
 import numpy as np
 from numba import njit
 
-__all__ = ["FLAGS", "compiled", "dot", "cross", "axpy", "unit", "COMPILED"]
+__all__ = ["FLAGS", "compiled", "kernel", "dot", "cross", "axpy", "unit", "COMPILED"]
 
 #: The compiled references' numba options: cached on disk, and IEEE arithmetic (a division by zero is
 #: inf or NaN, as numpy's, not an exception).
@@ -53,15 +53,23 @@ if _CACHE_DIR is None:
     FLAGS["cache"] = False
 
 
-def compiled(function):
-    """``function`` compiled with :data:`FLAGS`, its cache in the digest's folder (numba reads the folder
-    when a cached function is declared: set for that moment only, the process's own setting kept)."""
+def compiled(function, **options):
+    """``function`` compiled with :data:`FLAGS` (and numba's ``options``), its cache in the digest's folder (numba
+    reads the folder when a cached function is declared: set for that moment only, the process's own setting kept)."""
     previous = numba.config.CACHE_DIR
     numba.config.CACHE_DIR = _CACHE_DIR or previous
     try:
-        return njit(**FLAGS)(function)
+        return njit(**FLAGS, **options)(function)
     finally:
         numba.config.CACHE_DIR = previous
+
+
+def kernel(function):
+    """:func:`compiled` for a function that makes no array (it reads and writes those it is given, by element):
+    without numba's reference counts, an atomic increment and decrement of every array argument at every call,
+    which took half of the pair batches' time (perf: NRT_incref and NRT_decref, called from the DOP853 step and
+    the rates; numba's option ``_nrt``). Such a function may not allocate, copy a slice or return an array."""
+    return compiled(function, _nrt=False)
 
 
 @compiled
