@@ -222,8 +222,7 @@ def measure_waits(quick: bool = False, seed: int = 0, workers: int = 2, n: int |
 
     scenes = scene_sweeps(quick, seed, n)
     references = reference_rates(n or SCENES["pair"][3 if quick else 2], seed)
-    gas = gas_rates(quick, repeats=2 if quick else 3,  # a given count sizes it too
-                    spheres=None if n is None else min(max(n, 1000), 20000))
+    gas = gas_rates(quick, spheres=None if n is None else min(max(n, 1000), 20000))  # a given count sizes it too
     n = n or (ENGINE_SWEEP[1] if quick else ENGINE_SWEEP[0])
     frictionless = sweep_against_engine(n, seed, repeats=1 if quick else 2)
     return {"quick": quick, "scenes": scenes, "references": references, "frictionless": frictionless,

@@ -285,7 +285,8 @@ _BARE_DECK = ("import sys, time; from spinbounce.lammps.runner import run_deck; 
 def engine_ceiling(workers: int = 2, seed: int = 0, repeats: int = 1) -> dict | None:
     """What the machine gives ``workers`` processes at once, with no spinbounce code in the timing: one chunk's
     frictionless deck (DEFAULT_CHUNK spheres) run by the bare engine on one CPU alone, then in ``workers``
-    processes at once, each on a CPU of its own (each the fastest of ``repeats``). Its ``efficiency`` (their mean
+    processes at once, each on a CPU of its own (each the fastest of ``repeats``, in turn: a shared machine's noise
+    slows a run, never speeds it). Its ``efficiency`` (their mean
     per-process rate over the lone one's) is the ceiling any sweep's workers reach here: two CPUs of a shared
     machine can share a memory bus, a cache or a physical core. None where processes cannot be confined."""
     from ..lammps.decks import prepare_run_dir
@@ -347,7 +348,7 @@ def parallel_efficiency(n: int = 100_000, workers: int = 2, seed: int = 0, repea
             "per_core_at_all": rates["all"], "efficiency": rates["all"] / rates["one"],
             "one_worker_free": rates["free"], "efficiency_against_free": rates["all"] / rates["free"],
             "repeats": repeats, "wall_seconds": walls,
-            "machine": engine_ceiling(workers, seed, repeats) if runs["all"][1] is not None else None}
+            "machine": engine_ceiling(workers, seed, max(2, repeats)) if runs["all"][1] is not None else None}
 
 
 def core_line(c: dict) -> str:
