@@ -3,9 +3,11 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
+from spinbounce.errors import ResultError
 from spinbounce.model.timestep import mid_step_dt
-from spinbounce.stepping import FALLBACK, FINEST_PROBED, LIMIT_REACH, converge, tune
+from spinbounce.stepping import FALLBACK, FINEST_PROBED, LIMIT_REACH, UNMEASURED, converge, tune
 
 
 def _sqrt_law(measured: list):
@@ -86,3 +88,18 @@ def test_a_probe_cut_short_by_its_limit_keeps_its_best_point_where_it_is_finer_t
     # a rule finer than every point the probe measured is kept
     scene, choice = tune(_Scene(rule_steps=100_000, limit=50_000), tmp_path, _sqrt_run)
     assert choice.method == FALLBACK and scene.dt == mid_step_dt(1.0, 100_000)
+
+
+def test_a_probe_with_no_reference_on_any_row_claims_no_error(tmp_path):
+    # every probed row without a limit (the pipeline hands over no error): the finer probe's step, its errors
+    # unmeasured (NaN, null in JSON), none predicted
+    scene, choice = tune(_Scene(rule_steps=1000, limit=50_000), tmp_path, lambda scene, _: np.empty(0))
+    assert choice.method == UNMEASURED and choice.predicted_error is None and choice.observed_order is None
+    assert np.isnan(choice.probe_errors).all() and scene.dt == mid_step_dt(1.0, 200)
+
+
+def test_a_row_whose_error_is_nan_is_not_taken_for_a_probe_without_references(tmp_path):
+    # one row measured, one NaN (LAMMPS's final state NaN, say): not "unmeasured"; a probe that cannot see its
+    # error finish refines, then refuses, as before
+    with pytest.raises(ResultError, match="no probe"):
+        tune(_Scene(rule_steps=1000, limit=50_000), tmp_path, lambda scene, _: np.array([scene.dt, np.nan]))

@@ -94,12 +94,12 @@ class RunResult:
 
 def _probe_errors(scene, folder: Path) -> np.ndarray:
     """A probe's rows' relative errors (:func:`stepping.tune`): a plain run, nothing recorded; inf if the
-    step was too coarse for the run to finish the contact; rows without a limit (no reference) left out, NaN
+    step was too coarse for the run to finish the contact; rows without a limit (no reference) left out, none
     if every row is one (no error can be measured: :data:`.stepping.UNMEASURED`)."""
     try:
         columns = run_scene(scene, folder, atoms="library", record=False).columns
         measured = np.asarray(columns["status"]) != "no_limit"  # no reference, no error: the others decide
-        return np.asarray(columns["error"])[measured] if measured.any() else np.full(1, np.nan)
+        return np.asarray(columns["error"])[measured]
     except ResultError as exc:
         if UNFINISHED not in str(exc):
             raise

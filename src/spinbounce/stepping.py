@@ -64,7 +64,8 @@ def tune(scene, out: Path, run: Callable, probe_states=None, target: float = ACC
     and how that step was chosen (:class:`StepChoice`).
 
     ``run(scene, folder)`` runs a probe scene and returns its rows' relative errors (inf
-    where the run was too coarse to finish the contact); ``probe_states``: a scene of the
+    where the run was too coarse to finish the contact; none where no row has a reference:
+    :data:`UNMEASURED`); ``probe_states``: a scene of the
     same kind whose rows to probe with (a sweep's group: the same for every chunk, so every
     chunk of a group gets the same step), by default the scene's own.
     """
@@ -78,11 +79,15 @@ def tune(scene, out: Path, run: Callable, probe_states=None, target: float = ACC
     limit = scene.step_limit(t_contact)
     errors: list[float] = []
     points: list[tuple[int, float]] = []  # every probe's (steps, error), for a fallback
+    unmeasured: list[int] = []  # the probes none of whose rows has a reference (``run`` gave no error)
     folders = itertools.count()
 
     def probe(steps: int) -> float:
         folder = Path(out) / f"probe-{next(folders)}"
-        errors.append(float(np.max(run(sample.at_step(mid_step_dt(t_contact, steps)), folder))))
+        found = np.asarray(run(sample.at_step(mid_step_dt(t_contact, steps)), folder))
+        if not found.size:
+            unmeasured.append(steps)
+        errors.append(float(np.max(found)) if found.size else math.nan)
         points.append((steps, errors[-1]))
         return errors[-1]
 
@@ -91,7 +96,7 @@ def tune(scene, out: Path, run: Callable, probe_states=None, target: float = ACC
     for _ in range(MAX_REFINEMENTS):
         errors.clear()
         pair = [(coarse_steps, probe(coarse_steps)), (2 * coarse_steps, probe(2 * coarse_steps))]
-        if any(math.isnan(e) for _, e in pair):  # nothing to measure an error against: no step is chosen from one
+        if unmeasured:  # nothing to measure an error against: no step is chosen from one
             tuned = scene.at_step(mid_step_dt(t_contact, 2 * coarse_steps))
             return tuned, StepChoice(tuned.dt, UNMEASURED, target, None, tuple(errors), None)
         if all(math.isfinite(e) for _, e in pair):

@@ -37,8 +37,10 @@ from pathlib import Path
 
 import numpy as np
 
+from .cores import ON_CPUS, ceiling_words, engine_ceiling, first_cpus
+
 __all__ = ["measure_speed", "scene_needs", "SPEED_DEFAULTS", "MODELS", "measure_models",
-           "parallel_efficiency", "engine_ceiling", "core_line", "chunk_jobs"]
+           "parallel_efficiency", "core_line", "chunk_jobs"]
 
 #: Collisions per method by default: enough for each to run a few seconds.
 SPEED_DEFAULTS = {"n_lmp": 30, "n_inprocess": 300, "n_batched": 200_000}
@@ -256,72 +258,12 @@ def measure_models(n: int = 100_000, seed: int = 0, keep: Path | None = None, lo
     return {"models": out}
 
 
-#: A process that confines itself to the CPUs of its first argument, then becomes the command after it (set in
-#: the child itself: a parent's preexec_fn is unsafe beside the threads a bench has started by then).
-_ON_CPUS = ("import os, sys; os.sched_setaffinity(0, {int(c) for c in sys.argv[1].split(',')}); "
-            "os.execv(sys.executable, [sys.executable, *sys.argv[2:]])")
-
-
 def _sweep_process(*args, cpus: set[int] | None = None) -> float:
     """Seconds of ``spinbounce sweep ARGS`` in a process of its own, as a user runs it; on the CPUs
     ``cpus`` alone (its workers and threads too), or on any."""
-    on = [] if cpus is None else ["-c", _ON_CPUS, ",".join(map(str, sorted(cpus)))]
+    on = [] if cpus is None else ["-c", ON_CPUS, ",".join(map(str, sorted(cpus)))]
     return _timed(lambda: subprocess.run([sys.executable, *on, "-m", "spinbounce.cli", "sweep", *map(str, args)],
                                          check=True, capture_output=True))
-
-
-def _first_cpus(count: int) -> set[int] | None:
-    """The first ``count`` CPUs this process may run on (logical CPUs: two may share a core); None where it may
-    run on fewer, or where the system cannot confine a process to some."""
-    allowed = sorted(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else []
-    return set(allowed[:count]) if len(allowed) >= count else None
-
-
-#: A process that runs one deck (its path the first argument) and prints LAMMPS's seconds, nothing else timed.
-_BARE_DECK = ("import sys, time; from spinbounce.lammps.runner import run_deck; "
-              "started = time.perf_counter(); run_deck(sys.argv[1]); print(time.perf_counter() - started)")
-
-
-def engine_ceiling(workers: int = 2, seed: int = 0, repeats: int = 1) -> dict | None:
-    """What the machine gives ``workers`` processes at once, with no spinbounce code in the timing: one chunk's
-    frictionless deck (DEFAULT_CHUNK spheres) run by the bare engine on one CPU alone, then in ``workers``
-    processes at once, each on a CPU of its own (each the fastest of ``repeats``, in turn: a shared machine's noise
-    slows a run, never speeds it). Its ``efficiency`` (their mean
-    per-process rate over the lone one's) is the ceiling any sweep's workers reach here: two CPUs of a shared
-    machine can share a memory bus, a cache or a physical core. None where processes cannot be confined."""
-    from ..lammps.decks import prepare_run_dir
-    from ..scenes.collision import Collision
-    from ..sweeps import DEFAULT_CHUNK
-
-    cpus = _first_cpus(workers)
-    if cpus is None:
-        return None
-    spec = _spec(DEFAULT_CHUNK, *MODELS["frictionless"], seed)
-    model, dt = spec.model(0)
-    states = spec.initial_states(0, 0, DEFAULT_CHUNK)
-    deck = Collision(model, v_n=states[:, 0], v_t=states[:, 1], omega=states[:, 2], dt=dt).render("data_file")
-    lone, together = float("inf"), float("inf")
-    with tempfile.TemporaryDirectory(prefix="spinbounce-bench-ceiling-") as folder:
-        paths = [prepare_run_dir(Path(folder) / f"deck{k}", deck, durable=False) for k in range(workers)]
-        for _ in range(repeats):
-            lone = min(lone, _bare_runs(paths[:1], sorted(cpus)[:1])[0])
-            together = min(together, float(np.mean(_bare_runs(paths, sorted(cpus)))))
-    return {"workers": workers, "spheres": DEFAULT_CHUNK, "lone_seconds": lone, "together_seconds": together,
-            "efficiency": lone / together, "repeats": repeats}
-
-
-def _bare_runs(paths: list, cpus: list) -> list[float]:
-    """LAMMPS's seconds of each deck of ``paths``, all started at once, each in a process on its CPU of ``cpus``."""
-    runs = [subprocess.Popen([sys.executable, "-c", _ON_CPUS, str(cpu), "-c", _BARE_DECK, str(path)],
-                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-            for path, cpu in zip(paths, cpus, strict=True)]
-    out = []
-    for run in runs:
-        stdout, stderr = run.communicate()
-        if run.returncode:
-            raise RuntimeError(f"the bare engine's run failed: {stderr.strip().splitlines()[-1:]}")
-        out.append(float(stdout.split()[-1]))
-    return out
 
 
 def parallel_efficiency(n: int = 100_000, workers: int = 2, seed: int = 0, repeats: int = 1) -> dict:
@@ -335,9 +277,9 @@ def parallel_efficiency(n: int = 100_000, workers: int = 2, seed: int = 0, repea
     from ..sweeps import DEFAULT_CHUNK
 
     chunk = min(DEFAULT_CHUNK, max(1, -(-n // workers)))
-    every = _first_cpus(len(os.sched_getaffinity(0))) if hasattr(os, "sched_getaffinity") else None
+    every = first_cpus(len(os.sched_getaffinity(0))) if hasattr(os, "sched_getaffinity") else None
     # the free worker through the same confining start as the others (on every CPU), for the same start-up
-    runs = {"one": (1, _first_cpus(1)), "all": (workers, _first_cpus(workers)), "free": (1, every)}
+    runs = {"one": (1, first_cpus(1)), "all": (workers, first_cpus(workers)), "free": (1, every)}
     walls = {}
     with tempfile.TemporaryDirectory(prefix="spinbounce-bench-cores-") as folder:
         for name, (count, cpus) in runs.items():
@@ -348,7 +290,19 @@ def parallel_efficiency(n: int = 100_000, workers: int = 2, seed: int = 0, repea
             "per_core_at_all": rates["all"], "efficiency": rates["all"] / rates["one"],
             "one_worker_free": rates["free"], "efficiency_against_free": rates["all"] / rates["free"],
             "repeats": repeats, "wall_seconds": walls,
-            "machine": engine_ceiling(workers, seed, max(2, repeats)) if runs["all"][1] is not None else None}
+            "machine": _ceiling(workers, seed, repeats) if runs["all"][1] is not None else None}
+
+
+def _ceiling(workers: int, seed: int, repeats: int) -> dict | None:
+    """:func:`.cores.engine_ceiling` on one chunk's frictionless deck (DEFAULT_CHUNK spheres), at least twice."""
+    from ..scenes.collision import Collision
+    from ..sweeps import DEFAULT_CHUNK
+
+    spec = _spec(DEFAULT_CHUNK, *MODELS["frictionless"], seed)
+    model, dt = spec.model(0)
+    states = spec.initial_states(0, 0, DEFAULT_CHUNK)
+    deck = Collision(model, v_n=states[:, 0], v_t=states[:, 1], omega=states[:, 2], dt=dt).render("data_file")
+    return engine_ceiling(deck, DEFAULT_CHUNK, workers, max(2, repeats))
 
 
 def core_line(c: dict) -> str:
@@ -360,15 +314,7 @@ def core_line(c: dict) -> str:
     return (f"{w} workers {cpus}, the same chunks{best}: {c['per_core_at_all']:,.0f}/s per CPU against "
             f"{c['per_core_at_one']:,.0f}/s for one worker on one CPU: {c['efficiency']:.0%} of {times} one worker "
             f"(target 90%); one worker free to write its files on a second CPU: {c['one_worker_free']:,.0f}/s "
-            f"({c['efficiency_against_free']:.0%})" + _ceiling_words(c.get("machine"), times))
-
-
-def _ceiling_words(machine: dict | None, times: str) -> str:
-    """The machine's own ceiling (:func:`engine_ceiling`) as words for :func:`core_line`."""
-    if not machine:
-        return ""
-    return (f"; the machine's own ceiling, the bare engine in {machine['workers']} processes at once on "
-            f"{machine['spheres']:,}-sphere decks: {machine['efficiency']:.0%} of {times} one")
+            f"({c['efficiency_against_free']:.0%})" + ceiling_words(c.get("machine"), times))
 
 
 def chunk_jobs(n: int = 20_000, seed: int = 0) -> list[dict]:
