@@ -32,26 +32,29 @@ BARE_DECK = ("import sys, time; from spinbounce.lammps.runner import run_deck; "
 
 def engine_ceiling(deck, spheres: int, workers: int = 2, repeats: int = 2) -> dict | None:
     """What the machine gives ``workers`` processes at once, no spinbounce code timed: a deck (of ``spheres``, a data
-    file's route) run by the bare engine on one CPU alone, then in ``workers`` processes at once, each on
+    file's route) run by the bare engine on each CPU alone, then in ``workers`` processes at once, each on
     a CPU of its own (each the fastest of ``repeats``, in turn: noise slows a run, never speeds it). Its
-    ``efficiency`` (their mean per-process rate over the lone one's) is the ceiling a sweep's workers reach here
+    ``efficiency`` (the mean over CPUs of a run's rate beside the others over its rate alone on the same CPU: two
+    CPUs of a shared machine need not run alike) is the ceiling a sweep's workers reach here
     (CPUs can share a memory bus, a cache or a core). None for one worker or CPU; its error if a run failed."""
     from ..lammps.decks import prepare_run_dir
 
     cpus = first_cpus(workers)
     if cpus is None or workers < 2:
         return None
-    lone, together = float("inf"), float("inf")
+    cpus = sorted(cpus)
+    lone, together = np.full(workers, np.inf), np.full(workers, np.inf)  # per CPU: they need not run alike
     with tempfile.TemporaryDirectory(prefix="spinbounce-bench-ceiling-") as folder:
         paths = [prepare_run_dir(Path(folder) / f"deck{k}", deck, durable=False) for k in range(workers)]
         try:
             for _ in range(repeats):
-                lone = min(lone, _bare_runs(paths[:1], sorted(cpus)[:1])[0])
-                together = min(together, float(np.mean(_bare_runs(paths, sorted(cpus)))))
+                for k, cpu in enumerate(cpus):
+                    lone[k] = min(lone[k], _bare_runs(paths[:1], [cpu])[0])
+                together = np.minimum(together, _bare_runs(paths, cpus))
         except (RuntimeError, subprocess.TimeoutExpired) as exc:  # the bench's other lines are kept
             return {"workers": workers, "error": str(exc)}
-    return {"workers": workers, "spheres": spheres, "lone_seconds": lone, "together_seconds": together,
-            "efficiency": lone / together, "repeats": repeats}
+    return {"workers": workers, "spheres": spheres, "lone_seconds": lone.tolist(), "together_seconds":
+            together.tolist(), "efficiency": float(np.mean(lone / together)), "repeats": repeats}
 
 
 def _bare_runs(paths: list, cpus: list) -> list[float]:
