@@ -294,7 +294,7 @@ def parallel_efficiency(n: int = 100_000, workers: int = 2, seed: int = 0, repea
 
 
 def _ceiling(workers: int, seed: int, repeats: int) -> dict | None:
-    """:func:`.cores.engine_ceiling` on one chunk's frictionless deck (DEFAULT_CHUNK spheres), at least twice."""
+    """:func:`.cores.engine_ceiling` on one chunk's frictionless deck (DEFAULT_CHUNK spheres), ``repeats`` times."""
     from ..scenes.collision import Collision
     from ..sweeps import DEFAULT_CHUNK
 
@@ -302,7 +302,7 @@ def _ceiling(workers: int, seed: int, repeats: int) -> dict | None:
     model, dt = spec.model(0)
     states = spec.initial_states(0, 0, DEFAULT_CHUNK)
     deck = Collision(model, v_n=states[:, 0], v_t=states[:, 1], omega=states[:, 2], dt=dt).render("data_file")
-    return engine_ceiling(deck, DEFAULT_CHUNK, workers, max(2, repeats))
+    return engine_ceiling(deck, DEFAULT_CHUNK, workers, repeats)
 
 
 def core_line(c: dict) -> str:
