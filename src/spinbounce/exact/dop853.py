@@ -20,7 +20,8 @@ import numpy as np
 
 from .vec3 import compiled, kernel
 
-__all__ = ["STAGES", "RTOL", "new_scratch", "make_step", "make_dense", "accept", "interpolate", "error_norm", "step_factor"]
+__all__ = ["STAGES", "RTOL", "new_scratch", "make_step", "make_dense", "accept", "interpolate", "error_norm",
+           "step_factor"]
 
 #: scipy's DOP853 tableau (dop853_tableau.json, written from scipy.integrate.DOP853 and held equal to it by
 #: tests/test_pair_batch.py: importing scipy.integrate costs a pair sweep half a second): 12 stages, its

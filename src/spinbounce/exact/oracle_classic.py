@@ -45,8 +45,8 @@ from .oracle_forces import A as _A
 from .oracle_forces import V as _V
 from .oracle_forces import W as _W
 
-__all__ = ["reset", "slides", "is_zeno", "note_cap", "after_cap", "after_slide", "tooth", "slide_margin", "bounce", "reaches_one", "check_radius", "check_limit",
-           "NEAR_ONE", "MAX_SWITCHES"]
+__all__ = ["reset", "slides", "is_zeno", "note_cap", "after_cap", "after_slide", "tooth", "slide_margin", "bounce",
+           "reaches_one", "check_radius", "check_limit", "NEAR_ONE", "MAX_SWITCHES"]
 
 #: The slide is held on by this fraction of its scale C + gamma_t |u'| (the teeth's Zeno point).
 NEAR_ONE = 1.0e-10

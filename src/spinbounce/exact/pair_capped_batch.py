@@ -11,8 +11,8 @@ normal dashpot, the normal force's zero; each located on the step's dense output
 restarted there. Measured against the scipy reference on random pairs (tests/test_pair_capped_batch.py).
 
 Laws on the contact radius, ``limit_damping`` with a normal dashpot (the normal force's turn cuts the
-contact) and pairs this batch cannot carry to their end (more than MAX_PHASES switches, a step shrunk to nothing) are
-solved one at a time by :func:`.pair_capped.solve`: :func:`solvable` says which laws are taken.
+contact) and pairs this batch cannot carry to their end (more than MAX_PHASES switches, a step shrunk to
+nothing) are solved one at a time by :func:`.pair_capped.solve`: :func:`solvable` says which laws are taken.
 """
 
 from __future__ import annotations

@@ -128,7 +128,8 @@ def _introduction(meta: dict) -> list[str]:
         "The rigid-body column is Walton's law with beta0 = 0 (the contact point stops when the Coulomb bound "
         "is not reached); it is exact for this model in gross sliding when e = 1, and approached with damping. "
         "The Hertz-Mindlin series (chung-ooi-4, chung-ooi-6, thornton-hertz-mindlin) are LAMMPS's `hertz` with "
-        "`damping coeff_restitution` (the normal force let pull) and `tangential mindlin` without a tangential dashpot, "
+        "`damping coeff_restitution` (the normal force let pull) and `tangential mindlin` without a tangential "
+        "dashpot, "
         "set beside the Coulomb oracle carried over to them (exact.oracle); their pull near the exit adds "
         "friction the rigid-body law does not have.",
         "",
