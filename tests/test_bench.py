@@ -78,6 +78,7 @@ def test_bench_cli_writes_json(tmp_path, capsys):
     assert cores["repeats"] == 3 and set(cores["wall_seconds"]) == {"one", "all", "free"}
     assert cores["pinned"] == (len(os.sched_getaffinity(0)) >= cores["workers"])
     assert waits["gas"]["spheres"] == 1000  # the smallest gas, for a count of 60
+    assert len(waits["gas"]["measuring_shares"]) == 3  # one a pair of runs, the full bench's three
     assert waits["references"]["pairs"] == 60 and waits["references"]["capped_per_second"] > 0.0
     assert {m["collisions"] for m in report["models"]["sweeps"]} == {200}
     # the pairs' classes: the sweep's two runs combined take fewer steps than one probed run of the same pairs
@@ -96,7 +97,8 @@ def test_bench_quick_prints_every_ratio_with_its_target(tmp_path, capsys):
     assert main(["bench", "--quick", "--out", str(out)]) == 0
     printed = capsys.readouterr().out
     for line in ("pair / wall per collision", "of it (target 85%)", "of twice one worker (target 90%)",
-                 "(target 0.5 s)", "undamped: ", "pairs/s uncapped (target 100,000)", "measuring costs"):
+                 "(target 0.5 s)", "undamped: ", "pairs/s uncapped (target 100,000)", "measuring costs",
+                 "paid once over the target's 800,000", "over 800,000, the start-up paid once"):
         assert line in printed
     waits = json.loads(out.read_text())["waits"]
     assert waits["quick"] and [s["scene"] for s in waits["scenes"]][0] == "wall"
@@ -110,3 +112,52 @@ def test_bench_quick_prints_every_ratio_with_its_target(tmp_path, capsys):
         assert machine["workers"] == 2 and len(machine["lone_seconds"]) == len(machine["together_seconds"]) == 2
         assert np.isfinite(machine["efficiency"]) and machine["efficiency"] > 0.0
     assert waits["gas"]["sphere_steps_per_second"] > 0.0 and waits["gas"]["bare_sphere_steps_per_second"] > 0.0
+
+
+_BREAKDOWN = """Loop time of 2.2 on 1 procs for 12000 steps with 5000 atoms
+
+MPI task timing breakdown:
+Section |  min time  |  avg time  |  max time  |%varavg| %total
+---------------------------------------------------------------
+Pair    | 0.52       | 0.5        | 0.54       |   0.0 | 23.41
+Neigh   | 0.2        | 0.2        | 0.2        |   0.0 | 10.17
+Comm    | 0.4        | 0.4        | 0.4        |   0.0 | 17.47
+Output  | 0.0001     | 0.0001     | 0.0001     |   0.0 |  0.01
+Modify  | 0.85       | 0.8        | 0.85       |   0.0 | 38.32
+Other   |            | 0.1        |            |       | 10.62
+"""
+
+
+def test_section_times_reads_each_runs_average_seconds(tmp_path):
+    """Each run's breakdown, the average column (not the min), Other's lone column included."""
+    from spinbounce.lammps.runner import section_times
+
+    log = tmp_path / "log.lammps"
+    log.write_text(_BREAKDOWN + "\n" + _BREAKDOWN.replace("0.8 ", "0.9 "))
+    first, second = section_times(log)
+    assert first == {"Pair": 0.5, "Neigh": 0.2, "Comm": 0.4, "Output": 0.0001, "Modify": 0.8, "Other": 0.1}
+    assert second["Modify"] == 0.9 and section_times(tmp_path / "none") == []
+
+
+def test_measuring_share_takes_the_machines_drift_out():
+    """A measured run on a machine 10% slower, whose Modify adds 0.05 s to the drifted bare one's: the share is
+    0.05 s over the rest, not the 12% its loop time differs by; no added cost reads zero at any drift."""
+    from spinbounce.studies.engine import measuring_share
+
+    bare = {"Pair": 0.5, "Neigh": 0.2, "Comm": 0.4, "Output": 0.0, "Modify": 0.8, "Other": 0.1}
+    slower = {k: 1.1 * v for k, v in bare.items()}
+    assert measuring_share(bare, slower) == pytest.approx(0.0, abs=1e-12)
+    measured = {**slower, "Modify": slower["Modify"] + 0.05}
+    assert measuring_share(bare, measured) == pytest.approx(0.05 / sum(slower.values()), rel=1e-12)
+
+
+def test_a_short_sweep_read_at_the_full_count_pays_its_start_up_once():
+    """10 s for 200,000 collisions, 2 s of it start-up: 800,000 take 2 + 4 x 8 s. Two workers taking 6 s against
+    one's 10 s (the same start-up) are 83% of twice one here, and over 800,000 (2 + 4 x 4 = 18 s against 34 s)
+    34 / (2 x 18) = 94%."""
+    from spinbounce.studies.engine import _cores_at_full, at_count
+
+    assert at_count(10.0, 2.0, 200_000, 800_000) == pytest.approx(34.0)
+    line = _cores_at_full({"collisions": 200_000, "workers": 2, "wall_seconds": {"one": 10.0, "all": 6.0}}, 2.0)
+    assert line.endswith(f": {34.0 / (2 * 18.0):.0%}")
+    assert _cores_at_full({"collisions": 800_000, "workers": 2, "wall_seconds": {"one": 1.0, "all": 1.0}}, 2.0) == ""

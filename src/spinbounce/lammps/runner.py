@@ -25,7 +25,7 @@ from ..errors import LammpsError
 LIBRARY_MARKER = "# >>> atoms are created here through the LAMMPS library interface <<<"
 
 __all__ = ["LIBRARY_MARKER", "LammpsError", "RunInfo", "run_deck", "run_deck_lmp", "lammps_version", "lmp_executable",
-           "loop_seconds", "loop_times", "engine_clock"]
+           "loop_seconds", "loop_times", "section_times", "engine_clock"]
 
 LOG_NAME = "log.lammps"
 
@@ -150,6 +150,26 @@ def loop_times(log: Path) -> list[float]:
         return [float(x) for x in _LOOP_RE.findall(Path(log).read_text())]
     except FileNotFoundError:
         return []
+
+
+#: A line of a run's timing breakdown: its section (Pair, Neigh, Comm, Output, Modify, Other) and its average
+#: seconds over the ranks (Other has only that column).
+_SECTION_RE = re.compile(r"^(Pair|Bond|Kspace|Neigh|Comm|Output|Modify|Other)\s*\|"
+                         r"\s*([-+0-9.eE]+)?\s*\|\s*([-+0-9.eE]+)", re.MULTILINE)
+
+
+def section_times(log: Path) -> list[dict[str, float]]:
+    """The timing breakdown of each run of a LAMMPS log, in order: section -> average seconds over the ranks."""
+    try:
+        text = Path(log).read_text()
+    except FileNotFoundError:
+        return []
+    runs: list[dict[str, float]] = []
+    for name, _, average in _SECTION_RE.findall(text):
+        if name == "Pair" or not runs:
+            runs.append({})
+        runs[-1][name] = float(average)
+    return runs
 
 
 def loop_seconds(log: Path) -> float:

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import math
 import shutil
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -90,7 +91,8 @@ def sweep_against_engine(n: int, seed: int = 0, repeats: int = 1) -> dict:
     """The frictionless ``spinbounce sweep --n N --workers 1`` (a process, as a user runs it) and the
     bare engine running the same chunks' decks on the same states: the engine's wall seconds over
     LAMMPS's runs alone (its decks written and its spheres prepared beforehand, untimed). Each the
-    fastest of ``repeats``, the two in turn (the machine is shared: a run is slowed, never sped up)."""
+    fastest of ``repeats``, the two in turn (the machine is shared: a run is slowed, never sped up); and the
+    sweep's start-up, a sweep of one collision (the fastest of ``repeats``), which a short sweep pays in full."""
     from ..lammps.decks import prepare_run_dir
     from ..lammps.runner import run_deck
     from ..scenes.collision import Collision
@@ -108,8 +110,28 @@ def sweep_against_engine(n: int, seed: int = 0, repeats: int = 1) -> dict:
             sweep = min(sweep, _sweep_process("--n", n, "--seed", seed, "--workers", 1,
                                               "--out", Path(folder) / f"sweep-{repeat}"))
             engine = min(engine, sum(_timed(lambda: run_deck(path, atoms=atoms)) for path, atoms in decks))
+        start = min(_sweep_process("--n", 1, "--seed", seed, "--workers", 1, "--out", Path(folder) / f"one-{repeat}")
+                    for repeat in range(repeats))
     return {"collisions": n, "sweep_seconds": sweep, "engine_seconds": engine, "sweep_per_second": n / sweep,
-            "engine_per_second": n / engine, "sweep_over_engine": engine / sweep, "repeats": repeats}
+            "engine_per_second": n / engine, "sweep_over_engine": engine / sweep, "repeats": repeats,
+            "start_seconds": start}
+
+
+def at_count(seconds: float, start: float, n: int, count: int) -> float:
+    """A sweep of ``n`` collisions that took ``seconds``, ``start`` of them its start-up, carried to ``count``
+    collisions: the start-up once, the rest in proportion (its chunks are alike)."""
+    return start + (seconds - start) * count / n
+
+
+def _at_full(f: dict) -> str:
+    """The quick frictionless line's reading at the full bench's count (the target's), from its start-up."""
+    full = ENGINE_SWEEP[0]
+    if f["collisions"] >= full:
+        return ""
+    share = f["engine_seconds"] * full / f["collisions"] / at_count(f["sweep_seconds"], f["start_seconds"],
+                                                                     f["collisions"], full)
+    return (f"; its start-up {f['start_seconds']:.2f} s (a sweep of one collision), paid once over the target's "
+            f"{full:,}: {share:.0%} (bench measures it)")
 
 
 def help_seconds(repeats: int = 3) -> dict:
@@ -161,9 +183,10 @@ def _load_seconds(repeats: int = 3) -> float:
     return max(0.0, fastest(_FIRST_PAIR) - fastest("import spinbounce.exact"))
 
 
-def reference_rates(n: int = 20_000, seed: int = 0, mu: float = 0.3) -> dict:
+def reference_rates(n: int = 20_000, seed: int = 0, mu: float = 0.3, repeats: int = 3) -> dict:
     """Pairs per second of the compiled exact pair references on one core, uncapped and with a cap ``mu``,
-    on the pair sweep's own ``n`` states (the default spheres; their compiled code loaded beforehand)."""
+    on the pair sweep's own ``n`` states (the default spheres; their compiled code loaded beforehand), and
+    what loading that code costs a process (:func:`_load_seconds`, the fastest of ``repeats``)."""
     import numpy as np
 
     from ..exact import pair_batch, pair_capped_batch
@@ -175,21 +198,38 @@ def reference_rates(n: int = 20_000, seed: int = 0, mu: float = 0.3) -> dict:
     rows = [p.vectors() | p.properties() for p in pairs_from_states(model, b, spec.initial_states(0))]
     columns = {k: np.array([row[k] for row in rows]) for k in rows[0]}
     law = pair_contact(model, b).law()
-    out = {"pairs": len(rows), "mu": mu, "load_seconds": _load_seconds()}
+    out = {"pairs": len(rows), "mu": mu, "load_seconds": _load_seconds(repeats)}
     for name, solve, cap in (("uncapped", pair_batch.solve, {}), ("capped", pair_capped_batch.solve, {"mu": mu})):
         solve(**{k: v[:2] for k, v in columns.items()}, **law, **cap)  # untimed: loads the compiled code
         out[f"{name}_per_second"] = len(rows) / _timed(lambda: solve(**columns, **law, **cap))  # noqa: B023
     return out
 
 
+#: The sections of LAMMPS's timing breakdown that a gas deck and its bare self spend alike (the forces, the
+#: neighbour lists, communication and the loop's rest), and those that measuring adds to (its computes run from
+#: its fixes, which LAMMPS times under Modify; its files, under Output).
+_ALIKE, _MEASURING = ("Pair", "Neigh", "Comm", "Other"), ("Modify", "Output")
+
+
+def measuring_share(bare: dict, measured: dict) -> float:
+    """What a gas deck's measuring costs beside its bare self, from one run of each (their timing breakdowns,
+    :func:`..lammps.runner.section_times`): the measured run's Modify and Output less the bare run's, the
+    latter scaled by how much faster or slower the machine ran the sections both spend alike; over the
+    measured run's time less that cost. The machine's drift between two runs (10% here) would hide a cost of a
+    few percent in their loop times; it moves the shared sections as much, and is taken out."""
+    drift = sum(measured[k] for k in _ALIKE) / sum(bare[k] for k in _ALIKE)
+    cost = sum(measured.get(k, 0.0) for k in _MEASURING) - drift * sum(bare.get(k, 0.0) for k in _MEASURING)
+    return cost / (sum(measured.values()) - cost)
+
+
 def gas_rates(quick: bool = False, repeats: int = 3, spheres: int | None = None) -> dict:
     """A magic-ratio gas's deck (packing 0.05, kn = 1e4) run in this process with and without what it measures
-    (the kinetic energies, the open contacts), alternately, the fastest of ``repeats`` each: LAMMPS's
-    sphere-steps a second on one core over the measured run (the settling before it, alike in both, left
-    out), and what measuring costs beside the bare deck. ``spheres``: the gas's size (default 5,000 quick,
-    20,000 in full)."""
+    (the kinetic energies, the open contacts), alternately, ``repeats`` times each (once in ``quick``): LAMMPS's
+    sphere-steps a second on one core over the measured run (the settling before it, alike in both, left out),
+    the fastest of the runs, and what measuring costs beside the bare deck (:func:`measuring_share`, the median
+    over the pairs of runs). ``spheres``: the gas's size (default 5,000 quick, 20,000 in full)."""
     from ..lammps.decks import prepare_run_dir
-    from ..lammps.runner import loop_times, run_deck
+    from ..lammps.runner import loop_times, run_deck, section_times
     from ..scenes.gas import collisions
     from ..scenes.gas.deck import render_gas
     from ..model.contact import ContactModel
@@ -197,20 +237,26 @@ def gas_rates(quick: bool = False, repeats: int = 3, spheres: int | None = None)
 
     m = ContactModel(kn=1e4, kt=1e4 * 2.0 / 7.0)
     spheres = spheres or (5000 if quick else 20000)
+    repeats = 1 if quick else repeats
     scene = Gas(m, collisions.mean_contact_time(m, 1.0, collisions.draws(2000, 1)), spheres=spheres,
                 collisions=4.0 if quick else 8.0, samples=20)
     seconds = {"bare": math.inf, "measured": math.inf}
+    shares = []
     with tempfile.TemporaryDirectory() as root:
         for _ in range(repeats):
+            sections = {}
             for name in seconds:
                 deck = render_gas(scene, measure=name == "measured")
                 info = run_deck(prepare_run_dir(Path(root) / name, deck, durable=False))
                 seconds[name] = min(seconds[name], loop_times(info.log)[-1])  # the measured run, not the settling
+                sections[name] = section_times(info.log)[-1]
+            shares.append(measuring_share(sections["bare"], sections["measured"]))
     sphere_steps = scene.spheres * scene.nsteps
     return {"spheres": scene.spheres, "steps": scene.nsteps,
             "sphere_steps_per_second": sphere_steps / seconds["measured"],
             "bare_sphere_steps_per_second": sphere_steps / seconds["bare"],
-            "measuring_share": seconds["measured"] / seconds["bare"] - 1.0}
+            "measuring_share": float(statistics.median(shares)), "measuring_shares": shares,
+            "loop_share": seconds["measured"] / seconds["bare"] - 1.0}
 
 
 def measure_waits(quick: bool = False, seed: int = 0, workers: int = 2, n: int | None = None) -> dict:
@@ -221,7 +267,7 @@ def measure_waits(quick: bool = False, seed: int = 0, workers: int = 2, n: int |
     from .speed import parallel_efficiency
 
     scenes = scene_sweeps(quick, seed, n)
-    references = reference_rates(n or SCENES["pair"][3 if quick else 2], seed)
+    references = reference_rates(n or SCENES["pair"][3 if quick else 2], seed, repeats=1 if quick else 3)
     gas = gas_rates(quick, spheres=None if n is None else min(max(n, 1000), 20000))  # a given count sizes it too
     n = n or (ENGINE_SWEEP[1] if quick else ENGINE_SWEEP[0])
     frictionless = sweep_against_engine(n, seed, repeats=1 if quick else 2)
@@ -229,6 +275,15 @@ def measure_waits(quick: bool = False, seed: int = 0, workers: int = 2, n: int |
             "cores": parallel_efficiency(n=n, workers=workers, seed=seed, repeats=1 if quick else 3),
             "help_seconds": help_seconds(),
             "damped": damped_steps(), "gas": gas}
+
+
+def _cores_at_full(c: dict, start: float) -> str:
+    """The quick two-worker line's reading at the full bench's count, each run's start-up ``start`` paid once."""
+    full, n = ENGINE_SWEEP[0], c["collisions"]
+    if n >= full:
+        return ""
+    one, every = (at_count(c["wall_seconds"][k], start, n, full) for k in ("one", "all"))
+    return f"; over {full:,}, the start-up paid once: {one / (c['workers'] * every):.0%}"
 
 
 def wait_lines(report: dict) -> list[str]:
@@ -251,9 +306,9 @@ def wait_lines(report: dict) -> list[str]:
     best = "" if f.get("repeats", 1) == 1 else f"; the fastest of {f['repeats']}, each"
     lines.append(f"frictionless sweep of {f['collisions']:,} (a process, start-up included{best}): "
                  f"{f['sweep_per_second']:,.0f}/s; the bare engine on the same chunks: "
-                 f"{f['engine_per_second']:,.0f}/s: {f['sweep_over_engine']:.0%} of it (target 85%)")
+                 f"{f['engine_per_second']:,.0f}/s: {f['sweep_over_engine']:.0%} of it (target 85%){_at_full(f)}")
     c = report["cores"]
-    lines.append(core_line(c))
+    lines.append(core_line(c) + _cores_at_full(c, f["start_seconds"]))
     h = report["help_seconds"]
     lines.append("start-up: " + ", ".join(f"spinbounce {k} {v:.2f} s" for k, v in h.items()) + " (target 0.5 s)")
     d = report["damped"]
@@ -261,7 +316,10 @@ def wait_lines(report: dict) -> list[str]:
                  f"{d['undamped_steps']} undamped: {d['ratio']:.2f}x (target 3x; {d['damped_method']}, error "
                  f"{d['damped_error']:.1e}, estimate {d['damped_estimate']:.1e}, target {d['target']:g})")
     g = report["gas"]
+    pairs = len(g["measuring_shares"])
+    runs = "one pair of runs" if pairs == 1 else f"the median of {pairs} pairs of runs"
     lines.append(f"gas of {g['spheres']:,} spheres, {g['steps']:,} steps: {g['sphere_steps_per_second']:.3g} "
-                 f"sphere-steps/s on one core, the bare deck {g['bare_sphere_steps_per_second']:.3g}/s: measuring costs "
-                 f"{g['measuring_share']:.1%} (target 10%)")
+                 f"sphere-steps/s on one core, the bare deck {g['bare_sphere_steps_per_second']:.3g}/s: measuring "
+                 f"costs {g['measuring_share']:.1%} (target 10%; LAMMPS's own timings of what it adds, {runs}; "
+                 f"their loop times differ by {g['loop_share']:+.1%}, the machine's drift included)")
     return lines

@@ -286,7 +286,7 @@ def parallel_efficiency(n: int = 100_000, workers: int = 2, seed: int = 0, repea
             walls[name] = min(_sweep_process("--n", n, "--seed", seed, "--chunk-size", chunk, "--workers", count,
                                              "--out", Path(folder) / f"{name}{k}", cpus=cpus) for k in range(repeats))
     rates = {name: n / walls[name] / runs[name][0] for name in runs}
-    return {"workers": workers, "pinned": runs["all"][1] is not None, "per_core_at_one": rates["one"],
+    return {"workers": workers, "collisions": n, "pinned": runs["all"][1] is not None, "per_core_at_one": rates["one"],
             "per_core_at_all": rates["all"], "efficiency": rates["all"] / rates["one"],
             "one_worker_free": rates["free"], "efficiency_against_free": rates["all"] / rates["free"],
             "repeats": repeats, "wall_seconds": walls,
