@@ -79,14 +79,14 @@ def tune(scene, out: Path, run: Callable, probe_states=None, target: float = ACC
     limit = scene.step_limit(t_contact)
     errors: list[float] = []
     points: list[tuple[int, float]] = []  # every probe's (steps, error), for a fallback
-    unmeasured: list[int] = []  # the probes none of whose rows has a reference (``run`` gave no error)
+    unmeasured = False  # whether a probe had no row with a reference (``run`` gave no error)
     folders = itertools.count()
 
     def probe(steps: int) -> float:
+        nonlocal unmeasured
         folder = Path(out) / f"probe-{next(folders)}"
         found = np.asarray(run(sample.at_step(mid_step_dt(t_contact, steps)), folder))
-        if not found.size:
-            unmeasured.append(steps)
+        unmeasured = unmeasured or not found.size
         errors.append(float(np.max(found)) if found.size else math.nan)
         points.append((steps, errors[-1]))
         return errors[-1]

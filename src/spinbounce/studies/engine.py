@@ -26,7 +26,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from .speed import MODELS, PLANE, _sweep_process, _timed, core_line
+from .speed import MODELS, PLANE, _sweep_process, _timed, chunk_deck, core_line
 
 __all__ = ["SCENES", "scene_sweeps", "sweep_against_engine", "help_seconds", "damped_steps", "reference_rates",
            "measure_waits", "wait_lines", "ENGINE_SWEEP"]
@@ -95,16 +95,13 @@ def sweep_against_engine(n: int, seed: int = 0, repeats: int = 1) -> dict:
     sweep's start-up, a sweep of one collision (the fastest of ``repeats``), which a short sweep pays in full."""
     from ..lammps.decks import prepare_run_dir
     from ..lammps.runner import run_deck
-    from ..scenes.collision import Collision
 
     spec = _user_spec(n, *MODELS["frictionless"], seed)
-    model, dt = spec.model(0)
     sweep = engine = math.inf
     with tempfile.TemporaryDirectory(prefix="spinbounce-bench-engine-") as folder:
         decks = []  # written once: each repeat runs the same decks again in their folders
         for group, chunk, start, stop in spec.chunks():
-            states = spec.initial_states(group, start, stop)
-            deck = Collision(model, v_n=states[:, 0], v_t=states[:, 1], omega=states[:, 2], dt=dt).render("library")
+            deck = chunk_deck(spec, group, start, stop, "library")
             decks.append((prepare_run_dir(Path(folder) / f"engine-{chunk}", deck), deck.atoms))
         for repeat in range(repeats):
             sweep = min(sweep, _sweep_process("--n", n, "--seed", seed, "--workers", 1,

@@ -293,16 +293,22 @@ def parallel_efficiency(n: int = 100_000, workers: int = 2, seed: int = 0, repea
             "machine": _ceiling(workers, seed, repeats) if runs["all"][1] is not None else None}
 
 
+def chunk_deck(spec, group: int, start: int, stop: int, mode: str):
+    """The deck of a sweep group's rows ``start``:``stop`` at the group's step, rendered for ``mode``
+    (``library``: run in this process; ``data_file``: by any LAMMPS)."""
+    from ..scenes.collision import Collision
+
+    model, dt = spec.model(group)
+    states = spec.initial_states(group, start, stop)
+    return Collision(model, v_n=states[:, 0], v_t=states[:, 1], omega=states[:, 2], dt=dt).render(mode)
+
+
 def _ceiling(workers: int, seed: int, repeats: int) -> dict | None:
     """:func:`.cores.engine_ceiling` on one chunk's frictionless deck (DEFAULT_CHUNK spheres), ``repeats`` times."""
-    from ..scenes.collision import Collision
     from ..sweeps import DEFAULT_CHUNK
 
     spec = _spec(DEFAULT_CHUNK, *MODELS["frictionless"], seed)
-    model, dt = spec.model(0)
-    states = spec.initial_states(0, 0, DEFAULT_CHUNK)
-    deck = Collision(model, v_n=states[:, 0], v_t=states[:, 1], omega=states[:, 2], dt=dt).render("data_file")
-    return engine_ceiling(deck, DEFAULT_CHUNK, workers, repeats)
+    return engine_ceiling(chunk_deck(spec, 0, 0, DEFAULT_CHUNK, "data_file"), DEFAULT_CHUNK, workers, repeats)
 
 
 def core_line(c: dict) -> str:

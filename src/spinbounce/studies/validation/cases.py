@@ -191,15 +191,20 @@ def _chung_ooi_6() -> Benchmark:
     )
 
 
+def _thornton_states(v_n: float) -> tuple:
+    """Thornton's impact angles (1 deg, then 50 (i - 1)/10 deg for i = 2..10) at the normal speed ``v_n``, unspun."""
+    theta = np.radians([1.0, *(50.0 * (i - 1) / 10 for i in range(2, 11))])
+    return tuple((-v_n, v_n * math.tan(t), 0.0) for t in theta)
+
+
 def _thornton_linear() -> Benchmark:
     r, v_n, mu = 0.025, 5.0, 0.1
     m, kn, kt = hookean_matching_hertz(AL_ALLOY, r, v_n)
-    theta = np.radians([1.0, *(50.0 * (i - 1) / 10 for i in range(2, 11))])
+    states = _thornton_states(v_n)
     series = []
     for e in (0.25, 0.5, 0.75, 0.9):
         model = ContactModel(m=m, r=r, alpha=SOLID, kn=kn, kt=kt, gamma_n=gamma_n_for_restitution_cut(e, m, kn),
                              mu=mu, limit_damping=True)
-        states = tuple((-v_n, v_n * math.tan(t), 0.0) for t in theta)
         measured = (THORNTON_SPIN[e], THORNTON_PSI2_LINEAR) if e == 0.5 else (THORNTON_SPIN[e],)
         series.append(Series(f"e = {e:g}", model, states, measured))
     return Benchmark(
@@ -234,8 +239,7 @@ def _thornton_linear() -> Benchmark:
 def _thornton_hertz_mindlin() -> Benchmark:
     r, v_n, mu, e = 0.025, 5.0, 0.1, 0.5
     model = _hertz_mindlin(AL_ALLOY, r, mu, e)
-    theta = np.radians([1.0, *(50.0 * (i - 1) / 10 for i in range(2, 11))])
-    states = tuple((-v_n, v_n * math.tan(t), 0.0) for t in theta)
+    states = _thornton_states(v_n)
     return Benchmark(
         name="thornton-hertz-mindlin",
         title="Thornton's oblique impacts, Hertzian law: v_n = 5 m/s, r = 25 mm, mu = 0.1, e = 0.5",

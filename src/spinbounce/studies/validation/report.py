@@ -103,6 +103,14 @@ def _fmt(x, spec=".2e") -> str:
     return format(x, spec)
 
 
+def _hertz_mindlin_names() -> list[str]:
+    """The benchmarks with a damped series whose springs both grow with the contact radius (Hertz's, Mindlin's)."""
+    def damped_hertz_mindlin(m) -> bool:
+        return m.normal_law.contact_radius and m.tangential_law.contact_radius and m.gamma_n > 0.0
+
+    return [b.name for b in select(None) if any(damped_hertz_mindlin(s.model) for s in b.series)]
+
+
 def _introduction(meta: dict) -> list[str]:
     return [
         "# Published sphere-wall benchmarks",
@@ -127,7 +135,7 @@ def _introduction(meta: dict) -> list[str]:
         "force is never tensile, and `limit_damping` is left off there. "
         "The rigid-body column is Walton's law with beta0 = 0 (the contact point stops when the Coulomb bound "
         "is not reached); it is exact for this model in gross sliding when e = 1, and approached with damping. "
-        "The Hertz-Mindlin series (chung-ooi-4, chung-ooi-6, thornton-hertz-mindlin) are LAMMPS's `hertz` with "
+        f"The Hertz-Mindlin series ({', '.join(_hertz_mindlin_names())}) are LAMMPS's `hertz` with "
         "`damping coeff_restitution` (the normal force let pull) and `tangential mindlin` without a tangential "
         "dashpot, "
         "set beside the Coulomb oracle carried over to them (exact.oracle); their pull near the exit adds "
