@@ -140,7 +140,7 @@ def test_a_scene_solves_its_batch_together_and_keeps_each_outcome_once():
         assert _deviation(outcome, alone, {**pair.properties(), **{k: np.asarray(v) for k, v in pair.vectors().items()}}) \
             < AGREEMENT
         assert law.solve(pair) is outcome  # solved once, then kept
-    assert len(pair_contact._SOLVED) <= pair_contact.SOLVED
+    assert pair_contact.kept() <= pair_contact.SOLVED
 
 
 def test_a_batch_larger_than_the_cache_is_answered_whole(monkeypatch):
@@ -153,7 +153,7 @@ def test_a_batch_larger_than_the_cache_is_answered_whole(monkeypatch):
     law = PairContact(kn=12.0)
     pairs = [Pair(v_a=(0.1 * k, 0.0, -1.0)) for k in range(8)]
     outcomes = law.solve_all(pairs)
-    assert len(outcomes) == 8 and len(pair_contact._SOLVED) == 3
+    assert len(outcomes) == 8 and pair_contact.kept() == 3
     for pair, outcome in zip(pairs, outcomes, strict=True):
         alone = pair_exact.solve(**pair.vectors(), **pair.properties(), **law.reference_law())
         assert np.allclose(outcome.v_a, alone.v_a, rtol=0.0, atol=AGREEMENT)

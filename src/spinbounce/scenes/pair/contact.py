@@ -4,6 +4,7 @@ integrate."""
 
 from __future__ import annotations
 
+import itertools
 import warnings
 from collections import OrderedDict
 from dataclasses import dataclass, fields
@@ -87,18 +88,17 @@ class PairContact:
 
     def solve_all(self, pairs, planar: bool = False) -> tuple:
         """:meth:`solve` of each of ``pairs``: those not solved before together where the law allows
-        (:attr:`batched`), else one at a time."""
-        keys = [(self, pair, planar) for pair in pairs]
-        found = {key: _SOLVED[key] for key in keys if key in _SOLVED}
-        missing = list(dict.fromkeys(key for key in keys if key not in found))
+        (:attr:`batched`), else one at a time. Each pair is looked up once (a pair's hash is a Python call:
+        a sweep's chunk asks for 25,000 several times)."""
+        solved = _SOLVED.pop((self, planar), None) or {}
+        _SOLVED[(self, planar)] = solved  # this law's outcomes now the newest
+        found = [solved.get(pair) for pair in pairs]
+        missing = list(dict.fromkeys(pair for pair, outcome in zip(pairs, found) if outcome is None))
         if missing:
-            found.update(zip(missing, self._solve_many([key[1] for key in missing], planar), strict=True))
-        for key in dict.fromkeys(keys):  # kept for the next batch (a probe's runs), oldest dropped first
-            _SOLVED[key] = found[key]
-            _SOLVED.move_to_end(key)
-        while len(_SOLVED) > SOLVED:
-            _SOLVED.popitem(last=False)
-        return tuple(found[key] for key in keys)
+            solved.update(zip(missing, self._solve_many(missing, planar), strict=True))
+            found = [solved[pair] if outcome is None else outcome for pair, outcome in zip(pairs, found)]
+        _forget_oldest()
+        return tuple(found)
 
     @property
     def batched(self) -> bool:
@@ -157,4 +157,27 @@ def _solved(solver, k: int, pair, law: dict, planar: bool, tensile: bool, limitl
 #: Outcomes kept (oldest dropped first): a probe runs the same pairs at up to five steps, each batch
 #: asking for their references; more than a sweep's chunk of pairs (25,000), ~1 kB each.
 SOLVED = 1 << 15
+#: (law, held line of centres) -> {pair: outcome}: the law used last at the end, each law's pairs in the
+#: order they were first solved.
 _SOLVED: OrderedDict = OrderedDict()
+
+
+def kept() -> int:
+    """The outcomes kept, over every law."""
+    return sum(map(len, _SOLVED.values()))
+
+
+def _forget_oldest() -> None:
+    """Drop the outcomes beyond SOLVED: the laws used longest ago first, then the newest law's first solved."""
+    extra = kept() - SOLVED
+    while extra > 0:
+        law, solved = next(iter(_SOLVED.items()))
+        if len(_SOLVED) > 1 and len(solved) <= extra:
+            del _SOLVED[law]
+            extra -= len(solved)
+            continue
+        for pair in list(itertools.islice(solved, extra)):
+            del solved[pair]
+        extra = 0
+        if not solved:
+            del _SOLVED[law]

@@ -177,8 +177,8 @@ def time_scaled(pair: Pair, scale: float) -> Pair:
 
 
 def _trusted(cls, **fields):
-    """A frozen dataclass made from values already checked, without its checks."""
+    """A frozen dataclass made from values already checked, without its checks (its fields written straight
+    into its ``__dict__``, as the frozen class's own ``__init__`` does through object.__setattr__)."""
     out = object.__new__(cls)
-    for name, value in fields.items():
-        object.__setattr__(out, name, value)
+    out.__dict__.update(fields)
     return out
