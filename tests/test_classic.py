@@ -104,3 +104,27 @@ def test_lammps_frozen_classic_contact_oscillates_at_the_contact_radius_frequenc
         assert row[1:] == pytest.approx([v_t, r_omega], abs=1e-6)
     assert [classic.frozen_frequency(1.0, 0.4, r, d) for d in overlaps] == pytest.approx(
         [0.74391, 0.88466, 1.05204], abs=1e-5)  # LAMMPS_FACTS section 11, measured by its own fit
+
+
+def test_a_sweep_whose_theory_integrates_each_state_is_estimated_with_it():
+    """The classic spring's oracle takes tenths of a second a state (its cap's sawtooth), a capped Hertz-Mindlin
+    contact's hundredths: a sweep's estimate counts each state's theory (choose.STATE_SECONDS), so that its chunks
+    stay within CHUNK_SECONDS (a cluster job's time with them) and a million states are not called minutes; a
+    batched theory (the stick-slip solver's microseconds) leaves the frictionless and Hookean chunks at 25,000."""
+    from spinbounce.exact import choose
+    from spinbounce.sweeps import cost
+    from spinbounce.sweeps.spec import CHUNK_SECONDS, DEFAULT_CHUNK, spec_from_dict
+
+    states = {"n": 1_000_000, "v_n": [-0.8, -0.1], "v_t": [-1, 1], "r_omega": [-1, 1]}
+    mindlin = {"normal": "hertz/material", "youngs_modulus": 1e4, "poisson_ratio": 0.3, "tangential": "mindlin"}
+    for model, kind in (({"wall": "classic", "mu": 0.5}, "classic_wall"), ({"wall": "classic"}, "classic_wall"),
+                        ({"tangential": "linear_history_classic", "mu": 0.3}, "classic_wall"),
+                        ({**mindlin, "mu": 0.3}, "capped_nonlinear")):
+        spec = spec_from_dict({"model": model, "states": states})
+        assert choose.which(spec.model(0)[0]).kind == kind
+        size = spec.chunk_sizes[0]
+        estimate = cost.chunk_cost(spec, 0, size)
+        assert size < DEFAULT_CHUNK and estimate.seconds <= CHUNK_SECONDS
+        assert size * choose.STATE_SECONDS[kind] <= estimate.seconds
+    for model in ({}, {"mu": 0.3}, mindlin):
+        assert spec_from_dict({"model": model, "states": states}).chunk_sizes == (DEFAULT_CHUNK,)

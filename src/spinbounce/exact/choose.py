@@ -44,8 +44,17 @@ import numpy as np
 from ..errors import NoMatrix, SceneError
 from . import hertz, linear, per_state
 
-__all__ = ["Choice", "which", "predict", "outcome", "matrix", "matrices", "omega_per_sphere", "frozen", "NoMatrix",
+__all__ = ["Choice", "STATE_SECONDS", "which", "predict", "outcome", "matrix", "matrices", "omega_per_sphere", "frozen", "NoMatrix",
            "mindlin_theory"]
+
+
+#: Seconds one state's theory takes on one core for the kinds that integrate each state on its own (the
+#: others are batched: microseconds a state), the slowest measured with room: on this project's 2-core
+#: machine, 11 states of ``spinbounce sweep``'s default ranges each, both cores busy, the classic spring
+#: 75 ms a state uncapped and 375 to 590 ms capped (its sawtooth's teeth, :mod:`.oracle_classic`), the capped
+#: Hertz-Mindlin contact 40 ms in the plane and 167 ms in 3-D. A sweep's estimate counts them
+#: (:mod:`spinbounce.sweeps.cost`): its chunk sizes, its cluster jobs' time and its refusal of long sweeps.
+STATE_SECONDS = {"classic_wall": 0.6, "capped_nonlinear": 0.2}
 
 
 @dataclass(frozen=True)

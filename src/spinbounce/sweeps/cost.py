@@ -3,13 +3,16 @@
 A chunk is one serial LAMMPS run of its spheres followed by the theory columns
 (:func:`spinbounce.sweeps.run_chunk`). On one core it takes
 
-    seconds = START_SECONDS + PROBE_SECONDS + n * (steps * SPHERE_STEP_SECONDS + CAPPED_THEORY_SECONDS [finite mu])
+    seconds = START_SECONDS + PROBE_SECONDS + n * (steps * SPHERE_STEP_SECONDS + theory)
 
 (a pair chunk: two spheres a collision at the fine rule's steps, plus the pair references'
 PAIR_BATCHED_SECONDS, PAIR_THEORY_SECONDS or CAPPED_PAIR_THEORY_SECONDS),
 
 where ``steps`` is the run's LAMMPS steps per collision (the contact's exit time over the
-model's step, as :attr:`Collision.nsteps` counts them), and it peaks at
+model's step, as :attr:`Collision.nsteps` counts them) and ``theory`` a collision's theory
+(CAPPED_THEORY_SECONDS for the batched stick-slip solver with a finite mu; tenths of a second
+where the theory integrates each state on its own, the classic spring's and the capped
+contacts on the contact radius: :data:`spinbounce.exact.choose.STATE_SECONDS`), and it peaks at
 
     mb = BASE_MB + SCIPY_MB [finite mu] + n * KB_PER_SPHERE / 1024.
 
@@ -123,6 +126,14 @@ def _pair_cost(spec, group: int, collisions: int) -> ChunkCost:
     return ChunkCost(collisions, steps, seconds, BASE_MB + SCIPY_MB + 2 * collisions * KB_PER_SPHERE / 1024)
 
 
+def _theory_seconds(model, finite_mu: bool) -> float:
+    """A collision's theory: its kind's seconds a state where it integrates each one on its own
+    (:data:`spinbounce.exact.choose.STATE_SECONDS`), the batched stick-slip solver's with a cap, else none."""
+    from ..exact.choose import STATE_SECONDS, which
+
+    return STATE_SECONDS.get(which(model).kind, CAPPED_THEORY_SECONDS if finite_mu else 0.0)
+
+
 def chunk_cost(spec, group: int, collisions: int) -> ChunkCost:
     """The estimate for a chunk of ``collisions`` spheres of model group ``group`` of ``spec``."""
     if spec.scene == "pair":
@@ -142,7 +153,7 @@ def chunk_cost(spec, group: int, collisions: int) -> ChunkCost:
         steps = sum(Collision(model, v_n=[-fast], dt=collision_rung_dt(model, n)).nsteps for n in rungs)
         probe = 0.0
     finite_mu = spec.groups[group].get("mu") is not None
-    per_collision = steps * SPHERE_STEP_SECONDS + (CAPPED_THEORY_SECONDS if finite_mu else 0.0)
+    per_collision = steps * SPHERE_STEP_SECONDS + _theory_seconds(model, finite_mu)
     mem_mb = BASE_MB + (SCIPY_MB if finite_mu else 0) + collisions * KB_PER_SPHERE / 1024
     return ChunkCost(collisions, steps, START_SECONDS + probe + collisions * per_collision, mem_mb)
 
