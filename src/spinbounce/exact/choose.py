@@ -44,8 +44,8 @@ import numpy as np
 from ..errors import NoMatrix, SceneError
 from . import hertz, linear, per_state
 
-__all__ = ["Choice", "STATE_SECONDS", "which", "predict", "outcome", "matrix", "matrices", "omega_per_sphere", "frozen", "NoMatrix",
-           "mindlin_theory"]
+__all__ = ["Choice", "STATE_SECONDS", "which", "predict", "outcome", "matrix", "matrices", "omega_per_sphere", "frozen",
+           "NoMatrix", "mindlin_theory"]
 
 
 #: Seconds one state's theory takes on one core for the kinds that integrate each state on its own (the
