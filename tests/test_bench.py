@@ -98,7 +98,7 @@ def test_bench_quick_prints_every_ratio_with_its_target(tmp_path, capsys):
     printed = capsys.readouterr().out
     for line in ("pair / wall per collision", "of it (target 85%)", "of twice one worker (target 90%)",
                  "(target 0.5 s)", "undamped: ", "pairs/s uncapped (target 100,000)", "measuring costs",
-                 "paid once over the target's 800,000", "over 800,000, the start-up paid once"):
+                 "paid once over the target's 800,000", "one worker's start-up paid once (an estimate)"):
         assert line in printed
     waits = json.loads(out.read_text())["waits"]
     assert waits["quick"] and [s["scene"] for s in waits["scenes"]][0] == "wall"
@@ -161,3 +161,6 @@ def test_a_short_sweep_read_at_the_full_count_pays_its_start_up_once():
     line = _cores_at_full({"collisions": 200_000, "workers": 2, "wall_seconds": {"one": 10.0, "all": 6.0}}, 2.0)
     assert line.endswith(f": {34.0 / (2 * 18.0):.0%}")
     assert _cores_at_full({"collisions": 800_000, "workers": 2, "wall_seconds": {"one": 1.0, "all": 1.0}}, 2.0) == ""
+    # a sweep no longer than its start-up, or of another count than the quick bench's, is not carried
+    assert _cores_at_full({"collisions": 200_000, "workers": 2, "wall_seconds": {"one": 10.0, "all": 1.5}}, 2.0) == ""
+    assert _cores_at_full({"collisions": 60, "workers": 2, "wall_seconds": {"one": 10.0, "all": 6.0}}, 2.0) == ""

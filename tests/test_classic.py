@@ -107,10 +107,11 @@ def test_lammps_frozen_classic_contact_oscillates_at_the_contact_radius_frequenc
 
 
 def test_a_sweep_whose_theory_integrates_each_state_is_estimated_with_it():
-    """The classic spring's oracle takes tenths of a second a state (its cap's sawtooth), a capped Hertz-Mindlin
-    contact's hundredths: a sweep's estimate counts each state's theory (choose.STATE_SECONDS), so that its chunks
-    stay within CHUNK_SECONDS (a cluster job's time with them) and a million states are not called minutes; a
-    batched theory (the stick-slip solver's microseconds) leaves the frictionless and Hookean chunks at 25,000."""
+    """The classic spring's oracle takes tenths of a second a state capped (its cap's sawtooth), a capped
+    Hertz-Mindlin contact's hundredths: a sweep's estimate counts each state's theory (choose.STATE_SECONDS), so
+    that its chunks stay within CHUNK_SECONDS (a cluster job's time with them) and a million states are not called
+    minutes; a batched theory (the stick-slip solver's microseconds) leaves the frictionless and Hookean chunks at
+    25,000."""
     from spinbounce.exact import choose
     from spinbounce.sweeps import cost
     from spinbounce.sweeps.spec import CHUNK_SECONDS, DEFAULT_CHUNK, spec_from_dict
@@ -125,6 +126,6 @@ def test_a_sweep_whose_theory_integrates_each_state_is_estimated_with_it():
         size = spec.chunk_sizes[0]
         estimate = cost.chunk_cost(spec, 0, size)
         assert size < DEFAULT_CHUNK and estimate.seconds <= CHUNK_SECONDS
-        assert size * choose.STATE_SECONDS[kind] <= estimate.seconds
+        assert size * choose.STATE_SECONDS[kind, "mu" in model] <= estimate.seconds
     for model in ({}, {"mu": 0.3}, mindlin):
         assert spec_from_dict({"model": model, "states": states}).chunk_sizes == (DEFAULT_CHUNK,)

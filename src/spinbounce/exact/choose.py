@@ -48,13 +48,15 @@ __all__ = ["Choice", "STATE_SECONDS", "which", "predict", "outcome", "matrix", "
            "NoMatrix", "mindlin_theory"]
 
 
-#: Seconds one state's theory takes on one core for the kinds that integrate each state on its own (the
-#: others are batched: microseconds a state), the slowest measured with room: on this project's 2-core
-#: machine, 11 states of ``spinbounce sweep``'s default ranges each, both cores busy, the classic spring
-#: 75 ms a state uncapped and 375 to 590 ms capped (its sawtooth's teeth, :mod:`.oracle_classic`), the capped
-#: Hertz-Mindlin contact 40 ms in the plane and 167 ms in 3-D. A sweep's estimate counts them
+#: Seconds one state's theory takes on one core for the kinds that integrate each state on its own, the
+#: slowest measured with room: on this project's 2-core machine, 11 states of ``spinbounce sweep``'s default
+#: ranges each, both cores busy, the classic spring 75 ms a state uncapped and 375 to 590 ms capped (its
+#: sawtooth's teeth, :mod:`.oracle_classic`), the capped Hertz-Mindlin contact 40 ms in the plane and 167 ms in
+#: 3-D; a review measured 5 to 8 ms for a damped contact on the contact radius (contact_phases) and Mindlin's
+#: with a tangential dashpot. Keyed by kind and whether capped. A sweep's estimate counts them
 #: (:mod:`spinbounce.sweeps.cost`): its chunk sizes, its cluster jobs' time and its refusal of long sweeps.
-STATE_SECONDS = {"classic_wall": 0.6, "capped_nonlinear": 0.2}
+STATE_SECONDS = {("classic_wall", True): 0.6, ("classic_wall", False): 0.1, ("capped_nonlinear", True): 0.2,
+                 ("capped_nonlinear", False): 0.2, ("damped_nonlinear", False): 0.01, ("mindlin", False): 0.01}
 
 
 @dataclass(frozen=True)

@@ -156,6 +156,8 @@ def loop_times(log: Path) -> list[float]:
 #: seconds over the ranks (Other has only that column).
 _SECTION_RE = re.compile(r"^(Pair|Bond|Kspace|Neigh|Comm|Output|Modify|Other)\s*\|"
                          r"\s*([-+0-9.eE]+)?\s*\|\s*([-+0-9.eE]+)", re.MULTILINE)
+#: Where a run's breakdown begins (LAMMPS's OMP package adds a thread breakdown after it, not read).
+_BREAKDOWN = "MPI task timing breakdown:"
 
 
 def section_times(log: Path) -> list[dict[str, float]]:
@@ -164,11 +166,10 @@ def section_times(log: Path) -> list[dict[str, float]]:
         text = Path(log).read_text()
     except FileNotFoundError:
         return []
-    runs: list[dict[str, float]] = []
-    for name, _, average in _SECTION_RE.findall(text):
-        if name == "Pair" or not runs:
-            runs.append({})
-        runs[-1][name] = float(average)
+    runs = []
+    for block in text.split(_BREAKDOWN)[1:]:
+        table = block.lstrip("\n").split("\n\n")[0]
+        runs.append({name: float(average) for name, _, average in _SECTION_RE.findall(table)})
     return runs
 
 

@@ -126,12 +126,17 @@ def _pair_cost(spec, group: int, collisions: int) -> ChunkCost:
     return ChunkCost(collisions, steps, seconds, BASE_MB + SCIPY_MB + 2 * collisions * KB_PER_SPHERE / 1024)
 
 
-def _theory_seconds(model, finite_mu: bool) -> float:
-    """A collision's theory: its kind's seconds a state where it integrates each one on its own
-    (:data:`spinbounce.exact.choose.STATE_SECONDS`), the batched stick-slip solver's with a cap, else none."""
+def _theory_seconds(model) -> float:
+    """A collision's theory, by the kind that answers it (:func:`spinbounce.exact.choose.which`): the seconds a
+    state of a kind without one matrix that integrates each state on its own
+    (:data:`spinbounce.exact.choose.STATE_SECONDS`), the batched stick-slip solver's, or none (a matrix)."""
     from ..exact.choose import STATE_SECONDS, which
 
-    return STATE_SECONDS.get(which(model).kind, CAPPED_THEORY_SECONDS if finite_mu else 0.0)
+    choice = which(model)
+    each = STATE_SECONDS.get((choice.kind, model.mu is not None))
+    if each is not None and not choice.has_matrix:
+        return each
+    return CAPPED_THEORY_SECONDS if choice.kind == "coulomb" else 0.0
 
 
 def chunk_cost(spec, group: int, collisions: int) -> ChunkCost:
@@ -153,7 +158,7 @@ def chunk_cost(spec, group: int, collisions: int) -> ChunkCost:
         steps = sum(Collision(model, v_n=[-fast], dt=collision_rung_dt(model, n)).nsteps for n in rungs)
         probe = 0.0
     finite_mu = spec.groups[group].get("mu") is not None
-    per_collision = steps * SPHERE_STEP_SECONDS + _theory_seconds(model, finite_mu)
+    per_collision = steps * SPHERE_STEP_SECONDS + _theory_seconds(model)
     mem_mb = BASE_MB + (SCIPY_MB if finite_mu else 0) + collisions * KB_PER_SPHERE / 1024
     return ChunkCost(collisions, steps, START_SECONDS + probe + collisions * per_collision, mem_mb)
 

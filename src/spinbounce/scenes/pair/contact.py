@@ -88,8 +88,8 @@ class PairContact:
 
     def solve_all(self, pairs, planar: bool = False) -> tuple:
         """:meth:`solve` of each of ``pairs``: those not solved before together where the law allows
-        (:attr:`batched`), else one at a time. Each pair is looked up once (a pair's hash is a Python call:
-        a sweep's chunk asks for 25,000 several times)."""
+        (:attr:`batched`), else one at a time. A pair solved before is looked up once (a pair's hash is a Python
+        call: a sweep's chunk asks for 25,000 several times)."""
         solved = _SOLVED.pop((self, planar), None) or {}
         _SOLVED[(self, planar)] = solved  # this law's outcomes now the newest
         found = [solved.get(pair) for pair in pairs]
@@ -154,8 +154,9 @@ def _solved(solver, k: int, pair, law: dict, planar: bool, tensile: bool, limitl
         raise RuntimeError(f"the batch's pair {k} (row {k} of those solved together): {exc}") from None
 
 
-#: Outcomes kept (oldest dropped first): a probe runs the same pairs at up to five steps, each batch
-#: asking for their references; more than a sweep's chunk of pairs (25,000), ~1 kB each.
+#: Outcomes kept (the laws used longest ago dropped first, then a law's first solved): a probe runs the same
+#: pairs at up to five steps, each batch asking for their references; more than a sweep's chunk of pairs
+#: (25,000), ~1 kB each.
 SOLVED = 1 << 15
 #: (law, held line of centres) -> {pair: outcome}: the law used last at the end, each law's pairs in the
 #: order they were first solved.
