@@ -228,7 +228,7 @@ def measuring_share(bare: dict, measured: dict) -> float:
 
 def gas_rates(quick: bool = False, repeats: int = 3, spheres: int | None = None) -> dict:
     """A magic-ratio gas's deck (packing 0.05, kn = 1e4) run in this process with and without what it measures
-    (the kinetic energies, the open contacts), alternately, ``repeats`` times each (once in ``quick``): LAMMPS's
+    (the kinetic energies, the open contacts), alternately, ``repeats`` times each: LAMMPS's
     sphere-steps a second on one core over the measured run (the settling before it, alike in both, left out),
     the fastest of the runs, and what measuring costs beside the bare deck (:func:`measuring_share`, the median
     over the pairs of runs). ``spheres``: the gas's size (default 5,000 quick, 20,000 in full)."""
@@ -241,7 +241,6 @@ def gas_rates(quick: bool = False, repeats: int = 3, spheres: int | None = None)
 
     m = ContactModel(kn=1e4, kt=1e4 * 2.0 / 7.0)
     spheres = spheres or (5000 if quick else 20000)
-    repeats = 1 if quick else repeats
     scene = Gas(m, collisions.mean_contact_time(m, 1.0, collisions.draws(2000, 1)), spheres=spheres,
                 collisions=4.0 if quick else 8.0, samples=20)
     seconds = {"bare": math.inf, "measured": math.inf}
@@ -272,7 +271,8 @@ def measure_waits(quick: bool = False, seed: int = 0, workers: int = 2, n: int |
 
     scenes = scene_sweeps(quick, seed, n)
     references = reference_rates(n or SCENES["pair"][3 if quick else 2], seed, repeats=1 if quick else 3)
-    gas = gas_rates(quick, spheres=None if n is None else min(max(n, 1000), 20000))  # a given count sizes it too
+    gas = gas_rates(quick, repeats=1 if quick else 3,
+                    spheres=None if n is None else min(max(n, 1000), 20000))  # a given count sizes it too
     n = n or (ENGINE_SWEEP[1] if quick else ENGINE_SWEEP[0])
     frictionless = sweep_against_engine(n, seed, repeats=1 if quick else 2)
     return {"quick": quick, "scenes": scenes, "references": references, "frictionless": frictionless,

@@ -294,8 +294,9 @@ def parallel_efficiency(n: int = 100_000, workers: int = 2, seed: int = 0, repea
 
 
 def chunk_deck(spec, group: int, start: int, stop: int, mode: str):
-    """The deck of a sweep group's rows ``start``:``stop`` at the group's step, rendered for ``mode``
-    (``library``: run in this process; ``data_file``: by any LAMMPS)."""
+    """The deck of a plane sweep group's rows ``start``:``stop`` at its model's own step (a group whose step is
+    neither probed nor time-scaled: the frictionless bench's), rendered for ``mode`` (``library``: run in this
+    process; ``data_file``: by any LAMMPS). A sweep's own chunks are built by :mod:`spinbounce.sweeps.run`."""
     from ..scenes.collision import Collision
 
     model, dt = spec.model(group)
