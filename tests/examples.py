@@ -17,14 +17,18 @@ A block preceded by ``<!-- example: KIND -->`` runs only when the caller asks fo
 
 from __future__ import annotations
 
+import atexit
 import contextlib
 import doctest
+import functools
 import io
 import os
 import re
 import shlex
+import shutil
 import subprocess
 import sys
+import tempfile
 import textwrap
 import tomllib
 from pathlib import Path
@@ -42,6 +46,24 @@ def base_env(**extra: str) -> dict[str, str]:
     env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT / "src"), os.environ.get("PYTHONPATH", "")]))
     env["PATH"] = os.pathsep.join([str(Path(sys.executable).parent), env.get("PATH", "")])
     return {**env, **extra}
+
+
+def without_controller(env: dict[str, str]) -> dict[str, str]:
+    """``env`` for a Snakemake run that needs no cluster. Snakemake's SLURM executor plugin runs
+    ``scontrol show config`` as it is imported (to word a help text), which waits 10 s for a controller
+    when a SLURM client is installed and none is up (this machine between CI runs): a ``scontrol`` that
+    answers at once that there is none stands first on PATH. The tests on a real SLURM do not use it."""
+    return {**env, "PATH": os.pathsep.join([str(_no_controller()), env.get("PATH", "")])}
+
+
+@functools.cache
+def _no_controller() -> Path:
+    folder = Path(tempfile.mkdtemp(prefix="spinbounce-no-slurm-"))
+    atexit.register(shutil.rmtree, folder, True)
+    stub = folder / "scontrol"
+    stub.write_text("#!/bin/sh\necho 'scontrol: no controller here (a test stand-in)' >&2\nexit 1\n")
+    stub.chmod(0o755)
+    return folder
 
 
 def pattern(expected: str) -> re.Pattern:

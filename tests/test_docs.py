@@ -67,7 +67,9 @@ def test_site_builds_strictly(tmp_path):
                                   for page in PAGES])
 def test_page_examples(page, tmp_path):
     kinds = {"slow"} if RUN_SLOW and page != REPRODUCED else set()
-    examples.Page(page, tmp_path, examples.base_env()).run_blocks((DOCS / page).read_text(), kinds)
+    # the pages' Snakemake runs need no cluster (the session on a real SLURM is test_slurm's)
+    env = examples.without_controller(examples.base_env())
+    examples.Page(page, tmp_path, env).run_blocks((DOCS / page).read_text(), kinds)
 
 
 @pytest.mark.lammps

@@ -29,6 +29,7 @@ def snakemake(workdir: Path, *args: str) -> subprocess.CompletedProcess:
     env = dict(os.environ)
     # The rules run `spinbounce`: find this environment's one even when it is not activated.
     env["PATH"] = str(Path(sys.executable).parent) + os.pathsep + env.get("PATH", "")
+    env = examples.without_controller(env)
     command = [sys.executable, "-m", "snakemake", "--snakefile", str(WORKFLOW / "Snakefile"),
                "--directory", str(workdir), "--config", f"scene={TINY}", "out=out", *args]
     return subprocess.run(command, capture_output=True, text=True, env=env, timeout=300, check=False)
@@ -93,7 +94,8 @@ def test_workflow_runs_the_tiny_sweep_end_to_end(tmp_path):
 def test_the_readme_examples_run_as_shown(tmp_path):
     """workflows/README.md's examples, in order, in one folder: the tiny run on one machine, its files
     and fit, the SLURM profile's plan and its refusals (the session on a real SLURM is test_slurm's)."""
-    env = {k: v for k, v in examples.base_env().items() if not k.startswith("SPINBOUNCE_SLURM_")}
+    env = examples.without_controller({k: v for k, v in examples.base_env().items()
+                                       if not k.startswith("SPINBOUNCE_SLURM_")})
     page = examples.Page("workflows/README.md", tmp_path, env)
     assert page.run_blocks((WORKFLOW / "README.md").read_text(), {"slow"}) == 6
 
