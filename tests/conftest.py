@@ -11,8 +11,15 @@ process). Tests that share a session's product, or the one SLURM, go to one work
 """
 
 import os
+import sys
 
 import pytest
+
+# The tests' subprocesses (the fuzz set's 273 invocations, the pages' commands, the test workers themselves) load
+# spinbounce's compiled modules as an ordinary install does: an environment that forbids writing them
+# (PYTHONDONTWRITEBYTECODE, set on this project's machines) made each recompile the sources, 0.1-0.2 s a process.
+os.environ.pop("PYTHONDONTWRITEBYTECODE", None)
+sys.dont_write_bytecode = False
 
 #: Set to 1 to run every test, the slow ones included (CI does; see .ci/run).
 SLOW_SWITCH = "SPINBOUNCE_SLOW"

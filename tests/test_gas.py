@@ -116,6 +116,33 @@ def test_a_small_gas_heads_for_equipartition_with_its_theories(small_magic_gas):
     assert record["theories"]["matrix"]["energy_drift"]["theory"] == pytest.approx(0.0, abs=1e-12)
 
 
+def test_the_same_gas_finished_in_its_folder_is_read_back_and_no_other(small_magic_gas):
+    """reuse (what reproduce's products share, and a reproduce run again): the run in the folder, read back
+    bit for bit without running (the deck's log untouched); a gas of other parameters, or one the folder's
+    record says other software ran, is not it."""
+    from spinbounce.scenes.gas import run as gas_run
+
+    folder, lines = small_magic_gas.csv.parent, []
+    logged = (folder / "log.lammps").stat().st_mtime_ns
+    again = gas_run.run_gas(model(**MAGIC), spheres=2000, collisions=4, samples=16, draws=8000, out=folder,
+                            reuse=True, log=lines.append)
+    assert any("read back from" in line for line in lines) and (folder / "log.lammps").stat().st_mtime_ns == logged
+    assert again.record == json.loads(small_magic_gas.record_path.read_text())
+    assert set(again.series) == set(small_magic_gas.series)
+    for name, values in small_magic_gas.series.items():
+        assert np.array_equal(again.series[name], values), name
+    scene = Gas(model(**MAGIC), small_magic_gas.record["parameters"]["contact_time"], spheres=2000, collisions=4,
+                samples=16, draws=8000)
+    assert gas_run._finished(folder, scene, ranks=1) is not None and gas_run._finished(folder, scene, ranks=2) is None
+    other = Gas(model(**MAGIC), scene.contact_time, spheres=2000, collisions=5, samples=16, draws=8000)
+    assert gas_run._finished(folder, other, ranks=1) is None
+    older = dict(again.record, lammps_version="2024.8.29")
+    copy = folder.parent / "older"
+    shutil.copytree(folder, copy)
+    (copy / "result.json").write_text(json.dumps(older))
+    assert gas_run._finished(copy, scene, ranks=1) is None
+
+
 def test_a_gas_writes_its_series_and_provenance(small_magic_gas):
     record = json.loads(small_magic_gas.record_path.read_text())
     assert record["scene"] == "gas" and record["lammps_version"] and record["parameters"]["dt"] > 0

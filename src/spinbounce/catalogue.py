@@ -48,19 +48,27 @@ def _paper_figures(out, runs, log):
     return {record["figure"]: record for record in make_figures(out, runs=runs, log=log)}
 
 
+def _gases(runs: Path) -> Path:
+    """Where gases that several products show are run once, read back by the rest (the claims' kt/kn = 0.1 gas is
+    the gas figure's): ``gases/`` beside the products' own run folders (:func:`make`), by content
+    (:func:`spinbounce.scenes.gas.run.shared_gas`)."""
+    return Path(runs).parent / "gases"
+
+
 def _claims(out, runs, log):
     from .studies.claims import make_claims
 
-    *_, record = make_claims(out, runs, log=log)
+    *_, record = make_claims(out, runs, log=log, gases=_gases(runs))
     return {"claims": json.loads(record.read_text())}
 
 
 def _figure(module: str, function: str):
-    """A study whose ``function(out, runs[, log])`` returns its record (a dict or a FigureRecord)."""
+    """A study whose ``function(out, runs[, log][, gases])`` returns its record (a dict or a FigureRecord)."""
     def make_one(out, runs, log):
         maker = getattr(import_module(f"spinbounce.{module}"), function)
-        logging = {"log": log} if "log" in inspect.signature(maker).parameters else {}
-        made = maker(out, runs=runs, **logging)
+        takes = inspect.signature(maker).parameters
+        shared = ({"log": log} if "log" in takes else {}) | ({"gases": _gases(runs)} if "gases" in takes else {})
+        made = maker(out, runs=runs, **shared)
         record = getattr(made, "metadata", made)
         return {Path(record["files"]["png"]).stem: record}
     return make_one

@@ -41,7 +41,8 @@ def register(sub) -> None:
                    help="figures, their JSON records, CLAIMS.md and the studies' reports (default %(default)s; the "
                         "repository keeps its own in figures/)")
     p.add_argument("--run-dir", type=out_folder, default=Path("spinbounce-runs") / "reproduce", metavar="DIR",
-                   help="LAMMPS run folders, one per product (default %(default)s)")
+                   help="LAMMPS run folders, one per product, and gases/ for the gases more than one "
+                        "shows, run once (default %(default)s)")
     replace_flag(p)
     p.add_argument("--only", type=name_list("product", product_names), default=None, metavar="NAME[,NAME...]",
                    help=f"make only these products (from {', '.join(product_names())}); the claims are judged only "

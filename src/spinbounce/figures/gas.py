@@ -24,14 +24,13 @@ CASES = (2.0 / 7.0, 0.1, 0.6)
 CURVE = np.linspace(0.02, 1.0, 99)
 
 
-def _run(ratio: float, runs: Path, log) -> dict:
+def _run(ratio: float, gases: Path, log) -> dict:
     from ..model.contact import ContactModel
-    from ..scenes.gas.run import run_gas
+    from ..scenes.gas.run import shared_gas
 
     g = FIGURE_GAS
-    report = run_gas(ContactModel(kn=g["kn"], kt=ratio * g["kn"]), spheres=g["spheres"], packing=g["packing"],
-                     collisions=g["collisions"], samples=g["samples"], draws=g["draws"],
-                     out=runs / f"kt-over-kn-{ratio:.4f}", force=True, log=log)
+    report = shared_gas(gases, ContactModel(kn=g["kn"], kt=ratio * g["kn"]), spheres=g["spheres"], packing=g["packing"],
+                        collisions=g["collisions"], samples=g["samples"], draws=g["draws"], log=log)
     return {"kt_over_kn": ratio, "series": report.series, "record": report.record}
 
 
@@ -79,12 +78,14 @@ def _draw(cases: list[dict], curve: np.ndarray):
     return fig
 
 
-def make_gas(out: Path, runs: Path, log=print) -> FigureRecord:
-    """gas.png, .pdf and .json into ``out`` (LAMMPS runs in ``runs``)."""
+def make_gas(out: Path, runs: Path, log=print, gases: Path | None = None) -> FigureRecord:
+    """gas.png, .pdf and .json into ``out`` (LAMMPS runs in ``gases``, by default ``runs``/gases, where a gas
+    finished there before is read back: :func:`spinbounce.scenes.gas.run.shared_gas`)."""
     import matplotlib.style
 
     started = time.perf_counter()
-    cases = [_run(ratio, Path(runs), log) for ratio in CASES]
+    gases = Path(gases) if gases is not None else Path(runs) / "gases"
+    cases = [_run(ratio, gases, log) for ratio in CASES]
     curve = _steady_curve()
     with matplotlib.style.context(STYLE):
         fig = _draw(cases, curve)

@@ -23,7 +23,7 @@ from .parameters import DEFAULT
 from .scene import Gas
 from .table import read_series
 
-__all__ = ["run_gas", "GasReport", "GAS_SERIES", "GAS_SPHERE_STEP_SECONDS"]
+__all__ = ["run_gas", "shared_gas", "GasReport", "GAS_SERIES", "GAS_SPHERE_STEP_SECONDS"]
 
 #: The series a gas run writes into its folder (its record: result.json).
 GAS_SERIES = "gas.csv"
@@ -57,32 +57,65 @@ def run_gas(m: ContactModel, *, spheres: int = DEFAULT["spheres"], packing: floa
             t_tr: float = DEFAULT["t_tr"], t_rot: float = DEFAULT["t_rot"], collisions: float = DEFAULT["collisions"],
             samples: int = DEFAULT["samples"], seed: int = DEFAULT["seed"], draws: int = DEFAULT["draws"],
             dt: float | None = None, ranks: int = 1, out: str | Path | None = None, force: bool = False,
-            log=None) -> GasReport:
+            log=None, reuse: bool = False) -> GasReport:
     """Run a gas of ``spheres`` spheres of model ``m`` at ``packing`` from T_tr(0) = ``t_tr`` and
     T_rot(0) = ``t_rot`` for ``collisions`` collisions per sphere (at the starting rate), in this process
     or (``ranks`` > 1) under ``mpiexec -np ranks``, and set its temperatures beside the theories
     (:mod:`spinbounce.scenes.gas.predict`). A run estimated beyond an hour needs ``force``; a named
-    ``out`` holding an earlier run is refused unless ``force``."""
-    check_run_folder(out, force)
+    ``out`` holding an earlier run is refused unless ``force``; with ``reuse``, one holding this very run,
+    finished by the same software, is read back instead of run again (:func:`_finished`)."""
     if isinstance(ranks, bool) or int(ranks) != ranks or ranks < 1:
         raise SceneError("ranks", ranks, "must be a whole number >= 1")
     values = Gas(m, None, spheres, packing, t_tr, t_rot, collisions, samples, seed, draws)  # checked, not yet run
     tc = pair_draws.mean_contact_time(m, values.t_tr, pair_draws.draws(2000, values.seed))
     scene = Gas(m, tc, spheres, packing, t_tr, t_rot, collisions, samples, seed, draws, dt)
+    folder = Path(out) if out is not None else run_folder("gas", scene.record() | {"ranks": ranks})
+    if reuse and (done := _finished(folder, scene, ranks)) is not None:
+        if log is not None:
+            log(f"gas: {scene.spheres} spheres, read back from {folder} (this run, finished earlier)")
+        return done
+    check_run_folder(out, force)
     steps = scene.nsteps + scene.settle_steps + scene.burn_steps
     cost = scene.spheres * steps * GAS_SPHERE_STEP_SECONDS / min(ranks, os.cpu_count() or 1) + theory_seconds(scene)
     if cost > LONGEST_UNFORCED and not force:
         raise SceneError("spheres", scene.spheres, f"with {steps} steps and {scene.draws} draws for the theory: the run "
                          f"is estimated at {cost / 3600:.2g} hours on {ranks} rank(s), more than one: give force "
                          "(--force) to run it")
-    folder = Path(out) if out is not None else run_folder("gas", scene.record() | {"ranks": ranks})
     if log is not None:
         log(f"gas: {scene.spheres} spheres, {steps} steps of dt = {scene.dt:.4g}, the theory from {scene.draws} draws "
             f"(about {cost:.0f} s in all on {ranks} rank(s))")
     deck_path = prepare_run_dir(folder, render_gas(scene))
-    (folder / GAS_SERIES).unlink(missing_ok=True)  # an earlier run's series never stands beside this run's deck
+    for earlier in (GAS_SERIES, "result.json"):  # an earlier run's results never stand beside this run's deck
+        (folder / earlier).unlink(missing_ok=True)
     info = run_deck(deck_path) if ranks == 1 else run_deck_lmp(deck_path, ranks=ranks)
     return _judged(scene, folder, info, ranks, log)
+
+
+def shared_gas(root: str | Path, m: ContactModel, log=None, **settings) -> GasReport:
+    """:func:`run_gas` of ``m`` and ``settings`` in ``root``/gas-<digest of both>, read back where that folder
+    holds it finished: one run for every product of a ``reproduce`` that shows the same gas (the claims' and the
+    gas figure's), and none again when ``reproduce`` runs again."""
+    folder = Path(root) / run_folder("gas", {"model": m.as_record(), **settings}).name
+    return run_gas(m, out=folder, force=True, reuse=True, log=log, **settings)
+
+
+def _finished(folder: Path, scene, ranks: int) -> GasReport | None:
+    """The run in ``folder`` if it is this one finished: its record's parameters and rank count this scene's, and
+    every version it records this software's (its series and record are written last, each atomically)."""
+    import json
+
+    import pandas as pd
+
+    record_path, csv = folder / "result.json", folder / GAS_SERIES
+    if not (record_path.is_file() and csv.is_file()):
+        return None
+    record = json.loads(record_path.read_text())
+    versions = {k: v for k, v in software().items() if k.endswith("_version") or k == "python"}
+    if (record.get("parameters") != json.loads(to_json(scene.record())) or record.get("ranks") != ranks
+            or any(record.get(k) != v for k, v in versions.items())):
+        return None
+    table = pd.read_csv(csv)
+    return GasReport({name: table[name].to_numpy() for name in table.columns}, record, csv, record_path)
 
 
 def theory_seconds(scene) -> float:

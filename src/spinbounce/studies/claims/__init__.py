@@ -36,9 +36,10 @@ CLAIMS = (
 )
 
 
-def evaluate_claims(run_dir: Path, log=print) -> list[Claim]:
-    """Run every claim's LAMMPS measurements under ``run_dir``; return the claims in order."""
-    runs = Runs(run_dir)
+def evaluate_claims(run_dir: Path, log=print, gases: Path | None = None) -> list[Claim]:
+    """Run every claim's LAMMPS measurements under ``run_dir`` (its gases under ``gases``, by default
+    ``run_dir``/gases, read back where an earlier run left them finished); return the claims in order."""
+    runs = Runs(run_dir, gases)
     out = []
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # e.g. stiff-ratio step warnings: every claim states its dt
@@ -89,11 +90,11 @@ def markdown(claims: list[Claim], provenance: dict) -> str:
 CLAIMS_FILES = ("CLAIMS.md", "claims.json")
 
 
-def make_claims(out: Path, runs: Path, log=print) -> tuple[list[Claim], Path, Path]:
-    """Judge the claims (LAMMPS runs in ``runs``) and write :data:`CLAIMS_FILES` into ``out``; a file
-    there that spinbounce did not write is refused before anything runs."""
+def make_claims(out: Path, runs: Path, log=print, gases: Path | None = None) -> tuple[list[Claim], Path, Path]:
+    """Judge the claims (LAMMPS runs in ``runs``, gases in ``gases``: :func:`evaluate_claims`) and write
+    :data:`CLAIMS_FILES` into ``out``; a file there that spinbounce did not write is refused before anything runs."""
     check_outputs(out, CLAIMS_FILES)
-    claims = evaluate_claims(runs, log=log)
+    claims = evaluate_claims(runs, log=log, gases=gases)
     return claims, *write_claims(claims, out)
 
 

@@ -13,6 +13,8 @@ of its collisions here).
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from .ledger import Claim, Runs, verdict
 
 __all__ = ["magic_gas_equipartition", "magic_gas_energy", "soft_gas_steady_ratio", "soft_gas_relaxation", "GAS_CLAIM",
@@ -43,13 +45,19 @@ APPROXIMATE_DRIFT = 0.05
 def _gas(runs: Runs, name: str = "gas-magic", g: dict = GAS_CLAIM, kt_over_kn: float = 2.0 / 7.0) -> dict:
     if name not in runs._done:
         from ...model.contact import ContactModel
-        from ...scenes.gas.run import run_gas
+        from ...scenes.gas.run import shared_gas
 
-        report = run_gas(ContactModel(kn=g["kn"], kt=g["kn"] * kt_over_kn), spheres=g["spheres"], packing=g["packing"],
-                         collisions=g["collisions"], samples=g["samples"], draws=g["draws"], out=runs.root / name,
-                         force=True)
+        report = shared_gas(runs.gases, ContactModel(kn=g["kn"], kt=g["kn"] * kt_over_kn), spheres=g["spheres"],
+                            packing=g["packing"], collisions=g["collisions"], samples=g["samples"], draws=g["draws"])
         runs._done[name] = report.record
     return runs._done[name]
+
+
+def _folder(runs: Runs, record: dict) -> str:
+    """A claim gas's run folder, from the claims' own (the gases are shared: Runs.gases)."""
+    import os
+
+    return Path(os.path.relpath(Path(record["csv"]).parent, runs.root)).as_posix()
 
 
 def _late(g: dict, lam: dict) -> str:
@@ -69,7 +77,7 @@ def magic_gas_equipartition(runs: Runs) -> Claim:
     late, theory = record["lammps"]["late_ratio"], record["theories"]["exact_pairs"]["late_ratio"]
     c = Claim("gas-equipartition", "a gas of magic-ratio spheres shares its energy equally between translation and "
               "rotation (rough spheres: T_rot/T_tr -> 1)", "Conclusions (energy-conserving TR transfer)", 1.0, late,
-              theory, runs=["gas-magic"])
+              theory, runs=[_folder(runs, record)])
     c.verdict = verdict(1.0, late, theory, EQUIPARTITION_TOL, EQUIPARTITION_TOL)
     lam, theories = record["lammps"], record["theories"]
     exact = theories["exact_pairs"]
@@ -91,7 +99,7 @@ def magic_gas_energy(runs: Runs) -> Claim:
     # exact references are dt -> 0, which this gas is not; both are in the evidence), with the closure's error
     c = Claim("gas-energy", "molecular dynamics of magic-ratio spheres conserves energy", "Conclusions", 0.0, lam,
               f"{pairs:.6g} (pair-level, at the gas's step, isolated pairs by DSMC; dt -> 0: {exact:.6g})",
-              runs=["gas-magic"])
+              runs=[_folder(runs, record)])
     error = record["accuracy"]["pair_level_drift_standard_error"]  # both routes draw the same collisions
     c.verdict = verdict(0.0, lam, pairs, DRIFT_TOL, DRIFT_TOL + 2.0 * error, approx_tol=APPROXIMATE_DRIFT)
     c.evidence = (f"the gas's kinetic energy changes by {100 * lam:+.3f}% over "
@@ -120,7 +128,7 @@ def soft_gas_steady_ratio(runs: Runs) -> Claim:
     paper, pairs = theories["matrix"]["late_ratio_boltzmann"], theories["pairs"]["late_ratio_boltzmann"]
     c = Claim("gas-steady-ratio", "the paper's matrix gives a gas's steady T_rot/T_tr (kt/kn = 0.1, rough spheres "
               "of its beta)", "Conclusions (TR coupling in fluids of frictional spheres)", paper, lam["late_ratio"],
-              pairs, runs=["gas-soft"])
+              pairs, runs=[_folder(runs, record)])
     c.verdict = verdict(paper, lam["late_ratio"], pairs, STEADY_TOL, STEADY_TOL)
     c.evidence = (f"kt/kn = 0.1, {_late(SOFT_GAS_CLAIM, lam)}. Over the same samples the two-temperature equations "
                   f"give {theories['matrix']['late_ratio']:.4f} with the paper's matrix and "
@@ -142,7 +150,7 @@ def soft_gas_relaxation(runs: Runs) -> Claim:
     paper, pairs = theories["matrix"]["relaxation_collisions_late"], theories["pairs"]["relaxation_collisions_late"]
     c = Claim("gas-relaxation", "the paper's matrix gives how fast a gas's T_rot/T_tr reaches 90% of its late "
               "(near steady) value (kt/kn = 0.1, from T_rot = 0), in collisions per sphere", "Conclusions (TR coupling "
-              "in fluids of frictional spheres)", paper, lam["relaxation_collisions"], pairs, runs=["gas-soft"])
+              "in fluids of frictional spheres)", paper, lam["relaxation_collisions"], pairs, runs=[_folder(runs, record)])
     c.verdict = verdict(paper, lam["relaxation_collisions"], pairs, RELAXATION_TOL * pairs, RELAXATION_TOL * pairs)
     c.evidence = (f"LAMMPS's ratio reaches 90% of its own late value after {lam['relaxation_collisions']:.3g} "
                   f"collisions per sphere; the two-temperature equations reach 90% of theirs (over the same samples) "

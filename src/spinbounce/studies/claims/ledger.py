@@ -94,10 +94,12 @@ def damped_dt(model: ContactModel) -> float:
 
 
 class Runs:
-    """Where the claims' LAMMPS runs go, one folder per run; a run named twice is run once."""
+    """Where the claims' LAMMPS runs go, one folder per run; a run named twice is run once. Gases go to
+    ``gases`` (by default ``root``/gases), by content: one finished there before is read back."""
 
-    def __init__(self, root: Path):
+    def __init__(self, root: Path, gases: Path | None = None):
         self.root = Path(root)
+        self.gases = Path(gases) if gases is not None else self.root / "gases"
         self._done: dict[str, tuple] = {}
 
     def collide(self, name: str, model: ContactModel, vn, vt, omega, dt=None):
