@@ -32,21 +32,21 @@ def _modules() -> dict[str, Path]:
 #: The errors a user sees and the unit of declaration import nothing; the exact references know
 #: nothing else; the contact laws' sub-models declare their coefficients and answer from the
 #: references; the model (parameters, contact law, step rule) only them; the engine (what
-#: decks share, runner, dumps, records, the outputs writer, row checks, the step probe) knows no scene; each scene
+#: decks share, runner, dumps, records, the outputs writer, row checks, the step probe, worker processes) knows no scene; each scene
 #: is a folder on the engine; the pipeline runs any scene; extrapolation is a run mode; sweeps and fits use all of that; studies and figures are made from
-#: sweeps and runs; the API and the catalogue of products call them; the CLI calls the API.
+#: sweeps and runs; the API and the catalogue of products (and its making) call them; the CLI calls the API.
 LAYERS = (
     ("errors", "declaration"),
     ("exact",),
     ("laws",),
     ("model",),
-    ("lammps", "records", "outputs", "checks", "stepping"),
+    ("lammps", "records", "outputs", "checks", "stepping", "workers"),
     ("scenes",),
     ("pipeline",),
     ("extrapolation",),
     ("sweeps", "fitting", "fitting_stream"),
     ("studies", "figures"),
-    ("api", "catalogue"),
+    ("api", "catalogue", "making"),
     ("cli", "__main__"),
 )
 

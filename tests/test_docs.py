@@ -84,7 +84,7 @@ def test_the_reproduce_tutorial_prints_the_sessions_reproduction(reproduction, t
     made, lines = reproduction
     asked = []
 
-    def replay(out, run_dir, only=None):
+    def replay(out, run_dir, only=None, workers=None):
         asked.append((out, run_dir, only))
         for line in lines:
             print(line.replace(str(made.out), str(out)))

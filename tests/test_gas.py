@@ -195,6 +195,30 @@ def test_the_command_refuses_bad_input_in_one_line(tmp_path):
     assert done.returncode == 2 and done.stderr.count("\n") == 1 and "packing = 0.7" in done.stderr
 
 
+def _shared(root: str) -> list[str]:
+    """A worker's ask for the tiny gas below (what one of reproduce's products does), with what it logged."""
+    from spinbounce.scenes.gas.run import shared_gas
+
+    told: list[str] = []
+    shared_gas(root, model(**MAGIC), log=told.append, spheres=1000, collisions=1, samples=2, draws=2000)
+    return told
+
+
+@pytest.mark.slow
+def test_two_processes_asking_for_one_gas_at_once_run_it_once(tmp_path):
+    """reproduce's products side by side: the second waits on the gas's lock while the first runs it, then reads
+    it back (one run, one folder, neither half-written)."""
+    import multiprocessing
+
+    with multiprocessing.get_context("spawn").Pool(2) as pool:
+        told = pool.map(_shared, [str(tmp_path)] * 2)
+    runs = [lines for lines in told if any("steps of dt" in line for line in lines)]
+    read = [lines for lines in told if any("read back from" in line for line in lines)]
+    assert len(runs) == 1 and len(read) == 1, told
+    (folder,) = [p for p in tmp_path.iterdir() if p.is_dir()]
+    assert (folder / "result.json").is_file() and not list(folder.glob(".*.tmp"))
+
+
 def test_two_mpi_ranks_run_the_same_gas(tmp_path):
     """Every draw is made from the atom ids (LAMMPS's loop all), so K ranks start from the same state; the
     forces are summed in another order, so the runs part by rounding, which a gas's chaos grows: after four

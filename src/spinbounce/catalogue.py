@@ -34,6 +34,9 @@ class Product:
     #: its reports beside the records; whether each record comes with a figure (<name>.png, .pdf)
     reports: tuple[str, ...] = ()
     drawn: bool = True
+    #: about how long it takes on one quiet core, in seconds (measured, rounded up): the longest start first
+    #: when products are made side by side (:mod:`spinbounce.making`)
+    seconds: float = 10.0
 
     @property
     def files(self) -> tuple[str, ...]:
@@ -83,28 +86,28 @@ def _benchmarks(out, runs, log):
 
 PRODUCTS: tuple[Product, ...] = (
     Product("paper", "spinbounce figures", "the paper's figures 2-7 (fig2 ... fig7)", _paper_figures,
-            tuple(f"fig{n}" for n in range(2, 8))),
+            tuple(f"fig{n}" for n in range(2, 8)), seconds=20),
     Product("claims", "spinbounce claims", "the claims ledger, CLAIMS.md", _claims, ("claims",),
-            reports=("CLAIMS.md",), drawn=False),
+            reports=("CLAIMS.md",), drawn=False, seconds=200),
     Product("benchmarks", "spinbounce benchmarks", "published validation cases, BENCHMARKS.md", _benchmarks,
-            ("benchmarks",), reports=("BENCHMARKS.md",)),
+            ("benchmarks",), reports=("BENCHMARKS.md",), seconds=40),
     Product("hertz", "spinbounce hertz", "Hertzian contact time and scattering, HERTZ.md",
             _figure("figures.hertz", "make_hertz"), ("hertz",),
-            reports=("HERTZ.md",)),
+            reports=("HERTZ.md",), seconds=5),
     Product("mindlin", "spinbounce reproduce --only mindlin", "Omega of LAMMPS's Mindlin springs against Poisson's ratio",
-            _figure("figures.mindlin", "make_mindlin"), ("mindlin",)),
+            _figure("figures.mindlin", "make_mindlin"), ("mindlin",), seconds=15),
     Product("classic", "spinbounce classic --figure", "this build's classic wall against the paper's model",
-            _figure("figures.classic", "make_classic"), ("classic",)),
+            _figure("figures.classic", "make_classic"), ("classic",), seconds=8),
     Product("two_walls", "spinbounce two-walls", "many bounces between two walls against the matrices",
-            _figure("figures.two_walls", "make_figure"), ("two_walls",)),
+            _figure("figures.two_walls", "make_figure"), ("two_walls",), seconds=15),
     Product("restitution", "spinbounce restitution", "restitution maps against incidence, Kharaz's data",
-            _figure("studies.restitution", "make_figure"), ("restitution",)),
+            _figure("studies.restitution", "make_figure"), ("restitution",), seconds=8),
     Product("tangential", "spinbounce tangential", "tangential restitution against the velocity ratio (Becker et al.)",
-            _figure("studies.tangential", "make_figure"), ("tangential",)),
+            _figure("studies.tangential", "make_figure"), ("tangential",), seconds=4),
     Product("pair_validity", "spinbounce reproduce --only pair_validity", "where the planar two-sphere theory holds",
-            _figure("figures.pairs", "make_pair_validity"), ("pair_validity",)),
+            _figure("figures.pairs", "make_pair_validity"), ("pair_validity",), seconds=4),
     Product("gas", "spinbounce reproduce --only gas", "T_rot/T_tr of frictional-sphere gases against kinetic theory",
-            _figure("figures.gas", "make_gas"), ("gas",)),
+            _figure("figures.gas", "make_gas"), ("gas",), seconds=130),
 )
 
 #: Made by a command of their own, not by ``reproduce``: (command, what, why).

@@ -21,6 +21,9 @@ class SceneError(ValueError):
         self.limit = limit
         super().__init__(f"{parameter} = {self.value!r}: {limit}")  # a numpy scalar as the number it is
 
+    def __reduce__(self):  # whole across processes (a worker's refusal reaches its parent as raised)
+        return type(self), (self.parameter, self.value, self.limit)
+
 
 class PhysicsWarning(UserWarning):
     """A scene is allowed but physically unusual or numerically marginal."""
@@ -56,6 +59,9 @@ class LammpsError(RuntimeError):
         self.input_line = input_line
         where = f"\n  deck: {self.deck}" + (f"\n  input line: {input_line}" if input_line else "")
         super().__init__(f"{error_line}{where}")
+
+    def __reduce__(self):
+        return type(self), (self.error_line, self.deck, self.input_line)
 
 
 class ResultError(RuntimeError):

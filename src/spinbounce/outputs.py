@@ -20,7 +20,7 @@ from pathlib import Path
 
 from .records import write_atomic, write_atomic_with
 
-__all__ = ["MANIFEST", "replacing", "check_outputs", "check_replaceable", "write_output", "write_output_with"]
+__all__ = ["MANIFEST", "replacing", "forced", "check_outputs", "check_replaceable", "write_output", "write_output_with"]
 
 #: The record, in each folder written into, of the files spinbounce wrote there.
 MANIFEST = ".spinbounce-outputs.json"
@@ -35,6 +35,11 @@ def replacing(force: bool = True):
         yield
     finally:
         _FORCE.reset(token)
+
+
+def forced() -> bool:
+    """Whether this block replaces files of any origin (:func:`replacing`): what a worker is told."""
+    return _FORCE.get()
 
 
 def _digest(path: Path) -> str:

@@ -16,6 +16,7 @@ from pathlib import Path
 
 from ..model import parameters
 from ..model.parameters import Parameter
+from ..workers import cores
 
 #: argparse reads "-1e-3" as an option unless it looks like a negative number to it; its own
 #: pattern misses e-notation. Every parser here takes a word that starts like a negative number
@@ -59,11 +60,6 @@ def positive_count(text: str) -> int:
     if value < 1:
         raise argparse.ArgumentTypeError(f"{text!r}: must be >= 1")
     return value
-
-
-def cores() -> int:
-    """The cores this process may use."""
-    return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
 
 
 def worker_count(text: str) -> int:

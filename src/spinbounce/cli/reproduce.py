@@ -7,8 +7,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from ..catalogue import LISTED, PRODUCTS, make, product_names
-from .options import name_list, out_folder, replace_flag
+from ..catalogue import LISTED, PRODUCTS, product_names
+from .options import name_list, out_folder, replace_flag, worker_count
 
 if TYPE_CHECKING:
     from ..studies.claims import Claim
@@ -47,25 +47,25 @@ def register(sub) -> None:
     p.add_argument("--only", type=name_list("product", product_names), default=None, metavar="NAME[,NAME...]",
                    help=f"make only these products (from {', '.join(product_names())}); the claims are judged only "
                         "when 'claims' is among them")
+    p.add_argument("--workers", type=worker_count, default=None, metavar="N",
+                   help="make products side by side in N processes (default: one per core this process may use; "
+                        "the output reads the same, each product's lines together and in order)")
     p.set_defaults(handler=run)
 
 
-def reproduce(out: Path, run_dir: Path, log=print, only=None) -> Reproduction:
+def reproduce(out: Path, run_dir: Path, log=print, only=None, workers: int | None = None) -> Reproduction:
     """Every product of :data:`spinbounce.catalogue.PRODUCTS` (``only``: those named) into ``out``,
-    runs under ``run_dir``."""
+    runs under ``run_dir``, side by side on ``workers`` processes (default: one per core this process
+    may use; :mod:`spinbounce.making`)."""
+    from ..making import make_products
     from ..outputs import check_outputs
     from ..studies.claims import Claim
+    from ..workers import cores
 
     started = time.perf_counter()
-    records: dict[str, dict] = {}
     chosen = [p for p in PRODUCTS if only is None or p.name in only]
     check_outputs(out, [file for product in chosen for file in product.files])  # before any product runs
-    for product in chosen:
-        log(f"{product.name}: {product.what} -> {out}/")
-        began = time.perf_counter()
-        made = make(product, out, run_dir, log=log)
-        records.update(made)
-        log(f"{product.name}: {', '.join(sorted(made))} ({time.perf_counter() - began:.0f} s)")
+    records = make_products(chosen, Path(out), Path(run_dir), log, workers or cores())
     claims = [Claim(**claim) for claim in records["claims"]["claims"]] if "claims" in records else []
     return Reproduction(Path(out), records, claims, Path(out) / "CLAIMS.md", time.perf_counter() - started)
 
@@ -87,7 +87,7 @@ def summary(made: Reproduction) -> list[str]:
 def run(args) -> int:
     from ..studies.claims import counts
 
-    made = reproduce(args.out, args.run_dir, only=args.only)
+    made = reproduce(args.out, args.run_dir, only=args.only, workers=args.workers)
     if args.only is not None:
         print(f"done in {made.seconds:.0f} s: {', '.join(sorted(made.records))} in {made.out}/")
     else:

@@ -15,7 +15,6 @@ import fcntl
 import gc
 import json
 import math
-import multiprocessing
 import os
 import shutil
 import sys
@@ -25,6 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import __version__
+from .. import workers as workers_
 from ..records import TEMP_SUFFIX
 from ..model import parameters
 from ..scenes.collision import Collision, scaled_contact_time
@@ -247,28 +247,6 @@ def _check_columns(out: Path, spec: SweepSpec) -> None:
                          "(a damped default's estimates): sweep into another --out")
 
 
-def _context():
-    """Workers forked while this process has not loaded LAMMPS (a script without a ``__main__``
-    guard works then); spawned once it has, since a forked MPI library is not safe."""
-    return multiprocessing.get_context("spawn" if "lammps" in sys.modules else "fork")
-
-
-def _die_with_parent() -> None:
-    """A worker ends when its parent does, even after SIGKILL (Linux's parent-death signal)."""
-    import ctypes
-    import signal
-
-    try:
-        ctypes.CDLL("libc.so.6", use_errno=True).prctl(1, signal.SIGTERM)  # PR_SET_PDEATHSIG = 1
-    except OSError:  # not Linux: workers then end when they find their task queue gone
-        pass
-    # Ctrl-C reaches the whole process group: the parent alone answers it, letting the
-    # running chunks finish whole (a worker stopped inside LAMMPS's clean-up would print)
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-    if os.getppid() == 1:  # the parent died before the call above
-        os._exit(1)
-
-
 def run_sweep(spec: SweepSpec, out: Path, workers: int | None = None, log=print) -> Path:
     """Run every chunk that has no Parquet file yet; return the dataset folder. A sweep that
     fails or is stopped before its first chunk is written removes the folder it made."""
@@ -302,8 +280,8 @@ def _run_chunks(spec: SweepSpec, out: Path, workers: int | None, log) -> Path:
         if workers == 1:  # no pool: one process start fewer, and plain tracebacks
             _run_in_turn(spec, out, todo, bar)
         else:
-            with concurrent.futures.ProcessPoolExecutor(max_workers=workers, mp_context=_context(),
-                                                        initializer=_die_with_parent) as pool:
+            with concurrent.futures.ProcessPoolExecutor(max_workers=workers, mp_context=workers_.context(),
+                                                        initializer=workers_.die_with_parent) as pool:
                 futures = [pool.submit(run_chunk, spec.raw, str(out), *c) for c in todo]
                 try:
                     for future in concurrent.futures.as_completed(futures):

@@ -94,9 +94,15 @@ def run_gas(m: ContactModel, *, spheres: int = DEFAULT["spheres"], packing: floa
 def shared_gas(root: str | Path, m: ContactModel, log=None, **settings) -> GasReport:
     """:func:`run_gas` of ``m`` and ``settings`` in ``root``/gas-<digest of both>, read back where that folder
     holds it finished: one run for every product of a ``reproduce`` that shows the same gas (the claims' and the
-    gas figure's), and none again when ``reproduce`` runs again."""
+    gas figure's), and none again when ``reproduce`` runs again. Products made side by side take turns: one
+    waits on the folder's lock while another runs it, then reads it back."""
+    import fcntl
+
     folder = Path(root) / run_folder("gas", {"model": m.as_record(), **settings}).name
-    return run_gas(m, out=folder, force=True, reuse=True, log=log, **settings)
+    folder.parent.mkdir(parents=True, exist_ok=True)
+    with open(folder.parent / f".{folder.name}.lock", "a") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)  # released by the OS when this process ends, however it ends
+        return run_gas(m, out=folder, force=True, reuse=True, log=log, **settings)
 
 
 def _finished(folder: Path, scene, ranks: int) -> GasReport | None:

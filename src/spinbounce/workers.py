@@ -1,0 +1,44 @@
+"""Worker processes: how a pool of them starts, and how they end with their parent.
+
+A sweep runs its chunks, and ``reproduce`` its products, in worker processes on the cores this
+process may use (:func:`cores`); both start them here, so that they start and end alike.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+
+__all__ = ["context", "die_with_parent", "cores"]
+
+
+def context():
+    """Workers forked while this process has not loaded LAMMPS (a script without a ``__main__``
+    guard works then); spawned once it has, since a forked MPI library is not safe."""
+    import multiprocessing
+
+    return multiprocessing.get_context("spawn" if "lammps" in sys.modules else "fork")
+
+
+def die_with_parent() -> None:
+    """A worker ends when its parent does, even after SIGKILL (Linux's parent-death signal)."""
+    import ctypes
+    import signal
+
+    try:
+        ctypes.CDLL("libc.so.6", use_errno=True).prctl(1, signal.SIGTERM)  # PR_SET_PDEATHSIG = 1
+    except OSError:  # not Linux: workers then end when they find their task queue gone
+        pass
+    # Ctrl-C reaches the whole process group: the parent alone answers it (a worker stopped inside
+    # LAMMPS's clean-up would print)
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    if os.getppid() == 1:  # the parent died before the call above
+        os._exit(1)
+
+
+def cores() -> int:
+    """The CPUs this process may run on (its affinity; all of the machine's where that is not known)."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:
+        return os.cpu_count() or 1
