@@ -120,10 +120,11 @@ def assert_identical(left: pd.DataFrame, right: pd.DataFrame) -> None:
             assert np.array_equal(left[name].to_numpy().view(np.uint64), right[name].to_numpy().view(np.uint64)), name
 
 
-#: The fault sweep's model: a Coulomb cap and a slip mode that turns 590 times a contact, so
-#: that each collision costs LAMMPS about 0.08 s (311,000 steps): a chunk of a few thousand
-#: runs for minutes, whatever the theory's speed.
-FAULT_MODEL = "mu = 0.5\nkt = 100000.0"
+#: The fault sweep's two groups: a Coulomb cap and a slip mode that turns 590 times a contact, so
+#: that each collision costs LAMMPS about 0.08 s (a chunk of a few thousand runs for minutes,
+#: whatever the theory's speed), and the same cap on a spring ten times softer, whose chunk of as
+#: many collisions takes about a sixth of that (its cost estimate says 113 s against 600 s).
+FAULT_MODEL = "mu = 0.5\nkt = [100000.0, 10000.0]"
 
 
 def fault_chunk_size(seconds: float) -> int:
@@ -189,24 +190,32 @@ def leftovers(out: Path, scene: Path) -> list[str]:
 FAULT_OPTIONS = ("--retries", "0", "--slurm-status-command", "squeue", "--latency-wait", "5")
 
 
+#: The fault sweep's chunks: (group 0's first, run into its limit), (group 1's first, cancelled), and the
+#: two of 10 collisions that complete.
+TIMED_OUT, CANCELLED = "chunk/chunk-0000-000000", "chunk/chunk-0001-000000"
+COMPLETED = ("chunk/chunk-0000-000001", "chunk/chunk-0001-000001")
+
+
 @pytest.fixture(scope="module")
 def faults(tmp_path_factory, site):
-    """A finite-mu sweep started with a 1-minute limit per chunk, one chunk cancelled.
+    """A finite-mu sweep of two groups started with a 1-minute limit per chunk, one chunk cancelled.
 
-    Chunks estimated at 600 s on one core (the estimate runs high: a chunk estimated at 300 s took
-    58 s on an idle core once the sweep got faster, inside SLURM's kill window; 600 s takes about
-    twice that): chunk 0 runs into its limit (SLURM kills it 60 to 90 s after its start), chunk 1 is
-    cancelled while it runs, chunk 2 (10 collisions) completes. Returns the folder, the scene, the
-    running Snakemake, its output so far and the cancelled job's id.
+    Chunks of the stiff group estimated at 600 s on one core (the estimate runs high: a chunk estimated
+    at 300 s took 58 s on an idle core once the sweep got faster, inside SLURM's kill window; 600 s
+    takes about twice that): its chunk 0 runs into its limit (SLURM kills it 60 to 90 s after its
+    start); the soft group's chunk 0, as many collisions at about a sixth of the cost, is cancelled
+    while it runs; each group's chunk 1 (10 collisions) completes. The rerun then does one long chunk
+    and one short one, not two long ones. Returns the folder, the scene, the running Snakemake, its
+    output so far and the cancelled job's id.
     """
     workdir = tmp_path_factory.mktemp("faults")
     size = fault_chunk_size(600.0)
     scene = workdir / "faults.toml"
     scene.write_text(MIXED_SCENE.replace("mu = [0.0, 0.5]", FAULT_MODEL)
-                     .replace("chunk_size = 30", f"chunk_size = {size}").replace("n = 60", f"n = {2 * size + 10}"))
+                     .replace("chunk_size = 30", f"chunk_size = {size}").replace("n = 60", f"n = {size + 10}"))
     first = snakemake_on_slurm(workdir, scene, site, "--set-resources", "chunk:runtime=1", *FAULT_OPTIONS)
     log: list[str] = []
-    cancelled = wait_for_submission(first, "chunk/chunk-0000-000001", log)
+    cancelled = wait_for_submission(first, CANCELLED, log)
     wait_until_running(cancelled)
     time.sleep(3)  # into its run: LAMMPS or the oracle, not the start-up
     subprocess.run(["scancel", cancelled], check=True)
@@ -249,23 +258,23 @@ def test_cancelled_and_timed_out_chunks_leave_nothing_and_a_rerun_finishes_them(
     text = "".join(log) + finish(first)
     assert first.returncode != 0  # two chunks failed, so no fit
     jobs = submitted(text)
-    ended = states([jobs[f"chunk/chunk-0000-00000{c}"] for c in range(3)])
-    assert ended == {jobs["chunk/chunk-0000-000000"]: "TIMEOUT", cancelled: "CANCELLED by 0",
-                     jobs["chunk/chunk-0000-000002"]: "COMPLETED"}
-    # Only the finished chunk has a file: nothing half-written, no process left behind.
-    assert {n for n in chunk_files(out) if not n.startswith(".")} == {"chunk-0000-000002.parquet"}
+    ended = states([jobs[name] for name in (TIMED_OUT, CANCELLED, *COMPLETED)])
+    assert ended == {jobs[TIMED_OUT]: "TIMEOUT", cancelled: "CANCELLED by 0"} | {jobs[n]: "COMPLETED" for n in COMPLETED}
+    # Only the finished chunks have files: nothing half-written, no process left behind.
+    assert {n for n in chunk_files(out) if not n.startswith(".")} == {f"{n[6:]}.parquet" for n in COMPLETED}
     assert leftovers(out, scene) == []
 
-    # the two chunks again, whole: about two minutes each on an idle core, six while the tests' own workers share
-    # the two cores (seen twice in CI, past the default 400 s, when Snakemake was stopped before they ended)
+    # the two chunks again, whole: the long one about two minutes on an idle core and up to six while the tests'
+    # own workers share the two cores (seen in CI, past the default 400 s, when Snakemake was stopped before the end)
     second = finish(snakemake_on_slurm(workdir, scene, site, *FAULT_OPTIONS, seconds=1500))
     assert "steps (100%) done" in second, second[-4000:]
     rerun = submitted(second)
-    assert sorted(n for n in rerun if n.startswith("chunk/")) == ["chunk/chunk-0000-000000", "chunk/chunk-0000-000001"]
+    assert sorted(n for n in rerun if n.startswith("chunk/")) == [TIMED_OUT, CANCELLED]
     assert set(states(rerun.values()).values()) == {"COMPLETED"}
     rows = read_results(out)
-    assert len(rows) == spec.n and not rows.duplicated(["group", "index"]).any()
-    assert sorted(rows["index"]) == list(range(spec.n))
+    assert len(rows) == 2 * spec.n and not rows.duplicated(["group", "index"]).any()
+    for group in (0, 1):
+        assert sorted(rows.loc[rows["group"] == group, "index"]) == list(range(spec.n))
     assert leftovers(out, scene) == []
 
 
