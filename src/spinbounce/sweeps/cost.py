@@ -10,9 +10,10 @@ PAIR_BATCHED_SECONDS, PAIR_THEORY_SECONDS or CAPPED_PAIR_THEORY_SECONDS),
 
 where ``steps`` is the run's LAMMPS steps per collision (the contact's exit time over the
 model's step, as :attr:`Collision.nsteps` counts them) and ``theory`` a collision's theory
-(CAPPED_THEORY_SECONDS for the batched stick-slip solver with a finite mu; tenths of a second
-where the theory integrates each state on its own, the classic spring's and the capped
-contacts on the contact radius: :data:`spinbounce.exact.choose.STATE_SECONDS`), and it peaks at
+(CAPPED_THEORY_SECONDS for the batched stick-slip solver with a finite mu; hundredths to tenths
+of a second where the theory integrates each state on its own, the classic spring's, the capped
+contacts on the contact radius and the damped ones sphere by sphere:
+:data:`spinbounce.exact.choose.STATE_SECONDS`), and it peaks at
 
     mb = BASE_MB + SCIPY_MB [finite mu] + n * KB_PER_SPHERE / 1024.
 
