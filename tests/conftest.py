@@ -7,7 +7,8 @@ others to the slow run: every check runs on one case in minutes, every case in C
 
 The tests run on every core (pytest-xdist, ``-n auto`` in pyproject.toml; ``-n 0`` runs them in one
 process). Tests that share a session's product, or the one SLURM, go to one worker together
-(:data:`WORKER_GROUPS`), so that nothing is made twice and no two SLURM sessions queue behind each other.
+(:data:`WORKER_GROUPS`), so that nothing is made twice and no two SLURM sessions queue behind each other;
+so do a module's tests that share a fixture made once per module.
 """
 
 import os
@@ -43,6 +44,8 @@ def pytest_collection_modifyitems(config, items):
         for group, member in WORKER_GROUPS.items():
             if member(item):
                 item.add_marker(pytest.mark.xdist_group(group))
+        if not item.get_closest_marker("xdist_group") and _uses_module_fixture(item):
+            item.add_marker(pytest.mark.xdist_group(f"module:{item.module.__name__}"))
     if not (config.option.keyword or any("::" in arg for arg in config.args)):  # cases asked for by name all run
         _first_cases_only(items)
     if run_slow():
@@ -61,6 +64,14 @@ def pytest_testnodedown(node, error):
     """xdist's controller: every worker collects every test, so each counts the same slow tests left out."""
     left = getattr(node, "workeroutput", {}).get("slow_left", 0)
     node.config._spinbounce_slow_left = max(left, getattr(node.config, "_spinbounce_slow_left", 0))
+
+
+def _uses_module_fixture(item) -> bool:
+    """Whether a test uses a fixture made once per module (or class), such as a small gas: such tests of a
+    module go to one worker together, so that it is made once, not once on each worker that runs one."""
+    info = getattr(item, "_fixtureinfo", None)
+    defs = [d for ds in (info.name2fixturedefs.values() if info is not None else ()) for d in ds]
+    return any(d.scope in ("module", "class") for d in defs)
 
 
 def _first_cases_only(items) -> None:
