@@ -67,11 +67,19 @@ def pytest_testnodedown(node, error):
 
 
 def _uses_module_fixture(item) -> bool:
-    """Whether a test uses a fixture made once per module (or class), such as a small gas: such tests of a
-    module go to one worker together, so that it is made once, not once on each worker that runs one."""
+    """Whether a test asks, itself or through the fixtures it asks for, for one made once per module (or class),
+    such as a small gas: such tests of a module go to one worker together, so that it is made once, not once on
+    each worker that runs one (an autouse fixture no test asks for does not count)."""
     info = getattr(item, "_fixtureinfo", None)
-    defs = [d for ds in (info.name2fixturedefs.values() if info is not None else ()) for d in ds]
-    return any(d.scope in ("module", "class") for d in defs)
+    asked, seen = list(info.argnames) if info is not None else [], set()
+    while asked:
+        name = asked.pop()
+        for definition in info.name2fixturedefs.get(name, ()) if name not in seen else ():
+            if definition.scope in ("module", "class"):
+                return True
+            asked.extend(definition.argnames)
+        seen.add(name)
+    return False
 
 
 def _first_cases_only(items) -> None:

@@ -53,9 +53,11 @@ def _paper_figures(out, runs, log):
 
 def _gases(runs: Path) -> Path:
     """Where gases that several products show are run once, read back by the rest (the claims' kt/kn = 0.1 gas is
-    the gas figure's): ``gases/`` beside the products' own run folders (:func:`make`), by content
+    the gas figure's): the gases' folder beside the products' own run folders (:func:`make`), by content
     (:func:`spinbounce.scenes.gas.run.shared_gas`)."""
-    return Path(runs).parent / "gases"
+    from .scenes.gas.run import GASES
+
+    return Path(runs).parent / GASES
 
 
 def _claims(out, runs, log):
@@ -127,7 +129,8 @@ def record_names() -> list[str]:
 
 
 def make(product: Product, out: Path, runs: Path, log=print) -> dict:
-    """Make one product into ``out``, its LAMMPS runs under ``runs``/<name>."""
+    """Make one product into ``out``, its LAMMPS runs under ``runs``/<name> (and the gases products share
+    under ``runs``/gases: :func:`_gases`)."""
     return product.make(Path(out), Path(runs) / product.name, log)
 
 

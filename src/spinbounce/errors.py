@@ -21,8 +21,8 @@ class SceneError(ValueError):
         self.limit = limit
         super().__init__(f"{parameter} = {self.value!r}: {limit}")  # a numpy scalar as the number it is
 
-    def __reduce__(self):  # whole across processes (a worker's refusal reaches its parent as raised)
-        return type(self), (self.parameter, self.value, self.limit)
+    def __reduce__(self):  # whole across processes (a worker's refusal reaches its parent as raised, notes too)
+        return type(self), (self.parameter, self.value, self.limit), self.__dict__
 
 
 class PhysicsWarning(UserWarning):
@@ -61,7 +61,7 @@ class LammpsError(RuntimeError):
         super().__init__(f"{error_line}{where}")
 
     def __reduce__(self):
-        return type(self), (self.error_line, self.deck, self.input_line)
+        return type(self), (self.error_line, self.deck, self.input_line), self.__dict__
 
 
 class ResultError(RuntimeError):

@@ -5,10 +5,13 @@ worker takes the next when it is done; every product's log still reaches the cal
 the catalogue's order (a product's lines are held until those before it are told), so that the
 output reads as it does made in turn. What products share (a gas the claims and the gas figure
 both show) is run by whichever gets there first while the other waits for it
-(:func:`spinbounce.scenes.gas.run.shared_gas`).
+(:func:`spinbounce.scenes.gas.run.shared_gas`). Only :data:`~spinbounce.catalogue.PRODUCTS` are
+made side by side (a worker finds its product by name).
 
-An interrupt or a failure stops every worker at once: their half-written files (``.NAME.PID.tmp``)
-are removed from the output folder; what was written whole stays, as it does made in turn.
+A product that fails is told at once, with the lines it logged before it failed; an interrupt or a
+failure stops every worker (a worker that dies, too, ends the making with an error rather than a
+wait), and their half-written files (``.NAME.PID.tmp``) are removed from the output folder; what
+was written whole stays, as it does made in turn.
 """
 
 from __future__ import annotations
@@ -51,43 +54,81 @@ def _in_turn(chosen: list[Product], out: Path, runs: Path, log) -> dict[str, dic
     return records
 
 
-def _made(name: str, out: Path, runs: Path, force: bool) -> tuple[list[str], dict, float]:
-    """One product, in a worker: (its log lines, its records, its seconds)."""
+def _made(name: str, out: Path, runs: Path, force: bool) -> tuple[list[str], dict | None, float, Exception | None]:
+    """One product, in a worker: (its log lines, its records, its seconds, what it failed with)."""
     from .outputs import replacing
 
     product = next(p for p in PRODUCTS if p.name == name)
     lines: list[str] = []
     began = time.perf_counter()
-    with replacing(force):  # the parent's --force, which a worker's own context does not carry
-        made = make(product, out, runs, log=lines.append)
-    return lines, made, time.perf_counter() - began
+    try:
+        with replacing(force):  # the parent's --force, which a worker's own context does not carry
+            made = make(product, out, runs, log=lines.append)
+    except Exception as failed:  # told with the lines before it (an interrupt is the parent's to answer)
+        return lines, None, time.perf_counter() - began, failed
+    return lines, made, time.perf_counter() - began, None
 
 
 def _side_by_side(chosen: list[Product], out: Path, runs: Path, log, workers: int) -> dict[str, dict]:
-    import multiprocessing
+    import concurrent.futures
+    import os
 
     from .outputs import forced
     from .workers import context, die_with_parent
 
-    records: dict[str, dict] = {}
-    pool = context().Pool(workers, initializer=die_with_parent)
+    pool = concurrent.futures.ProcessPoolExecutor(workers, mp_context=context(), initializer=die_with_parent,
+                                                  initargs=(os.getpid(),))
     try:
-        longest_first = sorted(chosen, key=lambda p: -p.seconds)
-        pending = {p.name: pool.apply_async(_made, (p.name, Path(out), Path(runs), forced())) for p in longest_first}
-        for product in chosen:
-            lines, made, seconds = pending[product.name].get()
+        pending = {p.name: pool.submit(_made, p.name, Path(out), Path(runs), forced())
+                   for p in sorted(chosen, key=lambda p: -p.seconds)}
+        records = _told_in_order(chosen, pending, Path(out), log)
+    except BaseException:
+        _stop(pool, Path(out))
+        raise
+    pool.shutdown()
+    return records
+
+
+def _told_in_order(chosen: list[Product], pending: dict, out: Path, log) -> dict[str, dict]:
+    """Each product's log, whole, as soon as it and every one before it are done; a failure at once."""
+    import concurrent.futures
+
+    records: dict[str, dict] = {}
+    told = 0
+    while True:
+        while told < len(chosen) and pending[chosen[told].name].done():
+            product = chosen[told]
+            lines, made, seconds, failed = pending[product.name].result()  # a worker that died raises here
+            if failed is not None:
+                break
             for line in [_opening(product, out), *lines, _closing(product, made, seconds)]:
                 log(line)
             records.update(made)
-        pool.close()
-    except BaseException:
-        stopped = {str(child.pid) for child in multiprocessing.active_children()}
-        pool.terminate()
-        _remove_half_written(Path(out), stopped)
-        raise
-    finally:
-        pool.join()
-    return records
+            told += 1
+        for product in chosen[told:]:  # a failure is told at once, after every product before it that ended
+            future = pending[product.name]
+            if future.done() and future.result()[3] is not None:
+                lines, _, _, failed = future.result()
+                for line in [_opening(product, out), *lines]:
+                    log(line)
+                raise failed
+        if told == len(chosen):
+            return records
+        concurrent.futures.wait([f for f in pending.values() if not f.done()],
+                                return_when=concurrent.futures.FIRST_COMPLETED)
+
+
+def _stop(pool, out: Path) -> None:
+    """Every worker ended now (not when its product ends), and the files it was writing removed."""
+    import multiprocessing
+
+    children = multiprocessing.active_children()
+    for child in children:
+        child.terminate()
+    for child in children:
+        child.join(timeout=10.0)
+    pool.shutdown(wait=False, cancel_futures=True)
+    _remove_half_written(out, {str(child.pid) for child in children})
 
 
 def _remove_half_written(out: Path, pids: set[str]) -> None:

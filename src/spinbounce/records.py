@@ -10,6 +10,7 @@ file or the new one, never half of one. Every record says what produced it throu
 from __future__ import annotations
 
 import datetime
+import functools
 import importlib.metadata as metadata
 import json
 import math
@@ -23,7 +24,7 @@ import numpy as np
 from . import __version__
 
 __all__ = ["write_atomic", "write_atomic_with", "write_parquet_atomic", "arrow_table", "to_json", "json_ready",
-           "software", "lammps_version", "TEMP_SUFFIX", "run_folder", "check_run_folder", "RUN_OUTPUTS"]
+           "software", "source_digest", "lammps_version", "TEMP_SUFFIX", "run_folder", "check_run_folder", "RUN_OUTPUTS"]
 
 #: Every half-written file ends in this (and starts with a dot): a rerun or a reader skips it.
 TEMP_SUFFIX = ".tmp"
@@ -190,6 +191,18 @@ def software(with_lammps: bool = True) -> dict:
             record[f"{name}_version"] = None
     record["created"] = datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds")
     return record
+
+
+@functools.cache
+def source_digest() -> str:
+    """SHA-256 (16 hex digits) of spinbounce's own sources, its modules and deck templates: what tells two
+    builds of one version apart (an editable install keeps its version while its code changes). Once a process."""
+    import hashlib
+
+    root, digest = Path(__file__).resolve().parent, hashlib.sha256()
+    for path in sorted(p for p in root.rglob("*") if p.suffix in (".py", ".j2") and "__pycache__" not in p.parts):
+        digest.update(path.relative_to(root).as_posix().encode() + b"\0" + path.read_bytes())
+    return digest.hexdigest()[:16]
 
 
 def run_folder(kind: str, parameters: dict) -> Path:

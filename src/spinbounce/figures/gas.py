@@ -79,12 +79,14 @@ def _draw(cases: list[dict], curve: np.ndarray):
 
 
 def make_gas(out: Path, runs: Path, log=print, gases: Path | None = None) -> FigureRecord:
-    """gas.png, .pdf and .json into ``out`` (LAMMPS runs in ``gases``, by default ``runs``/gases, where a gas
-    finished there before is read back: :func:`spinbounce.scenes.gas.run.shared_gas`)."""
+    """gas.png, .pdf and .json into ``out`` (LAMMPS runs in ``gases``, by default the gases' folder under
+    ``runs``, where a gas finished there before is read back: :func:`spinbounce.scenes.gas.run.shared_gas`)."""
     import matplotlib.style
 
+    from ..scenes.gas.run import GASES
+
     started = time.perf_counter()
-    gases = Path(gases) if gases is not None else Path(runs) / "gases"
+    gases = Path(gases) if gases is not None else Path(runs) / GASES
     cases = [_run(ratio, gases, log) for ratio in CASES]
     curve = _steady_curve()
     with matplotlib.style.context(STYLE):

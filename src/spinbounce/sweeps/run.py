@@ -274,14 +274,15 @@ def _run_chunks(spec: SweepSpec, out: Path, workers: int | None, log) -> Path:
         done = total - sum(stop - start for _, _, start, stop in todo)
         if done:
             log(f"resuming: {done} of {total} collisions already done")
-        workers = max(1, min(workers or os.cpu_count() or 1, len(todo) or 1))
+        workers = max(1, min(workers or workers_.cores(), len(todo) or 1))
         bar = tqdm(total=total, initial=done, unit="coll", unit_scale=True, dynamic_ncols=True,
                    disable=not sys.stderr.isatty(), desc="collisions")
         if workers == 1:  # no pool: one process start fewer, and plain tracebacks
             _run_in_turn(spec, out, todo, bar)
         else:
             with concurrent.futures.ProcessPoolExecutor(max_workers=workers, mp_context=workers_.context(),
-                                                        initializer=workers_.die_with_parent) as pool:
+                                                        initializer=workers_.die_with_parent,
+                                                        initargs=(os.getpid(),)) as pool:
                 futures = [pool.submit(run_chunk, spec.raw, str(out), *c) for c in todo]
                 try:
                     for future in concurrent.futures.as_completed(futures):

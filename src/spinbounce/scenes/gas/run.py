@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import json
 import math
 import os
 from dataclasses import dataclass
@@ -15,7 +16,7 @@ from ...exact.kinetic import Averages
 from ...lammps.decks import prepare_run_dir
 from ...lammps.runner import run_deck, run_deck_lmp
 from ...model.contact import ContactModel
-from ...records import check_run_folder, run_folder, software, to_json, write_atomic
+from ...records import check_run_folder, run_folder, software, source_digest, to_json, write_atomic
 from . import collisions as pair_draws
 from . import closure, predict
 from .deck import render_gas
@@ -23,10 +24,12 @@ from .parameters import DEFAULT
 from .scene import Gas
 from .table import read_series
 
-__all__ = ["run_gas", "shared_gas", "GasReport", "GAS_SERIES", "GAS_SPHERE_STEP_SECONDS"]
+__all__ = ["run_gas", "shared_gas", "GasReport", "GAS_SERIES", "GASES", "GAS_SPHERE_STEP_SECONDS"]
 
 #: The series a gas run writes into its folder (its record: result.json).
 GAS_SERIES = "gas.csv"
+#: The folder, beside a command's run folders, of the gases it shares by content (:func:`shared_gas`).
+GASES = "gases"
 #: LAMMPS's cost of one sphere's step in a dilute gas on one core (measured here: 1.7e7 to 3.9e7
 #: sphere-steps a second; the slower end, so that an estimate is not short).
 GAS_SPHERE_STEP_SECONDS = 6e-8
@@ -85,8 +88,7 @@ def run_gas(m: ContactModel, *, spheres: int = DEFAULT["spheres"], packing: floa
         log(f"gas: {scene.spheres} spheres, {steps} steps of dt = {scene.dt:.4g}, the theory from {scene.draws} draws "
             f"(about {cost:.0f} s in all on {ranks} rank(s))")
     deck_path = prepare_run_dir(folder, render_gas(scene))
-    for earlier in (GAS_SERIES, "result.json"):  # an earlier run's results never stand beside this run's deck
-        (folder / earlier).unlink(missing_ok=True)
+    (folder / GAS_SERIES).unlink(missing_ok=True)  # an earlier run's series never stands beside this run's deck
     info = run_deck(deck_path) if ranks == 1 else run_deck_lmp(deck_path, ranks=ranks)
     return _judged(scene, folder, info, ranks, log)
 
@@ -108,8 +110,6 @@ def shared_gas(root: str | Path, m: ContactModel, log=None, **settings) -> GasRe
 def _finished(folder: Path, scene, ranks: int) -> GasReport | None:
     """The run in ``folder`` if it is this one finished: its record's parameters and rank count this scene's, and
     every version it records this software's (its series and record are written last, each atomically)."""
-    import json
-
     import pandas as pd
 
     record_path, csv = folder / "result.json", folder / GAS_SERIES
@@ -117,10 +117,12 @@ def _finished(folder: Path, scene, ranks: int) -> GasReport | None:
         return None
     record = json.loads(record_path.read_text())
     versions = {k: v for k, v in software().items() if k.endswith("_version") or k == "python"}
+    versions["spinbounce_source"] = source_digest()  # the code itself: an editable install keeps its version
     if (record.get("parameters") != json.loads(to_json(scene.record())) or record.get("ranks") != ranks
             or any(record.get(k) != v for k, v in versions.items())):
         return None
     table = pd.read_csv(csv)
+    record |= {"csv": str(csv), "deck": str(folder / Path(record["deck"]).name)}  # where it is now
     return GasReport({name: table[name].to_numpy() for name in table.columns}, record, csv, record_path)
 
 
@@ -153,10 +155,11 @@ def _judged(scene, folder: Path, info, ranks: int, log) -> GasReport:
               "no_matrix": why, "accuracy": _accuracy(scene, series, errors),
               "csv": str(csv),
               "deck": str(info.deck), "loop_seconds": info.loop_seconds, "wall_seconds": info.wall_seconds,
-              **software()}
+              **software(), "spinbounce_source": source_digest()}
     record_path = folder / "result.json"
-    write_atomic(record_path, to_json(record))
-    return GasReport(table, record, csv, record_path)
+    text = to_json(record)
+    write_atomic(record_path, text)
+    return GasReport(table, json.loads(text), csv, record_path)  # as written (a NaN as None): as it is read back
 
 
 def _lammps_summary(series: dict) -> dict:

@@ -37,8 +37,8 @@ CLAIMS = (
 
 
 def evaluate_claims(run_dir: Path, log=print, gases: Path | None = None) -> list[Claim]:
-    """Run every claim's LAMMPS measurements under ``run_dir`` (its gases under ``gases``, by default
-    ``run_dir``/gases, read back where an earlier run left them finished); return the claims in order."""
+    """Run every claim's LAMMPS measurements under ``run_dir`` (its gases under ``gases``, by default in
+    ``run_dir``: :class:`Runs`, read back where an earlier run left them finished); return the claims in order."""
     runs = Runs(run_dir, gases)
     out = []
     with warnings.catch_warnings():

@@ -43,6 +43,7 @@ APPROXIMATE_DRIFT = 0.05
 
 
 def _gas(runs: Runs, name: str = "gas-magic", g: dict = GAS_CLAIM, kt_over_kn: float = 2.0 / 7.0) -> dict:
+    """A claim gas's record, asked for once by each claim (``name``: what the claims keep it under)."""
     if name not in runs._done:
         from ...model.contact import ContactModel
         from ...scenes.gas.run import shared_gas
@@ -53,11 +54,9 @@ def _gas(runs: Runs, name: str = "gas-magic", g: dict = GAS_CLAIM, kt_over_kn: f
     return runs._done[name]
 
 
-def _folder(runs: Runs, record: dict) -> str:
-    """A claim gas's run folder, from the claims' own (the gases are shared: Runs.gases)."""
-    import os
-
-    return Path(os.path.relpath(Path(record["csv"]).parent, runs.root)).as_posix()
+def _folder(record: dict) -> str:
+    """A claim gas's run, by its content address: its folder's name in the gases' folder (Runs.gases)."""
+    return Path(record["csv"]).parent.name
 
 
 def _late(g: dict, lam: dict) -> str:
@@ -77,7 +76,7 @@ def magic_gas_equipartition(runs: Runs) -> Claim:
     late, theory = record["lammps"]["late_ratio"], record["theories"]["exact_pairs"]["late_ratio"]
     c = Claim("gas-equipartition", "a gas of magic-ratio spheres shares its energy equally between translation and "
               "rotation (rough spheres: T_rot/T_tr -> 1)", "Conclusions (energy-conserving TR transfer)", 1.0, late,
-              theory, runs=[_folder(runs, record)])
+              theory, runs=[_folder(record)])
     c.verdict = verdict(1.0, late, theory, EQUIPARTITION_TOL, EQUIPARTITION_TOL)
     lam, theories = record["lammps"], record["theories"]
     exact = theories["exact_pairs"]
@@ -99,7 +98,7 @@ def magic_gas_energy(runs: Runs) -> Claim:
     # exact references are dt -> 0, which this gas is not; both are in the evidence), with the closure's error
     c = Claim("gas-energy", "molecular dynamics of magic-ratio spheres conserves energy", "Conclusions", 0.0, lam,
               f"{pairs:.6g} (pair-level, at the gas's step, isolated pairs by DSMC; dt -> 0: {exact:.6g})",
-              runs=[_folder(runs, record)])
+              runs=[_folder(record)])
     error = record["accuracy"]["pair_level_drift_standard_error"]  # both routes draw the same collisions
     c.verdict = verdict(0.0, lam, pairs, DRIFT_TOL, DRIFT_TOL + 2.0 * error, approx_tol=APPROXIMATE_DRIFT)
     c.evidence = (f"the gas's kinetic energy changes by {100 * lam:+.3f}% over "
@@ -128,7 +127,7 @@ def soft_gas_steady_ratio(runs: Runs) -> Claim:
     paper, pairs = theories["matrix"]["late_ratio_boltzmann"], theories["pairs"]["late_ratio_boltzmann"]
     c = Claim("gas-steady-ratio", "the paper's matrix gives a gas's steady T_rot/T_tr (kt/kn = 0.1, rough spheres "
               "of its beta)", "Conclusions (TR coupling in fluids of frictional spheres)", paper, lam["late_ratio"],
-              pairs, runs=[_folder(runs, record)])
+              pairs, runs=[_folder(record)])
     c.verdict = verdict(paper, lam["late_ratio"], pairs, STEADY_TOL, STEADY_TOL)
     c.evidence = (f"kt/kn = 0.1, {_late(SOFT_GAS_CLAIM, lam)}. Over the same samples the two-temperature equations "
                   f"give {theories['matrix']['late_ratio']:.4f} with the paper's matrix and "
@@ -150,7 +149,7 @@ def soft_gas_relaxation(runs: Runs) -> Claim:
     paper, pairs = theories["matrix"]["relaxation_collisions_late"], theories["pairs"]["relaxation_collisions_late"]
     c = Claim("gas-relaxation", "the paper's matrix gives how fast a gas's T_rot/T_tr reaches 90% of its late "
               "(near steady) value (kt/kn = 0.1, from T_rot = 0), in collisions per sphere", "Conclusions (TR coupling "
-              "in fluids of frictional spheres)", paper, lam["relaxation_collisions"], pairs, runs=[_folder(runs, record)])
+              "in fluids of frictional spheres)", paper, lam["relaxation_collisions"], pairs, runs=[_folder(record)])
     c.verdict = verdict(paper, lam["relaxation_collisions"], pairs, RELAXATION_TOL * pairs, RELAXATION_TOL * pairs)
     c.evidence = (f"LAMMPS's ratio reaches 90% of its own late value after {lam['relaxation_collisions']:.3g} "
                   f"collisions per sphere; the two-temperature equations reach 90% of theirs (over the same samples) "

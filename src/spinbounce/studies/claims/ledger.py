@@ -59,6 +59,7 @@ class Claim:
     exact: float | str
     verdict: str = ""
     evidence: str = ""
+    #: its runs' folders: under the claims' run folder; a gas's, named by its content, under the gases' (Runs.gases)
     runs: list[str] = field(default_factory=list)
 
 
@@ -95,11 +96,13 @@ def damped_dt(model: ContactModel) -> float:
 
 class Runs:
     """Where the claims' LAMMPS runs go, one folder per run; a run named twice is run once. Gases go to
-    ``gases`` (by default ``root``/gases), by content: one finished there before is read back."""
+    ``gases`` (by default the gases' folder under ``root``), by content: one finished there before is read back."""
 
     def __init__(self, root: Path, gases: Path | None = None):
+        from ...scenes.gas.run import GASES
+
         self.root = Path(root)
-        self.gases = Path(gases) if gases is not None else self.root / "gases"
+        self.gases = Path(gases) if gases is not None else self.root / GASES
         self._done: dict[str, tuple] = {}
 
     def collide(self, name: str, model: ContactModel, vn, vt, omega, dt=None):
