@@ -78,3 +78,14 @@ def test_products_ended_out_of_order_are_told_in_the_catalogue_s(tmp_path):
     told: list[str] = []
     assert set(_told_in_order(chosen, pending, tmp_path, told.append)) == {"a", "b"}
     assert [line for line in told if "line" in line] == ["a's line", "b's line"]
+
+
+def test_a_worker_killed_ends_the_command_in_one_line():
+    """A worker that dies (SIGKILL, the kernel's out-of-memory killer) breaks its pool: the command says so in one
+    line and exits 1, as `kill -9` of a worker mid-reproduce did by hand (rc 1, nothing half-written left)."""
+    from concurrent.futures.process import BrokenProcessPool
+
+    from spinbounce.cli import _failure
+
+    status, line = _failure(BrokenProcessPool("A process in the process pool was terminated abruptly"), "reproduce")
+    assert status == 1 and line.count("\n") == 1 and line.startswith("spinbounce reproduce: error: a worker process")

@@ -71,11 +71,13 @@ def _made(name: str, out: Path, runs: Path, force: bool) -> tuple[list[str], dic
 
 def _side_by_side(chosen: list[Product], out: Path, runs: Path, log, workers: int) -> dict[str, dict]:
     import concurrent.futures
+    import multiprocessing
     import os
 
     from .outputs import forced
     from .workers import context, die_with_parent
 
+    others = set(multiprocessing.active_children())  # this process's children that are not the pool's
     pool = concurrent.futures.ProcessPoolExecutor(workers, mp_context=context(), initializer=die_with_parent,
                                                   initargs=(os.getpid(),))
     try:
@@ -83,7 +85,7 @@ def _side_by_side(chosen: list[Product], out: Path, runs: Path, log, workers: in
                    for p in sorted(chosen, key=lambda p: -p.seconds)}
         records = _told_in_order(chosen, pending, Path(out), log)
     except BaseException:
-        _stop(pool, Path(out))
+        _stop(pool, [child for child in multiprocessing.active_children() if child not in others], Path(out))
         raise
     pool.shutdown()
     return records
@@ -118,11 +120,8 @@ def _told_in_order(chosen: list[Product], pending: dict, out: Path, log) -> dict
                                 return_when=concurrent.futures.FIRST_COMPLETED)
 
 
-def _stop(pool, out: Path) -> None:
-    """Every worker ended now (not when its product ends), and the files it was writing removed."""
-    import multiprocessing
-
-    children = multiprocessing.active_children()
+def _stop(pool, children: list, out: Path) -> None:
+    """Every worker (``children``) ended now, not when its product ends, and the files it was writing removed."""
     for child in children:
         child.terminate()
     for child in children:

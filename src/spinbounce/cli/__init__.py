@@ -71,6 +71,10 @@ def _failure(exc: BaseException, command: str) -> tuple[int, str]:
         return 2, f"{who}: error:{where} {exc.strerror or exc}\n"
     if isinstance(exc, (LammpsError, ResultError, DumpError)):
         return 1, f"{who}: {type(exc).__name__}: {exc}\n"
+    from concurrent.futures.process import BrokenProcessPool
+
+    if isinstance(exc, BrokenProcessPool):  # a worker killed (by a signal, or for memory): what was whole stays
+        return 1, f"{who}: error: a worker process ended abruptly (killed, or out of memory); run it again\n"
     return 2, f"{who}: error: {exc}\n"
 
 
@@ -89,6 +93,8 @@ def main(argv: list[str] | None = None) -> int:
     args = _parse(parser, argv)
     warnings.showwarning = _show_warning
     warnings.simplefilter("always", PhysicsWarning)
+    from concurrent.futures.process import BrokenProcessPool
+
     from ..outputs import replacing  # numpy comes with it: not before --help
 
     try:
@@ -98,7 +104,7 @@ def main(argv: list[str] | None = None) -> int:
         sys.stdout = None
         return 0
     except (KeyboardInterrupt, OSError, SceneError, SweepError, FileFault, NoMatrix, LammpsError, ResultError,
-            DumpError) as exc:
+            DumpError, BrokenProcessPool) as exc:
         if args.debug:
             raise
         parser.exit(*_failure(exc, args.command))
