@@ -50,7 +50,7 @@ from scipy.integrate import solve_ivp
 
 from .wall_law import Law
 
-__all__ = ["Law", "bounce", "bounce_many", "normal_exit", "RTOL"]
+__all__ = ["Law", "bounce", "bounce_many", "exit_slips", "normal_exit", "RTOL"]
 
 RTOL = 1.0e-12
 ATOL = 1.0e-15
@@ -256,3 +256,59 @@ def bounce_many(law: Law, states) -> np.ndarray:
     """(n, 4) (v_n, v_t, r omega, contact time) at the exit of (n, 3) initial states
     (v_n, v_t, r omega), one collision each."""
     return np.array([bounce(law, *s) for s in np.atleast_2d(states)])
+
+
+def exit_slips(law: Law, springs, dashpots, v_n: float = -1.0) -> np.ndarray:
+    """Each uncapped contact's exit slip rate u'(out) for u'(in) = 1 (v_t = 1, r omega = 0), for ``law``
+    with its spring k and tangential dashpot c_t taken from ``springs`` and ``dashpots`` in turn.
+
+    The normal motion is the same for all, and without a cap each slip is linear and has no switches:
+    one integration carries them all side by side (the legs of :func:`_bounce`), at the cost of about
+    one. Each agrees with its own :func:`bounce` to the integrator's tolerance.
+    """
+    if math.isfinite(law.mu):
+        raise ValueError("exit_slips takes uncapped laws (a cap switches each contact on its own)")
+    k, c_t = np.asarray(springs, dtype=float), np.asarray(dashpots, dtype=float)
+    n = k.size
+    y = np.concatenate([[0.0, -v_n, 0.0], np.ones(n), np.zeros(2 * n)])  # overlap, its rate, time; v, w, h
+
+    def rhs(tail: bool):
+        def f(x, y):
+            delta, rate = max(y[0], 0.0), y[1]
+            a = math.sqrt(law.r * delta)
+            damp = a**law.damping_power
+            v, w, h = y[3:3 + n], y[3 + n:3 + 2 * n], y[3 + 2 * n:]
+            spring, slip = k * a**law.spring_power, v + w
+            force_t = (h if law.force_history else -spring * h) - c_t * damp * slip
+            h_rate = -spring * slip if law.force_history else slip
+            if law.rescale and rate < 0.0 and delta > 0.0:
+                h_rate = h_rate + h * rate / (2.0 * delta)
+            force_n = law.K * delta**law.power + law.c_n * damp * rate
+            rates = np.concatenate([[rate, -force_n / law.m, 1.0], force_t / law.m,
+                                    force_t / (law.alpha * law.m), h_rate])
+            return rates * (2.0 * x / rate) if tail else rates
+        return f
+
+    def event(fn):
+        fn.terminal, fn.direction = True, -1
+        return fn
+
+    turn = event(lambda x, y: law.K * max(y[0], 0.0)**law.power
+                 + law.c_n * math.sqrt(law.r * max(y[0], 0.0))**law.damping_power * y[1])
+    limit = [] if law.tensile or law.c_n == 0.0 else [turn]
+    depth = ((law.power + 1.0) * law.m * v_n**2 / (2.0 * law.K)) ** (1.0 / (law.power + 1.0))
+    span = 10.0 * depth / -v_n
+    sol = solve_ivp(rhs(False), (0.0, span), y, method="DOP853", rtol=RTOL, atol=ATOL,
+                    events=[event(lambda x, y: y[1])], first_step=span * 1e-9)
+    y = sol.y_events[0][0]
+    start = TAIL_START * y[0]
+    sol = solve_ivp(rhs(False), (0.0, span), y, method="DOP853", rtol=RTOL, atol=ATOL,
+                    events=[event(lambda x, y: y[0] - start)] + limit)
+    if limit and sol.t_events[1].size:  # the force turned to pull before the tail: it ends here
+        y = sol.y_events[1][0]
+    else:
+        y = sol.y_events[0][0]
+        x = math.sqrt(y[0])
+        sol = solve_ivp(rhs(True), (x, x * TAIL_END), y, method="DOP853", rtol=RTOL, atol=ATOL, events=limit)
+        y = sol.y_events[0][0] if limit and sol.t_events[0].size else sol.y[:, -1]
+    return y[3:3 + n] + y[3 + n:3 + 2 * n]
