@@ -11,14 +11,12 @@ from __future__ import annotations
 
 import contextlib
 import contextvars
-import fcntl
 import hashlib
 import json
-import os
 from collections.abc import Callable
 from pathlib import Path
 
-from .records import write_atomic, write_atomic_with
+from .records import locked, write_atomic, write_atomic_with
 
 __all__ = ["MANIFEST", "replacing", "forced", "check_outputs", "check_replaceable", "write_output", "write_output_with"]
 
@@ -82,13 +80,9 @@ def check_replaceable(path: Path, option: str = "--out") -> None:
 def _record(path: Path) -> None:
     """Add ``path``'s digest to its folder's manifest (under a lock: commands may share a folder)."""
     folder = path.parent
-    lock = os.open(folder, os.O_RDONLY)  # the folder itself: no lock file left beside the outputs
-    try:
-        fcntl.flock(lock, fcntl.LOCK_EX)
+    with locked(folder):  # the folder itself: no lock file left beside the outputs
         files = {**_written(folder), path.name: _digest(path)}
         write_atomic(folder / MANIFEST, json.dumps({"files": dict(sorted(files.items()))}, indent=1) + "\n")
-    finally:
-        os.close(lock)
 
 
 def write_output_with(path: Path, write: Callable[[Path], None], option: str = "--out") -> Path:

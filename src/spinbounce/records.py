@@ -9,7 +9,9 @@ file or the new one, never half of one. Every record says what produced it throu
 
 from __future__ import annotations
 
+import contextlib
 import datetime
+import fcntl
 import functools
 import importlib.metadata as metadata
 import json
@@ -24,7 +26,8 @@ import numpy as np
 from . import __version__
 
 __all__ = ["write_atomic", "write_atomic_with", "write_parquet_atomic", "arrow_table", "to_json", "json_ready",
-           "software", "source_digest", "lammps_version", "TEMP_SUFFIX", "run_folder", "check_run_folder", "RUN_OUTPUTS"]
+           "software", "source_digest", "lammps_version", "TEMP_SUFFIX", "run_folder", "check_run_folder", "RUN_OUTPUTS",
+           "locked"]
 
 #: Every half-written file ends in this (and starts with a dot): a rerun or a reader skips it.
 TEMP_SUFFIX = ".tmp"
@@ -51,6 +54,23 @@ def write_atomic_with(path: Path, write: Callable[[Path], None], durable: bool =
         tmp.unlink(missing_ok=True)
         raise
     return path
+
+
+@contextlib.contextmanager
+def locked(path: Path, shared: bool = False, busy: Exception | None = None):
+    """Hold the OS's lock on ``path`` (a folder, or a file made if missing) for the block: released by the OS
+    however the process ends, kill -9 included. Exclusive, or ``shared`` with other shared holders; waits its
+    turn, or with ``busy`` raises that at once when another holds it."""
+    path = Path(path)
+    handle = os.open(path, os.O_RDONLY if path.is_dir() else os.O_WRONLY | os.O_CREAT, 0o644)
+    try:
+        try:
+            fcntl.flock(handle, (fcntl.LOCK_SH if shared else fcntl.LOCK_EX) | (fcntl.LOCK_NB if busy else 0))
+        except BlockingIOError:
+            raise busy from None
+        yield
+    finally:
+        os.close(handle)
 
 
 def write_atomic(path: Path, data: str | bytes, durable: bool = True) -> Path:

@@ -6,7 +6,6 @@ from __future__ import annotations
 import argparse
 import math
 
-import os
 from pathlib import Path
 
 from ..model.parameters import SceneError
@@ -114,6 +113,7 @@ def _print_models(n: int, seed: int, n_pairs: int) -> dict:
     from ..studies.accuracy import default_step_table
     from ..studies.solver_speed import measure_throughput
     from ..studies.speed import chunk_jobs, core_line, measure_models, parallel_efficiency
+    from ..workers import cores as usable_cores
 
     models = measure_models(n=n, seed=seed)["models"]
     print(f"{'sweep (one core)':<18}{'collisions':>11}{'coll/s':>10}{'time/coll vs frictionless':>27}"
@@ -127,7 +127,7 @@ def _print_models(n: int, seed: int, n_pairs: int) -> dict:
                   "Hookean sweep at its k_t/kn (the same accuracy)")
     solvers = {"2-D": measure_throughput(n=100_000), "3-D": measure_throughput(n=100_000, three_d=True)}
     print("exact Coulomb solver alone: " + ", ".join(f"{k} {v:,.0f} collisions/s" for k, v in solvers.items()))
-    cores = parallel_efficiency(n=n, workers=os.cpu_count() or 1, seed=seed)
+    cores = parallel_efficiency(n=n, workers=usable_cores(), seed=seed)
     print("frictionless sweep, " + core_line(cores))
     jobs = chunk_jobs(n=min(n, 20_000), seed=seed)
     for j in jobs:

@@ -25,12 +25,9 @@ CURVE = np.linspace(0.02, 1.0, 99)
 
 
 def _run(ratio: float, gases: Path, log) -> dict:
-    from ..model.contact import ContactModel
-    from ..scenes.gas.run import shared_gas
+    from ..scenes.gas.run import declared_gas
 
-    g = FIGURE_GAS
-    report = shared_gas(gases, ContactModel(kn=g["kn"], kt=ratio * g["kn"]), spheres=g["spheres"], packing=g["packing"],
-                        collisions=g["collisions"], samples=g["samples"], draws=g["draws"], log=log)
+    report = declared_gas(gases, FIGURE_GAS, ratio, log)
     return {"kt_over_kn": ratio, "series": report.series, "record": report.record}
 
 

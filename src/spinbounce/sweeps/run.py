@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import concurrent.futures
 import contextlib
-import fcntl
 import gc
 import json
 import math
@@ -183,22 +182,15 @@ def write_chunk(path: Path, columns: dict[str, np.ndarray], labels: dict[str, st
     return write_parquet_atomic(path, arrow_table(columns, labels))
 
 
-@contextlib.contextmanager
 def _lock(path: Path, shared: bool = False, what: str = "another sweep is writing into this folder"):
-    """A lock on a file in the output folder, released by the OS even on kill -9.
+    """A lock on a file in the output folder, refused at once when held (:func:`~spinbounce.records.locked`).
 
     A whole sweep holds the folder's lock exclusively; single-chunk jobs (``--chunk``, as
     a workflow engine runs them) share it and each holds its own chunk's lock exclusively.
     """
-    with open(path, "a") as handle:
-        try:
-            fcntl.flock(handle, (fcntl.LOCK_SH if shared else fcntl.LOCK_EX) | fcntl.LOCK_NB)
-        except BlockingIOError:
-            raise SweepError(f"{path.parent}: {what}") from None
-        try:
-            yield
-        finally:
-            fcntl.flock(handle, fcntl.LOCK_UN)
+    from ..records import locked
+
+    return locked(path, shared, busy=SweepError(f"{path.parent}: {what}"))
 
 
 def _claim(out: Path, spec: SweepSpec) -> None:

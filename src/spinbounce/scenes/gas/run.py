@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import json
 import math
-import os
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -16,7 +15,8 @@ from ...exact.kinetic import Averages
 from ...lammps.decks import prepare_run_dir
 from ...lammps.runner import run_deck, run_deck_lmp
 from ...model.contact import ContactModel
-from ...records import check_run_folder, run_folder, software, source_digest, to_json, write_atomic
+from ...records import check_run_folder, locked, run_folder, software, source_digest, to_json, write_atomic
+from ...workers import cores
 from . import collisions as pair_draws
 from . import closure, predict
 from .deck import render_gas
@@ -66,7 +66,7 @@ def run_gas(m: ContactModel, *, spheres: int = DEFAULT["spheres"], packing: floa
     or (``ranks`` > 1) under ``mpiexec -np ranks``, and set its temperatures beside the theories
     (:mod:`spinbounce.scenes.gas.predict`). A run estimated beyond an hour needs ``force``; a named
     ``out`` holding an earlier run is refused unless ``force``; with ``reuse``, one holding this very run,
-    finished by the same software, is read back instead of run again (:func:`_finished`)."""
+    finished by the same software from the same sources (their digest), is read back instead of run again (:func:`_finished`)."""
     if isinstance(ranks, bool) or int(ranks) != ranks or ranks < 1:
         raise SceneError("ranks", ranks, "must be a whole number >= 1")
     values = Gas(m, None, spheres, packing, t_tr, t_rot, collisions, samples, seed, draws)  # checked, not yet run
@@ -79,7 +79,7 @@ def run_gas(m: ContactModel, *, spheres: int = DEFAULT["spheres"], packing: floa
         return done
     check_run_folder(out, force)
     steps = scene.nsteps + scene.settle_steps + scene.burn_steps
-    cost = scene.spheres * steps * GAS_SPHERE_STEP_SECONDS / min(ranks, os.cpu_count() or 1) + theory_seconds(scene)
+    cost = scene.spheres * steps * GAS_SPHERE_STEP_SECONDS / min(ranks, cores()) + theory_seconds(scene)
     if cost > LONGEST_UNFORCED and not force:
         raise SceneError("spheres", scene.spheres, f"with {steps} steps and {scene.draws} draws for the theory: the run "
                          f"is estimated at {cost / 3600:.2g} hours on {ranks} rank(s), more than one: give force "
@@ -98,13 +98,19 @@ def shared_gas(root: str | Path, m: ContactModel, log=None, **settings) -> GasRe
     holds it finished: one run for every product of a ``reproduce`` that shows the same gas (the claims' and the
     gas figure's), and none again when ``reproduce`` runs again. Products made side by side take turns: one
     waits on the folder's lock while another runs it, then reads it back."""
-    import fcntl
-
     folder = Path(root) / run_folder("gas", {"model": m.as_record(), **settings}).name
     folder.parent.mkdir(parents=True, exist_ok=True)
-    with open(folder.parent / f".{folder.name}.lock", "a") as lock:
-        fcntl.flock(lock, fcntl.LOCK_EX)  # released by the OS when this process ends, however it ends
+    with locked(folder.parent / f".{folder.name}.lock"):
         return run_gas(m, out=folder, force=True, reuse=True, log=log, **settings)
+
+
+def declared_gas(root: str | Path, g: dict, kt_over_kn: float, log=None) -> GasReport:
+    """:func:`shared_gas` of a product's declared gas: Hookean spheres of kn ``g["kn"]`` at ``kt_over_kn``, run
+    with ``g``'s spheres, packing, collisions, samples and draws. Products showing the same declared gas (the
+    gas figure's kt/kn = 0.1 case and the claims' soft gas) call this with the same numbers, so they share
+    one run by construction."""
+    settings = {name: g[name] for name in ("spheres", "packing", "collisions", "samples", "draws")}
+    return shared_gas(root, ContactModel(kn=g["kn"], kt=kt_over_kn * g["kn"]), log=log, **settings)
 
 
 def _finished(folder: Path, scene, ranks: int) -> GasReport | None:
