@@ -108,17 +108,19 @@ def test_what_the_classic_form_cannot_express_is_refused(params, parameter):
 def test_a_classic_sweep_to_a_tolerance_is_within_it_row_by_row(tmp_path):
     """Its error has no smooth expansion in dt (the spring kt sqrt(r delta) has an infinite slope
     at contact), so the tolerance is met by measurement against the classic theory: 24 states x
-    kt/kn (0.1, 0.5) x mu (none, 0.3) = 96 rows, each within 1e-6 of it, its estimate that distance."""
+    kt/kn (0.1, 0.5) x mu (none, 0.3) = 96 rows, each within 1e-5 of it, its estimate that distance.
+    1e-5 is ten times below the default accuracy: every group steps 9 to 50 times finer than its default
+    step (measured), which is what the test exercises (1e-6 held too, at five times the cost: 100 s)."""
     from spinbounce.sweeps import read_results, run_sweep, spec_from_dict
 
-    raw = {"seed": 5, "tolerance": 1e-6,
+    raw = {"seed": 5, "tolerance": 1e-5,
            "model": {"wall": "classic", "kt_over_kn": [0.1, 0.5], "mu": ["none", 0.3]},
            "states": {"n": 24, "v_n": [-1.5, -0.1], "v_t": [-2.0, 2.0], "r_omega": [-2.0, 2.0]}}
     run_sweep(spec_from_dict(raw), tmp_path / "out", workers=1, log=lambda *_: None)
     rows = read_results(tmp_path / "out")
     true = np.abs(rows[["v_n_error", "v_t_error", "r_omega_error"]].to_numpy()).max(axis=1)
     assert len(rows) == 96 and set(rows["theory"]) == {"classic_wall"}
-    assert true.max() <= 1e-6 and (true <= rows["v_n_estimate"].to_numpy() * (1 + 1e-12)).all()
+    assert true.max() <= 1e-5 and (true <= rows["v_n_estimate"].to_numpy() * (1 + 1e-12)).all()
 
 
 def test_a_tolerance_below_the_theory_s_own_accuracy_is_refused_before_any_run(tmp_path, capsys):
