@@ -64,9 +64,12 @@ def test_thirty_random_reachable_targets_are_met_in_lammps(tmp_path):
         _meets_in_lammps(_reachable(rng), tmp_path / str(k))
 
 
-@pytest.mark.parametrize("variant", VARIANTS)
-@pytest.mark.parametrize("x_t", [None, 0.4])
-@pytest.mark.parametrize("poisson_ratio", [None, 0.3])
+#: Each variant once, each with another of (x_t, nu) (dashpot or not, the NULL stiffness's scan or k_t's), and
+#: the case furthest from its single bounce (mindlin_rescale with a dashpot, on nu).
+SCANS = [(v, x_t, nu) for v, (x_t, nu) in zip(VARIANTS, [(None, None), (0.4, None), (None, 0.3), (0.4, 0.3)])]
+
+
+@pytest.mark.parametrize("variant, x_t, poisson_ratio", SCANS + [("mindlin_rescale", 0.4, None)])
 def test_the_scan_s_one_integration_is_each_model_s_own_bounce(variant, x_t, poisson_ratio):
     # the scan reads each grid model's beta off one shared normal motion (each model's k_t/kn and x_t
     # on the first's, by the contact's self-similarity); it must be each model's own exact bounce to

@@ -1,18 +1,25 @@
 """The fuzz set: unusual and wrong invocations of ``spinbounce``, each run as a user runs it.
 
-Every case (tests/fuzz_cases.py) runs as a subprocess ``python -m spinbounce.cli ...`` (or
-``python -m spinbounce``) in a
-folder of its own holding the files it needs; two at a time, since the machine may have no more
-cores. A case that does not end within :data:`TIMEOUT` fails: the set is made of refusals that
-come before LAMMPS starts and runs of one tiny collision.
+Every case (tests/fuzz_cases.py) runs ``python -m spinbounce.cli ...`` (or ``python -m spinbounce``) in a
+process of its own, in a folder of its own holding the files it needs; two at a time, since the machine may
+have no more cores. The process is forked from a server that has imported the command line and its libraries
+once (tests/fuzz_server.py: Python's start and those imports were most of each case's half second); the
+``pipe`` cases, whose reader goes away mid-output, run as subprocesses of their own. A case that does not end
+within :data:`TIMEOUT` fails: the set is made of refusals that come before LAMMPS starts and runs of one tiny
+collision.
 """
 
 from __future__ import annotations
 
+import json
 import os
+import queue
+import select
+import shutil
 import signal
 import subprocess
 import sys
+import tempfile
 import time
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
@@ -56,28 +63,80 @@ def _kill(process: subprocess.Popen) -> None:
         pass
 
 
+class _Server:
+    """A fork server (tests/fuzz_server.py): runs one case at a time, each in a fresh process."""
+
+    def __init__(self):
+        self.process = subprocess.Popen([sys.executable, "-m", "fuzz_server"], cwd=Path(__file__).parent,
+                                        env=_environment(), stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+        self.scratch = Path(tempfile.mkdtemp(prefix="fuzz-stdio-"))
+        self.pending = b""
+
+    def _reply(self, seconds: float | None = None) -> dict | None:
+        """The server's next line, read unbuffered (a buffered reader could hold it where select does not
+        look); None if none comes within ``seconds``."""
+        deadline = None if seconds is None else time.monotonic() + seconds
+        while b"\n" not in self.pending:
+            left = None if deadline is None else max(deadline - time.monotonic(), 0.0)
+            if not select.select([self.process.stdout], [], [], left)[0]:
+                return None
+            data = os.read(self.process.stdout.fileno(), 4096)
+            if not data:
+                raise RuntimeError(f"the fuzz server ended (exit {self.process.wait()})")
+            self.pending += data
+        line, self.pending = self.pending.split(b"\n", 1)
+        return json.loads(line)
+
+    def invoke(self, case: Case, folder: Path) -> tuple[int | None, str, str]:
+        out, err = self.scratch / "stdout", self.scratch / "stderr"
+        request = {"module": case.module, "argv": list(case.argv), "cwd": str(folder), "stdout": str(out),
+                   "stderr": str(err)}
+        self.process.stdin.write(json.dumps(request) + "\n")
+        self.process.stdin.flush()
+        pid = self._reply()["pid"]
+        ended = self._reply(TIMEOUT)
+        if ended is None:
+            try:
+                os.killpg(pid, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
+            self._reply()
+            return None, "", f"timed out after {TIMEOUT:.0f} s"
+        return ended["code"], out.read_text(), err.read_text()
+
+    def close(self) -> None:
+        self.process.stdin.close()
+        self.process.wait()
+        shutil.rmtree(self.scratch, ignore_errors=True)
+
+
 def _invoke(case: Case, folder: Path) -> tuple[int | None, str, str]:
+    """A ``pipe`` case, as a subprocess of its own (its reader goes away after one line)."""
     command = [sys.executable, "-m", case.module, *case.argv]
     process = subprocess.Popen(command, cwd=folder, env=_environment(), stdin=subprocess.DEVNULL,
                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
-    try:
-        if case.expect == "pipe":  # the reader takes one line and goes away, as `| head -1` does
-            first = process.stdout.readline()
-            process.stdout.close()
-            return process.wait(timeout=TIMEOUT), first, process.stderr.read()
-        stdout, stderr = process.communicate(timeout=TIMEOUT)
-        return process.returncode, stdout, stderr
+    try:  # the reader takes one line and goes away, as `| head -1` does
+        first = process.stdout.readline()
+        process.stdout.close()
+        return process.wait(timeout=TIMEOUT), first, process.stderr.read()
     except subprocess.TimeoutExpired:
         _kill(process)
         process.wait()
         return None, "", f"timed out after {TIMEOUT:.0f} s"
 
 
-def run_case(case: Case, folder: Path) -> Outcome:
+def run_case(case: Case, folder: Path, servers: queue.Queue) -> Outcome:
     make(folder, case.files)
     before = snapshot(folder)
     started = time.perf_counter()
-    code, stdout, stderr = _invoke(case, folder)
+    if case.expect == "pipe":
+        code, stdout, stderr = _invoke(case, folder)
+    else:
+        server = servers.get()
+        try:
+            code, stdout, stderr = server.invoke(case, folder)
+        finally:
+            servers.put(server)
     return Outcome(code, stdout, stderr, time.perf_counter() - started, before, snapshot(folder))
 
 
@@ -87,8 +146,15 @@ def outcomes(request, tmp_path_factory) -> dict[str, tuple[Outcome, Path]]:
     selected = [item.callspec.params["case"] for item in request.session.items
                 if item.module.__name__ == __name__ and hasattr(item, "callspec")]
     folders = [tmp_path_factory.mktemp(f"fuzz-{case.id}") for case in selected]
-    with ThreadPoolExecutor(max_workers=PARALLEL) as pool:
-        results = list(pool.map(run_case, selected, folders))
+    servers: queue.Queue = queue.Queue()
+    for _ in range(PARALLEL):
+        servers.put(_Server())
+    try:
+        with ThreadPoolExecutor(max_workers=PARALLEL) as pool:
+            results = list(pool.map(lambda case, folder: run_case(case, folder, servers), selected, folders))
+    finally:
+        while not servers.empty():
+            servers.get().close()
     return {case.id: (result, folder) for case, result, folder in zip(selected, results, folders)}
 
 
