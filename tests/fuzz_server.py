@@ -1,8 +1,10 @@
-"""The fuzz set's fork server: one interpreter that has imported the command line and the libraries its
-commands load, forking a process for each invocation that then runs ``python -m MODULE ARGV`` as a new
-interpreter would: in its own folder (first on sys.path, as ``-m`` puts it), its own session (a timeout kills
-the whole group, workers included), stdin from /dev/null, stdout and stderr to files, and the exit status
-Python gives (SystemExit's code; 1 and the traceback for an uncaught exception; atexit handlers run).
+"""The fuzz set's fork server: each invocation in a fresh process forked from one that imported the libraries.
+
+One interpreter imports the command line and the libraries its commands load, then forks a process for each
+invocation, which runs ``python -m MODULE ARGV`` as a new interpreter would: in its own folder (first on
+sys.path, as ``-m`` puts it), its own session (a timeout kills the whole group, workers included), stdin from
+/dev/null, stdout and stderr to files, and the exit status Python gives (SystemExit's code; 1 and the traceback
+for an uncaught exception; atexit handlers run).
 Starting Python and importing numpy, pandas and scipy took most of each of the 273 invocations' half second.
 
 Requests are JSON lines on stdin ({"module", "argv", "cwd", "stdout", "stderr"}); for each the server writes
