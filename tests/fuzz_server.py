@@ -7,8 +7,11 @@ sys.path, as ``-m`` puts it), its own session (a timeout kills the whole group, 
 for an uncaught exception; atexit handlers run).
 Starting Python and importing numpy, pandas and scipy took most of each of the 273 invocations' half second.
 
-Requests are JSON lines on stdin ({"module", "argv", "cwd", "stdout", "stderr"}); for each the server writes
-{"pid": ...} when the process starts and {"code": ...} when it ends (negative: killed by that signal).
+It first writes {"import_output": ...}: whatever those imports printed, which a fresh interpreter would print into
+every case's stderr (the test fails on any). Requests are then JSON lines on stdin ({"module", "argv", "cwd",
+"stdout", "stderr"}); for each the server writes {"pid": ...} when the process starts and {"code": ...,
+"left_running": ...} when it ends (code negative: killed by that signal; left_running: processes of its group
+still ran after it, killed then, which a case must not leave).
 """
 
 from __future__ import annotations
@@ -18,7 +21,10 @@ import importlib
 import json
 import os
 import runpy
+import signal
 import sys
+import tempfile
+import threading
 import traceback
 
 #: What the commands load, imported once here (never LAMMPS: each run loads its own library).
@@ -35,7 +41,9 @@ def _redirect(request: dict) -> None:
 
 
 def _run(module: str) -> int:
-    """``python -m module`` in this process: its exit status as the interpreter would give it."""
+    """``python -m module`` in this process: its exit status as the interpreter would give it (non-daemon threads
+    joined and atexit handlers run before it ends; an uncaught KeyboardInterrupt ends it by SIGINT)."""
+    interrupted = False
     try:
         runpy.run_module(module, run_name="__main__", alter_sys=True)
         code = 0
@@ -43,33 +51,76 @@ def _run(module: str) -> int:
         code = exc.code if isinstance(exc.code, int) else (0 if exc.code is None else 1)
         if not isinstance(exc.code, int) and exc.code is not None:
             print(exc.code, file=sys.stderr)
+    except KeyboardInterrupt:
+        traceback.print_exc()
+        code, interrupted = 1, True
     except BaseException:
         traceback.print_exc()
         code = 1
     try:
+        threading._shutdown()
         atexit._run_exitfuncs()
         sys.stdout.flush()
         sys.stderr.flush()
     except BaseException:
         traceback.print_exc()
-        code = code or 120  # what Python gives when stdout cannot be flushed at exit
+        code = 120  # what Python gives when stdout cannot be flushed at exit
+    if interrupted:
+        signal.signal(signal.SIGINT, signal.SIG_DFL)
+        os.kill(os.getpid(), signal.SIGINT)
     return code
 
 
 def _child(request: dict, channel: int) -> None:
-    os.close(channel)
-    os.setsid()
-    os.chdir(request["cwd"])
-    _redirect(request)
-    sys.path[0] = os.getcwd()
-    sys.argv = [request["module"], *request["argv"]]
-    os._exit(_run(request["module"]))
+    """The case's process: never returns (an error before the case runs ends it with status 70)."""
+    code = 70
+    try:
+        os.close(channel)
+        os.setsid()
+        os.chdir(request["cwd"])
+        _redirect(request)
+        sys.path[0] = os.getcwd()
+        sys.argv = [request["module"], *request["argv"]]
+        code = _run(request["module"])
+    finally:
+        os._exit(code)
+
+
+def _group_left(pid: int) -> bool:
+    """Whether processes of the case's group still run after it ended; if so, they are killed."""
+    try:
+        os.killpg(pid, 0)
+    except ProcessLookupError:
+        return False
+    os.killpg(pid, signal.SIGKILL)
+    return True
+
+
+def _preload() -> str:
+    """Import PRELOADED; what they printed (a fresh ``python -m`` would print it into each case's output)."""
+    with tempfile.TemporaryFile() as said:
+        saved = os.dup(1), os.dup(2)
+        os.dup2(said.fileno(), 1)
+        os.dup2(said.fileno(), 2)
+        try:
+            for name in PRELOADED:
+                importlib.import_module(name)
+        finally:
+            sys.stdout.flush()
+            sys.stderr.flush()
+            os.dup2(saved[0], 1)
+            os.dup2(saved[1], 2)
+        said.seek(0)
+        return said.read().decode(errors="replace")
+
+
+def _send(channel: int, reply: dict) -> None:
+    os.write(channel, (json.dumps(reply) + "\n").encode())
 
 
 def main() -> None:
-    for name in PRELOADED:
-        importlib.import_module(name)
     channel = os.dup(1)
+    _send(channel, {"import_output": _preload()})
     for line in sys.stdin:
         request = json.loads(line)
         sys.stdout.flush()
@@ -77,9 +128,9 @@ def main() -> None:
         pid = os.fork()
         if pid == 0:
             _child(request, channel)
-        os.write(channel, (json.dumps({"pid": pid}) + "\n").encode())
+        _send(channel, {"pid": pid})
         _, status = os.waitpid(pid, 0)
-        os.write(channel, (json.dumps({"code": os.waitstatus_to_exitcode(status)}) + "\n").encode())
+        _send(channel, {"code": os.waitstatus_to_exitcode(status), "left_running": _group_left(pid)})
 
 
 if __name__ == "__main__":

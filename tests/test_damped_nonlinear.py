@@ -9,6 +9,8 @@ at the default step within the default accuracy, converged within 1e-6.
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 from converged import converged
@@ -123,3 +125,21 @@ def test_hertz_mindlin_with_a_restitution_dashpot_has_one_matrix_at_every_speed(
     assert np.ptp([f[1] + f[2] for f in finals]) < 1e-9  # the slip ratio, 1 + Omega
     assert np.ptp([f[0] / v for f, v in zip(finals, speeds)]) < 1e-9  # the restitution
     assert model.matrix()[0, 0] == pytest.approx(-0.7, abs=1e-9)
+
+
+@pytest.mark.parametrize("limit_damping", [False, True])
+@pytest.mark.parametrize("tangential", ["mindlin", "mindlin_rescale/force", "linear_history"])
+def test_many_slips_on_one_normal_motion_are_each_one_s_own_bounce(tangential, limit_damping):
+    # exit_slips (the calibration scan's) carries many springs and dashpots on one normal motion; each must be
+    # its own bounce's exit slip, limit_damping's turn included (with it the force ends before the contact does).
+    # Both are DOP853 at rtol 1e-12; 1e-9 leaves their rounding room (they differ by 8e-12 at most here, and
+    # by up to 3e-10 on the calibration scan: tests/test_calibrate_mindlin.py)
+    model = ContactModel(normal="hertz/material", youngs_modulus=1e4, poisson_ratio=0.3, damping="viscoelastic",
+                         gamma_n_per_mass_radius=60.0, x_t=0.5, tangential=tangential,
+                         limit_damping=limit_damping)
+    law = contact_phases.Law.of(model)
+    springs, dashpots = law.k * np.array([0.05, 0.4, 1.0, 3.0]), law.c_t * np.array([0.0, 0.5, 1.0, 2.0])
+    slips = contact_phases.exit_slips(law, springs, dashpots, v_n=-0.7)
+    for k, c_t, slip in zip(springs, dashpots, slips):
+        _, v_t, r_omega, _ = contact_phases.bounce(dataclasses.replace(law, k=k, c_t=c_t), -0.7, 1.0, 0.0)
+        assert slip == pytest.approx(v_t + r_omega, abs=1e-9)

@@ -71,6 +71,10 @@ class _Server:
                                         env=_environment(), stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
         self.scratch = Path(tempfile.mkdtemp(prefix="fuzz-stdio-"))
         self.pending = b""
+        said = self._reply(TIMEOUT)
+        if said is None or said["import_output"]:
+            self.close()
+            raise RuntimeError(f"the fuzz server's imports printed (or never ended): {said}")
 
     def _reply(self, seconds: float | None = None) -> dict | None:
         """The server's next line, read unbuffered (a buffered reader could hold it where select does not
@@ -88,7 +92,7 @@ class _Server:
         return json.loads(line)
 
     def invoke(self, case: Case, folder: Path) -> tuple[int | None, str, str]:
-        out, err = self.scratch / "stdout", self.scratch / "stderr"
+        out, err = self.scratch / f"{case.id}.out", self.scratch / f"{case.id}.err"
         request = {"module": case.module, "argv": list(case.argv), "cwd": str(folder), "stdout": str(out),
                    "stderr": str(err)}
         self.process.stdin.write(json.dumps(request) + "\n")
@@ -102,10 +106,13 @@ class _Server:
                 pass
             self._reply()
             return None, "", f"timed out after {TIMEOUT:.0f} s"
+        if ended["left_running"]:
+            return None, out.read_text(), err.read_text() + "\nleft processes running after it ended (killed)"
         return ended["code"], out.read_text(), err.read_text()
 
     def close(self) -> None:
         self.process.stdin.close()
+        self.process.stdout.close()
         self.process.wait()
         shutil.rmtree(self.scratch, ignore_errors=True)
 

@@ -58,14 +58,15 @@ def write_atomic_with(path: Path, write: Callable[[Path], None], durable: bool =
 
 @contextlib.contextmanager
 def locked(path: Path, shared: bool = False, busy: Exception | None = None):
-    """Hold the OS's lock on ``path`` (a folder, or a file made if missing) for the block: released by the OS
-    however the process ends, kill -9 included. Exclusive, or ``shared`` with other shared holders; waits its
-    turn, or with ``busy`` raises that at once when another holds it."""
+    """Hold the OS's lock on ``path`` (a folder, or a file, made empty if nothing is there) for the block:
+    released by the OS however the process ends, kill -9 included. Exclusive, or ``shared`` with other shared
+    holders; waits its turn, or with ``busy`` raises that at once when another holds it. The lock needs no
+    write access: a lock file is opened to read, and made readable and writable by whom the umask allows."""
     path = Path(path)
-    handle = os.open(path, os.O_RDONLY if path.is_dir() else os.O_WRONLY | os.O_CREAT, 0o644)
+    handle = os.open(path, os.O_RDONLY if path.is_dir() else os.O_RDONLY | os.O_CREAT, 0o666)
     try:
         try:
-            fcntl.flock(handle, (fcntl.LOCK_SH if shared else fcntl.LOCK_EX) | (fcntl.LOCK_NB if busy else 0))
+            fcntl.flock(handle, (fcntl.LOCK_SH if shared else fcntl.LOCK_EX) | (0 if busy is None else fcntl.LOCK_NB))
         except BlockingIOError:
             raise busy from None
         yield

@@ -298,17 +298,20 @@ def exit_slips(law: Law, springs, dashpots, v_n: float = -1.0) -> np.ndarray:
     limit = [] if law.tensile or law.c_n == 0.0 else [turn]
     depth = ((law.power + 1.0) * law.m * v_n**2 / (2.0 * law.K)) ** (1.0 / (law.power + 1.0))
     span = 10.0 * depth / -v_n
-    sol = solve_ivp(rhs(False), (0.0, span), y, method="DOP853", rtol=RTOL, atol=ATOL,
-                    events=[event(lambda x, y: y[1])], first_step=span * 1e-9)
-    y = sol.y_events[0][0]
+    def leg(x, end, y, events, tail=False, **options):
+        """The state where the leg's first event stops it (None: its end reached, for the tail only)."""
+        sol = solve_ivp(rhs(tail), (x, end), y, method="DOP853", rtol=RTOL, atol=ATOL, events=events, **options)
+        hit = [j for j, times in enumerate(sol.t_events) if times.size]
+        if hit:
+            return sol.y_events[hit[0]][0], hit[0]
+        if not tail or sol.status != 0:
+            raise RuntimeError(f"a contact's {'tail' if tail else 'leg'} did not end: {sol.message}")
+        return sol.y[:, -1], None
+
+    y, _ = leg(0.0, span, y, [event(lambda x, y: y[1])], first_step=span * 1e-9)  # to the deepest point
     start = TAIL_START * y[0]
-    sol = solve_ivp(rhs(False), (0.0, span), y, method="DOP853", rtol=RTOL, atol=ATOL,
-                    events=[event(lambda x, y: y[0] - start)] + limit)
-    if limit and sol.t_events[1].size:  # the force turned to pull before the tail: it ends here
-        y = sol.y_events[1][0]
-    else:
-        y = sol.y_events[0][0]
+    y, which = leg(0.0, span, y, [event(lambda x, y: y[0] - start)] + limit)
+    if which == 0:  # the force has not turned to pull (there the contact ends): the tail
         x = math.sqrt(y[0])
-        sol = solve_ivp(rhs(True), (x, x * TAIL_END), y, method="DOP853", rtol=RTOL, atol=ATOL, events=limit)
-        y = sol.y_events[0][0] if limit and sol.t_events[0].size else sol.y[:, -1]
+        y, _ = leg(x, x * TAIL_END, y, limit, tail=True)
     return y[3:3 + n] + y[3 + n:3 + 2 * n]

@@ -10,14 +10,13 @@ import numpy as np
 
 from ..exact import kinetic
 from ..records import software
+from ..scenes.gas.parameters import SHOWN_GAS
 from .core import STYLE, FigureRecord, new_figure, save
 
 __all__ = ["make_gas", "CASES", "FIGURE_GAS"]
 
-#: The figure's gases: packing, stiffness and size (each run's accuracy is in its record); kt/kn per case. 60
-#: collisions per sphere at the starting rate: a cooling gas (kt/kn = 0.1 loses most of its energy) meets
-#: about 22, its last quarter within about 1% of its steady ratio (it reaches 90% of it after about 10).
-FIGURE_GAS = {"spheres": 5000, "packing": 0.05, "kn": 1e4, "collisions": 60.0, "samples": 80, "draws": 10000}
+#: The figure's gases: packing, stiffness and size (each run's accuracy is in its record); kt/kn per case.
+FIGURE_GAS = SHOWN_GAS
 #: kt/kn of each case: the magic ratio alpha/(1 + alpha) of alpha = 2/5, and a soft and a stiff spring.
 CASES = (2.0 / 7.0, 0.1, 0.6)
 #: kt/kn where the steady-ratio curves are drawn.

@@ -76,6 +76,9 @@ def _betas(models) -> np.ndarray:
     the first model's normal motion (equal to :func:`achieved`'s to 1e-9, tests/test_calibrate_mindlin)."""
     laws = [Law.of(model) for model in models]
     first = laws[0]
+    shared = ("m", "r", "alpha", "power", "spring_power", "force_history", "rescale", "damping_power", "tensile")
+    assert all(getattr(law, name) == getattr(first, name) for law in laws for name in shared), "not one scan's laws"
+    assert all((law.c_n > 0.0) == (first.c_n > 0.0) for law in laws), "not one scan's laws"
     springs = [law.k * first.K / law.K for law in laws]
     dashpots = [law.c_t * first.c_n / law.c_n if law.c_n else law.c_t for law in laws]
     return -exit_slips(first, springs, dashpots)
@@ -106,9 +109,14 @@ def calibrate_mindlin(t: MindlinTargets) -> ContactModel:
         raise Unreachable("beta", t.beta, f"with e = {t.e:g} and {t.tangential} the scan of {name} reaches beta in "
                                           f"[{low:.6g}, {high:.6g}]")
     k = int(crossing[0])
-    if excess[k] == 0.0:
-        return model_of(grid[k])
-    x = brentq(lambda v: achieved(model_of(v))["beta"] - t.beta, grid[k], grid[k + 1], xtol=1e-13, rtol=1e-12)
+
+    def miss(v: float) -> float:
+        return achieved(model_of(v))["beta"] - t.beta
+
+    ends = miss(grid[k]), miss(grid[k + 1])  # each model's own bounce: the scan's agrees with it to ~1e-10
+    if ends[0] * ends[1] >= 0.0:  # a target that close to a grid point's beta: that point
+        return model_of(grid[k] if abs(ends[0]) <= abs(ends[1]) else grid[k + 1])
+    x = brentq(miss, grid[k], grid[k + 1], xtol=1e-13, rtol=1e-12)
     # to the root's own tolerance: the digits beyond it differ from one scipy release to the next
     return model_of(float(f"{x:.12g}"))
 

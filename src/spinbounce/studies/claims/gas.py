@@ -15,7 +15,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ...figures.gas import FIGURE_GAS
+from ...scenes.gas.parameters import SHOWN_GAS
 from .ledger import Claim, Runs, verdict
 
 __all__ = ["magic_gas_equipartition", "magic_gas_energy", "soft_gas_steady_ratio", "soft_gas_relaxation", "GAS_CLAIM",
@@ -27,8 +27,8 @@ GAS_CLAIM = {"spheres": 20000, "packing": 0.05, "kn": 1e4, "collisions": 16.0, "
 #: sphere at the starting rate (it keeps about 6% of its energy and meets about 22: the ratio reaches 90% of its
 #: late value after about 10, and the last quarter is within about 1% of the fixed point, so each theory is
 #: judged over the same late samples as LAMMPS).
-#: It is the gas figure's kt/kn = 0.1 case (its settings, FIGURE_GAS): one run shows in both.
-SOFT_GAS_CLAIM = {**FIGURE_GAS, "kt_over_kn": 0.1}
+#: It is the gas figure's kt/kn = 0.1 case (SHOWN_GAS): one run shows in both.
+SOFT_GAS_CLAIM = {**SHOWN_GAS, "kt_over_kn": 0.1}
 #: Issue 29's lines for kt/kn = 0.1: the steady ratio within 0.015 of the pair-level theory's (the late ratio of
 #: 5,000 spheres is noisy to about 0.004), the relaxation time within 10%.
 STEADY_TOL, RELAXATION_TOL = 0.015, 0.10
