@@ -55,10 +55,10 @@ def _environment() -> dict:
     return env
 
 
-def _kill(process: subprocess.Popen) -> None:
-    """The whole process group: a sweep's workers go with their parent."""
+def _kill(pid: int) -> None:
+    """The whole process group of a case's process ``pid``: a sweep's workers go with their parent."""
     try:
-        os.killpg(process.pid, signal.SIGKILL)
+        os.killpg(pid, signal.SIGKILL)
     except ProcessLookupError:
         pass
 
@@ -100,10 +100,7 @@ class _Server:
         pid = self._reply()["pid"]
         ended = self._reply(TIMEOUT)
         if ended is None:
-            try:
-                os.killpg(pid, signal.SIGKILL)
-            except ProcessLookupError:
-                pass
+            _kill(pid)
             self._reply()
             return None, "", f"timed out after {TIMEOUT:.0f} s"
         if ended["left_running"]:
@@ -127,7 +124,7 @@ def _invoke(case: Case, folder: Path) -> tuple[int | None, str, str]:
         process.stdout.close()
         return process.wait(timeout=TIMEOUT), first, process.stderr.read()
     except subprocess.TimeoutExpired:
-        _kill(process)
+        _kill(process.pid)
         process.wait()
         return None, "", f"timed out after {TIMEOUT:.0f} s"
 

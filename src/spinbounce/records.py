@@ -26,8 +26,8 @@ import numpy as np
 from . import __version__
 
 __all__ = ["write_atomic", "write_atomic_with", "write_parquet_atomic", "arrow_table", "to_json", "json_ready",
-           "software", "source_digest", "lammps_version", "TEMP_SUFFIX", "run_folder", "check_run_folder", "RUN_OUTPUTS",
-           "locked"]
+           "software", "source_digest", "lammps_version", "TEMP_SUFFIX", "run_folder", "check_run_folder",
+           "RUN_OUTPUTS", "locked"]
 
 #: Every half-written file ends in this (and starts with a dot): a rerun or a reader skips it.
 TEMP_SUFFIX = ".tmp"

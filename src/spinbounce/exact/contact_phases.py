@@ -269,22 +269,20 @@ def exit_slips(law: Law, springs, dashpots, v_n: float = -1.0) -> np.ndarray:
     if math.isfinite(law.mu):
         raise ValueError("exit_slips takes uncapped laws (a cap switches each contact on its own)")
     k, c_t = np.asarray(springs, dtype=float), np.asarray(dashpots, dtype=float)
-    n = k.size
+    n, contact = k.size, _Contact(law)  # its normal force and dashpot factor read y[0], y[1] as here
     y = np.concatenate([[0.0, -v_n, 0.0], np.ones(n), np.zeros(2 * n)])  # overlap, its rate, time; v, w, h
 
     def rhs(tail: bool):
         def f(x, y):
             delta, rate = max(y[0], 0.0), y[1]
-            a = math.sqrt(law.r * delta)
-            damp = a**law.damping_power
+            damp = contact.dashpot(y)
             v, w, h = y[3:3 + n], y[3 + n:3 + 2 * n], y[3 + 2 * n:]
-            spring, slip = k * a**law.spring_power, v + w
+            spring, slip = k * math.sqrt(law.r * delta) ** law.spring_power, v + w
             force_t = (h if law.force_history else -spring * h) - c_t * damp * slip
             h_rate = -spring * slip if law.force_history else slip
             if law.rescale and rate < 0.0 and delta > 0.0:
                 h_rate = h_rate + h * rate / (2.0 * delta)
-            force_n = law.K * delta**law.power + law.c_n * damp * rate
-            rates = np.concatenate([[rate, -force_n / law.m, 1.0], force_t / law.m,
+            rates = np.concatenate([[rate, -contact.normal(y) / law.m, 1.0], force_t / law.m,
                                     force_t / (law.alpha * law.m), h_rate])
             return rates * (2.0 * x / rate) if tail else rates
         return f
@@ -293,13 +291,9 @@ def exit_slips(law: Law, springs, dashpots, v_n: float = -1.0) -> np.ndarray:
         fn.terminal, fn.direction = True, -1
         return fn
 
-    turn = event(lambda x, y: law.K * max(y[0], 0.0)**law.power
-                 + law.c_n * math.sqrt(law.r * max(y[0], 0.0))**law.damping_power * y[1])
-    limit = [] if law.tensile or law.c_n == 0.0 else [turn]
-    depth = ((law.power + 1.0) * law.m * v_n**2 / (2.0 * law.K)) ** (1.0 / (law.power + 1.0))
-    span = 10.0 * depth / -v_n
     def leg(x, end, y, events, tail=False, **options):
-        """The state where the leg's first event stops it (None: its end reached, for the tail only)."""
+        """(the state where the leg's first event stops it, that event's index); the tail may instead reach
+        its end (index None)."""
         sol = solve_ivp(rhs(tail), (x, end), y, method="DOP853", rtol=RTOL, atol=ATOL, events=events, **options)
         hit = [j for j, times in enumerate(sol.t_events) if times.size]
         if hit:
@@ -308,6 +302,9 @@ def exit_slips(law: Law, springs, dashpots, v_n: float = -1.0) -> np.ndarray:
             raise RuntimeError(f"a contact's {'tail' if tail else 'leg'} did not end: {sol.message}")
         return sol.y[:, -1], None
 
+    limit = [] if law.tensile or law.c_n == 0.0 else [event(lambda x, y: contact.normal(y))]  # limit_damping's turn
+    depth = ((law.power + 1.0) * law.m * v_n**2 / (2.0 * law.K)) ** (1.0 / (law.power + 1.0))
+    span = 10.0 * depth / -v_n
     y, _ = leg(0.0, span, y, [event(lambda x, y: y[1])], first_step=span * 1e-9)  # to the deepest point
     start = TAIL_START * y[0]
     y, which = leg(0.0, span, y, [event(lambda x, y: y[0] - start)] + limit)

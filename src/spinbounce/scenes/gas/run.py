@@ -66,7 +66,8 @@ def run_gas(m: ContactModel, *, spheres: int = DEFAULT["spheres"], packing: floa
     or (``ranks`` > 1) under ``mpiexec -np ranks``, and set its temperatures beside the theories
     (:mod:`spinbounce.scenes.gas.predict`). A run estimated beyond an hour needs ``force``; a named
     ``out`` holding an earlier run is refused unless ``force``; with ``reuse``, one holding this very run,
-    finished by the same software from the same sources (their digest), is read back instead of run again (:func:`_finished`)."""
+    finished by the same software from the same sources (their digest), is read back instead of run again
+    (:func:`_finished`)."""
     if isinstance(ranks, bool) or int(ranks) != ranks or ranks < 1:
         raise SceneError("ranks", ranks, "must be a whole number >= 1")
     values = Gas(m, None, spheres, packing, t_tr, t_rot, collisions, samples, seed, draws)  # checked, not yet run
