@@ -108,8 +108,9 @@ def _preload() -> str:
         finally:
             sys.stdout.flush()
             sys.stderr.flush()
-            os.dup2(saved[0], 1)
-            os.dup2(saved[1], 2)
+            for fd, copy in zip((1, 2), saved):
+                os.dup2(copy, fd)
+                os.close(copy)  # no case inherits a copy of the server's own channel
         said.seek(0)
         return said.read().decode(errors="replace")
 

@@ -269,19 +269,18 @@ def exit_slips(law: Law, springs, dashpots, v_n: float = -1.0) -> np.ndarray:
     if math.isfinite(law.mu):
         raise ValueError("exit_slips takes uncapped laws (a cap switches each contact on its own)")
     k, c_t = np.asarray(springs, dtype=float), np.asarray(dashpots, dtype=float)
-    n, contact = k.size, _Contact(law)  # its normal force and dashpot factor read y[0], y[1] as here
+    n, contact = k.size, _Contact(law)  # its radius, normal force and dashpot factor read y[0], y[1] as here
     y = np.concatenate([[0.0, -v_n, 0.0], np.ones(n), np.zeros(2 * n)])  # overlap, its rate, time; v, w, h
 
     def rhs(tail: bool):
         def f(x, y):
-            delta, rate = max(y[0], 0.0), y[1]
-            damp = contact.dashpot(y)
+            (a, shrink), rate = contact.radius(y), y[1]
             v, w, h = y[3:3 + n], y[3 + n:3 + 2 * n], y[3 + 2 * n:]
-            spring, slip = k * math.sqrt(law.r * delta) ** law.spring_power, v + w
-            force_t = (h if law.force_history else -spring * h) - c_t * damp * slip
+            spring, slip = k * a**law.spring_power, v + w
+            force_t = (h if law.force_history else -spring * h) - c_t * contact.dashpot(y) * slip
             h_rate = -spring * slip if law.force_history else slip
-            if law.rescale and rate < 0.0 and delta > 0.0:
-                h_rate = h_rate + h * rate / (2.0 * delta)
+            if law.rescale and rate < 0.0:  # a'/a, zero where the overlap is
+                h_rate = h_rate + h * shrink
             rates = np.concatenate([[rate, -contact.normal(y) / law.m, 1.0], force_t / law.m,
                                     force_t / (law.alpha * law.m), h_rate])
             return rates * (2.0 * x / rate) if tail else rates
