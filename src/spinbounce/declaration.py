@@ -117,8 +117,9 @@ class Parameter:
             if value not in self.choices:
                 raise SceneError(name, value, f"must be one of {', '.join(self.choices)}")
             return value
-        if self.optional and (value is None or (isinstance(value, float) and value == self.none_value)):
-            return None
+        if self.optional and (value is None or (isinstance(value, float) and value == self.none_value)
+                              or (isinstance(value, str) and value.strip().lower() == "none")):
+            return None  # the word none too, as a scene file and a command line write it
         if isinstance(value, bool):
             raise SceneError(name, value, "must be a number")
         number = finite_number(name, value)

@@ -75,14 +75,15 @@ def _side_by_side(chosen: list[Product], out: Path, runs: Path, log, workers: in
     import os
 
     from .outputs import forced
-    from .workers import context, die_with_parent
+    from .workers import context, die_with_parent, main_unseen
 
     others = set(multiprocessing.active_children())  # this process's children that are not the pool's
     pool = concurrent.futures.ProcessPoolExecutor(workers, mp_context=context(), initializer=die_with_parent,
                                                   initargs=(os.getpid(),))
     try:
-        pending = {p.name: pool.submit(_made, p.name, Path(out), Path(runs), forced())
-                   for p in sorted(chosen, key=lambda p: -p.seconds)}
+        with main_unseen():  # the workers start as the products are submitted
+            pending = {p.name: pool.submit(_made, p.name, Path(out), Path(runs), forced())
+                       for p in sorted(chosen, key=lambda p: -p.seconds)}
         records = _told_in_order(chosen, pending, Path(out), log)
     except BaseException:
         _stop(pool, [child for child in multiprocessing.active_children() if child not in others], Path(out))

@@ -6,10 +6,11 @@ process may use (:func:`cores`); both start them with :func:`context` and :func:
 
 from __future__ import annotations
 
+import contextlib
 import os
 import sys
 
-__all__ = ["context", "die_with_parent", "cores"]
+__all__ = ["context", "die_with_parent", "cores", "main_unseen", "checked_count"]
 
 
 def context():
@@ -43,3 +44,32 @@ def cores() -> int:
         return len(os.sched_getaffinity(0))
     except AttributeError:
         return os.cpu_count() or 1
+
+
+@contextlib.contextmanager
+def main_unseen():
+    """While a pool of :func:`context`'s workers starts (its creation and its submissions), the caller's script
+    (``__main__``'s file and module name) hidden from spawned workers: spawn imports it again in each worker,
+    which runs a script without an ``if __name__ == "__main__":`` guard again there. The workers run
+    spinbounce's own functions, which need nothing of it. Forked workers copy the script's state instead:
+    nothing is hidden then."""
+    main = sys.modules.get("__main__")
+    if main is None or context().get_start_method() != "spawn":
+        yield
+        return
+    saved = {k: main.__dict__[k] for k in ("__file__", "__spec__") if k in main.__dict__}
+    main.__dict__.pop("__file__", None)
+    main.__dict__["__spec__"] = None
+    try:
+        yield
+    finally:
+        main.__dict__.pop("__spec__", None)
+        main.__dict__.update(saved)
+
+
+def checked_count(workers) -> int:
+    """``workers`` as a count of worker processes: a whole number >= 1 and at most the cores this process may use
+    (more only slow each other); a ValueError naming the value and the limit otherwise."""
+    if isinstance(workers, bool) or not isinstance(workers, int) or not 1 <= workers <= cores():
+        raise ValueError(f"workers = {workers!r}: must be a whole number from 1 to the {cores()} core(s) available")
+    return workers

@@ -42,7 +42,12 @@ def run_sweep(spec, out: str | Path, *, workers: int = 1, force: bool = False, l
     from ..sweeps.cost import sweep_seconds
 
     from ..sweeps.run import spread_over
+    from ..workers import checked_count
 
+    try:
+        workers = checked_count(workers)
+    except ValueError as exc:
+        raise SweepError(str(exc)) from None
     if isinstance(spec, (str, Path)):
         spec = load_spec(spec)
     elif isinstance(spec, dict):
@@ -114,8 +119,11 @@ def fit_groups(results: str | Path | pd.DataFrame, *, plot: str | Path | None = 
     from ..fitting import plot_groups
     from ..fitting_stream import fit_dataset
     from ..sweeps import read_results
+    from ..sweeps.dataset import check_complete
 
     check_new_file(plot, force, "plot")
+    if not isinstance(results, pd.DataFrame):
+        check_complete(results)
     selectable = {p.name for p in parameters.MODEL + parameters.SCENE}
     unknown = sorted(set(selection) - selectable)
     if unknown:

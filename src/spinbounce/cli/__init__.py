@@ -19,7 +19,12 @@ COMMANDS = (theory, collide, frozen, sweep, fit, bench, accuracy, benchmarks, fi
 
 class OneLineParser(argparse.ArgumentParser):
     """An argument parser whose refusals are one line on stderr (exit 2): what is wrong, and where
-    the options are listed, instead of the usage block above the message."""
+    the options are listed, instead of the usage block above the message. An option is taken only as it is spelled
+    (no abbreviation: ``--ma`` would be ``--mass``, and ``--n`` ``--normal``)."""
+
+    def __init__(self, *args, **kwargs):
+        kwargs.setdefault("allow_abbrev", False)
+        super().__init__(*args, **kwargs)
 
     def error(self, message: str):
         self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")

@@ -47,6 +47,7 @@ def _parser(sub, name: str, help_: str, description: str) -> None:
 def run(args) -> int:
     from .. import api
     from ..errors import SceneError
+    from ..records import json_ready
 
     if args.command == "pair" and args.scene != "pair":
         raise SceneError("--scene", args.scene, "pair is collide --scene pair: for the wall, use collide")
@@ -55,8 +56,8 @@ def run(args) -> int:
     report = api.collide(**values_of(args), dt=args.dt, tolerance=args.tolerance, out=args.out, force=True,
                          log=None if args.json else (print if args.tolerance is not None else note))
     record = report.record if isinstance(report, api.ToleranceReport) else report.record()
-    if args.json:
-        return print_json(record)
+    if args.json:  # with the parameters it ran (the state given, the model and scene as they were read)
+        return print_json(record | {"parameters": json_ready(values_of(args))})
     if isinstance(report, api.PairReport):
         print_pair_record(record)
     elif isinstance(report, api.ToleranceReport):

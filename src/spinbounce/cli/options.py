@@ -16,7 +16,7 @@ from pathlib import Path
 
 from ..model import parameters
 from ..model.parameters import Parameter
-from ..workers import cores
+from ..workers import checked_count
 
 #: argparse reads "-1e-3" as an option unless it looks like a negative number to it; its own
 #: pattern misses e-notation. Every parser here takes a word that starts like a negative number
@@ -64,10 +64,10 @@ def positive_count(text: str) -> int:
 
 def worker_count(text: str) -> int:
     """Worker processes: >= 1 and at most the cores this process may use (more only slow each other)."""
-    value = positive_count(text)
-    if value > cores():
-        raise argparse.ArgumentTypeError(f"{text!r}: must be at most the {cores()} core(s) available")
-    return value
+    try:
+        return checked_count(count(text))
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
 
 
 def name_list(what: str, choices):
@@ -256,9 +256,12 @@ def state_cell(value: float) -> str:
 
 
 def print_json(value, **options) -> int:
-    """``value`` as indented JSON on stdout; 0, the command's exit status."""
-    from ..records import json_safe
+    """``value`` as indented JSON on stdout; 0, the command's exit status. A record (a dict) that does not say
+    what produced it gets :func:`~spinbounce.records.software`'s versions (LAMMPS's where this process ran it)."""
+    from ..records import json_safe, software
 
+    if isinstance(value, dict) and "spinbounce_version" not in value:
+        value = {**value, **software(with_lammps="lammps" in sys.modules)}
     print(json.dumps(json_safe(value), indent=2, **options))
     return 0
 

@@ -13,7 +13,8 @@ from pathlib import Path
 from ..model import parameters
 from ..model.timestep import MAX_CORE_HOURS
 from ..errors import SweepError
-from .options import cores, count, number, print_json, sweep_model_flags, worker_count
+from ..workers import cores
+from .options import count, number, print_json, sweep_model_flags, worker_count
 
 HELP = "run many collisions in parallel chunks (resumable) into a Parquet dataset"
 #: State ranges from flags: (dest, flags, default range or None, help); the speed's and angle's

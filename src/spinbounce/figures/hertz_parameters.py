@@ -16,6 +16,8 @@ if TYPE_CHECKING:
 
 __all__ = ["HertzParameters", "V_T", "OMEGA"]
 
+#: The most speeds the grid takes (each is two LAMMPS runs, about a third of a second: 1,000 take minutes).
+MAX_POINTS = 1000
 #: Initial tangential state of every run: v_t = 1, no spin (so u'(0) = 1).
 V_T, OMEGA = 1.0, 0.0
 
@@ -53,6 +55,9 @@ class HertzParameters:
         """Refuse a bad grid before LAMMPS starts (the scenes refuse the rest: tunnelling, dt)."""
         if not isinstance(self.points, int) or self.points < 2:
             raise SceneError("points", self.points, "must be a whole number >= 2")
+        if self.points > MAX_POINTS:
+            raise SceneError("points", self.points, f"must be at most {MAX_POINTS}: each speed is two LAMMPS runs and "
+                             "a row of the figure and its table")
         for name in ("v_min", "v_max", "v_ref"):
             value = getattr(self, name)
             if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):

@@ -228,6 +228,15 @@ class ContactPhysics:
             out["normal"] = self.normal_law.normal_mode(self, speed)
         return out
 
+    def stiffest(self, frozen: bool, speed: float | None = None) -> tuple[str, str]:
+        """The parameter that sets the fastest integrated mode (its spring, or its dashpot where that is the
+        faster), and that mode in words."""
+        modes = self.modes(frozen, speed)
+        mode = max(modes, key=lambda name: math.hypot(*modes[name]))
+        spring, dashpot, words = {"slip": ("kt", "gamma_t", "kt, alpha and gamma_t"),
+                                  "normal": ("kn", "gamma_n", "kn and gamma_n")}[mode]
+        return (dashpot if modes[mode][1] > modes[mode][0] else spring), f"the {mode} mode ({words})"
+
     def fastest_rate(self, frozen: bool, speed: float | None = None, overlap: float | None = None) -> float:
         """Largest rate (1/time) among the integrated modes: frequency or fast decay rate."""
         return max(mode_rate(w, c) for w, c in self.modes(frozen, speed, overlap).values())

@@ -105,8 +105,8 @@ def check_steps(steps: float, parameter: str, value, why: str, spheres: int = 1)
     ``steps`` may be a float (t_end/dt), even infinite: a dt of 5e-324 overflows any count."""
     from .parameters import SceneError
 
-    if steps > MAX_STEPS:
-        cost = "" if math.isinf(steps) else f" (about {duration_text(estimate_seconds(steps, spheres))} on one core)"
+    if not steps <= MAX_STEPS:  # NaN too: a count no float arithmetic could make
+        cost = "" if not math.isfinite(steps) else f" (about {duration_text(estimate_seconds(steps, spheres))} on one core)"
         raise SceneError(parameter, value, f"needs {steps:.3g} steps ({why}), more than the limit of "
                                            f"{MAX_STEPS:.0e} for one run{cost}")
     return int(steps)
@@ -143,7 +143,7 @@ def refine_mid_step(t_end: float, dt: float, factor: int) -> float:
 def steps_to(t_end: float, dt: float) -> float:
     """Whole steps that reach ``t_end`` (an exact multiple is not pushed one step further; inf when
     t_end/dt overflows a float: :func:`check_steps` refuses it)."""
-    ratio = t_end / dt
+    ratio = t_end / dt if dt > 0.0 else math.inf  # a step that underflowed to zero counts no run either
     return math.ceil(ratio - _ROUNDING) if math.isfinite(ratio) else math.inf
 
 

@@ -18,7 +18,7 @@ from scipy.optimize import brentq, minimize_scalar
 from .. import exact
 from ..lammps.decks import fix_line, wall_parameters
 from ..model.contact import ContactModel
-from ..model.parameters import SceneError
+from ..model.parameters import SceneError, by_name
 from .validation.materials import gamma_n_for_restitution_cut
 
 __all__ = ["Targets", "Calibration", "Unreachable", "calibrate", "tangential_range", "fix_line", "pair_lines",
@@ -65,7 +65,17 @@ class Calibration:
 
 
 def _normal(t: Targets) -> tuple[float, float]:
-    """(kn, gamma_n) that give restitution e and overlap time t_c."""
+    """(kn, gamma_n) that give restitution e and overlap time t_c, kn one the model takes (a contact time so short or
+    so long against the mass that kn = m (pi/t_c)^2 leaves a float is refused, naming it)."""
+    kn, gamma_n = _normal_law(t)
+    try:
+        by_name("kn").check(kn)
+    except SceneError as exc:
+        raise Unreachable("contact_time", t.contact_time, f"gives kn = {kn:.3g} for m = {t.m:g}: {exc.limit}") from None
+    return kn, gamma_n
+
+
+def _normal_law(t: Targets) -> tuple[float, float]:
     if not 0.0 < t.e <= 1.0:
         raise Unreachable("e", t.e, "must lie in (0, 1]")
     if not t.contact_time > 0.0:

@@ -16,7 +16,7 @@ from .spec import SweepError
 if TYPE_CHECKING:
     import pandas as pd
 
-__all__ = ["chunk_files", "read_results", "status_counts"]
+__all__ = ["chunk_files", "read_results", "status_counts", "check_complete"]
 
 
 def status_counts(path: Path) -> dict[str, int]:
@@ -70,3 +70,26 @@ def read_results(path: Path) -> pd.DataFrame:
         except (OSError, ValueError) as exc:  # a file whose footer reads and whose rows do not
             raise SweepError(f"{f}: not a readable sweep chunk ({exc})") from None
     return pd.concat(frames, ignore_index=True)
+
+
+def check_complete(path: Path) -> None:
+    """Refuse a sweep's output folder whose record (sweep.json) names chunks it does not hold: a sweep stopped or
+    failed before its end, whose rows a fit would take for the whole sweep (a missing model group among them).
+    A chunks/ folder or file given directly, without its record, is read as it is."""
+    from ..records import read_json
+    from .run import chunk_path
+    from .spec import spec_from_dict
+
+    path = Path(path)
+    record = path / "sweep.json"
+    if not record.is_file():
+        return
+    spec = spec_from_dict(read_json(record, "sweep record")["spec"])
+    chunks = spec.chunks()
+    missing = [c for c in chunks if not chunk_path(path, c[0], c[1]).exists()]
+    if missing:
+        rows = sum(stop - start for _, _, start, stop in missing)
+        total = spec.n * len(spec.groups)
+        raise SweepError(f"{path}: an unfinished sweep: {len(missing)} of its {len(chunks)} chunks ({rows} of {total} "
+                         "collisions) have no file; run the same sweep command again to finish it (it resumes), or "
+                         "read its chunks/ folder as it stands")

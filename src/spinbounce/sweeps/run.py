@@ -275,7 +275,8 @@ def _run_chunks(spec: SweepSpec, out: Path, workers: int | None, log) -> Path:
             with concurrent.futures.ProcessPoolExecutor(max_workers=workers, mp_context=workers_.context(),
                                                         initializer=workers_.die_with_parent,
                                                         initargs=(os.getpid(),)) as pool:
-                futures = [pool.submit(run_chunk, spec.raw, str(out), *c) for c in todo]
+                with workers_.main_unseen():  # the workers start as the chunks are submitted
+                    futures = [pool.submit(run_chunk, spec.raw, str(out), *c) for c in todo]
                 try:
                     for future in concurrent.futures.as_completed(futures):
                         n, *_ = future.result()

@@ -274,6 +274,8 @@ def _groups(model: dict) -> list[dict]:
             except SceneError as exc:
                 raise SweepError(f"model.{exc}") from None
             params["kt"] = params.pop("kt_over_kn") * kn
+        if params in groups:  # a value listed twice (0.0 and -0.0 alike) would be one model run as two groups
+            _fail("model", {k: v for k, v in params.items() if k in axes}, "names one model twice: list each once")
         groups.append(params)
     return groups
 
@@ -382,8 +384,8 @@ def _parse_states(states) -> tuple[str, int, dict]:
         if mode == "random":
             if len(values) != 2:
                 _fail(f"states.{key}", states[key], "must be a range [low, high]")
-            if not values[0] < values[1]:
-                _fail(f"states.{key}", states[key], "is an empty range: low must be below high")
+            if not (values[0] < values[1] and math.isfinite(values[1] - values[0])):
+                _fail(f"states.{key}", states[key], "must be a range of low below high, its width a float")
         axes[key] = _declared_state(key, states[key], values)
     if "speed" in axes:
         if min(axes["speed"]) <= 0.0:

@@ -17,6 +17,7 @@ from ...lammps.runner import run_deck, run_deck_lmp
 from ...model.contact import ContactModel
 from ...records import check_run_folder, locked, run_folder, software, source_digest, to_json, write_atomic
 from ...workers import cores
+from ..pair.kind import equal_pair
 from . import collisions as pair_draws
 from . import closure, predict
 from .deck import render_gas
@@ -37,6 +38,13 @@ GAS_SPHERE_STEP_SECONDS = 6e-8
 #: each an exact reference and a LAMMPS pair (measured about 45 us in all), and half an encounter's three
 #: variants of seven spheres in LAMMPS (about 130 us each); rounded up.
 THEORY_SECONDS_PER_DRAW = 1.2e-4
+#: A law whose exact pair references are not compiled (:attr:`.PairContact.batched` False: Hooke's law with
+#: limit_damping's turn, and every law on the contact radius) solves each collision of the theories on its own:
+#: seconds a pair, uncapped and capped, in a gas's collisions (3-D, hot: measured 62 to 71 ms uncapped and 1.0 to
+#: 3.9 s capped at T_tr = 0.5, E = 1e5, Hertz with linear_history and the Mindlin springs); rounded up.
+ONE_AT_A_TIME_SECONDS = {False: 0.1, True: 4.0}
+#: The collisions (without spin) whose mean exact contact time sets the step.
+CONTACT_SAMPLE = 2000
 #: How close (relative) a theory's late ratio must be to its fixed point for the closure's error, a steady state's,
 #: to be added to it (the claims' kt/kn = 0.1 gas ends 1% short).
 NEAR_STEADY = 0.02
@@ -71,7 +79,11 @@ def run_gas(m: ContactModel, *, spheres: int = DEFAULT["spheres"], packing: floa
     if isinstance(ranks, bool) or int(ranks) != ranks or ranks < 1:
         raise SceneError("ranks", ranks, "must be a whole number >= 1")
     values = Gas(m, None, spheres, packing, t_tr, t_rot, collisions, samples, seed, draws)  # checked, not yet run
-    tc = pair_draws.mean_contact_time(m, values.t_tr, pair_draws.draws(2000, values.seed))
+    _check_cost(values, theory_seconds(values), ranks, force)  # the theory alone: before the contact time's
+    if log is not None and not equal_pair(m)[1].batched:
+        log(f"gas: the step from the mean contact time of {CONTACT_SAMPLE} collisions, each solved on its own (about "
+            f"{CONTACT_SAMPLE * ONE_AT_A_TIME_SECONDS[m.mu is not None]:.0f} s)")
+    tc = pair_draws.mean_contact_time(m, values.t_tr, pair_draws.draws(CONTACT_SAMPLE, values.seed))
     scene = Gas(m, tc, spheres, packing, t_tr, t_rot, collisions, samples, seed, draws, dt)
     folder = Path(out) if out is not None else run_folder("gas", scene.record() | {"ranks": ranks})
     if reuse and (done := _finished(folder, scene, ranks)) is not None:
@@ -81,10 +93,7 @@ def run_gas(m: ContactModel, *, spheres: int = DEFAULT["spheres"], packing: floa
     check_run_folder(out, force)
     steps = scene.nsteps + scene.settle_steps + scene.burn_steps
     cost = scene.spheres * steps * GAS_SPHERE_STEP_SECONDS / min(ranks, cores()) + theory_seconds(scene)
-    if cost > LONGEST_UNFORCED and not force:
-        raise SceneError("spheres", scene.spheres, f"with {steps} steps and {scene.draws} draws for the theory: the run "
-                         f"is estimated at {cost / 3600:.2g} hours on {ranks} rank(s), more than one: give force "
-                         "(--force) to run it")
+    _check_cost(scene, cost, ranks, force, steps)
     if log is not None:
         log(f"gas: {scene.spheres} spheres, {steps} steps of dt = {scene.dt:.4g}, the theory from {scene.draws} draws "
             f"(about {cost:.0f} s in all on {ranks} rank(s))")
@@ -134,8 +143,27 @@ def _finished(folder: Path, scene, ranks: int) -> GasReport | None:
 
 
 def theory_seconds(scene) -> float:
-    """About how long the pair-level theories take: every draw at up to predict.MAX_TEMPERATURES temperatures."""
-    return scene.draws * predict.MAX_TEMPERATURES * THEORY_SECONDS_PER_DRAW
+    """About how long the pair-level theories take: every draw at up to predict.MAX_TEMPERATURES temperatures,
+    and where the law's exact references are solved one pair at a time, each of those draws' three collisions
+    (still, spun, reversed) and the contact time's sample on its own (:data:`ONE_AT_A_TIME_SECONDS`)."""
+    per_pair = 0.0 if equal_pair(scene.model)[1].batched else ONE_AT_A_TIME_SECONDS[scene.model.mu is not None]
+    per_draw = THEORY_SECONDS_PER_DRAW + 3 * per_pair
+    return scene.draws * predict.MAX_TEMPERATURES * per_draw + CONTACT_SAMPLE * per_pair
+
+
+def _check_cost(scene, seconds: float, ranks: int, force: bool, steps: int | None = None) -> None:
+    """Refuse a run estimated at ``seconds`` beyond LONGEST_UNFORCED unless ``force``: LAMMPS's ``steps`` and the
+    theory's draws, or (``steps`` None) the theory alone."""
+    if seconds <= LONGEST_UNFORCED or force:
+        return
+    counted = f"{scene.draws} draws for the theory alone" if steps is None else (
+        f"with {steps} steps and {scene.draws} draws for the theory")
+    if not equal_pair(scene.model)[1].batched:
+        counted += (" (this law's exact pair references are solved one pair at a time: about "
+                    f"{ONE_AT_A_TIME_SECONDS[scene.model.mu is not None]:g} s a pair in a gas's collisions)")
+    name = "spheres" if steps is not None else "draws"
+    raise SceneError(name, getattr(scene, name), f"{counted}: the run is estimated at {seconds / 3600:.2g} hours on "
+                     f"{ranks} rank(s), more than one: give force (--force) to run it")
 
 
 def _judged(scene, folder: Path, info, ranks: int, log) -> GasReport:

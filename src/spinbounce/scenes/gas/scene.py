@@ -20,7 +20,7 @@ from ...exact import kinetic
 from ...lammps.decks import ALPHA_NVE_SPHERE
 from ...model.contact import ContactModel
 from ...model.parameters import SceneError
-from ...model.timestep import check_steps
+from ...model.timestep import MIN_STEPS_PER_HALF_PERIOD, check_steps
 from .parameters import DEFAULT, GAS, MIN_SPHERES
 
 __all__ = ["Gas", "GAS", "STEPS_PER_CONTACT", "MIN_SPHERES", "SETTLE", "BURN", "LATTICE_GAP"]
@@ -28,8 +28,6 @@ __all__ = ["Gas", "GAS", "STEPS_PER_CONTACT", "MIN_SPHERES", "SETTLE", "BURN", "
 #: The default step: the mean contact time over this many (the gas's collisions end mid-step at random
 #: phases: LAMMPS's error per collision is first order in dt/t_c, and the pair-level theory carries it).
 STEPS_PER_CONTACT = 50
-#: The coarsest step a gas takes: velocity-Verlet on a contact of t_c needs many steps a contact.
-FEWEST_STEPS_PER_CONTACT = 10
 #: Collisions per sphere run before the start (the lattice melts; each sphere has met others).
 SETTLE = 2.0
 #: Contact times run between the velocities' draw and the series' start: the contacts open at the draw
@@ -97,16 +95,22 @@ class Gas:
             set_(self, name, float(_GAS[name].check(getattr(self, name))))
         self._check_lattice()
         self._check_overlap()
+        wall, fastest = self._fastest()
+        # the coarsest step that resolves the fastest collisions' fastest mode (as their pair runs ask): the run's
+        # fewest steps refused before the contact time's sample, a given step checked against it
+        rate = wall.fastest_rate(False, fastest)
+        cause, mode = wall.stiffest(False, fastest)
+        check_steps(self.duration * rate * MIN_STEPS_PER_HALF_PERIOD / math.pi, cause, getattr(self.model, cause), f"{mode} is fast in the gas's fastest "
+                    f"collisions, closing at {fastest:.3g}", spheres=self.spheres)
+        if self.dt is not None:
+            wall.check_dt(self.dt, False, fastest)
         if self.contact_time is None:
             return
         tc = self.contact_time
-        dt = tc / STEPS_PER_CONTACT if self.dt is None else self.dt
-        if not (math.isfinite(dt) and dt > 0.0):
-            raise SceneError("dt", self.dt, "must be a positive number")
-        coarsest = tc / FEWEST_STEPS_PER_CONTACT
-        if dt > coarsest:
-            raise SceneError("dt", dt, f"is too large for the stiffness: a contact lasts {tc:.6g}, and a gas takes at "
-                             f"least {FEWEST_STEPS_PER_CONTACT} steps a contact (dt <= {coarsest:.6g})")
+        # by default the mean contact over STEPS_PER_CONTACT, or finer where a mode of the fastest collisions is
+        # faster than the normal one (a stiff tangential spring)
+        dt = min(tc / STEPS_PER_CONTACT, math.pi / rate / MIN_STEPS_PER_HALF_PERIOD) if self.dt is None else self.dt
+        check_steps(self.duration / dt, "dt", dt, "to run the gas", spheres=self.spheres)  # before a count overflows
         set_(self, "dt", float(dt))
         every = self.contact_steps
         steps = math.ceil(self.duration / dt)
@@ -137,18 +141,24 @@ class Gas:
             raise SceneError("packing", self.packing, f"cannot be placed: {self.spheres} spheres on a cubic lattice of "
                              f"{side}^3 sites need packing <= {densest:.4g} (a gap of {LATTICE_GAP} diameters)")
 
+    def _fastest(self) -> tuple[ContactModel, float]:
+        """The wall equivalent to a pair of the gas's spheres, and the closing speed of its fastest collisions:
+        HOTTEST times the scale of |g.n| at T_tr + T_rot (the most T_tr can reach, were rotation to give all its
+        energy back)."""
+        from ..pair.kind import equal_pair
+        from ..pair.pairs import equivalent_wall
+
+        sphere, contact = equal_pair(self.model)
+        return (equivalent_wall(sphere, sphere, contact),
+                HOTTEST * math.sqrt(2.0 * (self.t_tr + self.t_rot) / self.model.m))
+
     def _check_overlap(self) -> None:
         """The gas's fastest collisions (closing at HOTTEST times the scale of |g.n| at T_tr + T_rot) must not press the
         spheres together by more than DEEPEST of a radius: the contact law, and the pair theory's runs,
         hold for small overlaps."""
-        from ..pair.kind import equal_pair
-        from ..pair.pairs import equivalent_wall
-
         m = self.model
-        sphere, contact = equal_pair(m)
-        wall = equivalent_wall(sphere, sphere, contact)
-        hottest = self.t_tr + self.t_rot  # the most T_tr can reach, were rotation to give all its energy back
-        fastest = HOTTEST * math.sqrt(2.0 * hottest / m.m)
+        wall, fastest = self._fastest()
+        hottest = self.t_tr + self.t_rot
         depth = float(wall.max_overlap(fastest))
         if depth >= DEEPEST * m.r:
             factor = (depth / (DEEPEST * m.r)) ** 2  # a Hookean overlap grows as v / sqrt(kn)
