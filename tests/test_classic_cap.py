@@ -169,6 +169,26 @@ def test_a_state_without_a_reference_writes_valid_json(capsys, tmp_path):
     assert report["step"]["predicted_error"] is None
 
 
+def test_a_sawtooth_beyond_reach_once_its_cuts_move_is_refused_by_name():
+    """A contact whose teeth start from zero size is solved again with its cuts moved (check_limit); a solve that
+    then outruns MAX_SWITCHES was a traceback (a review's case: hertz/material, coeff_restitution, mu = 0.21)."""
+    from types import SimpleNamespace
+
+    from spinbounce.exact import oracle_classic
+
+    model = ContactModel(tangential="linear_history_classic", mu=0.2101, normal="hertz", kn=1e4, kt=1e3)
+    state = np.array([-0.8, -1.1, -1.8, 0.0, 0.0, 0.0])
+    first = SimpleNamespace(initial=state, final=np.array([0.8, -0.5, 0.4, 0.0, 0.0, 0.0]))
+
+    def again(cut):
+        if cut == 1.0:
+            return first, True  # teeth from zero size: the cuts are moved next
+        raise RuntimeError("oracle: more than 20000 regime switches (chattering)")
+
+    with pytest.raises(NoMatrix, match=r"^v_n = -0.8: .* more than 20000 teeth \(mu = 0.2101\)"):
+        oracle_classic.bounce(model, state, again)
+
+
 @pytest.mark.slow
 def test_a_sawtooth_beyond_the_oracle_s_reach_is_refused_by_name():
     # mu = 0.001 on a stiff Hertzian spring: more than 20,000 teeth in one contact (a review's case: once a

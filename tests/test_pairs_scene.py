@@ -187,6 +187,17 @@ def test_collide_runs_the_pair_scene(tmp_path, capsys):
 
 
 @pytest.mark.lammps
+def test_a_stiff_pair_s_first_probe_is_a_step_it_accepts(tmp_path):
+    """A stiff Hertzian pair with a dashpot: the probe's first step (100 a contact) resolved its fastest mode with
+    15 steps a half-period, below the 20 every step must have, and the default was refused; it starts from the
+    coarsest accepted step now, and meets the default accuracy."""
+    report = spinbounce.collide(scene="pair", v_n=-0.3351, v_t=-0.2881, omega=1.34, out=tmp_path,
+                                contact="hertz/material 23110.0 18.92 0.2227 damping velocity tangential "
+                                        "linear_history 4258.0 0.8431 1e12")
+    assert report.error <= ACCURACY and report.status == "ok"
+
+
+@pytest.mark.lammps
 def test_a_wall_and_a_pair_collision_run_through_one_pipeline_and_one_record(tmp_path, monkeypatch):
     """The same probe, row checks and record writer serve both scenes: each call is counted."""
     import json

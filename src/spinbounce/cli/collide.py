@@ -74,7 +74,7 @@ def run(args) -> int:
               f"{report.contact_time:.6g}); theory: {report.theory}; {omega_text}")
         _print_states(record, list(report.table.index), label_width=8)
         estimate = f", estimated {report.step['estimate']:.2e}" if "estimate" in report.step else ""
-        print(f"accuracy: |LAMMPS - theory| / |initial state| = {report.error:.2e} "
+        print(f"accuracy: max |LAMMPS - theory| / |initial state| = {report.error:.2e} "
               f"(target {report.step['target']:g}; step: {report.step['method']}{estimate}); status {report.status}")
         for w in report.warnings:
             print(f"warning: {w}")

@@ -132,6 +132,7 @@ def spec_from_flags(args) -> dict:
 
 def run(args) -> int:
     from .. import api
+    from ..records import lammps_version
     from ..sweeps import chunk_table, load_spec, run_one_chunk, spec_from_dict
 
     if args.scene_file is not None:
@@ -157,7 +158,8 @@ def run(args) -> int:
         print(f"chunk {args.chunk}: {path}")
         return 0
     try:
-        report = api.run_sweep(spec, args.out, workers=args.workers or cores(), force=args.force, log=print,
+        report = api.run_sweep(spec, args.out, workers=args.workers or cores(), force=args.force,
+                               log=None if args.json else print,
                                size_name="states.n" if args.scene_file is not None else "--n")
     except KeyboardInterrupt:
         print(f"spinbounce sweep: interrupted; the finished chunks in {args.out} are kept: rerun the same "
@@ -165,6 +167,11 @@ def run(args) -> int:
         raise SystemExit(130) from None
     counts = report.counts
     bad = {name: n for name, n in counts.items() if name != "ok" and n}
+    if args.json:
+        print_json({"dataset": str(report.dataset), "scene": report.scene, "collisions": report.collisions,
+                    "estimated_seconds": report.estimated_seconds, "counts": counts, "scene_hash": spec.digest,
+                    "lammps_version": lammps_version()})
+        return 1 if bad and args.strict else 0
     print(f"dataset: {report.dataset} (pandas.read_parquet of that folder)")
     size = ("the pair's speed, over both spheres (theory: the exact reference; planar_error: the planar theory's "
             "model error)" if report.scene == "pair" else "its state's size")

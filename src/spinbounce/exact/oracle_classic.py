@@ -127,23 +127,29 @@ def after_slide(contact, y, cap: float) -> str:
 def bounce(model, state, again):
     """The oracle's result of ``state`` (v_n, v_t, omega, v_s, omega_s, omega_n) with the classic cap, ``again(cut)``
     solving it with its cuts scaled by ``cut``: refused beyond the contact radius's reach (:func:`check_radius`),
-    where its outcome has no limit (:func:`check_limit`), and where its sawtooth outruns MAX_SWITCHES."""
+    where its outcome has no limit (:func:`check_limit`), and where its sawtooth outruns MAX_SWITCHES (in the solve
+    or in one with its cuts moved)."""
     check_radius(model, state[0])
+    result, zeno = _within_reach(model, state, lambda: again(1.0))
+    if zeno:
+        initial = result.initial
+        v_n, v_t, r_omega = initial[:3]
+        _within_reach(model, state, lambda: check_limit(
+            result.final, lambda cut: again(cut)[0].final, float(np.max(np.abs(initial))),
+            f"state (v_n, v_t, r omega) = ({v_n:.6g}, {v_t:.6g}, {r_omega:.6g})"))
+    return result
+
+
+def _within_reach(model, state, solve):
+    """``solve()``, its sawtooth beyond MAX_SWITCHES teeth refused by name (a small mu) instead of raised."""
     try:
-        contact_result = again(1.0)
+        return solve()
     except RuntimeError as exc:
         if "regime switches" not in str(exc):
             raise
         raise NoMatrix(f"v_n = {float(state[0])!r}: with linear_history_classic's cap the contact saw-tooths "
-                       f"through more than {MAX_SWITCHES} teeth (a small mu: {model.mu!r}), beyond the oracle's reach "
+                       f"through more than {MAX_SWITCHES} teeth (mu = {model.mu!r}), beyond the oracle's reach "
                        f"({exc})") from None
-    result, zeno = contact_result
-    if zeno:
-        initial = result.initial
-        v_n, v_t, r_omega = initial[:3]
-        check_limit(result.final, lambda cut: again(cut)[0].final, float(np.max(np.abs(initial))),
-                    f"state (v_n, v_t, r omega) = ({v_n:.6g}, {v_t:.6g}, {r_omega:.6g})")
-    return result
 
 
 def _radius(model, v_n) -> float:

@@ -192,6 +192,9 @@ class DampingLaw:
     keyword: str = ""
     #: The sub-model a model without a ``damping`` has (the paper's viscous dashpots).
     default_keyword = "velocity"
+    #: The sub-model LAMMPS constructs for a granular line that names none (its granular model's, fix wall/gran's
+    #: and pair granular's "default damping sub model if unspecified"): how ``--contact`` reads such a line.
+    lammps_default_keyword = "viscoelastic"
     #: One line for the ``damping`` parameter's help.
     summary: str = ""
     coefficients: tuple[Parameter, ...] = ()

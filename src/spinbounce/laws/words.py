@@ -4,7 +4,8 @@
 For example ``hertz/material 1e4 0.3 0.3 damping tsuji tangential mindlin NULL 1.0 0.5`` is
 normal = hertz/material with E = 1e4, ETA_N = 0.3 and nu = 0.3, damping = tsuji (ETA_N is its
 restitution e_n), tangential = mindlin with LAMMPS's NULL stiffness, X_T = 1 and mu = 0.5 (mu =
-1e12, what spinbounce writes for none, is read as none). Each
+1e12, what spinbounce writes for none, is read as none). A line that names no damping has LAMMPS's
+default, viscoelastic (ETA_N then scales the dashpot with the contact radius), not the paper's velocity. Each
 sub-model declares its coefficients in LAMMPS's order (``lammps_coefficients``) and the damping
 says what ETA_N and X_T mean to it (``from_lammps``), so the words are read by the registries that
 write decks. The text never reaches LAMMPS: it becomes validated numbers and registered keywords,
@@ -81,8 +82,9 @@ def parse_contact(text: str) -> dict:
             _fail(word, "is not a keyword of a granular contact here (damping, tangential, limit_damping)")
     if tangential is None:
         _fail(text, "needs a tangential sub-model (LAMMPS refuses a granular model without one)")
-    damping = damping or DAMPING[DampingLaw.default_keyword]
     eta_n, x_t, mu = found.pop("eta_n"), found.pop("x_t"), found.pop("mu")
+    if damping is None:  # LAMMPS's default, as it reads the line; with ETA_N = 0 it damps nothing: the paper's
+        damping = DAMPING[DampingLaw.lammps_default_keyword if eta_n > 0.0 else DampingLaw.default_keyword]
     for name, value in (("ETA_N", eta_n), ("X_T", x_t)):
         if value < 0.0:
             _fail(value, f"{name} must be >= 0 (negative damping would create energy)")

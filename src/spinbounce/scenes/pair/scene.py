@@ -30,7 +30,7 @@ from ...errors import PhysicsWarning
 from ...model.contact import ContactModel
 from ...model.parameters import SceneError
 from ...model.stability import overlap_stretch
-from ...model.timestep import MAX_STEPS, check_steps, steps_per_contact, steps_through
+from ...model.timestep import MAX_STEPS, MIN_STEPS_PER_HALF_PERIOD, check_steps, steps_per_contact, steps_through
 from ..jump import beyond_reach, near_the_jump, slow_start, warn_slow_start
 from .contact import PairContact
 from .columns import pair_columns
@@ -119,9 +119,10 @@ class PairBatch:
             # radius, or the smaller centre would enter the larger sphere
             reach = float(model.max_overlap(self.impact_speeds[k]))
             reach *= overlap_stretch(model.normal_law.normal_mode(model, self.impact_speeds[k])[0], dt)
-            if reach >= model.r:
+            smaller = min(pairs[k].a.r, pairs[k].b.r)  # not the equivalent wall's r (R_eff on the contact radius)
+            if reach >= smaller:
                 raise SceneError(f"pairs[{k}].v_n", pairs[k].v_n, "|v_n| is too large: the overlap would reach "
-                                 f"{reach:.6g} >= the smaller radius {model.r:g}")
+                                 f"{reach:.6g} >= the smaller radius {smaller:g}")
         object.__setattr__(self, "dt", dt)
         if self.default_step:
             warn_slow_start(self.walls[0], self.slow_start())
@@ -308,7 +309,11 @@ class PairBatch:
         return float(np.median(sample.contact_times))
 
     def first_probe_steps(self, t_contact: float) -> int:
-        return START_STEPS
+        """START_STEPS a contact, or as many as the coarsest step every pair accepts needs (MIN_STEPS_PER_HALF_PERIOD
+        of its fastest mode: a stiff Hertzian pair refused the first probe's step, and so the default)."""
+        coarsest = min(math.pi / model.fastest_rate(frozen=False, speed=self.impact_speeds[k]) / MIN_STEPS_PER_HALF_PERIOD
+                       for model, k in self._fastest())
+        return max(START_STEPS, steps_per_contact(t_contact, coarsest))
 
     def step_limit(self, t_contact: float) -> int:
         """``rule_reach`` times the fine rule's steps per contact: a probe that needs as many keeps the fine rule;
