@@ -7,6 +7,7 @@ process may use (:func:`cores`); both start them with :func:`context` and :func:
 from __future__ import annotations
 
 import contextlib
+import operator
 import os
 import sys
 
@@ -70,6 +71,10 @@ def main_unseen():
 def checked_count(workers) -> int:
     """``workers`` as a count of worker processes: a whole number >= 1 and at most the cores this process may use
     (more only slow each other); a ValueError naming the value and the limit otherwise."""
-    if isinstance(workers, bool) or not isinstance(workers, int) or not 1 <= workers <= cores():
+    try:
+        count = operator.index(workers)  # an int of any kind (numpy's too), not a float
+    except TypeError:
+        count = None
+    if isinstance(workers, bool) or count is None or not 1 <= count <= cores():
         raise ValueError(f"workers = {workers!r}: must be a whole number from 1 to the {cores()} core(s) available")
-    return workers
+    return count

@@ -106,7 +106,7 @@ def check_steps(steps: float, parameter: str, value, why: str, spheres: int = 1)
     from .parameters import SceneError
 
     if not steps <= MAX_STEPS:  # NaN too: a count no float arithmetic could make
-        cost = "" if not math.isfinite(steps) else f" (about {duration_text(estimate_seconds(steps, spheres))} on one core)"
+        cost = f" (about {duration_text(estimate_seconds(steps, spheres))} on one core)" if math.isfinite(steps) else ""
         raise SceneError(parameter, value, f"needs {steps:.3g} steps ({why}), more than the limit of "
                                            f"{MAX_STEPS:.0e} for one run{cost}")
     return int(steps)

@@ -100,7 +100,8 @@ class Gas:
         # fewest steps refused before the contact time's sample, a given step checked against it
         rate = wall.fastest_rate(False, fastest)
         cause, mode = wall.stiffest(False, fastest)
-        check_steps(self.duration * rate * MIN_STEPS_PER_HALF_PERIOD / math.pi, cause, getattr(self.model, cause), f"{mode} is fast in the gas's fastest "
+        fewest = self.duration * rate * MIN_STEPS_PER_HALF_PERIOD / math.pi
+        check_steps(fewest, cause, getattr(self.model, cause), f"{mode} is fast in the gas's fastest "
                     f"collisions, closing at {fastest:.3g}", spheres=self.spheres)
         if self.dt is not None:
             wall.check_dt(self.dt, False, fastest)

@@ -311,7 +311,7 @@ class PairBatch:
     def first_probe_steps(self, t_contact: float) -> int:
         """START_STEPS a contact, or as many as the coarsest step every pair accepts needs (MIN_STEPS_PER_HALF_PERIOD
         of its fastest mode: a stiff Hertzian pair refused the first probe's step, and so the default)."""
-        coarsest = min(math.pi / model.fastest_rate(frozen=False, speed=self.impact_speeds[k]) / MIN_STEPS_PER_HALF_PERIOD
+        coarsest = min(math.pi / model.fastest_rate(False, self.impact_speeds[k]) / MIN_STEPS_PER_HALF_PERIOD
                        for model, k in self._fastest())
         return max(START_STEPS, steps_per_contact(t_contact, coarsest))
 
