@@ -130,10 +130,12 @@ def test_a_script_without_a_main_guard_runs_once_beside_its_workers(tmp_path):
      "contact_time = 1e-300: gives kn = inf"),
     (["calibrate", "--no-run", "--e", "0.9", "--contact-time", "1e300", "--beta", "0.3"],
      "contact_time = 1e+300: gives kn = 0"),
-    (["frozen", "--z", "0.1", "--vt", "1", "--omega", "0", "--t-end", "1e308"], "t_end = 1e+308: needs inf steps")])
+    (["frozen", "--z", "0.1", "--vt", "1", "--omega", "0", "--t-end", "1e308"], "t_end = 1e+308: needs inf steps"),
+    (["calibrate", "--no-run", "--e", "0.5", "--tangential", "mindlin", "--youngs-modulus", "1e200", "--beta", "0.3"],
+     "the deepest overlap at |v_n| = 1")])
 def test_a_time_beyond_a_float_is_refused_naming_it(argv, said, capsys):
-    """A contact time that puts kn = m (pi/t_c)^2 beyond a float, and a run whose default step underflows to zero
-    (once a division by zero each)."""
+    """A contact time that puts kn = m (pi/t_c)^2 beyond a float, a run whose default step underflows to zero, and
+    a Hertz-Mindlin scan whose contact no float resolves (once a division by zero, or scipy's error, each)."""
     with pytest.raises(SystemExit) as stopped:
         main(argv)
     assert stopped.value.code == 2 and said in capsys.readouterr().err

@@ -87,7 +87,9 @@ def _betas(models) -> np.ndarray:
 def beta_range(t: MindlinTargets) -> tuple[float, float, str, np.ndarray, np.ndarray]:
     """(lowest, highest) beta on the scan, the parameter solved for, its grid and beta on it."""
     name, model_of, grid = _axis(t)
-    betas = _betas([model_of(x) for x in grid])
+    models = [model_of(x) for x in grid]
+    models[0].check_overlap_resolved(-1.0)  # the scaled contact, at a unit speed: E = 1e308 once a traceback
+    betas = _betas(models)
     return float(betas.min()), float(betas.max()), name, grid, betas
 
 
