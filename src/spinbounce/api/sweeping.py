@@ -27,6 +27,7 @@ class SweepReport:
     scene: str
     collisions: int
     estimated_seconds: float
+    scene_hash: str = ""  # the digest of the sweep as it ran (its chunks included), as its sweep.json records
 
 
 def run_sweep(spec, out: str | Path, *, workers: int = 1, force: bool = False, log=None,
@@ -64,7 +65,7 @@ def run_sweep(spec, out: str | Path, *, workers: int = 1, force: bool = False, l
         log(f"sweep {spec.digest}: {collisions} collisions in {len(spec.chunks())} chunks, {len(spec.groups)} model "
             f"group(s), {workers} worker(s); estimated {duration_text(seconds)} on one core")
     dataset = run_chunks(spec, Path(out), workers=workers, log=log or (lambda *_: None))
-    return SweepReport(Path(dataset), status_counts(dataset), spec.scene, collisions, seconds)
+    return SweepReport(Path(dataset), status_counts(dataset), spec.scene, collisions, seconds, spec.digest)
 
 
 #: A sweep's default ranges of the states, (low, high): taken for what is not given.

@@ -28,7 +28,9 @@ def register(sub) -> None:
         "(LAMMPS's own isolated pairs at the gas's step, and the exact references). Writes gas.csv and result.json."))
     p.add_argument("--kt-over-kn", dest="kt_over_kn", type=number, default=None, metavar="RATIO",
                    help="instead of --kt: the stiffness ratio kt/kn (2/7 = 0.2857...: the magic ratio of alpha = 2/5)")
-    p.add_argument("--dt", type=number, default=None, help="timestep (default: the mean contact time over 50)")
+    p.add_argument("--dt", type=number, default=None,
+                   help="timestep (default: the mean contact time over 50, finer where a mode of the fastest "
+                   "collisions needs it; at most 20 steps a half-period of the fastest mode)")
     p.add_argument("--ranks", type=_ranks, default=1,
                    help="MPI ranks: 1 runs LAMMPS in this process; K > 1 runs it under mpiexec -np K (default 1)")
     run_folder_flags(p, "run folder: the deck, data file, log, gas.csv and result.json (default: "

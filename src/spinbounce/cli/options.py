@@ -256,13 +256,14 @@ def state_cell(value: float) -> str:
 
 
 def print_json(value, **options) -> int:
-    """``value`` as indented JSON on stdout; 0, the command's exit status. A record (a dict) that does not say
-    what produced it gets :func:`~spinbounce.records.software`'s versions (LAMMPS's where this process ran it)."""
-    from ..records import json_safe, software
+    """``value`` as indented JSON on stdout, every NaN and infinity as null (JSON has neither: a reader's parser
+    refuses them); 0, the command's exit status. A record (a dict) that does not say what produced it gets
+    :func:`~spinbounce.records.software`'s versions (LAMMPS's where this process ran it)."""
+    from ..records import json_ready, software
 
     if isinstance(value, dict) and "spinbounce_version" not in value:
         value = {**value, **software(with_lammps="lammps" in sys.modules)}
-    print(json.dumps(json_safe(value), indent=2, **options))
+    print(json.dumps(json_ready(value), indent=2, allow_nan=False, **options))
     return 0
 
 

@@ -169,7 +169,7 @@ def run(args) -> int:
     bad = {name: n for name, n in counts.items() if name != "ok" and n}
     if args.json:
         print_json({"dataset": str(report.dataset), "scene": report.scene, "collisions": report.collisions,
-                    "estimated_seconds": report.estimated_seconds, "counts": counts, "scene_hash": spec.digest,
+                    "estimated_seconds": report.estimated_seconds, "counts": counts, "scene_hash": report.scene_hash,
                     "lammps_version": lammps_version()})
         return 1 if bad and args.strict else 0
     print(f"dataset: {report.dataset} (pandas.read_parquet of that folder)")

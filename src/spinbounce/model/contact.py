@@ -229,13 +229,30 @@ class ContactPhysics:
         return out
 
     def stiffest(self, frozen: bool, speed: float | None = None) -> tuple[str, str]:
-        """The parameter that sets the fastest integrated mode (its spring, or its dashpot where that is the
-        faster), and that mode in words."""
+        """The coefficient a user gives that sets the fastest integrated mode (its spring's, or its dashpot's where
+        that decays faster than the spring turns: each law's declared coefficients), and that mode in words."""
         modes = self.modes(frozen, speed)
-        mode = max(modes, key=lambda name: math.hypot(*modes[name]))
-        spring, dashpot, words = {"slip": ("kt", "gamma_t", "kt, alpha and gamma_t"),
-                                  "normal": ("kn", "gamma_n", "kn and gamma_n")}[mode]
-        return (dashpot if modes[mode][1] > modes[mode][0] else spring), f"the {mode} mode ({words})"
+        mode = max(modes, key=lambda name: mode_rate(*modes[name]))
+        w, c = modes[mode]
+        if c / 2.0 >= w:
+            name = self.damping_law.coefficients[1 if mode == "slip" else 0].name
+        else:
+            spring = (self.tangential_law if mode == "slip" else self.normal_law).coefficients
+            name = spring[0].name if spring else ("kt" if mode == "slip" else "kn")
+        if getattr(self, name) is None:  # a Mindlin spring's NULL stiffness: E's (and nu's)
+            name = "youngs_modulus"
+        parts = "its spring, dashpot and alpha" if mode == "slip" else "its spring and dashpot"
+        return name, f"the {mode} mode ({parts})"
+
+    def coarsest_dt(self, frozen: bool, speed: float | None = None, overlap: float | None = None) -> float:
+        """The largest step every run must take at most (:meth:`check_dt`): MIN_STEPS_PER_HALF_PERIOD steps a
+        half-period of the fastest mode (inf if nothing moves, 0 for rates beyond a float)."""
+        rate = self.fastest_rate(frozen, speed, overlap)
+        return math.pi / rate / MIN_STEPS_PER_HALF_PERIOD if rate > 0.0 else math.inf
+
+    def fewest_steps(self, span: float, frozen: bool, speed: float | None = None) -> float:
+        """The fewest steps any accepted step takes over ``span`` (a float: inf for rates beyond one)."""
+        return span * self.fastest_rate(frozen, speed) * MIN_STEPS_PER_HALF_PERIOD / math.pi
 
     def fastest_rate(self, frozen: bool, speed: float | None = None, overlap: float | None = None) -> float:
         """Largest rate (1/time) among the integrated modes: frequency or fast decay rate."""
@@ -270,7 +287,7 @@ class ContactPhysics:
                 "dt",
                 dt,
                 f"resolves the fastest contact mode with only {steps:.3g} steps per half-period: must be at most "
-                f"{math.pi / self.fastest_rate(frozen, speed, overlap) / MIN_STEPS_PER_HALF_PERIOD:.6g} "
+                f"{self.coarsest_dt(frozen, speed, overlap):.6g} "
                 f"({MIN_STEPS_PER_HALF_PERIOD} steps; fewer "
                 "give a caricature of the contact, whatever the target)",
             )

@@ -115,7 +115,7 @@ def _model_values(key: str, value) -> list:
     declared = parameters.by_name("kt" if key == "kt_over_kn" else key)
     out = []
     for v in values:
-        if declared.optional and isinstance(v, str) and v.lower() == NONE:
+        if declared.optional and isinstance(v, str) and v.strip().lower() == NONE:
             out.append(None)
             continue
         if declared.kind == "number" and (isinstance(v, bool) or not isinstance(v, (int, float))):
@@ -275,7 +275,7 @@ def _groups(model: dict) -> list[dict]:
                 raise SweepError(f"model.{exc}") from None
             params["kt"] = params.pop("kt_over_kn") * kn
         if params in groups:  # a value listed twice (0.0 and -0.0 alike) would be one model run as two groups
-            _fail("model", {k: v for k, v in params.items() if k in axes}, "names one model twice: list each once")
+            _fail("model", {**read, **{k: params[k] for k in axes}}, f"is group {groups.index(params)}'s model again")
         groups.append(params)
     return groups
 

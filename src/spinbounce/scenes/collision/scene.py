@@ -27,8 +27,8 @@ from ...model import parameters
 from ...model.contact import ContactModel
 from ...model.parameters import SceneError, positive_number
 from ...model.stability import overlap_stretch
-from ...model.timestep import (MAX_STEPS, MIN_STEPS_PER_HALF_PERIOD, align_mid_step, check_steps, mode_rate,
-                               second_order_dt, steps_per_contact, steps_through)
+from ...model.timestep import (MAX_STEPS, align_mid_step, check_steps, mode_rate, second_order_dt, steps_per_contact,
+                               steps_through)
 from ...lammps.decks import wall_parameters
 from ..jump import beyond_reach, near_the_jump, slow_start, warn_slow_start
 from .time_scale import dashpot, scaled_contact_time
@@ -151,8 +151,8 @@ class Collision:
         # sphere's contact at MIN_STEPS_PER_HALF_PERIOD of its fastest mode), before a step of rates beyond a float
         cause, mode = m.stiffest(False, speed)
         why = f"{mode} is fast against the contact time {float(np.max(m.contact_times(self.v_n))):.3g}"
-        fewest = float(np.min(m.contact_times(self.v_n))) * m.fastest_rate(False, speed) / math.pi
-        check_steps(fewest * MIN_STEPS_PER_HALF_PERIOD, cause, getattr(m, cause), why, spheres=self.n)
+        check_steps(m.fewest_steps(float(np.min(m.contact_times(self.v_n))), False, speed), cause, getattr(m, cause),
+                    why, spheres=self.n)
         set_(self, "dt", self._checked_dt(self.default_dt() if self.dt is None else self.dt))
         check_steps(self.nsteps, "dt", self.dt, f"dt = {self.dt:.3g}: {why}", spheres=self.n)
         # the step's stretch of the deepest overlap, each end sphere at its own step dt/s

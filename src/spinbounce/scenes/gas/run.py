@@ -78,11 +78,11 @@ def run_gas(m: ContactModel, *, spheres: int = DEFAULT["spheres"], packing: floa
     (:func:`_finished`)."""
     if isinstance(ranks, bool) or int(ranks) != ranks or ranks < 1:
         raise SceneError("ranks", ranks, "must be a whole number >= 1")
-    values = Gas(m, None, spheres, packing, t_tr, t_rot, collisions, samples, seed, draws)  # checked, not yet run
+    values = Gas(m, None, spheres, packing, t_tr, t_rot, collisions, samples, seed, draws, dt)  # checked, not run
     _check_cost(values, theory_seconds(values), ranks, force)  # the theory alone: before the contact time's
     if log is not None and not equal_pair(m)[1].batched:
         log(f"gas: the step from the mean contact time of {CONTACT_SAMPLE} collisions, each solved on its own (about "
-            f"{CONTACT_SAMPLE * ONE_AT_A_TIME_SECONDS[m.mu is not None]:.0f} s)")
+            f"{CONTACT_SAMPLE * ONE_AT_A_TIME_SECONDS[bool(m.mu)]:.0f} s)")
     tc = pair_draws.mean_contact_time(m, values.t_tr, pair_draws.draws(CONTACT_SAMPLE, values.seed))
     scene = Gas(m, tc, spheres, packing, t_tr, t_rot, collisions, samples, seed, draws, dt)
     folder = Path(out) if out is not None else run_folder("gas", scene.record() | {"ranks": ranks})
@@ -146,7 +146,7 @@ def theory_seconds(scene) -> float:
     """About how long the pair-level theories take: every draw at up to predict.MAX_TEMPERATURES temperatures,
     and where the law's exact references are solved one pair at a time, each of those draws' three collisions
     (still, spun, reversed) and the contact time's sample on its own (:data:`ONE_AT_A_TIME_SECONDS`)."""
-    per_pair = 0.0 if equal_pair(scene.model)[1].batched else ONE_AT_A_TIME_SECONDS[scene.model.mu is not None]
+    per_pair = 0.0 if equal_pair(scene.model)[1].batched else ONE_AT_A_TIME_SECONDS[bool(scene.model.mu)]
     per_draw = THEORY_SECONDS_PER_DRAW + 3 * per_pair
     return scene.draws * predict.MAX_TEMPERATURES * per_draw + CONTACT_SAMPLE * per_pair
 
@@ -160,7 +160,7 @@ def _check_cost(scene, seconds: float, ranks: int, force: bool, steps: int | Non
         f"with {steps} steps and {scene.draws} draws for the theory")
     if not equal_pair(scene.model)[1].batched:
         counted += (" (this law's exact pair references are solved one pair at a time: about "
-                    f"{ONE_AT_A_TIME_SECONDS[scene.model.mu is not None]:g} s a pair in a gas's collisions)")
+                    f"{ONE_AT_A_TIME_SECONDS[bool(scene.model.mu)]:g} s a pair in a gas's collisions)")
     name = "spheres" if steps is not None else "draws"
     raise SceneError(name, getattr(scene, name), f"{counted}: the run is estimated at {seconds / 3600:.2g} hours on "
                      f"{ranks} rank(s), more than one: give force (--force) to run it")

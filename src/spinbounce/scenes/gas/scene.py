@@ -20,7 +20,7 @@ from ...exact import kinetic
 from ...lammps.decks import ALPHA_NVE_SPHERE
 from ...model.contact import ContactModel
 from ...model.parameters import SceneError
-from ...model.timestep import MIN_STEPS_PER_HALF_PERIOD, check_steps
+from ...model.timestep import check_steps
 from .parameters import DEFAULT, GAS, MIN_SPHERES
 
 __all__ = ["Gas", "GAS", "STEPS_PER_CONTACT", "MIN_SPHERES", "SETTLE", "BURN", "LATTICE_GAP"]
@@ -60,8 +60,9 @@ class Gas:
     """A gas of ``spheres`` equal spheres (the model's m, r and alpha = 2/5) at ``packing``, from
     T_tr(0) = ``t_tr`` and T_rot(0) = ``t_rot`` for ``collisions`` collisions per sphere (at the
     starting Enskog rate). ``dt``: default the mean contact time (``contact_time``, the pair
-    reference's at the start's temperature) over STEPS_PER_CONTACT. ``contact_time`` None: the gas's
-    values checked, and no step chosen (what a run asks before it measures the contact time)."""
+    reference's at the start's temperature) over STEPS_PER_CONTACT, or the coarsest step its fastest
+    collisions' fastest mode accepts where that is finer. ``contact_time`` None: the gas's values (a given
+    dt too) checked, and no step chosen (what a run asks before it measures the contact time)."""
 
     model: ContactModel
     contact_time: float | None
@@ -96,21 +97,23 @@ class Gas:
         self._check_lattice()
         self._check_overlap()
         wall, fastest = self._fastest()
-        # the coarsest step that resolves the fastest collisions' fastest mode (as their pair runs ask): the run's
-        # fewest steps refused before the contact time's sample, a given step checked against it
-        rate = wall.fastest_rate(False, fastest)
+        # the run's fewest steps (its fastest collisions' fastest mode at the steps every step must give it) and a
+        # given step, refused before the contact time's sample: a long run is its collisions' doing where the
+        # normal mode is the fastest, a stiff spring's or dashpot's where another is
         cause, mode = wall.stiffest(False, fastest)
-        fewest = self.duration * rate * MIN_STEPS_PER_HALF_PERIOD / math.pi
-        check_steps(fewest, cause, getattr(self.model, cause), f"{mode} is fast in the gas's fastest "
-                    f"collisions, closing at {fastest:.3g}", spheres=self.spheres)
+        cause = "collisions" if mode.startswith("the normal") else cause
+        check_steps(wall.fewest_steps(self.duration, False, fastest), cause, getattr(self, cause, None)
+                    or getattr(self.model, cause), f"{mode} in the gas's fastest collisions, closing at {fastest:.3g}, "
+                    f"over its {self.collisions:g} collisions per sphere", spheres=self.spheres)
         if self.dt is not None:
             wall.check_dt(self.dt, False, fastest)
+            check_steps(self.duration / self.dt, "dt", self.dt, "to run the gas", spheres=self.spheres)
         if self.contact_time is None:
             return
-        tc = self.contact_time
         # by default the mean contact over STEPS_PER_CONTACT, or finer where a mode of the fastest collisions is
         # faster than the normal one (a stiff tangential spring)
-        dt = min(tc / STEPS_PER_CONTACT, math.pi / rate / MIN_STEPS_PER_HALF_PERIOD) if self.dt is None else self.dt
+        dt = self.dt if self.dt is not None else min(self.contact_time / STEPS_PER_CONTACT,
+                                                     wall.coarsest_dt(False, fastest))
         check_steps(self.duration / dt, "dt", dt, "to run the gas", spheres=self.spheres)  # before a count overflows
         set_(self, "dt", float(dt))
         every = self.contact_steps

@@ -30,7 +30,7 @@ from ...errors import PhysicsWarning
 from ...model.contact import ContactModel
 from ...model.parameters import SceneError
 from ...model.stability import overlap_stretch
-from ...model.timestep import MAX_STEPS, MIN_STEPS_PER_HALF_PERIOD, check_steps, steps_per_contact, steps_through
+from ...model.timestep import MAX_STEPS, check_steps, steps_per_contact, steps_through
 from ..jump import beyond_reach, near_the_jump, slow_start, warn_slow_start
 from .contact import PairContact
 from .columns import pair_columns
@@ -104,6 +104,11 @@ class PairBatch:
         if not pairs or not all(isinstance(p, Pair) for p in pairs):
             raise SceneError("pairs", self.pairs, "must be one or more Pair")
         object.__setattr__(self, "pairs", pairs)
+        for model, k in self._fastest():  # a mode no run resolves, refused before a step is computed from it
+            cause, mode = model.stiffest(False, self.impact_speeds[k])
+            check_steps(model.fewest_steps(float(model.contact_times(-self.impact_speeds[k])[0]), False,
+                                           self.impact_speeds[k]), cause, getattr(model, cause),
+                        f"{mode} is fast against the pair's contact", spheres=2 * len(pairs))
         if self.dt is None:  # the wall's limits of the default step, for each distinct equivalent contact
             for model, _ in self.wall_groups:
                 model.replace(mu=self.contact.mu).check_default_step()
@@ -311,8 +316,7 @@ class PairBatch:
     def first_probe_steps(self, t_contact: float) -> int:
         """START_STEPS a contact, or as many as the coarsest step every pair accepts needs (MIN_STEPS_PER_HALF_PERIOD
         of its fastest mode: a stiff Hertzian pair refused the first probe's step, and so the default)."""
-        coarsest = min(math.pi / model.fastest_rate(False, self.impact_speeds[k]) / MIN_STEPS_PER_HALF_PERIOD
-                       for model, k in self._fastest())
+        coarsest = min(model.coarsest_dt(False, self.impact_speeds[k]) for model, k in self._fastest())
         return max(START_STEPS, steps_per_contact(t_contact, coarsest))
 
     def step_limit(self, t_contact: float) -> int:
