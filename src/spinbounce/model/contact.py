@@ -22,7 +22,7 @@ from ..laws import (NORMAL, DampingLaw, NormalLaw, Style, TangentialLaw, damping
                     tangential_law)
 from .parameters import MODEL, SceneError, positive_number
 from .stability import stability_limit
-from .timestep import MIN_STEPS_PER_HALF_PERIOD, mode_rate
+from .timestep import MIN_STEPS_PER_HALF_PERIOD, check_steps, mode_rate
 from ..errors import PhysicsWarning
 
 #: The fewest units in the last place of r a contact's deepest overlap may span (LAMMPS's positions
@@ -253,6 +253,17 @@ class ContactPhysics:
     def fewest_steps(self, span: float, frozen: bool, speed: float | None = None) -> float:
         """The fewest steps any accepted step takes over ``span`` (a float: inf for rates beyond one)."""
         return span * self.fastest_rate(frozen, speed) * MIN_STEPS_PER_HALF_PERIOD / math.pi
+
+    def check_resolvable(self, span: float, speed: float, against: str, spheres: int = 1, long=None) -> str:
+        """Refuse a run of ``span`` (time) that no accepted step carries within a run's steps, before a step is
+        computed from its rates (a float's end), naming the coefficient that sets its fastest mode
+        (:meth:`stiffest`), or ``long`` (name, value) where that mode is the normal one (what makes a run long
+        then: a gas's collisions); returns why, in words (the mode, fast ``against`` what)."""
+        cause, mode = self.stiffest(False, speed)
+        why = f"{mode} is fast {against}"
+        named = long if long is not None and mode.startswith("the normal") else (cause, getattr(self, cause))
+        check_steps(self.fewest_steps(span, False, speed), *named, why, spheres=spheres)
+        return why
 
     def fastest_rate(self, frozen: bool, speed: float | None = None, overlap: float | None = None) -> float:
         """Largest rate (1/time) among the integrated modes: frequency or fast decay rate."""

@@ -149,10 +149,8 @@ class Collision:
         self._check_scale()
         # refused before anything runs: more steps than one run may take; first the fewest any step takes (the fastest
         # sphere's contact at MIN_STEPS_PER_HALF_PERIOD of its fastest mode), before a step of rates beyond a float
-        cause, mode = m.stiffest(False, speed)
-        why = f"{mode} is fast against the contact time {float(np.max(m.contact_times(self.v_n))):.3g}"
-        check_steps(m.fewest_steps(float(np.min(m.contact_times(self.v_n))), False, speed), cause, getattr(m, cause),
-                    why, spheres=self.n)
+        why = m.check_resolvable(float(np.min(m.contact_times(self.v_n))), speed, "against the contact time "
+                                 f"{float(np.max(m.contact_times(self.v_n))):.3g}", self.n)
         set_(self, "dt", self._checked_dt(self.default_dt() if self.dt is None else self.dt))
         check_steps(self.nsteps, "dt", self.dt, f"dt = {self.dt:.3g}: {why}", spheres=self.n)
         # the step's stretch of the deepest overlap, each end sphere at its own step dt/s

@@ -80,9 +80,9 @@ def run_gas(m: ContactModel, *, spheres: int = DEFAULT["spheres"], packing: floa
         raise SceneError("ranks", ranks, "must be a whole number >= 1")
     values = Gas(m, None, spheres, packing, t_tr, t_rot, collisions, samples, seed, draws, dt)  # checked, not run
     _check_cost(values, theory_seconds(values), ranks, force)  # the theory alone: before the contact time's
-    if log is not None and not equal_pair(m)[1].batched:
+    if log is not None and one_pair_seconds(m):
         log(f"gas: the step from the mean contact time of {CONTACT_SAMPLE} collisions, each solved on its own (about "
-            f"{CONTACT_SAMPLE * ONE_AT_A_TIME_SECONDS[bool(m.mu)]:.0f} s)")
+            f"{CONTACT_SAMPLE * one_pair_seconds(m):.0f} s)")
     tc = pair_draws.mean_contact_time(m, values.t_tr, pair_draws.draws(CONTACT_SAMPLE, values.seed))
     scene = Gas(m, tc, spheres, packing, t_tr, t_rot, collisions, samples, seed, draws, dt)
     folder = Path(out) if out is not None else run_folder("gas", scene.record() | {"ranks": ranks})
@@ -142,11 +142,17 @@ def _finished(folder: Path, scene, ranks: int) -> GasReport | None:
     return GasReport({name: table[name].to_numpy() for name in table.columns}, record, csv, record_path)
 
 
+def one_pair_seconds(model: ContactModel) -> float:
+    """What one collision of the theories costs beside a compiled batch's: none where the law's exact pair references
+    are compiled (:attr:`.PairContact.batched`), else :data:`ONE_AT_A_TIME_SECONDS` (capped or not)."""
+    return 0.0 if equal_pair(model)[1].batched else ONE_AT_A_TIME_SECONDS[bool(model.mu)]
+
+
 def theory_seconds(scene) -> float:
     """About how long the pair-level theories take: every draw at up to predict.MAX_TEMPERATURES temperatures,
     and where the law's exact references are solved one pair at a time, each of those draws' three collisions
     (still, spun, reversed) and the contact time's sample on its own (:data:`ONE_AT_A_TIME_SECONDS`)."""
-    per_pair = 0.0 if equal_pair(scene.model)[1].batched else ONE_AT_A_TIME_SECONDS[bool(scene.model.mu)]
+    per_pair = one_pair_seconds(scene.model)
     per_draw = THEORY_SECONDS_PER_DRAW + 3 * per_pair
     return scene.draws * predict.MAX_TEMPERATURES * per_draw + CONTACT_SAMPLE * per_pair
 
@@ -158,9 +164,9 @@ def _check_cost(scene, seconds: float, ranks: int, force: bool, steps: int | Non
         return
     counted = f"{scene.draws} draws for the theory alone" if steps is None else (
         f"with {steps} steps and {scene.draws} draws for the theory")
-    if not equal_pair(scene.model)[1].batched:
+    if one_pair_seconds(scene.model):
         counted += (" (this law's exact pair references are solved one pair at a time: about "
-                    f"{ONE_AT_A_TIME_SECONDS[bool(scene.model.mu)]:g} s a pair in a gas's collisions)")
+                    f"{one_pair_seconds(scene.model):g} s a pair in a gas's collisions)")
     name = "spheres" if steps is not None else "draws"
     raise SceneError(name, getattr(scene, name), f"{counted}: the run is estimated at {seconds / 3600:.2g} hours on "
                      f"{ranks} rank(s), more than one: give force (--force) to run it")

@@ -100,11 +100,9 @@ class Gas:
         # the run's fewest steps (its fastest collisions' fastest mode at the steps every step must give it) and a
         # given step, refused before the contact time's sample: a long run is its collisions' doing where the
         # normal mode is the fastest, a stiff spring's or dashpot's where another is
-        cause, mode = wall.stiffest(False, fastest)
-        cause = "collisions" if mode.startswith("the normal") else cause
-        check_steps(wall.fewest_steps(self.duration, False, fastest), cause, getattr(self, cause, None)
-                    or getattr(self.model, cause), f"{mode} in the gas's fastest collisions, closing at {fastest:.3g}, "
-                    f"over its {self.collisions:g} collisions per sphere", spheres=self.spheres)
+        wall.check_resolvable(self.duration, fastest, f"in the gas's fastest collisions, closing at {fastest:.3g}, "
+                              f"over its {self.collisions:g} collisions per sphere", self.spheres,
+                              long=("collisions", self.collisions))
         if self.dt is not None:
             wall.check_dt(self.dt, False, fastest)
             check_steps(self.duration / self.dt, "dt", self.dt, "to run the gas", spheres=self.spheres)

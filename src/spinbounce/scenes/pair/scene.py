@@ -105,10 +105,9 @@ class PairBatch:
             raise SceneError("pairs", self.pairs, "must be one or more Pair")
         object.__setattr__(self, "pairs", pairs)
         for model, k in self._fastest():  # a mode no run resolves, refused before a step is computed from it
-            cause, mode = model.stiffest(False, self.impact_speeds[k])
-            check_steps(model.fewest_steps(float(model.contact_times(-self.impact_speeds[k])[0]), False,
-                                           self.impact_speeds[k]), cause, getattr(model, cause),
-                        f"{mode} is fast against the pair's contact", spheres=2 * len(pairs))
+            speed = self.impact_speeds[k]
+            model.check_resolvable(float(model.contact_times(-speed)[0]), speed, "against the pair's contact",
+                                   2 * len(pairs))
         if self.dt is None:  # the wall's limits of the default step, for each distinct equivalent contact
             for model, _ in self.wall_groups:
                 model.replace(mu=self.contact.mu).check_default_step()
