@@ -77,7 +77,7 @@ def check_complete(path: Path) -> None:
     failed before its end, whose rows a fit would take for the whole sweep (a missing model group among them).
     A chunks/ folder or file given directly, without its record, is read as it is."""
     from ..records import read_json
-    from .run import chunk_path
+    from .run import missing_chunks
     from .spec import spec_from_dict
 
     path = Path(path)
@@ -88,8 +88,7 @@ def check_complete(path: Path) -> None:
         spec = spec_from_dict(read_json(record, "sweep record")["spec"])
     except SweepError:  # a sweep an earlier spinbounce took and this one would refuse: its chunks read as they are
         return
-    chunks = spec.chunks()
-    missing = [c for c in chunks if not chunk_path(path, c[0], c[1]).exists()]
+    chunks, missing = spec.chunks(), missing_chunks(spec, path)
     if missing:
         rows = sum(stop - start for _, _, start, stop in missing)
         total = spec.n * len(spec.groups)

@@ -32,11 +32,17 @@ from ..exact import choose
 from .ladder import estimate_columns, extrapolates, ladder_columns, tolerance_of
 from .spec import SweepError, SweepSpec, spec_from_dict
 
-__all__ = ["run_sweep", "run_one_chunk", "chunk_table", "chunk_path", "run_chunk", "write_chunk", "spread_over"]
+__all__ = ["run_sweep", "run_one_chunk", "chunk_table", "chunk_path", "run_chunk", "write_chunk", "spread_over",
+           "missing_chunks"]
 
 
 def chunk_path(out: Path, group: int, chunk: int) -> Path:
     return out / "chunks" / f"chunk-{group:04d}-{chunk:06d}.parquet"
+
+
+def missing_chunks(spec: SweepSpec, out: Path) -> list[tuple[int, int, int, int]]:
+    """The sweep's chunks (:meth:`SweepSpec.chunks`) that have no file in ``out`` yet."""
+    return [c for c in spec.chunks() if not chunk_path(out, c[0], c[1]).exists()]
 
 
 def run_chunk(raw: dict | SweepSpec, out: str, group: int, chunk: int, start: int, stop: int,
@@ -261,7 +267,7 @@ def _run_chunks(spec: SweepSpec, out: Path, workers: int | None, log) -> Path:
         _claim(out, spec)
         for stale in (out / "chunks").glob(f".chunk-*{TEMP_SUFFIX}"):  # a killed writer's; no one writes now
             stale.unlink(missing_ok=True)
-        todo = [c for c in spec.chunks() if not chunk_path(out, c[0], c[1]).exists()]
+        todo = missing_chunks(spec, out)
         total = spec.n * len(spec.groups)
         done = total - sum(stop - start for _, _, start, stop in todo)
         if done:
