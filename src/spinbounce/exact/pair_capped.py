@@ -77,11 +77,12 @@ def _first_event(solution, events) -> tuple[float, int, np.ndarray]:
     t_end, which = min(fired)
     switch, dense = events[1], solution.sol
     g = lambda time: switch(time, dense(time))  # noqa: E731
-    for t0, t1 in zip(dense.ts[:-1], dense.ts[1:]):
+    for t0, t1, step in zip(dense.ts[:-1], dense.ts[1:], dense.interpolants):
         if t0 >= t_end:
             break
         grid = np.linspace(t0, min(t1, t_end), INTERIOR_SAMPLES + 2)
-        values = [g(time) for time in grid]
+        states = np.ascontiguousarray(step(grid).T)  # the step's own interpolant, at every point at once
+        values = [switch(time, y) for time, y in zip(grid, states, strict=True)]
         for k in range(len(grid) - 1):
             if switch.direction * values[k] < 0.0 <= switch.direction * values[k + 1] and grid[k + 1] < t_end:
                 root = brentq(g, grid[k], grid[k + 1], xtol=4.0 * np.finfo(float).eps * max(1.0, abs(grid[k])))

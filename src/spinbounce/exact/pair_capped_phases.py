@@ -4,13 +4,15 @@
 :class:`Contact` holds a pair's rates and switching functions while it sticks (the trial force A a
 state) or slides (A's unit s on the cap), and what each switch leaves; :class:`ClassicContact` is
 ``linear_history_classic``'s cap, whose reset by k alone makes it saw-tooth (:mod:`.oracle_classic`).
+The equations themselves, which the integrator calls at every stage, are compiled (:mod:`.pair_kernel`);
+the phases' decisions, taken a few times a contact, are here.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from .pair_exact import contact_radius_power, cross, geometry, normal_force
+from . import pair_kernel as kernel
 from .oracle_classic import NEAR_ONE, note_cap, reset, slides
 
 __all__ = ["Contact", "ClassicContact", "MARGIN", "TURN_FLOOR"]
@@ -21,6 +23,11 @@ MARGIN = 1e-12
 #: TURN_FLOOR): near the cap's zeros s' ~ 1/c would grow without bound; the slower turn only bends
 #: a force that small.
 TURN_FLOOR = 1e-8
+
+
+#: The names of :func:`.pair_kernel.kinematics`' fields.
+_KINEMATICS = ("n", "turn", "v", "v_n", "spin", "slip", "f_n", "df_n", "lever_a", "lever_b", "spring", "growth",
+               "dashpot", "dashpot_rate")
 
 
 def _unit(x: np.ndarray) -> np.ndarray | None:
@@ -34,50 +41,20 @@ class Contact:
     would blur it by ~1e-16 (r_a + r_b), more than a law on the contact radius starts with."""
 
     def __init__(self, p: dict, n0: np.ndarray, planar: bool):
-        self.p, self.n0, self.planar = p, n0, planar
-        self.m_star = p["m_a"] * p["m_b"] / (p["m_a"] + p["m_b"])
+        self.p, self.n0, self.planar = p, np.ascontiguousarray(n0, dtype=float), planar
+        self.P = kernel.coefficients(p)
+        self.m_star = self.P[kernel.M_STAR]
         self.sliding, self.f_side = False, 1.0
 
     def kinematics(self, y) -> dict:
-        p = self.p
-        _, v_a, v_b, w_a, w_b = y[:15].reshape(5, 3)
-        n, delta, levers, dist = geometry(y, self.n0, p, self.planar, overlap=y[18])
-        v = v_a - v_b
-        v_n = v @ n
-        v_t = v - v_n * n
-        turn = np.zeros(3) if self.planar else v_t / dist  # n'
-        spin = p["r_a"] * w_a + p["r_b"] * w_b
-        rate = -v_n  # the overlap's rate
-        depth = abs(delta) ** (p["power"] - 1.0) if p["power"] != 1.0 else 1.0
-        damp, shrink = contact_radius_power(p, delta, p["damping_power"]), (rate / (2.0 * delta) if delta else 0.0)
-        f_n = normal_force(p, delta, v_n)
-        accel = -(f_n / self.m_star + v_t @ turn)  # delta''
-        df_n = p["K"] * p["power"] * depth * rate + p["gamma_n"] * damp * (accel + p["damping_power"] * shrink * rate)
-        scale = (0.0 if p["force_history"] else p["spring_power"]) + (1.0 if p["rescale"] and rate < 0.0 else 0.0)
-        return {"n": n, "turn": turn, "v": v, "v_n": v_n, "spin": spin, "slip": v_t - cross(spin, n),
-                "f_n": f_n, "df_n": df_n, "levers": levers,
-                "spring": p["kt"] * contact_radius_power(p, delta, p["spring_power"]), "growth": scale * shrink,
-                "dashpot": p["gamma_t"] * damp, "dashpot_rate": p["gamma_t"] * p["damping_power"] * shrink * damp}
-
-    def accelerations(self, k: dict, f_t: np.ndarray) -> tuple:
-        """(v_a', v_b', w_a', w_b') under the normal force and the friction ``f_t`` on a."""
-        p = self.p
-        force = k["f_n"] * k["n"] + f_t
-        arm = -cross(k["n"], f_t)
-        return (force / p["m_a"], -force / p["m_b"], k["levers"][0] * arm / p["i_a"],
-                k["levers"][1] * arm / p["i_b"])
+        """The state's kinematics (:func:`.pair_kernel.kinematics`) by name, the compiled tuple as ``raw``."""
+        raw = kernel.kinematics(y, self.P, self.n0, self.planar)
+        k = dict(zip(_KINEMATICS, (np.array(x) if isinstance(x, tuple) else x for x in raw), strict=True))
+        return k | {"levers": (raw[kernel.LEVER_A], raw[kernel.LEVER_B]), "raw": raw}
 
     def stick_rate(self, k: dict, trial: np.ndarray) -> np.ndarray:
         """A' while sticking with the trial force ``trial`` (the friction -trial)."""
-        p, n, turn = self.p, k["n"], k["turn"]
-        dv_a, dv_b, dw_a, dw_b = self.accelerations(k, -trial)
-        dv = dv_a - dv_b
-        dspin = p["r_a"] * dw_a + p["r_b"] * dw_b
-        slip_rate = (dv - (dv @ n) * n - (turn @ k["v"]) * n - k["v_n"] * turn  # u''
-                     - cross(dspin, n) - cross(k["spin"], turn))
-        elastic = trial - k["dashpot"] * k["slip"]
-        return (k["spring"] * k["slip"] + k["growth"] * elastic - (elastic @ turn) * n
-                + k["dashpot_rate"] * k["slip"] + k["dashpot"] * slip_rate)
+        return np.array(kernel.stick_rate(k["raw"], self.P, tuple(float(x) for x in trial)))
 
     def cap(self, k: dict) -> float:
         """mu |F_n|, with |F_n| taken as F_n on the phase's side (``f_side``): a phase ends where F_n
@@ -95,38 +72,30 @@ class Contact:
         return s / np.linalg.norm(s)
 
     def rates(self, _t, y):
-        k = self.kinematics(y)
+        out = np.empty(19)
         if self.sliding:
-            s = self.direction(k, y)
-            c = self.cap(k)
-            across = cross(k["n"], s)
-            tail = (-(s @ k["turn"]) * k["n"]
-                    + (across @ self.stick_rate(k, c * s)) * across / np.hypot(c, self.turn_floor))
-            trial = c * s
+            kernel.slide_rates(y, self.P, self.n0, self.planar, self.f_side, self.turn_floor, out)
         else:
-            trial = y[15:18]
-            tail = self.stick_rate(k, trial)
-        return np.concatenate([k["v"], *self.accelerations(k, -trial), tail, [-k["v_n"]]])
+            kernel.stick_rates(y, self.P, self.n0, self.planar, out)
+        return out
 
     def stick_ends(self, _t, y) -> float:
-        k = self.kinematics(y)
-        return np.linalg.norm(y[15:18]) - self.cap(k) - MARGIN * self.force_scale
+        return kernel.stick_end(y, self.P, self.n0, self.planar, self.f_side, MARGIN * self.force_scale)
 
     def push(self, k: dict, s: np.ndarray) -> float:
         """How fast sticking would carry A outwards along s with A = c s on the cap, less the cap's rate."""
         return s @ self.stick_rate(k, self.cap(k) * s) - self.cap_rate(k)
 
     def slide_ends(self, _t, y) -> float:
-        k = self.kinematics(y)
-        return self.push(k, self.direction(k, y)) + MARGIN * self.force_scale / self.tau
+        return kernel.slide_end(y, self.P, self.n0, self.planar, self.f_side, MARGIN * self.force_scale / self.tau)
 
     def normal_force(self, _t, y) -> float:
         """F_n on the side it started the phase on: falls through 0 when F_n changes sign."""
-        return self.f_side * self.kinematics(y)["f_n"]
+        return self.f_side * kernel.normal_force(y, self.P, self.n0, self.planar)
 
     def deepest(self, _t, y) -> float:
         """The overlap's rate: a rescale starts where it falls through 0 (a kink in A')."""
-        return -self.kinematics(y)["v_n"]
+        return -kernel.closing(y, self.P, self.n0, self.planar)
 
     def separated(self, _t, y) -> float:
         return self.last - y[18]
@@ -210,19 +179,17 @@ class ClassicContact(Contact):
     def rates(self, t, y):
         if not self.sliding:
             return super().rates(t, y)
-        k = self.kinematics(y)
-        friction = -self.cap(k) * self.direction(k, y)
-        return np.concatenate([k["v"], *self.accelerations(k, friction), np.zeros(3), [-k["v_n"]]])
+        out = np.empty(19)
+        kernel.classic_slide_rates(y, self.P, self.n0, self.planar, self.f_side, out)
+        return out
 
     def stick_ends(self, _t, y) -> float:
-        k = self.kinematics(y)
-        return np.linalg.norm(y[15:18]) - self.cap(k) - self.cut * MARGIN * self.force_scale
+        return kernel.stick_end(y, self.P, self.n0, self.planar, self.f_side, self.cut * MARGIN * self.force_scale)
 
     def slide_ends(self, _t, y) -> float:
         """> 0 while the dashpot's force alone exceeds the cap, held on a little (the wall's slide_margin)."""
-        k = self.kinematics(y)
-        drag, c = k["dashpot"] * np.linalg.norm(k["slip"]), self.cap(k)
-        return drag - c + self.cut * (NEAR_ONE * (c + abs(drag)) + MARGIN * self.force_scale)
+        return kernel.classic_slide_end(y, self.P, self.n0, self.planar, self.f_side, MARGIN * self.force_scale,
+                                        NEAR_ONE, self.cut)
 
     def _reset(self, k: dict, s: np.ndarray | None) -> np.ndarray:
         f = k["spring"] / self.p["kt"] if self.p["kt"] else 0.0

@@ -32,6 +32,7 @@ from typing import NamedTuple
 import numpy as np
 
 from . import pair as pair_theory
+from . import pair_kernel
 from .wall_law import on_contact_radius
 
 __all__ = ["PairOutcome", "solve", "RTOL", "HOOKE", "longest_step", "start", "outcome", "free_flight", "window",
@@ -95,26 +96,12 @@ def normal_force(p, delta: float, v_n: float) -> float:
     return p["K"] * depth * delta - p["gamma_n"] * contact_radius_power(p, delta, p["damping_power"]) * v_n
 
 
-def _rates(t, state, n0, p, planar, overlap=None):
-    """d(state)/dt; ``overlap``: the overlap where it is known better than from the centres (_tail)."""
-    _, v_a, v_b, w_a, w_b, xi = state.reshape(6, 3)
-    n, delta, (lever_a, lever_b), dist = geometry(state, n0, p, planar, overlap)
-    v = v_a - v_b
-    v_n = v @ n
-    slip = v - v_n * n - cross(p["r_a"] * w_a + p["r_b"] * w_b, n)
-    damp = contact_radius_power(p, delta, p["damping_power"])
-    spring = p["kt"] * contact_radius_power(p, delta, p["spring_power"])
-    elastic = xi if p["force_history"] else -spring * xi
-    f_t = elastic - p["gamma_t"] * damp * slip
-    force = normal_force(p, delta, v_n) * n + f_t
-    arm = cross(f_t, n)
-    history = -spring * slip if p["force_history"] else slip
-    if p["rescale"] and v_n > 0.0 and delta > 0.0:  # a shrinks: the history by a_new/a_old (a'/a = delta'/2 delta)
-        history = history - xi * v_n / (2.0 * delta)
-    if p["projected"] and not planar:  # kept in the tangent plane as n turns (n' = (v - v_n n)/|d|)
-        history = history - (xi @ (v - v_n * n)) / dist * n
-    return np.concatenate([v, force / p["m_a"], -force / p["m_b"], lever_a * arm / p["i_a"],
-                           lever_b * arm / p["i_b"], history])
+def _rates(t, state, n0, P, planar, overlap=np.nan):
+    """d(state)/dt (:func:`.pair_kernel.free_rates`, ``P`` its coefficients); ``overlap``: the overlap where it
+    is known better than from the centres (_tail)."""
+    out = np.empty(18)
+    pair_kernel.free_rates(state, P, n0, planar, overlap, out)
+    return out
 
 
 #: A contact not over within this many of its contact times is not a contact the references end.
@@ -224,6 +211,7 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, g
 
     turned = _turned(n0, p, planar) if not tensile and gamma_n > 0.0 else None
     bound = float(window(tau, m_a, m_b, kn, gamma_n, radial))
+    coefficients = pair_kernel.coefficients(p)
 
     def follow(depth: float):
         """The contact until the overlap falls back to ``depth`` (the tail's start), or parts before it ever
@@ -239,7 +227,7 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, g
         # the start (gap 0, closing) is no upward crossing; the end (or the tail's start) is the first one
         events = [separated] + ([parted] if depth > 0.0 else []) + ([turned] if turned else [])
         solution = solve_ivp(_rates, (0.0, bound), np.concatenate([state, np.zeros(3)]), method="DOP853",
-                             args=(n0, p, planar), max_step=longest, rtol=rtol, atol=atol, events=events)
+                             args=(n0, coefficients, planar), max_step=longest, rtol=rtol, atol=atol, events=events)
         fired = [k for k, times in enumerate(solution.t_events) if len(times)]
         if solution.status == -1 and depth > 0.0:  # (a grazing pair's end, its a'/a singular in time)
             return solution, "failed", None, None
@@ -319,12 +307,14 @@ def _tail(state, t: float, delta: float, n0, p, planar, rtol, atol, turned=None)
     spheres part force-free."""
     from scipy.integrate import solve_ivp
 
+    coefficients = pair_kernel.coefficients(p)
+
     def rates(x, y):
         core = y[:-1]
         d, v = core[:3], core[3:6] - core[6:9]
         n = n0 if planar else d / np.sqrt(d @ d)
         stretch = -2.0 * x / (v @ n)  # dt/dx = 2 x/delta', delta' = -v.n (> 0 while the spheres part)
-        return np.append(_rates(0.0, core, n0, p, planar, overlap=x * x) * stretch, stretch)
+        return np.append(_rates(0.0, core, n0, coefficients, planar, overlap=x * x) * stretch, stretch)
 
     x0 = np.sqrt(delta)
     tail_atol = np.append(np.broadcast_to(atol, state.shape), atol)
