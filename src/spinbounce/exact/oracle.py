@@ -18,7 +18,7 @@ a = sqrt(r delta); their forces: :mod:`.oracle_forces`):
   paper's sign (so the slip rate is u' = v + r*omega in each direction, see
   :mod:`scenes`), and the elastic 'trial force' A = spring + gamma_t u' of the history;
   m v' = F_t and alpha m (r omega)' = F_t; the spin about the normal never changes;
-* sticking (|A| < mu |F_n|): F_t = -A, A' as :meth:`.oracle_forces.Forces.stick_rate`
+* sticking (|A| < mu |F_n|): F_t = -A, A' as :func:`.oracle_kernel.stick_rate`
   (the paper's spring: kt u' + gamma_t u'');
 * sliding (|A| = mu |F_n|): F_t = -mu |F_n| s with s the unit vector of A. LAMMPS rescales
   the history so that |A| stays on the cap; in continuous time the cap's radius follows
@@ -45,6 +45,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from . import oracle_classic
+from . import oracle_kernel as kernel
 from .oracle_forces import A as _A, D as _D, V as _V, VN as _VN, W as _W, Forces
 from .wall_law import Law
 
@@ -78,7 +79,9 @@ MIN_STEPS_PER_CONTACT = 64
 # state layout (oracle_forces): delta, v_n, v (2), w = r*omega (2), A or s (2)
 # a 3-D slide's state (see _Contact.integrate): the same up to w, then the angle of s, the
 # log of |u'_perp| and its sign (constant): _TURNING slots in all
-_THETA, _LOG_ACROSS, _SIDE, _TURNING = 6, 7, 8, 9
+_THETA, _LOG_ACROSS, _SIDE, _TURNING = kernel.THETA, kernel.LOG_ACROSS, kernel.SIDE, kernel.TURNING
+#: The regimes by name, as :func:`.oracle_kernel.rates` takes them.
+_REGIMES = {"free": kernel.FREE, "coast": kernel.COAST, "stick": kernel.STICK, "slip": kernel.SLIP}
 
 
 @dataclass(frozen=True)
@@ -136,40 +139,14 @@ class _Contact:
         rounding may leave a hair on the wrong side of zero. Within a step that overshoots
         the turn the cap goes on smoothly below zero (the event cuts the step there).
         """
-        f, df = self.forces.normal(y)
-        if self.turned:
-            if not self.tensile:
-                return 0.0, 0.0
-            return -self.mu * f, -self.mu * df
-        return self.mu * f, self.mu * df
+        return kernel.cap(y, self.forces.P, self.turned, self.tensile)
 
     def rhs(self, phase: str):
-        m, alpha = self.m, self.alpha
+        regime, P = _REGIMES[phase], self.forces.P
 
         def f(t, y):
-            dy = np.zeros(y.size)
-            dy[_D] = -y[_VN]
-            if phase == "free":
-                return dy
-            dy[_VN] = 0.0 if self.turned and not self.tensile else self.forces.normal(y)[0] / self.m
-            if phase == "coast":
-                return dy
-            u_rate = y[_V] + y[_W]
-            if phase == "stick":
-                force = -y[_A]
-                dy[_A] = self.forces.stick_rate(y, force, u_rate)
-            else:  # slip: A = c s rides on the cap, s turning towards the slip
-                c, _ = self.cap(y)
-                s = self.slide_direction(y)
-                force = -c * s
-                if y.size == _TURNING and y[_SIDE]:  # in the plane (and at q = 0) s stays put
-                    rate = self.forces.across_stiffness(y) / math.hypot(c, self.turn_floor)
-                    # |q| <= |u'|: bounds a trial step that overshoots log |q| (then rejected)
-                    across = min(math.exp(min(y[_LOG_ACROSS], 700.0)), math.hypot(*u_rate))
-                    dy[_THETA] = rate * y[_SIDE] * across
-                    dy[_LOG_ACROSS] = -rate * float(np.dot(s, u_rate))
-            dy[_V] = force / m
-            dy[_W] = force / (alpha * m)
+            dy = np.empty(y.size)
+            kernel.rates(y, regime, P, self.turned, self.tensile, self.turn_floor, dy)
             return dy
 
         return f
@@ -281,7 +258,7 @@ class _Contact:
     def push(self, y, s, c: float) -> float:
         """How fast sticking would carry A outwards along s, with A on a cap of radius c:
         s . A' (sticking), the sticking force being -c s."""
-        return float(np.dot(s, self.forces.stick_rate(y, -c * s, y[_V] + y[_W])))
+        return kernel.push(y, self.forces.P, s[0], s[1], c)
 
     def start(self, y, cap_rising: bool = False) -> str:
         """The regime at first touch (or where the cap restarts); puts A on or inside the cap.

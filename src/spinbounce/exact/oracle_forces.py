@@ -7,19 +7,21 @@ a = sqrt(r delta):
 
 * F_n = K delta^p + gamma_n a^s delta' (odd in delta beyond the exit, so that an event
   function stays smooth over a step that overshoots it);
-* while it sticks, A' = k_t u' + R (A - gamma_t u') + gamma_t' u' + gamma_t u'', with
-  k_t = k a^q, gamma_t = C_t a^s, and R = q a'/a for a displacement history (k a^q h, h' = u'),
+* while it sticks (:func:`.oracle_kernel.stick_rate`), A' = k_t u' + R (A - gamma_t u') + gamma_t' u' +
+  gamma_t u'', with k_t = k a^q, gamma_t = C_t a^s, and R = q a'/a for a displacement history (k a^q h, h' = u'),
   none for a force history (h' = -k a^q u'), plus a'/a while a shrinks with a rescale (h gains
   h a'/a): the continuous-time form of LAMMPS's ``GranSubModTangentialMindlin`` and
   ``linear_history`` (q = s = 0: k_t = kt, R = 0, the paper's spring).
 
-Pure numpy; knows nothing of LAMMPS or of the regimes (:mod:`.oracle`).
+Each is computed by :mod:`.oracle_kernel` (compiled: the oracle calls them at every stage of its
+steps); knows nothing of LAMMPS or of the regimes (:mod:`.oracle`).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from . import oracle_kernel as kernel
 from .wall_law import Law
 
 __all__ = ["Forces", "D", "VN", "V", "W", "A"]
@@ -36,14 +38,12 @@ class Forces:
         self.r, self.m, self.gn = law.r, law.m, law.c_n
         self.nonlinear = law.on_contact_radius
         self.slip_mass = (1.0 + 1.0 / law.alpha) / law.m  # u'' = slip_mass * F_t
+        self.P = kernel.coefficients(law)
 
     def radius_power(self, y, s: float) -> tuple[float, float]:
         """(a^s, d(a^s)/dt) of the contact radius a = sqrt(r |delta|) (even past the exit);
         (1, 0) for s = 0, a coefficient that does not depend on a."""
-        if s == 0.0:
-            return 1.0, 0.0
-        a_s = (self.r * abs(y[D])) ** (s / 2.0)
-        return a_s, (s * a_s * -y[VN] / (2.0 * y[D]) if y[D] else 0.0)
+        return kernel.radius_power(y, self.P, s)
 
     def normal(self, y) -> tuple[float, float]:
         """(F_n, dF_n/dt) before any cut at zero, continued smoothly past the exit.
@@ -54,39 +54,7 @@ class Forces:
         there hands the search the step's far end as its root, which then hides an earlier event
         (a turn just before the exit).
         """
-        law, delta, rate = self.law, y[D], -y[VN]
-        depth = abs(delta) ** (law.power - 1.0) if law.power != 1.0 else 1.0
-        damp, damp_rate = self.radius_power(y, law.damping_power)
-        f = law.K * depth * delta + self.gn * damp * rate
-        accel = -f / self.m  # delta'' = -v_n'
-        return f, law.K * law.power * depth * rate + self.gn * (damp * accel + damp_rate * rate)
-
-    def tangential(self, y) -> tuple[float, float, float, float]:
-        """(k_t, R, gamma_t, gamma_t') of the trial force A = k_t-spring + gamma_t u' while it
-        sticks: A' = k_t u' + R (A - gamma_t u') + gamma_t' u' + gamma_t u''.
-
-        k_t = k a^q and gamma_t = C_t a^s; R = q a'/a with a displacement history h (spring
-        k a^q h, h' = u'), none with a force history (h' = -k a^q u'), and a'/a more while a
-        shrinks with a rescale (h gains h a'/a). The paper's spring (q = s = 0): k_t = kt, R = 0.
-        """
-        law = self.law
-        k, _ = self.radius_power(y, law.spring_power)
-        gt, gt_rate = self.radius_power(y, law.damping_power)
-        scale = (0.0 if law.force_history else law.spring_power) + (1.0 if law.rescale and y[VN] > 0.0 else 0.0)
-        shrink = -y[VN] / (2.0 * y[D]) if scale and y[D] else 0.0
-        return law.k * k, scale * shrink, law.c_t * gt, law.c_t * gt_rate
-
-    def stick_rate(self, y, force, u_rate) -> np.ndarray:
-        """A' while sticking, the friction force being ``force`` (-A)."""
-        k, scale, gt, gt_rate = self.tangential(y)
-        rate = (k + gt_rate) * u_rate + gt * self.slip_mass * force
-        return rate + scale * (-force - gt * u_rate) if scale else rate
-
-    def across_stiffness(self, y) -> float:
-        """The rate at which a slide's A turns per unit slip across it, times c: the part of the
-        sticking A' across s (u'' lies along s): k_t - R gamma_t + gamma_t'."""
-        k, scale, gt, gt_rate = self.tangential(y)
-        return k - scale * gt + gt_rate
+        return kernel.normal(y, self.P)
 
     def first_touch(self, initial: np.ndarray, t: float) -> np.ndarray:
         """(delta, v_n, v, r omega, A) a time t after first touch, the velocities as they were

@@ -76,7 +76,6 @@ def _first_event(solution, events) -> tuple[float, int, np.ndarray]:
         raise RuntimeError(f"the capped pair did not separate within its window: {solution.message}")
     t_end, which = min(fired)
     switch, dense = events[1], solution.sol
-    g = lambda time: switch(time, dense(time))  # noqa: E731
     for t0, t1, step in zip(dense.ts[:-1], dense.ts[1:], dense.interpolants):
         if t0 >= t_end:
             break
@@ -85,8 +84,9 @@ def _first_event(solution, events) -> tuple[float, int, np.ndarray]:
         values = [switch(time, y) for time, y in zip(grid, states, strict=True)]
         for k in range(len(grid) - 1):
             if switch.direction * values[k] < 0.0 <= switch.direction * values[k + 1] and grid[k + 1] < t_end:
+                g = lambda time: switch(time, step(time))  # noqa: E731 (the same interpolant as the samples)
                 root = brentq(g, grid[k], grid[k + 1], xtol=4.0 * np.finfo(float).eps * max(1.0, abs(grid[k])))
-                return root, 1, dense(root)
+                return root, 1, step(root)
     return t_end, which, solution.y_events[which][0].copy()
 
 

@@ -35,6 +35,7 @@ from .pair_batch import ENDED, STUCK, finish, prepare
 from .pair_batch import solvable as uncapped_solvable
 from .pair_capped import INTERIOR_SAMPLES, MAX_PHASES
 from .pair_capped_phases import MARGIN, TURN_FLOOR
+from .pair_kernel import geometry
 from .vec3 import axpy, compiled, cross, dot, kernel, unit
 
 __all__ = ["solve", "solvable"]
@@ -65,15 +66,7 @@ def solvable(law: dict, tensile: bool = True) -> bool:
 def _kinematics(y, p, n0, planar):
     """(n, n', v, v.n, spin, slip rate, F_n, F_n', lever of a, of b): :meth:`.pair_capped_phases.Contact.kinematics`
     for Hooke's law."""
-    d = (y[0], y[1], y[2])
-    if planar:
-        dist = dot(d, n0)
-        n = (n0[0], n0[1], n0[2])
-        lever_a, lever_b = p[R_A], p[R_B]
-    else:
-        dist = np.sqrt(dot(d, d))
-        n = (d[0] / dist, d[1] / dist, d[2] / dist)
-        lever_a, lever_b = p[R_A] - 0.5 * (p[RADSUM] - dist), p[R_B] - 0.5 * (p[RADSUM] - dist)
+    n, dist, lever_a, lever_b = geometry(y, p, n0, planar)
     v = (y[3] - y[6], y[4] - y[7], y[5] - y[8])
     v_n = dot(v, n)
     v_t = axpy(-v_n, n, v)

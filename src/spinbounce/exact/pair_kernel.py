@@ -16,7 +16,7 @@ import numpy as np
 
 from .vec3 import axpy, cross, dot, kernel, unit
 
-__all__ = ["coefficients", "free_rates", "kinematics", "stick_rate", "stick_rates", "slide_rates",
+__all__ = ["coefficients", "geometry", "free_rates", "kinematics", "stick_rate", "stick_rates", "slide_rates",
            "classic_slide_rates", "stick_end", "slide_end", "classic_slide_end", "normal_force", "closing"]
 
 (R_A, R_B, M_A, M_B, I_A, I_B, K, KT, GAMMA_N, GAMMA_T, RADSUM, MU, M_STAR, R_EFF, POWER, SPRING_POWER,
@@ -46,20 +46,24 @@ def _radius_power(P, delta, s):
 
 
 @kernel
+def geometry(y, P, n0, planar):
+    """(n, the centres' distance along it, the lever arm of a, of b) of a state: n held at n0 and the levers the
+    radii (``planar``), else n = d/|d| and each lever the distance to the middle of the overlap (the columns
+    R_A, R_B and RADSUM are the batches' too)."""
+    d = (y[0], y[1], y[2])
+    if planar:
+        return (n0[0], n0[1], n0[2]), dot(d, n0), P[R_A], P[R_B]
+    dist = np.sqrt(dot(d, d))
+    return _scaled(1.0 / dist, d), dist, P[R_A] - 0.5 * (P[RADSUM] - dist), P[R_B] - 0.5 * (P[RADSUM] - dist)
+
+
+@kernel
 def free_rates(y, P, n0, planar, overlap, out):
     """d(state)/dt of an uncapped contact's (d, v_a, v_b, w_a, w_b, history) into ``out``: the history xi
     (a displacement, F_t = -k a^q xi - gamma_t a^s u', or with FORCE_HISTORY the force itself), kept in the
     tangent plane as n turns where PROJECTED; ``overlap``: where it is known better than from the centres
     (:func:`.pair_exact._tail`), else NaN."""
-    d = (y[0], y[1], y[2])
-    if planar:
-        dist = dot(d, n0)
-        n = (n0[0], n0[1], n0[2])
-        lever_a, lever_b = P[R_A], P[R_B]
-    else:
-        dist = np.sqrt(dot(d, d))
-        n = _scaled(1.0 / dist, d)
-        lever_a, lever_b = P[R_A] - 0.5 * (P[RADSUM] - dist), P[R_B] - 0.5 * (P[RADSUM] - dist)
+    n, dist, lever_a, lever_b = geometry(y, P, n0, planar)
     delta = P[RADSUM] - dist if overlap != overlap else overlap
     v = (y[3] - y[6], y[4] - y[7], y[5] - y[8])
     xi = (y[15], y[16], y[17])
@@ -92,15 +96,7 @@ def free_rates(y, P, n0, planar, overlap, out):
 def kinematics(y, P, n0, planar):
     """(n, n', v, v.n, spin r_a w_a + r_b w_b, slip rate, F_n, F_n', lever of a, of b, k a^q, the history's
     growth rate, gamma_t a^s, its rate) of a state."""
-    d = (y[0], y[1], y[2])
-    if planar:
-        dist = dot(d, n0)
-        n = (n0[0], n0[1], n0[2])
-        lever_a, lever_b = P[R_A], P[R_B]
-    else:
-        dist = np.sqrt(dot(d, d))
-        n = _scaled(1.0 / dist, d)
-        lever_a, lever_b = P[R_A] - 0.5 * (P[RADSUM] - dist), P[R_B] - 0.5 * (P[RADSUM] - dist)
+    n, dist, lever_a, lever_b = geometry(y, P, n0, planar)
     delta = y[18]
     v = (y[3] - y[6], y[4] - y[7], y[5] - y[8])
     v_n = dot(v, n)

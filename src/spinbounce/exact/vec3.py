@@ -21,7 +21,7 @@ FLAGS = dict(cache=True, error_model="numpy")
 #: capped reference) would leave the cache serving the old code: the cache lives in a folder named by
 #: the digest of all of them.
 COMPILED = ("vec3.py", "dop853.py", "dop853_tableau.json", "pair_exact.py", "pair_batch.py", "pair_capped.py",
-            "pair_capped_phases.py", "pair_capped_batch.py", "pair_kernel.py")
+            "pair_capped_phases.py", "pair_capped_batch.py", "pair_kernel.py", "oracle_kernel.py")
 
 
 def _writable(folder: Path) -> bool:
