@@ -53,9 +53,12 @@ __all__ = ["Choice", "STATE_SECONDS", "which", "predict", "outcome", "matrix", "
 #: ranges each, both cores busy, the classic spring 75 ms a state uncapped and 375 to 590 ms capped (its
 #: sawtooth's teeth, :mod:`.oracle_classic`), the capped Hertz-Mindlin contact 40 ms in the plane and 167 ms in
 #: 3-D; a review measured 5 to 8 ms for a damped contact on the contact radius (contact_phases) and Mindlin's
-#: with a tangential dashpot. Keyed by kind and whether capped. A sweep's estimate counts them
+#: with a tangential dashpot. With the oracle's forces and rates compiled (:mod:`.oracle_kernel`) the capped ones
+#: took 3 to 4 times less, side by side on the same 11 states with both cores busy (the classic spring's 81 to
+#: 162 ms a state then 28 to 45 ms; Hertz-Mindlin's in 3-D 32 to 42 ms then 10 to 11 ms), and their entries
+#: are the slowest above over 3, with room. Keyed by kind and whether capped. A sweep's estimate counts them
 #: (:mod:`spinbounce.sweeps.cost`): its chunk sizes, its cluster jobs' time and its refusal of long sweeps.
-STATE_SECONDS = {("classic_wall", True): 0.6, ("classic_wall", False): 0.1, ("capped_nonlinear", True): 0.2,
+STATE_SECONDS = {("classic_wall", True): 0.25, ("classic_wall", False): 0.1, ("capped_nonlinear", True): 0.1,
                  ("capped_nonlinear", False): 0.2, ("damped_nonlinear", False): 0.01, ("mindlin", False): 0.01}
 
 

@@ -38,11 +38,13 @@ GAS_SPHERE_STEP_SECONDS = 6e-8
 #: each an exact reference and a LAMMPS pair (measured about 45 us in all), and half an encounter's three
 #: variants of seven spheres in LAMMPS (about 130 us each); rounded up.
 THEORY_SECONDS_PER_DRAW = 1.2e-4
-#: A law whose exact pair references are not compiled (:attr:`.PairContact.batched` False: Hooke's law with
-#: limit_damping's turn, and every law on the contact radius) solves each collision of the theories on its own:
-#: seconds a pair, uncapped and capped, in a gas's collisions (3-D, hot: measured 62 to 71 ms uncapped and 1.0 to
-#: 3.9 s capped at T_tr = 0.5, E = 1e5, Hertz with linear_history and the Mindlin springs); rounded up.
-ONE_AT_A_TIME_SECONDS = {False: 0.1, True: 4.0}
+#: A law whose exact pair references are not batched (:attr:`.PairContact.batched` False: Hooke's law with
+#: limit_damping's turn, the classic spring, and every law on the contact radius) solves each collision of the
+#: theories on its own (scipy on compiled equations, exact.pair_kernel): seconds a pair, uncapped and capped, in
+#: a gas's collisions (3-D, hot: measured on 10 to 20 draws at T_tr = 0.5 on an idle core, hertz/material with
+#: E = 1e5 and linear_history or each Mindlin spring, 10 to 30 ms uncapped and 41 to 48 ms capped (mu = 0.5),
+#: the classic spring capped 53 ms with Hooke's force and 68 ms with Hertz's); with room.
+ONE_AT_A_TIME_SECONDS = {False: 0.06, True: 0.2}
 #: The collisions (without spin) whose mean exact contact time sets the step.
 CONTACT_SAMPLE = 2000
 #: How close (relative) a theory's late ratio must be to its fixed point for the closure's error, a steady state's,
