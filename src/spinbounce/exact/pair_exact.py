@@ -36,7 +36,7 @@ from . import pair_kernel
 from .wall_law import on_contact_radius
 
 __all__ = ["PairOutcome", "solve", "RTOL", "HOOKE", "longest_step", "start", "outcome", "free_flight", "window",
-           "contact_radius_power", "geometry", "normal_force", "pair_scales", "tolerance_scale", "cross"]
+           "contact_radius_power", "pair_scales", "tolerance_scale", "cross"]
 
 #: Relative tolerance of the integration (the absolute one is this times the speeds).
 RTOL = 1e-12
@@ -73,27 +73,6 @@ def cross(a, b) -> np.ndarray:
 def contact_radius_power(p, delta: float, s: float) -> float:
     """a^s of the contact radius a = sqrt(R_eff |delta|) (1 for s = 0)."""
     return 1.0 if s == 0.0 else (p["r_eff"] * abs(delta)) ** (s / 2.0)
-
-
-def geometry(state, n0, p, planar, overlap=None) -> tuple:
-    """(n, overlap, lever arms, the centres' distance along n) of a state; ``overlap``: where it is
-    known better than from the centres (_tail, the capped reference's own overlap)."""
-    d = state[:3]
-    radsum = p["r_a"] + p["r_b"]
-    if planar:
-        dist = d @ n0
-        n, levers = n0, (p["r_a"], p["r_b"])
-    else:
-        dist = np.sqrt(d @ d)
-        n = d / dist
-        levers = (p["r_a"] - 0.5 * (radsum - dist), p["r_b"] - 0.5 * (radsum - dist))
-    return n, (radsum - dist if overlap is None else overlap), levers, dist
-
-
-def normal_force(p, delta: float, v_n: float) -> float:
-    """F_n on a along n: K delta^p - gamma_n a^s v.n."""
-    depth = abs(delta) ** (p["power"] - 1.0) if p["power"] != 1.0 else 1.0
-    return p["K"] * depth * delta - p["gamma_n"] * contact_radius_power(p, delta, p["damping_power"]) * v_n
 
 
 def _rates(t, state, n0, P, planar, overlap=np.nan):
@@ -261,9 +240,11 @@ def _gaps(states: np.ndarray, n0, planar: bool, radsum: float) -> np.ndarray:
 
 def _turned(n0, p, planar):
     """The event where the normal force falls through zero (``limit_damping`` cuts it there)."""
+    coefficients = pair_kernel.coefficients(p)
+
     def turned(t, y, *_):
-        n, delta, _, _ = geometry(y, n0, p, planar)
-        return normal_force(p, delta, (y[3:6] - y[6:9]) @ n)
+        n, dist, _, _ = pair_kernel.geometry(y, coefficients, n0, planar)
+        return pair_kernel.normal_law(coefficients, p["r_a"] + p["r_b"] - dist, (y[3:6] - y[6:9]) @ np.array(n))[0]
 
     turned.terminal, turned.direction = True, -1.0
     return turned
@@ -322,7 +303,7 @@ def _tail(state, t: float, delta: float, n0, p, planar, rtol, atol, turned=None)
     if turned:
         def turn(x, y):
             n = n0 if planar else y[:3] / np.sqrt(y[:3] @ y[:3])
-            return normal_force(p, x * x, (y[3:6] - y[6:9]) @ n)
+            return pair_kernel.normal_law(coefficients, x * x, (y[3:6] - y[6:9]) @ n)[0]
 
         turn.terminal, turn.direction = True, -1.0  # F_n falls through zero as x falls (as time runs)
         events = [turn]

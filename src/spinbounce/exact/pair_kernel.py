@@ -16,7 +16,7 @@ import numpy as np
 
 from .vec3 import axpy, cross, dot, kernel, unit
 
-__all__ = ["coefficients", "geometry", "free_rates", "kinematics", "stick_rate", "stick_rates", "slide_rates",
+__all__ = ["coefficients", "normal_law", "geometry", "free_rates", "kinematics", "stick_rate", "stick_rates", "slide_rates",
            "classic_slide_rates", "stick_end", "slide_end", "classic_slide_end", "normal_force", "closing"]
 
 (R_A, R_B, M_A, M_B, I_A, I_B, K, KT, GAMMA_N, GAMMA_T, RADSUM, MU, M_STAR, R_EFF, POWER, SPRING_POWER,
@@ -46,6 +46,14 @@ def _radius_power(P, delta, s):
 
 
 @kernel
+def normal_law(P, delta, v_n):
+    """(F_n on a along n, delta^(p - 1), a^s) at the overlap ``delta`` and v.n: K delta^p - gamma_n a^s v.n."""
+    depth = abs(delta) ** (P[POWER] - 1.0) if P[POWER] != 1.0 else 1.0
+    damp = _radius_power(P, delta, P[DAMPING_POWER])
+    return P[K] * depth * delta - P[GAMMA_N] * damp * v_n, depth, damp
+
+
+@kernel
 def geometry(y, P, n0, planar):
     """(n, the centres' distance along it, the lever arm of a, of b) of a state: n held at n0 and the levers the
     radii (``planar``), else n = d/|d| and each lever the distance to the middle of the overlap (the columns
@@ -71,12 +79,11 @@ def free_rates(y, P, n0, planar, overlap, out):
     spin = (P[R_A] * y[9] + P[R_B] * y[12], P[R_A] * y[10] + P[R_B] * y[13], P[R_A] * y[11] + P[R_B] * y[14])
     v_t = axpy(-v_n, n, v)
     slip = axpy(-1.0, cross(spin, n), v_t)
-    damp = _radius_power(P, delta, P[DAMPING_POWER])
+    f_n, _, damp = normal_law(P, delta, v_n)
     spring = P[KT] * _radius_power(P, delta, P[SPRING_POWER])
     elastic = xi if P[FORCE_HISTORY] else _scaled(-spring, xi)
     f_t = axpy(-P[GAMMA_T] * damp, slip, elastic)
-    depth = abs(delta) ** (P[POWER] - 1.0) if P[POWER] != 1.0 else 1.0
-    force = axpy(P[K] * depth * delta - P[GAMMA_N] * damp * v_n, n, f_t)
+    force = axpy(f_n, n, f_t)
     arm = cross(f_t, n)
     history = _scaled(-spring, slip) if P[FORCE_HISTORY] else slip
     if P[RESCALE] and v_n > 0.0 and delta > 0.0:  # a shrinks: the history by a_new/a_old (a'/a = delta'/2 delta)
@@ -104,10 +111,8 @@ def kinematics(y, P, n0, planar):
     turn = (0.0, 0.0, 0.0) if planar else _scaled(1.0 / dist, v_t)
     spin = (P[R_A] * y[9] + P[R_B] * y[12], P[R_A] * y[10] + P[R_B] * y[13], P[R_A] * y[11] + P[R_B] * y[14])
     rate = -v_n  # the overlap's
-    depth = abs(delta) ** (P[POWER] - 1.0) if P[POWER] != 1.0 else 1.0
-    damp = _radius_power(P, delta, P[DAMPING_POWER])
+    f_n, depth, damp = normal_law(P, delta, v_n)
     shrink = rate / (2.0 * delta) if delta != 0.0 else 0.0
-    f_n = P[K] * depth * delta - P[GAMMA_N] * damp * v_n
     accel = -(f_n / P[M_STAR] + dot(v_t, turn))  # delta''
     df_n = P[K] * P[POWER] * depth * rate + P[GAMMA_N] * damp * (accel + P[DAMPING_POWER] * shrink * rate)
     scale = (0.0 if P[FORCE_HISTORY] else P[SPRING_POWER]) + (1.0 if P[RESCALE] and rate < 0.0 else 0.0)
