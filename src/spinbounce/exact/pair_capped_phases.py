@@ -68,8 +68,7 @@ class Contact:
 
     def direction(self, k: dict, y) -> np.ndarray:
         """A slide's unit s, held in the tangent plane (its drift off it is the integrator's)."""
-        s = y[15:18] - (y[15:18] @ k["n"]) * k["n"]
-        return s / np.linalg.norm(s)
+        return np.array(kernel.direction(k["raw"], y))
 
     def rates(self, _t, y):
         out = np.empty(19)
@@ -173,8 +172,7 @@ class ClassicContact(Contact):
         self.cut, self.zeno, self.now, self.last_cap = cut, False, 0.0, -np.inf
 
     def direction(self, k: dict, y) -> np.ndarray:
-        slip = _unit(k["slip"])
-        return slip if slip is not None else super().direction(k, y)
+        return np.array(kernel.classic_direction(k["raw"], y))
 
     def rates(self, t, y):
         if not self.sliding:

@@ -16,8 +16,9 @@ import numpy as np
 
 from .vec3 import axpy, cross, dot, kernel, unit
 
-__all__ = ["coefficients", "normal_law", "geometry", "free_rates", "kinematics", "stick_rate", "stick_rates", "slide_rates",
-           "classic_slide_rates", "stick_end", "slide_end", "classic_slide_end", "normal_force", "closing"]
+__all__ = ["coefficients", "normal_law", "geometry", "free_rates", "kinematics", "stick_rate", "stick_rates",
+           "slide_rates", "classic_slide_rates", "direction", "classic_direction", "stick_end", "slide_end",
+           "classic_slide_end", "normal_force", "closing"]
 
 (R_A, R_B, M_A, M_B, I_A, I_B, K, KT, GAMMA_N, GAMMA_T, RADSUM, MU, M_STAR, R_EFF, POWER, SPRING_POWER,
  DAMPING_POWER, FORCE_HISTORY, RESCALE, PROJECTED) = range(20)
@@ -151,17 +152,17 @@ def stick_rate(k, P, trial):
 
 
 @kernel
-def _direction(k, y):
+def direction(k, y):
     """A slide's unit s, held in the tangent plane (its drift off it is the integrator's)."""
     a = (y[15], y[16], y[17])
     return unit(axpy(-dot(a, k[N]), k[N], a))[0]
 
 
 @kernel
-def _classic_direction(k, y):
-    """The classic cap's slide: along the slip, else as :func:`_direction`."""
+def classic_direction(k, y):
+    """The classic cap's slide: along the slip, else as :func:`direction`."""
     s, size = unit(k[SLIP])
-    return s if size > 0.0 else _direction(k, y)
+    return s if size > 0.0 else direction(k, y)
 
 
 @kernel
@@ -190,7 +191,7 @@ def slide_rates(y, P, n0, planar, side, floor, out):
     """d(state)/dt while sliding (s turning towards the sticking rate; ``floor``: the turn's floor in force)."""
     k = kinematics(y, P, n0, planar)
     n = k[N]
-    s = _direction(k, y)
+    s = direction(k, y)
     c = P[MU] * side * k[F_N]
     across = cross(n, s)
     bend = dot(across, stick_rate(k, P, _scaled(c, s))) / np.hypot(c, floor)
@@ -201,7 +202,7 @@ def slide_rates(y, P, n0, planar, side, floor, out):
 def classic_slide_rates(y, P, n0, planar, side, out):
     """d(state)/dt while the classic cap slides along the slip (s held)."""
     k = kinematics(y, P, n0, planar)
-    _write(out, k, P, _scaled(-P[MU] * side * k[F_N], _classic_direction(k, y)), (0.0, 0.0, 0.0))
+    _write(out, k, P, _scaled(-P[MU] * side * k[F_N], classic_direction(k, y)), (0.0, 0.0, 0.0))
 
 
 @kernel
@@ -215,7 +216,7 @@ def stick_end(y, P, n0, planar, side, margin):
 def slide_end(y, P, n0, planar, side, margin):
     """How fast sticking would carry A = c s outwards along s, less the cap's rate, plus ``margin``."""
     k = kinematics(y, P, n0, planar)
-    s = _direction(k, y)
+    s = direction(k, y)
     c = P[MU] * side * k[F_N]
     return dot(s, stick_rate(k, P, _scaled(c, s))) - P[MU] * side * k[DF_N] + margin
 
