@@ -97,6 +97,19 @@ def _first_cases_only(items) -> None:
         kept.add(test)
 
 
+def pytest_configure(config):
+    """The compiled references compiled once, here, before the tests fan out (xdist's controller, or the one
+    process of ``-n 0``): a fresh machine's first solver would otherwise pay it inside some test, with a
+    subprocess's time limit running (exact.first_use: about 40 s of one core, once a machine)."""
+    if hasattr(config, "workerinput"):
+        return
+    from spinbounce.exact import first_use, pair_capped_batch  # noqa: F401 (it imports every pair solver)
+
+    seconds = first_use.compile_all()
+    if sum(seconds.values()) > 1.0:
+        print(f"the compiled references compiled in {sum(seconds.values()):.0f} s", file=sys.stderr)
+
+
 def pytest_report_header(config):
     if run_slow():
         return f"{SLOW_SWITCH}=1: every test runs, the slow ones included"

@@ -25,7 +25,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from . import pair_exact
+from . import first_use, pair_exact
 from .dop853 import (
     INTERPOLATOR_POWER,
     accept,
@@ -270,7 +270,16 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, g
 
     ``n``, ``v_a``, ``v_b``, ``w_a``, ``w_b``: (N, 3) arrays (n need not be unit); the spheres'
     properties and the law's coefficients: scalars or (N,) arrays."""
+    first_use.once("pair batch")
     b = prepare(n, planar, v_a=v_a, v_b=v_b, w_a=w_a, w_b=w_b, m_a=m_a, r_a=r_a, alpha_a=alpha_a, m_b=m_b, r_b=r_b,
                 alpha_b=alpha_b, kn=kn, kt=kt, gamma_n=gamma_n, gamma_t=gamma_t)
     ends, times, status = _solve_all(b.y, b.p, b.n0, planar, b.longest, b.atol, b.window, MAX_STEPS)
     return finish(b, ends, times, status, pair_exact.solve, planar)
+
+
+@first_use.example("pair batch", seconds=17)
+def _example() -> None:
+    """pair_exact's example pair, free and held."""
+    pair = {k: [v] if isinstance(v, tuple) else v for k, v in pair_exact.EXAMPLE.items()}
+    solve(**pair)
+    solve(**pair, planar=True)

@@ -37,7 +37,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import NoLimit, NoMatrix
-from . import pair_exact
+from . import first_use, pair_exact
 from .pair_exact import (
     RTOL,
     PairOutcome,
@@ -107,6 +107,7 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, m
     """One capped pair from first touch until it separates (:func:`_solve`); with ``classic_cap`` (the classic
     spring's reset) a pair whose teeth after a slide set its outcome is refused (:class:`.NoLimit`, carrying
     the outcome at the usual cut as ``outcome``: its contact time holds)."""
+    first_use.once("capped pair")
     args = (n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, mu, gamma_n, gamma_t, planar, rtol,
             tensile)
     found, zeno = _solve(*args, **law)
@@ -187,3 +188,15 @@ def _solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, 
         contact.now = t
         contact.switch(y, events[which].__name__)
     raise RuntimeError(f"the capped pair switched phase more than {phases} times (chattering)")
+
+
+@first_use.example("capped pair", seconds=6)
+def _example() -> None:
+    """A law on the contact radius under a cap, free and held, cut by limit_damping; and the classic spring's cap."""
+    pair = pair_exact.EXAMPLE
+    solve(**pair, mu=0.3, **pair_exact.HERTZ_MINDLIN)
+    solve(**pair, mu=0.3, **pair_exact.HERTZ_MINDLIN, planar=True, tensile=False)
+    try:
+        solve(**pair, mu=0.3, **pair_exact.HOOKE | {"spring_power": 1.0, "projected": True}, classic_cap=True)
+    except NoLimit:  # its teeth set the outcome: refused, its functions compiled all the same
+        pass

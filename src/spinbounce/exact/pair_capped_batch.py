@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import pair_capped
+from . import first_use, pair_capped, pair_exact
 from .dop853 import (
     INTERPOLATOR_POWER,
     accept,
@@ -373,6 +373,7 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, m
     if not np.all(np.asarray(mu) > 0.0):
         raise ValueError("the capped pair reference needs a cap > 0 (mu = 0 is the uncapped reference without a "
                          "tangential force)")
+    first_use.once("capped pair batch")
     b = prepare(n, planar, v_a=v_a, v_b=v_b, w_a=w_a, w_b=w_b, m_a=m_a, r_a=r_a, alpha_a=alpha_a, m_b=m_b, r_b=r_b,
                 alpha_b=alpha_b, kn=kn, kt=kt, mu=mu, gamma_n=gamma_n, gamma_t=gamma_t)
     kn, speed = b.c["kn"], np.abs(b.closing)
@@ -382,3 +383,11 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, m
     y = np.concatenate([b.y, np.zeros((b.y.shape[0], 1))], axis=1)
     ends, times, status = _solve_all(y, p, b.n0, planar, b.longest, atol, b.window, MAX_STEPS)
     return finish(b, ends, times, status, pair_capped.solve, planar)
+
+
+@first_use.example("capped pair batch", seconds=30)
+def _example() -> None:
+    """pair_exact's example pair under a cap, free and held."""
+    pair = {k: [v] if isinstance(v, tuple) else v for k, v in pair_exact.EXAMPLE.items()}
+    solve(**pair, mu=0.3)
+    solve(**pair, mu=0.3, planar=True)

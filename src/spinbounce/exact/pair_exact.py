@@ -31,12 +31,12 @@ from typing import NamedTuple
 
 import numpy as np
 
+from . import first_use, pair_kernel
 from . import pair as pair_theory
-from . import pair_kernel
 from .wall_law import on_contact_radius
 
 __all__ = ["PairOutcome", "solve", "RTOL", "HOOKE", "longest_step", "start", "outcome", "free_flight", "window",
-           "contact_radius_power", "pair_scales", "tolerance_scale", "cross"]
+           "contact_radius_power", "pair_scales", "tolerance_scale", "cross", "EXAMPLE", "HERTZ_MINDLIN"]
 
 #: Relative tolerance of the integration (the absolute one is this times the speeds).
 RTOL = 1e-12
@@ -106,6 +106,12 @@ def window(tau, m_a, m_b, kn, gamma_n, radial: bool = False):
 #: The law of :func:`solve` beyond kn, kt and the dashpots: LAMMPS's Hookean force and linear_history.
 HOOKE = {"power": 1.0, "spring_power": 0.0, "force_history": False, "rescale": False, "damping_power": 0.0,
          "projected": False}
+#: A law on the contact radius: Hertz's force, Mindlin's spring and dashpots that grow as sqrt(delta).
+HERTZ_MINDLIN = HOOKE | {"power": 1.5, "spring_power": 1.0, "damping_power": 0.5}
+#: The pair the compiled references' examples solve (first_use): it slides, spins in 3-D and is damped.
+EXAMPLE = {"n": (0.0, 0.0, 1.0), "v_a": (0.3, 0.1, -1.0), "v_b": (0.0, 0.0, 0.0), "w_a": (0.0, 0.5, 0.2),
+           "w_b": (0.0, 0.0, 0.0), "m_a": 1.0, "r_a": 0.5, "alpha_a": 0.4, "m_b": 1.0, "r_b": 0.5, "alpha_b": 0.4,
+           "kn": 1e4, "kt": 2e3, "gamma_n": 5.0, "gamma_t": 2.0}
 
 
 def pair_scales(p, v_rel, n0, m_star):
@@ -178,6 +184,7 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, g
         solve_ivp,  # here: half a second to import, which a compiled batch never needs
     )
 
+    first_use.once("pair")
     n0, p, state, _, tau, longest, atol = start(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b,
                                                 kn, kt, planar, rtol, gamma_n=gamma_n, gamma_t=gamma_t, **law)
     radial = on_contact_radius(p["power"], p["spring_power"], p["damping_power"])
@@ -315,3 +322,10 @@ def _tail(state, t: float, delta: float, n0, p, planar, rtol, atol, turned=None)
     if solution.status != 0:
         raise RuntimeError(f"the pair's contact did not end: {solution.message}")
     return solution.y[:-1, -1], float(solution.y[-1, -1])
+
+
+@first_use.example("pair", seconds=3)
+def _example() -> None:
+    """A law on the contact radius, held and free, cut by limit_damping."""
+    solve(**EXAMPLE, **HERTZ_MINDLIN)
+    solve(**EXAMPLE, **HERTZ_MINDLIN, planar=True, tensile=False)

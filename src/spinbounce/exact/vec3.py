@@ -11,7 +11,7 @@ import numba
 import numpy as np
 from numba import njit
 
-__all__ = ["FLAGS", "compiled", "kernel", "dot", "cross", "axpy", "unit", "COMPILED"]
+__all__ = ["FLAGS", "cache_folder", "compiled", "kernel", "dot", "cross", "axpy", "unit", "COMPILED"]
 
 #: The compiled references' numba options: cached on disk, and IEEE arithmetic (a division by zero is
 #: inf or NaN, as numpy's, not an exception).
@@ -38,7 +38,8 @@ def _cache_dir() -> str | None:
     under the system's temporary folder; None if neither can be written (then nothing is cached: numba's
     fallback, a cache beside each file, would be keyed on that file alone)."""
     here = Path(__file__).parent
-    digest = hashlib.sha256(b"".join((here / name).read_bytes() for name in COMPILED)).hexdigest()[:16]
+    sources = b"".join((here / name).read_bytes() for name in COMPILED)  # and numba's version: first_use's markers
+    digest = hashlib.sha256(sources + numba.__version__.encode()).hexdigest()[:16]  # hold for this numba only
     bases = [numba.config.CACHE_DIR, os.environ.get("XDG_CACHE_HOME"), os.environ.get("HOME") and
              str(Path(os.environ["HOME"]) / ".cache"), str(Path(tempfile.gettempdir()) / f"spinbounce-{os.getuid()}")]
     for base in filter(None, bases):
@@ -51,6 +52,11 @@ def _cache_dir() -> str | None:
 _CACHE_DIR = _cache_dir()
 if _CACHE_DIR is None:
     FLAGS["cache"] = False
+
+
+def cache_folder() -> str | None:
+    """The folder the compiled references are cached in (named by the digest of their sources), or None."""
+    return _CACHE_DIR
 
 
 def compiled(function, **options):

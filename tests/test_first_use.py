@@ -1,0 +1,67 @@
+"""The compiled references are compiled once a machine, by one process, and their examples leave nothing to compile."""
+
+import json
+import os
+import subprocess
+import sys
+import textwrap
+
+# Pair laws as users run them (the pair scene's own contact law, every reference path: the two compiled batches, the
+# laws on the contact radius uncapped and capped, force histories, rescale, limit_damping, the classic spring's
+# cap), each free and held, in one fresh process whose cache the test session's start filled (conftest).
+_LAWS = textwrap.dedent("""
+    import json
+    import numba
+    import numpy as np
+    from spinbounce.model.contact import ContactModel
+    from spinbounce.scenes.pair.kind import pair_contact, pairs_from_states
+    from spinbounce.scenes.pair.pairs import Sphere
+
+    hm = dict(normal="hertz", tangential="mindlin", mindlin_kt=12.0)
+    laws = [{}, {"mu": 0.3, "gamma_t": 1.0}, {"gamma_n": 2.0, "limit_damping": True}, {**hm, "gamma_n": 1.0},
+            {**hm, "mu": 0.3, "gamma_n": 1.0, "gamma_t": 0.5}, {**hm, "tangential": "mindlin_rescale/force", "mu": 0.5},
+            {"mu": 0.3, "tangential": "linear_history_classic"}, {**hm, "mu": 0.2, "damping": "tsuji", "e_n": 0.8}]
+    states = np.array([[-0.8, 0.3, 0.2, 0.1, -0.2, 0.05], [-0.2, -0.1, 0.4, 0.0, 0.0, 0.0]])
+    b = Sphere(1.0, 0.5, 0.4)
+    for law in laws:
+        model = ContactModel(wall="granular", **law)
+        contact = pair_contact(model, b)
+        for planar in (False, True):
+            contact.solve_all(tuple(pairs_from_states(model, b, states)), planar)
+    misses = {}
+    for name, module in __import__("sys").modules.items():
+        if name.startswith("spinbounce.exact.") and not name.endswith("oracle_kernel"):
+            for attr, value in vars(module).items():
+                if isinstance(value, numba.core.registry.CPUDispatcher) and value._cache_misses:
+                    misses[f"{name}.{attr}"] = [str(sig) for sig in value._cache_misses]
+    print(json.dumps(misses))
+""")
+
+
+def test_the_examples_compile_everything_a_pair_law_calls():
+    """A compiled function a real solve calls with types its family's example never passed would compile outside
+    the lock (exact.first_use): slow, and open to two processes writing the cache at once."""
+    done = subprocess.run([sys.executable, "-c", _LAWS], capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, done.stderr[-3000:]
+    misses = json.loads(done.stdout.strip().splitlines()[-1])
+    assert misses == {}, f"compiled outside their family's example: {misses}"
+    assert "compiling" not in done.stderr, done.stderr
+
+
+_ONCE = "from spinbounce.exact import first_use, pair_exact; first_use.once('pair'); print('solved')"
+
+
+def test_two_processes_at_first_use_compile_once(tmp_path):
+    """Two processes that need the same family on a cold cache: one compiles it, the other waits for it (or finds
+    it done), and both go on; the marker then spares a third any note."""
+    env = {k: v for k, v in os.environ.items() if k != "NUMBA_CACHE_DIR"} | {"XDG_CACHE_HOME": str(tmp_path)}
+    runs = [subprocess.Popen([sys.executable, "-c", _ONCE], env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                             text=True) for _ in range(2)]
+    outs = [run.communicate(timeout=300) for run in runs]
+    assert [run.returncode for run in runs] == [0, 0], outs
+    notes = "".join(err for _, err in outs)
+    assert notes.count("compiling the pair reference") == 1, notes
+    markers = list(tmp_path.glob("spinbounce-numba/*/compiled-pair"))
+    assert len(markers) == 1
+    third = subprocess.run([sys.executable, "-c", _ONCE], env=env, capture_output=True, text=True, timeout=300)
+    assert third.returncode == 0 and third.stdout.strip() == "solved" and third.stderr == "", third.stderr
