@@ -192,10 +192,12 @@ def _solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, 
 
 @first_use.example("capped pair", seconds=6)
 def _example() -> None:
-    """A law on the contact radius under a cap, free and held, cut by limit_damping; and the classic spring's cap."""
+    """A law on the contact radius under a cap, free and held, cut by limit_damping, rescaled on a force history;
+    and the classic spring's cap."""
     pair = pair_exact.EXAMPLE
     solve(**pair, mu=0.3, **pair_exact.HERTZ_MINDLIN)
     solve(**pair, mu=0.3, **pair_exact.HERTZ_MINDLIN, planar=True, tensile=False)
+    solve(**pair, mu=0.3, **pair_exact.HERTZ_MINDLIN | {"force_history": True, "rescale": True})
     try:
         solve(**pair, mu=0.3, **pair_exact.HOOKE | {"spring_power": 1.0, "projected": True}, classic_cap=True)
     except NoLimit:  # its teeth set the outcome: refused, its functions compiled all the same

@@ -338,14 +338,16 @@ def _solve_one(y, p, n0, planar, longest, atol, window, max_steps, end):
                     h = max(h, hs)  # the next phase starts at the step that found the event, not a sliver
                     break
                 accept(y, f, y_new, stages)
-                g_start[:] = g_end
+                for w in range(events):
+                    g_start[w] = g_end[w]
                 t += hs
             if t > bound or h < MIN_STEP * longest:
                 return t, STUCK
         if which < 0:
             return t, STUCK
         if which == SEPARATED:
-            end[:] = y
+            for i in range(size):  # element by element: a slice's copy compiles a shape check's message
+                end[i] = y[i]
             return t, ENDED
         mode = _switch(which, y, p, n0, planar, mode)
     return t, STUCK

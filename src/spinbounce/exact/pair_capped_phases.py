@@ -15,7 +15,7 @@ import numpy as np
 from . import pair_kernel as kernel
 from .oracle_classic import NEAR_ONE, note_cap, reset, slides
 
-__all__ = ["Contact", "ClassicContact", "MARGIN", "TURN_FLOOR"]
+__all__ = ["Contact", "ClassicContact", "MARGIN", "TURN_FLOOR", "MAX_EVALUATIONS"]
 
 #: A switch must be passed by this fraction of the cap's scale (as in the wall's oracle).
 MARGIN = 1e-12
@@ -23,6 +23,11 @@ MARGIN = 1e-12
 #: TURN_FLOOR): near the cap's zeros s' ~ 1/c would grow without bound; the slower turn only bends
 #: a force that small.
 TURN_FLOOR = 1e-8
+#: A pair whose rates are asked for more often than this is refused (about 20 s of one core): the stiffest
+#: pairs measured take ~1e5 (a capped Hertzian force on a constant spring, 3-D). A 3-D slide along the slip from
+#: first touch (Hertz-Mindlin with a tangential dashpot and no normal one, the cap starting at zero) turns s at
+#: ~1e20 per second, and the integrator's steps fell to 1e-17 of the contact time: it would never end.
+MAX_EVALUATIONS = 1_000_000
 
 
 #: The names of :func:`.pair_kernel.kinematics`' fields.
@@ -45,6 +50,7 @@ class Contact:
         self.P = kernel.coefficients(p)
         self.m_star = self.P[kernel.M_STAR]
         self.sliding, self.f_side = False, 1.0
+        self.evaluations = 0
 
     def kinematics(self, y) -> dict:
         """The state's kinematics (:func:`.pair_kernel.kinematics`) by name, the compiled tuple as ``raw``."""
@@ -71,12 +77,19 @@ class Contact:
         return np.array(kernel.direction(k["raw"], y))
 
     def rates(self, _t, y):
+        self._counted()
         out = np.empty(19)
         if self.sliding:
             kernel.slide_rates(y, self.P, self.n0, self.planar, self.f_side, self.turn_floor, out)
         else:
             kernel.stick_rates(y, self.P, self.n0, self.planar, out)
         return out
+
+    def _counted(self) -> None:
+        self.evaluations += 1
+        if self.evaluations > MAX_EVALUATIONS:
+            raise RuntimeError(f"the capped pair's rates were asked for {MAX_EVALUATIONS:,} times, its steps "
+                               f"{'sliding' if self.sliding else 'sticking'} too short to end the contact")
 
     def stick_ends(self, _t, y) -> float:
         return kernel.stick_end(y, self.P, self.n0, self.planar, self.f_side, MARGIN * self.force_scale)
@@ -177,6 +190,7 @@ class ClassicContact(Contact):
     def rates(self, t, y):
         if not self.sliding:
             return super().rates(t, y)
+        self._counted()
         out = np.empty(19)
         kernel.classic_slide_rates(y, self.P, self.n0, self.planar, self.f_side, out)
         return out
