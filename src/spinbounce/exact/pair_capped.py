@@ -175,6 +175,7 @@ def _solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, 
             atol[15:18] = rtol
         else:
             atol[15:18] = stick_atol
+        contact.evaluations = 0  # MAX_EVALUATIONS bounds a phase
         solution = solve_ivp(contact.rates, (t, t + window), y, method="DOP853", rtol=rtol, atol=atol,
                              events=events, max_step=longest, dense_output=True)
         t, which, y = _first_event(solution, events)

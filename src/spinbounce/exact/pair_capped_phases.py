@@ -23,8 +23,8 @@ MARGIN = 1e-12
 #: TURN_FLOOR): near the cap's zeros s' ~ 1/c would grow without bound; the slower turn only bends
 #: a force that small.
 TURN_FLOOR = 1e-8
-#: A pair whose rates are asked for more often than this is refused (about 20 s of one core): the stiffest
-#: pairs measured take ~1e5 (a capped Hertzian force on a constant spring, 3-D). A 3-D slide along the slip from
+#: A phase whose rates are asked for more often than this is refused (about 20 s of one core): the stiffest
+#: pairs measured take ~1e5 in all (3-D Hertz-Mindlin with dashpots: 8e4 to 1.1e5). A 3-D slide along the slip from
 #: first touch (Hertz-Mindlin with a tangential dashpot and no normal one, the cap starting at zero) turns s at
 #: ~1e20 per second, and the integrator's steps fell to 1e-17 of the contact time: it would never end.
 MAX_EVALUATIONS = 1_000_000
@@ -88,8 +88,8 @@ class Contact:
     def _counted(self) -> None:
         self.evaluations += 1
         if self.evaluations > MAX_EVALUATIONS:
-            raise RuntimeError(f"the capped pair's rates were asked for {MAX_EVALUATIONS:,} times, its steps "
-                               f"{'sliding' if self.sliding else 'sticking'} too short to end the contact")
+            raise RuntimeError(f"the capped pair's rates were asked for {MAX_EVALUATIONS:,} times in one phase, its "
+                               f"steps {'sliding' if self.sliding else 'sticking'} too short to end it")
 
     def stick_ends(self, _t, y) -> float:
         return kernel.stick_end(y, self.P, self.n0, self.planar, self.f_side, MARGIN * self.force_scale)
