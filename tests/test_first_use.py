@@ -97,3 +97,29 @@ def test_an_example_that_fails_leaves_no_marker_and_says_so(tmp_path, monkeypatc
     first_use.once("broken", log=lines.append)
     assert "compiling the broken reference ahead failed (division by zero)" in lines[-1], lines
     assert not list(tmp_path.glob("compiled-broken-*")) and list(tmp_path.glob("compiling.lock"))
+
+
+_WHERE = "from spinbounce.exact import first_use, vec3; print(vec3.cache_folder()); print(first_use._machine())"
+
+
+def test_a_process_waits_for_the_one_compiling_and_compiles_nothing_it_made(tmp_path):
+    """While another process holds the lock, a process that needs the family says it waits; when the holder has
+    written the marker and let go, it goes on without compiling (here the test itself holds the lock)."""
+    import fcntl
+    from pathlib import Path
+
+    env = _cold(tmp_path)
+    where = subprocess.run([sys.executable, "-c", _WHERE], env=env, capture_output=True, text=True, timeout=120)
+    folder, machine = where.stdout.split()
+    lock = os.open(Path(folder) / "compiling.lock", os.O_RDONLY | os.O_CREAT, 0o644)
+    fcntl.flock(lock, fcntl.LOCK_EX)
+    try:
+        waiting = subprocess.Popen([sys.executable, "-c", _ONCE], env=env, stdout=subprocess.PIPE,
+                                   stderr=subprocess.PIPE, text=True)
+        first = waiting.stderr.readline()
+        (Path(folder) / f"compiled-pair-{machine}").touch()
+    finally:
+        os.close(lock)
+    out, rest = waiting.communicate(timeout=120)
+    assert "waiting for another process compiling" in first, first + rest
+    assert waiting.returncode == 0 and out.strip() == "solved" and "compiling the" not in rest, rest
