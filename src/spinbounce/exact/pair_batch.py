@@ -40,7 +40,7 @@ from .dop853 import (
 from .pair_exact import HOOKE, PairOutcome, longest_step, pair_scales, tolerance_scale
 from .vec3 import compiled, kernel
 
-__all__ = ["solve", "solvable", "Batch", "prepare", "finish"]
+__all__ = ["solve", "solvable", "Batch", "prepare", "finish", "example_batch"]
 
 #: A pair not separated within the scipy reference's window (:func:`.pair_exact.window`), whose step
 #: shrinks below MIN_STEP of its longest, or still in contact after MAX_STEPS steps is solved by the
@@ -277,9 +277,13 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, g
     return finish(b, ends, times, status, pair_exact.solve, planar)
 
 
+def example_batch() -> dict:
+    """:data:`.pair_exact.EXAMPLE` as a batch of one pair (the compiled batches' examples)."""
+    return {k: [v] if isinstance(v, tuple) else v for k, v in pair_exact.EXAMPLE.items()}
+
+
 @first_use.example("pair batch", seconds=17)
 def _example() -> None:
     """pair_exact's example pair, free and held."""
-    pair = {k: [v] if isinstance(v, tuple) else v for k, v in pair_exact.EXAMPLE.items()}
-    solve(**pair)
-    solve(**pair, planar=True)
+    solve(**example_batch())
+    solve(**example_batch(), planar=True)

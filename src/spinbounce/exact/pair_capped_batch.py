@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import first_use, pair_capped, pair_exact
+from . import first_use, pair_capped
 from .dop853 import (
     INTERPOLATOR_POWER,
     accept,
@@ -31,7 +31,7 @@ from .dop853 import (
     new_scratch,
     step_factor,
 )
-from .pair_batch import ENDED, STUCK, finish, prepare
+from .pair_batch import ENDED, STUCK, example_batch, finish, prepare
 from .pair_batch import solvable as uncapped_solvable
 from .pair_capped import INTERIOR_SAMPLES, MAX_PHASES
 from .pair_capped_phases import MARGIN, TURN_FLOOR
@@ -390,6 +390,5 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, m
 @first_use.example("capped pair batch", seconds=30)
 def _example() -> None:
     """pair_exact's example pair under a cap, free and held."""
-    pair = {k: [v] if isinstance(v, tuple) else v for k, v in pair_exact.EXAMPLE.items()}
-    solve(**pair, mu=0.3)
-    solve(**pair, mu=0.3, planar=True)
+    solve(**example_batch(), mu=0.3)
+    solve(**example_batch(), mu=0.3, planar=True)
