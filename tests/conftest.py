@@ -100,7 +100,7 @@ def _first_cases_only(items) -> None:
 def pytest_configure(config):
     """The compiled references compiled once, here, before the tests fan out (xdist's controller, or the one
     process of ``-n 0``): a fresh machine's first solver would otherwise pay it inside some test, with a
-    subprocess's time limit running (exact.first_use: 40 to 55 s of one core, once a machine)."""
+    subprocess's time limit running (exact.first_use: 32 to 55 s of one core, once a machine)."""
     if hasattr(config, "workerinput"):
         return
     from spinbounce.exact import first_use, pair_capped_batch  # noqa: F401 (it imports every pair solver)

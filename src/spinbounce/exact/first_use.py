@@ -2,7 +2,7 @@
 compiled once, by one process at a time, with a note on stderr.
 
 numba compiles a function at its first call and keeps the result in the cache folder (:mod:`.vec3`). Compiled
-one after another, the four families take 40 to 50 s of one idle core (alone: 17 s the uncapped Hooke batch,
+one after another, the four families took 32 to 55 s of one core in CI and here (alone: 17 s the uncapped Hooke batch,
 18 to 30 s the capped one, 3 to 6 s each the laws on the contact radius; twice that with both cores busy).
 Two processes compiling at once would each pay it, and could corrupt the cache: numba numbers a function's
 cached versions from an index that each process reads, extends and writes back, so two processes compiling
