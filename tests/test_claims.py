@@ -174,13 +174,13 @@ def test_reproduce_writes_every_figure_and_the_claims(reproduction, monkeypatch,
         record = json.loads((made.out / f"fig{n}.json").read_text())
         assert 0 < record["max_deviation_exact"] < 1e-4  # the acceptance limit, measured per figure
     assert made.claims_md.read_text().count("**reproduced**") >= 1
-    monkeypatch.setattr(reproduce_cli, "reproduce", lambda out, run_dir, only=None, workers=None: made)
+    monkeypatch.setattr(reproduce_cli, "reproduce", lambda out, runs, only=None, workers=None: made)
     assert main(["reproduce", "--out", str(made.out)]) == 0
     printed = capsys.readouterr().out
     assert "0 unresolved" in printed and f"{len(made.claims)} claims" in printed
     # one claim that LAMMPS could not settle makes the command fail
     doubtful = [dataclasses.replace(made.claims[0], verdict="unresolved"), *made.claims[1:]]
     monkeypatch.setattr(reproduce_cli, "reproduce",
-                        lambda out, run_dir, only=None, workers=None: dataclasses.replace(made, claims=doubtful))
+                        lambda out, runs, only=None, workers=None: dataclasses.replace(made, claims=doubtful))
     assert main(["reproduce", "--out", str(made.out)]) == 1
     assert "1 unresolved" in capsys.readouterr().out

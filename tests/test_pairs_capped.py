@@ -200,9 +200,9 @@ def test_the_api_gives_a_capped_pair_no_matrix_but_its_outcome():
 
     report = spinbounce.theory(scene="pair", mu=0.3)
     assert report["matrix"] is None and "a capped pair has no matrix" in report["why_no_matrix"]
-    outcome = spinbounce.theory(v_n=-1.0, v_t=1.0, scene="pair", mu=0.3)["outcome"]
+    outcome = spinbounce.theory(v_n=-1.0, v_t=1.0, scene="pair", mu=0.3)
     exact = PairContact(mu=0.3).solve(Pair(v_a=(1.0, 0.0, -1.0)))
-    assert outcome["exact"]["v_t"] == pytest.approx(exact.v_a[0], abs=1e-12)  # LAMMPS's x: the paper's v_t
+    assert outcome["theory"]["v_t"] == pytest.approx(exact.v_a[0], abs=1e-12)  # LAMMPS's x: the paper's v_t
 
 
 def test_the_normal_forces_zero_is_passed_once():
@@ -278,8 +278,8 @@ def test_a_zero_cap_is_no_tangential_force_and_lammps_agrees(tmp_path):
     assert report.status == "ok" and report.error < 1e-4
     pair = Pair(v_a=(1.0, 0.0, -1.0), w_a=(0.0, -2.0, 0.0))
     free = PairContact(kt=0.0).solve(pair)
-    assert report.table.loc["v_t", "exact"] == pytest.approx(free.v_a[0], abs=1e-12)
-    assert report.table.loc["r_omega", "exact"] == pytest.approx(2.0 * 0.5, abs=1e-12)  # no torque: spin kept
+    assert report.table.loc["v_t", "theory"] == pytest.approx(free.v_a[0], abs=1e-12)
+    assert report.table.loc["r_omega", "theory"] == pytest.approx(2.0 * 0.5, abs=1e-12)  # no torque: spin kept
 
 
 def test_a_pair_whose_slide_the_integrator_cannot_follow_is_refused_not_followed_forever(monkeypatch):

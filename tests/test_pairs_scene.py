@@ -181,9 +181,18 @@ def test_collide_runs_the_pair_scene(tmp_path, capsys):
     import json
 
     row = json.loads(capsys.readouterr().out)
-    assert row["m_b"] == 2.0 and row["alpha_b"] == 0.3 and row["error"] < ACCURACY
+    assert row["m_b"] == 2.0 and row["alpha_b"] == 0.3 and row["error_estimate"] < ACCURACY
     report = spinbounce.collide(scene="pair", m_b=2.0, r_b=0.7, alpha_b=0.3, v_t=0.3, out=tmp_path / "api")
-    assert report.error == pytest.approx(row["error"], rel=1e-9)
+    assert report.error == pytest.approx(row["error_estimate"], rel=1e-9)
+    # one shape for wall and pair: every key of the wall's report, in the same meaning
+    assert main(["collide", "--vt", "0.3", "--out", str(tmp_path / "wall"), "--json"]) == 0
+    wall = json.loads(capsys.readouterr().out)
+    assert set(wall) - set(row) == set() and row["theory_kind"] == "pair_exact"
+    for name, value in row["error"].items():
+        assert value == pytest.approx(row["lammps"][name] - row["theory"][name], abs=1e-15), name
+    assert row["theory"]["omega_b"] == pytest.approx(row["theory"]["r_omega_b"] / 0.7, rel=1e-15)
+    size = max(abs(v) for k, v in row["error"].items() if k.startswith(("v_", "r_"))) / row["speed"]
+    assert size == pytest.approx(row["error_estimate"], rel=1e-9)  # the wall's measure, over the pair's speed
 
 
 @pytest.mark.lammps
@@ -227,10 +236,10 @@ def test_a_pair_with_limit_damping_has_no_planar_matrix_and_its_planar_column_cu
     # column took the closed form's restitution)
     report = spinbounce.theory(scene="pair", gamma_n=1.0, limit_damping=True)
     assert report["matrix"] is None and "limit_damping" in report["why_no_matrix"]
-    outcome = spinbounce.theory(v_n=-1.0, scene="pair", gamma_n=1.0, limit_damping=True)["outcome"]
+    outcome = spinbounce.theory(v_n=-1.0, scene="pair", gamma_n=1.0, limit_damping=True)
     assert outcome["planar_error"] < 1e-9
-    assert outcome["exact"]["v_n"] != pytest.approx(spinbounce.theory(v_n=-1.0, scene="pair", gamma_n=1.0)[
-        "outcome"]["exact"]["v_n"], abs=1e-3)  # the cut changes the rebound
+    assert outcome["theory"]["v_n"] != pytest.approx(spinbounce.theory(v_n=-1.0, scene="pair", gamma_n=1.0)[
+        "theory"]["v_n"], abs=1e-3)  # the cut changes the rebound
 
 
 def test_a_pairs_cached_outcome_cannot_be_changed_by_a_caller():

@@ -3,9 +3,9 @@ reports."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+import dataclasses
+from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -14,9 +14,7 @@ from ..model.contact import ContactModel
 from ..exact import choose, linear
 from ..laws.words import expand_contact
 from ..records import run_folder
-
-if TYPE_CHECKING:
-    import pandas as pd
+from .reports import CollisionReport, PairReport, ToleranceReport, state_record, state_table
 
 __all__ = ["collide", "theory", "model", "CollisionReport", "PairReport", "ToleranceReport"]
 
@@ -59,98 +57,6 @@ def model(**parameters_) -> ContactModel:
     return ContactModel(**parameters_)
 
 
-#: A wall collision report's columns as the table labels them; lower case, the run's column
-#: suffix and the JSON key.
-_REPORT_COLUMNS = ("initial", "LAMMPS", "theory", "error")
-
-
-def _state_table(row, names, r: float) -> pd.DataFrame:
-    """One row per state column of a run's row: initial, LAMMPS, theory and error (``attrs["r"]``: r)."""
-    import pandas as pd
-
-    table = pd.DataFrame({label: [float(row[f"{s}_{label.lower()}"]) for s in names]
-                          for label in _REPORT_COLUMNS}, index=list(names))
-    table.attrs["r"] = r
-    return table
-
-
-def _state_record(table: pd.DataFrame) -> dict:
-    """A state table as JSON-ready data: per column a state by name, each spin also as an
-    angular velocity (r_omega -> omega)."""
-    out = {}
-    for label in _REPORT_COLUMNS:
-        state = {name: float(table.loc[name, label]) for name in table.index}
-        state.update({name[2:]: value / table.attrs["r"] for name, value in list(state.items()) if name.startswith("r_")})
-        out[label.lower()] = state
-    return out
-
-
-@dataclass(frozen=True)
-class CollisionReport:
-    """One wall collision in LAMMPS beside its theory. ``table``: one row per state column
-    (initial, LAMMPS, theory, error); the rest says how it ran and how far from the truth it is."""
-
-    table: pd.DataFrame
-    theory: str
-    theory_kind: str
-    dt: float
-    nsteps: int
-    error: float
-    status: str
-    run_dir: Path
-    contact_time: float = float("nan")
-    Omega: float | None = None
-    step: dict = field(default_factory=dict)
-    warnings: tuple[str, ...] = ()
-    deck: str = ""
-    dump: str | None = None
-    lammps_version: str = ""
-
-    def record(self) -> dict:
-        """The report as JSON-ready data (``spinbounce collide --json``)."""
-        return {**_state_record(self.table), "theory_kind": self.theory_kind, "theory_name": self.theory, "dt": self.dt,
-                "nsteps": self.nsteps, "contact_time": self.contact_time, "step": self.step,
-                "error_estimate": self.error, "status": self.status, "Omega": self.Omega, "deck": self.deck,
-                "dump": self.dump, "lammps_version": self.lammps_version, "warnings": list(self.warnings)}
-
-    def __str__(self) -> str:
-        head = (f"collision: theory {self.theory}; dt = {self.dt:.6g} ({self.nsteps} steps); "
-                f"error {self.error:.2e} of the state's size; status {self.status}\n")
-        return head + self.table.to_string(float_format=lambda x: f"{x:.10f}")
-
-
-@dataclass(frozen=True)
-class PairReport:
-    """One pair scene: both spheres' states in the paper's names and signs (sphere b's with ``_b``;
-    the frame is the wall's, the line of centres from b to a its normal) initially, as LAMMPS ended
-    them (if it ran), by the exact reference and by the planar theory (``table``); LAMMPS's error
-    against the exact reference (the wall's measure: ``error``, in units of the pair's speed) and
-    the planar theory's model error."""
-
-    table: pd.DataFrame
-    dt: float
-    nsteps: int
-    error: float
-    planar_error: float
-    eps: float
-    run_dir: Path | None
-    status: str = ""
-    step: dict = field(default_factory=dict)
-    geometry: dict = field(default_factory=dict)
-
-    def record(self) -> dict:
-        """The report as JSON-ready data (``spinbounce collide --scene pair --json``)."""
-        states = {column.lower(): {k: float(v) for k, v in self.table[column].items()} for column in self.table}
-        return {**states, "error": self.error, "planar_error": self.planar_error, "status": self.status,
-                **self.geometry, "dt": self.dt, "nsteps": self.nsteps, "step": self.step,
-                "run_dir": None if self.run_dir is None else str(self.run_dir)}
-
-    def __str__(self) -> str:
-        head = (f"pair: dt = {self.dt:.6g} ({self.nsteps} steps); LAMMPS vs exact {self.error:.2e}; planar theory's "
-                f"model error {self.planar_error:.2e} (eps = {self.eps:.3g})\n")
-        return head + self.table.to_string(float_format=lambda x: f"{x:.10f}")
-
-
 def _pair_batch(pair: _Pair, contact: ContactModel, state: dict, dt=None):
     from ..scenes.pair.kind import pair_contact, pairs_from_states
     from ..scenes.pair.scene import PairBatch
@@ -164,36 +70,47 @@ _PAIR_GEOMETRY = ("m_a", "r_a", "alpha_a", "m_b", "r_b", "alpha_b", "v_n_relativ
                   "contact_time", "eps", "centrifugal", "turn")
 
 
-def _pair_report(row: dict, batch, run_dir, step=None) -> PairReport:
+def _pair_report(row: dict, batch, run=None, run_dir=None, Omega=None) -> PairReport:
     """A pair's row in the paper's names and signs: LAMMPS's frame (the line of centres along z)
-    is the wall's, so each sphere's velocity and spin map as the wall's sphere's do."""
+    is the wall's, so each sphere's velocity and spin map as the wall's sphere's do. ``run``: the
+    pipeline's result, where LAMMPS ran (in ``run_dir``)."""
     from ..exact.choose import SPACE_COLUMNS
     from ..scenes.pair.kind import wall_frame
 
     pair = batch.pairs[0]
 
-    def states(suffix: str) -> list[float]:
+    def states(suffix: str) -> np.ndarray:
         out = []
         for side, sphere in (("a", pair.a), ("b", pair.b)):
             v, w = (np.array([row[f"{side}_{q}{x}{suffix}"] for x in "xyz"]) for q in "vw")
             out += wall_frame(v, w, sphere.r)[0].tolist()
-        return out
+        return np.array(out)
 
     initial = wall_frame(np.array(pair.v_a), np.array(pair.w_a), pair.a.r)[0].tolist() + \
         wall_frame(np.array(pair.v_b), np.array(pair.w_b), pair.b.r)[0].tolist()
-    columns = {"initial": initial, **({"LAMMPS": states("")} if run_dir is not None else {}),
-               "exact": states("_exact"), "planar": states("_planar")}
+    theory, lammps = states("_exact"), None if run is None else states("")
+    columns = {"initial": initial, "LAMMPS": lammps, "theory": theory,
+               "error": None if lammps is None else lammps - theory, "planar": states("_planar")}
     import pandas as pd
 
-    table = pd.DataFrame(columns, index=list(SPACE_COLUMNS) + [f"{s}_b" for s in SPACE_COLUMNS])
+    table = pd.DataFrame({k: v for k, v in columns.items() if v is not None},
+                         index=list(SPACE_COLUMNS) + [f"{s}_b" for s in SPACE_COLUMNS])
+    table.attrs.update(r=pair.a.r, r_b=pair.b.r)
     geometry = {k: float(row[k]) for k in _PAIR_GEOMETRY}
-    return PairReport(table, batch.dt, batch.nsteps, float(row.get("error", float("nan"))), float(row["planar_error"]),
-                      float(row["eps"]), run_dir, str(row.get("status", "")), step or {}, geometry)
+    report = PairReport(table, batch.dt, batch.nsteps, float(row.get("error", float("nan"))),
+                        float(row["planar_error"]), float(row["eps"]), run_dir, str(row.get("status", "")),
+                        geometry=geometry)
+    if run is None:
+        return report
+    return dataclasses.replace(report, step=run.step.record(), Omega=Omega, warnings=tuple(run.warnings),
+                               deck=str(run.info.deck), dump=None if run.dump is None else str(run.dump),
+                               lammps_version=run.info.lammps_version)
 
 
 def _collide_pair(pair: _Pair, contact: ContactModel, state: dict, dt, tolerance, out) -> PairReport:
     from ..errors import SceneError
     from ..pipeline import run_scene
+    from ..scenes.pair.kind import no_planar_matrix, planar_Omega
 
     if tolerance is not None:
         raise SceneError("tolerance", tolerance, "is for the wall only: a pair runs at dt or its default step, and "
@@ -202,7 +119,9 @@ def _collide_pair(pair: _Pair, contact: ContactModel, state: dict, dt, tolerance
     out = Path(out) if out is not None else run_folder("collide-pair", {"model": contact.as_record(), "pairs": repr(batch.pairs),
                                                                          "dt": batch.dt})
     result = run_scene(batch, out)  # its batch carries the step the probe chose
-    return _pair_report(result.table.iloc[0].to_dict(), result.scene, out, result.step.record())
+    # the planar theory's Omega, as the sweep's Omega_theory; none where it has no matrix (as the wall's: a cap)
+    Omega = None if no_planar_matrix(contact) is not None else planar_Omega(contact, pair.b)
+    return _pair_report(result.table.iloc[0].to_dict(), result.scene, result, out, Omega)
 
 
 def collide(v_n: float | None = None, v_t: float | None = None, omega: float = 0.0, v_s: float = 0.0,
@@ -246,7 +165,7 @@ def collide(v_n: float | None = None, v_t: float | None = None, omega: float = 0
     scene, row = result.scene, result.table.iloc[0]  # at the step its accuracy needed
     choice = choose.which(scene.model)
     omega = float(choose.omega_per_sphere(scene.model, scene.v_n)[0])
-    return CollisionReport(_state_table(row, scene.state_names, scene.model.r), choice.name, choice.kind,
+    return CollisionReport(state_table(row, scene.state_names, scene.model.r), choice.name, choice.kind,
                            scene.dt, scene.nsteps, float(row["error"]), str(row["status"]), out,
                            float(np.max(scene.model.contact_times(scene.v_n))),
                            None if np.isnan(omega) else omega, result.step.record(), result.warnings,
@@ -281,21 +200,10 @@ def _collide_extrapolated(scene, out: Path) -> CollisionReport | None:
                  warnings=[], max_abs_error=deviation, max_error=float(table["error"].max()), step=step,
                  status=checks.summary(table["status"]), table=table)
     v_n = float(scene.v_n[0])
-    return CollisionReport(_state_table(row, finest.state_names, contact.r), choice.name, choice.kind, finest.dt,
+    return CollisionReport(state_table(row, finest.state_names, contact.r), choice.name, choice.kind, finest.dt,
                            result.steps, float(row["error"]), str(row["status"]), out,
                            float(contact.contact_times(v_n)[0]), contact.Omega, step, (), str(result.levels[-1]["deck"]),
                            None, lammps_version())
-
-
-@dataclass(frozen=True)
-class ToleranceReport:
-    """A collision run to a requested accuracy: the extrapolated state beside the theory
-    (``table`` as :class:`CollisionReport`'s) and ``record`` (written to ``tolerance.json``)."""
-
-    table: pd.DataFrame
-    record: dict
-    how: str
-    path: Path
 
 
 def _collide_to_tolerance(contact: ContactModel, state: dict, tolerance: float, out, log) -> ToleranceReport:
@@ -308,8 +216,8 @@ def _collide_to_tolerance(contact: ContactModel, state: dict, tolerance: float, 
     result, scene = collide_to_tolerance(contact, state["v_n"], state["v_t"], state["omega"], tolerance, out,
                                          log=log or (lambda *_: None), **out_of_plane)
     row = collision_frame(result, scene).iloc[0]
-    table = _state_table(row, scene.state_names, contact.r)
-    record = {**_state_record(table), "estimate": result.max_estimate, "theory_kind": choose.which(contact).kind,
+    table = state_table(row, scene.state_names, contact.r)
+    record = {**state_record(table), "estimate": result.max_estimate, "theory_kind": choose.which(contact).kind,
               "tolerance": result.tolerance, "steps": result.steps,
               "plain_steps_for_same_estimate": result.plain_steps_for(result.max_estimate),
               "levels": result.levels, "Omega": _tolerance_omega(contact, state["v_n"]), **software()}
@@ -334,7 +242,8 @@ def theory(v_n: float | None = None, v_t: float | None = None, omega: float = 0.
     """The theory that applies: with a state (``v_n``, and ``v_t`` default 0; or ``speed`` and
     ``angle_deg``) the final state of that collision (``theory``), else the scattering matrix and what
     it rests on (or, where none exists, why not). With ``scene="pair"``: the planar pair theory's
-    matrix of sphere a (b at rest), or one state's exact and planar outcomes."""
+    matrix of sphere a (b at rest), or one state's outcome by the exact reference (``theory``) and by the
+    planar theory (``planar``), in ``pair --json``'s keys."""
     v_n, v_t = parameters.velocity(v_n, v_t, speed, angle_deg, (v_n, 0.0))
     contact, pair = _contact_and_pair(model_parameters)
     state = dict(zip(_STATE_NAMES, (v_n, v_t, omega, v_s, omega_s, omega_n), strict=True))
@@ -383,7 +292,7 @@ def _pair_theory(pair: _Pair, contact: ContactModel, state: dict) -> dict:
                           "eps = v_t tau/(r + r_b) -> 0 (figures/pair_validity); give a state for the exact reference"}
     if state["v_n"] is not None:
         batch = _pair_batch(pair, contact, state)
-        out["outcome"] = _pair_report(pair_table(batch, None).iloc[0].to_dict(), batch, None).record()
+        out.update(_pair_report(pair_table(batch, None).iloc[0].to_dict(), batch).record())
     elif (why := no_planar_matrix(contact)) is not None:
         out.update(matrix=None, why_no_matrix=f"mu = {contact.mu!r}: {why}" if contact.mu is not None else why)
     elif np.any(pair.state):

@@ -12,7 +12,7 @@ HELP = "check the paper's quantitative claims with LAMMPS and the exact theory; 
 def register(sub) -> None:
     p = sub.add_parser("claims", help=HELP, description=HELP + ".")
     out_option(p, "CLAIMS.md and claims.json")
-    p.add_argument("--run-dir", type=out_folder, default=Path("spinbounce-runs") / "claims", metavar="DIR",
+    p.add_argument("--runs", type=out_folder, default=Path("spinbounce-runs") / "claims", metavar="DIR",
                    help="LAMMPS run folders (default %(default)s)")
     p.set_defaults(handler=run)
 
@@ -20,7 +20,7 @@ def register(sub) -> None:
 def run(args) -> int:
     from ..studies.claims import make_claims
 
-    print(f"checking the paper's claims (LAMMPS runs in {args.run_dir}):")
-    claims, md, js = make_claims(args.out, args.run_dir)
+    print(f"checking the paper's claims (LAMMPS runs in {args.runs}):")
+    claims, md, js = make_claims(args.out, args.runs)
     print(f"claims: {md} and {js}")
     return 1 if any(c.verdict == "unresolved" for c in claims) else 0

@@ -93,16 +93,20 @@ def _print_states(record: dict, names, label_width: int) -> None:
 
 def print_pair_record(record: dict) -> None:
     """A pair's report: both spheres' states (b's with _b) initially, as LAMMPS ended them (when it
-    ran), by the exact reference and by the planar theory."""
+    ran), by the exact reference (theory) and by the planar theory."""
     ran = "lammps" in record
     print(f"contact {record['contact_time']:.6g} (planar tau {record['tau']:.6g}); line of centres turned "
           f"{record['turn']:.4g} rad (eps = {record['eps']:.4g}, centrifugal ratio {record['centrifugal']:.4g})"
           + (f"; dt = {record['dt']:.6g}, {record['nsteps']} steps" if ran else ""))
-    columns = [c for c in ("initial", "lammps", "exact", "planar") if c in record]
+    columns = [c for c in ("initial", "lammps", "theory", "error", "planar") if c in record]
     print(f"{'':12}" + "".join(f"{'LAMMPS' if c == 'lammps' else c:>14}" for c in columns))
-    for name in record["exact"]:
-        print(f"{_label(name):12}" + "".join(f"{record[c][name]:>14.8f}" for c in columns))
-    print((f"LAMMPS vs exact: {record['error']:.2e} (status {record['status']}); " if ran else "")
+    for name in (n for n in record["theory"] if n.startswith(("v_", "r_"))):
+        print(f"{_label(name):12}" + "".join(f"{record[c][name]:>14.3e}" if c == "error" else f"{record[c][name]:>14.8f}"
+                                             for c in columns))
+    print((f"accuracy: max |LAMMPS - theory| / the pair's speed = {record['error_estimate']:.2e} "
+           f"(theory: the exact reference; status {record['status']}); " if ran else "")
           + f"planar theory vs exact (model error): {record['planar_error']:.2e}")
     if ran:
+        for w in record["warnings"]:
+            print(f"warning: {w}")
         print(f"run: {record['run_dir']}")

@@ -11,7 +11,7 @@ HELP = ("run a few tiny collisions and say whether this LAMMPS build's classic g
 
 def register(sub) -> None:
     p = sub.add_parser("doctor", help=HELP, description=HELP + ".")
-    p.add_argument("--run-dir", type=out_folder, default=None, metavar="DIR",
+    p.add_argument("--runs", type=out_folder, default=None, metavar="DIR",
                    help="keep the decks and logs here (default: a temporary folder, removed afterwards)")
     p.add_argument("--strict", action="store_true",
                    help="exit with the verdict's status: 0 every form the paper's, 3 the contact-radius build, "
@@ -34,7 +34,7 @@ def run(args) -> int:
     from ..records import json_ready, software
     from ..studies import doctor
 
-    checks = make_with_runs(lambda _, runs: doctor.diagnose(runs), None, args.run_dir, "spinbounce-doctor-")
+    checks = make_with_runs(lambda _, runs: doctor.diagnose(runs), None, args.runs, "spinbounce-doctor-")
     summary, verdict_status = doctor.verdict({c.form.key: c.answer for c in checks})
     status = verdict_status if args.strict else 0  # a diagnosis made is a success; --strict tells the verdict
     if args.json:

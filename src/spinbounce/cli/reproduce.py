@@ -40,7 +40,7 @@ def register(sub) -> None:
     p.add_argument("--out", type=out_folder, default=Path("spinbounce-reproduced"), metavar="DIR",
                    help="figures, their JSON records, CLAIMS.md and the studies' reports (default %(default)s; the "
                         "repository keeps its own in figures/)")
-    p.add_argument("--run-dir", type=out_folder, default=Path("spinbounce-runs") / "reproduce", metavar="DIR",
+    p.add_argument("--runs", type=out_folder, default=Path("spinbounce-runs") / "reproduce", metavar="DIR",
                    help="LAMMPS run folders, one per product, and gases/ for the gases more than one "
                         "shows, run once (default %(default)s)")
     replace_flag(p)
@@ -53,9 +53,9 @@ def register(sub) -> None:
     p.set_defaults(handler=run)
 
 
-def reproduce(out: Path, run_dir: Path, log=print, only=None, workers: int | None = None) -> Reproduction:
+def reproduce(out: Path, runs: Path, log=print, only=None, workers: int | None = None) -> Reproduction:
     """Every product of :data:`spinbounce.catalogue.PRODUCTS` (``only``: those named) into ``out``,
-    runs under ``run_dir``, side by side on ``workers`` processes (default: one per core this process
+    runs under ``runs``, side by side on ``workers`` processes (default: one per core this process
     may use; :mod:`spinbounce.making`)."""
     from ..making import make_products
     from ..outputs import check_outputs
@@ -65,7 +65,7 @@ def reproduce(out: Path, run_dir: Path, log=print, only=None, workers: int | Non
     started = time.perf_counter()
     chosen = [p for p in PRODUCTS if only is None or p.name in only]
     check_outputs(out, [file for product in chosen for file in product.files])  # before any product runs
-    records = make_products(chosen, Path(out), Path(run_dir), log, workers or cores())
+    records = make_products(chosen, Path(out), Path(runs), log, workers or cores())
     claims = [Claim(**claim) for claim in records["claims"]["claims"]] if "claims" in records else []
     return Reproduction(Path(out), records, claims, Path(out) / "CLAIMS.md", time.perf_counter() - started)
 
@@ -87,7 +87,7 @@ def summary(made: Reproduction) -> list[str]:
 def run(args) -> int:
     from ..studies.claims import counts
 
-    made = reproduce(args.out, args.run_dir, only=args.only, workers=args.workers)
+    made = reproduce(args.out, args.runs, only=args.only, workers=args.workers)
     if args.only is not None:
         print(f"done in {made.seconds:.0f} s: {', '.join(sorted(made.records))} in {made.out}/")
     else:

@@ -49,8 +49,8 @@ def run(args) -> int:
     report = api.theory(**_keywords(args))
     if args.json:
         return print_json(report, default=lambda x: x.tolist())
-    if "outcome" in report:
-        print_pair_record(report["outcome"])
+    if "planar" in report:
+        print_pair_record(report)
         return 0
     print(f"theory: {report['theory_name']}")
     if "theory" in report:
