@@ -47,7 +47,8 @@ from .pair_exact import (
 )
 from .pair_exact import undamped_depth as pair_depth
 from .oracle_classic import MAX_SWITCHES, check_limit
-from .pair_capped_phases import TURN_FLOOR, ClassicContact, Contact
+from . import pair_capped_phases as phases
+from .pair_capped_phases import TURN_FLOOR, ClassicContact, Contact, TooManyEvaluations
 from .wall_law import on_contact_radius
 
 __all__ = ["solve", "MAX_PHASES"]
@@ -132,8 +133,6 @@ def _solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, 
     normal force and with it the cap cut at their turn, from which the spheres part force-free). A law
     on the contact radius is integrated at a tenth of ``rtol``, as the wall's oracle does: a stick whose
     first trial force starts just inside the cap (0.97 of it) kept 2e-7 at rtol itself, 1e-8 at a tenth."""
-    from scipy.integrate import solve_ivp
-
     if not mu > 0.0:
         raise ValueError(f"mu = {mu!r}: the capped pair reference needs a cap > 0 (mu = 0 is the uncapped "
                          "reference without a tangential force)")
@@ -175,9 +174,7 @@ def _solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, 
             atol[15:18] = rtol
         else:
             atol[15:18] = stick_atol
-        contact.evaluations = 0  # MAX_EVALUATIONS bounds a phase
-        solution = solve_ivp(contact.rates, (t, t + window), y, method="DOP853", rtol=rtol, atol=atol,
-                             events=events, max_step=longest, dense_output=True)
+        solution = _phase(contact, (t, t + window), y, rtol, atol, events, longest)
         t, which, y = _first_event(solution, events)
         if which == 0:
             if contact.last:  # the spheres part freely from the cut to the end of the overlap
@@ -189,6 +186,22 @@ def _solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, 
         contact.now = t
         contact.switch(y, events[which].__name__)
     raise RuntimeError(f"the capped pair switched phase more than {phases} times (chattering)")
+
+
+def _phase(contact: Contact, span, y, rtol: float, atol, events, longest: float):
+    """One phase, integrated by DOP853; where its steps have not ended it within EXPLICIT_EVALUATIONS (a stiff
+    turn of s), again from the same start by Radau, whose steps the stiff mode does not bound, within
+    MAX_EVALUATIONS (else refused)."""
+    from scipy.integrate import solve_ivp
+
+    for method, budget in (("DOP853", phases.EXPLICIT_EVALUATIONS), ("Radau", phases.MAX_EVALUATIONS)):
+        contact.evaluations, contact.budget = 0, budget
+        try:
+            return solve_ivp(contact.rates, span, y, method=method, rtol=rtol, atol=atol, events=events,
+                             max_step=longest, dense_output=True)
+        except TooManyEvaluations:
+            if method == "Radau":
+                raise
 
 
 @first_use.example("capped pair", seconds=6)

@@ -15,7 +15,8 @@ import numpy as np
 from . import pair_kernel as kernel
 from .oracle_classic import NEAR_ONE, note_cap, reset, slides
 
-__all__ = ["Contact", "ClassicContact", "MARGIN", "TURN_FLOOR", "MAX_EVALUATIONS"]
+__all__ = ["Contact", "ClassicContact", "MARGIN", "TURN_FLOOR", "MAX_EVALUATIONS", "EXPLICIT_EVALUATIONS",
+           "TooManyEvaluations"]
 
 #: A switch must be passed by this fraction of the cap's scale (as in the wall's oracle).
 MARGIN = 1e-12
@@ -23,11 +24,19 @@ MARGIN = 1e-12
 #: TURN_FLOOR): near the cap's zeros s' ~ 1/c would grow without bound; the slower turn only bends
 #: a force that small.
 TURN_FLOOR = 1e-8
-#: A phase whose rates are asked for more often than this is refused (about 20 s of one core): the stiffest
-#: pairs measured take ~1e5 in all (3-D Hertz-Mindlin with dashpots: 8e4 to 1.1e5). A 3-D slide along the slip from
-#: first touch (Hertz-Mindlin with a tangential dashpot and no normal one, the cap starting at zero) turns s at
-#: ~1e20 per second, and the integrator's steps fell to 1e-17 of the contact time: it would never end.
+#: A phase whose rates are asked for more often than this is refused (about 20 s of one core).
 MAX_EVALUATIONS = 1_000_000
+#: A phase DOP853 has not ended after this many evaluations (2 to 4 s) is stiff, and is integrated again from its
+#: start by Radau (:func:`.pair_capped._phase`): the stiffest pairs measured take ~1e5 in all (3-D Hertz-Mindlin
+#: with dashpots: 8e4 to 1.1e5). The stiff one measured: a 3-D slide from first touch on a spring on the contact
+#: radius with a tangential dashpot (the runaway start), where the history's growth a'/a ~ 1/(2t) pulls s back
+#: onto the slip at ~4e19 per second (the dashpot's part of A, ~gamma_t |u'|, 1e17 times the cap), and DOP853's
+#: steps fell to 1e-19 of the contact time.
+EXPLICIT_EVALUATIONS = 200_000
+
+
+class TooManyEvaluations(RuntimeError):
+    """A phase's rates were asked for more often than its integrator's budget allows."""
 
 
 #: The names of :func:`.pair_kernel.kinematics`' fields.
@@ -41,16 +50,22 @@ def _unit(x: np.ndarray) -> np.ndarray | None:
 
 
 class Contact:
-    """The pair's equations in one phase (``sliding`` or not); y[15:18] is A sticking, s sliding, and
-    y[18] the overlap delta, a state of its own (delta' = -v.n): from the centres' distance, rounding
-    would blur it by ~1e-16 (r_a + r_b), more than a law on the contact radius starts with."""
+    """The pair's equations in one phase (``sliding``, ``coasting`` or sticking); y[15:18] is A sticking, s sliding
+    (nothing coasting), and y[18] the overlap delta, a state of its own (delta' = -v.n): from the centres' distance,
+    rounding would blur it by ~1e-16 (r_a + r_b), more than a law on the contact radius starts with. A slide whose
+    cap falls below a switch's margin coasts, as the wall's oracle does: no tangential force until the cap is back
+    (near the contact's end the growth a'/a of a law on the contact radius turns s ever faster, a cap ~1e-12 of its
+    scale)."""
+
+    #: Whether a slide whose cap vanishes coasts (the classic cap's slides run on to the end of contact).
+    COASTS = True
 
     def __init__(self, p: dict, n0: np.ndarray, planar: bool):
         self.p, self.n0, self.planar = p, np.ascontiguousarray(n0, dtype=float), planar
         self.P = kernel.coefficients(p)
         self.m_star = self.P[kernel.M_STAR]
-        self.sliding, self.f_side = False, 1.0
-        self.evaluations = 0
+        self.sliding, self.coasting, self.f_side = False, False, 1.0
+        self.evaluations, self.budget = 0, MAX_EVALUATIONS
 
     def kinematics(self, y) -> dict:
         """The state's kinematics (:func:`.pair_kernel.kinematics`) by name, the compiled tuple as ``raw``."""
@@ -81,15 +96,17 @@ class Contact:
         out = np.empty(19)
         if self.sliding:
             kernel.slide_rates(y, self.P, self.n0, self.planar, self.f_side, self.turn_floor, out)
+        elif self.coasting:
+            kernel.coast_rates(y, self.P, self.n0, self.planar, out)
         else:
             kernel.stick_rates(y, self.P, self.n0, self.planar, out)
         return out
 
     def _counted(self) -> None:
         self.evaluations += 1
-        if self.evaluations > MAX_EVALUATIONS:
-            raise RuntimeError(f"the capped pair's rates were asked for {MAX_EVALUATIONS:,} times in one phase, its "
-                               f"steps {'sliding' if self.sliding else 'sticking'} too short to end it")
+        if self.evaluations > self.budget:
+            raise TooManyEvaluations(f"the capped pair's rates were asked for {self.budget:,} times in one phase, its "
+                                     f"steps {'sliding' if self.sliding else 'sticking'} too short to end it")
 
     def stick_ends(self, _t, y) -> float:
         return kernel.stick_end(y, self.P, self.n0, self.planar, self.f_side, MARGIN * self.force_scale)
@@ -100,6 +117,15 @@ class Contact:
 
     def slide_ends(self, _t, y) -> float:
         return kernel.slide_end(y, self.P, self.n0, self.planar, self.f_side, MARGIN * self.force_scale / self.tau)
+
+    def cap_gone(self, _t, y) -> float:
+        """The cap less a switch's margin: falls through zero where a slide's cap vanishes (at the contact's end,
+        or at F_n's zero)."""
+        return self.p["mu"] * self.normal_force(_t, y) - MARGIN * self.force_scale
+
+    def cap_back(self, _t, y) -> float:
+        """The same, rising through zero where a coast's cap is back without F_n changing sign."""
+        return self.cap_gone(_t, y)
 
     def normal_force(self, _t, y) -> float:
         """F_n on the side it started the phase on: falls through 0 when F_n changes sign."""
@@ -151,8 +177,13 @@ class Contact:
             self.sliding, y[15:18] = True, y[15:18] / np.linalg.norm(y[15:18])
         elif which == "slide_ends":
             self.sliding, y[15:18] = False, self.cap(k) * self.direction(k, y)
+        elif which == "cap_gone":  # no tangential force to speak of until the cap is back (the wall's coast)
+            self.sliding, self.coasting, y[15:18] = False, True, 0.0
+        elif which == "cap_back":
+            self.coasting = False
+            self.on_cap(y, self.rate_direction(k))
         else:  # normal_force: A is on or inside a cap of zero, and leaves it the way sticking pushes it
-            self.f_side = np.sign(k["df_n"]) or -self.f_side
+            self.f_side, self.coasting = np.sign(k["df_n"]) or -self.f_side, False
             self.on_cap(y, self.rate_direction(k))
 
     def rate_direction(self, k: dict) -> np.ndarray | None:
@@ -163,10 +194,16 @@ class Contact:
         return rate if rate is not None else _unit(k["slip"])
 
     def events(self) -> list:
-        """End of contact, the phase's own end, and (with damping) the normal force's zero, (with a
-        rescale) the deepest point; each stops the integration, which restarts there."""
-        out = [_event(self.separated, 1.0), _event(self.slide_ends, -1.0) if self.sliding
-               else _event(self.stick_ends, 1.0)]
+        """End of contact, the phase's own end (second: :func:`.pair_capped._first_event` samples it inside each
+        step), a slide's vanishing cap, (with damping) the normal force's zero and (with a rescale) the deepest
+        point; each stops the integration, which restarts there."""
+        if self.coasting:
+            out = [_event(self.separated, 1.0), _event(self.cap_back, 1.0)]
+        else:
+            out = [_event(self.separated, 1.0), _event(self.slide_ends, -1.0) if self.sliding
+                   else _event(self.stick_ends, 1.0)]
+        if self.sliding and self.COASTS:
+            out.append(_event(self.cap_gone, -1.0))
         if self.p["gamma_n"] > 0.0:
             out.append(_event(self.normal_force, -1.0))
         if self.p["rescale"] and not self.unloading:
@@ -179,6 +216,8 @@ class ClassicContact(Contact):
     next trial force A+ = f c s + (1 - f) gamma_t a^s u', f = a^q; a slide is along the slip while
     gamma_t a^s |u'| >= c. ``zeno``: a tooth shorter than ZENO tau (teeth from zero size, :func:`.solve`);
     ``cut`` scales the slide's hold and the cap's margin."""
+
+    COASTS = False
 
     def __init__(self, p: dict, n0: np.ndarray, planar: bool, cut: float):
         super().__init__(p, n0, planar)

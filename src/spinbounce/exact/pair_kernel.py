@@ -17,7 +17,7 @@ import numpy as np
 from .vec3 import axpy, cross, dot, kernel, unit
 
 __all__ = ["coefficients", "normal_law", "geometry", "free_rates", "kinematics", "stick_rate", "stick_rates",
-           "slide_rates", "classic_slide_rates", "direction", "classic_direction", "stick_end", "slide_end",
+           "slide_rates", "coast_rates", "classic_slide_rates", "direction", "classic_direction", "stick_end", "slide_end",
            "classic_slide_end", "normal_force", "closing"]
 
 (R_A, R_B, M_A, M_B, I_A, I_B, K, KT, GAMMA_N, GAMMA_T, RADSUM, MU, M_STAR, R_EFF, POWER, SPRING_POWER,
@@ -196,6 +196,12 @@ def slide_rates(y, P, n0, planar, side, floor, out):
     across = cross(n, s)
     bend = dot(across, stick_rate(k, P, _scaled(c, s))) / np.hypot(c, floor)
     _write(out, k, P, _scaled(-c, s), axpy(bend, across, _scaled(-dot(s, k[TURN]), n)))
+
+
+@kernel
+def coast_rates(y, P, n0, planar, out):
+    """d(state)/dt with the cap below a switch's margin at the contact's end: no tangential force, s held."""
+    _write(out, kinematics(y, P, n0, planar), P, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0))
 
 
 @kernel
