@@ -45,9 +45,9 @@ from ..pair.kind import equal_pair
 from ..pair.pairs import equivalent_wall
 from .deck import law_words
 
-__all__ = ["EncounterDraws", "encounter_draws", "encounter_count", "Crowd", "placements", "CELL"]
+__all__ = ["EncounterDraws", "encounter_draws", "encounter_count", "Crowd", "placements", "cell_side", "CELL"]
 
-#: A cell's side, in diameters: no sphere of one cell reaches another's during a run (checked).
+#: A cell's least side, in diameters; wider where a sphere could reach further during the run (:func:`cell_side`).
 CELL = 8.0
 #: A run lasts this many windows S (an encounter spans at most two; A meeting B or C again lengthens it).
 RUN_WINDOWS = 6.0
@@ -168,13 +168,32 @@ class Crowd:
         return out
 
 
-def _cells(placed: Placements, spin: dict, sigma: float) -> tuple[LibraryAtoms, np.ndarray, float]:
-    """Every variant's three cells per encounter, as atoms (types 1, 2, 3: A, B, C), each atom's cell, and the
-    box's side."""
+def cell_side(model, placed: Placements, spin: dict, duration: float) -> float:
+    """A cell's side: CELL diameters, or wider where a sphere could leave it within ``duration``. No sphere moves
+    faster than its encounter's whole kinetic energy allows (its three spheres', the largest spin variant's
+    rotation included: the contact law gives none back beyond it), so each stays within its start's distance from
+    the cell's centre (A's place at first touch) plus that speed times the run; a diameter more keeps it from
+    the next cell's spheres. A soft capped Hertz-Mindlin gas (E = 1e5, mu 0.3) at T_tr = 1 needs 12 diameters: its
+    slowest impacts' contacts last long enough that CELL's 8 let a sphere out."""
+    sigma = 2.0 * model.r
+    rotation = np.max([0.5 * model.inertia * np.sum(w**2, axis=(1, 2)) for w in spin.values()], axis=0)
+    energy = 0.5 * model.m * np.sum(placed.v**2, axis=(1, 2)) + rotation
+    reach = np.linalg.norm(placed.x, axis=2).max(axis=1) + np.sqrt(2.0 * energy / model.m) * duration
+    return max(CELL * sigma, 2.0 * (float(reach.max()) + sigma))
+
+
+def _centres(count: int, cell: float) -> tuple[np.ndarray, int]:
+    """The centres of ``count`` cells ``cell`` wide, filling a cube of cells row by row, and the cube's side in cells."""
+    side = max(1, math.ceil(round(count ** (1.0 / 3.0), 9)))
+    return (np.stack(np.unravel_index(np.arange(count), (side, side, side)), axis=1) + 0.5) * cell, side
+
+
+def _cells(placed: Placements, spin: dict, cell: float) -> tuple[LibraryAtoms, np.ndarray, float]:
+    """Every variant's three cells per encounter (each ``cell`` wide), as atoms (types 1, 2, 3: A, B, C), each
+    atom's cell, and the box's side."""
     k = len(placed.kept)
     count = len(spin) * len(KINDS) * k
-    side = max(1, math.ceil(round(count ** (1.0 / 3.0), 9)))
-    corner = (np.stack(np.unravel_index(np.arange(count), (side, side, side)), axis=1) + 0.5) * CELL * sigma
+    corner, side = _centres(count, cell)
     x, v, w, types, cells = [], [], [], [], []
     for c, (spins, kind) in enumerate((s, kind) for s in spin.values() for kind in KINDS):
         for j, name in enumerate("abc"):
@@ -183,23 +202,24 @@ def _cells(placed: Placements, spin: dict, sigma: float) -> tuple[LibraryAtoms, 
                 x.append(corner[rows] + placed.x[:, j]), v.append(placed.v[:, j]), w.append(spins[:, j])
                 types.append(np.full(k, j + 1)), cells.append(rows)
     return LibraryAtoms(np.concatenate(types), np.concatenate(x), np.concatenate(v), np.concatenate(w)), \
-        np.concatenate(cells), side * CELL * sigma
+        np.concatenate(cells), side * cell
 
 
 def _run(model, placed: Placements, spin: dict, dt: float, folder: Path) -> dict:
     """LAMMPS's encounters: per variant, each encounter's excess (dE_tr, dE_rot), (2, k)."""
     k = len(placed.kept)
-    atoms, cells, box = _cells(placed, spin, 2.0 * model.r)
+    nsteps = math.ceil(RUN_WINDOWS * placed.window / dt) + 1
+    cell = cell_side(model, placed, spin, nsteps * dt)
+    atoms, cells, box = _cells(placed, spin, cell)
     n = len(cells)
     atoms = LibraryAtoms(atoms.types, atoms.x, atoms.v, atoms.omega, np.full(n, model.m), np.full(n, model.r))
-    nsteps = math.ceil(RUN_WINDOWS * placed.window / dt) + 1
     text = render_template(Path(__file__).parent, "encounters.lmp.j2", deck_name=DECK_NAME, count=k, box=box,
-                           cell=CELL * 2.0 * model.r, skin=0.2 * model.r, binsize=CELL * model.r, marker=LIBRARY_MARKER,
+                           cell=cell, skin=0.2 * model.r, binsize=cell / 2.0, marker=LIBRARY_MARKER,
                            dt=dt, nsteps=nsteps, law=law_words(model))
     deck = Deck(text=text, name=DECK_NAME, dump=None, atoms=atoms)
     info = run_deck(prepare_run_dir(folder, deck, durable=False), atoms)
     unfinished = np.zeros(len(spin) * len(KINDS) * k, dtype=bool)
-    unfinished[_open_cells(info.final, cells, 2.0 * model.r, folder)] = True
+    unfinished[_open_cells(info.final, cells, 2.0 * model.r, cell, folder)] = True
     unfinished = unfinished.reshape(-1, k).any(axis=0)
     if unfinished.mean() > MOST_UNFINISHED:
         raise ResultError(f"{folder}: {int(unfinished.sum())} of {k} encounters still touch at the run's end")
@@ -214,13 +234,14 @@ def _run(model, placed: Placements, spin: dict, dt: float, folder: Path) -> dict
             for i, name in enumerate(spin)}
 
 
-def _open_cells(final: dict, cells: np.ndarray, sigma: float, folder: Path) -> np.ndarray:
-    """The cells whose contacts with A are still open at the run's end; refused: a sphere out of its cell."""
+def _open_cells(final: dict, cells: np.ndarray, sigma: float, cell: float, folder: Path) -> np.ndarray:
+    """The cells whose contacts with A are still open at the run's end; refused: a sphere out of its cell (which
+    :func:`cell_side` allows only where energy was gained, or a position is not finite)."""
     x = final["x"]
+    if not np.all(np.abs(x - _centres(int(cells.max()) + 1, cell)[0][cells]) <= cell / 2.0):
+        raise ResultError(f"{folder}: an encounter's sphere left its cell (or a position is not finite)")
     order = np.argsort(cells, kind="stable")  # each cell's A first
     first = np.r_[True, cells[order][1:] != cells[order][:-1]]
     a = np.repeat(x[order][first], np.diff(np.r_[np.nonzero(first)[0], len(order)]), axis=0)
     gaps = np.linalg.norm(x[order] - a, axis=1)[~first]
-    if not np.all(gaps <= CELL * sigma / 2.0):
-        raise ResultError(f"{folder}: an encounter's sphere left its cell (or a position is not finite)")
     return np.unique(cells[order][~first][gaps <= sigma])
