@@ -97,7 +97,7 @@ def _converged(model: ContactModel, state, out) -> tuple[np.ndarray, np.ndarray]
                           record=False).table
         final = table[QUANTITIES].to_numpy()[0]
         if previous is not None and np.abs(final - previous).max() < 1e-7:
-            return final, table[[q + "_exact" for q in QUANTITIES]].to_numpy()[0]
+            return final, table[[q + "_theory" for q in QUANTITIES]].to_numpy()[0]
         previous = final
     raise AssertionError("LAMMPS did not converge to 1e-7")
 

@@ -88,7 +88,7 @@ def _pair_report(row: dict, batch, run=None, run_dir=None, Omega=None) -> PairRe
 
     initial = wall_frame(np.array(pair.v_a), np.array(pair.w_a), pair.a.r)[0].tolist() + \
         wall_frame(np.array(pair.v_b), np.array(pair.w_b), pair.b.r)[0].tolist()
-    theory, lammps = states("_exact"), None if run is None else states("")
+    theory, lammps = states("_theory"), None if run is None else states("")
     columns = {"initial": initial, "LAMMPS": lammps, "theory": theory,
                "error": None if lammps is None else lammps - theory, "planar": states("_planar")}
     import pandas as pd

@@ -6,7 +6,7 @@ Sphere a's columns are the wall sweep's (:func:`spinbounce.scenes.collision.tabl
 integrates, to 1e-9), ``{s}_error`` (final - theory), the spins as angular velocities
 beside them, and ``z_*`` (a's centre above b's). Added for the pair: both spheres' final
 states in LAMMPS's frame (``a_vx`` ... ``b_wz``, :data:`.run.QUANTITIES`) with their exact
-(``*_exact``) and planar (``*_planar``) values; a's state by the planar theory
+(``*_theory``) and planar (``*_planar``) values; a's state by the planar theory
 (``{s}_planar``); the geometry (``eps``, ``centrifugal``, ``turn``, ``contact_time``) and
 ``planar_error``, the planar theory's model error (never mixed into ``error``); and
 ``step_method``, how the chunk's step was chosen (:func:`spinbounce.stepping.tune`: a probe
@@ -162,7 +162,7 @@ def _columns(run, pairs, names) -> dict:
         if when == "lammps":  # LAMMPS's final state as the run reports it (a ladder's: the combination)
             state = {q: table[[f"a_{q[-1]}{x}" for x in "xyz"]].to_numpy() for q in ("a_v", "a_w")}
         columns.update(_a_columns(names, when, state["a_v"], state["a_w"], a.r, height))
-    for suffix, when in (("_exact", "theory"), ("_planar", "planar")):
+    for suffix, when in (("_theory", "theory"), ("_planar", "planar")):
         v, w = (table[[f"a_{q}{x}{suffix}" for x in "xyz"]].to_numpy() for q in "vw")
         reference = _a_columns(names, when, v, w, a.r, columns["z_lammps"])
         columns.update({k: value for k, value in reference.items() if not k.startswith("z_")})
@@ -171,6 +171,6 @@ def _columns(run, pairs, names) -> dict:
     for key in ("eps", "centrifugal", "turn", "contact_time", "planar_error", "error", "energy_gain", "energy_excess",
                 "status", "time_scale"):
         columns[key] = table[key].to_numpy()
-    columns.update({q + suffix: table[q + suffix].to_numpy() for q in QUANTITIES for suffix in ("", "_exact", "_planar")})
+    columns.update({q + suffix: table[q + suffix].to_numpy() for q in QUANTITIES for suffix in ("", "_theory", "_planar")})
     columns["step_method"] = np.full(len(pairs), run.step.method, dtype=object)
     return columns

@@ -297,7 +297,7 @@ class PairBatch:
         overlap = np.empty(self.n)
         for wall, index in self.wall_groups:
             overlap[index] = wall.max_overlap(self.impact_speeds[index])
-        return checks.RowStates(initial, states(""), states("_exact"), weights, columns["speed"], overlap,
+        return checks.RowStates(initial, states(""), states("_theory"), weights, columns["speed"], overlap,
                                 columns["r_a"] + columns["r_b"])
 
     def record(self, deck) -> dict:

@@ -4,7 +4,7 @@ One row per pair, with the pair's geometry (the relative normal velocity ``v_n_r
 tangential speed ``v_t_relative`` at first touch, eps, the centrifugal ratio, how far the line
 of centres turned), and for every final quantity q of sphere a and b (``a_vx`` ... ``b_wz``,
 LAMMPS's frame, omega as LAMMPS's angular velocity) LAMMPS's value ``q``, the exact
-reference ``q_exact`` (:mod:`spinbounce.exact.pair_exact`) and the planar theory's
+reference ``q_theory`` (:mod:`spinbounce.exact.pair_exact`) and the planar theory's
 ``q_planar`` (:mod:`spinbounce.exact.pair`). ``planar_error`` is the planar theory's
 largest difference from the exact reference over the velocities and r times the spins, in
 units of the pair's ``speed`` (:meth:`Pair.speed`): a model error. LAMMPS's own error
@@ -106,7 +106,7 @@ def pair_table(batch, lammps: dict[str, np.ndarray] | None) -> pd.DataFrame:
         theory = dict(zip(("a_v", "b_v", "a_w", "b_w"), predicted))
     if lammps is not None:
         columns.update({q: lammps[q] for q in QUANTITIES})
-    columns.update(_columns(_outcomes(batch.exact), "_exact"))
+    columns.update(_columns(_outcomes(batch.exact), "_theory"))
     columns.update(_columns(theory, "_planar"))
     table = pd.DataFrame(columns)
     # the planar theory's largest |difference| from the exact reference over velocities and r * spins,
@@ -114,7 +114,7 @@ def pair_table(batch, lammps: dict[str, np.ndarray] | None) -> pd.DataFrame:
     worst = np.zeros(len(table))
     for q in QUANTITIES:
         scale = props[f"r_{q[0]}"] if q[2] == "w" else 1.0
-        worst = np.maximum(worst, np.abs(table[q + "_planar"] - table[q + "_exact"]).to_numpy() * scale)
+        worst = np.maximum(worst, np.abs(table[q + "_planar"] - table[q + "_theory"]).to_numpy() * scale)
     table["planar_error"] = worst / table["speed"].to_numpy()
     return table
 

@@ -51,7 +51,7 @@ def equal_alpha(runs: Runs) -> Claim:
                   w_a=(0.0, 1.0 / r_a, 0.0), w_b=(0.0, 0.5 / r_b, 0.0))
              for alpha in ALPHAS for (m_a, m_b), (r_a, r_b) in RATIOS]
     table = run_scene(PairBatch(pairs), runs.root / "pair-equal-alpha", record=False).table
-    lammps, exact = _slip_ratio(table, pairs, ""), _slip_ratio(table, pairs, "_exact")
+    lammps, exact = _slip_ratio(table, pairs, ""), _slip_ratio(table, pairs, "_theory")
     wall = np.array([linear.Omega(10.0, 1.0, p.a.alpha) for p in pairs])
     solid = slice(0, len(RATIOS))  # the alpha = 2/5 pairs: the table's numbers
     worst = int(np.argmax(np.abs(lammps[solid] - wall[solid])))
