@@ -65,7 +65,7 @@ class CollisionReport:
     (initial, LAMMPS, theory, error); the rest says how it ran and how far from the truth it is."""
 
     table: pd.DataFrame
-    theory: str
+    theory_name: str
     theory_kind: str
     dt: float
     nsteps: int
@@ -83,12 +83,12 @@ class CollisionReport:
     def record(self) -> dict:
         """The report as JSON-ready data (``spinbounce collide --json``)."""
         return {**state_record(self.table), "error_estimate": self.error, "status": self.status,
-                "theory_kind": self.theory_kind, "theory_name": self.theory, "dt": self.dt, "nsteps": self.nsteps,
+                "theory_kind": self.theory_kind, "theory_name": self.theory_name, "dt": self.dt, "nsteps": self.nsteps,
                 "contact_time": self.contact_time, "step": self.step, "Omega": self.Omega,
                 **_run_keys(self.run_dir, self.deck, self.dump, self.lammps_version, self.warnings)}
 
     def __str__(self) -> str:
-        head = (f"collision: theory {self.theory}; dt = {self.dt:.6g} ({self.nsteps} steps); "
+        head = (f"collision: theory {self.theory_name}; dt = {self.dt:.6g} ({self.nsteps} steps); "
                 f"error {self.error:.2e} of the state's size; status {self.status}\n")
         return head + self.table.to_string(float_format=lambda x: f"{x:.10f}")
 

@@ -71,7 +71,7 @@ def run(args) -> int:
     else:
         omega_text = f"Omega = {report.Omega:.8g}" if report.Omega is not None else "no single Omega"
         print(f"collision: dt = {report.dt:.6g} ({report.nsteps} steps, contact time "
-              f"{report.contact_time:.6g}); theory: {report.theory}; {omega_text}")
+              f"{report.contact_time:.6g}); theory: {report.theory_name}; {omega_text}")
         _print_states(record, list(report.table.index), label_width=8)
         estimate = f", estimated {report.step['estimate']:.2e}" if "estimate" in report.step else ""
         print(f"accuracy: max |LAMMPS - theory| / |initial state| = {report.error:.2e} "
