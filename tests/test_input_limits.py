@@ -50,7 +50,7 @@ def test_a_gas_default_step_resolves_a_stiff_tangential_spring():
 
 def test_a_gas_whose_references_take_hours_is_refused_before_its_contact_time():
     """A capped Hertz-Mindlin gas solves each collision of its theories on its own (41 to 48 ms each, measured;
-    ONE_AT_A_TIME_SECONDS): the estimate counts them, and the refusal of 5,000 draws (75,000 such collisions at
+    ONE_PAIR_SECONDS): the estimate counts them, and the refusal of 5,000 draws (75,000 such collisions at
     five temperatures, four hours as estimated) comes before the 2,000 collisions of the contact time, naming
     the draws."""
     model = api.model(contact="hertz/material 1e5 0.3 0.3 tangential mindlin NULL 1.0 0.3")

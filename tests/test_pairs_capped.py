@@ -251,13 +251,14 @@ def test_a_pair_sweeps_chunks_are_sized_by_the_pair_references_cost():
     # time) and ~0.1 ms (a Hookean batch solved together, capped or not) a collision: a chunk planned
     # as a wall's (25,000 collisions) could run for half an hour. Each pair chunk must be estimated
     # within CHUNK_SECONDS, the theory counted.
+    from spinbounce.scenes.pair.contact import ONE_PAIR_SECONDS
     from spinbounce.sweeps import cost
     from spinbounce.sweeps.spec import CHUNK_SECONDS, DEFAULT_CHUNK, spec_from_dict
 
     states = {"n": 1_000_000, "v_n": [-1.5, -0.5], "v_t": [-1, 1], "r_omega": [-1, 1]}
-    for model, theory in (({"scene": "pair", "mu": 0.3, "normal": "hertz", "kn": 1e4}, cost.CAPPED_PAIR_THEORY_SECONDS),
+    for model, theory in (({"scene": "pair", "mu": 0.3, "normal": "hertz", "kn": 1e4}, ONE_PAIR_SECONDS["capped stiff"]),
                           ({"scene": "pair", "mu": 0.3}, cost.PAIR_BATCHED_SECONDS),
-                          ({"scene": "pair", "normal": "hertz", "kn": 1e4}, cost.PAIR_THEORY_SECONDS),
+                          ({"scene": "pair", "normal": "hertz", "kn": 1e4}, ONE_PAIR_SECONDS["uncapped"]),
                           ({"scene": "pair"}, cost.PAIR_BATCHED_SECONDS)):
         spec = spec_from_dict({"model": model, "states": states})
         size = spec.chunk_sizes[0]

@@ -17,7 +17,8 @@ import numpy as np
 from .vec3 import axpy, cross, dot, kernel, unit
 
 __all__ = ["coefficients", "normal_law", "geometry", "free_rates", "kinematics", "stick_rate", "stick_rates",
-           "slide_rates", "coast_rates", "classic_slide_rates", "direction", "classic_direction", "stick_end", "slide_end",
+           "slide_rates", "coast_rates", "classic_slide_rates", "direction", "classic_direction", "stick_end",
+           "slide_end",
            "classic_slide_end", "normal_force", "closing"]
 
 (R_A, R_B, M_A, M_B, I_A, I_B, K, KT, GAMMA_N, GAMMA_T, RADSUM, MU, M_STAR, R_EFF, POWER, SPRING_POWER,

@@ -272,8 +272,8 @@ def run_deck(deck: Path, atoms=None) -> RunInfo:
     for clock in _CLOCKS:
         clock.seconds, clock.runs = clock.seconds + wall, clock.runs + 1
     log = deck.parent / LOG_NAME
-    return RunInfo(deck=deck, log=log, lammps_version=lammps_version(), wall_seconds=wall, loop_seconds=loop_seconds(log),
-                   initial=initial, final=final)
+    return RunInfo(deck=deck, log=log, lammps_version=lammps_version(), wall_seconds=wall,
+                   loop_seconds=loop_seconds(log), initial=initial, final=final)
 
 
 def _launch_here() -> list[str]:

@@ -6,7 +6,7 @@ A chunk is one serial LAMMPS run of its spheres followed by the theory columns
     seconds = START_SECONDS + PROBE_SECONDS + n * (steps * SPHERE_STEP_SECONDS + theory)
 
 (a pair chunk: two spheres a collision at the fine rule's steps, plus the pair references'
-PAIR_BATCHED_SECONDS, PAIR_THEORY_SECONDS, CAPPED_PAIR_THEORY_SECONDS or CAPPED_STIFF_PAIR_SECONDS),
+PAIR_BATCHED_SECONDS or PairContact.one_pair_seconds),
 
 where ``steps`` is the run's LAMMPS steps per collision (the contact's exit time over the
 model's step, as :attr:`Collision.nsteps` counts them) and ``theory`` a collision's theory
@@ -52,22 +52,11 @@ CAPPED_THEORY_SECONDS = 1e-5
 #: A chunk whose step is probed (stepping.tune) runs two small LAMMPS runs first (measured
 #: 0.2 s for a finite-mu chunk, `spinbounce bench`).
 PROBE_SECONDS = 0.3
-#: A pair's references per collision on one core (scenes.pair.table.pair_table: the exact reference
-#: and the planar theory; the capped reference solves both by events), solved one pair at a time by scipy
-#: on compiled equations (exact.pair_kernel), measured on 12 to 29 pairs of a sweep's default ranges
-#: (v_n -0.8 to -0.1, 2-D and 3-D) on an idle core: 25 ms uncapped (Hertz-Mindlin); capped 20 to 150 ms
-#: (Hooke with limit_damping, the Mindlin springs and dashpots, the classic spring in 2-D and 3-D); with room.
-#: A Hertzian force under a cap on a spring that does not grow with the contact radius (linear_history or the
-#: classic spring) takes far longer: the cap closes on the stiff spring at both ends of the contact and a
-#: slide's direction turns stiffly (0.8 to 0.9 s a pair with the classic spring; with linear_history 36 ms in
-#: the plane and 1.9 s in 3-D, 0.3 to 4.3 s a pair): CAPPED_STIFF_PAIR_SECONDS. A batch whose references are
-#: solved together (PairContact.batched: Hooke's law, capped or not) spends about 0.1 ms a pair on
-#: everything outside LAMMPS (a 20,000-pair sweep, `spinbounce bench`; a capped pair in 3-D up to 1 ms,
-#: its reference alone): PAIR_BATCHED_SECONDS, with room.
-PAIR_THEORY_SECONDS = 0.05
+#: A batch whose references are solved together (PairContact.batched: Hooke's law, capped or not) spends about
+#: 0.1 ms a pair on everything outside LAMMPS (a 20,000-pair sweep, `spinbounce bench`; a capped pair in 3-D up
+#: to 1 ms, its reference alone): PAIR_BATCHED_SECONDS, with room. Pairs solved one at a time cost
+#: :meth:`.PairContact.one_pair_seconds`.
 PAIR_BATCHED_SECONDS = 2e-3
-CAPPED_PAIR_THEORY_SECONDS = 0.3
-CAPPED_STIFF_PAIR_SECONDS = 4.0
 #: A pair chunk's probe (stepping.tune): up to five LAMMPS runs of at most
 #: PROBE_SPHERES pairs, each at up to the fine rule's steps.
 PAIR_PROBE_SECONDS = 5.0
@@ -121,14 +110,7 @@ def _pair_cost(spec, group: int, collisions: int) -> ChunkCost:
     b = spec.sphere_b(group)
     contact = pair_contact(model, b)
     steps = PairBatch(pairs_from_states(model, b, [[-fast, 0.0, 0.0]]), contact, dt).nsteps
-    if contact.batched:
-        theory = PAIR_BATCHED_SECONDS
-    elif model.mu is not None:
-        law = contact.reference_law()  # a Hertzian force, a spring off the contact radius: the cap closes on it
-        stiff = law.get("power", 1.0) != 1.0 and law.get("spring_power", 0.0) == 0.0
-        theory = CAPPED_STIFF_PAIR_SECONDS if stiff else CAPPED_PAIR_THEORY_SECONDS
-    else:
-        theory = PAIR_THEORY_SECONDS
+    theory = contact.one_pair_seconds() or PAIR_BATCHED_SECONDS
     probe = PAIR_PROBE_SECONDS if dt is None else 0.0
     seconds = START_SECONDS + probe + collisions * (2 * steps * SPHERE_STEP_SECONDS + theory)
     return ChunkCost(collisions, steps, seconds, BASE_MB + SCIPY_MB + 2 * collisions * KB_PER_SPHERE / 1024)

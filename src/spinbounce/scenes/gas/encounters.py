@@ -183,7 +183,8 @@ def cell_side(model, placed: Placements, spin: dict, duration: float) -> float:
 
 
 def _centres(count: int, cell: float) -> tuple[np.ndarray, int]:
-    """The centres of ``count`` cells ``cell`` wide, filling a cube of cells row by row, and the cube's side in cells."""
+    """The centres of ``count`` cells ``cell`` wide, filling a cube of cells row by row, and the cube's side in
+    cells."""
     side = max(1, math.ceil(round(count ** (1.0 / 3.0), 9)))
     return (np.stack(np.unravel_index(np.arange(count), (side, side, side)), axis=1) + 0.5) * cell, side
 

@@ -38,13 +38,6 @@ GAS_SPHERE_STEP_SECONDS = 6e-8
 #: each an exact reference and a LAMMPS pair (measured about 45 us in all), and half an encounter's three
 #: variants of seven spheres in LAMMPS (about 130 us each); rounded up.
 THEORY_SECONDS_PER_DRAW = 1.2e-4
-#: A law whose exact pair references are not batched (:attr:`.PairContact.batched` False: Hooke's law with
-#: limit_damping's turn, the classic spring, and every law on the contact radius) solves each collision of the
-#: theories on its own (scipy on compiled equations, exact.pair_kernel): seconds a pair, uncapped and capped, in
-#: a gas's collisions (3-D, hot: measured on 10 to 20 draws at T_tr = 0.5 on an idle core, hertz/material with
-#: E = 1e5 and linear_history or each Mindlin spring, 10 to 30 ms uncapped and 41 to 48 ms capped (mu = 0.5),
-#: the classic spring capped 53 ms with Hooke's force and 68 ms with Hertz's); with room.
-ONE_AT_A_TIME_SECONDS = {False: 0.06, True: 0.2}
 #: The collisions (without spin) whose mean exact contact time sets the step.
 CONTACT_SAMPLE = 2000
 #: How close (relative) a theory's late ratio must be to its fixed point for the closure's error, a steady state's,
@@ -145,15 +138,15 @@ def _finished(folder: Path, scene, ranks: int) -> GasReport | None:
 
 
 def one_pair_seconds(model: ContactModel) -> float:
-    """What one collision of the theories costs beside a compiled batch's: none where the law's exact pair references
-    are compiled (:attr:`.PairContact.batched`), else :data:`ONE_AT_A_TIME_SECONDS` (capped or not)."""
-    return 0.0 if equal_pair(model)[1].batched else ONE_AT_A_TIME_SECONDS[bool(model.mu)]
+    """What one collision of the theories costs beside a compiled batch's: the law's
+    (:meth:`.PairContact.one_pair_seconds`, none where its exact pair references are compiled)."""
+    return equal_pair(model)[1].one_pair_seconds()
 
 
 def theory_seconds(scene) -> float:
     """About how long the pair-level theories take: every draw at up to predict.MAX_TEMPERATURES temperatures,
     and where the law's exact references are solved one pair at a time, each of those draws' three collisions
-    (still, spun, reversed) and the contact time's sample on its own (:data:`ONE_AT_A_TIME_SECONDS`)."""
+    (still, spun, reversed) and the contact time's sample on its own (:func:`one_pair_seconds`)."""
     per_pair = one_pair_seconds(scene.model)
     per_draw = THEORY_SECONDS_PER_DRAW + 3 * per_pair
     return scene.draws * predict.MAX_TEMPERATURES * per_draw + CONTACT_SAMPLE * per_pair

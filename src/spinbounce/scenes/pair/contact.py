@@ -15,13 +15,29 @@ from ...errors import NoLimit, PhysicsWarning, ResultError
 from ...model.parameters import by_name
 from .columns import pair_columns
 
-__all__ = ["PairContact", "checked"]
+__all__ = ["PairContact", "checked", "ONE_PAIR_SECONDS"]
 
 
 def checked(owner, names: tuple[str, ...]) -> None:
     """Each of ``names`` of a frozen ``owner`` checked against its declaration (and set so)."""
     for name in names:
         object.__setattr__(owner, name, by_name(name).check(getattr(owner, name)))
+
+
+#: Seconds one pair's exact references take when solved on their own (scipy on the compiled equations,
+#: exact.pair_kernel; the exact reference and the planar theory, which the capped reference solves by events),
+#: as a sweep's chunks and a gas's theories are estimated: the slower of two measurements on an idle core, with
+#: room (at least a third). A sweep's default ranges (v_n -0.8 to -0.1, 2-D and 3-D, 12 to 29 pairs): 25 ms
+#: uncapped (Hertz-Mindlin); capped 20 to 150 ms (Hooke with limit_damping, the Mindlin springs and dashpots, the
+#: classic spring). A gas's collisions (3-D, hot: 10 to 20 draws at T_tr = 0.5, hertz/material with E = 1e5 and
+#: linear_history or each Mindlin spring): 10 to 30 ms uncapped, 41 to 48 ms capped (mu = 0.5), the classic
+#: spring capped 53 ms with Hooke's force and 68 ms with Hertz's. A Hertzian force under a cap on a spring that
+#: does not grow with the contact radius (linear_history or the classic spring) takes far longer ("capped
+#: stiff"): the cap closes on the stiff spring at both ends of the contact and a slide's direction turns stiffly
+#: (0.8 to 0.9 s a pair with the classic spring; with linear_history 36 ms in the plane and 1.9 s in 3-D, 0.3
+#: to 4.3 s a pair; a gas estimated such a law at 0.2 s a pair, and a sweep at 4 s). A law whose references are
+#: solved together (:attr:`PairContact.batched`) costs none of these.
+ONE_PAIR_SECONDS = {"uncapped": 0.06, "capped": 0.2, "capped stiff": 6.0}
 
 
 @dataclass(frozen=True)
@@ -109,6 +125,17 @@ class PairContact:
 
         solver = pair_capped_batch if self.mu else pair_batch
         return solver.solvable(self.reference_law(), self.tensile)
+
+    def one_pair_seconds(self) -> float:
+        """What one pair's references cost when solved on their own (:data:`ONE_PAIR_SECONDS`); none where a
+        batch's are solved together (:attr:`batched`)."""
+        if self.batched:
+            return 0.0
+        if not self.mu:
+            return ONE_PAIR_SECONDS["uncapped"]
+        law = self.reference_law()  # a Hertzian force, a spring off the contact radius: the cap closes on it
+        stiff = law.get("power", 1.0) != 1.0 and law.get("spring_power", 0.0) == 0.0
+        return ONE_PAIR_SECONDS["capped stiff" if stiff else "capped"]
 
     def _solve_many(self, pairs: list, planar: bool) -> list:
         try:
