@@ -47,7 +47,7 @@ from .pair_exact import (
 )
 from .pair_exact import undamped_depth as pair_depth
 from .oracle_classic import MAX_SWITCHES, check_limit
-from . import pair_capped_phases as phases
+from . import pair_capped_phases as capped_phases
 from .pair_capped_phases import TURN_FLOOR, ClassicContact, Contact, TooManyEvaluations
 from .wall_law import on_contact_radius
 
@@ -194,7 +194,7 @@ def _phase(contact: Contact, span, y, rtol: float, atol, events, longest: float)
     MAX_EVALUATIONS (else refused)."""
     from scipy.integrate import solve_ivp
 
-    for method, budget in (("DOP853", phases.EXPLICIT_EVALUATIONS), ("Radau", phases.MAX_EVALUATIONS)):
+    for method, budget in (("DOP853", capped_phases.EXPLICIT_EVALUATIONS), ("Radau", capped_phases.MAX_EVALUATIONS)):
         contact.evaluations, contact.budget = 0, budget
         try:
             return solve_ivp(contact.rates, span, y, method=method, rtol=rtol, atol=atol, events=events,
