@@ -256,7 +256,8 @@ def test_a_pair_sweeps_chunks_are_sized_by_the_pair_references_cost():
     from spinbounce.sweeps.spec import CHUNK_SECONDS, DEFAULT_CHUNK, spec_from_dict
 
     states = {"n": 1_000_000, "v_n": [-1.5, -0.5], "v_t": [-1, 1], "r_omega": [-1, 1]}
-    for model, theory in (({"scene": "pair", "mu": 0.3, "normal": "hertz", "kn": 1e4}, ONE_PAIR_SECONDS["capped stiff"]),
+    stiff = ONE_PAIR_SECONDS["capped stiff"]
+    for model, theory in (({"scene": "pair", "mu": 0.3, "normal": "hertz", "kn": 1e4}, stiff),
                           ({"scene": "pair", "mu": 0.3}, cost.PAIR_BATCHED_SECONDS),
                           ({"scene": "pair", "normal": "hertz", "kn": 1e4}, ONE_PAIR_SECONDS["uncapped"]),
                           ({"scene": "pair"}, cost.PAIR_BATCHED_SECONDS)):

@@ -101,8 +101,8 @@ def print_pair_record(record: dict) -> None:
     columns = [c for c in ("initial", "lammps", "theory", "error", "planar") if c in record]
     print(f"{'':12}" + "".join(f"{'LAMMPS' if c == 'lammps' else c:>14}" for c in columns))
     for name in (n for n in record["theory"] if n.startswith(("v_", "r_"))):
-        print(f"{_label(name):12}" + "".join(f"{record[c][name]:>14.3e}" if c == "error" else f"{record[c][name]:>14.8f}"
-                                             for c in columns))
+        cells = (f"{record[c][name]:>14.3e}" if c == "error" else f"{record[c][name]:>14.8f}" for c in columns)
+        print(f"{_label(name):12}" + "".join(cells))
     print((f"accuracy: max |LAMMPS - theory| / the pair's speed = {record['error_estimate']:.2e} "
            f"(theory: the exact reference; status {record['status']}); " if ran else "")
           + f"planar theory vs exact (model error): {record['planar_error']:.2e}")

@@ -171,6 +171,7 @@ def _columns(run, pairs, names) -> dict:
     for key in ("eps", "centrifugal", "turn", "contact_time", "planar_error", "error", "energy_gain", "energy_excess",
                 "status", "time_scale"):
         columns[key] = table[key].to_numpy()
-    columns.update({q + suffix: table[q + suffix].to_numpy() for q in QUANTITIES for suffix in ("", "_theory", "_planar")})
+    columns.update({q + suffix: table[q + suffix].to_numpy() for q in QUANTITIES
+                    for suffix in ("", "_theory", "_planar")})
     columns["step_method"] = np.full(len(pairs), run.step.method, dtype=object)
     return columns
