@@ -58,6 +58,22 @@ def test_a_gas_whose_references_take_hours_is_refused_before_its_contact_time():
         run_gas(model, spheres=1000, draws=5000, collisions=2.0)
 
 
+def test_a_stiff_capped_law_is_charged_by_the_states_it_meets():
+    """A capped Hertzian force on linear_history is 'capped stiff' in a sweep's slower impacts (0.3 to 4.3 s a pair
+    measured), but a gas's hot collisions were measured at the capped figure (41 to 48 ms): charged the stiff 6 s,
+    a gas's 2,000-collision contact time alone would be over the hour and no --draws could pass. The classic
+    spring's cap is stiff in a sweep too (0.8 to 0.9 s a pair)."""
+    from spinbounce.scenes.gas.run import one_pair_seconds
+    from spinbounce.scenes.pair.contact import ONE_PAIR_SECONDS
+    from spinbounce.scenes.pair.kind import equal_pair
+
+    stiff = api.model(normal="hertz/material", youngs_modulus=1e5, poisson_ratio=0.3, mu=0.3)
+    classic = api.model(tangential="linear_history_classic", mu=0.3)
+    for model in (stiff, classic):
+        assert equal_pair(model)[1].one_pair_seconds() == ONE_PAIR_SECONDS["capped stiff"]
+        assert one_pair_seconds(model) == ONE_PAIR_SECONDS["capped"]
+
+
 def test_an_unfinished_sweep_is_not_fitted_as_a_whole(tmp_path):
     out = tmp_path / "sweep"
     api.run_sweep({"chunk_size": 20, "model": {"mu": ["none", 0.3]}, "states": {**STATES, "n": 40}}, out)

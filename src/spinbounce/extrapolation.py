@@ -238,10 +238,9 @@ def smooth_in_dt(model: ContactModel) -> bool:
     with a finite cap (its stick-slip switches leave kinks anywhere inside a step), nor for the
     classic wall (measured: at tolerance 1e-6 the ladder's estimate was 1.0e-6 where the error was
     2.1e-6; its spring kt sqrt(r delta) has an infinite slope at contact), nor for a Mindlin spring
-    k_t sqrt(r delta), or a dashpot on the contact radius, for the same reason, nor for a force on the contact
-    radius (each sphere's contact ends somewhere inside a step that moves with dt)."""
+    k_t sqrt(r delta), or a dashpot on the contact radius, for the same reason."""
     return (model.mu is None and model.style.smooth_in_dt and not model.tangential_law.contact_radius
-            and not model.normal_law.contact_radius and not model.normal_law.integrated(model))
+            and not model.normal_law.integrated(model))
 
 
 def default_tolerance(model: ContactModel) -> float | None:
@@ -271,7 +270,8 @@ def collide_to_tolerance(model: ContactModel, v_n, v_t, omega, tolerance: float,
     from .pipeline import run_scene
 
     tol = check_tolerance(tolerance)
-    if not smooth_in_dt(model):
+    # a force on the contact radius: each sphere's contact ends somewhere inside a step that moves with dt
+    if not smooth_in_dt(model) or model.normal_law.contact_radius:
         return measured_to_tolerance(model, v_n, v_t, omega, tol, out_dir, log, **out_of_plane)
     unknown = set(out_of_plane) - set(STATE_ARGS[3:])
     if unknown:

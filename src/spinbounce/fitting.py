@@ -32,6 +32,7 @@ from .scenes.collision import STATE, STATE_3D
 from .model import parameters
 from .model.contact import ContactModel
 from .records import write_atomic_with
+from .scenes.pair.kind import theory_kind
 from .exact import choose
 from .laws import own
 
@@ -261,7 +262,7 @@ def report(g: GroupFit) -> dict:
     matrix_theory, name = g.found
     model, pair = model_of_group(g.params), g.params.get("scene") == "pair"
     # the theory the rows are checked against: the exact pair reference, or choose's
-    kind = ("pair_exact" if model.mu is None else "pair_capped") if pair else choose.which(model).kind
+    kind = theory_kind(model) if pair else choose.which(model).kind
     worst, median = worst_and_median(g.errors)
     worst_relative, median_relative = worst_and_median(g.relative)
     out = {"parameters": group_parameters(g.params), "n": g.n, "theory": kind, "regime": name,

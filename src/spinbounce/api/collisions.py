@@ -70,12 +70,12 @@ _PAIR_GEOMETRY = ("m_a", "r_a", "alpha_a", "m_b", "r_b", "alpha_b", "v_n_relativ
                   "contact_time", "eps", "centrifugal", "turn")
 
 
-def _pair_report(row: dict, batch, run=None, run_dir=None, Omega=None) -> PairReport:
+def _pair_report(row: dict, batch, run=None, run_dir=None, Omega=None, kind: str = "pair_exact") -> PairReport:
     """A pair's row in the paper's names and signs: LAMMPS's frame (the line of centres along z)
     is the wall's, so each sphere's velocity and spin map as the wall's sphere's do. ``run``: the
     pipeline's result, where LAMMPS ran (in ``run_dir``)."""
     from ..exact.choose import SPACE_COLUMNS
-    from ..scenes.pair.kind import wall_frame
+    from ..scenes.pair.kind import THEORIES, wall_frame
 
     pair = batch.pairs[0]
 
@@ -104,13 +104,13 @@ def _pair_report(row: dict, batch, run=None, run_dir=None, Omega=None) -> PairRe
         return report
     return dataclasses.replace(report, step=run.step.record(), Omega=Omega, warnings=tuple(run.warnings),
                                deck=str(run.info.deck), dump=None if run.dump is None else str(run.dump),
-                               lammps_version=run.info.lammps_version)
+                               lammps_version=run.info.lammps_version, theory_kind=kind, theory_name=THEORIES[kind])
 
 
 def _collide_pair(pair: _Pair, contact: ContactModel, state: dict, dt, tolerance, out) -> PairReport:
     from ..errors import SceneError
     from ..pipeline import run_scene
-    from ..scenes.pair.kind import no_planar_matrix, planar_Omega
+    from ..scenes.pair.kind import no_planar_matrix, planar_Omega, theory_kind
 
     if tolerance is not None:
         raise SceneError("tolerance", tolerance, "is for the wall only: a pair runs at dt or its default step, and "
@@ -121,7 +121,7 @@ def _collide_pair(pair: _Pair, contact: ContactModel, state: dict, dt, tolerance
     result = run_scene(batch, out)  # its batch carries the step the probe chose
     # the planar theory's Omega, as the sweep's Omega_theory; none where it has no matrix (as the wall's: a cap)
     Omega = None if no_planar_matrix(contact) is not None else planar_Omega(contact, pair.b)
-    return _pair_report(result.table.iloc[0].to_dict(), result.scene, result, out, Omega)
+    return _pair_report(result.table.iloc[0].to_dict(), result.scene, result, out, Omega, theory_kind(contact))
 
 
 def collide(v_n: float | None = None, v_t: float | None = None, omega: float = 0.0, v_s: float = 0.0,

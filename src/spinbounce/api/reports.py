@@ -93,10 +93,6 @@ class CollisionReport:
         return head + self.table.to_string(float_format=lambda x: f"{x:.10f}")
 
 
-#: The pair's reference, as the sweep's ``theory`` column names it, and in words.
-PAIR_THEORY = ("pair_exact", "the exact pair reference: what LAMMPS integrates, as dt -> 0")
-
-
 @dataclass(frozen=True)
 class PairReport:
     """One pair scene: both spheres' states in the paper's names and signs (sphere b's with ``_b``;
@@ -120,6 +116,8 @@ class PairReport:
     deck: str = ""
     dump: str | None = None
     lammps_version: str = ""
+    theory_kind: str = "pair_exact"
+    theory_name: str = ""
 
     def record(self) -> dict:
         """The report as JSON-ready data (``spinbounce pair --json``); without a run (``theory --scene
@@ -127,9 +125,9 @@ class PairReport:
         out = {**state_record(self.table), "planar_error": self.planar_error, **self.geometry}
         if self.run_dir is None:
             return out
-        kind, name = PAIR_THEORY
-        return {**out, "error_estimate": self.error, "status": self.status, "theory_kind": kind, "theory_name": name,
-                "dt": self.dt, "nsteps": self.nsteps, "step": self.step, "Omega": self.Omega,
+        return {**out, "error_estimate": self.error, "status": self.status, "theory_kind": self.theory_kind,
+                "theory_name": self.theory_name, "dt": self.dt, "nsteps": self.nsteps, "step": self.step,
+                "Omega": self.Omega,
                 **_run_keys(self.run_dir, self.deck, self.dump, self.lammps_version, self.warnings)}
 
     def __str__(self) -> str:

@@ -105,8 +105,9 @@ class Contact:
     def _counted(self) -> None:
         self.evaluations += 1
         if self.evaluations > self.budget:
+            phase = "sliding" if self.sliding else "coasting" if self.coasting else "sticking"
             raise TooManyEvaluations(f"the capped pair's rates were asked for {self.budget:,} times in one phase, its "
-                                     f"steps {'sliding' if self.sliding else 'sticking'} too short to end it")
+                                     f"steps {phase} too short to end it")
 
     def stick_ends(self, _t, y) -> float:
         return kernel.stick_end(y, self.P, self.n0, self.planar, self.f_side, MARGIN * self.force_scale)
@@ -173,6 +174,8 @@ class Contact:
         k = self.kinematics(y)
         if which == "deepest":
             self.unloading = True
+        elif which == "stick_ends" and self._vanishing(k):
+            self.coasting, y[15:18] = True, 0.0  # a stick meeting a cap already vanishing: nothing left to slide
         elif which == "stick_ends":
             self.sliding, y[15:18] = True, y[15:18] / np.linalg.norm(y[15:18])
         elif which == "slide_ends":
@@ -185,6 +188,10 @@ class Contact:
         else:  # normal_force: A is on or inside a cap of zero, and leaves it the way sticking pushes it
             self.f_side, self.coasting = np.sign(k["df_n"]) or -self.f_side, False
             self.on_cap(y, self.rate_direction(k))
+
+    def _vanishing(self, k: dict) -> bool:
+        """Whether the cap is below a switch's margin and falling, where a slide would coast at once."""
+        return self.COASTS and self.cap(k) < MARGIN * self.force_scale and self.cap_rate(k) <= 0.0
 
     def rate_direction(self, k: dict) -> np.ndarray | None:
         """Where sticking pushes a trial force of zero (the cap's zero, first touch): the unit A'

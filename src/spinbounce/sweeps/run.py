@@ -171,14 +171,14 @@ def _model_columns(columns: dict, model, n: int) -> dict[str, str]:
 
 def _pair_columns(columns: dict, spec: SweepSpec, group: int, model, n: int) -> dict[str, str]:
     """A pair group's scene columns (sphere b's, and the pair's Omega); its labels."""
-    from ..scenes.pair.kind import no_planar_matrix, planar_Omega
+    from ..scenes.pair.kind import no_planar_matrix, planar_Omega, theory_kind
 
     for name in parameters.PAIR_SPHERE:
         columns[parameters.by_name(name).column] = np.full(n, spec.groups[group][name])
     # the planar theory's Omega (the wall's at equal alpha); none for a law on the contact radius
     radial = no_planar_matrix(model.replace(mu=None)) is not None
     columns["Omega_theory"] = np.full(n, np.nan if radial else planar_Omega(model, spec.sphere_b(group)))
-    return {"scene": "pair", "theory": "pair_exact"}
+    return {"scene": "pair", "theory": theory_kind(model)}
 
 
 def write_chunk(path: Path, columns: dict[str, np.ndarray], labels: dict[str, str]) -> Path:

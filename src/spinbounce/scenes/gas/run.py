@@ -138,9 +138,9 @@ def _finished(folder: Path, scene, ranks: int) -> GasReport | None:
 
 
 def one_pair_seconds(model: ContactModel) -> float:
-    """What one collision of the theories costs beside a compiled batch's: the law's
+    """What one collision of the theories costs beside a compiled batch's: the law's in a gas's hot collisions
     (:meth:`.PairContact.one_pair_seconds`, none where its exact pair references are compiled)."""
-    return equal_pair(model)[1].one_pair_seconds()
+    return equal_pair(model)[1].one_pair_seconds(slow_impacts=False)
 
 
 def theory_seconds(scene) -> float:

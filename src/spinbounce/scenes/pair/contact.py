@@ -26,17 +26,16 @@ def checked(owner, names: tuple[str, ...]) -> None:
 
 #: Seconds one pair's exact references take when solved on their own (scipy on the compiled equations,
 #: exact.pair_kernel; the exact reference and the planar theory, which the capped reference solves by events),
-#: as a sweep's chunks and a gas's theories are estimated: the slower of two measurements on an idle core, with
-#: room (at least a third). A sweep's default ranges (v_n -0.8 to -0.1, 2-D and 3-D, 12 to 29 pairs): 25 ms
-#: uncapped (Hertz-Mindlin); capped 20 to 150 ms (Hooke with limit_damping, the Mindlin springs and dashpots, the
-#: classic spring). A gas's collisions (3-D, hot: 10 to 20 draws at T_tr = 0.5, hertz/material with E = 1e5 and
-#: linear_history or each Mindlin spring): 10 to 30 ms uncapped, 41 to 48 ms capped (mu = 0.5), the classic
-#: spring capped 53 ms with Hooke's force and 68 ms with Hertz's. A Hertzian force under a cap on a spring that
-#: does not grow with the contact radius (linear_history or the classic spring) takes far longer ("capped
-#: stiff"): the cap closes on the stiff spring at both ends of the contact and a slide's direction turns stiffly
-#: (0.8 to 0.9 s a pair with the classic spring; with linear_history 36 ms in the plane and 1.9 s in 3-D, 0.3
-#: to 4.3 s a pair; a gas estimated such a law at 0.2 s a pair, and a sweep at 4 s). A law whose references are
-#: solved together (:attr:`PairContact.batched`) costs none of these.
+#: as a sweep's chunks and a gas's theories are estimated: the slower of the measurements on an idle core, with
+#: room. A sweep's default ranges (v_n -0.8 to -0.1, 2-D and 3-D, 12 to 29 pairs): 25 ms uncapped
+#: (Hertz-Mindlin); capped 20 to 150 ms (Hooke with limit_damping, the Mindlin springs and dashpots). A gas's
+#: collisions (3-D, hot: 10 to 20 draws at T_tr = 0.5, hertz/material with E = 1e5 and linear_history or each
+#: Mindlin spring): 10 to 30 ms uncapped, 41 to 48 ms capped (mu = 0.5), the classic spring capped 53 ms with
+#: Hooke's force and 68 ms with Hertz's. In a sweep's slower impacts a capped Hertzian force on a spring that
+#: does not grow with the contact radius (linear_history), or the classic spring's cap, takes far longer
+#: ("capped stiff"): the cap closes on the stiff spring at both ends of the contact and a slide's direction turns
+#: stiffly (the classic spring 0.8 to 0.9 s a pair; linear_history 36 ms in the plane and 1.9 s in 3-D, 0.3 to
+#: 4.3 s a pair). A law whose references are solved together (:attr:`PairContact.batched`) costs none of these.
 ONE_PAIR_SECONDS = {"uncapped": 0.06, "capped": 0.2, "capped stiff": 6.0}
 
 
@@ -126,16 +125,17 @@ class PairContact:
         solver = pair_capped_batch if self.mu else pair_batch
         return solver.solvable(self.reference_law(), self.tensile)
 
-    def one_pair_seconds(self) -> float:
+    def one_pair_seconds(self, slow_impacts: bool = True) -> float:
         """What one pair's references cost when solved on their own (:data:`ONE_PAIR_SECONDS`); none where a
-        batch's are solved together (:attr:`batched`)."""
+        batch's are solved together (:attr:`batched`). ``slow_impacts``: the states reach a sweep's slower impacts,
+        where a stiff law's cap closes slowly (a gas's hot collisions were measured at the capped figure)."""
         if self.batched:
             return 0.0
         if not self.mu:
             return ONE_PAIR_SECONDS["uncapped"]
         law = self.reference_law()  # a Hertzian force, a spring off the contact radius: the cap closes on it
-        stiff = law.get("power", 1.0) != 1.0 and law.get("spring_power", 0.0) == 0.0
-        return ONE_PAIR_SECONDS["capped stiff" if stiff else "capped"]
+        stiff = law.get("classic_cap", False) or (law.get("power", 1.0) != 1.0 and law.get("spring_power", 0.0) == 0.0)
+        return ONE_PAIR_SECONDS["capped stiff" if stiff and slow_impacts else "capped"]
 
     def _solve_many(self, pairs: list, planar: bool) -> list:
         try:

@@ -24,7 +24,7 @@ from .pairs import along_z
 from .scene import Pair, PairContact, Sphere
 
 __all__ = ["pair_contact", "sphere_b", "state_b", "pairs_from_states", "wall_frame", "planar_matrix", "planar_Omega",
-           "scene_of", "no_planar_matrix", "CAPPED_NO_MATRIX", "RADIAL_NO_MATRIX", "LIMITED_NO_MATRIX"]
+           "theory_kind", "THEORIES", "scene_of", "no_planar_matrix", "CAPPED_NO_MATRIX", "RADIAL_NO_MATRIX", "LIMITED_NO_MATRIX"]
 
 #: Why a pair with a Coulomb cap has no scattering matrix (theory, the API and fit say it).
 CAPPED_NO_MATRIX = "a capped pair has no matrix: the slides make the outcome depend on the state"
@@ -34,6 +34,17 @@ LIMITED_NO_MATRIX = ("limit_damping cuts the pair's normal force at its turn, wh
 #: Why a pair whose force, spring or dashpot grows with the contact radius has none here.
 RADIAL_NO_MATRIX = ("a pair whose force, spring or dashpot grows with the contact radius has no closed planar "
                     "theory here: give a state for its exact reference")
+
+
+#: The names a pair's reference goes by in a sweep's ``theory`` label, a fit's report and ``pair --json``'s
+#: ``theory_kind`` (its module in spinbounce.exact), and in words.
+THEORIES = {"pair_exact": "the exact pair reference: what LAMMPS integrates, as dt -> 0",
+            "pair_capped": "the exact capped pair reference: what LAMMPS integrates under its cap, as dt -> 0"}
+
+
+def theory_kind(model: ContactModel) -> str:
+    """The reference a pair of this model is checked against: the capped one with a cap, else the uncapped."""
+    return "pair_exact" if model.mu is None else "pair_capped"
 
 
 def scene_of(values: dict) -> str:
