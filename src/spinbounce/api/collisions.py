@@ -97,14 +97,14 @@ def _pair_report(row: dict, batch, run=None, run_dir=None, Omega=None, kind: str
                          index=list(SPACE_COLUMNS) + [f"{s}_b" for s in SPACE_COLUMNS])
     table.attrs.update(r=pair.a.r, r_b=pair.b.r)
     geometry = {k: float(row[k]) for k in _PAIR_GEOMETRY}
-    report = PairReport(table, batch.dt, batch.nsteps, float(row.get("error", float("nan"))),
-                        float(row["planar_error"]), float(row["eps"]), run_dir, str(row.get("status", "")),
-                        geometry=geometry)
+    report = PairReport(table, float(row["planar_error"]), float(row["eps"]), geometry, dt=batch.dt,
+                        nsteps=batch.nsteps, error=float(row.get("error", float("nan"))),
+                        status=str(row.get("status", "")), theory_kind=kind, theory_name=THEORIES[kind])
     if run is None:
         return report
-    return dataclasses.replace(report, step=run.step.record(), Omega=Omega, warnings=tuple(run.warnings),
-                               deck=str(run.info.deck), dump=None if run.dump is None else str(run.dump),
-                               lammps_version=run.info.lammps_version, theory_kind=kind, theory_name=THEORIES[kind])
+    return dataclasses.replace(report, run_dir=run_dir, step=run.step.record(), Omega=Omega,
+                               warnings=tuple(run.warnings), deck=str(run.info.deck),
+                               dump=None if run.dump is None else str(run.dump), lammps_version=run.info.lammps_version)
 
 
 def _collide_pair(pair: _Pair, contact: ContactModel, state: dict, dt, tolerance, out) -> PairReport:
@@ -165,12 +165,13 @@ def collide(v_n: float | None = None, v_t: float | None = None, omega: float = 0
     scene, row = result.scene, result.table.iloc[0]  # at the step its accuracy needed
     choice = choose.which(scene.model)
     omega = float(choose.omega_per_sphere(scene.model, scene.v_n)[0])
-    return CollisionReport(state_table(row, scene.state_names, scene.model.r), choice.name, choice.kind,
-                           scene.dt, scene.nsteps, float(row["error"]), str(row["status"]), out,
-                           float(np.max(scene.model.contact_times(scene.v_n))),
-                           None if np.isnan(omega) else omega, result.step.record(), result.warnings,
-                           str(result.info.deck), None if result.dump is None else str(result.dump),
-                           result.info.lammps_version)
+    return CollisionReport(state_table(row, scene.state_names, scene.model.r),
+                           float(np.max(scene.model.contact_times(scene.v_n))), theory_name=choice.name,
+                           theory_kind=choice.kind, dt=scene.dt, nsteps=scene.nsteps, error=float(row["error"]),
+                           status=str(row["status"]), run_dir=out, Omega=None if np.isnan(omega) else omega,
+                           step=result.step.record(), warnings=result.warnings, deck=str(result.info.deck),
+                           dump=None if result.dump is None else str(result.dump),
+                           lammps_version=result.info.lammps_version)
 
 
 def _collide_extrapolated(scene, out: Path) -> CollisionReport | None:
@@ -200,10 +201,10 @@ def _collide_extrapolated(scene, out: Path) -> CollisionReport | None:
                  warnings=[], max_abs_error=deviation, max_error=float(table["error"].max()), step=step,
                  status=checks.summary(table["status"]), table=table)
     v_n = float(scene.v_n[0])
-    return CollisionReport(state_table(row, finest.state_names, contact.r), choice.name, choice.kind, finest.dt,
-                           result.steps, float(row["error"]), str(row["status"]), out,
-                           float(contact.contact_times(v_n)[0]), contact.Omega, step, (), str(result.levels[-1]["deck"]),
-                           None, lammps_version())
+    return CollisionReport(state_table(row, finest.state_names, contact.r), float(contact.contact_times(v_n)[0]),
+                           theory_name=choice.name, theory_kind=choice.kind, dt=finest.dt, nsteps=result.steps,
+                           error=float(row["error"]), status=str(row["status"]), run_dir=out, Omega=contact.Omega,
+                           step=step, deck=str(result.levels[-1]["deck"]), lammps_version=lammps_version())
 
 
 def _collide_to_tolerance(contact: ContactModel, state: dict, tolerance: float, out, log) -> ToleranceReport:

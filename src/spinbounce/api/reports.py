@@ -53,39 +53,45 @@ def state_record(table: pd.DataFrame) -> dict:
     return out
 
 
-def _run_keys(run_dir, deck, dump, lammps_version: str, warnings) -> dict:
-    """Where a run's files are and what ran it: the keys every collision report that ran LAMMPS has."""
-    return {"run_dir": None if run_dir is None else str(run_dir), "deck": deck, "dump": dump,
-            "lammps_version": lammps_version, "warnings": list(warnings)}
+@dataclass(frozen=True, kw_only=True)
+class _Ran:
+    """What a collision report says beside its states, wall or pair: which theory it is judged against, how it
+    ran (``run_dir`` None: it did not), and how far from the truth it is (``error``: the largest component of
+    LAMMPS - theory over the state's size, the JSON's ``error_estimate``)."""
 
-
-@dataclass(frozen=True)
-class CollisionReport:
-    """One wall collision in LAMMPS beside its theory. ``table``: one row per state column
-    (initial, LAMMPS, theory, error); the rest says how it ran and how far from the truth it is."""
-
-    table: pd.DataFrame
-    theory_name: str
-    theory_kind: str
-    dt: float
-    nsteps: int
-    error: float
-    status: str
-    run_dir: Path
-    contact_time: float = float("nan")
-    Omega: float | None = None
+    theory_kind: str = ""
+    theory_name: str = ""
+    dt: float = float("nan")
+    nsteps: int = 0
+    error: float = float("nan")
+    status: str = ""
+    run_dir: Path | None = None
     step: dict = field(default_factory=dict)
+    Omega: float | None = None
     warnings: tuple[str, ...] = ()
     deck: str = ""
     dump: str | None = None
     lammps_version: str = ""
 
+    def ran(self) -> dict:
+        """These as JSON-ready data, the keys every collision report that ran LAMMPS has."""
+        return {"error_estimate": self.error, "status": self.status, "theory_kind": self.theory_kind,
+                "theory_name": self.theory_name, "dt": self.dt, "nsteps": self.nsteps, "step": self.step,
+                "Omega": self.Omega, "run_dir": None if self.run_dir is None else str(self.run_dir), "deck": self.deck,
+                "dump": self.dump, "lammps_version": self.lammps_version, "warnings": list(self.warnings)}
+
+
+@dataclass(frozen=True)
+class CollisionReport(_Ran):
+    """One wall collision in LAMMPS beside its theory. ``table``: one row per state column
+    (initial, LAMMPS, theory, error); the rest says how it ran and how far from the truth it is."""
+
+    table: pd.DataFrame
+    contact_time: float = float("nan")
+
     def record(self) -> dict:
         """The report as JSON-ready data (``spinbounce collide --json``)."""
-        return {**state_record(self.table), "error_estimate": self.error, "status": self.status,
-                "theory_kind": self.theory_kind, "theory_name": self.theory_name, "dt": self.dt, "nsteps": self.nsteps,
-                "contact_time": self.contact_time, "step": self.step, "Omega": self.Omega,
-                **_run_keys(self.run_dir, self.deck, self.dump, self.lammps_version, self.warnings)}
+        return {**state_record(self.table), **self.ran(), "contact_time": self.contact_time}
 
     def __str__(self) -> str:
         head = (f"collision: theory {self.theory_name}; dt = {self.dt:.6g} ({self.nsteps} steps); "
@@ -94,7 +100,7 @@ class CollisionReport:
 
 
 @dataclass(frozen=True)
-class PairReport:
+class PairReport(_Ran):
     """One pair scene: both spheres' states in the paper's names and signs (sphere b's with ``_b``;
     the frame is the wall's, the line of centres from b to a its normal) initially, as LAMMPS ended
     them (if it ran), by the exact reference (``theory``), their difference (``error``) and by the
@@ -102,33 +108,15 @@ class PairReport:
     ``error``, in units of the pair's speed) and the planar theory's model error."""
 
     table: pd.DataFrame
-    dt: float
-    nsteps: int
-    error: float
     planar_error: float
     eps: float
-    run_dir: Path | None
-    status: str = ""
-    step: dict = field(default_factory=dict)
     geometry: dict = field(default_factory=dict)
-    Omega: float | None = None
-    warnings: tuple[str, ...] = ()
-    deck: str = ""
-    dump: str | None = None
-    lammps_version: str = ""
-    theory_kind: str = "pair_exact"
-    theory_name: str = ""
 
     def record(self) -> dict:
         """The report as JSON-ready data (``spinbounce pair --json``); without a run (``theory --scene
         pair``), the states, the model error and the geometry only."""
         out = {**state_record(self.table), "planar_error": self.planar_error, **self.geometry}
-        if self.run_dir is None:
-            return out
-        return {**out, "error_estimate": self.error, "status": self.status, "theory_kind": self.theory_kind,
-                "theory_name": self.theory_name, "dt": self.dt, "nsteps": self.nsteps, "step": self.step,
-                "Omega": self.Omega,
-                **_run_keys(self.run_dir, self.deck, self.dump, self.lammps_version, self.warnings)}
+        return out if self.run_dir is None else {**out, **self.ran()}
 
     def __str__(self) -> str:
         head = (f"pair: dt = {self.dt:.6g} ({self.nsteps} steps); LAMMPS vs exact {self.error:.2e}; planar theory's "
