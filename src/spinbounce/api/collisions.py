@@ -278,7 +278,7 @@ def theory(v_n: float | None = None, v_t: float | None = None, omega: float = 0.
 
 def _pair_theory(pair: _Pair, contact: ContactModel, state: dict) -> dict:
     from ..exact import pair as planar
-    from ..scenes.pair.kind import THEORIES, no_planar_matrix, pair_contact, planar_matrix, planar_Omega, theory_kind
+    from ..scenes.pair.kind import no_planar_matrix, pair_contact, planar_matrix, planar_Omega, theory_kind
     from ..scenes.pair.table import pair_table
 
     pair_law = pair_contact(contact, pair.b)
@@ -293,9 +293,8 @@ def _pair_theory(pair: _Pair, contact: ContactModel, state: dict) -> dict:
                           "eps = v_t tau/(r + r_b) -> 0 (figures/pair_validity); give a state for the exact reference"}
     if state["v_n"] is not None:
         batch = _pair_batch(pair, contact, state)
-        kind = theory_kind(contact)  # the state's theory is the exact reference; the planar one is beside it
-        out.update(_pair_report(pair_table(batch, None).iloc[0].to_dict(), batch).record(), theory_kind=kind,
-                   theory_name=THEORIES[kind])
+        # the state's theory is the exact reference (its kind named), the planar one beside it
+        out.update(_pair_report(pair_table(batch, None).iloc[0].to_dict(), batch, kind=theory_kind(contact)).record())
     elif (why := no_planar_matrix(contact)) is not None:
         out.update(matrix=None, why_no_matrix=f"mu = {contact.mu!r}: {why}" if contact.mu is not None else why)
     elif np.any(pair.state):

@@ -114,9 +114,11 @@ class PairReport(_Ran):
 
     def record(self) -> dict:
         """The report as JSON-ready data (``spinbounce pair --json``); without a run (``theory --scene
-        pair``), the states, the model error and the geometry only."""
+        pair``), the states, the theory they come from, the model error and the geometry only."""
         out = {**state_record(self.table), "planar_error": self.planar_error, **self.geometry}
-        return out if self.run_dir is None else {**out, **self.ran()}
+        if self.run_dir is None:
+            return {**out, "theory_kind": self.theory_kind, "theory_name": self.theory_name}
+        return {**out, **self.ran()}
 
     def __str__(self) -> str:
         head = (f"pair: dt = {self.dt:.6g} ({self.nsteps} steps); LAMMPS vs exact {self.error:.2e}; planar theory's "
