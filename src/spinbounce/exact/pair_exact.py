@@ -199,9 +199,10 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, g
     bound = float(window(tau, m_a, m_b, kn, gamma_n, radial))
     coefficients = pair_kernel.coefficients(p)
 
-    def follow(depth: float):
-        """The contact until the overlap falls back to ``depth`` (the tail's start), or parts before it ever
-        got that deep (a grazing pair), or the normal force turns: (solution, which event, state, time)."""
+    def follow(depth: float, y0, t0: float):
+        """The contact from ``y0`` at ``t0`` until the overlap falls back to ``depth`` (the tail's start), or
+        parts before it ever got that deep (a grazing pair), or the normal force turns: (solution, which event,
+        state, time)."""
         def separated(t, y, *_):
             return gap(y) + depth
 
@@ -212,8 +213,8 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, g
         separated.direction = parted.direction = 1.0
         # the start (gap 0, closing) is no upward crossing; the end (or the tail's start) is the first one
         events = [separated] + ([parted] if depth > 0.0 else []) + ([turned] if turned else [])
-        solution = solve_ivp(_rates, (0.0, bound), np.concatenate([state, np.zeros(3)]), method="DOP853",
-                             args=(n0, coefficients, planar), max_step=longest, rtol=rtol, atol=atol, events=events)
+        solution = solve_ivp(_rates, (t0, bound), y0, method="DOP853", args=(n0, coefficients, planar),
+                             max_step=longest, rtol=rtol, atol=atol, events=events)
         fired = [k for k, times in enumerate(solution.t_events) if len(times)]
         if solution.status == -1 and depth > 0.0:  # (a grazing pair's end, its a'/a singular in time)
             return solution, "failed", None, None
@@ -224,19 +225,26 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, g
         k = fired[0]
         return solution, events[k].__name__, solution.y_events[k][0], solution.t_events[k][0]
 
-    solution, which, end, t_end = follow(depth)
-    if which in ("parted", "failed"):  # never as deep as the tail's start (a grazing pair): the tail from half
-        reached = float(np.max(-_gaps(solution.y, n0, planar, r_a + r_b)))  # the depth it reached
-        if not reached > 0.0:
-            raise RuntimeError(f"the pair's integration failed at first touch: {solution.message}")
-        solution, which, end, t_end = follow(TAIL_START * reached)
-        if which == "failed":
-            raise RuntimeError(f"the pair's integration failed before it parted: {solution.message}")
-    if which == "turned":  # the normal force's turn: no force from here
-        return outcome(*free_flight(end, t_end, n0, planar, -gap(end)), n0)
-    if radial and which == "separated":
-        end, t_end = _tail(end, t_end, -gap(end), n0, p, planar, rtol, atol, turned)
-    return outcome(end, t_end, n0)
+    end, t_end = np.concatenate([state, np.zeros(3)]), 0.0
+    for _ in range(MAX_STALLS + 1):
+        start_state, start_time = end, t_end
+        solution, which, end, t_end = follow(depth, start_state, start_time)
+        if which in ("parted", "failed"):  # never as deep as the tail's start (a grazing pair): the tail from half
+            reached = float(np.max(-_gaps(solution.y, n0, planar, r_a + r_b)))  # the depth it reached
+            if not reached > 0.0:
+                raise RuntimeError(f"the pair's integration failed at first touch: {solution.message}")
+            solution, which, end, t_end = follow(TAIL_START * reached, start_state, start_time)
+            if which == "failed":
+                raise RuntimeError(f"the pair's integration failed before it parted: {solution.message}")
+        if which == "turned":  # the normal force's turn: no force from here
+            return outcome(*free_flight(end, t_end, n0, planar, -gap(end)), n0)
+        if not (radial and which == "separated"):
+            return outcome(end, t_end, n0)
+        end, t_end, stalled = _tail(end, t_end, -gap(end), n0, p, planar, rtol, atol, turned)
+        if not stalled:
+            return outcome(end, t_end, n0)
+        depth = TAIL_START * -gap(end)  # back in time from where the parting stalled, to a tail of its own
+    raise RuntimeError(f"the pair's parting stalled more than {MAX_STALLS} times")
 
 
 def _gaps(states: np.ndarray, n0, planar: bool, radsum: float) -> np.ndarray:
@@ -281,6 +289,11 @@ def free_flight(state, t: float, n0, planar: bool, delta: float) -> tuple[np.nda
 #: speed, is left.
 TAIL_START = 0.5
 TAIL_END = 1e-6
+#: A tail whose parting speed v.n falls to STALL of its value at the tail's start hands back to the time:
+#: a history that keeps its normal component (LAMMPS's linear_history without a cap) can pull the spheres
+#: back together before they part, where x = sqrt(delta) stops falling; at most MAX_STALLS times a contact.
+STALL = 0.1
+MAX_STALLS = 8
 
 
 def undamped_depth(p, v_rel, n0, m_star: float) -> float:
@@ -290,9 +303,10 @@ def undamped_depth(p, v_rel, n0, m_star: float) -> float:
 
 
 def _tail(state, t: float, delta: float, n0, p, planar, rtol, atol, turned=None):
-    """(state, time) at the end of the contact, integrated in x = sqrt(delta) from ``delta`` down: dy/dx =
-    dy/dt 2 x/delta', the time a state of its own; ``turned``: the normal force's turn, from which the
-    spheres part force-free."""
+    """(state, time, stalled) at the end of the contact, integrated in x = sqrt(delta) from ``delta`` down:
+    dy/dx = dy/dt 2 x/delta', the time a state of its own; ``turned``: the normal force's turn, from which the
+    spheres part force-free. ``stalled``: the state is where the parting slowed to STALL of its start instead
+    (:data:`STALL`), from which the contact goes on in time."""
     from scipy.integrate import solve_ivp
 
     coefficients = pair_kernel.coefficients(p)
@@ -306,22 +320,36 @@ def _tail(state, t: float, delta: float, n0, p, planar, rtol, atol, turned=None)
 
     x0 = np.sqrt(delta)
     tail_atol = np.append(np.broadcast_to(atol, state.shape), atol)
-    events = []
+
+    def parting(y):
+        n = n0 if planar else y[:3] / np.sqrt(y[:3] @ y[:3])
+        return (y[3:6] - y[6:9]) @ n
+
+    slowest = STALL * parting(state)
+
+    def stall(x, y):
+        return parting(y) - slowest
+
+    stall.terminal = True
+    events = [stall]
     if turned:
         def turn(x, y):
             n = n0 if planar else y[:3] / np.sqrt(y[:3] @ y[:3])
             return pair_kernel.normal_law(coefficients, x * x, (y[3:6] - y[6:9]) @ n)[0]
 
         turn.terminal, turn.direction = True, -1.0  # F_n falls through zero as x falls (as time runs)
-        events = [turn]
+        events.append(turn)
     solution = solve_ivp(rates, (x0, x0 * TAIL_END), np.append(state, t), method="DOP853", rtol=rtol,
                          atol=tail_atol, events=events)
+    if solution.status == 1 and len(solution.t_events[0]):  # the parting stalled: back to the time from here
+        y = solution.y_events[0][0]
+        return y[:-1], float(y[-1]), True
     if solution.status == 1:  # the turn: from there force-free
-        x, y = solution.t_events[0][0], solution.y_events[0][0]
-        return free_flight(y[:-1], float(y[-1]), n0, planar, x * x)
+        x, y = solution.t_events[1][0], solution.y_events[1][0]
+        return (*free_flight(y[:-1], float(y[-1]), n0, planar, x * x), False)
     if solution.status != 0:
         raise RuntimeError(f"the pair's contact did not end: {solution.message}")
-    return solution.y[:-1, -1], float(solution.y[-1, -1])
+    return solution.y[:-1, -1], float(solution.y[-1, -1]), False
 
 
 @first_use.example("pair", seconds=3)
