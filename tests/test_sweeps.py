@@ -339,3 +339,22 @@ def test_workers_get_a_chunk_each_and_a_resume_keeps_the_chunks_begun(tmp_path):
     alone = []
     api.run_sweep(raw, tmp_path / "t", workers=1, log=alone.append)
     assert "in 1 chunks" in alone[0]  # one worker: the default chunk
+
+
+def test_a_local_pair_sweep_is_estimated_at_its_probed_steps_and_a_job_at_its_fine_rule():
+    """A pair chunk's job asks for the fine rule's steps (what a batch whose probe fails runs) and 2 ms a pair;
+    a local sweep is estimated at what the probe settles on (~400 steps a contact, `bench` measured 182 and 362)
+    and the references' measured cost. Estimated at the bound, an 800,000-pair sweep (about 80 s here: `bench`
+    measures ~10,000 pairs/s) was refused as 1.13 core-hours; now it runs, and the job bound stays above it."""
+    from spinbounce.model.timestep import MAX_CORE_HOURS
+    from spinbounce.sweeps import spec_from_dict
+    from spinbounce.sweeps.cost import chunk_cost, sweep_seconds
+
+    states = {"n": 800_000, "v_n": [-1.5, -0.1], "v_t": [-2, 2], "r_omega": [-2, 2]}
+    for model in ({"scene": "pair"}, {"scene": "pair", "mu": 0.3}):
+        spec = spec_from_dict({"model": model, "states": states})
+        assert sweep_seconds(spec, processes=1) < MAX_CORE_HOURS * 3600 < sweep_seconds(spec)
+        cost = chunk_cost(spec, 0, spec.chunk_sizes[0])
+        assert cost.likely_seconds < cost.seconds / 5  # the bound: 50 times the steps, 13 times the references
+    wall = spec_from_dict({"states": states})  # a wall chunk's steps are its probe's already: one estimate
+    assert chunk_cost(wall, 0, wall.chunk_sizes[0]).expected_seconds is None

@@ -54,7 +54,7 @@ def run_sweep(spec, out: str | Path, *, workers: int = 1, force: bool = False, l
     elif isinstance(spec, dict):
         spec = spec_from_dict(spec)
     spec = spread_over(spec, workers, Path(out))  # chunks enough for the workers; a begun sweep's own
-    seconds = sweep_seconds(spec)
+    seconds = sweep_seconds(spec, processes=workers)
     collisions = spec.n * len(spec.groups)
     if seconds > MAX_CORE_HOURS * 3600 and not force:
         raise SweepError(f"{size_name} = {spec.n}: {collisions} collisions are estimated at {duration_text(seconds)} on "

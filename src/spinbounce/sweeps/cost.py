@@ -25,7 +25,10 @@ Hertz-Mindlin on hertz/material, E = 1e4, nu = 0.3; estimated 426 and 833); with
 it keeps the fixed first-order rule (124,000 steps there).
 
 A job asks for the estimate times a margin (TIME_MARGIN, MEM_MARGIN), which must stay
-under the site's limits; the same numbers size chunks (:func:`largest_chunk_size`).
+under the site's limits; the same numbers size chunks (:func:`largest_chunk_size`). A pair chunk's
+bound is far above what it takes (its fine rule's steps, which its probe shortens ~20-fold): a local
+sweep's estimate, and its refusal past MAX_CORE_HOURS, take :attr:`ChunkCost.likely_seconds` instead,
+LAMMPS's start-up paid once a process (:func:`sweep_seconds`).
 """
 
 from __future__ import annotations
@@ -46,6 +49,9 @@ __all__ = ["CostError", "ChunkCost", "JobRequest", "chunk_cost", "job_request", 
 #: a 100-sphere chunk took 1.16 s and 158 MB (157 MB, 197 MB with mu = 0.3); 20,000
 #: spheres took 1.85 s and 181 MB without mu, so 0.69 s for 20,000 x 252 sphere-steps.
 START_SECONDS = 1.2
+#: A further chunk in a process that has started (a local sweep's): its LAMMPS instance, deck and
+#: table, about 0.09 s a 25,000-sphere chunk (a 200,000-collision frictionless sweep, profiled).
+CHUNK_SECONDS = 0.1
 #: exact.coulomb's exact batched solver, per collision: 150,000 to 400,000 a second on one
 #: core (studies/solver_speed), so 1e-5 s with room.
 CAPPED_THEORY_SECONDS = 1e-5
@@ -60,6 +66,13 @@ PAIR_BATCHED_SECONDS = 2e-3
 #: A pair chunk's probe (stepping.tune): up to five LAMMPS runs of at most
 #: PROBE_SPHERES pairs, each at up to the fine rule's steps.
 PAIR_PROBE_SECONDS = 5.0
+#: What a batched pair sweep is expected to cost, for a local sweep's estimate and its refusal (a cluster job
+#: asks for the bounds above): a pair probe settles on about PAIR_PROBED_STEPS a contact (`spinbounce bench`'s
+#: 20,000-pair sweeps: 182 uncapped, 362 capped), the references and table about PAIR_BATCHED_EXPECTED a pair
+#: (0.05 to 0.2 ms there), the probe about PAIR_PROBE_EXPECTED (two to five runs of PROBE_SPHERES pairs).
+PAIR_PROBED_STEPS = 400
+PAIR_BATCHED_EXPECTED = 1.5e-4
+PAIR_PROBE_EXPECTED = 1.0
 BASE_MB = 160
 SCIPY_MB = 40  # scipy, loaded for the capped theory
 KB_PER_SPHERE = 1.5  # 1.1 (no mu) to 1.4 (mu) kB measured between 100 and 20,000 spheres
@@ -88,6 +101,12 @@ class ChunkCost:
     seconds: float
     mem_mb: float
     cpus: int = CPUS_PER_CHUNK
+    expected_seconds: float | None = None  # what it likely takes, where the bound above runs far past it
+
+    @property
+    def likely_seconds(self) -> float:
+        """What the chunk is expected to take on one core (a local sweep's estimate)."""
+        return self.seconds if self.expected_seconds is None else self.expected_seconds
 
 
 @dataclass(frozen=True)
@@ -101,7 +120,9 @@ class JobRequest:
 
 def _pair_cost(spec, group: int, collisions: int) -> ChunkCost:
     """A pair chunk: two spheres a collision for at most the fine rule's steps (what a batch
-    whose probe fails runs), and the pair references, which outweigh LAMMPS here."""
+    whose probe fails runs), and the pair references, which outweigh LAMMPS here; expected: the
+    steps a probe settles on and the batched references' measured cost."""
+    from ..model.timestep import mid_step_dt
     from ..scenes.pair.kind import pair_contact, pairs_from_states
     from ..scenes.pair.scene import PairBatch
 
@@ -109,11 +130,19 @@ def _pair_cost(spec, group: int, collisions: int) -> ChunkCost:
     fast, _ = spec.normal_speeds()
     b = spec.sphere_b(group)
     contact = pair_contact(model, b)
-    steps = PairBatch(pairs_from_states(model, b, [[-fast, 0.0, 0.0]]), contact, dt).nsteps
-    theory = contact.one_pair_seconds() or PAIR_BATCHED_SECONDS
-    probe = PAIR_PROBE_SECONDS if dt is None else 0.0
-    seconds = START_SECONDS + probe + collisions * (2 * steps * SPHERE_STEP_SECONDS + theory)
-    return ChunkCost(collisions, steps, seconds, BASE_MB + SCIPY_MB + 2 * collisions * KB_PER_SPHERE / 1024)
+    batch = PairBatch(pairs_from_states(model, b, [[-fast, 0.0, 0.0]]), contact, dt)
+    one = contact.one_pair_seconds()
+    mem_mb = BASE_MB + SCIPY_MB + 2 * collisions * KB_PER_SPHERE / 1024
+    bound = _pair_seconds(collisions, batch.nsteps, one or PAIR_BATCHED_SECONDS, PAIR_PROBE_SECONDS if dt is None else 0)
+    if dt is not None:
+        return ChunkCost(collisions, batch.nsteps, bound, mem_mb)
+    probed = batch.at_step(mid_step_dt(float(batch.contact_times.max()), PAIR_PROBED_STEPS)).nsteps
+    expected = _pair_seconds(collisions, min(probed, batch.nsteps), one or PAIR_BATCHED_EXPECTED, PAIR_PROBE_EXPECTED)
+    return ChunkCost(collisions, batch.nsteps, bound, mem_mb, expected_seconds=expected)
+
+
+def _pair_seconds(collisions: int, steps: int, theory: float, probe: float) -> float:
+    return START_SECONDS + probe + collisions * (2 * steps * SPHERE_STEP_SECONDS + theory)
 
 
 def _theory_seconds(model) -> float:
@@ -206,12 +235,18 @@ def check_fits(spec, limit: JobRequest) -> list[JobRequest]:
     return requests
 
 
-def sweep_seconds(spec) -> float:
-    """The whole sweep on one core: a full chunk's cost times their number, and the last, shorter
-    chunk's, per group; without listing the chunks."""
-    total = 0.0
+def sweep_seconds(spec, processes: int | None = None) -> float:
+    """The whole sweep on one core, without listing its chunks: each chunk's bound (what a cluster job
+    asks for), or, run in ``processes`` processes (a local sweep's workers), what each is expected to
+    take, LAMMPS's start-up paid once a process and CHUNK_SECONDS by each further chunk."""
+    total, chunks = 0.0, 0
     for group, size in enumerate(spec.chunk_sizes):
         full, rest = divmod(spec.n, size)
-        total += full * chunk_cost(spec, group, size).seconds if full else 0.0
-        total += chunk_cost(spec, group, rest).seconds if rest else 0.0
-    return total
+        for count, collisions in ((full, size), (1 if rest else 0, rest)):
+            if count:
+                cost = chunk_cost(spec, group, collisions)
+                total += count * (cost.seconds if processes is None else cost.likely_seconds)
+                chunks += count
+    if processes is None:
+        return total
+    return total - (chunks - min(processes, chunks)) * (START_SECONDS - CHUNK_SECONDS)
