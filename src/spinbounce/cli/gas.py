@@ -70,17 +70,17 @@ def run(args) -> int:
     s = r["lammps"]
     print(f"gas of {r['parameters']['spheres']} spheres: {s['collisions_per_sphere']:.3g} collisions per sphere "
           f"(counted to {100 * r['accuracy']['collisions_noise']:.1f}%), late T_rot/T_tr {s['late_ratio']:.4f}, "
-          f"energy drift {100 * s['energy_drift']:+.3f}%")
+          f"energy drift {_percent(s['energy_drift'])}")
     for name, t in r["theories"].items():
         print(f"  theory {name:<12} largest |ratio difference| {t['max_ratio_difference']:.4f}, steady ratio "
-              f"{t['steady_ratio']:.4f}, energy drift {100 * t['energy_drift']['theory']:+.3f}%")
+              f"{t['steady_ratio']:.4f}, energy drift {_percent(t['energy_drift']['theory'])}")
     print(f"  of the pair-level drift, the overlapping contacts' (a sphere meeting a third while it touches a second): "
-          f"{100 * r['overlaps']['energy_drift']:+.3f}%")
+          f"{_percent(r['overlaps']['energy_drift'])}")
     if r["closure_drift"]:
         d = r["closure_drift"]
         print(f"  the isolated pairs' drift by DSMC of the exact pairs (no closure) "
-              f"{100 * d['energy_drift_dsmc']:+.3f}%, by the equations {100 * d['energy_drift_equations']:+.3f}%; "
-              f"the pair-level drift with DSMC's {100 * r['theories']['pairs']['energy_drift_boltzmann']:+.3f}%")
+              f"{_percent(d['energy_drift_dsmc'])}, by the equations {_percent(d['energy_drift_equations'])}; "
+              f"the pair-level drift with DSMC's {_percent(r['theories']['pairs']['energy_drift_boltzmann'])}")
     if r["closure"] is None:
         print(f"  no closure's error: {closure_absent(make_model(**values))}")
     elif r["closure"]["method"] != "DSMC":
@@ -98,3 +98,10 @@ def run(args) -> int:
               "held to this gas")
     print(f"wrote {shown_path(report.csv)} and {shown_path(report.record_path)}")
     return 0
+
+
+def _percent(fraction: float) -> str:
+    """A drift as a signed percentage to 1e-3 points; one that rounds to zero is +0.000% (its sign, a rounding
+    residue's, differs between machines)."""
+    points = 100.0 * fraction
+    return f"{points if round(points, 3) else 0.0:+.3f}%"
