@@ -195,3 +195,22 @@ def test_eta_n_follows_a_time_scale_by_the_laws_power(name):
     slower = model.replace(m=model.m * s**2, **{coefficient: getattr(model, coefficient) * s**law.eta_time_power})
     assert law.contact_dashpots(slower, m_eff * s**2)[0] == pytest.approx(s * law.contact_dashpots(model, m_eff)[0],
                                                                           rel=1e-14)
+
+
+def test_a_contact_its_normal_dashpot_holds_closed_is_refused_by_its_v_n_not_followed_for_ever():
+    """Hertz's force vanishes at the surface as delta^1.5 while damping velocity's dashpot does not: a slow enough
+    impact never leaves (the overlap creeps towards zero; LAMMPS's sphere at v_n = -0.16, gamma_n = 2 was still
+    3e-5 deep after 200,000 steps). The wall's reference followed that creep without end (a collide ran for minutes)
+    and the pair's failed mid-sweep; both now refuse the state by its v_n at once, a pair sweep before it starts."""
+    from spinbounce.sweeps import SweepError, spec_from_dict
+
+    with pytest.raises(SceneError, match="the contact does not end") as refused:
+        Collision(ContactModel(normal="hertz", gamma_n=2.0), v_n=-0.16, v_t=0.0, omega=0.0)
+    assert refused.value.parameter == "v_n" and refused.value.value == -0.16
+    with pytest.raises(SceneError, match="the contact does not end"):
+        spinbounce.collide(scene="pair", normal="hertz", gamma_n=1.0, v_n=-0.16, v_t=0.0, omega=0.0, out=None)
+    states = {"n": 300, "v_n": [-0.8, -0.1], "v_t": [-2, 2], "r_omega": [-2, 2]}
+    with pytest.raises(SweepError, match="states.v_n: v_n = -0.1: the contact does not end"):
+        spec_from_dict({"model": {"scene": "pair", "normal": "hertz", "gamma_n": 1.0}, "states": states})
+    # limit_damping cuts the tensile dashpot: the same impact ends
+    assert Collision(ContactModel(normal="hertz", gamma_n=2.0, limit_damping=True), v_n=-0.16).nsteps > 0

@@ -31,6 +31,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ..errors import contact_held
 from . import first_use, pair_kernel
 from . import pair as pair_theory
 from .wall_law import on_contact_radius
@@ -185,7 +186,7 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, g
     )
 
     first_use.once("pair")
-    n0, p, state, _, tau, longest, atol = start(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b,
+    n0, p, state, v_rel, tau, longest, atol = start(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b,
                                                 kn, kt, planar, rtol, gamma_n=gamma_n, gamma_t=gamma_t, **law)
     radial = on_contact_radius(p["power"], p["spring_power"], p["damping_power"])
     # a law on the contact radius leaves the time at TAIL_START of its depth for x = sqrt(delta) (_tail)
@@ -221,6 +222,8 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, g
         if solution.status == -1:
             raise RuntimeError(f"the pair's integration failed: {solution.message}")
         if solution.status != 1 or not fired:
+            if gamma_n > 0.0 and tensile:  # a dashpot that outlasts the force near the surface
+                raise contact_held(-abs(float(v_rel @ n0)))
             raise RuntimeError(f"the pair did not separate within {CONTACT_TIMES:g} contact times")
         k = fired[0]
         return solution, events[k].__name__, solution.y_events[k][0], solution.t_events[k][0]

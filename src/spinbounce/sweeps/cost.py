@@ -133,7 +133,8 @@ def _pair_cost(spec, group: int, collisions: int) -> ChunkCost:
     batch = PairBatch(pairs_from_states(model, b, [[-fast, 0.0, 0.0]]), contact, dt)
     one = contact.one_pair_seconds()
     mem_mb = BASE_MB + SCIPY_MB + 2 * collisions * KB_PER_SPHERE / 1024
-    bound = _pair_seconds(collisions, batch.nsteps, one or PAIR_BATCHED_SECONDS, PAIR_PROBE_SECONDS if dt is None else 0)
+    probe = PAIR_PROBE_SECONDS if dt is None else 0.0
+    bound = _pair_seconds(collisions, batch.nsteps, one or PAIR_BATCHED_SECONDS, probe)
     if dt is not None:
         return ChunkCost(collisions, batch.nsteps, bound, mem_mb)
     probed = batch.at_step(mid_step_dt(float(batch.contact_times.max()), PAIR_PROBED_STEPS)).nsteps

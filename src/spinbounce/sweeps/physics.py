@@ -46,13 +46,13 @@ def check_physics(spec) -> None:
 
 
 def _check_pairs(spec) -> None:
-    """A pair sweep: what the pair deck can run, and its fastest impact's overlap and step."""
+    """A pair sweep: what the pair deck can run, its fastest impact's overlap and step, and its slowest's end."""
     from ..scenes.pair.kind import pair_contact, pairs_from_states
     from ..scenes.pair.scene import PairBatch
 
     if spec.tolerance is not None:
         fail("tolerance", spec.tolerance, "is for the wall only: a pair sweep takes model.dt or the default step")
-    fast, _ = spec.normal_speeds()
+    fast, slow = spec.normal_speeds()
     for g in range(len(spec.groups)):
         try:
             with warnings.catch_warnings(action="ignore"):
@@ -61,8 +61,10 @@ def _check_pairs(spec) -> None:
                 contact = pair_contact(model, b)
         except SceneError as exc:
             raise SweepError(f"model.{exc.parameter}: {exc}") from None
-        try:  # head-on at the fastest |v_n|: the deepest overlap (the step's checks are per pair)
-            PairBatch(pairs_from_states(model, b, [[-fast, 0.0, 0.0]]), contact, dt)
+        try:  # head-on at the fastest |v_n|: the deepest overlap (the step's checks are per pair); at the slowest,
+            # a contact its normal dashpot may hold closed
+            for speed in (fast, slow):
+                PairBatch(pairs_from_states(model, b, [[-speed, 0.0, 0.0]]), contact, dt)
         except SceneError as exc:
             key = "states.v_n" if "v_n" in exc.parameter else f"model.{exc.parameter}"
             raise SweepError(f"{key}: {exc}") from None
