@@ -212,5 +212,23 @@ def test_a_contact_its_normal_dashpot_holds_closed_is_refused_by_its_v_n_not_fol
     states = {"n": 300, "v_n": [-0.8, -0.1], "v_t": [-2, 2], "r_omega": [-2, 2]}
     with pytest.raises(SweepError, match="states.v_n: v_n = -0.1: the contact does not end"):
         spec_from_dict({"model": {"scene": "pair", "normal": "hertz", "gamma_n": 1.0}, "states": states})
-    # limit_damping cuts the tensile dashpot: the same impact ends
+    # limit_damping cuts the tensile dashpot: the same impact ends; a dashpot that fades with the contact
+    # (viscoelastic's, a^1 against Hertz's delta^1.5) cannot hold it, however strong: a slow exit, not a refusal
     assert Collision(ContactModel(normal="hertz", gamma_n=2.0, limit_damping=True), v_n=-0.16).nsteps > 0
+    fading = ContactModel(normal="hertz", damping="viscoelastic", gamma_n_per_mass_radius=50.0)
+    assert Collision(fading, v_n=-0.2).nsteps > Collision(fading.replace(gamma_n_per_mass_radius=5.0), v_n=-0.2).nsteps
+
+
+def test_the_pair_reference_itself_refuses_a_held_contact_rather_than_answer_past_its_window():
+    """The pair reference alone (a batch checks its equivalent wall at its fastest pair only): its tails stall
+    again and again as the overlap creeps (t = 0.95, 4.1, 12.8, then past the window); it once restarted past
+    the window, integrated backwards in time and answered spheres approaching after 40 time units."""
+    from spinbounce.errors import ContactHeld
+    from spinbounce.exact import pair_exact
+
+    pair = dict(n=(0.0, 0.0, 1.0), v_a=(0.0, 0.0, -0.17), v_b=(0.0, 0.0, 0.0), w_a=(0.0, 0.0, 0.0),
+                w_b=(0.0, 0.0, 0.0), m_a=1.0, r_a=0.5, alpha_a=0.4, m_b=1.0, r_b=0.5, alpha_b=0.4, kn=10.0, kt=0.0)
+    with pytest.raises(ContactHeld, match="the contact does not end"):
+        pair_exact.solve(**pair, gamma_n=1.0, **{**pair_exact.HERTZ_MINDLIN, "damping_power": 0.0})
+    ended = pair_exact.solve(**pair, gamma_n=1.0, tensile=False, **{**pair_exact.HERTZ_MINDLIN, "damping_power": 0.0})
+    assert ended.v_a[2] - ended.v_b[2] > 0.0 and ended.contact_time < 10.0  # limit_damping: they part

@@ -8,8 +8,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-__all__ = ["SceneError", "contact_held", "PhysicsWarning", "NoMatrix", "NoLimit", "SweepError", "FileFault",
-           "DumpError", "LammpsError", "ResultError"]
+__all__ = ["SceneError", "ContactHeld", "contact_held", "PhysicsWarning", "NoMatrix", "NoLimit", "SweepError",
+           "FileFault", "DumpError", "LammpsError", "ResultError"]
 
 
 class SceneError(ValueError):
@@ -69,12 +69,17 @@ class ResultError(RuntimeError):
     reference it is judged against gives no outcome."""
 
 
+class ContactHeld(SceneError):
+    """An impact whose contact never ends (:func:`contact_held`): a refusal of the state, whatever the step, which
+    a handler of a step refused (a rung too coarse, a run too long) must pass on."""
+
+
 def contact_held(v_n: float) -> SceneError:
     """The refusal of an impact at ``v_n`` whose contact a normal dashpot holds closed: near the surface a force on
     the contact radius vanishes (Hertz's as delta^1.5) while a dashpot that does not fade with the contact (damping
     velocity, mass_velocity) does not, and the overlap creeps towards zero without reaching it (LAMMPS's
     too: a wall's sphere at v_n = -0.16, gamma_n = 2 on Hertz, kn 10, still 3e-5 deep after 200,000 steps)."""
-    return SceneError("v_n", v_n, "the contact does not end: its normal dashpot, which does not fade as the overlap "
+    return ContactHeld("v_n", v_n, "the contact does not end: its normal dashpot, which does not fade as the overlap "
                                   "closes, holds it closed (the overlap creeps towards zero without reaching it); "
                                   "a faster impact, limit_damping, or a damping model that fades with the contact "
                                   "(tsuji, viscoelastic, coeff_restitution) ends it")

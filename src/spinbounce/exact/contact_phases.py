@@ -48,7 +48,7 @@ from functools import lru_cache
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from .wall_law import Law
+from .wall_law import Law, can_hold
 from ..errors import contact_held
 
 __all__ = ["Law", "bounce", "bounce_many", "exit_slips", "normal_exit", "RTOL"]
@@ -189,8 +189,9 @@ class _Contact:
 #: 1e-12 of its delta_max: below it, rounding can make the cap and a vanishing force chatter.
 TAIL_START = 0.5
 TAIL_END = 1.0e-6
-#: A contact still open after HELD_SPANS spans of its leg (span: ten times the undamped depth over the impact speed,
-#: several contact times) is held closed by its normal dashpot (:func:`spinbounce.errors.contact_held`).
+#: A contact whose dashpot can hold it (:func:`.wall_law.can_hold`) still open HELD_SPANS spans after first touch
+#: (span: ten times the undamped depth over the impact speed, several contact times) is held closed by it
+#: (:func:`spinbounce.errors.contact_held`).
 HELD_SPANS = 2.0
 
 
@@ -217,16 +218,18 @@ def _bounce(law: Law, v_n: float, v_t: float, r_omega: float) -> tuple[float, fl
     phase, first = contact.first_phase(speed, slip, span)
     sigma = math.copysign(1.0, slip) if slip else 1.0
     leg, x, x_tail = "load", 0.0, 0.0
+    holds = law.c_n > 0.0 and can_hold(law.power, law.damping_power, law.tensile)
     for _ in range(MAX_PHASES):
         tail = leg == "tail"
         end = x_tail * TAIL_END if tail else x + span
-        events = contact.events(phase, sigma, leg) + ([_held(HELD_SPANS * span)] if tail else [])
+        events = contact.events(phase, sigma, leg) + ([_held(HELD_SPANS * span)] if tail and holds else [])
         sol = solve_ivp(contact.rhs(phase, sigma, tail), (x, end), y, method="DOP853", rtol=RTOL, atol=ATOL,
                         events=events, first_step=first if x == 0.0 else None)
         hit = [j for j, times in enumerate(sol.t_events) if times.size]
         if not hit:
             if not tail or sol.status != 0:
-                _check_not_held(law, v_n, leg == "unload")
+                if holds and leg == "unload":  # its overlap closing too slowly to reach the tail
+                    raise contact_held(v_n)
                 raise RuntimeError(f"a contact's {leg} did not end: {sol.message}")
             return -sol.y[_DR, -1], sol.y[_V, -1], sol.y[_W, -1], sol.y[_T, -1], sol.y[_T, -1]
         which = min(hit, key=lambda j: abs(sol.t_events[j][0] - x))
@@ -235,7 +238,7 @@ def _bounce(law: Law, v_n: float, v_t: float, r_omega: float) -> tuple[float, fl
             return -y[_DR], y[_V], y[_W], y[_T], y[_T]
         name = events[which].__name__
         if name == "held":
-            _check_not_held(law, v_n, True)
+            raise contact_held(v_n)
         if name == "turn":  # no force from here: the overlap closes at the rate it has
             return -y[_DR], y[_V], y[_W], y[_T] + y[_D] / -y[_DR], y[_T]
         if name == "deepest":
@@ -258,13 +261,6 @@ def _held(limit: float):
 
     held.terminal, held.direction = True, -1
     return held
-
-
-def _check_not_held(law: Law, v_n: float, creeping: bool) -> None:
-    """:func:`~spinbounce.errors.contact_held` of ``v_n`` where a normal dashpot holds the contact (``creeping``:
-    the overlap closed too slowly to end)."""
-    if creeping and law.c_n > 0.0 and law.tensile:
-        raise contact_held(v_n)
 
 
 @lru_cache(maxsize=65536)

@@ -34,7 +34,7 @@ import numpy as np
 from ..errors import contact_held
 from . import first_use, pair_kernel
 from . import pair as pair_theory
-from .wall_law import on_contact_radius
+from .wall_law import can_hold, on_contact_radius
 
 __all__ = ["PairOutcome", "solve", "RTOL", "HOOKE", "longest_step", "start", "outcome", "free_flight", "window",
            "contact_radius_power", "pair_scales", "tolerance_scale", "cross", "EXAMPLE", "HERTZ_MINDLIN"]
@@ -200,6 +200,11 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, g
     bound = float(window(tau, m_a, m_b, kn, gamma_n, radial))
     coefficients = pair_kernel.coefficients(p)
 
+    def not_separated():
+        if gamma_n > 0.0 and can_hold(p["power"], p["damping_power"], tensile):  # the dashpot outlasts the force
+            raise contact_held(-abs(float(v_rel @ n0)))
+        raise RuntimeError(f"the pair did not separate within {CONTACT_TIMES:g} contact times")
+
     def follow(depth: float, y0, t0: float):
         """The contact from ``y0`` at ``t0`` until the overlap falls back to ``depth`` (the tail's start), or
         parts before it ever got that deep (a grazing pair), or the normal force turns: (solution, which event,
@@ -212,6 +217,8 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, g
 
         separated.terminal = parted.terminal = True
         separated.direction = parted.direction = 1.0
+        if t0 >= bound:  # a tail that stalled past the window: no time left to follow
+            not_separated()
         # the start (gap 0, closing) is no upward crossing; the end (or the tail's start) is the first one
         events = [separated] + ([parted] if depth > 0.0 else []) + ([turned] if turned else [])
         solution = solve_ivp(_rates, (t0, bound), y0, method="DOP853", args=(n0, coefficients, planar),
@@ -222,9 +229,7 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, g
         if solution.status == -1:
             raise RuntimeError(f"the pair's integration failed: {solution.message}")
         if solution.status != 1 or not fired:
-            if gamma_n > 0.0 and tensile:  # a dashpot that outlasts the force near the surface
-                raise contact_held(-abs(float(v_rel @ n0)))
-            raise RuntimeError(f"the pair did not separate within {CONTACT_TIMES:g} contact times")
+            not_separated()
         k = fired[0]
         return solution, events[k].__name__, solution.y_events[k][0], solution.t_events[k][0]
 
@@ -243,10 +248,12 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, g
             return outcome(*free_flight(end, t_end, n0, planar, -gap(end)), n0)
         if not (radial and which == "separated"):
             return outcome(end, t_end, n0)
-        end, t_end, stalled = _tail(end, t_end, -gap(end), n0, p, planar, rtol, atol, turned)
+        end, t_end, stalled = _tail(end, t_end, -gap(end), n0, p, planar, rtol, atol, turned, bound)
         if not stalled:
             return outcome(end, t_end, n0)
         depth = TAIL_START * -gap(end)  # back in time from where the parting stalled, to a tail of its own
+    if gamma_n > 0.0 and can_hold(p["power"], p["damping_power"], tensile):
+        raise contact_held(-abs(float(v_rel @ n0)))
     raise RuntimeError(f"the pair's parting stalled more than {MAX_STALLS} times")
 
 
@@ -305,11 +312,12 @@ def undamped_depth(p, v_rel, n0, m_star: float) -> float:
     return ((p["power"] + 1.0) * m_star * speed**2 / (2.0 * p["K"])) ** (1.0 / (p["power"] + 1.0))
 
 
-def _tail(state, t: float, delta: float, n0, p, planar, rtol, atol, turned=None):
+def _tail(state, t: float, delta: float, n0, p, planar, rtol, atol, turned=None, bound: float = np.inf):
     """(state, time, stalled) at the end of the contact, integrated in x = sqrt(delta) from ``delta`` down:
     dy/dx = dy/dt 2 x/delta', the time a state of its own; ``turned``: the normal force's turn, from which the
     spheres part force-free. ``stalled``: the state is where the parting slowed to STALL of its start instead
-    (:data:`STALL`), from which the contact goes on in time."""
+    (:data:`STALL`), or where its time reached ``bound`` (the contact's window), from which the contact goes on
+    in time."""
     from scipy.integrate import solve_ivp
 
     coefficients = pair_kernel.coefficients(p)
@@ -333,8 +341,12 @@ def _tail(state, t: float, delta: float, n0, p, planar, rtol, atol, turned=None)
     def stall(x, y):
         return parting(y) - slowest
 
-    stall.terminal = True
-    events = [stall]
+    def window_end(x, y):
+        return bound - y[-1]
+
+    stall.terminal = window_end.terminal = True
+    stall.direction = window_end.direction = -1.0
+    events = [stall, window_end]
     if turned:
         def turn(x, y):
             n = n0 if planar else y[:3] / np.sqrt(y[:3] @ y[:3])
@@ -344,11 +356,11 @@ def _tail(state, t: float, delta: float, n0, p, planar, rtol, atol, turned=None)
         events.append(turn)
     solution = solve_ivp(rates, (x0, x0 * TAIL_END), np.append(state, t), method="DOP853", rtol=rtol,
                          atol=tail_atol, events=events)
-    if solution.status == 1 and len(solution.t_events[0]):  # the parting stalled: back to the time from here
-        y = solution.y_events[0][0]
-        return y[:-1], float(y[-1]), True
+    if solution.status == 1 and (len(solution.t_events[0]) or len(solution.t_events[1])):
+        y = (solution.y_events[0] if len(solution.t_events[0]) else solution.y_events[1])[0]
+        return y[:-1], float(y[-1]), True  # stalled, or out of time: back to the time from here
     if solution.status == 1:  # the turn: from there force-free
-        x, y = solution.t_events[1][0], solution.y_events[1][0]
+        x, y = solution.t_events[2][0], solution.y_events[2][0]
         return (*free_flight(y[:-1], float(y[-1]), n0, planar, x * x), False)
     if solution.status != 0:
         raise RuntimeError(f"the pair's contact did not end: {solution.message}")

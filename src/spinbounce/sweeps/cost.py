@@ -51,7 +51,7 @@ __all__ = ["CostError", "ChunkCost", "JobRequest", "chunk_cost", "job_request", 
 START_SECONDS = 1.2
 #: A further chunk in a process that has started (a local sweep's): its LAMMPS instance, deck and
 #: table, about 0.09 s a 25,000-sphere chunk (a 200,000-collision frictionless sweep, profiled).
-CHUNK_SECONDS = 0.1
+NEXT_CHUNK_SECONDS = 0.1
 #: exact.coulomb's exact batched solver, per collision: 150,000 to 400,000 a second on one
 #: core (studies/solver_speed), so 1e-5 s with room.
 CAPPED_THEORY_SECONDS = 1e-5
@@ -239,7 +239,7 @@ def check_fits(spec, limit: JobRequest) -> list[JobRequest]:
 def sweep_seconds(spec, processes: int | None = None) -> float:
     """The whole sweep on one core, without listing its chunks: each chunk's bound (what a cluster job
     asks for), or, run in ``processes`` processes (a local sweep's workers), what each is expected to
-    take, LAMMPS's start-up paid once a process and CHUNK_SECONDS by each further chunk."""
+    take, LAMMPS's start-up paid once a process and NEXT_CHUNK_SECONDS by each further chunk."""
     total, chunks = 0.0, 0
     for group, size in enumerate(spec.chunk_sizes):
         full, rest = divmod(spec.n, size)
@@ -250,4 +250,4 @@ def sweep_seconds(spec, processes: int | None = None) -> float:
                 chunks += count
     if processes is None:
         return total
-    return total - (chunks - min(processes, chunks)) * (START_SECONDS - CHUNK_SECONDS)
+    return total - (chunks - min(processes, chunks)) * (START_SECONDS - NEXT_CHUNK_SECONDS)

@@ -44,7 +44,7 @@ import numpy as np
 
 from .. import checks
 from ..lammps.decks import ALPHA_NVE_SPHERE
-from ..errors import SceneError
+from ..errors import ContactHeld, SceneError
 from ..model.timestep import ACCURACY, StepChoice
 from ..pipeline import RunResult, run_scene
 from ..scenes.pair.scene import PairBatch
@@ -130,6 +130,8 @@ def ladder_steps(sample: PairBatch, folder: Path, target: float = ACCURACY) -> t
     while steps <= LONGEST:
         try:
             found = run_ladder(rows, steps, Path(folder) / f"probe-{steps}", target, tau)
+        except ContactHeld:  # a state no step ends: refused as it is
+            raise
         except SceneError:  # a rung too coarse for the stiffest mode (a large kt): finer
             found = None
         if found is not None and float(np.max(found.columns["error"])) <= target / MARGIN:

@@ -31,7 +31,7 @@ from ..scenes.pair.kind import pair_contact, pairs_from_states, wall_frame
 from ..scenes.pair.scene import PairBatch, Sphere
 from ..scenes.collision.table import SPINS
 from ..scenes.pair.table import QUANTITIES, pair_frames, pair_states
-from ..errors import SceneError
+from ..errors import ContactHeld, SceneError
 from .pair_ladder import LONGEST, applies, ladder_steps, run_ladder
 
 __all__ = ["pair_chunk"]
@@ -70,6 +70,8 @@ def _ladder(given: PairBatch, probe: PairBatch | None, run_dir: Path):
         return None
     try:
         return run_ladder(given, chosen[0], run_dir, contact_time=chosen[1]), chosen
+    except ContactHeld:  # a state no step ends: refused as it is
+        raise
     except SceneError:
         return None
 
@@ -136,6 +138,8 @@ def _refine(given: PairBatch, columns: dict, nsteps, again, cost, levels: int, n
         rows = given.rows(bad)
         try:
             run, steps, method = again(rows, level)
+        except ContactHeld:  # a state no step ends: refused as it is
+            raise
         except SceneError:  # a step this fine is refused (its run too long): the rows stay as they are, flagged
             break
         for key, value in _columns(run, rows.pairs, names).items():

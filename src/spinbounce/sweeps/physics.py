@@ -66,5 +66,6 @@ def _check_pairs(spec) -> None:
             for speed in (fast, slow):
                 PairBatch(pairs_from_states(model, b, [[-speed, 0.0, 0.0]]), contact, dt)
         except SceneError as exc:
-            key = "states.v_n" if "v_n" in exc.parameter else f"model.{exc.parameter}"
+            speed_key = "states.v_n" if "v_n" in spec.states["axes"] else "states.speed"
+            key = speed_key if "v_n" in exc.parameter else f"model.{exc.parameter}"
             raise SweepError(f"{key}: {exc}") from None
