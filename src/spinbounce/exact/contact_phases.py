@@ -218,7 +218,7 @@ def _bounce(law: Law, v_n: float, v_t: float, r_omega: float) -> tuple[float, fl
     phase, first = contact.first_phase(speed, slip, span)
     sigma = math.copysign(1.0, slip) if slip else 1.0
     leg, x, x_tail = "load", 0.0, 0.0
-    holds = law.c_n > 0.0 and can_hold(law.power, law.damping_power, law.tensile)
+    holds = can_hold(law.c_n, law.power, law.damping_power, law.tensile)
     for _ in range(MAX_PHASES):
         tail = leg == "tail"
         end = x_tail * TAIL_END if tail else x + span

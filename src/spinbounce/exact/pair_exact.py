@@ -200,15 +200,18 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, g
     bound = float(window(tau, m_a, m_b, kn, gamma_n, radial))
     coefficients = pair_kernel.coefficients(p)
 
-    def not_separated():
-        if gamma_n > 0.0 and can_hold(p["power"], p["damping_power"], tensile):  # the dashpot outlasts the force
+    def not_separated(why: str = f"the pair did not separate within {CONTACT_TIMES:g} contact times"):
+        if can_hold(gamma_n, p["power"], p["damping_power"], tensile):  # the dashpot outlasts the force
             raise contact_held(-abs(float(v_rel @ n0)))
-        raise RuntimeError(f"the pair did not separate within {CONTACT_TIMES:g} contact times")
+        raise RuntimeError(why)
 
     def follow(depth: float, y0, t0: float):
         """The contact from ``y0`` at ``t0`` until the overlap falls back to ``depth`` (the tail's start), or
         parts before it ever got that deep (a grazing pair), or the normal force turns: (solution, which event,
         state, time)."""
+        if t0 >= bound:  # a tail that stalled past the window: no time left to follow
+            not_separated()
+
         def separated(t, y, *_):
             return gap(y) + depth
 
@@ -217,8 +220,6 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, g
 
         separated.terminal = parted.terminal = True
         separated.direction = parted.direction = 1.0
-        if t0 >= bound:  # a tail that stalled past the window: no time left to follow
-            not_separated()
         # the start (gap 0, closing) is no upward crossing; the end (or the tail's start) is the first one
         events = [separated] + ([parted] if depth > 0.0 else []) + ([turned] if turned else [])
         solution = solve_ivp(_rates, (t0, bound), y0, method="DOP853", args=(n0, coefficients, planar),
@@ -252,9 +253,7 @@ def solve(n, v_a, v_b, w_a, w_b, m_a, r_a, alpha_a, m_b, r_b, alpha_b, kn, kt, g
         if not stalled:
             return outcome(end, t_end, n0)
         depth = TAIL_START * -gap(end)  # back in time from where the parting stalled, to a tail of its own
-    if gamma_n > 0.0 and can_hold(p["power"], p["damping_power"], tensile):
-        raise contact_held(-abs(float(v_rel @ n0)))
-    raise RuntimeError(f"the pair's parting stalled more than {MAX_STALLS} times")
+    not_separated(f"the pair's parting stalled more than {MAX_STALLS} times")
 
 
 def _gaps(states: np.ndarray, n0, planar: bool, radsum: float) -> np.ndarray:

@@ -15,12 +15,12 @@ import numpy as np
 __all__ = ["Law", "on_contact_radius", "can_hold"]
 
 
-def can_hold(power: float, damping_power: float, tensile: bool = True) -> bool:
+def can_hold(gamma: float, power: float, damping_power: float, tensile: bool = True) -> bool:
     """Whether a normal dashpot gamma a^damping_power can hold a contact of force K delta^power closed: near the
     surface its rate outgrows the force's frequency, (delta^(s/2)) / (delta^((p-1)/2)) -> infinity, where
     s < p - 1 (Hertz's force with a velocity dashpot; a Hookean force or a dashpot at a constant damping ratio,
-    tsuji's, cannot; nor a dashpot limit_damping cuts where it would pull: ``tensile`` False)."""
-    return tensile and damping_power < power - 1.0
+    tsuji's, cannot; nor no dashpot, nor one limit_damping cuts where it would pull: ``tensile`` False)."""
+    return gamma > 0.0 and tensile and damping_power < power - 1.0
 
 
 def on_contact_radius(power: float, spring_power: float, damping_power: float) -> bool:
