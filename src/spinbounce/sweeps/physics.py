@@ -25,7 +25,6 @@ def check_physics(spec) -> None:
         _check_pairs(spec)
         return
     fast, slow = spec.normal_speeds()
-    key_vn = "states.v_n" if "v_n" in spec.states["axes"] else "states.speed"
     for g in range(len(spec.groups)):
         try:
             with warnings.catch_warnings(action="ignore"):
@@ -41,8 +40,15 @@ def check_physics(spec) -> None:
         try:
             Collision(model, v_n=[-fast, -slow], v_t=0.0, omega=0.0, dt=dt)
         except SceneError as exc:
-            key = key_vn if exc.parameter.startswith("v_n") else f"model.{exc.parameter}"
-            raise SweepError(f"{key}: {exc}") from None
+            raise SweepError(f"{_key(spec, exc.parameter)}: {exc}") from None
+
+
+def _key(spec, parameter: str) -> str:
+    """The scene file's key a refusal of ``parameter`` names: the states' speed (v_n, or a polar scene's speed)
+    where it refuses an impact (a wall's v_n, a pair's pairs[k].v_n), else the model's key."""
+    if "v_n" in parameter:
+        return "states.v_n" if "v_n" in spec.states["axes"] else "states.speed"
+    return f"model.{parameter}"
 
 
 def _check_pairs(spec) -> None:
@@ -66,6 +72,4 @@ def _check_pairs(spec) -> None:
             for speed in (fast, slow):
                 PairBatch(pairs_from_states(model, b, [[-speed, 0.0, 0.0]]), contact, dt)
         except SceneError as exc:
-            speed_key = "states.v_n" if "v_n" in spec.states["axes"] else "states.speed"
-            key = speed_key if "v_n" in exc.parameter else f"model.{exc.parameter}"
-            raise SweepError(f"{key}: {exc}") from None
+            raise SweepError(f"{_key(spec, exc.parameter)}: {exc}") from None
